@@ -7,3 +7,8 @@ pub use contact_laws;
 pub use contact_solver;
 /// Finite-element core: P1/P2 triangles, idealizations, sparse assembly (in progress).
 pub use fem_core;
+
+/// The user guide (`docs/guide.md`), included here so that its examples are compiled and
+/// run as doctests.
+#[doc = include_str!("../docs/guide.md")]
+pub mod guide {}

@@ -72,7 +72,9 @@ impl CoulombCone {
     /// fallible constructor on the hot path.
     #[inline]
     pub fn scaled(&self, factor: f64) -> Self {
-        // `max` returns the other operand when one is NaN, so NaN maps to 0.
+        // `max` returns the other operand when one is NaN, so NaN maps to 0 (`clamp` would
+        // keep the NaN).
+        #[allow(clippy::manual_clamp)]
         let f = factor.max(0.0).min(1.0);
         Self { mu: self.mu * f }
     }

@@ -478,7 +478,8 @@ mod tests {
 
     #[test]
     fn new_rejects_invalid_parameters() {
-        let cases: [(&str, fn(&mut RccmParams)); 8] = [
+        type Edit = fn(&mut RccmParams);
+        let cases: [(&str, Edit); 8] = [
             ("c_n", |p| p.c_n = -1.0),
             ("c_t", |p| p.c_t = f64::NAN),
             ("w", |p| p.w = -1e-9),
