@@ -1,5 +1,17 @@
-//! Finite-element core of `bipotential`: P1/P2 triangles, plane strain, plane stress,
-//! axisymmetry and sparse assembly.
+//! Finite-element core of `bipotential`: 3-node (P1) and 6-node (P2) triangles, plane
+//! strain, plane stress and axisymmetry, sparse assembly and Cholesky factorisation.
 //!
-//! This crate is intentionally empty for now: it will hold the `Structure` trait and the
-//! linear-elastic model (see issue 4). It knows nothing about contact.
+//! It knows nothing about contact. The contact solver sees a body only through the
+//! `Structure` trait (in progress, issue 4).
+
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod idealization;
+pub mod material;
+pub mod mesh;
+
+pub use error::FemError;
+pub use idealization::Idealization;
+pub use material::Material;
+pub use mesh::{ElementKind, Mesh, Side};

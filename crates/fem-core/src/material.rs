@@ -1,0 +1,139 @@
+//! Isotropic linear elasticity.
+
+use crate::error::{FemError, non_negative, positive};
+use crate::idealization::Idealization;
+use nalgebra::Matrix4;
+
+/// An isotropic linear-elastic material with a unit weight.
+///
+/// Strain and stress vectors are ordered `(xx, yy, xy)` in the plane and
+/// `(rr, zz, rz, θθ)` in axisymmetry, with engineering shear strain `γ = 2ε`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    young: f64,
+    poisson: f64,
+    unit_weight: f64,
+}
+
+impl Material {
+    /// Builds a material from Young's modulus `young > 0` (stress), Poisson's ratio
+    /// `−1 < poisson < 0.5` and unit weight `unit_weight ≥ 0` (force per volume, acting along
+    /// `−y` / `−z`; seed table 6.2 gives γ in kN/m³).
+    ///
+    /// # Errors
+    /// [`FemError::InvalidParameter`] naming the offending parameter.
+    pub fn new(young: f64, poisson: f64, unit_weight: f64) -> Result<Self, FemError> {
+        let young = positive("young", young)?;
+        if !(poisson > -1.0 && poisson < 0.5) {
+            return Err(FemError::InvalidParameter {
+                name: "poisson",
+                value: poisson,
+                expected: "a value in (-1, 0.5)",
+            });
+        }
+        let unit_weight = non_negative("unit_weight", unit_weight)?;
+        Ok(Self {
+            young,
+            poisson,
+            unit_weight,
+        })
+    }
+
+    /// Young's modulus `E`.
+    #[inline]
+    pub fn young(&self) -> f64 {
+        self.young
+    }
+
+    /// Poisson's ratio `ν`.
+    #[inline]
+    pub fn poisson(&self) -> f64 {
+        self.poisson
+    }
+
+    /// Unit weight `γ` (force per volume).
+    #[inline]
+    pub fn unit_weight(&self) -> f64 {
+        self.unit_weight
+    }
+
+    /// The elasticity matrix `D` (σ = D ε) for `idealization`, in the top-left
+    /// `strain_size × strain_size` block of a 4×4 matrix (the rest is zero).
+    ///
+    /// ```text
+    /// plane strain, axisymmetry: λ = Eν/((1+ν)(1−2ν)), G = E/(2(1+ν)),
+    ///   D = [λ+2G λ 0 (λ); λ λ+2G 0 (λ); 0 0 G (0); (λ λ 0 λ+2G)]
+    /// plane stress: D = E/(1−ν²) [1 ν 0; ν 1 0; 0 0 (1−ν)/2]
+    /// ```
+    pub fn elasticity(&self, idealization: &Idealization) -> Matrix4<f64> {
+        let (e, nu) = (self.young, self.poisson);
+        let mut d = Matrix4::zeros();
+        match idealization {
+            Idealization::PlaneStress { .. } => {
+                let c = e / (1.0 - nu * nu);
+                d[(0, 0)] = c;
+                d[(1, 1)] = c;
+                d[(0, 1)] = c * nu;
+                d[(1, 0)] = c * nu;
+                d[(2, 2)] = c * (1.0 - nu) / 2.0;
+            }
+            _ => {
+                let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+                let g = e / (2.0 * (1.0 + nu));
+                let n = idealization.strain_size();
+                for (i, j) in [(0, 1), (1, 0)] {
+                    d[(i, j)] = lambda;
+                }
+                d[(0, 0)] = lambda + 2.0 * g;
+                d[(1, 1)] = lambda + 2.0 * g;
+                d[(2, 2)] = g;
+                if n == 4 {
+                    d[(3, 3)] = lambda + 2.0 * g;
+                    for (i, j) in [(0, 3), (3, 0), (1, 3), (3, 1)] {
+                        d[(i, j)] = lambda;
+                    }
+                }
+            }
+        }
+        d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_rejects_invalid_parameters() {
+        for (e, nu, g, name) in [
+            (0.0, 0.3, 0.0, "young"),
+            (-1.0, 0.3, 0.0, "young"),
+            (f64::NAN, 0.3, 0.0, "young"),
+            (1.0, 0.5, 0.0, "poisson"),
+            (1.0, -1.0, 0.0, "poisson"),
+            (1.0, f64::NAN, 0.0, "poisson"),
+            (1.0, 0.3, -1.0, "unit_weight"),
+        ] {
+            match Material::new(e, nu, g) {
+                Err(FemError::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
+                other => panic!("expected InvalidParameter({name}), got {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn elasticity_works() {
+        let m = Material::new(1.0, 0.25, 0.0).unwrap();
+        // Uniaxial stress in plane stress: ε = (1, −ν, 0) gives σ = (E, 0, 0).
+        let d = m.elasticity(&Idealization::PlaneStress { thickness: 1.0 });
+        let s = d * nalgebra::Vector4::new(1.0, -0.25, 0.0, 0.0);
+        assert!((s[0] - 1.0).abs() < 1e-15 && s[1].abs() < 1e-15);
+        // Axisymmetric D is the 3D isotropic law restricted to (rr, zz, rz, θθ): hydrostatic
+        // strain (1, 1, 0, 1) gives 3K = E/(1−2ν) on each normal component.
+        let d = m.elasticity(&Idealization::Axisymmetric);
+        let s = d * nalgebra::Vector4::new(1.0, 1.0, 0.0, 1.0);
+        for i in [0, 1, 3] {
+            assert!((s[i] - 1.0 / (1.0 - 0.5)).abs() < 1e-14);
+        }
+    }
+}

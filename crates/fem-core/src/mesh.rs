@@ -1,0 +1,353 @@
+//! Meshes of 3-node (P1) and 6-node (P2) triangles, with regions, node sets and edge sets.
+
+use crate::error::FemError;
+use std::collections::BTreeMap;
+
+/// The element family of a mesh.
+///
+/// Node order: corners `0, 1, 2` counter-clockwise, then for P2 the mid-edge nodes
+/// `3` (edge 0–1), `4` (edge 1–2), `5` (edge 2–0) — Gmsh's order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ElementKind {
+    /// Linear 3-node triangle.
+    Tri3,
+    /// Quadratic 6-node isoparametric triangle.
+    Tri6,
+}
+
+impl ElementKind {
+    /// Nodes per element: 3 or 6.
+    #[inline]
+    pub fn node_count(self) -> usize {
+        match self {
+            ElementKind::Tri3 => 3,
+            ElementKind::Tri6 => 6,
+        }
+    }
+
+    /// The local nodes of side `side ∈ {0, 1, 2}`, from its first corner to its second, with
+    /// the mid-side node last for P2 (`[a, b]` or `[a, b, m]`).
+    #[inline]
+    pub fn side_nodes(self, side: usize) -> &'static [usize] {
+        const P1: [[usize; 2]; 3] = [[0, 1], [1, 2], [2, 0]];
+        const P2: [[usize; 3]; 3] = [[0, 1, 3], [1, 2, 4], [2, 0, 5]];
+        match self {
+            ElementKind::Tri3 => &P1[side],
+            ElementKind::Tri6 => &P2[side],
+        }
+    }
+}
+
+/// A side of an element: element index and local side `0, 1, 2` (see
+/// [`ElementKind::side_nodes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Side {
+    /// Element index.
+    pub element: usize,
+    /// Local side index in `0..3`.
+    pub side: u8,
+}
+
+/// A triangle mesh: node coordinates, connectivity, region ids, named node sets and named
+/// edge sets.
+///
+/// Coordinates are `(x, y)`, or `(r, z)` in axisymmetry. Built with [`Mesh::new`], which checks
+/// indices, finiteness and orientation (corner area > 0), so every `Mesh` is valid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    nodes: Vec<[f64; 2]>,
+    kind: ElementKind,
+    connectivity: Vec<usize>,
+    regions: Vec<u32>,
+    node_sets: BTreeMap<String, Vec<usize>>,
+    edge_sets: BTreeMap<String, Vec<Side>>,
+}
+
+impl Mesh {
+    /// Builds and validates a mesh. `connectivity` is flat, `kind.node_count()` entries per
+    /// element; `regions` has one id per element (empty means all in region 0).
+    ///
+    /// # Errors
+    /// - [`FemError::NonFiniteNode`] for a NaN or infinite coordinate;
+    /// - [`FemError::BadConnectivity`], [`FemError::NodeOutOfRange`],
+    ///   [`FemError::LengthMismatch`] (regions) for inconsistent arrays;
+    /// - [`FemError::DegenerateElement`] (area below `1e-12` of the squared longest side) and
+    ///   [`FemError::InvertedElement`] (clockwise corners) with the element index.
+    pub fn new(
+        nodes: Vec<[f64; 2]>,
+        kind: ElementKind,
+        connectivity: Vec<usize>,
+        regions: Vec<u32>,
+    ) -> Result<Self, FemError> {
+        for (node, p) in nodes.iter().enumerate() {
+            if !(p[0].is_finite() && p[1].is_finite()) {
+                return Err(FemError::NonFiniteNode {
+                    node,
+                    x: p[0],
+                    y: p[1],
+                });
+            }
+        }
+        let npe = kind.node_count();
+        if connectivity.len() % npe != 0 {
+            return Err(FemError::BadConnectivity {
+                len: connectivity.len(),
+                nodes_per_element: npe,
+            });
+        }
+        let n_elem = connectivity.len() / npe;
+        let regions = if regions.is_empty() {
+            vec![0; n_elem]
+        } else if regions.len() != n_elem {
+            return Err(FemError::LengthMismatch {
+                what: "regions",
+                expected: n_elem,
+                got: regions.len(),
+            });
+        } else {
+            regions
+        };
+        for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
+            if let Some(&node) = cell.iter().find(|&&n| n >= nodes.len()) {
+                return Err(FemError::NodeOutOfRange {
+                    element,
+                    node,
+                    node_count: nodes.len(),
+                });
+            }
+            let [a, b, c] = [nodes[cell[0]], nodes[cell[1]], nodes[cell[2]]];
+            let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+            let l2 = [(a, b), (b, c), (c, a)]
+                .iter()
+                .map(|(p, q)| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2))
+                .fold(0.0, f64::max);
+            if area.abs() <= 1e-12 * l2 || l2 == 0.0 {
+                return Err(FemError::DegenerateElement { element, area });
+            }
+            if area < 0.0 {
+                return Err(FemError::InvertedElement {
+                    element,
+                    det_j: 2.0 * area,
+                });
+            }
+        }
+        Ok(Self {
+            nodes,
+            kind,
+            connectivity,
+            regions,
+            node_sets: BTreeMap::new(),
+            edge_sets: BTreeMap::new(),
+        })
+    }
+
+    /// Adds (or replaces) a named node set.
+    ///
+    /// # Errors
+    /// [`FemError::NodeOutOfRange`] (with `element = usize::MAX`) for an unknown node.
+    pub fn add_node_set(&mut self, name: &str, mut nodes: Vec<usize>) -> Result<(), FemError> {
+        if let Some(&node) = nodes.iter().find(|&&n| n >= self.nodes.len()) {
+            return Err(FemError::NodeOutOfRange {
+                element: usize::MAX,
+                node,
+                node_count: self.nodes.len(),
+            });
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        self.node_sets.insert(name.to_string(), nodes);
+        Ok(())
+    }
+
+    /// Adds (or replaces) a named edge set.
+    ///
+    /// # Errors
+    /// [`FemError::LengthMismatch`] for a side whose element or local index is out of range.
+    pub fn add_edge_set(&mut self, name: &str, sides: Vec<Side>) -> Result<(), FemError> {
+        if let Some(s) = sides
+            .iter()
+            .find(|s| s.element >= self.element_count() || s.side > 2)
+        {
+            return Err(FemError::LengthMismatch {
+                what: "edge set side (element or local side index out of range)",
+                expected: self.element_count(),
+                got: s.element,
+            });
+        }
+        self.edge_sets.insert(name.to_string(), sides);
+        Ok(())
+    }
+
+    /// The element family.
+    #[inline]
+    pub fn kind(&self) -> ElementKind {
+        self.kind
+    }
+
+    /// Number of nodes.
+    #[inline]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Number of elements.
+    #[inline]
+    pub fn element_count(&self) -> usize {
+        self.connectivity.len() / self.kind.node_count()
+    }
+
+    /// Node coordinates.
+    #[inline]
+    pub fn nodes(&self) -> &[[f64; 2]] {
+        &self.nodes
+    }
+
+    /// The nodes of element `e`.
+    ///
+    /// # Panics
+    /// If `e >= element_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn element(&self, e: usize) -> &[usize] {
+        let npe = self.kind.node_count();
+        &self.connectivity[e * npe..(e + 1) * npe]
+    }
+
+    /// The flat connectivity array.
+    #[inline]
+    pub fn connectivity(&self) -> &[usize] {
+        &self.connectivity
+    }
+
+    /// Region id of every element.
+    #[inline]
+    pub fn regions(&self) -> &[u32] {
+        &self.regions
+    }
+
+    /// A named node set.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is none of that name.
+    pub fn node_set(&self, name: &str) -> Result<&[usize], FemError> {
+        self.node_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| FemError::UnknownSet {
+                kind: "node",
+                name: name.to_string(),
+            })
+    }
+
+    /// A named edge set.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is none of that name.
+    pub fn edge_set(&self, name: &str) -> Result<&[Side], FemError> {
+        self.edge_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| FemError::UnknownSet {
+                kind: "edge",
+                name: name.to_string(),
+            })
+    }
+
+    /// Names of the node sets.
+    pub fn node_set_names(&self) -> impl Iterator<Item = &str> {
+        self.node_sets.keys().map(String::as_str)
+    }
+
+    /// Names of the edge sets.
+    pub fn edge_set_names(&self) -> impl Iterator<Item = &str> {
+        self.edge_sets.keys().map(String::as_str)
+    }
+
+    /// The global nodes of a side, from its first corner to its second, mid-side node last.
+    #[inline]
+    pub fn side_nodes(&self, side: Side) -> impl Iterator<Item = usize> + '_ {
+        let cell = self.element(side.element);
+        self.kind
+            .side_nodes(side.side as usize)
+            .iter()
+            .map(move |&l| cell[l])
+    }
+
+    /// Nodes of the sides of an edge set (sorted, without duplicates).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is no edge set of that name.
+    pub fn edge_set_nodes(&self, name: &str) -> Result<Vec<usize>, FemError> {
+        let mut nodes: Vec<usize> = self
+            .edge_set(name)?
+            .iter()
+            .flat_map(|&s| self.side_nodes(s))
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        Ok(nodes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Vec<[f64; 2]> {
+        vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    }
+
+    #[test]
+    fn new_works() {
+        let mut m = Mesh::new(square(), ElementKind::Tri3, vec![0, 1, 2, 0, 2, 3], vec![]).unwrap();
+        assert_eq!(m.element_count(), 2);
+        assert_eq!(m.regions(), &[0, 0]);
+        m.add_node_set("left", vec![3, 0, 0]).unwrap();
+        assert_eq!(m.node_set("left").unwrap(), &[0, 3]);
+        m.add_edge_set(
+            "bottom",
+            vec![Side {
+                element: 0,
+                side: 0,
+            }],
+        )
+        .unwrap();
+        assert_eq!(m.edge_set_nodes("bottom").unwrap(), vec![0, 1]);
+        assert!(matches!(
+            m.node_set("top"),
+            Err(FemError::UnknownSet { .. })
+        ));
+    }
+
+    #[test]
+    fn new_rejects_inverted_degenerate_and_bad_indices() {
+        assert!(matches!(
+            Mesh::new(square(), ElementKind::Tri3, vec![0, 2, 1], vec![]),
+            Err(FemError::InvertedElement { element: 0, .. })
+        ));
+        let mut nodes = square();
+        nodes.push([2.0, 0.0]);
+        assert!(matches!(
+            Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2, 0, 1, 4], vec![]),
+            Err(FemError::DegenerateElement { element: 1, .. })
+        ));
+        assert!(matches!(
+            Mesh::new(square(), ElementKind::Tri3, vec![0, 1, 7], vec![]),
+            Err(FemError::NodeOutOfRange {
+                element: 0,
+                node: 7,
+                ..
+            })
+        ));
+        assert!(matches!(
+            Mesh::new(square(), ElementKind::Tri3, vec![0, 1], vec![]),
+            Err(FemError::BadConnectivity { .. })
+        ));
+        let mut nodes = square();
+        nodes[2][1] = f64::NAN;
+        assert!(matches!(
+            Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![]),
+            Err(FemError::NonFiniteNode { node: 2, .. })
+        ));
+    }
+}
