@@ -1,0 +1,164 @@
+//! The sparsity pattern of the reduced stiffness (built once per mesh and dof map) and the
+//! in-place refill of its values.
+//!
+//! Only the lower triangle of the reduced (free-dof) matrix is stored, in CSC form, as faer's
+//! Cholesky reads it. Couplings between prescribed and other dofs are kept apart, as merged
+//! triplets, for the right-hand side `−K_fp ū` and for support reactions.
+
+use crate::dirichlet::{Dof, DofMap};
+use crate::error::FemError;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use nalgebra::DMatrix;
+
+/// Lower-triangular CSC pattern of the reduced stiffness.
+#[derive(Clone, Debug)]
+pub struct Pattern {
+    symbolic: SymbolicSparseColMat<usize>,
+}
+
+impl Pattern {
+    /// Builds the pattern from the node lists of the elements.
+    ///
+    /// # Errors
+    /// [`FemError::LinearAlgebra`] if faer rejects the structure (index overflow).
+    pub fn new<'a>(
+        dofs: &DofMap,
+        elements: impl Iterator<Item = &'a [usize]>,
+    ) -> Result<Self, FemError> {
+        let n = dofs.free_count();
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+        let mut local = Vec::with_capacity(16);
+        for cell in elements {
+            local.clear();
+            local.extend(cell.iter().flat_map(|&node| dofs.free_dofs(node)).flatten());
+            for &i in &local {
+                for &j in &local {
+                    if i >= j {
+                        cols[j].push(i);
+                    }
+                }
+            }
+        }
+        // Every free dof gets its diagonal, even if no element touches it, so that a missing
+        // connection shows up as a zero pivot (NotPositiveDefinite), not a structural error.
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for (j, col) in cols.iter_mut().enumerate() {
+            col.push(j);
+            col.sort_unstable();
+            col.dedup();
+            row_idx.extend_from_slice(col);
+            col_ptr.push(row_idx.len());
+            *col = Vec::new();
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        Ok(Self { symbolic })
+    }
+
+    /// faer's symbolic matrix.
+    #[inline]
+    pub fn symbolic(&self) -> &SymbolicSparseColMat<usize> {
+        &self.symbolic
+    }
+
+    /// Number of stored entries.
+    #[inline]
+    pub fn nnz(&self) -> usize {
+        self.symbolic.row_idx().len()
+    }
+
+    /// Dimension.
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.symbolic.nrows()
+    }
+
+    /// Position of entry `(row, col)`, `row ≥ col`, in the values array.
+    ///
+    /// # Panics
+    /// If the entry is not in the pattern (an internal invariant).
+    #[inline]
+    #[track_caller]
+    pub fn position(&self, row: usize, col: usize) -> usize {
+        let start = self.symbolic.col_ptr()[col];
+        let end = self.symbolic.col_ptr()[col + 1];
+        let rows = &self.symbolic.row_idx()[start..end];
+        start
+            + rows
+                .binary_search(&row)
+                .expect("entry outside the sparsity pattern")
+    }
+
+    /// A faer view of the matrix with these `values`.
+    ///
+    /// # Panics
+    /// If `values.len() != nnz()`.
+    #[inline]
+    #[track_caller]
+    pub fn view<'a>(&'a self, values: &'a [f64]) -> SparseColMatRef<'a, usize, f64> {
+        SparseColMatRef::new(self.symbolic.as_ref(), values)
+    }
+}
+
+/// Couplings of the prescribed dofs with every dof: merged triplets `(p, dof, K_p,dof)`.
+#[derive(Clone, Debug, Default)]
+pub struct PrescribedCoupling {
+    entries: Vec<(usize, Dof, f64)>,
+}
+
+impl PrescribedCoupling {
+    /// The merged entries `(prescribed index, dof, value)`.
+    #[inline]
+    pub fn entries(&self) -> &[(usize, Dof, f64)] {
+        &self.entries
+    }
+}
+
+/// Scatters an element matrix into the reduced values and the prescribed couplings.
+pub(crate) fn scatter(
+    pattern: &Pattern,
+    dofs: &DofMap,
+    cell: &[usize],
+    k_e: &DMatrix<f64>,
+    values: &mut [f64],
+    coupling: &mut Vec<(usize, Dof, f64)>,
+) {
+    let nd = 2 * cell.len();
+    let dof = |a: usize| dofs.dofs(cell[a / 2])[a % 2];
+    for a in 0..nd {
+        match dof(a) {
+            Dof::Free(i) => {
+                for b in 0..nd {
+                    if let Dof::Free(j) = dof(b) {
+                        if i >= j {
+                            values[pattern.position(i, j)] += k_e[(a, b)];
+                        }
+                    }
+                }
+            }
+            Dof::Prescribed(p) => {
+                for b in 0..nd {
+                    coupling.push((p, dof(b), k_e[(a, b)]));
+                }
+            }
+        }
+    }
+}
+
+/// Sorts and merges the coupling triplets.
+pub(crate) fn merge(mut entries: Vec<(usize, Dof, f64)>) -> PrescribedCoupling {
+    let key = |d: &Dof| match *d {
+        Dof::Free(i) => (0, i),
+        Dof::Prescribed(p) => (1, p),
+    };
+    entries.sort_unstable_by_key(|e| (e.0, key(&e.1)));
+    let mut merged: Vec<(usize, Dof, f64)> = Vec::with_capacity(entries.len() / 2);
+    for e in entries {
+        match merged.last_mut() {
+            Some(last) if last.0 == e.0 && last.1 == e.1 => last.2 += e.2,
+            _ => merged.push(e),
+        }
+    }
+    PrescribedCoupling { entries: merged }
+}

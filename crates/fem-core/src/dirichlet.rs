@@ -1,0 +1,210 @@
+//! Supports (Dirichlet conditions) and the numbering of free and prescribed dofs.
+//!
+//! Constrained dofs are eliminated, so the reduced stiffness stays symmetric positive
+//! definite; a prescribed value `ū` moves `−K_fp ū` to the right-hand side. Changing a
+//! prescribed *value* between load steps needs no refactorisation; changing *which* dofs are
+//! constrained changes the dof numbering (and so the pattern and the factorisation).
+
+use crate::error::{FemError, finite};
+use std::collections::BTreeMap;
+
+/// A displacement component: `X` (`u_x`, or `u_r` in axisymmetry) or `Y` (`u_y`, or `u_z`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Component {
+    /// First component (`x` or `r`).
+    X = 0,
+    /// Second component (`y` or `z`).
+    Y = 1,
+}
+
+/// The set of constrained dofs with their prescribed values (`0` for a fixed dof).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Supports {
+    values: BTreeMap<(usize, Component), f64>,
+}
+
+impl Supports {
+    /// No supports.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Fixes `component` of every node in `nodes` (`u = 0`).
+    pub fn fix(&mut self, nodes: &[usize], component: Component) -> &mut Self {
+        for &n in nodes {
+            self.values.insert((n, component), 0.0);
+        }
+        self
+    }
+
+    /// Prescribes `u = value` for `component` of every node in `nodes`.
+    ///
+    /// # Errors
+    /// [`FemError::InvalidParameter`] if `value` is NaN or infinite.
+    pub fn prescribe(
+        &mut self,
+        nodes: &[usize],
+        component: Component,
+        value: f64,
+    ) -> Result<&mut Self, FemError> {
+        let value = finite("prescribed displacement", value)?;
+        for &n in nodes {
+            self.values.insert((n, component), value);
+        }
+        Ok(self)
+    }
+
+    /// Removes the constraint on `component` of `nodes` (if any).
+    pub fn release(&mut self, nodes: &[usize], component: Component) -> &mut Self {
+        for &n in nodes {
+            self.values.remove(&(n, component));
+        }
+        self
+    }
+
+    /// The prescribed value of a dof, `None` if it is free.
+    pub fn value(&self, node: usize, component: Component) -> Option<f64> {
+        self.values.get(&(node, component)).copied()
+    }
+
+    /// Iterates over `((node, component), value)` in node order.
+    pub fn iter(&self) -> impl Iterator<Item = ((usize, Component), f64)> + '_ {
+        self.values.iter().map(|(&k, &v)| (k, v))
+    }
+
+    /// Number of constrained dofs.
+    pub fn len(&self) -> usize {
+        self.values.len()
+    }
+
+    /// `true` if no dof is constrained.
+    pub fn is_empty(&self) -> bool {
+        self.values.is_empty()
+    }
+}
+
+/// Where a dof of a node lives: in the free (unknown) vector or in the prescribed vector.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dof {
+    /// Index in the reduced system.
+    Free(usize),
+    /// Index in the list of prescribed dofs.
+    Prescribed(usize),
+}
+
+/// The numbering of the free and prescribed dofs of every node, in node order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DofMap {
+    dofs: Vec<[Dof; 2]>,
+    free_count: usize,
+    prescribed: Vec<(usize, Component)>,
+}
+
+impl DofMap {
+    /// Numbers the dofs of `node_count` nodes with the constraints of `supports`.
+    ///
+    /// # Errors
+    /// [`FemError::NodeOutOfRange`] (with `element = usize::MAX`) if a support names a node
+    /// that does not exist.
+    pub fn new(node_count: usize, supports: &Supports) -> Result<Self, FemError> {
+        if let Some(((node, _), _)) = supports.iter().find(|((n, _), _)| *n >= node_count) {
+            return Err(FemError::NodeOutOfRange {
+                element: usize::MAX,
+                node,
+                node_count,
+            });
+        }
+        let mut dofs = Vec::with_capacity(node_count);
+        let mut free_count = 0;
+        let mut prescribed = Vec::with_capacity(supports.len());
+        for node in 0..node_count {
+            let mut d = [Dof::Free(0); 2];
+            for (c, comp) in [Component::X, Component::Y].into_iter().enumerate() {
+                d[c] = if supports.value(node, comp).is_some() {
+                    prescribed.push((node, comp));
+                    Dof::Prescribed(prescribed.len() - 1)
+                } else {
+                    free_count += 1;
+                    Dof::Free(free_count - 1)
+                };
+            }
+            dofs.push(d);
+        }
+        Ok(Self {
+            dofs,
+            free_count,
+            prescribed,
+        })
+    }
+
+    /// Number of free dofs (the size of the reduced system).
+    #[inline]
+    pub fn free_count(&self) -> usize {
+        self.free_count
+    }
+
+    /// Number of nodes.
+    #[inline]
+    pub fn node_count(&self) -> usize {
+        self.dofs.len()
+    }
+
+    /// The two dofs of `node`.
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn dofs(&self, node: usize) -> [Dof; 2] {
+        self.dofs[node]
+    }
+
+    /// The free-dof indices of `node` (`None` for a prescribed component).
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn free_dofs(&self, node: usize) -> [Option<usize>; 2] {
+        self.dofs[node].map(|d| match d {
+            Dof::Free(i) => Some(i),
+            Dof::Prescribed(_) => None,
+        })
+    }
+
+    /// The prescribed dofs, in the order of their indices.
+    #[inline]
+    pub fn prescribed(&self) -> &[(usize, Component)] {
+        &self.prescribed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dof_map_works() {
+        let mut s = Supports::new();
+        s.fix(&[0], Component::X)
+            .prescribe(&[2], Component::Y, 0.5)
+            .unwrap();
+        let map = DofMap::new(3, &s).unwrap();
+        assert_eq!(map.free_count(), 4);
+        assert_eq!(map.dofs(0), [Dof::Prescribed(0), Dof::Free(0)]);
+        assert_eq!(map.dofs(2), [Dof::Free(3), Dof::Prescribed(1)]);
+        assert_eq!(map.free_dofs(1), [Some(1), Some(2)]);
+        assert_eq!(map.prescribed(), &[(0, Component::X), (2, Component::Y)]);
+    }
+
+    #[test]
+    fn supports_rejects_nan_and_unknown_nodes() {
+        let mut s = Supports::new();
+        assert!(s.prescribe(&[0], Component::X, f64::NAN).is_err());
+        s.fix(&[5], Component::Y);
+        assert!(matches!(
+            DofMap::new(3, &s),
+            Err(FemError::NodeOutOfRange { node: 5, .. })
+        ));
+    }
+}

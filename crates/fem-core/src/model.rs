@@ -1,0 +1,700 @@
+//! [`LinearElasticModel`]: a linear-elastic body on a triangle mesh, assembled and factored
+//! once, that implements [`Structure`].
+
+use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
+use crate::dirichlet::{Component, Dof, DofMap, Supports};
+use crate::element::{Element, Stress, Tri3, Tri6};
+use crate::error::{FemError, finite};
+use crate::idealization::Idealization;
+use crate::linear_solver::SpdSolver;
+use crate::material::Material;
+use crate::mesh::{ElementKind, Mesh};
+use crate::quadrature::GAUSS_3;
+use crate::structure::Structure;
+use faer::MatMut;
+use nalgebra::DMatrix;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// An initial stress field `σ₀(x)` (components as [`Stress`]).
+pub type StressField = Arc<dyn Fn([f64; 2]) -> Stress + Send + Sync>;
+
+/// The geostatic initial stress of seed eq. 6.1 for a ground surface at `z = z_surface`
+/// (second coordinate upwards) and unit weight `gamma`:
+/// `σ_zz = −γ (z_surface − z)` (compression negative), `σ_rr = σ_θθ = K0 σ_zz`, `σ_rz = 0`.
+///
+/// Returned in [`Stress`] order `(rr, zz, rz, θθ)` — also valid in plane strain, where the 4th
+/// component is `σ_zz` out of plane.
+pub fn geostatic(gamma: f64, k0: f64, z_surface: f64) -> StressField {
+    Arc::new(move |x: [f64; 2]| {
+        let s_v = -gamma * (z_surface - x[1]).max(0.0);
+        [k0 * s_v, s_v, 0.0, k0 * s_v]
+    })
+}
+
+/// A linear-elastic body: mesh, idealisation, materials per region, supports and loads, with
+/// its reduced stiffness assembled and factored.
+///
+/// Loads are kept as a reference load vector scaled by the load factor of
+/// [`Structure::free_response_into`]; prescribed displacements and the initial stress are not
+/// scaled. Changing a prescribed *value* ([`LinearElasticModel::set_prescribed`] on a
+/// constrained dof) never refactors; constraining or releasing dofs does.
+pub struct LinearElasticModel {
+    mesh: Mesh,
+    idealization: Idealization,
+    materials: BTreeMap<u32, Material>,
+    supports: Supports,
+    dofs: DofMap,
+    pattern: Pattern,
+    values: Vec<f64>,
+    coupling: PrescribedCoupling,
+    solver: SpdSolver,
+    /// Reference external loads per node component (`2 × node_count`).
+    load: Vec<f64>,
+    /// Internal forces of the initial stress per node component.
+    initial_force: Vec<f64>,
+    initial_stress: Option<StressField>,
+    version: u64,
+}
+
+impl core::fmt::Debug for LinearElasticModel {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("LinearElasticModel")
+            .field("nodes", &self.mesh.node_count())
+            .field("elements", &self.mesh.element_count())
+            .field("idealization", &self.idealization)
+            .field("free_dofs", &self.dofs.free_count())
+            .field("nnz", &self.pattern.nnz())
+            .field("version", &self.version)
+            .finish()
+    }
+}
+
+fn element_of(kind: ElementKind) -> &'static dyn Element {
+    match kind {
+        ElementKind::Tri3 => &Tri3,
+        ElementKind::Tri6 => &Tri6,
+    }
+}
+
+impl LinearElasticModel {
+    /// Builds the model: checks the data, numbers the dofs, builds the sparsity pattern,
+    /// assembles and factors `K`.
+    ///
+    /// # Errors
+    /// - [`FemError::MissingMaterial`] if a region has no material;
+    /// - [`FemError::NegativeRadius`] in axisymmetry for a node at `r < 0`;
+    /// - [`FemError::InvertedElement`] for a (curved) element with a non-positive Jacobian;
+    /// - [`FemError::NodeOutOfRange`] for a support on a missing node;
+    /// - [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body mode.
+    pub fn new(
+        mesh: Mesh,
+        idealization: Idealization,
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<Self, FemError> {
+        let materials: BTreeMap<u32, Material> = materials.iter().copied().collect();
+        for (element, region) in mesh.regions().iter().enumerate() {
+            if !materials.contains_key(region) {
+                return Err(FemError::MissingMaterial {
+                    region: *region,
+                    element,
+                });
+            }
+        }
+        if let Idealization::Axisymmetric = idealization {
+            if let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0) {
+                return Err(FemError::NegativeRadius { node, r: p[0] });
+            }
+        }
+        let dofs = DofMap::new(mesh.node_count(), &supports)?;
+        let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
+        let solver = SpdSolver::new(pattern.symbolic())?;
+        let n2 = 2 * mesh.node_count();
+        let mut model = Self {
+            values: vec![0.0; pattern.nnz()],
+            mesh,
+            idealization,
+            materials,
+            supports,
+            dofs,
+            pattern,
+            coupling: PrescribedCoupling::default(),
+            solver,
+            load: vec![0.0; n2],
+            initial_force: vec![0.0; n2],
+            initial_stress: None,
+            version: 0,
+        };
+        model.assemble_and_factor()?;
+        Ok(model)
+    }
+
+    fn assemble_and_factor(&mut self) -> Result<(), FemError> {
+        self.values.fill(0.0);
+        let element = element_of(self.mesh.kind());
+        let mut k_e = DMatrix::zeros(0, 0);
+        let mut coords = Vec::with_capacity(6);
+        let mut coupling = Vec::new();
+        for e in 0..self.mesh.element_count() {
+            let cell = self.mesh.element(e);
+            coords.clear();
+            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            let material = &self.materials[&self.mesh.regions()[e]];
+            element.stiffness_into(e, &coords, material, &self.idealization, &mut k_e)?;
+            scatter(
+                &self.pattern,
+                &self.dofs,
+                cell,
+                &k_e,
+                &mut self.values,
+                &mut coupling,
+            );
+        }
+        self.coupling = merge(coupling);
+        self.solver.factor(self.pattern.view(&self.values))?;
+        self.version += 1;
+        Ok(())
+    }
+
+    /// The mesh.
+    #[inline]
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The dof numbering.
+    #[inline]
+    pub fn dof_map(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The supports.
+    #[inline]
+    pub fn supports(&self) -> &Supports {
+        &self.supports
+    }
+
+    /// Number of numeric factorisations done so far (for "skip what is not needed" checks).
+    #[inline]
+    pub fn factorizations(&self) -> usize {
+        self.version as usize
+    }
+
+    /// Number of stored entries of the lower triangle of `K`.
+    #[inline]
+    pub fn nnz(&self) -> usize {
+        self.pattern.nnz()
+    }
+
+    /// The reduced stiffness `K` (lower triangle, free dofs), as a faer view.
+    #[inline]
+    pub fn stiffness(&self) -> faer::sparse::SparseColMatRef<'_, usize, f64> {
+        self.pattern.view(&self.values)
+    }
+
+    /// Sets the prescribed value of `component` on `nodes`. If every such dof is already
+    /// constrained only the value changes (no refactorisation); otherwise the dofs are
+    /// constrained, renumbered, and `K` is reassembled and refactored.
+    ///
+    /// # Errors
+    /// [`FemError::InvalidParameter`] for a non-finite value; factorisation errors.
+    pub fn set_prescribed(
+        &mut self,
+        nodes: &[usize],
+        component: Component,
+        value: f64,
+    ) -> Result<(), FemError> {
+        let renumber = nodes
+            .iter()
+            .any(|&n| self.supports.value(n, component).is_none());
+        self.supports.prescribe(nodes, component, value)?;
+        if renumber {
+            self.rebuild()?;
+        }
+        Ok(())
+    }
+
+    /// Removes the supports of `component` on `nodes`, then renumbers and refactors.
+    ///
+    /// # Errors
+    /// [`FemError::NotPositiveDefinite`] if the body is left without enough supports.
+    pub fn release(&mut self, nodes: &[usize], component: Component) -> Result<(), FemError> {
+        self.supports.release(nodes, component);
+        self.rebuild()
+    }
+
+    fn rebuild(&mut self) -> Result<(), FemError> {
+        self.dofs = DofMap::new(self.mesh.node_count(), &self.supports)?;
+        let mesh = &self.mesh;
+        self.pattern = Pattern::new(
+            &self.dofs,
+            (0..mesh.element_count()).map(|e| mesh.element(e)),
+        )?;
+        self.solver = SpdSolver::new(self.pattern.symbolic())?;
+        self.values = vec![0.0; self.pattern.nnz()];
+        self.assemble_and_factor()
+    }
+
+    /// Adds a reference nodal force `[f_x, f_y]` (per unit thickness, thickness, or radian as
+    /// the idealisation says).
+    ///
+    /// # Errors
+    /// [`FemError::NodeOutOfRange`] or [`FemError::InvalidParameter`] for non-finite values.
+    pub fn add_nodal_force(&mut self, node: usize, force: [f64; 2]) -> Result<(), FemError> {
+        if node >= self.mesh.node_count() {
+            return Err(FemError::NodeOutOfRange {
+                element: usize::MAX,
+                node,
+                node_count: self.mesh.node_count(),
+            });
+        }
+        finite("nodal force", force[0])?;
+        finite("nodal force", force[1])?;
+        self.load[2 * node] += force[0];
+        self.load[2 * node + 1] += force[1];
+        Ok(())
+    }
+
+    /// Adds a reference traction `t(x)` (force per area, global frame) on the sides of an edge
+    /// set, integrated with 3 Gauss points per side (exact for P2 sides in axisymmetry).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`]; [`FemError::InvalidParameter`] if `t` returns a non-finite
+    /// value.
+    pub fn add_edge_traction(
+        &mut self,
+        edge_set: &str,
+        traction: impl Fn([f64; 2]) -> [f64; 2],
+    ) -> Result<(), FemError> {
+        let sides = self.mesh.edge_set(edge_set)?.to_vec();
+        for side in sides {
+            let nodes: Vec<usize> = self.mesh.side_nodes(side).collect();
+            let xs: Vec<[f64; 2]> = nodes.iter().map(|&n| self.mesh.nodes()[n]).collect();
+            for &(s, w) in &GAUSS_3 {
+                // 1D shapes on [−1, 1]: P1 (a, b); P2 (a, b, mid).
+                let (n, dn): (Vec<f64>, Vec<f64>) = if nodes.len() == 2 {
+                    (vec![(1.0 - s) / 2.0, (1.0 + s) / 2.0], vec![-0.5, 0.5])
+                } else {
+                    (
+                        vec![s * (s - 1.0) / 2.0, s * (s + 1.0) / 2.0, 1.0 - s * s],
+                        vec![s - 0.5, s + 0.5, -2.0 * s],
+                    )
+                };
+                let mut x = [0.0; 2];
+                let mut dx = [0.0; 2];
+                for i in 0..nodes.len() {
+                    for a in 0..2 {
+                        x[a] += n[i] * xs[i][a];
+                        dx[a] += dn[i] * xs[i][a];
+                    }
+                }
+                let jac = dx[0].hypot(dx[1]);
+                let t = traction(x);
+                finite("traction", t[0])?;
+                finite("traction", t[1])?;
+                let wt = w * jac * self.idealization.weight(x[0]);
+                for i in 0..nodes.len() {
+                    self.load[2 * nodes[i]] += n[i] * t[0] * wt;
+                    self.load[2 * nodes[i] + 1] += n[i] * t[1] * wt;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the self-weight of every region (unit weight of its material, along `−y`/`−z`) to
+    /// the reference loads.
+    ///
+    /// # Errors
+    /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian.
+    pub fn add_self_weight(&mut self) -> Result<(), FemError> {
+        let element = element_of(self.mesh.kind());
+        let mut coords = Vec::with_capacity(6);
+        let mut f_e = vec![0.0; 12];
+        for e in 0..self.mesh.element_count() {
+            let cell = self.mesh.element(e);
+            coords.clear();
+            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            let gamma = self.materials[&self.mesh.regions()[e]].unit_weight();
+            f_e.iter_mut().for_each(|v| *v = 0.0);
+            element.body_force_into(
+                e,
+                &coords,
+                &self.idealization,
+                &|_| [0.0, -gamma],
+                &mut f_e,
+            )?;
+            for (a, &n) in cell.iter().enumerate() {
+                self.load[2 * n] += f_e[2 * a];
+                self.load[2 * n + 1] += f_e[2 * a + 1];
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets the initial stress field `σ₀` (replacing any previous one) and its internal forces
+    /// `−∫ Bᵀ σ₀ w dA`, which enter every free response.
+    ///
+    /// # Errors
+    /// [`FemError::InvertedElement`]; [`FemError::InvalidParameter`] if `σ₀` is not finite at
+    /// a quadrature point.
+    pub fn set_initial_stress(&mut self, sigma_0: StressField) -> Result<(), FemError> {
+        let element = element_of(self.mesh.kind());
+        let mut force = vec![0.0; 2 * self.mesh.node_count()];
+        let mut coords = Vec::with_capacity(6);
+        let mut f_e = vec![0.0; 12];
+        for e in 0..self.mesh.element_count() {
+            let cell = self.mesh.element(e);
+            coords.clear();
+            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            f_e.iter_mut().for_each(|v| *v = 0.0);
+            element.initial_stress_force_into(
+                e,
+                &coords,
+                &self.idealization,
+                &*sigma_0,
+                &mut f_e,
+            )?;
+            for (a, &n) in cell.iter().enumerate() {
+                force[2 * n] += f_e[2 * a];
+                force[2 * n + 1] += f_e[2 * a + 1];
+            }
+        }
+        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
+            return Err(FemError::InvalidParameter {
+                name: "initial stress",
+                value,
+                expected: "a finite stress field",
+            });
+        }
+        self.initial_force = force;
+        self.initial_stress = Some(sigma_0);
+        Ok(())
+    }
+
+    /// Removes every reference load (nodal forces, tractions, self-weight).
+    pub fn clear_loads(&mut self) {
+        self.load.fill(0.0);
+    }
+
+    /// The right-hand side of the reduced system at `load_factor`:
+    /// `f = factor · f_ext + f_σ₀ − K_fp ū`, on the free dofs.
+    ///
+    /// # Panics
+    /// If `rhs.len() != dof_count()`.
+    #[track_caller]
+    pub fn rhs_into(&self, load_factor: f64, rhs: &mut [f64]) {
+        assert_eq!(rhs.len(), self.dofs.free_count(), "rhs length");
+        rhs.fill(0.0);
+        for node in 0..self.mesh.node_count() {
+            for (c, d) in self.dofs.free_dofs(node).into_iter().enumerate() {
+                if let Some(i) = d {
+                    rhs[i] =
+                        load_factor * self.load[2 * node + c] + self.initial_force[2 * node + c];
+                }
+            }
+        }
+        let prescribed = self.prescribed_values();
+        for &(p, dof, k) in self.coupling.entries() {
+            if let Dof::Free(i) = dof {
+                rhs[i] -= k * prescribed[p];
+            }
+        }
+    }
+
+    fn prescribed_values(&self) -> Vec<f64> {
+        self.dofs
+            .prescribed()
+            .iter()
+            .map(|&(n, c)| self.supports.value(n, c).unwrap_or(0.0))
+            .collect()
+    }
+
+    /// Nodal displacements `[u_x, u_y]` from the free-dof solution `u_free` and the prescribed
+    /// values.
+    ///
+    /// # Panics
+    /// If `u_free.len() != dof_count()`.
+    #[track_caller]
+    pub fn nodal_displacements(&self, u_free: &[f64]) -> Vec<[f64; 2]> {
+        assert_eq!(u_free.len(), self.dofs.free_count(), "solution length");
+        let prescribed = self.prescribed_values();
+        (0..self.mesh.node_count())
+            .map(|n| {
+                self.dofs.dofs(n).map(|d| match d {
+                    Dof::Free(i) => u_free[i],
+                    Dof::Prescribed(p) => prescribed[p],
+                })
+            })
+            .collect()
+    }
+
+    /// Solves the free response at `load_factor` and returns the nodal displacements.
+    ///
+    /// # Errors
+    /// As for [`Structure::free_response_into`].
+    pub fn solve(&self, load_factor: f64) -> Result<Vec<[f64; 2]>, FemError> {
+        let mut u = vec![0.0; self.dofs.free_count()];
+        self.free_response_into(load_factor, &mut u)?;
+        Ok(self.nodal_displacements(&u))
+    }
+
+    /// Stresses `σ₀ + D B u` at the quadrature points of every element, with their positions,
+    /// element by element.
+    ///
+    /// # Errors
+    /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
+    pub fn stresses(
+        &self,
+        displacements: &[[f64; 2]],
+    ) -> Result<Vec<Vec<([f64; 2], Stress)>>, FemError> {
+        if displacements.len() != self.mesh.node_count() {
+            return Err(FemError::LengthMismatch {
+                what: "nodal displacements",
+                expected: self.mesh.node_count(),
+                got: displacements.len(),
+            });
+        }
+        let element = element_of(self.mesh.kind());
+        let mut out = Vec::with_capacity(self.mesh.element_count());
+        let mut coords = Vec::with_capacity(6);
+        let mut u_e = Vec::with_capacity(12);
+        for e in 0..self.mesh.element_count() {
+            let cell = self.mesh.element(e);
+            coords.clear();
+            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            u_e.clear();
+            u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
+            let material = &self.materials[&self.mesh.regions()[e]];
+            let mut pts = Vec::new();
+            element.stresses_into(e, &coords, material, &self.idealization, &u_e, &mut pts)?;
+            if let Some(s0) = &self.initial_stress {
+                for (x, s) in &mut pts {
+                    let s_0 = s0(*x);
+                    for k in 0..4 {
+                        s[k] += s_0[k];
+                    }
+                }
+            }
+            out.push(pts);
+        }
+        Ok(out)
+    }
+
+    /// Nodal stresses: the average over the elements around each node of the element's mean
+    /// quadrature-point stress (a simple, robust smoothing for plots).
+    ///
+    /// # Errors
+    /// As for [`LinearElasticModel::stresses`].
+    pub fn nodal_stresses(&self, displacements: &[[f64; 2]]) -> Result<Vec<Stress>, FemError> {
+        let per_element = self.stresses(displacements)?;
+        let mut sum = vec![[0.0; 4]; self.mesh.node_count()];
+        let mut count = vec![0usize; self.mesh.node_count()];
+        for (e, pts) in per_element.iter().enumerate() {
+            let mut mean = [0.0; 4];
+            for (_, s) in pts {
+                for k in 0..4 {
+                    mean[k] += s[k] / pts.len() as f64;
+                }
+            }
+            for &n in self.mesh.element(e) {
+                for k in 0..4 {
+                    sum[n][k] += mean[k];
+                }
+                count[n] += 1;
+            }
+        }
+        Ok(sum
+            .into_iter()
+            .zip(count)
+            .map(|(s, c)| if c == 0 { s } else { s.map(|v| v / c as f64) })
+            .collect())
+    }
+
+    /// Support reactions `R = K u − f` at every prescribed dof, for the displacements
+    /// `displacements` (from [`LinearElasticModel::solve`]) at `load_factor`:
+    /// `((node, component), reaction)`.
+    ///
+    /// # Errors
+    /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
+    pub fn reactions(
+        &self,
+        displacements: &[[f64; 2]],
+        load_factor: f64,
+    ) -> Result<Vec<((usize, Component), f64)>, FemError> {
+        if displacements.len() != self.mesh.node_count() {
+            return Err(FemError::LengthMismatch {
+                what: "nodal displacements",
+                expected: self.mesh.node_count(),
+                got: displacements.len(),
+            });
+        }
+        let prescribed = self.dofs.prescribed();
+        let mut r: Vec<f64> = prescribed
+            .iter()
+            .map(|&(n, c)| {
+                let g = 2 * n + c as usize;
+                -(load_factor * self.load[g] + self.initial_force[g])
+            })
+            .collect();
+        let mut free_value = vec![0.0; self.dofs.free_count()];
+        for (n, u) in displacements.iter().enumerate() {
+            for (c, d) in self.dofs.free_dofs(n).into_iter().enumerate() {
+                if let Some(i) = d {
+                    free_value[i] = u[c];
+                }
+            }
+        }
+        for &(p, dof, k) in self.coupling.entries() {
+            let u = match dof {
+                Dof::Free(i) => free_value[i],
+                Dof::Prescribed(q) => {
+                    let (n, c) = prescribed[q];
+                    displacements[n][c as usize]
+                }
+            };
+            r[p] += k * u;
+        }
+        Ok(prescribed.iter().copied().zip(r).collect())
+    }
+}
+
+impl Structure for LinearElasticModel {
+    fn dof_count(&self) -> usize {
+        self.dofs.free_count()
+    }
+
+    fn node_count(&self) -> usize {
+        self.mesh.node_count()
+    }
+
+    fn node_position(&self, node: usize) -> [f64; 2] {
+        self.mesh.nodes()[node]
+    }
+
+    fn node_dofs(&self, node: usize) -> [Option<usize>; 2] {
+        self.dofs.free_dofs(node)
+    }
+
+    fn idealization(&self) -> Idealization {
+        self.idealization
+    }
+
+    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
+        self.mesh.node_set(name)
+    }
+
+    fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
+        self.solver.solve_in_place(rhs);
+        Ok(())
+    }
+
+    fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+        self.solver.solve_many_in_place(rhs);
+        Ok(())
+    }
+
+    fn free_response_into(&self, load_factor: f64, u: &mut [f64]) -> Result<(), FemError> {
+        self.rhs_into(load_factor, u);
+        self.solver.solve_in_place(u);
+        Ok(())
+    }
+
+    fn stiffness_version(&self) -> u64 {
+        self.version
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Side;
+
+    /// Unit square, two P1 triangles; right side loaded by a uniform traction.
+    fn square_model(idealization: Idealization) -> LinearElasticModel {
+        let nodes = vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]];
+        let mut mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2, 0, 2, 3], vec![]).unwrap();
+        mesh.add_edge_set(
+            "right",
+            vec![Side {
+                element: 0,
+                side: 1,
+            }],
+        )
+        .unwrap();
+        let mut supports = Supports::new();
+        supports.fix(&[0, 3], Component::X).fix(&[0], Component::Y);
+        let m = Material::new(100.0, 0.25, 0.0).unwrap();
+        LinearElasticModel::new(mesh, idealization, &[(0, m)], supports).unwrap()
+    }
+
+    #[test]
+    fn uniaxial_tension_works() {
+        let mut model = square_model(Idealization::PlaneStress { thickness: 1.0 });
+        model.add_edge_traction("right", |_| [2.0, 0.0]).unwrap();
+        let u = model.solve(1.0).unwrap();
+        // ε_xx = σ/E = 0.02 over a length 1; ε_yy = −ν ε_xx.
+        assert!((u[1][0] - 0.02).abs() < 1e-12 && (u[2][0] - 0.02).abs() < 1e-12);
+        assert!((u[3][1] + 0.005).abs() < 1e-12);
+        for pts in model.stresses(&u).unwrap() {
+            for (_, s) in pts {
+                assert!((s[0] - 2.0).abs() < 1e-12 && s[1].abs() < 1e-12 && s[2].abs() < 1e-12);
+            }
+        }
+        // Reactions balance the applied load: Σ R_x = −2 (length 1 × traction 2).
+        let r = model.reactions(&u, 1.0).unwrap();
+        let rx: f64 = r
+            .iter()
+            .filter(|((_, c), _)| *c == Component::X)
+            .map(|(_, v)| v)
+            .sum();
+        assert!((rx + 2.0).abs() < 1e-12, "Σ R_x = {rx}");
+    }
+
+    #[test]
+    fn missing_supports_are_reported_not_nan() {
+        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![]).unwrap();
+        let m = Material::new(1.0, 0.3, 0.0).unwrap();
+        let err =
+            LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
+                .unwrap_err();
+        assert!(
+            matches!(err, FemError::NotPositiveDefinite { .. }),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn changing_a_prescribed_value_does_not_refactor() {
+        let mut model = square_model(Idealization::PlaneStrain);
+        assert_eq!(model.factorizations(), 1);
+        model.set_prescribed(&[1, 2], Component::X, 0.01).unwrap(); // new constraint
+        assert_eq!(model.factorizations(), 2);
+        let v = model.stiffness_version();
+        model.set_prescribed(&[1, 2], Component::X, 0.02).unwrap(); // value only
+        assert_eq!(model.factorizations(), 2);
+        assert_eq!(model.stiffness_version(), v);
+        let u = model.solve(0.0).unwrap();
+        assert!((u[1][0] - 0.02).abs() < 1e-15);
+        assert!((u[3][0]).abs() < 1e-15);
+    }
+
+    #[test]
+    fn missing_material_is_reported() {
+        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![3]).unwrap();
+        let m = Material::new(1.0, 0.3, 0.0).unwrap();
+        let err =
+            LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
+                .unwrap_err();
+        assert_eq!(
+            err,
+            FemError::MissingMaterial {
+                region: 3,
+                element: 0
+            }
+        );
+    }
+}

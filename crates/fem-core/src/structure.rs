@@ -1,0 +1,77 @@
+//! The [`Structure`] trait: everything the contact solver may know about a body.
+
+use crate::error::FemError;
+use crate::idealization::Idealization;
+use faer::MatMut;
+
+/// A linear(ised) structure seen from the contact solver.
+///
+/// The solver works on the **free dofs** only (prescribed dofs are eliminated). Contact forces
+/// enter as external nodal forces on the contact nodes' free dofs: with `H` the map from free
+/// dofs to the local contact frames, the displacement under contact reactions `r` is
+/// `u = u_free + K⁻¹ Hᵀ r`, where `u_free` is the response to the current loads without
+/// contact ([`Structure::free_response_into`]) and the flexibility `F* = H K⁻¹ Hᵀ` (seed 5.39)
+/// is built from [`Structure::solve_many_in_place`]. Nothing else is needed, so any FE code
+/// (or a hand-written model) can implement it; fem-core's
+/// [`LinearElasticModel`](crate::model::LinearElasticModel) is one implementation.
+pub trait Structure {
+    /// Number of free dofs (the size of `K`).
+    fn dof_count(&self) -> usize;
+
+    /// Number of nodes.
+    fn node_count(&self) -> usize;
+
+    /// Coordinates of a node in the reference configuration: `(x, y)` or `(r, z)`.
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    fn node_position(&self, node: usize) -> [f64; 2];
+
+    /// The free-dof indices of a node's two components; `None` for a component eliminated by
+    /// a support.
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    fn node_dofs(&self, node: usize) -> [Option<usize>; 2];
+
+    /// The 2D idealisation (plane strain, plane stress or axisymmetry).
+    fn idealization(&self) -> Idealization;
+
+    /// A named set of nodes (e.g. a contactor surface).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if the structure has no such set.
+    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError>;
+
+    /// Solves `K x = b` in place.
+    ///
+    /// # Errors
+    /// A factorisation error if `K` could not be factored.
+    ///
+    /// # Panics
+    /// If `rhs.len() != dof_count()`.
+    fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError>;
+
+    /// Solves `K X = B` in place for the columns of `rhs`.
+    ///
+    /// # Errors
+    /// A factorisation error if `K` could not be factored.
+    ///
+    /// # Panics
+    /// If `rhs.nrows() != dof_count()`.
+    fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError>;
+
+    /// The free response `u_free` (no contact) to the current loads at `load_factor`,
+    /// including prescribed displacements and initial stresses, written into `u`.
+    ///
+    /// # Errors
+    /// As for [`Structure::solve_in_place`].
+    ///
+    /// # Panics
+    /// If `u.len() != dof_count()`.
+    fn free_response_into(&self, load_factor: f64, u: &mut [f64]) -> Result<(), FemError>;
+
+    /// A counter that changes whenever `K` (or its dof numbering) changes: the solver rebuilds
+    /// `F*` only when it does.
+    fn stiffness_version(&self) -> u64;
+}
