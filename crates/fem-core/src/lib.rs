@@ -6,10 +6,14 @@
 
 #![warn(missing_docs)]
 
+pub mod analytical;
 pub mod error;
+pub mod generate;
+pub mod gmsh;
 pub mod idealization;
 pub mod material;
 pub mod mesh;
+pub mod vtk;
 
 pub use error::FemError;
 pub use idealization::Idealization;

@@ -9,7 +9,7 @@ use faer::MatMut;
 use faer::Side;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
 /// A sparse SPD solver for matrices given by their lower triangle in CSC form.
 #[derive(Clone, Debug)]
@@ -25,8 +25,8 @@ impl SpdSolver {
     ///
     /// # Errors
     /// [`FemError::LinearAlgebra`] if faer fails (allocation, index overflow).
-    pub fn new(pattern: &SymbolicSparseColMat<usize>) -> Result<Self, FemError> {
-        let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Lower)?;
+    pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<Self, FemError> {
+        let symbolic = SymbolicLlt::try_new(pattern, Side::Lower)?;
         Ok(Self {
             symbolic,
             numeric: None,

@@ -109,7 +109,7 @@ impl LinearElasticModel {
         }
         let dofs = DofMap::new(mesh.node_count(), &supports)?;
         let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
-        let solver = SpdSolver::new(pattern.symbolic())?;
+        let solver = SpdSolver::new(pattern.symbolic().as_ref())?;
         let n2 = 2 * mesh.node_count();
         let mut model = Self {
             values: vec![0.0; pattern.nnz()],
@@ -231,7 +231,7 @@ impl LinearElasticModel {
             &self.dofs,
             (0..mesh.element_count()).map(|e| mesh.element(e)),
         )?;
-        self.solver = SpdSolver::new(self.pattern.symbolic())?;
+        self.solver = SpdSolver::new(self.pattern.symbolic().as_ref())?;
         self.values = vec![0.0; self.pattern.nnz()];
         self.assemble_and_factor()
     }
@@ -330,6 +330,39 @@ impl LinearElasticModel {
                 self.load[2 * n + 1] += f_e[2 * a + 1];
             }
         }
+        Ok(())
+    }
+
+    /// Adds a body force `b(x)` (force per volume, global frame) over the whole mesh to the
+    /// reference loads, integrated with the element's load rule (degree 2 for P1, 4 for P2).
+    ///
+    /// # Errors
+    /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian;
+    /// [`FemError::InvalidParameter`] if `b` returns a non-finite value.
+    pub fn add_body_force(&mut self, b: impl Fn([f64; 2]) -> [f64; 2]) -> Result<(), FemError> {
+        let element = element_of(self.mesh.kind());
+        let mut coords = Vec::with_capacity(6);
+        let mut f_e = vec![0.0; 12];
+        let mut load = self.load.clone();
+        for e in 0..self.mesh.element_count() {
+            let cell = self.mesh.element(e);
+            coords.clear();
+            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            f_e.iter_mut().for_each(|v| *v = 0.0);
+            element.body_force_into(e, &coords, &self.idealization, &b, &mut f_e)?;
+            for (a, &n) in cell.iter().enumerate() {
+                load[2 * n] += f_e[2 * a];
+                load[2 * n + 1] += f_e[2 * a + 1];
+            }
+        }
+        if let Some(&value) = load.iter().find(|v| !v.is_finite()) {
+            return Err(FemError::InvalidParameter {
+                name: "body force",
+                value,
+                expected: "a finite body force",
+            });
+        }
+        self.load = load;
         Ok(())
     }
 

@@ -1,0 +1,519 @@
+//! Reading 2D triangle meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
+//!
+//! The file is parsed by the [`mshio`] crate; this module turns it into a [`Mesh`]:
+//!
+//! - **Nodes.** Only the nodes used by triangles are kept, numbered `0..n` in increasing Gmsh
+//!   tag order (an unused node would be a free, unloaded degree of freedom). The `z` coordinate
+//!   is ignored: the mesh is projected onto the plane `z = 0`.
+//! - **Triangles.** 3-node (Gmsh type 2) or 6-node (type 9) triangles, one kind per file.
+//!   Clockwise triangles are reordered (corners 1 ↔ 2 and the mid-side nodes with them), so
+//!   either orientation of the surface is accepted. The region of a triangle is the first
+//!   physical tag of its surface entity, or 0 if it has none.
+//! - **Physical curves** (dimension 1) become an edge set and a node set of the same name.
+//!   Each line element (type 1 or 8) is matched to a triangle side by its two end nodes; where
+//!   two triangles share that side (an interior curve), the one to the left of the line's
+//!   direction is taken. The node set holds all the nodes of those sides, mid-side nodes
+//!   included.
+//! - **Physical points** (dimension 0) become node sets (from the point elements, type 15).
+//! - **Names** come from `$PhysicalNames`; an unnamed group is called `curve_<tag>` or
+//!   `point_<tag>`. A curve group and a point group of the same name share one node set.
+//!
+//! Lines and points outside physical groups are ignored. Any other element type (quadrangles,
+//! tetrahedra, higher orders, …) is [`FemError::Unsupported`].
+
+use crate::error::FemError;
+use crate::mesh::{ElementKind, Mesh, Side};
+use mshio::error::MshParserErrorKind;
+use mshio::{ElementType, MshFile, MshParserError};
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+/// Reads a Gmsh `.msh` 4.1 file holding a 2D triangle mesh (see the [module docs](self)).
+///
+/// # Errors
+/// - [`FemError::Io`] if the file cannot be read or is not valid MSH 4.1 (with the line of
+///   the first error where it is known);
+/// - [`FemError::Unsupported`] for another format version, an element type other than
+///   triangles, lines and points, mixed 3-node and 6-node triangles, a line in a physical
+///   group that is not a triangle side, or a negative physical tag;
+/// - the errors of [`Mesh::new`] (e.g. a degenerate triangle).
+///
+/// # Examples
+/// ```no_run
+/// let mesh = fem_core::gmsh::read_msh(std::path::Path::new("block.msh")).unwrap();
+/// println!("{} triangles", mesh.element_count());
+/// ```
+pub fn read_msh(path: &Path) -> Result<Mesh, FemError> {
+    let origin = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| FemError::Io {
+        path: origin.clone(),
+        detail: e.to_string(),
+    })?;
+    parse(&bytes, &origin)
+}
+
+/// Parses the bytes of a Gmsh `.msh` 4.1 file (see [`read_msh`]). Errors about the data name
+/// the file as `<msh>`.
+///
+/// # Errors
+/// As [`read_msh`].
+///
+/// # Examples
+/// ```
+/// let msh = "$MeshFormat\n4.1 0 8\n$EndMeshFormat
+/// $Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes
+/// $Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n";
+/// let mesh = fem_core::gmsh::parse_msh(msh.as_bytes()).unwrap();
+/// assert_eq!(mesh.element_count(), 1);
+/// assert_eq!(mesh.regions(), &[0]);
+/// ```
+pub fn parse_msh(bytes: &[u8]) -> Result<Mesh, FemError> {
+    parse(bytes, "<msh>")
+}
+
+fn parse(bytes: &[u8], origin: &str) -> Result<Mesh, FemError> {
+    let io = |detail: String| FemError::Io {
+        path: origin.to_string(),
+        detail,
+    };
+    check_header(bytes).map_err(|e| match e {
+        HeaderError::Version(v) => FemError::Unsupported {
+            what: format!(
+                "MSH format version {v} in {origin}: only 4.1 is read (Gmsh option \
+                 Mesh.MshFileVersion = 4.1)"
+            ),
+        },
+        HeaderError::Invalid(detail) => io(detail),
+    })?;
+    let names = physical_names(bytes).map_err(io)?;
+    // `mshio` still has a few `unimplemented!` and unchecked subtractions on odd input (e.g.
+    // an empty element block count); a panic there must not reach the caller.
+    let parsed = std::panic::catch_unwind(|| mshio::parse_msh_bytes(bytes))
+        .map_err(|_| io("the MSH parser failed on malformed data".to_string()))?;
+    let file = parsed.map_err(|e| parser_error(&e, bytes, origin))?;
+    build(file, &names, origin)
+}
+
+enum HeaderError {
+    Version(String),
+    Invalid(String),
+}
+
+/// Checks `$MeshFormat` before `mshio` sees it: its version and data size are read here.
+fn check_header(bytes: &[u8]) -> Result<(), HeaderError> {
+    let head = &bytes[..bytes.len().min(256)];
+    let text = String::from_utf8_lossy(head);
+    let mut lines = text.lines().map(str::trim).skip_while(|l| l.is_empty());
+    if lines.next() != Some("$MeshFormat") {
+        return Err(HeaderError::Invalid(
+            "not a Gmsh .msh file: it does not start with $MeshFormat".to_string(),
+        ));
+    }
+    let format = lines.next().unwrap_or("");
+    let fields: Vec<&str> = format.split_whitespace().collect();
+    let [version, file_type, data_size] = fields[..] else {
+        return Err(HeaderError::Invalid(format!(
+            "line 2: expected `version file-type data-size`, found `{format}`"
+        )));
+    };
+    if version.parse::<f64>() != Ok(4.1) {
+        return Err(HeaderError::Version(version.to_string()));
+    }
+    match (file_type, data_size) {
+        ("0", _) | ("1", "1" | "2" | "4" | "8" | "16") => Ok(()),
+        _ => Err(HeaderError::Invalid(format!(
+            "line 2: file type `{file_type}` (0 ASCII, 1 binary) with data size \
+             `{data_size}` is not valid"
+        ))),
+    }
+}
+
+/// The `$PhysicalNames` section (ASCII in both file types), by `(dimension, tag)`.
+fn physical_names(bytes: &[u8]) -> Result<HashMap<(i32, i32), String>, String> {
+    const START: &[u8] = b"$PhysicalNames";
+    let Some(start) = bytes
+        .windows(START.len())
+        .position(|w| w == START)
+        .filter(|&p| p == 0 || bytes[p - 1] == b'\n')
+    else {
+        return Ok(HashMap::new());
+    };
+    let line0 = bytes[..start].iter().filter(|&&b| b == b'\n').count() + 2;
+    let body = &bytes[start + START.len()..];
+    let text = String::from_utf8_lossy(&body[..body.len().min(1 << 20)]);
+    let mut lines = text.lines().skip(1);
+    let bad = |k: usize, what: &str| format!("$PhysicalNames, line {}: {what}", line0 + k);
+    let count: usize = lines
+        .next()
+        .and_then(|l| l.trim().parse().ok())
+        .ok_or_else(|| bad(0, "expected the number of names"))?;
+    let mut names = HashMap::new();
+    for k in 1..=count {
+        let line = lines.next().ok_or_else(|| bad(k, "missing line"))?;
+        let mut parts = line.trim().splitn(3, char::is_whitespace);
+        let dim = parts.next().and_then(|s| s.parse::<i32>().ok());
+        let tag = parts.next().and_then(|s| s.parse::<i32>().ok());
+        let name = parts
+            .next()
+            .map(str::trim)
+            .and_then(|s| s.strip_prefix('"'))
+            .and_then(|s| s.strip_suffix('"'));
+        match (dim, tag, name) {
+            (Some(dim), Some(tag), Some(name)) => {
+                names.insert((dim, tag), name.to_string());
+            }
+            _ => return Err(bad(k, "expected `dimension tag \"name\"`")),
+        }
+    }
+    match lines.next().map(str::trim) {
+        Some("$EndPhysicalNames") => Ok(names),
+        _ => Err(bad(count + 1, "expected $EndPhysicalNames")),
+    }
+}
+
+/// Turns a `mshio` error into ours, without its unbounded hex dump.
+fn parser_error(e: &MshParserError<&[u8]>, bytes: &[u8], origin: &str) -> FemError {
+    let trace = e.filtered_backtrace();
+    if let Some((_, MshParserErrorKind::UnknownElement)) = trace.first() {
+        let value = trace
+            .iter()
+            .find_map(|(_, k)| k.context().and_then(|c| c.strip_prefix("value ")))
+            .unwrap_or("?");
+        return FemError::Unsupported {
+            what: format!("Gmsh element type {value} (unknown to the reader) in {origin}"),
+        };
+    }
+    let Some((rest, kind)) = trace.first() else {
+        return FemError::Io {
+            path: origin.to_string(),
+            detail: "invalid MSH 4.1 data".to_string(),
+        };
+    };
+    let offset = bytes.len().saturating_sub(rest.len());
+    let line = bytes[..offset].iter().filter(|&&b| b == b'\n').count() + 1;
+    let mut context: Vec<&str> = trace
+        .iter()
+        .rev()
+        .filter_map(|(_, k)| k.context())
+        .collect();
+    let what = match kind.context() {
+        Some(c) => {
+            context.pop();
+            format!("expected {c}")
+        }
+        None => kind.to_string(),
+    };
+    FemError::Io {
+        path: origin.to_string(),
+        detail: format!(
+            "invalid MSH 4.1 data near line {line}, byte {offset} (in {}): {what}",
+            context.join(" > ")
+        ),
+    }
+}
+
+/// `MSH_QUA_4`-style name of a Gmsh element type (as in Gmsh's `GmshDefines.h`).
+fn gmsh_type_name(t: ElementType) -> String {
+    // `Tri15i` → `MSH_TRI_15I`, `PntSub` → `MSH_PNT_SUB`, `Pnt` → `MSH_PNT`.
+    let short = format!("{t:?}");
+    let split = short
+        .char_indices()
+        .skip(1)
+        .find(|(_, c)| !c.is_ascii_lowercase())
+        .map_or(short.len(), |(i, _)| i);
+    let (family, rest) = short.split_at(split);
+    match rest {
+        "" => format!("MSH_{}", family.to_uppercase()),
+        _ => format!("MSH_{}_{}", family.to_uppercase(), rest.to_uppercase()),
+    }
+}
+
+fn unsupported_type(t: ElementType, dim: i32, tag: i32) -> FemError {
+    FemError::Unsupported {
+        what: format!(
+            "Gmsh element type {} ({}) on entity ({dim}, {tag}): only triangles (types 2, 9), \
+             lines (1, 8) and points (15) are read",
+            t as i32,
+            gmsh_type_name(t)
+        ),
+    }
+}
+
+/// A line or point element of a physical group: entity tag and node tags.
+struct Lower {
+    entity: i32,
+    nodes: Vec<u64>,
+}
+
+fn build(
+    file: MshFile<u64, i32, f64>,
+    names: &HashMap<(i32, i32), String>,
+    origin: &str,
+) -> Result<Mesh, FemError> {
+    let io = |detail: String| FemError::Io {
+        path: origin.to_string(),
+        detail,
+    };
+    let data = file.data;
+
+    // Physical tags by entity (dimension, tag).
+    let mut physical: HashMap<(i32, i32), Vec<i32>> = HashMap::new();
+    if let Some(entities) = &data.entities {
+        for p in &entities.points {
+            physical.insert((0, p.tag), p.physical_tags.clone());
+        }
+        for c in &entities.curves {
+            physical.insert((1, c.tag), c.physical_tags.clone());
+        }
+        for s in &entities.surfaces {
+            physical.insert((2, s.tag), s.physical_tags.clone());
+        }
+    }
+    let tags_of = |dim: i32, tag: i32| physical.get(&(dim, tag)).map_or(&[][..], Vec::as_slice);
+
+    // Node coordinates by tag. Sparse blocks carry their tags; for contiguous tags `mshio`
+    // keeps none, and they run from the minimum tag in file order (as Gmsh writes them).
+    let nodes_section = data
+        .nodes
+        .ok_or_else(|| io("no $Nodes section".to_string()))?;
+    let mut coords: HashMap<u64, [f64; 2]> = HashMap::new();
+    let mut next_tag = nodes_section.min_node_tag;
+    for block in &nodes_section.node_blocks {
+        let tagged: Vec<(u64, usize)> = match &block.node_tags {
+            Some(map) => map.iter().map(|(&tag, &i)| (tag, i)).collect(),
+            None => (0..block.nodes.len())
+                .map(|i| (next_tag + i as u64, i))
+                .collect(),
+        };
+        next_tag += block.nodes.len() as u64;
+        for (tag, i) in tagged {
+            let n = &block.nodes[i];
+            if coords.insert(tag, [n.x, n.y]).is_some() {
+                return Err(io(format!("node tag {tag} is defined twice")));
+            }
+        }
+    }
+
+    // Triangles (with their region) and the lines and points of physical groups.
+    let elements = data
+        .elements
+        .ok_or_else(|| io("no $Elements section".to_string()))?;
+    let mut kind = None;
+    let mut triangles: Vec<&[u64]> = Vec::new();
+    let mut regions = Vec::new();
+    let mut lines: Vec<Lower> = Vec::new();
+    let mut points: Vec<Lower> = Vec::new();
+    for block in &elements.element_blocks {
+        let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
+        match t {
+            ElementType::Tri3 | ElementType::Tri6 => {
+                let this = match t {
+                    ElementType::Tri3 => ElementKind::Tri3,
+                    _ => ElementKind::Tri6,
+                };
+                if *kind.get_or_insert(this) != this {
+                    return Err(FemError::Unsupported {
+                        what: format!("mixed 3-node and 6-node triangles in {origin}"),
+                    });
+                }
+                let region = match tags_of(dim, tag).first() {
+                    None => 0,
+                    Some(&p) => u32::try_from(p).map_err(|_| FemError::Unsupported {
+                        what: format!("negative physical tag {p} on surface {tag} in {origin}"),
+                    })?,
+                };
+                for e in &block.elements {
+                    triangles.push(&e.nodes);
+                    regions.push(region);
+                }
+            }
+            ElementType::Lin2 | ElementType::Lin3 | ElementType::Pnt => {
+                if tags_of(dim, tag).is_empty() {
+                    continue;
+                }
+                let target = match t {
+                    ElementType::Pnt => &mut points,
+                    _ => &mut lines,
+                };
+                target.extend(block.elements.iter().map(|e| Lower {
+                    entity: tag,
+                    nodes: e.nodes.clone(),
+                }));
+            }
+            _ => return Err(unsupported_type(t, dim, tag)),
+        }
+    }
+    let Some(kind) = kind else {
+        return Err(FemError::Unsupported {
+            what: format!(
+                "{origin} holds no triangles (Gmsh types 2 or 9); note that once physical \
+                 groups exist Gmsh saves only their elements (add a physical surface)"
+            ),
+        });
+    };
+
+    // Keep the nodes of triangles, in tag order.
+    let mut used: Vec<u64> = triangles.iter().flat_map(|t| t.iter().copied()).collect();
+    used.sort_unstable();
+    used.dedup();
+    let index: HashMap<u64, usize> = used.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+    let nodes = used
+        .iter()
+        .map(|t| {
+            coords
+                .get(t)
+                .copied()
+                .ok_or_else(|| io(format!("an element refers to node tag {t}, never defined")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+
+    // Connectivity, counter-clockwise.
+    let npe = kind.node_count();
+    let mut connectivity = Vec::with_capacity(npe * triangles.len());
+    for t in &triangles {
+        let mut cell: Vec<usize> = t.iter().map(|tag| index[tag]).collect();
+        let [a, b, c] = [cell[0], cell[1], cell[2]].map(|n| nodes[n]);
+        if (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]) < 0.0 {
+            cell.swap(1, 2);
+            if kind == ElementKind::Tri6 {
+                // Mid-sides 3 (0-1), 4 (1-2), 5 (2-0) become 5 (0-2), 4 (2-1), 3 (1-0).
+                cell.swap(3, 5);
+            }
+        }
+        connectivity.extend(cell);
+    }
+    let mut mesh = Mesh::new(nodes, kind, connectivity, regions)?;
+
+    // Physical curves: match lines to triangle sides (directed corner pairs).
+    let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
+    for element in 0..mesh.element_count() {
+        for side in 0..3u8 {
+            let mut it = mesh.side_nodes(Side { element, side });
+            if let (Some(a), Some(b)) = (it.next(), it.next()) {
+                sides.insert((a, b), Side { element, side });
+            }
+        }
+    }
+    let mut edge_sets: BTreeMap<String, Vec<Side>> = BTreeMap::new();
+    for line in &lines {
+        let side =
+            match_side(&mesh, &sides, &index, line).ok_or_else(|| FemError::Unsupported {
+                what: format!(
+                    "a line element of curve {} (nodes {:?}) in {origin} is not a triangle side",
+                    line.entity, line.nodes
+                ),
+            })?;
+        for &p in tags_of(1, line.entity) {
+            let name = names
+                .get(&(1, p))
+                .cloned()
+                .unwrap_or_else(|| format!("curve_{p}"));
+            let set = edge_sets.entry(name).or_default();
+            if !set.contains(&side) {
+                set.push(side);
+            }
+        }
+    }
+    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for (name, set) in edge_sets {
+        mesh.add_edge_set(&name, set)?;
+        node_sets.insert(name.clone(), mesh.edge_set_nodes(&name)?);
+    }
+    for point in &points {
+        let node = point
+            .nodes
+            .first()
+            .and_then(|t| index.get(t))
+            .copied()
+            .ok_or_else(|| FemError::Unsupported {
+                what: format!(
+                    "physical point entity {} (nodes {:?}) in {origin} is not a node of a triangle",
+                    point.entity, point.nodes
+                ),
+            })?;
+        for &p in tags_of(0, point.entity) {
+            let name = names
+                .get(&(0, p))
+                .cloned()
+                .unwrap_or_else(|| format!("point_{p}"));
+            node_sets.entry(name).or_default().push(node);
+        }
+    }
+    for (name, set) in node_sets {
+        mesh.add_node_set(&name, set)?;
+    }
+    Ok(mesh)
+}
+
+/// The triangle side of a line element: to the left of the line if two triangles share it.
+/// For a 3-node line in a P2 mesh the middle node must be the side's.
+fn match_side(
+    mesh: &Mesh,
+    sides: &HashMap<(usize, usize), Side>,
+    index: &HashMap<u64, usize>,
+    line: &Lower,
+) -> Option<Side> {
+    let a = *index.get(line.nodes.first()?)?;
+    let b = *index.get(line.nodes.get(1)?)?;
+    let side = sides.get(&(a, b)).or_else(|| sides.get(&(b, a))).copied()?;
+    match (line.nodes.get(2), mesh.kind()) {
+        (Some(mid), ElementKind::Tri6) => {
+            let m = *index.get(mid)?;
+            (mesh.side_nodes(side).nth(2) == Some(m)).then_some(side)
+        }
+        _ => Some(side),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gmsh_type_name_works() {
+        assert_eq!(gmsh_type_name(ElementType::Qua4), "MSH_QUA_4");
+        assert_eq!(gmsh_type_name(ElementType::Tri6), "MSH_TRI_6");
+        assert_eq!(gmsh_type_name(ElementType::Pnt), "MSH_PNT");
+        assert_eq!(gmsh_type_name(ElementType::Tet10), "MSH_TET_10");
+        assert_eq!(gmsh_type_name(ElementType::Tri15i), "MSH_TRI_15I");
+        assert_eq!(gmsh_type_name(ElementType::PntSub), "MSH_PNT_SUB");
+        assert_eq!(gmsh_type_name(ElementType::Trih4), "MSH_TRIH_4");
+    }
+
+    #[test]
+    fn check_header_rejects_bad_headers() {
+        assert!(check_header(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n").is_ok());
+        assert!(check_header(b"\n  $MeshFormat\r\n4.1 1 8\r\n").is_ok());
+        assert!(check_header(b"$MeshFormat\n4.10 0 8\n").is_ok());
+        assert!(matches!(
+            check_header(b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"),
+            Err(HeaderError::Version(v)) if v == "2.2"
+        ));
+        assert!(matches!(
+            check_header(b"$MeshFormat\n4.1 1 3\n"),
+            Err(HeaderError::Invalid(_))
+        ));
+        assert!(matches!(
+            check_header(b"$MeshFormat\n4.1\n"),
+            Err(HeaderError::Invalid(_))
+        ));
+        assert!(matches!(
+            check_header(b"hello"),
+            Err(HeaderError::Invalid(_))
+        ));
+        assert!(matches!(check_header(b""), Err(HeaderError::Invalid(_))));
+    }
+
+    #[test]
+    fn physical_names_works() {
+        let text = b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n\
+                     1 3 \"bottom edge\"\n2 7 \"soil\"\n$EndPhysicalNames\n";
+        let names = physical_names(text).unwrap();
+        assert_eq!(names[&(1, 3)], "bottom edge");
+        assert_eq!(names[&(2, 7)], "soil");
+        assert!(physical_names(b"$MeshFormat\n").unwrap().is_empty());
+        let bad = b"$PhysicalNames\n2\n1 3 \"a\"\n$EndPhysicalNames\n";
+        assert!(physical_names(bad).unwrap_err().contains("line 4"));
+        assert!(physical_names(b"$PhysicalNames\n1\n1 x \"a\"\n$EndPhysicalNames\n").is_err());
+    }
+}
