@@ -130,10 +130,10 @@ pub(crate) fn scatter(
         match dof(a) {
             Dof::Free(i) => {
                 for b in 0..nd {
-                    if let Dof::Free(j) = dof(b) {
-                        if i >= j {
-                            values[pattern.position(i, j)] += k_e[(a, b)];
-                        }
+                    if let Dof::Free(j) = dof(b)
+                        && i >= j
+                    {
+                        values[pattern.position(i, j)] += k_e[(a, b)];
                     }
                 }
             }

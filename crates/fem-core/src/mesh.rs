@@ -89,7 +89,7 @@ impl Mesh {
             }
         }
         let npe = kind.node_count();
-        if connectivity.len() % npe != 0 {
+        if !connectivity.len().is_multiple_of(npe) {
             return Err(FemError::BadConnectivity {
                 len: connectivity.len(),
                 nodes_per_element: npe,

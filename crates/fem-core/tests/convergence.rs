@@ -158,6 +158,9 @@ fn unit_square(kind: ElementKind, n: usize) -> Mesh {
     mesh
 }
 
+type ShapeFn = fn([f64; 2], &mut [f64]);
+type ShapeDerivFn = fn([f64; 2], &mut [[f64; 2]]);
+
 /// Solves the manufactured problem and returns `(L2 error, energy error)`.
 fn errors(kind: ElementKind, n: usize) -> (f64, f64) {
     let mesh = unit_square(kind, n);
@@ -174,14 +177,14 @@ fn errors(kind: ElementKind, n: usize) -> (f64, f64) {
     let u = model.solve(1.0).unwrap();
     let d = material.elasticity(&ideal);
     let mesh = model.mesh();
-    let (shape, dshape): (fn([f64; 2], &mut [f64]), fn([f64; 2], &mut [[f64; 2]])) = match kind {
+    let (shape, dshape): (ShapeFn, ShapeDerivFn) = match kind {
         ElementKind::Tri3 => (tri3::shape, tri3::shape_derivatives),
         ElementKind::Tri6 => (tri6::shape, tri6::shape_derivatives),
     };
     let npe = kind.node_count();
     let (mut l2, mut energy) = (0.0, 0.0);
     let model_stress = model.stresses(&u).unwrap();
-    for e in 0..mesh.element_count() {
+    for (e, stress_e) in model_stress.iter().enumerate() {
         let cell = mesh.element(e);
         let xs: Vec<[f64; 2]> = cell.iter().map(|&k| mesh.nodes()[k]).collect();
         // Straight sides: the map is affine, J is constant.
@@ -224,7 +227,7 @@ fn errors(kind: ElementKind, n: usize) -> (f64, f64) {
         }
         // The model's own stresses agree with D ε_h of the reconstruction (1e-12 relative:
         // same arithmetic in a different order).
-        for (x, s) in &model_stress[e] {
+        for (x, s) in stress_e {
             let rel = [x[0] - xs[0][0], x[1] - xs[0][1]];
             let xi = [
                 (j[1][1] * rel[0] - j[0][1] * rel[1]) / det,

@@ -6,9 +6,11 @@
 //!
 //! Sources:
 //! - S. Timoshenko, J. N. Goodier, *Theory of Elasticity*, 3rd ed., McGraw-Hill, 1970 —
-//!   §21 (cantilever loaded at the end), §28 (thick-walled cylinder, Lamé).
-//! - M. H. Sadd, *Elasticity: Theory, Applications and Numerics*, 4th ed., Academic Press,
-//!   2021 — Example 8.3 (cantilever), Example 8.6 (pressurised cylinder).
+//!   §21 "Bending of a cantilever loaded at the end", §28 "Stress distribution symmetrical
+//!   about an axis" (Lamé's thick-walled cylinder) and the displacements of that chapter.
+//! - M. H. Sadd, *Elasticity: Theory, Applications and Numerics*, Academic Press — ch. 8,
+//!   the end-loaded cantilever (polynomial solution) and the thick-walled cylinder under
+//!   uniform boundary pressure.
 
 use crate::element::Stress;
 use crate::material::Material;
@@ -41,7 +43,7 @@ pub struct LameCylinder {
 }
 
 /// Lamé's thick-walled cylinder `a ≤ r ≤ b` under internal pressure `p` (outer surface free),
-/// evaluated at radius `r` (Timoshenko & Goodier §28; Sadd Example 8.6).
+/// evaluated at radius `r` (Timoshenko & Goodier §28; Sadd ch. 8).
 ///
 /// ```text
 /// A = p a² / (b² − a²)
@@ -234,7 +236,7 @@ pub enum Clamp {
 }
 
 /// Exact plane-stress solution of a cantilever with a parabolic end shear (Timoshenko &
-/// Goodier §21; Sadd Example 8.3), in the crate's frame: the beam occupies `0 ≤ x ≤ L`,
+/// Goodier §21; Sadd ch. 8), in the crate's frame: the beam occupies `0 ≤ x ≤ L`,
 /// `−c ≤ y ≤ c` (`c = h/2`), thickness `t`, clamped at `x = 0`, and the end `x = L` carries
 /// the traction `t_y = −P (c² − y²) / (2I)` (resultant `P` downwards). With `I = t h³ / 12`:
 ///

@@ -146,9 +146,8 @@ impl Iso {
             });
         }
         // ∇N = J⁻ᵀ ∂N/∂ξ
-        for i in 0..self.nodes {
-            let [dxi, deta] = dn[i];
-            p.grad[i] = [
+        for (g, &[dxi, deta]) in p.grad.iter_mut().zip(&dn).take(self.nodes) {
+            *g = [
                 (j[1][1] * dxi - j[1][0] * deta) / det,
                 (-j[0][1] * dxi + j[0][0] * deta) / det,
             ];
