@@ -29,5 +29,5 @@ pub mod model;
 pub mod structure;
 pub use dirichlet::{Component, DofMap, Supports};
 pub use linear_solver::SpdSolver;
-pub use model::{LinearElasticModel, StressField, geostatic};
+pub use model::{LinearElasticModel, Reaction, StressField, StressPoint, geostatic};
 pub use structure::Structure;

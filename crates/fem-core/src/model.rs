@@ -16,6 +16,12 @@ use nalgebra::DMatrix;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
+/// A stress at a quadrature point: its position and the stress components.
+pub type StressPoint = ([f64; 2], Stress);
+
+/// A support reaction: the constrained dof `(node, component)` and the force on it.
+pub type Reaction = ((usize, Component), f64);
+
 /// An initial stress field `σ₀(x)` (components as [`Stress`]).
 pub type StressField = Arc<dyn Fn([f64; 2]) -> Stress + Send + Sync>;
 
@@ -102,10 +108,10 @@ impl LinearElasticModel {
                 });
             }
         }
-        if let Idealization::Axisymmetric = idealization {
-            if let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0) {
-                return Err(FemError::NegativeRadius { node, r: p[0] });
-            }
+        if let Idealization::Axisymmetric = idealization
+            && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)
+        {
+            return Err(FemError::NegativeRadius { node, r: p[0] });
         }
         let dofs = DofMap::new(mesh.node_count(), &supports)?;
         let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
@@ -309,28 +315,42 @@ impl LinearElasticModel {
     /// # Errors
     /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian.
     pub fn add_self_weight(&mut self) -> Result<(), FemError> {
+        let force = self.element_forces(|element, e, coords, idealization, f_e| {
+            let gamma = self.materials[&self.mesh.regions()[e]].unit_weight();
+            element.body_force_into(e, coords, idealization, &|_| [0.0, -gamma], f_e)
+        })?;
+        self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
+        Ok(())
+    }
+
+    /// Integrates an element-level force over every element and scatters it into a vector of
+    /// nodal components (`2 × node_count`); `f_e` is zeroed before each element.
+    fn element_forces(
+        &self,
+        integrate: impl Fn(
+            &dyn Element,
+            usize,
+            &[[f64; 2]],
+            &Idealization,
+            &mut [f64],
+        ) -> Result<(), FemError>,
+    ) -> Result<Vec<f64>, FemError> {
         let element = element_of(self.mesh.kind());
+        let mut force = vec![0.0; 2 * self.mesh.node_count()];
         let mut coords = Vec::with_capacity(6);
         let mut f_e = vec![0.0; 12];
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
             coords.clear();
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            let gamma = self.materials[&self.mesh.regions()[e]].unit_weight();
-            f_e.iter_mut().for_each(|v| *v = 0.0);
-            element.body_force_into(
-                e,
-                &coords,
-                &self.idealization,
-                &|_| [0.0, -gamma],
-                &mut f_e,
-            )?;
+            f_e.fill(0.0);
+            integrate(element, e, &coords, &self.idealization, &mut f_e)?;
             for (a, &n) in cell.iter().enumerate() {
-                self.load[2 * n] += f_e[2 * a];
-                self.load[2 * n + 1] += f_e[2 * a + 1];
+                force[2 * n] += f_e[2 * a];
+                force[2 * n + 1] += f_e[2 * a + 1];
             }
         }
-        Ok(())
+        Ok(force)
     }
 
     /// Adds a body force `b(x)` (force per volume, global frame) over the whole mesh to the
@@ -340,29 +360,17 @@ impl LinearElasticModel {
     /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian;
     /// [`FemError::InvalidParameter`] if `b` returns a non-finite value.
     pub fn add_body_force(&mut self, b: impl Fn([f64; 2]) -> [f64; 2]) -> Result<(), FemError> {
-        let element = element_of(self.mesh.kind());
-        let mut coords = Vec::with_capacity(6);
-        let mut f_e = vec![0.0; 12];
-        let mut load = self.load.clone();
-        for e in 0..self.mesh.element_count() {
-            let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            f_e.iter_mut().for_each(|v| *v = 0.0);
-            element.body_force_into(e, &coords, &self.idealization, &b, &mut f_e)?;
-            for (a, &n) in cell.iter().enumerate() {
-                load[2 * n] += f_e[2 * a];
-                load[2 * n + 1] += f_e[2 * a + 1];
-            }
-        }
-        if let Some(&value) = load.iter().find(|v| !v.is_finite()) {
+        let force = self.element_forces(|element, e, coords, idealization, f_e| {
+            element.body_force_into(e, coords, idealization, &b, f_e)
+        })?;
+        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
             return Err(FemError::InvalidParameter {
                 name: "body force",
                 value,
                 expected: "a finite body force",
             });
         }
-        self.load = load;
+        self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
         Ok(())
     }
 
@@ -373,27 +381,9 @@ impl LinearElasticModel {
     /// [`FemError::InvertedElement`]; [`FemError::InvalidParameter`] if `σ₀` is not finite at
     /// a quadrature point.
     pub fn set_initial_stress(&mut self, sigma_0: StressField) -> Result<(), FemError> {
-        let element = element_of(self.mesh.kind());
-        let mut force = vec![0.0; 2 * self.mesh.node_count()];
-        let mut coords = Vec::with_capacity(6);
-        let mut f_e = vec![0.0; 12];
-        for e in 0..self.mesh.element_count() {
-            let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            f_e.iter_mut().for_each(|v| *v = 0.0);
-            element.initial_stress_force_into(
-                e,
-                &coords,
-                &self.idealization,
-                &*sigma_0,
-                &mut f_e,
-            )?;
-            for (a, &n) in cell.iter().enumerate() {
-                force[2 * n] += f_e[2 * a];
-                force[2 * n + 1] += f_e[2 * a + 1];
-            }
-        }
+        let force = self.element_forces(|element, e, coords, idealization, f_e| {
+            element.initial_stress_force_into(e, coords, idealization, &*sigma_0, f_e)
+        })?;
         if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
             return Err(FemError::InvalidParameter {
                 name: "initial stress",
@@ -478,10 +468,7 @@ impl LinearElasticModel {
     ///
     /// # Errors
     /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
-    pub fn stresses(
-        &self,
-        displacements: &[[f64; 2]],
-    ) -> Result<Vec<Vec<([f64; 2], Stress)>>, FemError> {
+    pub fn stresses(&self, displacements: &[[f64; 2]]) -> Result<Vec<Vec<StressPoint>>, FemError> {
         if displacements.len() != self.mesh.node_count() {
             return Err(FemError::LengthMismatch {
                 what: "nodal displacements",
@@ -555,7 +542,7 @@ impl LinearElasticModel {
         &self,
         displacements: &[[f64; 2]],
         load_factor: f64,
-    ) -> Result<Vec<((usize, Component), f64)>, FemError> {
+    ) -> Result<Vec<Reaction>, FemError> {
         if displacements.len() != self.mesh.node_count() {
             return Err(FemError::LengthMismatch {
                 what: "nodal displacements",
