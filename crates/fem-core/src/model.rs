@@ -469,6 +469,23 @@ impl LinearElasticModel {
     /// # Errors
     /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
     pub fn stresses(&self, displacements: &[[f64; 2]]) -> Result<Vec<Vec<StressPoint>>, FemError> {
+        let mut out = self.elastic_stresses(displacements)?;
+        if let Some(s0) = &self.initial_stress {
+            for (x, s) in out.iter_mut().flatten() {
+                let s_0 = s0(*x);
+                for k in 0..4 {
+                    s[k] += s_0[k];
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// `D B u` at the quadrature points, without the initial stress.
+    fn elastic_stresses(
+        &self,
+        displacements: &[[f64; 2]],
+    ) -> Result<Vec<Vec<StressPoint>>, FemError> {
         if displacements.len() != self.mesh.node_count() {
             return Err(FemError::LengthMismatch {
                 what: "nodal displacements",
@@ -489,17 +506,49 @@ impl LinearElasticModel {
             let material = &self.materials[&self.mesh.regions()[e]];
             let mut pts = Vec::new();
             element.stresses_into(e, &coords, material, &self.idealization, &u_e, &mut pts)?;
-            if let Some(s0) = &self.initial_stress {
-                for (x, s) in &mut pts {
-                    let s_0 = s0(*x);
-                    for k in 0..4 {
-                        s[k] += s_0[k];
-                    }
-                }
-            }
             out.push(pts);
         }
         Ok(out)
+    }
+
+    /// Strains `ε = B u` at the quadrature points of every element (the same points as
+    /// [`LinearElasticModel::stresses`]), components `(xx, yy, γ_xy, zz)` with engineering
+    /// shear `γ = 2ε`; `zz` is `0` in plane strain, `−ν/(1−ν)(ε_xx + ε_yy)` in plane stress,
+    /// and the hoop strain `u_r/r` in axisymmetry (order `(rr, zz, γ_rz, θθ)`).
+    ///
+    /// # Errors
+    /// As for [`LinearElasticModel::stresses`].
+    pub fn strains(&self, displacements: &[[f64; 2]]) -> Result<Vec<Vec<StressPoint>>, FemError> {
+        let elastic = self.elastic_stresses(displacements)?;
+        let m = self.idealization.strain_size();
+        Ok(elastic
+            .into_iter()
+            .enumerate()
+            .map(|(e, pts)| {
+                let material = &self.materials[&self.mesh.regions()[e]];
+                let d = material.elasticity(&self.idealization);
+                // D is SPD on its m × m block: ε = D⁻¹ σ.
+                let compliance = d
+                    .view((0, 0), (m, m))
+                    .into_owned()
+                    .cholesky()
+                    .map(|c| c.inverse())
+                    .unwrap_or_else(|| nalgebra::DMatrix::zeros(m, m));
+                pts.into_iter()
+                    .map(|(x, s)| {
+                        let mut eps = [0.0; 4];
+                        for (r, er) in eps.iter_mut().enumerate().take(m) {
+                            *er = (0..m).map(|k| compliance[(r, k)] * s[k]).sum();
+                        }
+                        if let Idealization::PlaneStress { .. } = self.idealization {
+                            let nu = material.poisson();
+                            eps[3] = -nu / (1.0 - nu) * (eps[0] + eps[1]);
+                        }
+                        (x, eps)
+                    })
+                    .collect()
+            })
+            .collect())
     }
 
     /// Nodal stresses: the average over the elements around each node of the element's mean
@@ -660,6 +709,13 @@ mod tests {
         for pts in model.stresses(&u).unwrap() {
             for (_, s) in pts {
                 assert!((s[0] - 2.0).abs() < 1e-12 && s[1].abs() < 1e-12 && s[2].abs() < 1e-12);
+            }
+        }
+        // Strains: ε_xx = 0.02, ε_yy = −0.005, ε_zz = −ν/(1−ν)(ε_xx + ε_yy) = −0.005.
+        for pts in model.strains(&u).unwrap() {
+            for (_, e) in pts {
+                assert!((e[0] - 0.02).abs() < 1e-12 && (e[1] + 0.005).abs() < 1e-12);
+                assert!(e[2].abs() < 1e-12 && (e[3] + 0.005).abs() < 1e-12);
             }
         }
         // Reactions balance the applied load: Σ R_x = −2 (length 1 × traction 2).
