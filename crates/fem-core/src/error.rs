@@ -70,6 +70,18 @@ pub enum FemError {
         /// Its radius.
         r: f64,
     },
+    /// An edge-set side names an element or a local side (`0..3`) that does not exist.
+    #[error(
+        "side {side} of element {element} does not exist (the mesh has {element_count} elements, sides 0..3)"
+    )]
+    InvalidSide {
+        /// Element index.
+        element: usize,
+        /// Local side index.
+        side: u8,
+        /// Number of elements of the mesh.
+        element_count: usize,
+    },
     /// A named node set or edge set is not in the mesh.
     #[error("the mesh has no {kind} set named `{name}`")]
     UnknownSet {

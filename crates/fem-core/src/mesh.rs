@@ -162,16 +162,16 @@ impl Mesh {
     /// Adds (or replaces) a named edge set.
     ///
     /// # Errors
-    /// [`FemError::LengthMismatch`] for a side whose element or local index is out of range.
+    /// [`FemError::InvalidSide`] for a side whose element or local index is out of range.
     pub fn add_edge_set(&mut self, name: &str, sides: Vec<Side>) -> Result<(), FemError> {
         if let Some(s) = sides
             .iter()
             .find(|s| s.element >= self.element_count() || s.side > 2)
         {
-            return Err(FemError::LengthMismatch {
-                what: "edge set side (element or local side index out of range)",
-                expected: self.element_count(),
-                got: s.element,
+            return Err(FemError::InvalidSide {
+                element: s.element,
+                side: s.side,
+                element_count: self.element_count(),
             });
         }
         self.edge_sets.insert(name.to_string(), sides);
