@@ -1,0 +1,107 @@
+//! Errors of the contact solver.
+//!
+//! Problems are validated once, when a [`ReducedProblem`](crate::ReducedProblem) is built;
+//! the solver's loop then only fails by not converging.
+
+use contact_laws::LawError;
+
+/// Error of `contact-solver`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SolverError {
+    /// An array does not have the length the problem needs.
+    #[error("invalid size of `{what}`: expected {expected}, found {found}")]
+    SizeMismatch {
+        /// Which array (`"W"`, `"q"`, `"mu"`, `"laws"`, …).
+        what: &'static str,
+        /// The expected length.
+        expected: usize,
+        /// The length found.
+        found: usize,
+    },
+    /// An entry is NaN or infinite.
+    #[error("`{what}[{index}]` = {value} is not finite")]
+    NonFinite {
+        /// Which array.
+        what: &'static str,
+        /// Flat index of the entry.
+        index: usize,
+        /// The rejected value.
+        value: f64,
+    },
+    /// The flexibility matrix `W` is not symmetric to the relative tolerance `1e-12·max|W|`.
+    #[error(
+        "W is not symmetric: |W[{row}][{col}] - W[{col}][{row}]| = {difference:e} exceeds {tolerance:e}"
+    )]
+    NotSymmetric {
+        /// Row of the worst entry.
+        row: usize,
+        /// Column of the worst entry.
+        col: usize,
+        /// `|W_ij − W_ji|`.
+        difference: f64,
+        /// The tolerance it exceeds.
+        tolerance: f64,
+    },
+    /// A 2×2 diagonal block of `W` is not positive definite, so `W` is not SPD (a contact with
+    /// no flexibility, or a rigid-body mode).
+    #[error("the 2x2 diagonal block of W at contact {contact} is not positive definite")]
+    NotPositiveDefinite {
+        /// Index of the contact.
+        contact: usize,
+    },
+    /// A friction coefficient was rejected by the local law.
+    #[error("invalid friction coefficient at contact {contact}: {source}")]
+    InvalidLaw {
+        /// Index of the contact.
+        contact: usize,
+        /// The law's own error.
+        #[source]
+        source: LawError,
+    },
+    /// A local law was rejected (without a contact index).
+    #[error("invalid contact law: {0}")]
+    Law(#[from] LawError),
+    /// The JSON text is not a reduced problem.
+    #[error("cannot read the reduced problem from JSON: {0}")]
+    Json(String),
+    /// The iteration reached `max_iterations` before meeting the stopping rule.
+    #[error(
+        "the contact iteration did not converge in {iterations} iterations (residual {residual:e})"
+    )]
+    NotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// Natural-map residual at the last iterate.
+        residual: f64,
+        /// Natural-map residual of every iteration.
+        history: Vec<f64>,
+    },
+}
+
+impl From<serde_json::Error> for SolverError {
+    fn from(e: serde_json::Error) -> Self {
+        Self::Json(e.to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_display_a_sentence() {
+        let e = SolverError::SizeMismatch {
+            what: "q",
+            expected: 4,
+            found: 3,
+        };
+        assert_eq!(e.to_string(), "invalid size of `q`: expected 4, found 3");
+        let law = contact_laws::Coulomb::new(-1.0).unwrap_err();
+        let e: SolverError = law.into();
+        assert!(
+            e.to_string()
+                .starts_with("invalid contact law: invalid parameter `mu`")
+        );
+    }
+}

@@ -1,0 +1,275 @@
+//! The reduced (condensed) contact problem `x = W r + q` of a 2D finite-element model.
+//!
+//! ```text
+//! x = W r + q                       W = F* = H K⁻¹ Hᵀ (flexibility, SPD), q = free gap
+//! per contact i:  r_i ∈ K_μi,  v_i = −(x_t + (x_n + μ_i|x_t|) n) ∈ N_K(r_i)   (seed 4.39, 5.52)
+//! ```
+//! Unknowns are ordered normal first per contact: `r = (r_n0, r_t0, r_n1, r_t1, …)`, size
+//! `m = 2 n_c`. Signs are those of [`contact_laws`](contact_laws#sign-conventions): `r_n ≥ 0`
+//! is compression, `x_n ≥ 0` an opening. This is also Siconos' `fc2d` form (`u = W r + q`,
+//! De Saxcé's `û = u + μ|u_t| n`), so [`ReducedProblem::to_json`] writes exactly what
+//! `shared/peers/siconos_fc.py` reads.
+
+use crate::error::SolverError;
+use contact_laws::{Coulomb, CoulombCone};
+use serde::{Deserialize, Serialize};
+
+/// Relative tolerance of the symmetry test of `W`: `|W_ij − W_ji| ≤ 1e-12 · max|W|`.
+pub const SYMMETRY_TOL: f64 = 1e-12;
+
+/// A validated 2D reduced contact problem `x = W r + q` with friction coefficients `μ_i`.
+///
+/// Invariants (checked by [`new`](Self::new)): `W` is `m × m` (dense, row-major), `q` has `m`
+/// entries, `μ` has `n_c = m/2`; every entry is finite; `W` is symmetric to [`SYMMETRY_TOL`];
+/// every 2×2 diagonal block of `W` is positive definite; `μ_i ≥ 0`. Full positive
+/// definiteness of `W` is *not* checked (it would cost a Cholesky factorisation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReducedProblem {
+    w: Vec<f64>,
+    q: Vec<f64>,
+    mu: Vec<f64>,
+}
+
+/// The JSON form: `{"dim": 2, "W": flat row-major or list of rows, "q": [...], "mu": [...]}`.
+#[derive(Serialize, Deserialize)]
+struct JsonProblem {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dim: Option<usize>,
+    #[serde(rename = "W")]
+    w: JsonMatrix,
+    q: Vec<f64>,
+    mu: Vec<f64>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(untagged)]
+enum JsonMatrix {
+    Flat(Vec<f64>),
+    Rows(Vec<Vec<f64>>),
+}
+
+impl ReducedProblem {
+    /// Builds and validates a problem from `W` (dense, row-major, `m × m`), `q` (`m`) and `μ`
+    /// (`n_c = m/2`).
+    ///
+    /// # Errors
+    /// - [`SolverError::SizeMismatch`] if `q` has an odd length, or `W`, `μ` do not match it;
+    /// - [`SolverError::NonFinite`] for a NaN or infinite entry;
+    /// - [`SolverError::NotSymmetric`] if `|W_ij − W_ji| > 1e-12·max|W|`;
+    /// - [`SolverError::NotPositiveDefinite`] if a 2×2 diagonal block of `W` is not SPD;
+    /// - [`SolverError::InvalidLaw`] if some `μ_i < 0`.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{ReducedProblem, SolverError};
+    /// let p = ReducedProblem::new(vec![2.0, 0.0, 0.0, 2.0], vec![-1.0, 0.5], vec![0.3])?;
+    /// assert_eq!(p.contact_count(), 1);
+    /// assert!(ReducedProblem::new(vec![1.0], vec![-1.0, 0.5], vec![0.3]).is_err());
+    /// # Ok::<(), SolverError>(())
+    /// ```
+    pub fn new(w: Vec<f64>, q: Vec<f64>, mu: Vec<f64>) -> Result<Self, SolverError> {
+        let m = q.len();
+        if !m.is_multiple_of(2) {
+            return Err(SolverError::SizeMismatch {
+                what: "q",
+                expected: m + 1,
+                found: m,
+            });
+        }
+        let nc = m / 2;
+        if w.len() != m * m {
+            return Err(SolverError::SizeMismatch {
+                what: "W",
+                expected: m * m,
+                found: w.len(),
+            });
+        }
+        if mu.len() != nc {
+            return Err(SolverError::SizeMismatch {
+                what: "mu",
+                expected: nc,
+                found: mu.len(),
+            });
+        }
+        for (what, v) in [("W", &w), ("q", &q), ("mu", &mu)] {
+            if let Some((index, &value)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                return Err(SolverError::NonFinite { what, index, value });
+            }
+        }
+        for (contact, &m_i) in mu.iter().enumerate() {
+            CoulombCone::new(m_i).map_err(|source| SolverError::InvalidLaw { contact, source })?;
+        }
+        let w_max = w.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        let tolerance = SYMMETRY_TOL * w_max;
+        for i in 0..m {
+            for j in (i + 1)..m {
+                let difference = (w[i * m + j] - w[j * m + i]).abs();
+                if difference > tolerance {
+                    return Err(SolverError::NotSymmetric {
+                        row: i,
+                        col: j,
+                        difference,
+                        tolerance,
+                    });
+                }
+            }
+        }
+        let p = Self { w, q, mu };
+        for contact in 0..nc {
+            let [a, b, _, d] = p.diagonal_block(contact);
+            if !(a > 0.0 && a * d - b * b > 0.0) {
+                return Err(SolverError::NotPositiveDefinite { contact });
+            }
+        }
+        Ok(p)
+    }
+
+    /// Reads a problem from JSON `{"dim": 2, "W": [...], "q": [...], "mu": [...]}`, the format
+    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows, and
+    /// `dim` may be left out (it must be 2 when given).
+    ///
+    /// # Errors
+    /// [`SolverError::Json`] for malformed JSON, ragged rows or `dim ≠ 2`; otherwise those of
+    /// [`new`](Self::new).
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::ReducedProblem;
+    /// let p = ReducedProblem::from_json(r#"{"W": [[1, 0], [0, 1]], "q": [-1, 0], "mu": [0.5]}"#)?;
+    /// assert_eq!(p.w(), &[1.0, 0.0, 0.0, 1.0]);
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn from_json(text: &str) -> Result<Self, SolverError> {
+        let j: JsonProblem = serde_json::from_str(text)?;
+        if let Some(dim) = j.dim
+            && dim != 2
+        {
+            return Err(SolverError::Json(format!(
+                "dim = {dim} is not supported: the reduced solver is 2D (dim = 2)"
+            )));
+        }
+        let w = match j.w {
+            JsonMatrix::Flat(w) => w,
+            JsonMatrix::Rows(rows) => {
+                let m = j.q.len();
+                if rows.iter().any(|r| r.len() != m) {
+                    return Err(SolverError::Json(format!(
+                        "W given as rows: every row must have {m} entries (the length of q)"
+                    )));
+                }
+                rows.concat()
+            }
+        };
+        Self::new(w, j.q, j.mu)
+    }
+
+    /// Writes the problem as JSON `{"dim": 2, "W": [flat row-major], "q": [...], "mu": [...]}`.
+    ///
+    /// # Errors
+    /// [`SolverError::Json`] if serialisation fails (it does not for a validated problem).
+    pub fn to_json(&self) -> Result<String, SolverError> {
+        Ok(serde_json::to_string(&JsonProblem {
+            dim: Some(2),
+            w: JsonMatrix::Flat(self.w.clone()),
+            q: self.q.clone(),
+            mu: self.mu.clone(),
+        })?)
+    }
+
+    /// Number of contacts `n_c`.
+    #[inline]
+    pub fn contact_count(&self) -> usize {
+        self.mu.len()
+    }
+
+    /// Number of unknowns `m = 2 n_c`.
+    #[inline]
+    pub fn size(&self) -> usize {
+        self.q.len()
+    }
+
+    /// The flexibility matrix `W`, dense row-major `m × m`.
+    #[inline]
+    pub fn w(&self) -> &[f64] {
+        &self.w
+    }
+
+    /// The free gap / displacement `q`.
+    #[inline]
+    pub fn q(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The friction coefficients, one per contact.
+    #[inline]
+    pub fn mu(&self) -> &[f64] {
+        &self.mu
+    }
+
+    /// The 2×2 diagonal block of contact `i` as `[W_nn, W_nt, W_tn, W_tt]`.
+    ///
+    /// # Panics
+    /// If `i >= contact_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn diagonal_block(&self, i: usize) -> [f64; 4] {
+        let m = self.size();
+        let a = 2 * i;
+        [
+            self.w[a * m + a],
+            self.w[a * m + a + 1],
+            self.w[(a + 1) * m + a],
+            self.w[(a + 1) * m + a + 1],
+        ]
+    }
+
+    /// One Coulomb law per contact, `Coulomb::new(μ_i)` (infallible: `μ` was validated).
+    pub fn coulomb_laws(&self) -> Vec<Coulomb> {
+        self.mu
+            .iter()
+            .map(|&m| Coulomb::new(m).unwrap_or_else(|_| unreachable!("mu validated in new")))
+            .collect()
+    }
+
+    /// `x = W r + q` into `x`.
+    ///
+    /// # Panics
+    /// If `r` or `x` does not have `size()` entries.
+    #[track_caller]
+    pub fn displacement_into(&self, r: &[f64], x: &mut [f64]) {
+        let m = self.size();
+        assert!(r.len() == m && x.len() == m, "r and x must have m entries");
+        for (i, xi) in x.iter_mut().enumerate() {
+            let row = &self.w[i * m..(i + 1) * m];
+            *xi = self.q[i] + row.iter().zip(r).map(|(a, b)| a * b).sum::<f64>();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_works() {
+        let p = ReducedProblem::new(vec![2.0, 0.5, 0.5, 1.0], vec![-1.0, 0.0], vec![0.2]).unwrap();
+        assert_eq!(p.diagonal_block(0), [2.0, 0.5, 0.5, 1.0]);
+        let mut x = [0.0; 2];
+        p.displacement_into(&[1.0, 2.0], &mut x);
+        assert_eq!(x, [2.0, 2.5]);
+    }
+
+    #[test]
+    fn new_rejects_singular_block() {
+        let e = ReducedProblem::new(vec![1.0, 1.0, 1.0, 1.0], vec![-1.0, 0.0], vec![0.2]);
+        assert_eq!(e, Err(SolverError::NotPositiveDefinite { contact: 0 }));
+    }
+
+    #[test]
+    fn from_json_rejects_dim_3_and_ragged_rows() {
+        let e = ReducedProblem::from_json(r#"{"dim":3,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
+        assert!(matches!(e, Err(SolverError::Json(_))));
+        let e = ReducedProblem::from_json(r#"{"W":[[1,0],[0]],"q":[0,0],"mu":[0]}"#);
+        assert!(matches!(e, Err(SolverError::Json(_))));
+    }
+}
