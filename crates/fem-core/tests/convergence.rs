@@ -119,43 +119,11 @@ fn manufactured_body_force_is_minus_div_sigma_works() {
     }
 }
 
-/// `n × n` cells on the unit square, two triangles per cell with alternating diagonals; P2
-/// mid-side nodes at the middle of the sides. Node set "boundary".
+mod common;
+
+/// `n × n` cells on the unit square with alternating diagonals (node set "boundary").
 fn unit_square(kind: ElementKind, n: usize) -> Mesh {
-    let step = if kind == ElementKind::Tri6 { 2 } else { 1 };
-    let m = step * n;
-    let id = |i: usize, j: usize| j * (m + 1) + i;
-    let nodes = (0..=m)
-        .flat_map(|j| (0..=m).map(move |i| [i as f64 / m as f64, j as f64 / m as f64]))
-        .collect();
-    let mut conn = Vec::new();
-    for cj in 0..n {
-        for ci in 0..n {
-            let (i, j) = (step * ci, step * cj);
-            let (sw, se, ne, nw) = ([i, j], [i + step, j], [i + step, j + step], [i, j + step]);
-            let tris = if (ci + cj) % 2 == 0 {
-                [[sw, se, ne], [sw, ne, nw]]
-            } else {
-                [[sw, se, nw], [se, ne, nw]]
-            };
-            for t in tris {
-                conn.extend(t.iter().map(|c| id(c[0], c[1])));
-                if step == 2 {
-                    for (a, b) in [(0, 1), (1, 2), (2, 0)] {
-                        conn.push(id((t[a][0] + t[b][0]) / 2, (t[a][1] + t[b][1]) / 2));
-                    }
-                }
-            }
-        }
-    }
-    let mut mesh = Mesh::new(nodes, kind, conn, vec![]).unwrap();
-    let boundary = (0..=m)
-        .flat_map(|j| (0..=m).map(move |i| (i, j)))
-        .filter(|&(i, j)| i == 0 || j == 0 || i == m || j == m)
-        .map(|(i, j)| id(i, j))
-        .collect();
-    mesh.add_node_set("boundary", boundary).unwrap();
-    mesh
+    common::grid(kind, [n, n], 0.0, 0.0, 0, |q| q)
 }
 
 type ShapeFn = fn([f64; 2], &mut [f64]);

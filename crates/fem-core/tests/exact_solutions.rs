@@ -45,77 +45,16 @@ use fem_core::analytical::{
     lame_cylinder, soil_column,
 };
 use fem_core::{
-    Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Side, Supports,
-    geostatic,
+    Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports, geostatic,
 };
 use std::f64::consts::FRAC_PI_2;
 use std::sync::Arc;
 
-/// `nx × ny` cells on the unit square, mapped by `map`; two triangles per cell with
-/// alternating diagonals; P2 mid-side nodes are the images of the mid-sides in the unit square
-/// (so they lie on mapped curves). Edge sets and node sets "bottom", "right", "top", "left"
-/// (images of `t = 0`, `s = 1`, `t = 1`, `s = 0`).
-fn mapped_grid(
-    kind: ElementKind,
-    [nx, ny]: [usize; 2],
-    map: impl Fn([f64; 2]) -> [f64; 2],
-) -> Mesh {
-    let step = if kind == ElementKind::Tri6 { 2 } else { 1 };
-    let (mx, my) = (step * nx, step * ny);
-    let id = |i: usize, j: usize| j * (mx + 1) + i;
-    let nodes = (0..=my)
-        .flat_map(|j| (0..=mx).map(move |i| (i, j)))
-        .map(|(i, j)| map([i as f64 / mx as f64, j as f64 / my as f64]))
-        .collect();
-    let mut conn = Vec::new();
-    let mut sets: [(&str, Vec<Side>); 4] = [
-        ("bottom", vec![]),
-        ("right", vec![]),
-        ("top", vec![]),
-        ("left", vec![]),
-    ];
-    for cj in 0..ny {
-        for ci in 0..nx {
-            let (i, j) = (step * ci, step * cj);
-            let (sw, se, ne, nw) = ([i, j], [i + step, j], [i + step, j + step], [i, j + step]);
-            let tris = if (ci + cj) % 2 == 0 {
-                [[sw, se, ne], [sw, ne, nw]]
-            } else {
-                [[sw, se, nw], [se, ne, nw]]
-            };
-            for t in tris {
-                let element = conn.len() / kind.node_count();
-                conn.extend(t.iter().map(|c| id(c[0], c[1])));
-                for (side, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
-                    if step == 2 {
-                        conn.push(id((t[a][0] + t[b][0]) / 2, (t[a][1] + t[b][1]) / 2));
-                    }
-                    let (ca, cb) = (t[a], t[b]);
-                    let which = [
-                        ca[1] == 0 && cb[1] == 0,
-                        ca[0] == mx && cb[0] == mx,
-                        ca[1] == my && cb[1] == my,
-                        ca[0] == 0 && cb[0] == 0,
-                    ]
-                    .iter()
-                    .position(|&b| b);
-                    if let Some(w) = which {
-                        sets[w].1.push(Side {
-                            element,
-                            side: side as u8,
-                        });
-                    }
-                }
-            }
-        }
-    }
-    let mut mesh = Mesh::new(nodes, kind, conn, vec![]).unwrap();
-    for (name, sides) in sets {
-        mesh.add_edge_set(name, sides).unwrap();
-        let nodes = mesh.edge_set_nodes(name).unwrap();
-        mesh.add_node_set(name, nodes).unwrap();
-    }
-    mesh
+mod common;
+
+/// `nx × ny` undistorted cells on the unit square mapped by `map` (see [`common::grid`]).
+fn mapped_grid(kind: ElementKind, n: [usize; 2], map: impl Fn([f64; 2]) -> [f64; 2]) -> Mesh {
+    common::grid(kind, n, 0.0, 0.0, 0, map)
 }
 
 fn max_abs(v: impl IntoIterator<Item = f64>) -> f64 {
