@@ -310,6 +310,12 @@ impl UzawaSolver {
         self.rho.extend(self.rho0.iter().map(|a| a * st.rho_scale));
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
+        if st.algorithm == Algorithm::Uzawa {
+            for i in 0..nc {
+                let v = pick(laws, i).modified_velocity(&local(&x, i), pick(states, i));
+                set_local(&mut self.v, i, &v);
+            }
+        }
         let mut history = Vec::with_capacity(st.max_iterations.min(100_000));
         let denom_q = self.rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
 
@@ -415,11 +421,9 @@ impl UzawaSolver {
         x: &mut [f64],
         theta: &mut f64,
     ) -> f64 {
+        // `self.v` holds v(x) for the current iterate: set before the first step, then carried
+        // over from the accepted trial below, so it is never evaluated twice.
         let nc = problem.contact_count();
-        for i in 0..nc {
-            let v = pick(laws, i).modified_velocity(&local(x, i), pick(states, i));
-            set_local(&mut self.v, i, &v);
-        }
         let mut shrinks = 0;
         loop {
             let mut dr2 = 0.0;
@@ -454,6 +458,7 @@ impl UzawaSolver {
             }
             r.copy_from_slice(&self.r_trial);
             x.copy_from_slice(&self.x_trial);
+            std::mem::swap(&mut self.v, &mut self.v_trial);
             return dr2;
         }
     }
