@@ -55,6 +55,11 @@ impl ContactLaw for Signorini {
     }
 
     #[inline]
+    fn friction_coefficient(&self, _: &()) -> Option<f64> {
+        Some(0.0)
+    }
+
+    #[inline]
     fn project<const DT: usize>(&self, tau: &LocalVec<DT>, _: &()) -> LocalVec<DT> {
         CoulombCone::FRICTIONLESS.project(tau)
     }
@@ -76,6 +81,11 @@ impl ContactLaw for Coulomb {
     #[inline]
     fn has_friction(&self) -> bool {
         self.cone.mu() > 0.0
+    }
+
+    #[inline]
+    fn friction_coefficient(&self, _: &()) -> Option<f64> {
+        Some(self.cone.mu())
     }
 
     #[inline]

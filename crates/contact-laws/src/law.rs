@@ -67,15 +67,38 @@ pub trait ContactLaw {
         state: &Self::State,
     ) -> LocalVec<DT>;
 
-    /// The adhesive part `r_adh` of the reaction at jump `u` (seed 4.31); the bipotential
-    /// acts on `r̄ = r − r_adh` (seed 4.30). Defaults to zero.
+    /// The stiffnesses `[k_n, k_t]` of the adhesive springs in `state`: the adhesive reaction is
+    /// `r_adh = −(k_n u_n, k_t u_t)` (for RCCM `k = β² (C_n, C_t)`, seed 4.31). The contact
+    /// solver condenses these springs into the reduced problem exactly, so the adhesive part of
+    /// a law must be linear in the jump `u` at fixed state. Defaults to `[0, 0]` (no adhesion).
+    #[inline]
+    fn adhesive_stiffness(&self, _state: &Self::State) -> [f64; 2] {
+        [0.0, 0.0]
+    }
+
+    /// The adhesive part `r_adh = −(k_n u_n, k_t u_t)` of the reaction at jump `u` (seed 4.31),
+    /// from [`ContactLaw::adhesive_stiffness`]; the bipotential acts on `r̄ = r − r_adh`
+    /// (seed 4.30).
     #[inline]
     fn adhesive_reaction<const DT: usize>(
         &self,
-        _u: &LocalVec<DT>,
-        _state: &Self::State,
+        u: &LocalVec<DT>,
+        state: &Self::State,
     ) -> LocalVec<DT> {
-        LocalVec::zeros()
+        let [k_n, k_t] = self.adhesive_stiffness(state);
+        LocalVec {
+            n: -k_n * u.n,
+            t: u.t * (-k_t),
+        }
+    }
+
+    /// The friction coefficient `μ̄` of the law's cone in `state`, for Coulomb-type laws (a
+    /// closed cone `‖r̄_t‖ ≤ μ̄ r̄_n`); `None` for laws that are not of this type. The classical
+    /// RCCM solver (`contact_solver::Algorithm::ClassicRccm`) needs it; the bipotential
+    /// solver does not.
+    #[inline]
+    fn friction_coefficient(&self, _state: &Self::State) -> Option<f64> {
+        None
     }
 
     /// The contact bipotential `b_c(−u̇, r̄)` (seed 4.28, 4.63), `f64::INFINITY` where an

@@ -99,6 +99,9 @@ pub struct RccmState {
 }
 
 impl RccmState {
+    /// The fully damaged interface `β = 0` (no adhesion).
+    pub const ZERO: Self = Self { beta: 0.0 };
+
     /// Builds a state with adhesion intensity `beta`.
     ///
     /// # Errors
@@ -414,18 +417,16 @@ impl ContactLaw for Rccm {
         modified_velocity(&self.cone(state), du)
     }
 
-    /// `r_adh = −β² (C_n u_n, C_t u_t)` (seed 4.31 with this crate's signs).
+    /// `k = β² (C_n, C_t)`: `r_adh = −β² (C_n u_n, C_t u_t)` (seed 4.31 with this crate's signs).
     #[inline]
-    fn adhesive_reaction<const DT: usize>(
-        &self,
-        u: &LocalVec<DT>,
-        state: &RccmState,
-    ) -> LocalVec<DT> {
+    fn adhesive_stiffness(&self, state: &RccmState) -> [f64; 2] {
         let b2 = state.beta * state.beta;
-        LocalVec {
-            n: -b2 * self.c_n * u.n,
-            t: u.t * (-b2 * self.c_t),
-        }
+        [b2 * self.c_n, b2 * self.c_t]
+    }
+
+    #[inline]
+    fn friction_coefficient(&self, state: &RccmState) -> Option<f64> {
+        Some(self.cone(state).mu())
     }
 
     #[inline]
