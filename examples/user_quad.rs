@@ -138,6 +138,9 @@ impl Structure for QuadCantilever {
     fn node_dofs(&self, node: usize) -> [Option<usize>; 2] {
         self.dofs[node]
     }
+    fn prescribed_displacement(&self, _node: usize) -> [f64; 2] {
+        [0.0, 0.0] // every support of this structure is a fixed (zero) displacement
+    }
     fn idealization(&self) -> Idealization {
         Idealization::PlaneStrain
     }

@@ -646,6 +646,14 @@ impl Structure for LinearElasticModel {
         self.dofs.free_dofs(node)
     }
 
+    fn prescribed_displacement(&self, node: usize) -> [f64; 2] {
+        let d = self.dofs.dofs(node);
+        [Component::X, Component::Y].map(|c| match d[c as usize] {
+            Dof::Prescribed(_) => self.supports.value(node, c).unwrap_or(0.0),
+            Dof::Free(_) => 0.0,
+        })
+    }
+
     fn idealization(&self) -> Idealization {
         self.idealization
     }
@@ -696,6 +704,16 @@ mod tests {
         supports.fix(&[0, 3], Component::X).fix(&[0], Component::Y);
         let m = Material::new(100.0, 0.25, 0.0).unwrap();
         LinearElasticModel::new(mesh, idealization, &[(0, m)], supports).unwrap()
+    }
+
+    #[test]
+    fn prescribed_displacement_reports_imposed_values_only() {
+        let mut m = square_model(Idealization::PlaneStrain);
+        m.set_prescribed(&[3], Component::Y, 0.25).unwrap();
+        assert_eq!(m.prescribed_displacement(3), [0.0, 0.25]); // x fixed at 0, y imposed
+        assert_eq!(m.prescribed_displacement(2), [0.0, 0.0]); // free node
+        let u = m.solve(1.0).unwrap();
+        assert_eq!(u[3][1], 0.25);
     }
 
     #[test]

@@ -34,6 +34,14 @@ pub trait Structure {
     /// If `node >= node_count()`.
     fn node_dofs(&self, node: usize) -> [Option<usize>; 2];
 
+    /// The imposed displacement `[u_x, u_y]` of `node`'s prescribed components, `0` for its
+    /// free components (whose values come from a solution vector). The contact solver adds it
+    /// to the gap of contact nodes that are partly supported (e.g. on an axis of symmetry).
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    fn prescribed_displacement(&self, node: usize) -> [f64; 2];
+
     /// The 2D idealisation (plane strain, plane stress or axisymmetry).
     fn idealization(&self) -> Idealization;
 
