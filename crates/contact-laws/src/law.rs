@@ -92,6 +92,13 @@ pub trait ContactLaw {
         }
     }
 
+    /// The adhesion intensity `β ∈ [0, 1]` of `state`, for reporting (`0` for laws without
+    /// adhesion, the default).
+    #[inline]
+    fn adhesion_intensity(&self, _state: &Self::State) -> f64 {
+        0.0
+    }
+
     /// The friction coefficient `μ̄` of the law's cone in `state`, for Coulomb-type laws (a
     /// closed cone `‖r̄_t‖ ≤ μ̄ r̄_n`); `None` for laws that are not of this type. The classical
     /// RCCM solver (`contact_solver::Algorithm::ClassicRccm`) needs it; the bipotential

@@ -425,6 +425,11 @@ impl ContactLaw for Rccm {
     }
 
     #[inline]
+    fn adhesion_intensity(&self, state: &RccmState) -> f64 {
+        state.beta
+    }
+
+    #[inline]
     fn friction_coefficient(&self, state: &RccmState) -> Option<f64> {
         Some(self.cone(state).mu())
     }

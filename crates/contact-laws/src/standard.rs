@@ -117,6 +117,14 @@ impl ContactLaw for StandardLaw {
     }
 
     #[inline]
+    fn adhesion_intensity(&self, state: &RccmState) -> f64 {
+        match self {
+            Self::Rccm(l) => l.adhesion_intensity(state),
+            _ => 0.0,
+        }
+    }
+
+    #[inline]
     fn friction_coefficient(&self, state: &RccmState) -> Option<f64> {
         match self {
             Self::Signorini(l) => l.friction_coefficient(&()),
@@ -198,6 +206,7 @@ mod tests {
             law.update_state(&s, &u, &(u * 3.0), 0.1)
         );
         assert!(any.has_adhesion() && any.adhesion_active(&s));
+        assert_eq!(any.adhesion_intensity(&s), 0.5);
 
         let c = StandardLaw::from(Coulomb::new(0.4).unwrap());
         let s0 = c.initial_state();

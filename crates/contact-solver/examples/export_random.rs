@@ -1,5 +1,6 @@
 //! Writes seeded random reduced problems to JSON for the Siconos peer check, solves them with
-//! both sweeps and several ρ scales, and prints iterations and wall times.
+//! both bipotential sweeps and several ρ scales (and with the classical RCCM solver), and prints
+//! iterations and wall times.
 //!
 //! ```text
 //! cargo run --release -p contact-solver --example export_random -- [OUT_DIR]
@@ -21,8 +22,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let p = random_problem(nc, seed);
         std::fs::write(format!("{out}/random_{nc}.json"), p.to_json()?)?;
         let laws = p.coulomb_laws();
-        for algorithm in [Algorithm::Uzawa, Algorithm::GaussSeidel] {
-            for rho_scale in [1e-3, 1.0, 1e3] {
+        for algorithm in [
+            Algorithm::Uzawa,
+            Algorithm::GaussSeidel,
+            Algorithm::ClassicRccm,
+        ] {
+            // The classical solver has no ρ to scale: one run.
+            let scales: &[f64] = if algorithm == Algorithm::ClassicRccm {
+                &[1.0]
+            } else {
+                &[1e-3, 1.0, 1e3]
+            };
+            for &rho_scale in scales {
                 let mut solver = UzawaSolver::new(UzawaSettings {
                     algorithm,
                     rho_scale,

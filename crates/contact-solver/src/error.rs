@@ -59,12 +59,26 @@ pub enum SolverError {
         #[source]
         source: LawError,
     },
+    /// The law at a contact has no friction coefficient
+    /// ([`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient)
+    /// returned `None`), which [`Algorithm::ClassicRccm`](crate::Algorithm::ClassicRccm)
+    /// needs for its threshold `s = μ̄ r_n`.
+    #[error(
+        "the law at contact {contact} has no friction coefficient: the classical RCCM solver needs a Coulomb-type law (use the bipotential solver for this law)"
+    )]
+    NoFrictionCoefficient {
+        /// Index of the contact.
+        contact: usize,
+    },
     /// A local law was rejected (without a contact index).
     #[error("invalid contact law: {0}")]
     Law(#[from] LawError),
     /// The JSON text is not a reduced problem.
     #[error("cannot read the reduced problem from JSON: {0}")]
     Json(String),
+    /// Writing an output file or stream failed ([`output`](crate::output)).
+    #[error("I/O error: {0}")]
+    Io(String),
     /// The iteration reached `max_iterations` before meeting the stopping rule.
     #[error(
         "the contact iteration did not converge in {iterations} iterations (residual {residual:e})"
@@ -75,6 +89,35 @@ pub enum SolverError {
         /// Natural-map residual at the last iterate.
         residual: f64,
         /// Natural-map residual of every iteration.
+        history: Vec<f64>,
+    },
+    /// A contact zone or obstacle whose geometry makes no sense (zero-length LINE, node out of
+    /// range, empty node set, …).
+    #[error("invalid contact geometry: {0}")]
+    InvalidGeometry(String),
+    /// An invalid setting (tolerance, alert distance, time step, …).
+    #[error("invalid setting `{what}` = {value}: {expected}")]
+    InvalidSetting {
+        /// The setting.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// The structure failed (factorisation, solve, unknown node set).
+    #[error("structure: {0}")]
+    Structure(#[from] fem_core::FemError),
+    /// The fixed point between the contact solve and the adhesion update did not converge.
+    #[error(
+        "the adhesion fixed point did not converge in {iterations} iterations (last change of beta {change:e})"
+    )]
+    AdhesionNotConverged {
+        /// Fixed-point iterations done.
+        iterations: usize,
+        /// Largest change of the state in the last iteration.
+        change: f64,
+        /// The largest state change of every iteration.
         history: Vec<f64>,
     },
 }

@@ -26,12 +26,25 @@
 
 #![warn(missing_docs)]
 
+pub mod classic;
 pub mod error;
 pub mod generate;
+pub mod obstacle;
+pub mod output;
 pub mod reduced;
+pub mod scenes;
+pub mod simulation;
 pub mod uzawa;
+pub mod zone;
 
 pub use contact_laws;
 pub use error::SolverError;
+pub use obstacle::{ArcSide, Obstacle, ObstaclePoint, RigidArc, RigidLine};
+pub use output::{HistoryWriter, InterfaceSeries, ReportWriter, write_interface_vtu};
 pub use reduced::ReducedProblem;
+pub use simulation::{
+    ContactRecord, ContactSimulation, Counters, InterfaceStatus, SimulationSettings, StepReport,
+    StepResult,
+};
+pub use zone::{Candidate, ContactZone, Target, recognize};
 pub use uzawa::{Algorithm, Solution, UzawaReport, UzawaSettings, UzawaSolver, solve_coulomb};

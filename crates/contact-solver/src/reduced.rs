@@ -56,7 +56,9 @@ impl ReducedProblem {
     /// - [`SolverError::SizeMismatch`] if `q` has an odd length, or `W`, `μ` do not match it;
     /// - [`SolverError::NonFinite`] for a NaN or infinite entry;
     /// - [`SolverError::NotSymmetric`] if `|W_ij − W_ji| > 1e-12·max|W|`;
-    /// - [`SolverError::NotPositiveDefinite`] if a 2×2 diagonal block of `W` is not SPD;
+    /// - [`SolverError::NotPositiveDefinite`] if a 2×2 diagonal block of `W` is not SPD —
+    ///   except that a block `[W_nn 0; 0 0]` with `W_nn > 0` is accepted: it is a contact whose
+    ///   tangential displacement is prescribed (a supported node), so `x_t = q_t` whatever `r`;
     /// - [`SolverError::InvalidLaw`] if some `μ_i < 0`.
     ///
     /// # Examples
@@ -117,7 +119,9 @@ impl ReducedProblem {
         let p = Self { w, q, mu };
         for contact in 0..nc {
             let [a, b, _, d] = p.diagonal_block(contact);
-            if !(a > 0.0 && a * d - b * b > 0.0) {
+            // a tangentially supported node has an exactly zero tangential row: allowed
+            let fixed_tangent = d == 0.0 && b == 0.0;
+            if !(a > 0.0 && (a * d - b * b > 0.0 || fixed_tangent)) {
                 return Err(SolverError::NotPositiveDefinite { contact });
             }
         }
@@ -263,6 +267,10 @@ mod tests {
     fn new_rejects_singular_block() {
         let e = ReducedProblem::new(vec![1.0, 1.0, 1.0, 1.0], vec![-1.0, 0.0], vec![0.2]);
         assert_eq!(e, Err(SolverError::NotPositiveDefinite { contact: 0 }));
+        let e = ReducedProblem::new(vec![0.0, 0.0, 0.0, 1.0], vec![-1.0, 0.0], vec![0.2]);
+        assert_eq!(e, Err(SolverError::NotPositiveDefinite { contact: 0 }));
+        // tangentially supported contact: [W_nn 0; 0 0]
+        assert!(ReducedProblem::new(vec![1.0, 0.0, 0.0, 0.0], vec![-1.0, 0.0], vec![0.2]).is_ok());
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! prediction (5.26a):  τ_i = r_i + ρ_i v_i(x),   v_i = law_i.modified_velocity(x_i)
 //! correction (5.26b):  r_i ← law_i.project(τ_i)
 //! ```
-//! Two sweeps are offered ([`Algorithm`]):
+//! Three algorithms are offered ([`Algorithm`]); the first two are bipotential sweeps:
 //! - [`Algorithm::Uzawa`]: all contacts from the same `x` (a projected-gradient / Jacobi
 //!   step), then `x = W r + q` once per iteration;
 //! - [`Algorithm::GaussSeidel`]: contact by contact, each using the current `x`, which is
@@ -14,6 +14,11 @@
 //!   release build) it takes 57–60 sweeps against 79–101 for Uzawa and is 1.5–9× faster
 //!   (n_c = 300: 2.6 ms against 23 ms), because a sweep costs one pass over `W` while an
 //!   Uzawa step costs one product `W r` per trial, and a few trials are redone.
+//!
+//! The third, [`Algorithm::ClassicRccm`], is the classical solver the seed compares the
+//! bipotential with (GYPTIS, seed §5.6): Signorini and friction solved separately, with a fixed
+//! point on the friction threshold; it is described in [`classic`](crate::classic) and stops on
+//! the same rule as the two sweeps.
 //!
 //! # The penalty ρ
 //! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s 2×2 diagonal block:
@@ -50,6 +55,7 @@
 //! `tiny = f64::MIN_POSITIVE`. The residual is the natural map of the fixed point (zero
 //! exactly on solutions); [`UzawaReport::history`] records it at every iteration.
 
+use crate::classic::ClassicScratch;
 use crate::error::SolverError;
 use crate::reduced::ReducedProblem;
 use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
@@ -73,6 +79,11 @@ pub enum Algorithm {
     /// Contact by contact with the current `x` (projected Gauss–Seidel). The default.
     #[default]
     GaussSeidel,
+    /// The classical solver (seed §5.6, GYPTIS): contact and friction treated separately, by
+    /// projected SOR sweeps on the normal then the tangential components, with a fixed point
+    /// on the threshold `s_i = μ̄_i r_n,i`. Needs
+    /// [`ContactLaw::friction_coefficient`]; see [`classic`](crate::classic).
+    ClassicRccm,
 }
 
 /// Settings of the reduced solver.
@@ -85,7 +96,12 @@ pub struct UzawaSettings {
     /// Maximum number of iterations (sweeps).
     pub max_iterations: usize,
     /// Factor applied to the base `ρ⁰_i = 1/λ_max(W_ii)` at the start (adapted afterwards).
+    /// Not used by [`Algorithm::ClassicRccm`].
     pub rho_scale: f64,
+    /// Over-relaxation factor `ω ∈ (0, 2)` of the projected SOR sweeps of
+    /// [`Algorithm::ClassicRccm`] (default [`DEFAULT_OMEGA`](crate::classic::DEFAULT_OMEGA));
+    /// not used by the bipotential sweeps.
+    pub omega: f64,
     /// Return `Ok` with `report.converged == false` instead of
     /// [`SolverError::NotConverged`].
     pub accept_non_converged: bool,
@@ -98,6 +114,7 @@ impl Default for UzawaSettings {
             tol: 1e-10,
             max_iterations: 10_000,
             rho_scale: 1.0,
+            omega: crate::classic::DEFAULT_OMEGA,
             accept_non_converged: false,
         }
     }
@@ -106,21 +123,30 @@ impl Default for UzawaSettings {
 /// What the solver did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UzawaReport {
-    /// The sweep that ran.
+    /// The algorithm that ran.
     pub algorithm: Algorithm,
-    /// Iterations (sweeps) done.
+    /// Iterations (sweeps) done: for [`Algorithm::ClassicRccm`], every normal and tangential
+    /// sweep of every outer iteration (see [`classic`](crate::classic)).
     pub iterations: usize,
+    /// Outer iterations: threshold updates of [`Algorithm::ClassicRccm`]; equal to
+    /// `iterations` for the bipotential sweeps.
+    pub outer_iterations: usize,
+    /// Sweeps of the friction sub-problem of [`Algorithm::ClassicRccm`] (so
+    /// `iterations − tangential_sweeps` are Signorini sweeps); 0 for the bipotential sweeps,
+    /// which treat both components of a contact together.
+    pub tangential_sweeps: usize,
     /// `true` when the stopping rule was met.
     pub converged: bool,
     /// Natural-map residual at the returned iterate (relative, see the [module docs](self)).
     pub residual: f64,
     /// Relative change `‖r_{k+1} − r_k‖/‖r_{k+1}‖` of the last iteration.
     pub change: f64,
-    /// The natural-map residual of every iteration.
+    /// The natural-map residual of every iteration (of every outer iteration for
+    /// [`Algorithm::ClassicRccm`]).
     pub history: Vec<f64>,
-    /// Smallest adapted `ρ_i` at the end.
+    /// Smallest adapted `ρ_i` at the end (the base `ρ⁰_i` for [`Algorithm::ClassicRccm`]).
     pub rho_min: f64,
-    /// Largest adapted `ρ_i` at the end.
+    /// Largest adapted `ρ_i` at the end (the base `ρ⁰_i` for [`Algorithm::ClassicRccm`]).
     pub rho_max: f64,
     /// Status of each contact at the returned iterate (case of the projection with `ρ⁰`).
     pub statuses: Vec<ContactStatus>,
@@ -157,6 +183,7 @@ pub struct UzawaSolver {
     v_trial: Vec<f64>,
     rho0: Vec<f64>,
     rho: Vec<f64>,
+    classic: ClassicScratch,
 }
 
 /// Solves `problem` with one Coulomb law `Coulomb::new(μ_i)` per contact — the entry point for
@@ -181,7 +208,7 @@ pub fn solve_coulomb(
 }
 
 #[inline]
-fn pick<T>(s: &[T], i: usize) -> &T {
+pub(crate) fn pick<T>(s: &[T], i: usize) -> &T {
     if s.len() == 1 { &s[0] } else { &s[i] }
 }
 
@@ -196,7 +223,7 @@ fn set_local(v: &mut [f64], i: usize, a: &LocalVec2) {
     v[2 * i + 1] = a.t[0];
 }
 
-fn norm(v: &[f64]) -> f64 {
+pub(crate) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
@@ -204,6 +231,25 @@ fn norm(v: &[f64]) -> f64 {
 fn rho_of_block([a, b, _, d]: [f64; 4]) -> f64 {
     let h = 0.5 * (a - d);
     1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
+}
+
+/// `‖r − P(r + ρ⁰ v(x))‖` (absolute), the natural map of the fixed point with the base `ρ⁰`.
+pub(crate) fn natural_residual<L: ContactLaw>(
+    laws: &[L],
+    states: &[L::State],
+    rho0: &[f64],
+    r: &[f64],
+    x: &[f64],
+) -> f64 {
+    let mut s2 = 0.0;
+    for (i, &rho0) in rho0.iter().enumerate() {
+        let (law, s) = (pick(laws, i), pick(states, i));
+        let ri = local(r, i);
+        let tau = ri + law.modified_velocity(&local(x, i), s) * rho0;
+        let d = law.project(&tau, s) - ri;
+        s2 += d.dot(&d);
+    }
+    s2.sqrt()
 }
 
 impl UzawaSolver {
@@ -241,7 +287,11 @@ impl UzawaSolver {
     ///
     /// # Errors
     /// [`SolverError::SizeMismatch`] if `laws`, `states` or `r_start` has the wrong length;
-    /// [`SolverError::NonFinite`] if `r_start` is not finite;
+    /// [`SolverError::NonFinite`] if `r_start` is not finite, or `tol` or `rho_scale` is not
+    /// finite and positive; [`SolverError::InvalidSetting`] if `omega` is not in `(0, 2)`;
+    /// for [`Algorithm::ClassicRccm`], [`SolverError::NoFrictionCoefficient`] if a law's
+    /// [`friction_coefficient`](ContactLaw::friction_coefficient) is `None` and
+    /// [`SolverError::InvalidLaw`] if it is negative or not finite;
     /// [`SolverError::NotConverged`] unless `accept_non_converged`.
     pub fn solve_with_states<L: ContactLaw>(
         &mut self,
@@ -274,6 +324,13 @@ impl UzawaSolver {
                 what: "rho_scale",
                 index: 0,
                 value: st.rho_scale,
+            });
+        }
+        if !(st.omega > 0.0 && st.omega < 2.0) {
+            return Err(SolverError::InvalidSetting {
+                what: "omega",
+                value: st.omega,
+                expected: "expected a value in (0, 2)",
             });
         }
         let mut r = vec![0.0; m];
@@ -323,26 +380,49 @@ impl UzawaSolver {
         let mut residual = f64::INFINITY;
         let mut change = f64::INFINITY;
         let mut converged = false;
+        let mut outer_iterations = 0;
+        let mut tangential_sweeps = 0;
         // Uzawa's global scale factor of ρ⁰ (Gauss–Seidel adapts `self.rho` per contact).
         let mut theta = st.rho_scale;
-        while iterations < st.max_iterations {
+        if st.algorithm == Algorithm::ClassicRccm {
+            let run = self.classic.solve(
+                problem,
+                laws,
+                states,
+                &self.rho0,
+                &st,
+                &mut r,
+                &mut x,
+                &mut history,
+            )?;
+            iterations = run.iterations;
+            outer_iterations = run.outer_iterations;
+            tangential_sweeps = run.tangential_sweeps;
+            converged = run.converged;
+            residual = run.residual;
+            change = run.change;
+            self.rho.copy_from_slice(&self.rho0);
+        }
+        while st.algorithm != Algorithm::ClassicRccm && iterations < st.max_iterations {
             iterations += 1;
             let dr2 = match st.algorithm {
                 Algorithm::Uzawa => {
                     self.uzawa_step(problem, laws, states, &mut r, &mut x, &mut theta)
                 }
-                Algorithm::GaussSeidel => {
+                // (ClassicRccm ran above and never enters this loop.)
+                Algorithm::GaussSeidel | Algorithm::ClassicRccm => {
                     self.gauss_seidel_sweep(problem, laws, states, &mut r, &mut x)
                 }
             };
+            outer_iterations = iterations;
             let r_norm = norm(&r);
             change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
             let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
-            residual = self.natural_residual(laws, states, &r, &x) / denom;
+            residual = natural_residual(laws, states, &self.rho0, &r, &x) / denom;
             if change <= st.tol && residual <= st.tol && st.algorithm == Algorithm::GaussSeidel {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(&r, &mut x);
-                residual = self.natural_residual(laws, states, &r, &x) / denom;
+                residual = natural_residual(laws, states, &self.rho0, &r, &x) / denom;
             }
             history.push(residual);
             if change <= st.tol && residual <= st.tol {
@@ -381,6 +461,8 @@ impl UzawaSolver {
         let report = UzawaReport {
             algorithm: st.algorithm,
             iterations,
+            outer_iterations,
+            tangential_sweeps,
             converged,
             residual,
             change,
@@ -390,25 +472,6 @@ impl UzawaSolver {
             statuses,
         };
         Ok(Solution { r, x, report })
-    }
-
-    /// `‖r − P(r + ρ⁰ v(x))‖` (absolute).
-    fn natural_residual<L: ContactLaw>(
-        &self,
-        laws: &[L],
-        states: &[L::State],
-        r: &[f64],
-        x: &[f64],
-    ) -> f64 {
-        let mut s2 = 0.0;
-        for (i, &rho0) in self.rho0.iter().enumerate() {
-            let (law, s) = (pick(laws, i), pick(states, i));
-            let ri = local(r, i);
-            let tau = ri + law.modified_velocity(&local(x, i), s) * rho0;
-            let d = law.project(&tau, s) - ri;
-            s2 += d.dot(&d);
-        }
-        s2.sqrt()
     }
 
     /// One Jacobi step with the globally adapted factor `theta`; returns `‖Δr‖²`.
@@ -541,6 +604,25 @@ mod tests {
             .solve(&p, &[Signorini])
             .unwrap();
         assert_eq!(sol.r, vec![2.0, 0.0]);
+    }
+
+    #[test]
+    fn bipotential_report_counts_work() {
+        // Every bipotential sweep is an outer iteration and none is a "tangential sweep".
+        let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-2.0, 1.0], vec![0.3]).unwrap();
+        for algorithm in [Algorithm::Uzawa, Algorithm::GaussSeidel] {
+            let st = UzawaSettings {
+                algorithm,
+                ..UzawaSettings::default()
+            };
+            let rep = UzawaSolver::new(st)
+                .solve(&p, &p.coulomb_laws())
+                .unwrap()
+                .report;
+            assert_eq!(rep.outer_iterations, rep.iterations);
+            assert_eq!(rep.history.len(), rep.iterations);
+            assert_eq!(rep.tangential_sweeps, 0);
+        }
     }
 
     #[test]

@@ -1,0 +1,824 @@
+//! The quasi-static contact simulation (seed 5.3–5.5): a [`Structure`], contact zones, and one
+//! [`ContactSimulation::step`] per load increment.
+//!
+//! # One step (`docs/theory.md` §13)
+//! 1. Free response `u_free` of the structure to the current loads and prescribed values.
+//! 2. Active set: candidates whose gap at the start of the step or under `u_free` is within
+//!    their zone's alert distance, plus every adhesive candidate (β > 0).
+//! 3. `F* = H K⁻¹ Hᵀ` on the active set, rebuilt only when the active set or the structure's
+//!    [`stiffness_version`](Structure::stiffness_version) changed.
+//! 4. Reduced problem `x = F* r + q` with `x = (x_n, Δu_t)` per contact: the normal part is the
+//!    gap, the tangential part the slip increment of the step,
+//!    `q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)`.
+//! 5. Adhesion: the springs `r_adh = −(k_n u_n, k_t u_t)` of each law
+//!    ([`ContactLaw::adhesive_stiffness`]) are condensed exactly,
+//!    `x = W̃ r̄ + q̃`, `W̃ = (F*⁻¹ + B)⁻¹`, and the bipotential solver finds `r̄ ∈ K_μ̄`; then
+//!    the state (β) is updated from the jump and the solve repeated until the largest state
+//!    change is below [`SimulationSettings::adhesion_tol`] (seed 5.43–5.48). Skipped when no
+//!    active law is adhesive.
+//! 6. `u = u_free + K⁻¹ Hᵀ r` (one back-substitution, no refactorisation). Inactive candidates
+//!    that ended up penetrating are added to the active set and the step is redone.
+
+use crate::error::SolverError;
+use crate::reduced::ReducedProblem;
+use crate::uzawa::{UzawaSettings, UzawaSolver};
+use crate::zone::{Candidate, ContactZone, recognize};
+use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
+use faer::linalg::solvers::Solve;
+use faer::{Mat, MatRef, Side};
+use fem_core::Structure;
+use std::time::{Duration, Instant};
+
+/// Settings of a simulation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimulationSettings {
+    /// The reduced solver (algorithm, tolerance, ρ scale, …).
+    pub solver: UzawaSettings,
+    /// Tolerance of the adhesion fixed point: largest [`ContactLaw::state_change`] (for RCCM,
+    /// `|Δβ|`) between two iterations.
+    pub adhesion_tol: f64,
+    /// Maximum adhesion fixed-point iterations per step.
+    pub max_adhesion_iterations: usize,
+    /// Maximum passes of the penetration check per step (each adds the penetrating inactive
+    /// candidates and redoes the step).
+    pub max_detection_passes: usize,
+    /// Right-hand sides per `solve_many_in_place` call when building `F*` (bounds the memory
+    /// to `dof_count × columns` values).
+    pub columns_per_solve: usize,
+}
+
+impl Default for SimulationSettings {
+    fn default() -> Self {
+        Self {
+            solver: UzawaSettings::default(),
+            adhesion_tol: 1e-8,
+            max_adhesion_iterations: 200,
+            max_detection_passes: 5,
+            columns_per_solve: 64,
+        }
+    }
+}
+
+/// What a contact is doing at the end of a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum InterfaceStatus {
+    /// Outside the alert distance: not in the reduced problem.
+    Inactive,
+    /// In the reduced problem, `r̄ = 0` (open; adhesive springs may still pull).
+    Open,
+    /// Compressed, sticking.
+    Stick,
+    /// Compressed, sliding.
+    Slip,
+}
+
+impl InterfaceStatus {
+    /// A short lowercase name (`inactive`, `open`, `stick`, `slip`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Inactive => "inactive",
+            Self::Open => "open",
+            Self::Stick => "stick",
+            Self::Slip => "slip",
+        }
+    }
+}
+
+/// One contact candidate at the end of a step. Local components are `[normal, tangential]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactRecord {
+    /// Zone index.
+    pub zone: usize,
+    /// Contactor node.
+    pub node: usize,
+    /// Reference position of the contactor node.
+    pub position: [f64; 2],
+    /// Tributary area of the node: `r / area` is the interface stress.
+    pub area: f64,
+    /// Status.
+    pub status: InterfaceStatus,
+    /// Normal gap `x_n = g₀ + u_n` (`≥ 0`: open). For a glued interface (`g₀ = 0`) it is the
+    /// normal jump `u_n` of the RCCM law.
+    pub gap: f64,
+    /// Total tangential relative displacement `u_t`.
+    pub u_t: f64,
+    /// Tangential relative displacement of this step (the slip increment when sliding).
+    pub slip_increment: f64,
+    /// Adhesion intensity β ([`ContactLaw::adhesion_intensity`], 0 without adhesion).
+    pub beta: f64,
+    /// Total reaction `r = r̄ + r_adh` on the contactor (`r_n > 0` compression).
+    pub r: [f64; 2],
+    /// Reaction of the contact law proper, `r̄ ∈ K_μ̄`.
+    pub r_bar: [f64; 2],
+    /// Adhesive reaction `r_adh`.
+    pub r_adh: [f64; 2],
+}
+
+/// Counters and timing of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepReport {
+    /// Step number (1-based).
+    pub step: usize,
+    /// Time at the end of the step.
+    pub time: f64,
+    /// Load factor of the step.
+    pub load_factor: f64,
+    /// Candidates in the reduced problem.
+    pub active_contacts: usize,
+    /// Adhesion fixed-point iterations (0 when the step had no adhesion).
+    pub adhesion_iterations: usize,
+    /// Contact iterations: solver sweeps summed over the adhesion iterations and passes.
+    pub contact_iterations: usize,
+    /// Passes of the penetration check (1 unless inactive candidates penetrated).
+    pub detection_passes: usize,
+    /// Whether `F*` was rebuilt in this step.
+    pub flexibility_rebuilt: bool,
+    /// Natural-map residual of the last reduced solve.
+    pub residual: f64,
+    /// Whether every solve of the step met its tolerance (always `true` unless the settings
+    /// accept non-converged results).
+    pub converged: bool,
+    /// Wall time of the step.
+    pub wall_time: Duration,
+}
+
+/// Counters over the whole simulation: what work was done (and skipped).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Steps done.
+    pub steps: usize,
+    /// `F*` builds.
+    pub flexibility_builds: usize,
+    /// Right-hand sides solved to build `F*`.
+    pub flexibility_columns: usize,
+    /// Structure solves outside `F*` (free response and final displacement).
+    pub structure_solves: usize,
+    /// Adhesion fixed-point iterations.
+    pub adhesion_iterations: usize,
+    /// Contact (solver) iterations.
+    pub contact_iterations: usize,
+    /// Steps where the structure's stiffness version changed.
+    pub stiffness_changes: usize,
+}
+
+/// The result of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepResult {
+    /// Counters and timing.
+    pub report: StepReport,
+    /// Every candidate, in recognition order.
+    pub contacts: Vec<ContactRecord>,
+}
+
+/// A quasi-static contact simulation: structure, zones, per-contact state and the cached `F*`.
+///
+/// # Examples
+/// An elastic block (P1, plane strain) pressed on a rigid LINE by a prescribed displacement of
+/// its top: the bottom nodes come into contact and the pressure is uniform.
+/// ```
+/// use contact_solver::{ContactSimulation, ContactZone, SimulationSettings};
+/// use contact_solver::obstacle::RigidLine;
+/// use contact_laws::Signorini;
+/// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+/// use fem_core::generate::{RectangleSpec, rectangle};
+///
+/// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 4, 4))?; // P1
+/// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+/// let mut supports = Supports::new();
+/// supports.prescribe(&top, Component::Y, -0.01)?.fix(&top, Component::X);
+/// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+///     &[(0, Material::new(100.0, 0.0, 0.0)?)], supports)?;
+/// let ground = RigidLine::new([-1.0, 0.0], [2.0, 0.0])?;
+/// let zone = ContactZone::rigid("base", bottom, ground, Signorini, 0.1);
+/// let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default())?;
+/// let res = sim.step(1.0, 1.0)?;
+/// let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+/// assert!((total - 1.0).abs() < 1e-9);         // σ = E ε = 100 × 0.01 over a width of 1
+/// assert!(res.contacts.iter().all(|c| c.gap.abs() < 1e-11)); // closed to 1e-9 of the 0.01 push
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct ContactSimulation<S: Structure, L: ContactLaw> {
+    structure: S,
+    zones: Vec<ContactZone<L>>,
+    settings: SimulationSettings,
+    candidates: Vec<Candidate>,
+    /// H rows (n then t per candidate) on free dofs: (dof, coefficient).
+    h_rows: Vec<Vec<(usize, f64)>>,
+    /// Accepted state at the end of the last step.
+    states: Vec<L::State>,
+    /// Accepted (gap, u_t) at the end of the last step.
+    jumps: Vec<[f64; 2]>,
+    /// Last accepted r̄ (warm start).
+    r_bar: Vec<[f64; 2]>,
+    /// Active set of the cached W.
+    w_active: Vec<usize>,
+    w: Vec<f64>,
+    w_version: Option<u64>,
+    u: Vec<f64>,
+    time: f64,
+    solver: UzawaSolver,
+    counters: Counters,
+    last_problem: Option<ReducedProblem>,
+    last_version: u64,
+}
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// Recognises the candidates of `zones` on `structure` (reference configuration) and
+    /// starts at time 0 with every law's initial state.
+    ///
+    /// # Errors
+    /// As for [`recognize`]; [`SolverError::InvalidSetting`] for bad settings;
+    /// [`SolverError::InvalidGeometry`] if no zone has a candidate.
+    pub fn new(
+        structure: S,
+        zones: Vec<ContactZone<L>>,
+        settings: SimulationSettings,
+    ) -> Result<Self, SolverError> {
+        if !(settings.adhesion_tol > 0.0 && settings.adhesion_tol.is_finite()) {
+            return Err(SolverError::InvalidSetting {
+                what: "adhesion_tol",
+                value: settings.adhesion_tol,
+                expected: "a finite tolerance > 0",
+            });
+        }
+        if settings.columns_per_solve == 0 {
+            return Err(SolverError::InvalidSetting {
+                what: "columns_per_solve",
+                value: 0.0,
+                expected: "at least 1",
+            });
+        }
+        let candidates = recognize(&structure, &zones)?;
+        if candidates.is_empty() {
+            return Err(SolverError::InvalidGeometry(
+                "no contactor node projects on its target: the simulation has no contact candidate"
+                    .into(),
+            ));
+        }
+        let mut h_rows = Vec::with_capacity(2 * candidates.len());
+        for c in &candidates {
+            for dir in [c.normal, c.tangent] {
+                let mut row = Vec::with_capacity(6);
+                c.h_row(&structure, dir, &mut row);
+                h_rows.push(row);
+            }
+            if h_rows[h_rows.len() - 2].is_empty() {
+                return Err(SolverError::InvalidGeometry(format!(
+                    "zone `{}`: the normal displacement of contactor node {} relative to its \
+                     target is fully prescribed, so it cannot take part in contact",
+                    zones[c.zone].name, c.node
+                )));
+            }
+        }
+        let states = candidates
+            .iter()
+            .map(|c| zones[c.zone].law.initial_state())
+            .collect();
+        let mut sim = Self {
+            u: vec![0.0; structure.dof_count()],
+            last_version: structure.stiffness_version(),
+            structure,
+            zones,
+            settings,
+            h_rows,
+            states,
+            jumps: vec![[0.0; 2]; candidates.len()],
+            r_bar: vec![[0.0; 2]; candidates.len()],
+            candidates,
+            w_active: Vec::new(),
+            w: Vec::new(),
+            w_version: None,
+            time: 0.0,
+            solver: UzawaSolver::new(settings.solver),
+            counters: Counters::default(),
+            last_problem: None,
+        };
+        sim.jumps = sim.local_jumps_of(&sim.u);
+        Ok(sim)
+    }
+
+    /// The structure.
+    pub fn structure(&self) -> &S {
+        &self.structure
+    }
+
+    /// The structure, to change loads or prescribed values between steps.
+    pub fn structure_mut(&mut self) -> &mut S {
+        &mut self.structure
+    }
+
+    /// The zones.
+    pub fn zones(&self) -> &[ContactZone<L>] {
+        &self.zones
+    }
+
+    /// The candidates found by recognition.
+    pub fn candidates(&self) -> &[Candidate] {
+        &self.candidates
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &SimulationSettings {
+        &self.settings
+    }
+
+    /// Replaces the settings (e.g. to switch algorithm between steps).
+    pub fn set_settings(&mut self, settings: SimulationSettings) {
+        self.settings = settings;
+        self.solver = UzawaSolver::new(settings.solver);
+    }
+
+    /// Current time.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Per-candidate law states at the end of the last step.
+    pub fn states(&self) -> &[L::State] {
+        &self.states
+    }
+
+    /// Counters since the start.
+    pub fn counters(&self) -> Counters {
+        self.counters
+    }
+
+    /// The free-dof displacements at the end of the last step.
+    pub fn displacement(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Nodal displacements `[u_x, u_y]` at the end of the last step (prescribed components
+    /// included).
+    pub fn nodal_displacements(&self) -> Vec<[f64; 2]> {
+        (0..self.structure.node_count())
+            .map(|n| nodal(&self.structure, &self.u, n))
+            .collect()
+    }
+
+    /// The reduced problem of the last solve — after condensation of the adhesive springs,
+    /// with `μ̄` per contact — on the active contacts (see [`Self::last_active`]); export it
+    /// with [`ReducedProblem::to_json`] to re-solve it elsewhere (e.g. Siconos).
+    pub fn last_reduced_problem(&self) -> Option<&ReducedProblem> {
+        self.last_problem.as_ref()
+    }
+
+    /// Candidate indices of the contacts of the last reduced problem, in its order.
+    pub fn last_active(&self) -> &[usize] {
+        &self.w_active
+    }
+
+    /// Resets the displacement and the tangential reference to zero while keeping the law
+    /// states (e.g. after an installation phase whose displacements are discarded).
+    pub fn reset_displacements(&mut self) {
+        self.u.fill(0.0);
+        self.jumps = self.local_jumps_of(&self.u);
+        self.r_bar.iter_mut().for_each(|r| *r = [0.0; 2]);
+    }
+
+    fn local_jumps_of(&self, u: &[f64]) -> Vec<[f64; 2]> {
+        self.candidates
+            .iter()
+            .map(|c| c.local(c.relative(|n| nodal(&self.structure, u, n))))
+            .collect()
+    }
+
+    /// Solves one load step ending at `time` (`≥` the current time) with the structure's loads
+    /// scaled by `load_factor` (and its current prescribed values).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] if `time` is not finite or goes backwards;
+    /// [`SolverError::Structure`] if a structure solve fails; [`SolverError::NotConverged`] or
+    /// [`SolverError::AdhesionNotConverged`] unless the settings accept non-converged results.
+    /// On error the simulation keeps the state of the previous step.
+    pub fn step(&mut self, time: f64, load_factor: f64) -> Result<StepResult, SolverError> {
+        let start = Instant::now();
+        if !(time.is_finite() && time >= self.time) {
+            return Err(SolverError::InvalidSetting {
+                what: "time",
+                value: time,
+                expected: "a finite time not before the current time",
+            });
+        }
+        if !load_factor.is_finite() {
+            return Err(SolverError::InvalidSetting {
+                what: "load_factor",
+                value: load_factor,
+                expected: "a finite number",
+            });
+        }
+        let dt = time - self.time;
+        let version = self.structure.stiffness_version();
+        if version != self.last_version {
+            self.counters.stiffness_changes += 1;
+            self.last_version = version;
+        }
+        let ndof = self.structure.dof_count();
+        let mut u_free = vec![0.0; ndof];
+        self.structure.free_response_into(load_factor, &mut u_free)?;
+        self.counters.structure_solves += 1;
+        let free = self.local_jumps_of(&u_free);
+
+        let mut active: Vec<usize> = (0..self.candidates.len())
+            .filter(|&i| {
+                let c = &self.candidates[i];
+                let zone = &self.zones[c.zone];
+                zone.law.adhesion_active(&self.states[i])
+                    || self.jumps[i][0] <= zone.alert_distance
+                    || free[i][0] <= zone.alert_distance
+            })
+            .collect();
+
+        let mut report = StepReport {
+            step: self.counters.steps + 1,
+            time,
+            load_factor,
+            active_contacts: 0,
+            adhesion_iterations: 0,
+            contact_iterations: 0,
+            detection_passes: 0,
+            flexibility_rebuilt: false,
+            residual: 0.0,
+            converged: true,
+            wall_time: Duration::ZERO,
+        };
+        let mut u = vec![0.0; ndof];
+        loop {
+            report.detection_passes += 1;
+            if active != self.w_active || self.w_version != Some(version) {
+                self.build_flexibility(&active)?;
+                self.w_version = Some(version);
+                report.flexibility_rebuilt = true;
+            }
+            let solved = self.solve_active(&free, dt, &mut report)?;
+            // u = u_free + K⁻¹ Hᵀ r
+            u.fill(0.0);
+            for (k, &i) in self.w_active.iter().enumerate() {
+                for d in 0..2 {
+                    let r = solved.r[2 * k + d];
+                    for &(dof, a) in &self.h_rows[2 * i + d] {
+                        u[dof] += a * r;
+                    }
+                }
+            }
+            self.structure.solve_in_place(&mut u)?;
+            self.counters.structure_solves += 1;
+            for (a, b) in u.iter_mut().zip(&u_free) {
+                *a += b;
+            }
+            let jumps = self.local_jumps_of(&u);
+            let penetrating: Vec<usize> = (0..self.candidates.len())
+                .filter(|i| self.w_active.binary_search(i).is_err() && jumps[*i][0] < 0.0)
+                .collect();
+            if penetrating.is_empty() || report.detection_passes >= self.settings.max_detection_passes {
+                return Ok(self.accept(time, u, jumps, solved, report, start));
+            }
+            active.extend(penetrating);
+            active.sort_unstable();
+        }
+    }
+
+    /// `F* = H K⁻¹ Hᵀ` on `active`, in chunks of right-hand sides.
+    fn build_flexibility(&mut self, active: &[usize]) -> Result<(), SolverError> {
+        let m = 2 * active.len();
+        let ndof = self.structure.dof_count();
+        self.w.clear();
+        self.w.resize(m * m, 0.0);
+        let chunk = self.settings.columns_per_solve.min(m.max(1));
+        let mut x = Mat::<f64>::zeros(ndof, chunk);
+        let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
+        for j0 in (0..m).step_by(chunk) {
+            let nc = chunk.min(m - j0);
+            x.fill(0.0);
+            for c in 0..nc {
+                for &(dof, a) in &self.h_rows[rows[j0 + c]] {
+                    x[(dof, c)] += a;
+                }
+            }
+            self.structure
+                .solve_many_in_place(x.as_mut().subcols_mut(0, nc))?;
+            for (i, &row) in rows.iter().enumerate() {
+                for c in 0..nc {
+                    let mut s = 0.0;
+                    for &(dof, a) in &self.h_rows[row] {
+                        s += a * x[(dof, c)];
+                    }
+                    self.w[i * m + j0 + c] = s;
+                }
+            }
+        }
+        symmetrize(&mut self.w, m);
+        self.w_active.clear();
+        self.w_active.extend_from_slice(active);
+        self.counters.flexibility_builds += 1;
+        self.counters.flexibility_columns += m;
+        Ok(())
+    }
+
+    /// The adhesion fixed point around the reduced solve, on the cached active set.
+    fn solve_active(
+        &mut self,
+        free: &[[f64; 2]],
+        dt: f64,
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = self.w_active.clone();
+        let na = active.len();
+        let m = 2 * na;
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let mut states = start_states.clone();
+        // q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start); offset o = (0, u_t,start)
+        let mut q = vec![0.0; m];
+        let mut offset = vec![0.0; m];
+        for (k, &i) in active.iter().enumerate() {
+            q[2 * k] = free[i][0];
+            q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            offset[2 * k + 1] = self.jumps[i][1];
+        }
+        let mut r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let adhesive = laws
+            .iter()
+            .zip(&states)
+            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+        let mut history = Vec::new();
+        let mut iterations = 0;
+        loop {
+            iterations += 1;
+            // nodal springs: the law's per-area stiffness times the tributary area
+            let stiff: Vec<[f64; 2]> = laws
+                .iter()
+                .zip(&states)
+                .zip(&active)
+                .map(|((l, s), &i)| {
+                    let area = self.candidates[i].area;
+                    l.adhesive_stiffness(s).map(|k| k * area)
+                })
+                .collect();
+            let (w_eff, q_eff) = condense(&self.w, &q, &offset, &stiff, m)?;
+            let mu = laws
+                .iter()
+                .zip(&states)
+                .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
+                .collect();
+            let problem = ReducedProblem::new(w_eff, q_eff, mu)?;
+            let sol = self
+                .solver
+                .solve_with_states(&problem, &laws, &states, Some(&r_bar))?;
+            report.contact_iterations += sol.report.iterations;
+            report.residual = sol.report.residual;
+            report.converged &= sol.report.converged;
+            r_bar.copy_from_slice(&sol.r);
+            let jumps: Vec<[f64; 2]> = (0..na)
+                .map(|k| [sol.x[2 * k], sol.x[2 * k + 1] + offset[2 * k + 1]])
+                .collect();
+            let mut solved = Solved {
+                r: vec![0.0; m],
+                r_bar: sol.r.clone(),
+                statuses: sol.report.statuses.clone(),
+                states: states.clone(),
+                jumps: jumps.clone(),
+                stiff,
+            };
+            for k in 0..na {
+                let [kn, kt] = solved.stiff[k];
+                solved.r[2 * k] = sol.r[2 * k] - kn * jumps[k][0];
+                solved.r[2 * k + 1] = sol.r[2 * k + 1] - kt * jumps[k][1];
+            }
+            self.last_problem = Some(problem);
+            if !adhesive {
+                return Ok(solved);
+            }
+            report.adhesion_iterations += 1;
+            let mut change = 0.0_f64;
+            for k in 0..na {
+                let i = active[k];
+                let u0 = LocalVec2::planar(self.jumps[i][0], self.jumps[i][1]);
+                let u1 = LocalVec2::planar(jumps[k][0], jumps[k][1]);
+                let new = laws[k].update_state(&start_states[k], &u0, &u1, dt);
+                change = change.max(laws[k].state_change(&new, &states[k]));
+                states[k] = new;
+            }
+            history.push(change);
+            if change <= self.settings.adhesion_tol {
+                solved.states = states;
+                return Ok(solved);
+            }
+            if iterations >= self.settings.max_adhesion_iterations {
+                if self.settings.solver.accept_non_converged {
+                    report.converged = false;
+                    solved.states = states;
+                    return Ok(solved);
+                }
+                return Err(SolverError::AdhesionNotConverged {
+                    iterations,
+                    change,
+                    history,
+                });
+            }
+        }
+    }
+
+    fn accept(
+        &mut self,
+        time: f64,
+        u: Vec<f64>,
+        jumps: Vec<[f64; 2]>,
+        solved: Solved<L::State>,
+        mut report: StepReport,
+        start: Instant,
+    ) -> StepResult {
+        let mut records: Vec<ContactRecord> = self
+            .candidates
+            .iter()
+            .enumerate()
+            .map(|(i, c)| ContactRecord {
+                zone: c.zone,
+                node: c.node,
+                position: self.structure.node_position(c.node),
+                area: c.area,
+                status: InterfaceStatus::Inactive,
+                gap: jumps[i][0],
+                u_t: jumps[i][1],
+                slip_increment: jumps[i][1] - self.jumps[i][1],
+                beta: self.zones[c.zone].law.adhesion_intensity(&self.states[i]),
+                r: [0.0; 2],
+                r_bar: [0.0; 2],
+                r_adh: [0.0; 2],
+            })
+            .collect();
+        for r in self.r_bar.iter_mut() {
+            *r = [0.0; 2];
+        }
+        for (k, &i) in self.w_active.iter().enumerate() {
+            let law = &self.zones[self.candidates[i].zone].law;
+            self.states[i] = solved.states[k];
+            let rb = [solved.r_bar[2 * k], solved.r_bar[2 * k + 1]];
+            self.r_bar[i] = rb;
+            let rec = &mut records[i];
+            rec.beta = law.adhesion_intensity(&self.states[i]);
+            rec.r_bar = rb;
+            rec.r = [solved.r[2 * k], solved.r[2 * k + 1]];
+            rec.r_adh = [rec.r[0] - rb[0], rec.r[1] - rb[1]];
+            rec.status = match solved.statuses[k] {
+                ContactStatus::Separation => InterfaceStatus::Open,
+                ContactStatus::Stick => InterfaceStatus::Stick,
+                ContactStatus::Slip => InterfaceStatus::Slip,
+            };
+        }
+        self.jumps = jumps;
+        self.u = u;
+        self.time = time;
+        self.counters.steps += 1;
+        self.counters.adhesion_iterations += report.adhesion_iterations;
+        self.counters.contact_iterations += report.contact_iterations;
+        report.active_contacts = self.w_active.len();
+        report.wall_time = start.elapsed();
+        StepResult {
+            report,
+            contacts: records,
+        }
+    }
+}
+
+/// The solution of the reduced problem of a step, on the active set.
+struct Solved<T> {
+    r: Vec<f64>,
+    r_bar: Vec<f64>,
+    statuses: Vec<ContactStatus>,
+    states: Vec<T>,
+    #[allow(dead_code)]
+    jumps: Vec<[f64; 2]>,
+    #[allow(dead_code)]
+    stiff: Vec<[f64; 2]>,
+}
+
+fn nodal<S: Structure + ?Sized>(s: &S, u: &[f64], node: usize) -> [f64; 2] {
+    let mut v = s.prescribed_displacement(node);
+    for (c, d) in s.node_dofs(node).into_iter().enumerate() {
+        if let Some(i) = d {
+            v[c] = u[i];
+        }
+    }
+    v
+}
+
+fn symmetrize(w: &mut [f64], m: usize) {
+    for i in 0..m {
+        for j in 0..i {
+            let a = 0.5 * (w[i * m + j] + w[j * m + i]);
+            w[i * m + j] = a;
+            w[j * m + i] = a;
+        }
+    }
+}
+
+/// Exact condensation of the adhesive springs `r_adh = −B (x + o)`:
+/// `W̃ = W − W S G⁻¹ S W`, `q̃ = z − W S G⁻¹ S z`, `z = q − W B o`, `G = I + S W S`, `S = √B`,
+/// restricted to the dofs with a spring. Returns `(W, q)` unchanged without springs.
+fn condense(
+    w: &[f64],
+    q: &[f64],
+    offset: &[f64],
+    stiff: &[[f64; 2]],
+    m: usize,
+) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+    let springs: Vec<(usize, f64)> = stiff
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| [(2 * k, s[0]), (2 * k + 1, s[1])])
+        .filter(|&(_, b)| b > 0.0)
+        .collect();
+    if springs.is_empty() {
+        return Ok((w.to_vec(), q.to_vec()));
+    }
+    let na = springs.len();
+    let wr = MatRef::from_row_major_slice(w, m, m);
+    // z = q − W (B o)
+    let mut z = q.to_vec();
+    for &(j, b) in &springs {
+        let bo = b * offset[j];
+        if bo != 0.0 {
+            for (i, zi) in z.iter_mut().enumerate() {
+                *zi -= wr[(i, j)] * bo;
+            }
+        }
+    }
+    // WS: m × na
+    let ws = Mat::<f64>::from_fn(m, na, |i, a| {
+        let (j, b) = springs[a];
+        wr[(i, j)] * b.sqrt()
+    });
+    let g = Mat::<f64>::from_fn(na, na, |a, c| {
+        let (j, b) = springs[a];
+        let sa = b.sqrt();
+        let (l, bl) = springs[c];
+        sa * wr[(j, l)] * bl.sqrt() + if a == c { 1.0 } else { 0.0 }
+    });
+    let llt = g
+        .llt(Side::Lower)
+        .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
+    // Y = G⁻¹ [ (WS)ᵀ | S z ]
+    let mut rhs = Mat::<f64>::from_fn(na, m + 1, |a, c| {
+        if c < m {
+            ws[(c, a)]
+        } else {
+            let (j, b) = springs[a];
+            b.sqrt() * z[j]
+        }
+    });
+    llt.solve_in_place(rhs.as_mut());
+    let correction = &ws * &rhs;
+    let mut w_eff = w.to_vec();
+    for i in 0..m {
+        for j in 0..m {
+            w_eff[i * m + j] -= correction[(i, j)];
+        }
+        z[i] -= correction[(i, m)];
+    }
+    symmetrize(&mut w_eff, m);
+    Ok((w_eff, z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn condensation_matches_the_direct_formula() {
+        // W̃ = (W⁻¹ + B)⁻¹ on a 2-contact problem, checked against (I + W B)⁻¹ W.
+        let w = vec![
+            2.0, 0.3, 0.5, 0.1, //
+            0.3, 1.5, 0.2, 0.4, //
+            0.5, 0.2, 3.0, 0.6, //
+            0.1, 0.4, 0.6, 2.5,
+        ];
+        let q = vec![0.1, -0.2, 0.3, 0.05];
+        let o = vec![0.0, 0.7, 0.0, -0.3];
+        let stiff = [[4.0, 0.0], [1.0, 2.0]];
+        let (we, qe) = condense(&w, &q, &o, &stiff, 4).unwrap();
+        let b = [4.0, 0.0, 1.0, 2.0];
+        let wm = MatRef::from_row_major_slice(&w, 4, 4);
+        let mut a = Mat::<f64>::identity(4, 4);
+        for i in 0..4 {
+            for j in 0..4 {
+                a[(i, j)] += wm[(i, j)] * b[j];
+            }
+        }
+        let lu = a.partial_piv_lu();
+        let expect_w = lu.solve(wm);
+        let zq = Mat::<f64>::from_fn(4, 1, |i, _| {
+            q[i] - (0..4).map(|j| wm[(i, j)] * b[j] * o[j]).sum::<f64>()
+        });
+        let expect_q = lu.solve(&zq);
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!((we[i * 4 + j] - expect_w[(i, j)]).abs() < 1e-13);
+            }
+            assert!((qe[i] - expect_q[(i, 0)]).abs() < 1e-13);
+        }
+    }
+}

@@ -1,0 +1,463 @@
+//! Contact zones (seed 5.5) and obstacle recognition (5.5.6).
+//!
+//! A [`ContactZone`] is a set of *contactor* nodes facing a [`Target`] — a rigid
+//! [`Obstacle`], the nodes of another body paired one to one (matching interfaces such as the
+//! pile–soil shaft), or a polyline of another body's nodes (node-to-segment) — with its law
+//! and its alert distance `Δx`.
+//!
+//! Recognition happens once, on the reference configuration (small displacements, as the
+//! seed's quasi-static setting): every contactor node gets its closest target point, the
+//! local frame `(n, t)`, the initial gap `g₀`, and the row pair of `H` that maps the
+//! structure's displacements to the local relative displacement
+//!
+//! ```text
+//! u_rel = u_contactor − Σ_k w_k u_target,k      (w = 1 for a pair, (1 − ξ, ξ) on a segment)
+//! x_n = g₀ + n·u_rel   (the gap, ≥ 0 open),     u_t = t·u_rel
+//! ```
+//! At each step, a candidate becomes a contact element (enters the reduced problem) only when
+//! its gap at the start of the step or under the free response is within `Δx`, or while it is
+//! adhesive (β > 0). See [`crate::simulation`].
+
+use crate::error::SolverError;
+use crate::obstacle::Obstacle;
+use fem_core::{Idealization, Structure};
+use std::sync::Arc;
+
+/// What the contactor nodes of a zone face.
+#[derive(Clone, Debug)]
+pub enum Target {
+    /// A rigid obstacle (LINE, ARC or your own [`Obstacle`]).
+    Rigid(Arc<dyn Obstacle>),
+    /// Node-to-node: `nodes[i]` is the target of contactor node `i` (matching meshes). The
+    /// normal, pointing from the target body to the contactor, is `normal` if given, else it
+    /// is computed on the target nodes taken as a polyline in the given order, with the
+    /// contactor on the left (`n = (−t_y, t_x)`).
+    NodePairs {
+        /// Target node of each contactor node.
+        nodes: Vec<usize>,
+        /// A fixed unit normal for every pair (normalised on use), or `None`.
+        normal: Option<[f64; 2]>,
+    },
+    /// Node-to-segment: the target surface is the polyline through these nodes, in order, with
+    /// the contactor on its left.
+    Segments(Vec<usize>),
+}
+
+/// One contact zone: contactor nodes, target, law and alert distance.
+#[derive(Clone, Debug)]
+pub struct ContactZone<L> {
+    /// A name for reports.
+    pub name: String,
+    /// The contactor nodes.
+    pub contactor: Vec<usize>,
+    /// What they face.
+    pub target: Target,
+    /// The interface law.
+    pub law: L,
+    /// Alert distance `Δx ≥ 0`: candidates farther than this are left out of the step.
+    pub alert_distance: f64,
+    /// Tributary area of each contactor node (length × thickness in plane problems, length ×
+    /// radius per radian in axisymmetry), which turns the law's per-area adhesive stiffness
+    /// into nodal springs. `None`: lumped from the contactor nodes taken as a polyline in the
+    /// given order (half of each adjacent segment; `× r` in axisymmetry, `× thickness` in
+    /// plane stress). Set it with [`ContactZone::with_areas`] for consistent P2 weights.
+    pub areas: Option<Vec<f64>>,
+}
+
+impl<L> ContactZone<L> {
+    /// Sets the tributary area of each contactor node (same order as `contactor`).
+    pub fn with_areas(mut self, areas: Vec<f64>) -> Self {
+        self.areas = Some(areas);
+        self
+    }
+
+    /// A zone facing a rigid obstacle.
+    pub fn rigid(
+        name: impl Into<String>,
+        contactor: Vec<usize>,
+        obstacle: impl Obstacle + 'static,
+        law: L,
+        alert_distance: f64,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            contactor,
+            target: Target::Rigid(Arc::new(obstacle)),
+            law,
+            alert_distance,
+            areas: None,
+        }
+    }
+
+    /// A node-to-node zone: `targets[i]` faces `contactor[i]`.
+    pub fn node_pairs(
+        name: impl Into<String>,
+        contactor: Vec<usize>,
+        targets: Vec<usize>,
+        normal: Option<[f64; 2]>,
+        law: L,
+        alert_distance: f64,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            contactor,
+            target: Target::NodePairs {
+                nodes: targets,
+                normal,
+            },
+            law,
+            alert_distance,
+            areas: None,
+        }
+    }
+
+    /// A node-to-segment zone facing the polyline `surface`.
+    pub fn node_to_segment(
+        name: impl Into<String>,
+        contactor: Vec<usize>,
+        surface: Vec<usize>,
+        law: L,
+        alert_distance: f64,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            contactor,
+            target: Target::Segments(surface),
+            law,
+            alert_distance,
+            areas: None,
+        }
+    }
+}
+
+/// A contact candidate: one contactor node with its target point and frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Candidate {
+    /// Index of its zone.
+    pub zone: usize,
+    /// The contactor node.
+    pub node: usize,
+    /// Target nodes and weights (`None` for rigid obstacles and unused slots).
+    pub targets: [Option<(usize, f64)>; 2],
+    /// Unit normal, from the target towards the contactor.
+    pub normal: [f64; 2],
+    /// Unit tangent `t = (n_y, −n_x)`.
+    pub tangent: [f64; 2],
+    /// Initial gap `g₀` (reference configuration).
+    pub gap0: f64,
+    /// The target point in the reference configuration.
+    pub point: [f64; 2],
+    /// Tributary area of the contactor node (see [`ContactZone::areas`]).
+    pub area: f64,
+}
+
+impl Candidate {
+    /// The entries `(dof, coefficient)` of this candidate's `H` row for direction `dir`
+    /// (`n` or `t`), on the structure's free dofs; at most six.
+    pub(crate) fn h_row<S: Structure + ?Sized>(
+        &self,
+        s: &S,
+        dir: [f64; 2],
+        out: &mut Vec<(usize, f64)>,
+    ) {
+        let mut push = |node: usize, w: f64| {
+            for (c, d) in s.node_dofs(node).into_iter().enumerate() {
+                if let Some(i) = d {
+                    let a = w * dir[c];
+                    if a != 0.0 {
+                        out.push((i, a));
+                    }
+                }
+            }
+        };
+        push(self.node, 1.0);
+        for &(node, w) in self.targets.iter().flatten() {
+            push(node, -w);
+        }
+    }
+
+    /// The relative displacement `u_rel` from a full nodal displacement lookup.
+    pub(crate) fn relative(&self, disp: impl Fn(usize) -> [f64; 2]) -> [f64; 2] {
+        let mut u = disp(self.node);
+        for &(node, w) in self.targets.iter().flatten() {
+            let v = disp(node);
+            u[0] -= w * v[0];
+            u[1] -= w * v[1];
+        }
+        u
+    }
+
+    /// `(x_n, u_t) = (g₀ + n·u_rel, t·u_rel)`.
+    pub(crate) fn local(&self, u_rel: [f64; 2]) -> [f64; 2] {
+        [
+            self.gap0 + dot(self.normal, u_rel),
+            dot(self.tangent, u_rel),
+        ]
+    }
+}
+
+#[inline]
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn unit(v: [f64; 2], what: &str) -> Result<[f64; 2], SolverError> {
+    let l = v[0].hypot(v[1]);
+    if !(l > 0.0 && l.is_finite()) {
+        return Err(SolverError::InvalidGeometry(format!(
+            "{what}: cannot build a unit normal from {v:?}"
+        )));
+    }
+    Ok([v[0] / l, v[1] / l])
+}
+
+fn left_normal(t: [f64; 2]) -> [f64; 2] {
+    [-t[1], t[0]]
+}
+
+fn check_node<S: Structure + ?Sized>(s: &S, zone: &str, node: usize) -> Result<(), SolverError> {
+    if node >= s.node_count() {
+        return Err(SolverError::InvalidGeometry(format!(
+            "zone `{zone}`: node {node} is out of range (the structure has {} nodes)",
+            s.node_count()
+        )));
+    }
+    Ok(())
+}
+
+/// Obstacle recognition on the reference configuration: the candidates of every zone, in zone
+/// order then contactor order. Contactor nodes of a rigid zone with no orthogonal projection on
+/// the obstacle are not candidates.
+///
+/// # Errors
+/// [`SolverError::InvalidGeometry`] for an empty zone, a node out of range, mismatched pair
+/// lists, a polyline with fewer than two nodes or a degenerate normal;
+/// [`SolverError::InvalidSetting`] for a negative or non-finite alert distance.
+pub fn recognize<S: Structure + ?Sized, L>(
+    s: &S,
+    zones: &[ContactZone<L>],
+) -> Result<Vec<Candidate>, SolverError> {
+    let mut out = Vec::new();
+    for (z, zone) in zones.iter().enumerate() {
+        let name = zone.name.as_str();
+        if !(zone.alert_distance >= 0.0 && zone.alert_distance.is_finite()) {
+            return Err(SolverError::InvalidSetting {
+                what: "alert_distance",
+                value: zone.alert_distance,
+                expected: "a finite distance >= 0",
+            });
+        }
+        if zone.contactor.is_empty() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{name}` has no contactor node"
+            )));
+        }
+        for &n in &zone.contactor {
+            check_node(s, name, n)?;
+        }
+        let areas = zone_areas(s, zone)?;
+        match &zone.target {
+            Target::Rigid(obstacle) => {
+                for (k, &node) in zone.contactor.iter().enumerate() {
+                    let x = s.node_position(node);
+                    if let Some(p) = obstacle.project(x) {
+                        out.push(Candidate {
+                            zone: z,
+                            node,
+                            targets: [None, None],
+                            normal: p.normal,
+                            tangent: p.tangent(),
+                            gap0: p.gap,
+                            point: p.point,
+                            area: areas[k],
+                        });
+                    }
+                }
+            }
+            Target::NodePairs { nodes, normal } => {
+                if nodes.len() != zone.contactor.len() {
+                    return Err(SolverError::InvalidGeometry(format!(
+                        "zone `{name}`: {} contactor nodes but {} target nodes",
+                        zone.contactor.len(),
+                        nodes.len()
+                    )));
+                }
+                for &n in nodes {
+                    check_node(s, name, n)?;
+                }
+                let fixed = normal.map(|n| unit(n, name)).transpose()?;
+                if fixed.is_none() && nodes.len() < 2 {
+                    return Err(SolverError::InvalidGeometry(format!(
+                        "zone `{name}`: a single pair needs an explicit normal"
+                    )));
+                }
+                for (k, (&node, &target)) in zone.contactor.iter().zip(nodes).enumerate() {
+                    let n = match fixed {
+                        Some(n) => n,
+                        None => {
+                            let a = nodes[k.saturating_sub(1)];
+                            let b = nodes[(k + 1).min(nodes.len() - 1)];
+                            let t = unit(sub(s.node_position(b), s.node_position(a)), name)?;
+                            left_normal(t)
+                        }
+                    };
+                    let xt = s.node_position(target);
+                    out.push(Candidate {
+                        zone: z,
+                        node,
+                        targets: [Some((target, 1.0)), None],
+                        normal: n,
+                        tangent: [n[1], -n[0]],
+                        gap0: dot(n, sub(s.node_position(node), xt)),
+                        point: xt,
+                        area: areas[k],
+                    });
+                }
+            }
+            Target::Segments(surface) => {
+                if surface.len() < 2 {
+                    return Err(SolverError::InvalidGeometry(format!(
+                        "zone `{name}`: a target polyline needs at least two nodes"
+                    )));
+                }
+                for &n in surface {
+                    check_node(s, name, n)?;
+                }
+                for (k, &node) in zone.contactor.iter().enumerate() {
+                    if let Some(c) = project_on_polyline(s, surface, node, name)? {
+                        out.push(Candidate {
+                            zone: z,
+                            area: areas[k],
+                            ..c
+                        });
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The tributary areas of a zone's contactor nodes: given, or lumped along the polyline.
+fn zone_areas<S: Structure + ?Sized, L>(
+    s: &S,
+    zone: &ContactZone<L>,
+) -> Result<Vec<f64>, SolverError> {
+    let nodes = &zone.contactor;
+    if let Some(a) = &zone.areas {
+        if a.len() != nodes.len() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{}`: {} areas for {} contactor nodes",
+                zone.name,
+                a.len(),
+                nodes.len()
+            )));
+        }
+        if let Some(bad) = a.iter().find(|x| !(x.is_finite() && **x >= 0.0)) {
+            return Err(SolverError::InvalidSetting {
+                what: "area",
+                value: *bad,
+                expected: "a finite area >= 0",
+            });
+        }
+        return Ok(a.clone());
+    }
+    let factor = |x: [f64; 2]| match s.idealization() {
+        Idealization::Axisymmetric => x[0],
+        Idealization::PlaneStress { thickness } => thickness,
+        _ => 1.0, // plane strain: per unit thickness
+    };
+    let mut areas = vec![0.0; nodes.len()];
+    for k in 1..nodes.len() {
+        let (a, b) = (s.node_position(nodes[k - 1]), s.node_position(nodes[k]));
+        let d = sub(b, a);
+        let half = 0.5 * d[0].hypot(d[1]);
+        // midpoint-lumped: each node takes half the segment, weighted at its own position
+        areas[k - 1] += half * factor(a).abs();
+        areas[k] += half * factor(b).abs();
+    }
+    if nodes.len() == 1 {
+        areas[0] = 1.0;
+    }
+    Ok(areas)
+}
+
+/// Closest point of `node` on the polyline: the segment of smallest `|gap|` among those it
+/// projects on orthogonally, else the closest interior vertex (normal: mean of its two
+/// segments' normals). `None` if it projects nowhere (beyond both ends).
+fn project_on_polyline<S: Structure + ?Sized>(
+    s: &S,
+    surface: &[usize],
+    node: usize,
+    name: &str,
+) -> Result<Option<Candidate>, SolverError> {
+    let p = s.node_position(node);
+    let mut best: Option<(f64, Candidate)> = None;
+    for seg in surface.windows(2) {
+        let (a, b) = (s.node_position(seg[0]), s.node_position(seg[1]));
+        let d = sub(b, a);
+        let l2 = dot(d, d);
+        if l2 == 0.0 || seg[0] == node || seg[1] == node {
+            continue;
+        }
+        let xi = dot(sub(p, a), d) / l2;
+        if !(-1e-12..=1.0 + 1e-12).contains(&xi) {
+            continue;
+        }
+        let xi = xi.clamp(0.0, 1.0);
+        let t = unit(d, name)?;
+        let n = left_normal(t);
+        let point = [a[0] + xi * d[0], a[1] + xi * d[1]];
+        let gap = dot(n, sub(p, point));
+        if best.as_ref().is_none_or(|(g, _)| gap.abs() < *g) {
+            best = Some((
+                gap.abs(),
+                Candidate {
+                    zone: 0,
+                    node,
+                    targets: [Some((seg[0], 1.0 - xi)), Some((seg[1], xi))],
+                    normal: n,
+                    tangent: [n[1], -n[0]],
+                    gap0: gap,
+                    point,
+                    area: 0.0,
+                },
+            ));
+        }
+    }
+    if best.is_none() {
+        for k in 1..surface.len() - 1 {
+            let v = s.node_position(surface[k]);
+            let dist = sub(p, v);
+            let na = left_normal(unit(sub(v, s.node_position(surface[k - 1])), name)?);
+            let nb = left_normal(unit(sub(s.node_position(surface[k + 1]), v), name)?);
+            let n = unit([na[0] + nb[0], na[1] + nb[1]], name)?;
+            let d = dist[0].hypot(dist[1]);
+            // only in the vertex's own region: past the end of the previous segment and before
+            // the start of the next one
+            let before = sub(v, s.node_position(surface[k - 1]));
+            let after = sub(s.node_position(surface[k + 1]), v);
+            let in_wedge = dot(dist, before) > 0.0 && dot(dist, after) < 0.0;
+            if in_wedge && surface[k] != node && best.as_ref().is_none_or(|(g, _)| d < *g) {
+                best = Some((
+                    d,
+                    Candidate {
+                        zone: 0,
+                        node,
+                        targets: [Some((surface[k], 1.0)), None],
+                        normal: n,
+                        tangent: [n[1], -n[0]],
+                        gap0: dot(n, dist),
+                        point: v,
+                        area: 0.0,
+                    },
+                ));
+            }
+        }
+    }
+    Ok(best.map(|(_, c)| c))
+}
