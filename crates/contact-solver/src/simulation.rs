@@ -583,10 +583,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 jumps: jumps.clone(),
                 stiff,
             };
-            for k in 0..na {
-                let [kn, kt] = solved.stiff[k];
-                solved.r[2 * k] = sol.r[2 * k] - kn * jumps[k][0];
-                solved.r[2 * k + 1] = sol.r[2 * k + 1] - kt * jumps[k][1];
+            for (k, (&[kn, kt], jump)) in solved.stiff.iter().zip(&jumps).enumerate() {
+                solved.r[2 * k] = sol.r[2 * k] - kn * jump[0];
+                solved.r[2 * k + 1] = sol.r[2 * k + 1] - kt * jump[1];
             }
             self.last_problem = Some(problem);
             if !adhesive {
