@@ -75,7 +75,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .flat_map(|&i| res.contacts[i].r_bar)
         .collect();
-    std::fs::write(&ours, serde_json::to_string(&serde_json::json!({ "r": r }))?)?;
+    std::fs::write(
+        &ours,
+        serde_json::to_string(&serde_json::json!({ "r": r }))?,
+    )?;
     println!(
         "wrote {path} ({} contacts) and {ours}",
         problem.contact_count()
@@ -97,11 +100,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     times.sort_by(f64::total_cmp);
     let s = last.ok_or("no run")?;
-    let diff = s
-        .r
-        .iter()
-        .zip(&r)
-        .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()));
+    let diff =
+        s.r.iter()
+            .zip(&r)
+            .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()));
     println!(
         "reduced solve alone (Gauss-Seidel, tol 1e-12): {} sweeps, {:.3} ms (median of 5), \
          max |r - r_step| = {diff:.1e}",
