@@ -26,6 +26,7 @@
 
 #![warn(missing_docs)]
 
+pub mod adhesion;
 pub mod classic;
 pub mod error;
 pub mod generate;

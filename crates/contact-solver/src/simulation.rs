@@ -20,12 +20,12 @@
 //!    that ended up penetrating are added to the active set and the step is redone.
 
 use crate::error::SolverError;
+use crate::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
 use crate::reduced::ReducedProblem;
 use crate::uzawa::{UzawaSettings, UzawaSolver};
 use crate::zone::{Candidate, ContactZone, recognize};
-use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
-use faer::linalg::solvers::Solve;
-use faer::{Mat, MatRef, Side};
+use contact_laws::{ContactLaw, ContactStatus};
+use faer::Mat;
 use fem_core::Structure;
 use std::time::{Duration, Instant};
 
@@ -522,103 +522,48 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
-        let active = self.w_active.clone();
-        let na = active.len();
-        let m = 2 * na;
+        let active = &self.w_active;
+        let m = 2 * active.len();
         let laws: Vec<L> = active
             .iter()
             .map(|&i| self.zones[self.candidates[i].zone].law.clone())
             .collect();
         let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let mut states = start_states.clone();
-        // q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start); offset o = (0, u_t,start)
+        let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+        let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+        // q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)
         let mut q = vec![0.0; m];
-        let mut offset = vec![0.0; m];
         for (k, &i) in active.iter().enumerate() {
             q[2 * k] = free[i][0];
             q[2 * k + 1] = free[i][1] - self.jumps[i][1];
-            offset[2 * k + 1] = self.jumps[i][1];
         }
-        let mut r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
-        let adhesive = laws
-            .iter()
-            .zip(&states)
-            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
-        let mut history = Vec::new();
-        let mut iterations = 0;
-        loop {
-            iterations += 1;
-            // nodal springs: the law's per-area stiffness times the tributary area
-            let stiff: Vec<[f64; 2]> = laws
-                .iter()
-                .zip(&states)
-                .zip(&active)
-                .map(|((l, s), &i)| {
-                    let area = self.candidates[i].area;
-                    l.adhesive_stiffness(s).map(|k| k * area)
-                })
-                .collect();
-            let (w_eff, q_eff) = condense(&self.w, &q, &offset, &stiff, m)?;
-            let mu = laws
-                .iter()
-                .zip(&states)
-                .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
-                .collect();
-            let problem = ReducedProblem::new(w_eff, q_eff, mu)?;
-            let sol = self
-                .solver
-                .solve_with_states(&problem, &laws, &states, Some(&r_bar))?;
-            report.contact_iterations += sol.report.iterations;
-            report.residual = sol.report.residual;
-            report.converged &= sol.report.converged;
-            r_bar.copy_from_slice(&sol.r);
-            let jumps: Vec<[f64; 2]> = (0..na)
-                .map(|k| [sol.x[2 * k], sol.x[2 * k + 1] + offset[2 * k + 1]])
-                .collect();
-            let mut solved = Solved {
-                r: vec![0.0; m],
-                r_bar: sol.r.clone(),
-                statuses: sol.report.statuses.clone(),
-                states: states.clone(),
-                jumps: jumps.clone(),
-                stiff,
-            };
-            for (k, (&[kn, kt], jump)) in solved.stiff.iter().zip(&jumps).enumerate() {
-                solved.r[2 * k] = sol.r[2 * k] - kn * jump[0];
-                solved.r[2 * k + 1] = sol.r[2 * k + 1] - kt * jump[1];
-            }
-            self.last_problem = Some(problem);
-            if !adhesive {
-                return Ok(solved);
-            }
-            report.adhesion_iterations += 1;
-            let mut change = 0.0_f64;
-            for k in 0..na {
-                let i = active[k];
-                let u0 = LocalVec2::planar(self.jumps[i][0], self.jumps[i][1]);
-                let u1 = LocalVec2::planar(jumps[k][0], jumps[k][1]);
-                let new = laws[k].update_state(&start_states[k], &u0, &u1, dt);
-                change = change.max(laws[k].state_change(&new, &states[k]));
-                states[k] = new;
-            }
-            history.push(change);
-            if change <= self.settings.adhesion_tol {
-                solved.states = states;
-                return Ok(solved);
-            }
-            if iterations >= self.settings.max_adhesion_iterations {
-                if self.settings.solver.accept_non_converged {
-                    report.converged = false;
-                    solved.states = states;
-                    return Ok(solved);
-                }
-                return Err(SolverError::AdhesionNotConverged {
-                    iterations,
-                    change,
-                    history,
-                });
-            }
-        }
+        let r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let step = AdhesiveStep {
+            w: &self.w,
+            q: &q,
+            laws: &laws,
+            start_states: &start_states,
+            u_start: &u_start,
+            areas: &areas,
+            dt,
+        };
+        let options = AdhesionOptions {
+            tol: self.settings.adhesion_tol,
+            max_iterations: self.settings.max_adhesion_iterations,
+            accept_non_converged: self.settings.solver.accept_non_converged,
+        };
+        let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
+        report.contact_iterations += sol.contact_iterations;
+        report.adhesion_iterations += sol.adhesion_iterations;
+        report.residual = sol.report.residual;
+        report.converged &= sol.converged;
+        self.last_problem = Some(sol.condensed);
+        Ok(Solved {
+            r: sol.r,
+            r_bar: sol.r_bar,
+            statuses: sol.report.statuses,
+            states: sol.states,
+        })
     }
 
     fn accept(
@@ -689,10 +634,6 @@ struct Solved<T> {
     r_bar: Vec<f64>,
     statuses: Vec<ContactStatus>,
     states: Vec<T>,
-    #[allow(dead_code)]
-    jumps: Vec<[f64; 2]>,
-    #[allow(dead_code)]
-    stiff: Vec<[f64; 2]>,
 }
 
 fn nodal<S: Structure + ?Sized>(s: &S, u: &[f64], node: usize) -> [f64; 2] {
@@ -705,7 +646,7 @@ fn nodal<S: Structure + ?Sized>(s: &S, u: &[f64], node: usize) -> [f64; 2] {
     v
 }
 
-fn symmetrize(w: &mut [f64], m: usize) {
+pub(crate) fn symmetrize(w: &mut [f64], m: usize) {
     for i in 0..m {
         for j in 0..i {
             let a = 0.5 * (w[i * m + j] + w[j * m + i]);
@@ -715,109 +656,3 @@ fn symmetrize(w: &mut [f64], m: usize) {
     }
 }
 
-/// Exact condensation of the adhesive springs `r_adh = −B (x + o)`:
-/// `W̃ = W − W S G⁻¹ S W`, `q̃ = z − W S G⁻¹ S z`, `z = q − W B o`, `G = I + S W S`, `S = √B`,
-/// restricted to the dofs with a spring. Returns `(W, q)` unchanged without springs.
-fn condense(
-    w: &[f64],
-    q: &[f64],
-    offset: &[f64],
-    stiff: &[[f64; 2]],
-    m: usize,
-) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
-    let springs: Vec<(usize, f64)> = stiff
-        .iter()
-        .enumerate()
-        .flat_map(|(k, s)| [(2 * k, s[0]), (2 * k + 1, s[1])])
-        .filter(|&(_, b)| b > 0.0)
-        .collect();
-    if springs.is_empty() {
-        return Ok((w.to_vec(), q.to_vec()));
-    }
-    let na = springs.len();
-    let wr = MatRef::from_row_major_slice(w, m, m);
-    // z = q − W (B o)
-    let mut z = q.to_vec();
-    for &(j, b) in &springs {
-        let bo = b * offset[j];
-        if bo != 0.0 {
-            for (i, zi) in z.iter_mut().enumerate() {
-                *zi -= wr[(i, j)] * bo;
-            }
-        }
-    }
-    // WS: m × na
-    let ws = Mat::<f64>::from_fn(m, na, |i, a| {
-        let (j, b) = springs[a];
-        wr[(i, j)] * b.sqrt()
-    });
-    let g = Mat::<f64>::from_fn(na, na, |a, c| {
-        let (j, b) = springs[a];
-        let sa = b.sqrt();
-        let (l, bl) = springs[c];
-        sa * wr[(j, l)] * bl.sqrt() + if a == c { 1.0 } else { 0.0 }
-    });
-    let llt = g
-        .llt(Side::Lower)
-        .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
-    // Y = G⁻¹ [ (WS)ᵀ | S z ]
-    let mut rhs = Mat::<f64>::from_fn(na, m + 1, |a, c| {
-        if c < m {
-            ws[(c, a)]
-        } else {
-            let (j, b) = springs[a];
-            b.sqrt() * z[j]
-        }
-    });
-    llt.solve_in_place(rhs.as_mut());
-    let correction = &ws * &rhs;
-    let mut w_eff = w.to_vec();
-    for i in 0..m {
-        for j in 0..m {
-            w_eff[i * m + j] -= correction[(i, j)];
-        }
-        z[i] -= correction[(i, m)];
-    }
-    symmetrize(&mut w_eff, m);
-    Ok((w_eff, z))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn condensation_matches_the_direct_formula() {
-        // W̃ = (W⁻¹ + B)⁻¹ on a 2-contact problem, checked against (I + W B)⁻¹ W.
-        let w = vec![
-            2.0, 0.3, 0.5, 0.1, //
-            0.3, 1.5, 0.2, 0.4, //
-            0.5, 0.2, 3.0, 0.6, //
-            0.1, 0.4, 0.6, 2.5,
-        ];
-        let q = vec![0.1, -0.2, 0.3, 0.05];
-        let o = vec![0.0, 0.7, 0.0, -0.3];
-        let stiff = [[4.0, 0.0], [1.0, 2.0]];
-        let (we, qe) = condense(&w, &q, &o, &stiff, 4).unwrap();
-        let b = [4.0, 0.0, 1.0, 2.0];
-        let wm = MatRef::from_row_major_slice(&w, 4, 4);
-        let mut a = Mat::<f64>::identity(4, 4);
-        for i in 0..4 {
-            for j in 0..4 {
-                a[(i, j)] += wm[(i, j)] * b[j];
-            }
-        }
-        let lu = a.partial_piv_lu();
-        let expect_w = lu.solve(wm);
-        let zq = Mat::<f64>::from_fn(4, 1, |i, _| {
-            q[i] - (0..4).map(|j| wm[(i, j)] * b[j] * o[j]).sum::<f64>()
-        });
-        let expect_q = lu.solve(&zq);
-        for i in 0..4 {
-            for j in 0..4 {
-                assert!((we[i * 4 + j] - expect_w[(i, j)]).abs() < 1e-13);
-            }
-            assert!((qe[i] - expect_q[(i, 0)]).abs() < 1e-13);
-        }
-    }
-}

@@ -1,0 +1,368 @@
+//! The reduced problem with adhesive springs: the entry point for an FE code that has its own
+//! structure and wants the RCCM coupling of `docs/theory.md` §13 (seed 5.43–5.48).
+//!
+//! Given, on `n_c` contacts, the flexibility `W`, the free gap/slip `q` (`x = W r + q` with
+//! `x = (gap, slip increment of the step)` per contact and `r` the **total** nodal reaction),
+//! the laws with their states at the start of the step, the jumps `(u_n, u_t)` at the start of
+//! the step and the tributary areas, [`solve_adhesive`] condenses the springs
+//! `r_adh = −A k(β) (u_n, u_t)` exactly, solves `x = W̃ r̄ + q̃` with the bipotential (or the
+//! classical) solver, updates the states and repeats until the largest state change is below
+//! the tolerance. [`ContactSimulation`](crate::ContactSimulation) calls it every step.
+//!
+//! # Examples
+//! One glued contact (RCCM, α = 0) whose free opening is larger than the critical one: the
+//! springs soften (β < 1) and the total reaction is a tension.
+//! ```
+//! use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
+//! use contact_solver::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+//! use contact_solver::{UzawaSettings, UzawaSolver};
+//! let law = Rccm::new(RccmParams { c_n: 100.0, c_t: 100.0, w: 0.01, alpha: 0.0, mu: 0.2,
+//!     m: 1, beta_0: 1.0, scheme: BetaScheme::ImplicitEuler })?;
+//! let step = AdhesiveStep {
+//!     w: &[1e-3, 0.0, 0.0, 1e-3], // a stiff body
+//!     q: &[0.02, 0.0],            // free opening 0.02 > u₀ = √(w/C) = 0.01
+//!     laws: &[law],
+//!     start_states: &[law.initial_state()],
+//!     u_start: &[[0.0, 0.0]],
+//!     areas: &[1.0],
+//!     dt: 1.0,
+//! };
+//! let mut solver = UzawaSolver::new(UzawaSettings::default());
+//! let sol = solve_adhesive(&mut solver, &step, None, &AdhesionOptions::default())?;
+//! let beta = sol.states[0].beta();
+//! let u_n = sol.x[0];
+//! assert!(beta < 1.0 && (beta - 0.01 / (100.0 * u_n * u_n)).abs() < 1e-7); // β = w/(C u²)
+//! assert!((sol.r[0] + beta * beta * 100.0 * u_n).abs() < 1e-9);              // r = r_adh
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::error::SolverError;
+use crate::reduced::ReducedProblem;
+use crate::simulation::symmetrize;
+use crate::uzawa::{UzawaReport, UzawaSolver};
+use contact_laws::{ContactLaw, LocalVec2};
+use faer::linalg::solvers::Solve;
+use faer::{Mat, MatRef, Side};
+
+/// One step of a reduced problem with adhesive laws.
+#[derive(Clone, Copy, Debug)]
+pub struct AdhesiveStep<'a, L: ContactLaw> {
+    /// `W`, dense row-major `m × m` (`m = 2 n_c`, normal first per contact).
+    pub w: &'a [f64],
+    /// `q`: the free gap and the free tangential displacement of the step.
+    pub q: &'a [f64],
+    /// One law per contact.
+    pub laws: &'a [L],
+    /// States at the start of the step.
+    pub start_states: &'a [L::State],
+    /// Jumps `(u_n, u_t)` at the start of the step.
+    pub u_start: &'a [[f64; 2]],
+    /// Tributary area of each contact (turns the per-area spring stiffness into a nodal one).
+    pub areas: &'a [f64],
+    /// Time step (the viscous β update needs it).
+    pub dt: f64,
+}
+
+/// Tolerance and cap of the adhesion fixed point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdhesionOptions {
+    /// Largest [`ContactLaw::state_change`] accepted between two iterations.
+    pub tol: f64,
+    /// Maximum fixed-point iterations.
+    pub max_iterations: usize,
+    /// Return the last iterate instead of [`SolverError::AdhesionNotConverged`].
+    pub accept_non_converged: bool,
+}
+
+impl Default for AdhesionOptions {
+    fn default() -> Self {
+        Self {
+            tol: 1e-8,
+            max_iterations: 200,
+            accept_non_converged: false,
+        }
+    }
+}
+
+/// The solution of an [`AdhesiveStep`].
+#[derive(Clone, Debug)]
+pub struct AdhesiveSolution<S> {
+    /// Total reactions `r = r̄ + r_adh` (nodal forces).
+    pub r: Vec<f64>,
+    /// Reactions of the contact law, `r̄ ∈ K_μ̄`.
+    pub r_bar: Vec<f64>,
+    /// `x = (gap, slip increment)` per contact.
+    pub x: Vec<f64>,
+    /// States at the end of the step.
+    pub states: Vec<S>,
+    /// Fixed-point iterations (0 when no law is adhesive: a single solve).
+    pub adhesion_iterations: usize,
+    /// Solver sweeps summed over the fixed point.
+    pub contact_iterations: usize,
+    /// Whether both the solver and the fixed point met their tolerances.
+    pub converged: bool,
+    /// Report of the last reduced solve.
+    pub report: UzawaReport,
+    /// The last condensed problem `x = W̃ r̄ + q̃` with `μ̄` per contact (export it to compare
+    /// with another solver).
+    pub condensed: ReducedProblem,
+}
+
+fn check_len(what: &'static str, expected: usize, found: usize) -> Result<(), SolverError> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(SolverError::SizeMismatch {
+            what,
+            expected,
+            found,
+        })
+    }
+}
+
+/// Solves one step with adhesion: condensation, reduced solve, state update, repeated to a
+/// fixed point (a single solve when no law is adhesive in its start state).
+///
+/// # Errors
+/// [`SolverError::SizeMismatch`] for inconsistent lengths; [`SolverError::InvalidSetting`]
+/// for a bad `dt` or tolerance; the reduced problem's validation errors;
+/// [`SolverError::NotConverged`] and [`SolverError::AdhesionNotConverged`] unless accepted.
+pub fn solve_adhesive<L: ContactLaw>(
+    solver: &mut UzawaSolver,
+    step: &AdhesiveStep<'_, L>,
+    r_bar_start: Option<&[f64]>,
+    options: &AdhesionOptions,
+) -> Result<AdhesiveSolution<L::State>, SolverError> {
+    let m = step.q.len();
+    let na = m / 2;
+    check_len("q", 2 * na, m)?;
+    check_len("W", m * m, step.w.len())?;
+    check_len("laws", na, step.laws.len())?;
+    check_len("start_states", na, step.start_states.len())?;
+    check_len("u_start", na, step.u_start.len())?;
+    check_len("areas", na, step.areas.len())?;
+    if !(step.dt.is_finite() && step.dt >= 0.0) {
+        return Err(SolverError::InvalidSetting {
+            what: "dt",
+            value: step.dt,
+            expected: "a finite time step >= 0",
+        });
+    }
+    if !(options.tol.is_finite() && options.tol > 0.0) {
+        return Err(SolverError::InvalidSetting {
+            what: "adhesion tol",
+            value: options.tol,
+            expected: "a finite tolerance > 0",
+        });
+    }
+    for (index, &value) in step.areas.iter().enumerate() {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(SolverError::NonFinite {
+                what: "areas",
+                index,
+                value,
+            });
+        }
+    }
+    for (index, u) in step.u_start.iter().enumerate() {
+        if let Some(&value) = u.iter().find(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                what: "u_start",
+                index,
+                value,
+            });
+        }
+    }
+    let offset: Vec<f64> = step.u_start.iter().flat_map(|u| [0.0, u[1]]).collect();
+    let mut states = step.start_states.to_vec();
+    let mut r_bar = match r_bar_start {
+        Some(r) => {
+            check_len("r_bar_start", m, r.len())?;
+            r.to_vec()
+        }
+        None => vec![0.0; m],
+    };
+    let adhesive = step
+        .laws
+        .iter()
+        .zip(&states)
+        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+    let mut history = Vec::new();
+    let mut adhesion_iterations = 0;
+    let mut contact_iterations = 0;
+    let mut converged = true;
+    loop {
+        // nodal springs: the law's per-area stiffness times the tributary area
+        let stiff: Vec<[f64; 2]> = step
+            .laws
+            .iter()
+            .zip(&states)
+            .zip(step.areas)
+            .map(|((l, s), &a)| l.adhesive_stiffness(s).map(|k| k * a))
+            .collect();
+        let (w_eff, q_eff) = condense(step.w, step.q, &offset, &stiff, m)?;
+        let mu = step
+            .laws
+            .iter()
+            .zip(&states)
+            .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
+            .collect();
+        let problem = ReducedProblem::new(w_eff, q_eff, mu)?;
+        let sol = solver.solve_with_states(&problem, step.laws, &states, Some(&r_bar))?;
+        contact_iterations += sol.report.iterations;
+        converged &= sol.report.converged;
+        r_bar.copy_from_slice(&sol.r);
+        let jumps: Vec<[f64; 2]> = (0..na)
+            .map(|k| [sol.x[2 * k], sol.x[2 * k + 1] + offset[2 * k + 1]])
+            .collect();
+        let mut r = vec![0.0; m];
+        for (k, (&[kn, kt], jump)) in stiff.iter().zip(&jumps).enumerate() {
+            r[2 * k] = sol.r[2 * k] - kn * jump[0];
+            r[2 * k + 1] = sol.r[2 * k + 1] - kt * jump[1];
+        }
+        let finish = |states: Vec<L::State>, converged: bool| AdhesiveSolution {
+            r,
+            r_bar: sol.r,
+            x: sol.x,
+            states,
+            adhesion_iterations: 0,
+            contact_iterations,
+            converged,
+            report: sol.report,
+            condensed: problem,
+        };
+        if !adhesive {
+            return Ok(finish(states, converged));
+        }
+        adhesion_iterations += 1;
+        let mut change = 0.0_f64;
+        for (k, (law, state)) in step.laws.iter().zip(states.iter_mut()).enumerate() {
+            let u0 = LocalVec2::planar(step.u_start[k][0], step.u_start[k][1]);
+            let u1 = LocalVec2::planar(jumps[k][0], jumps[k][1]);
+            let new = law.update_state(&step.start_states[k], &u0, &u1, step.dt);
+            change = change.max(law.state_change(&new, state));
+            *state = new;
+        }
+        history.push(change);
+        let done = change <= options.tol;
+        if done || adhesion_iterations >= options.max_iterations {
+            if !done && !options.accept_non_converged {
+                return Err(SolverError::AdhesionNotConverged {
+                    iterations: adhesion_iterations,
+                    change,
+                    history,
+                });
+            }
+            let mut s = finish(states, converged && done);
+            s.adhesion_iterations = adhesion_iterations;
+            return Ok(s);
+        }
+    }
+}
+
+/// Exact condensation (public so that an FE code with its own coupling can reuse it) of the adhesive springs `r_adh = −B (x + o)`:
+/// `W̃ = W − W S G⁻¹ S W`, `q̃ = z − W S G⁻¹ S z`, `z = q − W B o`, `G = I + S W S`, `S = √B`,
+/// restricted to the dofs with a spring. Returns `(W, q)` unchanged without springs.
+pub fn condense(
+    w: &[f64],
+    q: &[f64],
+    offset: &[f64],
+    stiff: &[[f64; 2]],
+    m: usize,
+) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+    let springs: Vec<(usize, f64)> = stiff
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| [(2 * k, s[0]), (2 * k + 1, s[1])])
+        .filter(|&(_, b)| b > 0.0)
+        .collect();
+    if springs.is_empty() {
+        return Ok((w.to_vec(), q.to_vec()));
+    }
+    let na = springs.len();
+    let wr = MatRef::from_row_major_slice(w, m, m);
+    // z = q − W (B o)
+    let mut z = q.to_vec();
+    for &(j, b) in &springs {
+        let bo = b * offset[j];
+        if bo != 0.0 {
+            for (i, zi) in z.iter_mut().enumerate() {
+                *zi -= wr[(i, j)] * bo;
+            }
+        }
+    }
+    // WS: m × na
+    let ws = Mat::<f64>::from_fn(m, na, |i, a| {
+        let (j, b) = springs[a];
+        wr[(i, j)] * b.sqrt()
+    });
+    let g = Mat::<f64>::from_fn(na, na, |a, c| {
+        let (j, b) = springs[a];
+        let sa = b.sqrt();
+        let (l, bl) = springs[c];
+        sa * wr[(j, l)] * bl.sqrt() + if a == c { 1.0 } else { 0.0 }
+    });
+    let llt = g
+        .llt(Side::Lower)
+        .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
+    // Y = G⁻¹ [ (WS)ᵀ | S z ]
+    let mut rhs = Mat::<f64>::from_fn(na, m + 1, |a, c| {
+        if c < m {
+            ws[(c, a)]
+        } else {
+            let (j, b) = springs[a];
+            b.sqrt() * z[j]
+        }
+    });
+    llt.solve_in_place(rhs.as_mut());
+    let correction = &ws * &rhs;
+    let mut w_eff = w.to_vec();
+    for i in 0..m {
+        for j in 0..m {
+            w_eff[i * m + j] -= correction[(i, j)];
+        }
+        z[i] -= correction[(i, m)];
+    }
+    symmetrize(&mut w_eff, m);
+    Ok((w_eff, z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn condensation_matches_the_direct_formula() {
+        // W̃ = (W⁻¹ + B)⁻¹ on a 2-contact problem, checked against (I + W B)⁻¹ W.
+        let w = vec![
+            2.0, 0.3, 0.5, 0.1, //
+            0.3, 1.5, 0.2, 0.4, //
+            0.5, 0.2, 3.0, 0.6, //
+            0.1, 0.4, 0.6, 2.5,
+        ];
+        let q = vec![0.1, -0.2, 0.3, 0.05];
+        let o = vec![0.0, 0.7, 0.0, -0.3];
+        let stiff = [[4.0, 0.0], [1.0, 2.0]];
+        let (we, qe) = condense(&w, &q, &o, &stiff, 4).unwrap();
+        let b = [4.0, 0.0, 1.0, 2.0];
+        let wm = MatRef::from_row_major_slice(&w, 4, 4);
+        let mut a = Mat::<f64>::identity(4, 4);
+        for i in 0..4 {
+            for j in 0..4 {
+                a[(i, j)] += wm[(i, j)] * b[j];
+            }
+        }
+        let lu = a.partial_piv_lu();
+        let expect_w = lu.solve(wm);
+        let zq = Mat::<f64>::from_fn(4, 1, |i, _| {
+            q[i] - (0..4).map(|j| wm[(i, j)] * b[j] * o[j]).sum::<f64>()
+        });
+        let expect_q = lu.solve(&zq);
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!((we[i * 4 + j] - expect_w[(i, j)]).abs() < 1e-13);
+            }
+            assert!((qe[i] - expect_q[(i, 0)]).abs() < 1e-13);
+        }
+    }
+}
