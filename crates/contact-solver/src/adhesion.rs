@@ -72,6 +72,9 @@ pub struct AdhesionOptions {
     pub max_iterations: usize,
     /// Return the last iterate instead of [`SolverError::AdhesionNotConverged`].
     pub accept_non_converged: bool,
+    /// Iterate (update the states and solve again) even when no law is adhesive — only to
+    /// measure what skipping the loop saves.
+    pub always_iterate: bool,
 }
 
 impl Default for AdhesionOptions {
@@ -80,6 +83,7 @@ impl Default for AdhesionOptions {
             tol: 1e-8,
             max_iterations: 200,
             accept_non_converged: false,
+            always_iterate: false,
         }
     }
 }
@@ -182,11 +186,12 @@ pub fn solve_adhesive<L: ContactLaw>(
         }
         None => vec![0.0; m],
     };
-    let adhesive = step
-        .laws
-        .iter()
-        .zip(&states)
-        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+    let adhesive = options.always_iterate
+        || step
+            .laws
+            .iter()
+            .zip(&states)
+            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
     let mut history = Vec::new();
     let mut adhesion_iterations = 0;
     let mut contact_iterations = 0;

@@ -44,7 +44,8 @@ pub use obstacle::{ArcSide, Obstacle, ObstaclePoint, RigidArc, RigidLine};
 pub use output::{HistoryWriter, InterfaceSeries, ReportWriter, write_interface_vtu};
 pub use reduced::ReducedProblem;
 pub use simulation::{
-    ContactRecord, ContactSimulation, Counters, InterfaceStatus, SimulationSettings, StepReport,
+    ContactRecord, ContactSimulation, Counters, InterfaceStatus, SimulationSettings, SkipRules,
+    StepReport,
     StepResult,
 };
 pub use zone::{Candidate, ContactZone, Target, recognize};

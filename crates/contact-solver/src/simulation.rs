@@ -45,6 +45,37 @@ pub struct SimulationSettings {
     /// Right-hand sides per `solve_many_in_place` call when building `F*` (bounds the memory
     /// to `dof_count × columns` values).
     pub columns_per_solve: usize,
+    /// What the simulation skips when a scene does not need it (all on by default; turn one
+    /// off to measure what it saves).
+    pub skip: SkipRules,
+}
+
+/// "Skip what a scene does not need": each rule is on by default and only exists as a switch
+/// so that its saving can be measured (`docs/benchmarks.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkipRules {
+    /// Reuse `F*` while the active set and the stiffness are unchanged (off: rebuild it every
+    /// step).
+    pub reuse_flexibility: bool,
+    /// Leave candidates outside their alert distance out of the reduced problem (off: every
+    /// candidate is active in every step).
+    pub alert_distance: bool,
+    /// For frictionless, non-adhesive laws, skip the tangential columns of `F*` (half the
+    /// structure solves) and decouple the tangential unknowns (`r_t = 0` exactly).
+    pub frictionless_normal_only: bool,
+    /// Run no adhesion fixed point when no active law is adhesive (off: iterate anyway).
+    pub adhesion_loop_only_when_adhesive: bool,
+}
+
+impl Default for SkipRules {
+    fn default() -> Self {
+        Self {
+            reuse_flexibility: true,
+            alert_distance: true,
+            frictionless_normal_only: true,
+            adhesion_loop_only_when_adhesive: true,
+        }
+    }
 }
 
 impl Default for SimulationSettings {
@@ -55,6 +86,7 @@ impl Default for SimulationSettings {
             max_adhesion_iterations: 200,
             max_detection_passes: 5,
             columns_per_solve: 64,
+            skip: SkipRules::default(),
         }
     }
 }
@@ -419,11 +451,12 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters.structure_solves += 1;
         let free = self.local_jumps_of(&u_free);
 
+        let all = !self.settings.skip.alert_distance;
         let mut active: Vec<usize> = (0..self.candidates.len())
             .filter(|&i| {
                 let c = &self.candidates[i];
                 let zone = &self.zones[c.zone];
-                zone.law.adhesion_active(&self.states[i])
+                all || zone.law.adhesion_active(&self.states[i])
                     || self.jumps[i][0] <= zone.alert_distance
                     || free[i][0] <= zone.alert_distance
             })
@@ -445,7 +478,10 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let mut u = vec![0.0; ndof];
         loop {
             report.detection_passes += 1;
-            if active != self.w_active || self.w_version != Some(version) {
+            if active != self.w_active
+                || self.w_version != Some(version)
+                || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
+            {
                 self.build_flexibility(&active)?;
                 self.w_version = Some(version);
                 report.flexibility_rebuilt = true;
@@ -484,35 +520,53 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let ndof = self.structure.dof_count();
         self.w.clear();
         self.w.resize(m * m, 0.0);
-        let chunk = self.settings.columns_per_solve.min(m.max(1));
+        // local rows of W (index into 0..m) whose columns are solved for
+        let solved: Vec<usize> = (0..m)
+            .filter(|&j| j % 2 == 0 || self.tangent_needed(active[j / 2]))
+            .collect();
+        let chunk = self.settings.columns_per_solve.min(solved.len().max(1));
         let mut x = Mat::<f64>::zeros(ndof, chunk);
         let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
-        for j0 in (0..m).step_by(chunk) {
-            let nc = chunk.min(m - j0);
+        for block in solved.chunks(chunk) {
+            let nc = block.len();
             x.fill(0.0);
-            for c in 0..nc {
-                for &(dof, a) in &self.h_rows[rows[j0 + c]] {
+            for (c, &j) in block.iter().enumerate() {
+                for &(dof, a) in &self.h_rows[rows[j]] {
                     x[(dof, c)] += a;
                 }
             }
             self.structure
                 .solve_many_in_place(x.as_mut().subcols_mut(0, nc))?;
-            for (i, &row) in rows.iter().enumerate() {
-                for c in 0..nc {
+            for &i in &solved {
+                let row = &self.h_rows[rows[i]];
+                for (c, &j) in block.iter().enumerate() {
                     let mut s = 0.0;
-                    for &(dof, a) in &self.h_rows[row] {
+                    for &(dof, a) in row {
                         s += a * x[(dof, c)];
                     }
-                    self.w[i * m + j0 + c] = s;
+                    self.w[i * m + j] = s;
                 }
             }
         }
         symmetrize(&mut self.w, m);
+        // decoupled tangential unknowns of frictionless contacts: W_tt = W_nn, nothing else
+        for k in 0..active.len() {
+            if !self.tangent_needed(active[k]) {
+                self.w[(2 * k + 1) * m + 2 * k + 1] = self.w[2 * k * m + 2 * k];
+            }
+        }
         self.w_active.clear();
         self.w_active.extend_from_slice(active);
         self.counters.flexibility_builds += 1;
-        self.counters.flexibility_columns += m;
+        self.counters.flexibility_columns += solved.len();
         Ok(())
+    }
+
+    /// Whether candidate `i`'s tangential unknown takes part (friction or adhesion), under the
+    /// skip rules.
+    fn tangent_needed(&self, i: usize) -> bool {
+        let law = &self.zones[self.candidates[i].zone].law;
+        !self.settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
     }
 
     /// The adhesion fixed point around the reduced solve, on the cached active set.
@@ -535,7 +589,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let mut q = vec![0.0; m];
         for (k, &i) in active.iter().enumerate() {
             q[2 * k] = free[i][0];
-            q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            if self.tangent_needed(i) {
+                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
         }
         let r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let step = AdhesiveStep {
@@ -551,6 +607,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             tol: self.settings.adhesion_tol,
             max_iterations: self.settings.max_adhesion_iterations,
             accept_non_converged: self.settings.solver.accept_non_converged,
+            always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
         };
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
         report.contact_iterations += sol.contact_iterations;
