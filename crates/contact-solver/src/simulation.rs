@@ -550,8 +550,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
         symmetrize(&mut self.w, m);
         // decoupled tangential unknowns of frictionless contacts: W_tt = W_nn, nothing else
-        for k in 0..active.len() {
-            if !self.tangent_needed(active[k]) {
+        for (k, &i) in active.iter().enumerate() {
+            if !self.tangent_needed(i) {
                 self.w[(2 * k + 1) * m + 2 * k + 1] = self.w[2 * k * m + 2 * k];
             }
         }

@@ -20,8 +20,7 @@ fn run(law: StandardLaw, skip: SkipRules, steps: usize) -> (Vec<StepResult>, Con
     let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, Material::new(200.0, 0.3, 0.0).unwrap())], supports).unwrap();
     let near = RigidLine::new([-1.0, 0.0], [1.0, 0.0]).unwrap();
     let far = RigidLine::new([1.0, -0.5], [3.0, -0.5]).unwrap();
-    let mut settings = SimulationSettings::default();
-    settings.skip = skip;
+    let settings = SimulationSettings { skip, ..SimulationSettings::default() };
     let (l, r): (Vec<usize>, Vec<usize>) = bottom.iter().partition(|&&n| model.mesh().nodes()[n][0] < 1.0);
     let zones = vec![
         ContactZone::rigid("near", l, near, law, 0.01),
