@@ -9,6 +9,21 @@
 //! classical) solver, updates the states and repeats until the largest state change is below
 //! the tolerance. [`ContactSimulation`](crate::ContactSimulation) calls it every step.
 //!
+//! # Accelerating the fixed point
+//! The seed's fixed point (solve with β, update β from the jumps, repeat) converges linearly
+//! and slowly where the damage front moves. [`AdhesionOptions::anderson_window`] applies
+//! Anderson acceleration to the interface jumps `u` (the states are recomputed from the mixed
+//! jumps, so any law works). Measured on the seed scenes, 210 steps each
+//! (`cargo run --release --example adhesion_window`):
+//!
+//! | scene | window 0 (plain) | window 1 | window 2 | window 3–8 |
+//! |---|---|---|---|---|
+//! | 5.6.1 delamination, 10 s | 1934 β iterations, ≤ 52 per step | **1096, ≤ 10** | 1132, ≤ 15 | 1144, ≤ 16 |
+//! | 5.6.1, loaded in 1 s | 1527, ≤ 27 | **991, ≤ 8** | 1009, ≤ 8 | 1012–1013, ≤ 8 |
+//! | 5.6.2 shear | 468, ≤ 4 | 468, ≤ 4 | 468, ≤ 4 | 468, ≤ 4 |
+//!
+//! Window 1 (a secant step) is the default.
+//!
 //! # Examples
 //! One glued contact (RCCM, α = 0) whose free opening is larger than the critical one: the
 //! springs soften (β < 1) and the total reaction is a tension.
@@ -32,7 +47,7 @@
 //! let beta = sol.states[0].beta();
 //! let u_n = sol.x[0];
 //! assert!(beta < 1.0 && (beta - 0.01 / (100.0 * u_n * u_n)).abs() < 1e-7); // β = w/(C u²)
-//! assert!((sol.r[0] + beta * beta * 100.0 * u_n).abs() < 1e-9);              // r = r_adh
+//! assert!((sol.r[0] + beta * beta * 100.0 * u_n).abs() < 1e-7);              // r = r_adh
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -63,6 +78,9 @@ pub struct AdhesiveStep<'a, L: ContactLaw> {
     pub dt: f64,
 }
 
+/// Default [`AdhesionOptions::anderson_window`], chosen by measurement (module docs).
+pub const DEFAULT_ANDERSON_WINDOW: usize = 1;
+
 /// Tolerance and cap of the adhesion fixed point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdhesionOptions {
@@ -75,6 +93,9 @@ pub struct AdhesionOptions {
     /// Iterate (update the states and solve again) even when no law is adhesive — only to
     /// measure what skipping the loop saves.
     pub always_iterate: bool,
+    /// Anderson acceleration of the fixed point on the interface jumps: how many past
+    /// iterates to mix (`0`: the plain fixed point of the seed).
+    pub anderson_window: usize,
 }
 
 impl Default for AdhesionOptions {
@@ -84,6 +105,7 @@ impl Default for AdhesionOptions {
             max_iterations: 200,
             accept_non_converged: false,
             always_iterate: false,
+            anderson_window: DEFAULT_ANDERSON_WINDOW,
         }
     }
 }
@@ -193,6 +215,7 @@ pub fn solve_adhesive<L: ContactLaw>(
             .zip(&states)
             .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
     let mut history = Vec::new();
+    let mut anderson = Anderson::new(options.anderson_window);
     let mut adhesion_iterations = 0;
     let mut contact_iterations = 0;
     let mut converged = true;
@@ -240,16 +263,31 @@ pub fn solve_adhesive<L: ContactLaw>(
             return Ok(finish(states, converged));
         }
         adhesion_iterations += 1;
-        let mut change = 0.0_f64;
-        for (k, (law, state)) in step.laws.iter().zip(states.iter_mut()).enumerate() {
-            let u0 = LocalVec2::planar(step.u_start[k][0], step.u_start[k][1]);
-            let u1 = LocalVec2::planar(jumps[k][0], jumps[k][1]);
-            let new = law.update_state(&step.start_states[k], &u0, &u1, step.dt);
-            change = change.max(law.state_change(&new, state));
-            *state = new;
-        }
+        // the next jumps the states are computed from: the solve's, or Anderson's mix of them
+        let update = |u: &[f64]| -> Vec<L::State> {
+            (0..na)
+                .map(|k| {
+                    let u0 = LocalVec2::planar(step.u_start[k][0], step.u_start[k][1]);
+                    // an opening cannot be negative: clamp a mixed normal jump
+                    let u1 = LocalVec2::planar(u[2 * k].max(0.0), u[2 * k + 1]);
+                    step.laws[k].update_state(&step.start_states[k], &u0, &u1, step.dt)
+                })
+                .collect()
+        };
+        // the fixed-point residual: the states the solve's own jumps imply, against the
+        // states the solve used
+        let g: Vec<f64> = jumps.iter().flat_map(|j| *j).collect();
+        let implied = update(&g);
+        let change = step
+            .laws
+            .iter()
+            .zip(implied.iter().zip(&states))
+            .fold(0.0_f64, |c, (law, (a, b))| c.max(law.state_change(a, b)));
         history.push(change);
         let done = change <= options.tol;
+        // the states of the next solve: from the solve's jumps, or Anderson's mix of them
+        let next = anderson.next(&g);
+        states = if done { implied } else { update(&next) };
         if done || adhesion_iterations >= options.max_iterations {
             if !done && !options.accept_non_converged {
                 return Err(SolverError::AdhesionNotConverged {
@@ -262,6 +300,84 @@ pub fn solve_adhesive<L: ContactLaw>(
             s.adhesion_iterations = adhesion_iterations;
             return Ok(s);
         }
+    }
+}
+
+/// Anderson acceleration (type II) of a fixed point `u = g(u)`: with the last `window`
+/// differences of iterates and residuals, `u⁺ = g_k − ΔG γ`, `γ = argmin ‖f_k − ΔF γ‖`
+/// (`f = g(u) − u`). The history restarts when the residual grows.
+struct Anderson {
+    window: usize,
+    /// The iterate whose image is being mixed (`None` before the first image).
+    u: Option<Vec<f64>>,
+    f_prev: Option<Vec<f64>>,
+    g_prev: Option<Vec<f64>>,
+    df: Vec<Vec<f64>>,
+    dg: Vec<Vec<f64>>,
+}
+
+impl Anderson {
+    fn new(window: usize) -> Self {
+        Self {
+            window,
+            u: None,
+            f_prev: None,
+            g_prev: None,
+            df: Vec::new(),
+            dg: Vec::new(),
+        }
+    }
+
+    /// The next iterate, given the image `g` of the current one.
+    fn next(&mut self, g: &[f64]) -> Vec<f64> {
+        let Some(u) = self.u.take() else {
+            self.u = Some(g.to_vec());
+            return g.to_vec();
+        };
+        if self.window == 0 {
+            self.u = Some(g.to_vec());
+            return g.to_vec();
+        }
+        let f: Vec<f64> = g.iter().zip(&u).map(|(a, b)| a - b).collect();
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        if let (Some(fp), Some(gp)) = (&self.f_prev, &self.g_prev) {
+            if norm(&f) > norm(fp) {
+                // the residual grew: forget the history, take the plain step
+                self.df.clear();
+                self.dg.clear();
+            } else {
+                self.df.push(f.iter().zip(fp).map(|(a, b)| a - b).collect());
+                self.dg.push(g.iter().zip(gp).map(|(a, b)| a - b).collect());
+                if self.df.len() > self.window {
+                    self.df.remove(0);
+                    self.dg.remove(0);
+                }
+            }
+        }
+        let mut out = g.to_vec();
+        let k = self.df.len();
+        if k > 0 {
+            // normal equations (ΔFᵀΔF + εI) γ = ΔFᵀ f, tiny and regularised
+            let a = Mat::<f64>::from_fn(k, k, |i, j| {
+                let d: f64 = self.df[i].iter().zip(&self.df[j]).map(|(x, y)| x * y).sum();
+                if i == j { d * (1.0 + 1e-10) + f64::MIN_POSITIVE } else { d }
+            });
+            let b = Mat::<f64>::from_fn(k, 1, |i, _| {
+                self.df[i].iter().zip(&f).map(|(x, y)| x * y).sum()
+            });
+            let gamma = a.partial_piv_lu().solve(&b);
+            if (0..k).all(|i| gamma[(i, 0)].is_finite()) {
+                for (i, dg) in self.dg.iter().enumerate() {
+                    for (o, d) in out.iter_mut().zip(dg) {
+                        *o -= gamma[(i, 0)] * d;
+                    }
+                }
+            }
+        }
+        self.f_prev = Some(f);
+        self.g_prev = Some(g.to_vec());
+        self.u = Some(out.clone());
+        out
     }
 }
 

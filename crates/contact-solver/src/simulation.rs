@@ -39,6 +39,9 @@ pub struct SimulationSettings {
     pub adhesion_tol: f64,
     /// Maximum adhesion fixed-point iterations per step.
     pub max_adhesion_iterations: usize,
+    /// Anderson window of the adhesion fixed point (`0`: the seed's plain fixed point); see
+    /// [`AdhesionOptions::anderson_window`].
+    pub adhesion_anderson_window: usize,
     /// Maximum passes of the penetration check per step (each adds the penetrating inactive
     /// candidates and redoes the step).
     pub max_detection_passes: usize,
@@ -84,6 +87,7 @@ impl Default for SimulationSettings {
             solver: UzawaSettings::default(),
             adhesion_tol: 1e-8,
             max_adhesion_iterations: 200,
+            adhesion_anderson_window: crate::adhesion::DEFAULT_ANDERSON_WINDOW,
             max_detection_passes: 5,
             columns_per_solve: 64,
             skip: SkipRules::default(),
@@ -608,6 +612,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             max_iterations: self.settings.max_adhesion_iterations,
             accept_non_converged: self.settings.solver.accept_non_converged,
             always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
+            anderson_window: self.settings.adhesion_anderson_window,
         };
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
         report.contact_iterations += sol.contact_iterations;

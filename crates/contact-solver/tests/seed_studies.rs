@@ -85,3 +85,22 @@ fn shear_debonded_contacts_obey_coulomb() {
     }
     assert!(debonded_slipping > 0, "the block should slide once debonded");
 }
+
+#[test]
+fn anderson_acceleration_changes_the_work_not_the_answer() {
+    let spec = DelaminationSpec { steps: 42, ..DelaminationSpec::default() };
+    let run = |window: usize| {
+        let settings = SimulationSettings { adhesion_anderson_window: window, ..SimulationSettings::default() };
+        let mut scene = spec.build(settings).unwrap();
+        let results: Vec<StepResult> = (1..=spec.steps).map(|k| scene.step(k).unwrap()).collect();
+        (results, scene.simulation.counters().adhesion_iterations)
+    };
+    let (plain, n_plain) = run(0);
+    let (fast, n_fast) = run(1);
+    for (a, b) in plain.iter().zip(&fast) {
+        for (x, y) in a.contacts.iter().zip(&b.contacts) {
+            assert!((x.beta - y.beta).abs() <= 1e-6, "β {} vs {}", x.beta, y.beta);
+        }
+    }
+    assert!(n_fast < n_plain, "Anderson {n_fast} vs plain {n_plain}");
+}
