@@ -41,7 +41,12 @@ pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<f64>]) -> Result<(), 
 }
 
 /// Writes the curves of `series` as one CSV with columns `series,x,y`.
-pub fn write_series_csv(path: &Path, x: &str, y: &str, series: &[Series]) -> Result<(), Box<dyn Error>> {
+pub fn write_series_csv(
+    path: &Path,
+    x: &str,
+    y: &str,
+    series: &[Series],
+) -> Result<(), Box<dyn Error>> {
     let mut s = format!("series,{x},{y}\n");
     for c in series {
         for (a, b) in &c.points {
@@ -97,9 +102,14 @@ pub fn line_plot(
     for (k, s) in series.iter().enumerate() {
         let color = Palette99::pick(k).to_rgba();
         chart
-            .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))?
+            .draw_series(LineSeries::new(
+                s.points.iter().copied(),
+                color.stroke_width(2),
+            ))?
             .label(s.name.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            });
     }
     chart
         .configure_series_labels()

@@ -30,6 +30,7 @@ pub mod adhesion;
 pub mod classic;
 pub mod error;
 pub mod generate;
+pub mod matrix_free;
 pub mod obstacle;
 pub mod output;
 pub mod reduced;
@@ -44,7 +45,8 @@ pub use obstacle::{ArcSide, Obstacle, ObstaclePoint, RigidArc, RigidLine};
 pub use output::{HistoryWriter, InterfaceSeries, ReportWriter, write_interface_vtu};
 pub use reduced::ReducedProblem;
 pub use simulation::{
-    ContactRecord, ContactSimulation, Counters, InterfaceStatus, SimulationSettings, SkipRules,
+    ContactRecord, ContactSimulation, Counters, FlexibilityMode, InterfaceStatus, SimulationSettings,
+    SkipRules,
     StepReport,
     StepResult,
 };

@@ -21,10 +21,11 @@
 
 use crate::error::SolverError;
 use crate::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+use crate::matrix_free::solve_matrix_free;
 use crate::reduced::ReducedProblem;
 use crate::uzawa::{UzawaSettings, UzawaSolver};
 use crate::zone::{Candidate, ContactZone, recognize};
-use contact_laws::{ContactLaw, ContactStatus};
+use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
 use faer::Mat;
 use fem_core::Structure;
 use std::time::{Duration, Instant};
@@ -51,6 +52,37 @@ pub struct SimulationSettings {
     /// What the simulation skips when a scene does not need it (all on by default; turn one
     /// off to measure what it saves).
     pub skip: SkipRules,
+    /// Dense `F*` or the matrix-free iteration ([`crate::matrix_free`]).
+    pub flexibility: FlexibilityMode,
+}
+
+/// How the reduced problem is held.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FlexibilityMode {
+    /// Dense `F*` up to `dense_limit` active contacts, matrix-free beyond (when no active law
+    /// is adhesive: the exact condensation of the springs needs the dense `F*`).
+    Auto {
+        /// Largest active set solved with a dense `F*`.
+        dense_limit: usize,
+    },
+    /// Always a dense `F*` (built with `2 n_c` structure solves, `4 n_c²` values).
+    Dense,
+    /// Never store `F*`: one structure solve per iteration. Adhesive laws are refused.
+    MatrixFree,
+}
+
+/// Default [`FlexibilityMode::Auto`] limit: a dense `F*` of 8000 contacts takes 2 GiB. The
+/// limit is set by memory, not time: the matrix-free iteration needs more structure solves than
+/// the `2 n_c` that build `F*` (its iterations grow about linearly with `n_c` on FE problems,
+/// `docs/benchmarks.md`, "Scale"), so it only pays when `F*` would not fit.
+pub const DEFAULT_DENSE_LIMIT: usize = 8000;
+
+impl Default for FlexibilityMode {
+    fn default() -> Self {
+        Self::Auto {
+            dense_limit: DEFAULT_DENSE_LIMIT,
+        }
+    }
 }
 
 /// "Skip what a scene does not need": each rule is on by default and only exists as a switch
@@ -91,6 +123,7 @@ impl Default for SimulationSettings {
             max_detection_passes: 5,
             columns_per_solve: 64,
             skip: SkipRules::default(),
+            flexibility: FlexibilityMode::default(),
         }
     }
 }
@@ -169,6 +202,8 @@ pub struct StepReport {
     pub detection_passes: usize,
     /// Whether `F*` was rebuilt in this step.
     pub flexibility_rebuilt: bool,
+    /// Whether the step was solved matrix-free (no `F*`).
+    pub matrix_free: bool,
     /// Natural-map residual of the last reduced solve.
     pub residual: f64,
     /// Whether every solve of the step met its tolerance (always `true` unless the settings
@@ -195,6 +230,10 @@ pub struct Counters {
     pub contact_iterations: usize,
     /// Steps where the structure's stiffness version changed.
     pub stiffness_changes: usize,
+    /// Steps solved matrix-free.
+    pub matrix_free_steps: usize,
+    /// Products `F* r` done matrix-free (one structure solve each).
+    pub operator_applications: usize,
 }
 
 /// The result of one step.
@@ -475,6 +514,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             contact_iterations: 0,
             detection_passes: 0,
             flexibility_rebuilt: false,
+            matrix_free: false,
             residual: 0.0,
             converged: true,
             wall_time: Duration::ZERO,
@@ -482,15 +522,26 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let mut u = vec![0.0; ndof];
         loop {
             report.detection_passes += 1;
-            if active != self.w_active
-                || self.w_version != Some(version)
-                || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
-            {
-                self.build_flexibility(&active)?;
-                self.w_version = Some(version);
-                report.flexibility_rebuilt = true;
-            }
-            let solved = self.solve_active(&free, dt, &mut report)?;
+            let solved = if self.use_matrix_free(&active)? {
+                if active != self.w_active {
+                    self.w_active.clone_from(&active);
+                }
+                self.w.clear();
+                self.w_version = None;
+                self.last_problem = None;
+                report.matrix_free = true;
+                self.solve_matrix_free_active(&free, &mut report)?
+            } else {
+                if active != self.w_active
+                    || self.w_version != Some(version)
+                    || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
+                {
+                    self.build_flexibility(&active)?;
+                    self.w_version = Some(version);
+                    report.flexibility_rebuilt = true;
+                }
+                self.solve_active(&free, dt, &mut report)?
+            };
             // u = u_free + K⁻¹ Hᵀ r
             u.fill(0.0);
             for (k, &i) in self.w_active.iter().enumerate() {
@@ -516,6 +567,149 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             active.extend(penetrating);
             active.sort_unstable();
         }
+    }
+
+    /// Whether this step's active set is solved matrix-free.
+    fn use_matrix_free(&self, active: &[usize]) -> Result<bool, SolverError> {
+        let adhesive = active.iter().any(|&i| {
+            let law = &self.zones[self.candidates[i].zone].law;
+            law.has_adhesion() && law.adhesion_active(&self.states[i])
+        });
+        match self.settings.flexibility {
+            FlexibilityMode::Dense => Ok(false),
+            FlexibilityMode::Auto { dense_limit } => Ok(!adhesive && active.len() > dense_limit),
+            FlexibilityMode::MatrixFree if adhesive => Err(SolverError::InvalidSetting {
+                what: "flexibility",
+                value: active.len() as f64,
+                expected: "Dense or Auto for adhesive laws (the springs are condensed on a dense F*)",
+            }),
+            FlexibilityMode::MatrixFree => Ok(!active.is_empty()),
+        }
+    }
+
+    /// `ρ⁰_i = 1/λ_max` of the diagonal blocks of `F*`, computed exactly on up to
+    /// [`RHO_SAMPLES`] contacts spread over the active list and carried to the others from the
+    /// nearest sample in that order (interfaces are listed in order along them).
+    fn estimate_rho0(&mut self, active: &[usize]) -> Result<Vec<f64>, SolverError> {
+        let na = active.len();
+        let ns = na.min(RHO_SAMPLES);
+        let samples: Vec<usize> = (0..ns).map(|k| (2 * k + 1) * na / (2 * ns)).collect();
+        let ndof = self.structure.dof_count();
+        let mut x = Mat::<f64>::zeros(ndof, 2 * ns);
+        for (c, &k) in samples.iter().enumerate() {
+            let i = active[k];
+            for d in 0..2 {
+                for &(dof, a) in &self.h_rows[2 * i + d] {
+                    x[(dof, 2 * c + d)] += a;
+                }
+            }
+        }
+        self.structure.solve_many_in_place(x.as_mut())?;
+        self.counters.flexibility_columns += 2 * ns;
+        let rho: Vec<f64> = samples
+            .iter()
+            .enumerate()
+            .map(|(c, &k)| {
+                let i = active[k];
+                let w = |row: usize, col: usize| -> f64 {
+                    self.h_rows[2 * i + row]
+                        .iter()
+                        .map(|&(dof, a)| a * x[(dof, 2 * c + col)])
+                        .sum()
+                };
+                let (a, b, d) = (w(0, 0), 0.5 * (w(0, 1) + w(1, 0)), w(1, 1));
+                let h = 0.5 * (a - d);
+                1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
+            })
+            .collect();
+        Ok((0..na)
+            .map(|k| {
+                let nearest = samples
+                    .iter()
+                    .enumerate()
+                    .min_by_key(|(_, s)| s.abs_diff(k))
+                    .map_or(0, |(c, _)| c);
+                rho[nearest]
+            })
+            .collect())
+    }
+
+    /// The reduced solve without `F*`: one structure solve per product `F* r`.
+    fn solve_matrix_free_active(
+        &mut self,
+        free: &[[f64; 2]],
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = self.w_active.clone();
+        let na = active.len();
+        let m = 2 * na;
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let mut q = vec![0.0; m];
+        for (k, &i) in active.iter().enumerate() {
+            q[2 * k] = free[i][0];
+            if self.tangent_needed(i) {
+                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
+        }
+        let rho0 = self.estimate_rho0(&active)?;
+        let mut r: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let mut x = vec![0.0; m];
+        let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
+        let (structure, h_rows) = (&self.structure, &self.h_rows);
+        let mut scratch = vec![0.0; structure.dof_count()];
+        let mut applications = 0;
+        let apply = |r: &[f64], x: &mut [f64]| -> Result<(), SolverError> {
+            scratch.fill(0.0);
+            for (j, &row) in rows.iter().enumerate() {
+                if r[j] != 0.0 {
+                    for &(dof, a) in &h_rows[row] {
+                        scratch[dof] += a * r[j];
+                    }
+                }
+            }
+            structure.solve_in_place(&mut scratch)?;
+            applications += 1;
+            for (j, &row) in rows.iter().enumerate() {
+                x[j] = q[j]
+                    + h_rows[row]
+                        .iter()
+                        .map(|&(dof, a)| a * scratch[dof])
+                        .sum::<f64>();
+            }
+            Ok(())
+        };
+        let mf = solve_matrix_free(apply, &laws, &states, &rho0, &self.settings.solver, &mut r, &mut x)?;
+        self.counters.operator_applications += applications;
+        self.counters.structure_solves += applications;
+        self.counters.matrix_free_steps += 1;
+        report.contact_iterations += mf.iterations;
+        report.residual = mf.residual;
+        report.converged &= mf.converged;
+        let statuses = (0..na)
+            .map(|k| {
+                let ri = LocalVec2::planar(r[2 * k], r[2 * k + 1]);
+                let xi = LocalVec2::planar(x[2 * k], x[2 * k + 1]);
+                let tau = ri + laws[k].modified_velocity(&xi, &states[k]) * rho0[k];
+                let p = laws[k].project(&tau, &states[k]);
+                if p.n == 0.0 && p.t[0] == 0.0 {
+                    ContactStatus::Separation
+                } else if (p - tau).norm() <= 1e-8 * tau.norm() {
+                    ContactStatus::Stick
+                } else {
+                    ContactStatus::Slip
+                }
+            })
+            .collect();
+        Ok(Solved {
+            r: r.clone(),
+            r_bar: r,
+            statuses,
+            states,
+        })
     }
 
     /// `F* = H K⁻¹ Hᵀ` on `active`, in chunks of right-hand sides.
@@ -689,6 +883,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
     }
 }
+
+/// Contacts whose diagonal block of `F*` is computed exactly to set `ρ⁰` in matrix-free steps.
+const RHO_SAMPLES: usize = 16;
 
 /// The solution of the reduced problem of a step, on the active set.
 struct Solved<T> {

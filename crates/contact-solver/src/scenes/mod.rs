@@ -3,6 +3,12 @@
 //! data; the choices the seed leaves open are documented on the fields and in
 //! `docs/validation.md` ("Reproducing the seed").
 
+pub mod pile;
+
+pub use pile::{
+    BetaCoupling, Installation, PulloutRun, PulloutScene, PulloutSpec, PulloutStep, ShaftPoint,
+};
+
 use crate::error::SolverError;
 use crate::obstacle::RigidLine;
 use crate::simulation::{ContactSimulation, SimulationSettings, StepResult};

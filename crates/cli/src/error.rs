@@ -1,0 +1,229 @@
+//! Errors of `bipo`: one message naming the file, the line and column and the key path of the
+//! offending value, what it was and what was expected. Never a panic.
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+/// One segment of a key path: `contact[1].law.mu` is `Key(contact) Index(1) Key(law) Key(mu)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Seg {
+    /// A table key.
+    Key(String),
+    /// An array index.
+    Index(usize),
+}
+
+/// A key path in a scene file.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct KeyPath(pub Vec<Seg>);
+
+impl KeyPath {
+    /// The root.
+    pub fn root() -> Self {
+        Self(Vec::new())
+    }
+
+    /// This path extended by a key.
+    pub fn key(&self, k: &str) -> Self {
+        let mut v = self.0.clone();
+        v.push(Seg::Key(k.to_string()));
+        Self(v)
+    }
+
+    /// This path extended by an index.
+    pub fn index(&self, i: usize) -> Self {
+        let mut v = self.0.clone();
+        v.push(Seg::Index(i));
+        Self(v)
+    }
+}
+
+impl fmt::Display for KeyPath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, s) in self.0.iter().enumerate() {
+            match s {
+                Seg::Key(k) if i == 0 => write!(f, "{k}")?,
+                Seg::Key(k) => write!(f, ".{k}")?,
+                Seg::Index(n) => write!(f, "[{n}]")?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// An error with what `bipo` knows of where it comes from.
+#[derive(Debug)]
+pub struct CliError {
+    /// The file it is about.
+    pub file: Option<PathBuf>,
+    /// Byte span in the file.
+    pub span: Option<Range<usize>>,
+    /// Key path in the scene.
+    pub path: Option<KeyPath>,
+    /// The sentence.
+    pub message: String,
+    /// Exit code (2: bad input, 1: the computation failed).
+    pub code: i32,
+}
+
+impl CliError {
+    /// A bad-input error at a key path.
+    pub fn at(path: &KeyPath, message: impl Into<String>) -> Self {
+        Self {
+            file: None,
+            span: None,
+            path: Some(path.clone()),
+            message: message.into(),
+            code: 2,
+        }
+    }
+
+    /// A bad-input error without location.
+    pub fn input(message: impl Into<String>) -> Self {
+        Self {
+            file: None,
+            span: None,
+            path: None,
+            message: message.into(),
+            code: 2,
+        }
+    }
+
+    /// A failure of the computation or of the output files.
+    pub fn failed(message: impl Into<String>) -> Self {
+        Self {
+            file: None,
+            span: None,
+            path: None,
+            message: message.into(),
+            code: 1,
+        }
+    }
+
+    /// Sets the file if none is set yet.
+    pub fn in_file(mut self, file: &Path) -> Self {
+        if self.file.is_none() {
+            self.file = Some(file.to_path_buf());
+        }
+        self
+    }
+
+    /// Renders the message, with `file:line:column` and the source line when known.
+    pub fn render(&self, source: Option<&str>) -> String {
+        let mut head = String::new();
+        if let Some(f) = &self.file {
+            head.push_str(&f.display().to_string());
+        }
+        let mut snippet = String::new();
+        if let (Some(span), Some(src)) = (&self.span, source) {
+            let (line, col) = line_col(src, span.start);
+            head.push_str(&format!(":{line}:{col}"));
+            if let Some(text) = src.lines().nth(line - 1) {
+                let gutter = format!("{line}");
+                let width = (span.end.saturating_sub(span.start))
+                    .clamp(1, text.len().saturating_sub(col - 1).max(1));
+                snippet = format!(
+                    "\n {gutter} | {text}\n {} | {}{}",
+                    " ".repeat(gutter.len()),
+                    " ".repeat(text[..(col - 1).min(text.len())].chars().count()),
+                    "^".repeat(width.min(60))
+                );
+            }
+        }
+        if !head.is_empty() {
+            head.push_str(": ");
+        }
+        let path = match &self.path {
+            Some(p) if !p.0.is_empty() && !self.message.contains(&format!("`{p}`")) => {
+                format!("`{p}`: ")
+            }
+            _ => String::new(),
+        };
+        format!("{head}{path}{}{snippet}", self.message)
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.render(None))
+    }
+}
+
+/// 1-based line and column (in characters) of a byte offset.
+pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(src.len());
+    let before = &src[..floor_char_boundary(src, offset)];
+    let line = before.matches('\n').count() + 1;
+    let col = before
+        .rsplit('\n')
+        .next()
+        .map(|l| l.chars().count())
+        .unwrap_or(0)
+        + 1;
+    (line, col)
+}
+
+fn floor_char_boundary(s: &str, mut i: usize) -> usize {
+    while i > 0 && !s.is_char_boundary(i) {
+        i -= 1;
+    }
+    i
+}
+
+/// The byte span of the value at `path` in the TOML text (the deepest existing prefix).
+pub fn locate(src: &str, path: &KeyPath) -> Option<Range<usize>> {
+    let root = toml::de::DeTable::parse(src).ok()?;
+    let mut span = None;
+    let mut table: Option<&toml::de::DeTable<'_>> = Some(root.get_ref());
+    let mut value: Option<&toml::de::DeValue<'_>> = None;
+    for seg in &path.0 {
+        let next = match (seg, table, value) {
+            (Seg::Key(k), Some(t), _) => t.get(k.as_str()),
+            (Seg::Key(k), None, Some(v)) => v.get(k.as_str()),
+            (Seg::Index(i), _, Some(v)) => v.get(*i),
+            _ => None,
+        };
+        match next {
+            Some(v) => {
+                span = Some(v.span());
+                value = Some(v.get_ref());
+                table = None;
+            }
+            None => break,
+        }
+    }
+    span
+}
+
+/// A `bipo` result.
+pub type CliResult<T> = Result<T, CliError>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn key_paths_display_like_toml_works() {
+        let p = KeyPath::root().key("contact").index(1).key("law").key("mu");
+        assert_eq!(p.to_string(), "contact[1].law.mu");
+    }
+
+    #[test]
+    fn line_col_counts_characters_works() {
+        let src = "a = 1\nβ = 2\n";
+        assert_eq!(line_col(src, 0), (1, 1));
+        assert_eq!(line_col(src, src.find('2').unwrap()), (2, 5));
+    }
+
+    #[test]
+    fn locate_finds_nested_values_works() {
+        let src = "[[contact]]\nname = \"a\"\nlaw = { type = \"coulomb\", mu = -1 }\n";
+        let p = KeyPath::root().key("contact").index(0).key("law").key("mu");
+        let span = locate(src, &p).unwrap();
+        assert_eq!(&src[span], "-1");
+        // a missing key: the deepest existing prefix
+        let q = KeyPath::root().key("contact").index(0).key("target");
+        assert_eq!(&src[locate(src, &q).unwrap()][..11], "[[contact]]");
+    }
+}

@@ -1,0 +1,83 @@
+//! `bipo new KIND`: the commented template scenes. They are the scene files of
+//! `examples/scenes/` (so every template is run by the tests).
+
+use crate::error::{CliError, CliResult};
+use std::path::PathBuf;
+
+/// Template kinds.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum Kind {
+    /// An elastic block pressed on a rigid LINE, frictionless (Signorini), P1.
+    Block,
+    /// A half cylinder (P2, Gmsh mesh) pressed on a rigid LINE: Hertz contact.
+    Hertz,
+    /// Seed 5.6.1: delamination of a thin layer (library preset, RCCM).
+    Delamination,
+    /// Seed 5.6.2: shear of a compressed block (library preset, RCCM).
+    Shear,
+    /// Seed chapter 6: pull-out of the Plancoët pile (library preset, three phases).
+    Pile,
+}
+
+const BLOCK: &str = include_str!("../../../examples/scenes/block.toml");
+const HERTZ: &str = include_str!("../../../examples/scenes/hertz.toml");
+const HERTZ_MSH: &str = include_str!("../../../examples/scenes/hertz_cylinder.msh");
+const DELAMINATION: &str = include_str!("../../../examples/scenes/delamination.toml");
+const SHEAR: &str = include_str!("../../../examples/scenes/shear.toml");
+const PILE: &str = include_str!("../../../examples/scenes/pile.toml");
+
+impl Kind {
+    fn name(self) -> &'static str {
+        match self {
+            Kind::Block => "block",
+            Kind::Hertz => "hertz",
+            Kind::Delamination => "delamination",
+            Kind::Shear => "shear",
+            Kind::Pile => "pile",
+        }
+    }
+
+    /// The template text.
+    pub fn text(self) -> &'static str {
+        match self {
+            Kind::Block => BLOCK,
+            Kind::Hertz => HERTZ,
+            Kind::Delamination => DELAMINATION,
+            Kind::Shear => SHEAR,
+            Kind::Pile => PILE,
+        }
+    }
+
+    /// Extra files the template refers to: (name, content).
+    fn extra(self) -> &'static [(&'static str, &'static str)] {
+        match self {
+            Kind::Hertz => &[("hertz_cylinder.msh", HERTZ_MSH)],
+            _ => &[],
+        }
+    }
+}
+
+/// Writes the template (and its extra files beside it).
+pub fn write(kind: Kind, output: Option<PathBuf>, force: bool) -> CliResult<()> {
+    let path = output.unwrap_or_else(|| PathBuf::from(format!("{}.toml", kind.name())));
+    let dir = path.parent().map(PathBuf::from).unwrap_or_default();
+    let mut files = vec![(path.clone(), kind.text())];
+    for (name, text) in kind.extra() {
+        files.push((dir.join(name), *text));
+    }
+    for (p, _) in &files {
+        if p.exists() && !force {
+            return Err(CliError::input(format!(
+                "{} exists already (use --force to overwrite it)",
+                p.display()
+            )));
+        }
+    }
+    for (p, text) in &files {
+        std::fs::write(p, text)
+            .map_err(|e| CliError::failed(format!("cannot write {}: {e}", p.display())))?;
+        println!("wrote {}", p.display());
+    }
+    println!("next: bipo check {0} && bipo run {0}", path.display());
+    Ok(())
+}
