@@ -557,7 +557,16 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             for (a, b) in u.iter_mut().zip(&u_free) {
                 *a += b;
             }
-            let jumps = self.local_jumps_of(&u);
+            let mut jumps = self.local_jumps_of(&u);
+            // active contacts: the reduced solution's own jumps. Recomputing them from `u` adds
+            // the rounding of `u` (an ulp of the load) times the stiffness contrast, which is
+            // large for stiff glue (C h / E ≫ 1); the next step starts from these jumps.
+            for (k, &i) in self.w_active.iter().enumerate() {
+                jumps[i][0] = solved.x[2 * k];
+                if self.tangent_needed(i) {
+                    jumps[i][1] = self.jumps[i][1] + solved.x[2 * k + 1];
+                }
+            }
             let penetrating: Vec<usize> = (0..self.candidates.len())
                 .filter(|i| self.w_active.binary_search(i).is_err() && jumps[*i][0] < 0.0)
                 .collect();
@@ -707,6 +716,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         Ok(Solved {
             r: r.clone(),
             r_bar: r,
+            x,
             statuses,
             states,
         })
@@ -817,6 +827,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         Ok(Solved {
             r: sol.r,
             r_bar: sol.r_bar,
+            x: sol.x,
             statuses: sol.report.statuses,
             states: sol.states,
         })
@@ -891,6 +902,8 @@ const RHO_SAMPLES: usize = 16;
 struct Solved<T> {
     r: Vec<f64>,
     r_bar: Vec<f64>,
+    /// `x = (gap, slip increment)` of the reduced solution.
+    x: Vec<f64>,
     statuses: Vec<ContactStatus>,
     states: Vec<T>,
 }

@@ -149,6 +149,7 @@ fn report_log_round_trips_exactly_works() {
         assert_eq!(float(row[8]), r.residual);
         assert_eq!(int(9), usize::from(r.converged));
         assert_eq!(float(row[10]), r.wall_time.as_secs_f64());
+        assert_eq!(int(11), usize::from(r.matrix_free));
     }
     assert_eq!(rows[0][7], "1"); // F* built in the first step
 }

@@ -1,1 +1,2 @@
 pub mod hertz_scene;
+pub mod stress_cases;
