@@ -100,9 +100,9 @@ fn rccm_stiffness_range_works() {
 
 /// Issue 8: one elastic step of a glued block (RCCM, `C = 1e12`, body `E = 1e5`, `h = 1`) pulled
 /// by `d`: the reactions match `C u`, `u = E d/(E + C h)`, to 5e-9, but the recorded openings
-/// (`ContactRecord::gap`) are off by up to 4.2 % and not uniform. They are recomputed from
+/// (`ContactRecord::gap`) were off by up to 4.2 % and not uniform when they were recomputed from
 /// `u = u_free + K⁻¹ Hᵀ r`, and `r = A C x` carries the rounding of `x` (an ulp of `d`)
-/// multiplied by `C h/E = 1e7`; the law's own `x` is accurate.
+/// multiplied by `C h/E = 1e7`; they now come from the reduced solution `x` (fixed).
 #[test]
 fn issue_8_recorded_jumps_of_stiff_glue_are_accurate() {
     run_known_bugs(rccm_c_cases());
