@@ -163,3 +163,49 @@ fn coulomb_is_stiffer_early_and_reaches_the_same_ultimate_load() {
         "ultimate RCCM {ur} vs Coulomb {uc}"
     );
 }
+
+/// The seed's qualitative facts of the pull-out curve and of its parametric study (§6.5) as far
+/// as the law of table 6.3 produces them (see `docs/validation.md` for where they differ):
+/// a stiff phase then a slip phase; a stiffer interface (higher C) raises the early load; a
+/// tougher one (higher w) delays its debonding, so the early response follows the springs
+/// longer; a higher μ raises the slip phase.
+#[test]
+fn pullout_curve_and_parametric_trends() {
+    let load = |spec: PulloutSpec| run(&spec).1.curve();
+    let base = load(coarse(10));
+    // stiff phase then slip phase: the secant slope of the first increment far exceeds that of
+    // the last (the plateau of full slip)
+    let slope = |c: &[(f64, f64)], k: usize| (c[k + 1].1 - c[k].1) / (c[k + 1].0 - c[k].0);
+    let n = base.len();
+    assert!(slope(&base, 0) > 10.0 * slope(&base, n - 2), "{} vs {}", slope(&base, 0), slope(&base, n - 2));
+    // higher C: higher load after the first increment
+    let mut stiff = coarse(10);
+    stiff.interface.c_n *= 4.0;
+    stiff.interface.c_t *= 4.0;
+    let stiff = load(stiff);
+    assert!(stiff[1].1 > base[1].1 * 1.05, "C×4: {} vs {}", stiff[1].1, base[1].1);
+    // higher μ: higher load once slipping
+    let mut rough = coarse(10);
+    rough.interface.mu *= 1.5;
+    let rough = load(rough);
+    assert!(rough[n - 1].1 > base[n - 1].1 * 1.2, "μ×1.5: {} vs {}", rough[n - 1].1, base[n - 1].1);
+    // higher w: the glue holds longer, so at the first increment less of the shaft slips
+    let mut tough = coarse(10);
+    tough.interface.w *= 10.0;
+    let tough_run = run(&tough).1;
+    let base_run = run(&coarse(10)).1;
+    let slipping = |r: &PulloutRun| {
+        r.steps[0]
+            .result
+            .contacts
+            .iter()
+            .filter(|c| c.status == InterfaceStatus::Slip)
+            .count()
+    };
+    let mean_beta = |r: &PulloutRun| {
+        let c = &r.steps[0].result.contacts;
+        c.iter().map(|c| c.beta).sum::<f64>() / c.len() as f64
+    };
+    assert!(mean_beta(&tough_run) > mean_beta(&base_run), "w×10: β {} vs {}", mean_beta(&tough_run), mean_beta(&base_run));
+    assert!(slipping(&tough_run) <= slipping(&base_run));
+}
