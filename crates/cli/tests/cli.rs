@@ -275,7 +275,19 @@ fn pile_preset_runs_its_three_phases() {
         .iter()
         .find(|c| c["label"] == "Q (kN)")
         .unwrap();
-    assert!(q["last"].as_f64().unwrap().is_finite());
+    // the same study through the library: the same head load at the last increment
+    let spec = contact_solver::scenes::PulloutSpec {
+        steps: 2,
+        ..contact_solver::scenes::PulloutSpec::plancoet()
+    };
+    let mut lib = spec.build(SimulationSettings::default()).unwrap();
+    let run = lib.run().unwrap();
+    let q_lib = run.steps.last().unwrap().head_load;
+    let q_cli = q["last"].as_f64().unwrap();
+    assert!(
+        (q_cli - q_lib).abs() <= 1e-12 * q_lib.abs(),
+        "bipo {q_cli} vs library {q_lib}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
