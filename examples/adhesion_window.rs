@@ -14,17 +14,37 @@ fn measure(mut scene: Scene) -> Result<(usize, usize, usize, f64), Box<dyn std::
         max = max.max(scene.step(k)?.report.adhesion_iterations);
     }
     let c = scene.simulation.counters();
-    Ok((c.adhesion_iterations, max, c.contact_iterations, start.elapsed().as_secs_f64()))
+    Ok((
+        c.adhesion_iterations,
+        max,
+        c.contact_iterations,
+        start.elapsed().as_secs_f64(),
+    ))
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    println!("| scene | Anderson window | β iterations (total) | max per step | contact iterations | time (s) |");
+    println!(
+        "| scene | Anderson window | β iterations (total) | max per step | contact iterations | time (s) |"
+    );
     println!("|---|---|---|---|---|---|");
     for window in [0, 1, 2, 3, 5, 8] {
-        let settings = SimulationSettings { adhesion_anderson_window: window, ..SimulationSettings::default() };
+        let settings = SimulationSettings {
+            adhesion_anderson_window: window,
+            ..SimulationSettings::default()
+        };
         for (name, scene) in [
-            ("5.6.1 delamination", DelaminationSpec::default().build(settings)?),
-            ("5.6.1, 1 s", DelaminationSpec { duration: 1.0, ..DelaminationSpec::default() }.build(settings)?),
+            (
+                "5.6.1 delamination",
+                DelaminationSpec::default().build(settings)?,
+            ),
+            (
+                "5.6.1, 1 s",
+                DelaminationSpec {
+                    duration: 1.0,
+                    ..DelaminationSpec::default()
+                }
+                .build(settings)?,
+            ),
             ("5.6.2 shear", ShearSpec::default().build(settings)?),
         ] {
             let (total, max, contact, t) = measure(scene)?;

@@ -27,7 +27,11 @@ struct Run {
     total_seconds: f64,
 }
 
-fn run(spec: &DelaminationSpec, algorithm: Algorithm, snapshots: &[usize]) -> Result<(Run, Scene), Box<dyn Error>> {
+fn run(
+    spec: &DelaminationSpec,
+    algorithm: Algorithm,
+    snapshots: &[usize],
+) -> Result<(Run, Scene), Box<dyn Error>> {
     let mut settings = SimulationSettings::default();
     settings.solver.algorithm = algorithm;
     let mut scene = spec.build(settings)?;
@@ -41,7 +45,14 @@ fn run(spec: &DelaminationSpec, algorithm: Algorithm, snapshots: &[usize]) -> Re
         }
     }
     let total_seconds = start.elapsed().as_secs_f64();
-    Ok((Run { results, shapes, total_seconds }, scene))
+    Ok((
+        Run {
+            results,
+            shapes,
+            total_seconds,
+        },
+        scene,
+    ))
 }
 
 /// Interface records of a step sorted by x.
@@ -52,23 +63,37 @@ fn along(res: &StepResult) -> Vec<&bipotential::contact_solver::ContactRecord> {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let steps: usize = std::env::args().nth(1).map(|s| s.parse()).transpose()?.unwrap_or(210);
+    let steps: usize = std::env::args()
+        .nth(1)
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(210);
     let out = PathBuf::from("out/delamination");
     std::fs::create_dir_all(&out)?;
-    let spec = DelaminationSpec { steps, ..DelaminationSpec::default() };
+    let spec = DelaminationSpec {
+        steps,
+        ..DelaminationSpec::default()
+    };
     let step_at = |t: f64| ((t / spec.duration * steps as f64).round() as usize).clamp(1, steps);
     let (k1, k2) = (step_at(3.571), step_at(5.143));
 
     let (bip, scene) = run(&spec, Algorithm::GaussSeidel, &[k1, k2, steps])?;
     let (cla, _) = run(&spec, Algorithm::ClassicRccm, &[])?;
-    let fast_spec = DelaminationSpec { duration: 1.0, ..spec.clone() };
+    let fast_spec = DelaminationSpec {
+        duration: 1.0,
+        ..spec.clone()
+    };
     let (fast, _) = run(&fast_spec, Algorithm::GaussSeidel, &[])?;
 
     // Interface points: 1 and 2 are the first two interface nodes from the lifted end, B the
     // third (our reading of seed fig. 5.6).
     let first = along(&bip.results[0]);
     let n_if = first.len();
-    let (p1, p2, pb) = (first[n_if - 1].node, first[n_if - 2].node, first[n_if - 3].node);
+    let (p1, p2, pb) = (
+        first[n_if - 1].node,
+        first[n_if - 2].node,
+        first[n_if - 3].node,
+    );
 
     // Deformed shapes (fig 5.7): top and bottom lines of the layer, displacements × 1.
     let mesh = scene.simulation.structure().mesh();
@@ -81,11 +106,23 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .iter()
                 .map(|&n| (mesh.nodes()[n][0] + u[n][0], mesh.nodes()[n][1] + u[n][1]))
                 .collect();
-            shape_series.push(Series::new(format!("{set}, t = {:.3} s", spec.duration * *k as f64 / steps as f64), pts));
+            shape_series.push(Series::new(
+                format!(
+                    "{set}, t = {:.3} s",
+                    spec.duration * *k as f64 / steps as f64
+                ),
+                pts,
+            ));
         }
     }
     write_series_csv(&out.join("deformed.csv"), "x_mm", "y_mm", &shape_series)?;
-    line_plot(&out.join("deformed.svg"), "Deformed layer (fig. 5.7)", "x (mm)", "y (mm)", &shape_series)?;
+    line_plot(
+        &out.join("deformed.svg"),
+        "Deformed layer (fig. 5.7)",
+        "x (mm)",
+        "y (mm)",
+        &shape_series,
+    )?;
 
     // Along the interface at t1, t2 for both algorithms (figs 5.8–5.10).
     type Field = fn(&bipotential::contact_solver::ContactRecord) -> f64;
@@ -99,28 +136,54 @@ fn main() -> Result<(), Box<dyn Error>> {
         for (name, r) in [("bipotential", &bip), ("classic RCCM", &cla)] {
             for k in [k1, k2] {
                 let t = spec.duration * k as f64 / steps as f64;
-                let pts = along(&r.results[k - 1]).iter().map(|c| (c.position[0], f(c))).collect();
+                let pts = along(&r.results[k - 1])
+                    .iter()
+                    .map(|c| (c.position[0], f(c)))
+                    .collect();
                 series.push(Series::new(format!("{name}, t = {t:.3} s"), pts));
             }
         }
-        write_series_csv(&out.join(format!("interface_{file}.csv")), "x_mm", file, &series)?;
-        line_plot(&out.join(format!("interface_{file}.svg")), &format!("{label} along the interface"), "x (mm)", label, &series)?;
+        write_series_csv(
+            &out.join(format!("interface_{file}.csv")),
+            "x_mm",
+            file,
+            &series,
+        )?;
+        line_plot(
+            &out.join(format!("interface_{file}.svg")),
+            &format!("{label} along the interface"),
+            "x (mm)",
+            label,
+            &series,
+        )?;
     }
 
     // β(t) at points 1 and 2 (fig 5.11).
-    let history = |r: &Run, node: usize, f: Field, x_of: &dyn Fn(&StepResult) -> f64| -> Vec<(f64, f64)> {
-        r.results
-            .iter()
-            .map(|s| (x_of(s), f(s.contacts.iter().find(|c| c.node == node).unwrap())))
-            .collect()
-    };
+    let history =
+        |r: &Run, node: usize, f: Field, x_of: &dyn Fn(&StepResult) -> f64| -> Vec<(f64, f64)> {
+            r.results
+                .iter()
+                .map(|s| {
+                    (
+                        x_of(s),
+                        f(s.contacts.iter().find(|c| c.node == node).unwrap()),
+                    )
+                })
+                .collect()
+        };
     let time = |s: &StepResult| s.report.time;
     let beta12 = vec![
         Series::new("point 1", history(&bip, p1, |c| c.beta, &time)),
         Series::new("point 2", history(&bip, p2, |c| c.beta, &time)),
     ];
     write_series_csv(&out.join("beta_points_1_2.csv"), "t_s", "beta", &beta12)?;
-    line_plot(&out.join("beta_points_1_2.svg"), "β at interface points 1 and 2 (fig. 5.11)", "t (s)", "β", &beta12)?;
+    line_plot(
+        &out.join("beta_points_1_2.svg"),
+        "β at interface points 1 and 2 (fig. 5.11)",
+        "t (s)",
+        "β",
+        &beta12,
+    )?;
 
     // Rate effect at point B (figs 5.12–5.13): against the imposed displacement.
     let imposed = |spec: &DelaminationSpec| {
@@ -133,33 +196,70 @@ fn main() -> Result<(), Box<dyn Error>> {
         Series::new("0.3 mm in 1 s", history(&fast, pb, |c| c.beta, &d_fast)),
     ];
     let radh_b = vec![
-        Series::new("0.3 mm in 10 s", history(&bip, pb, |c| -c.r_adh[0], &d_slow)),
-        Series::new("0.3 mm in 1 s", history(&fast, pb, |c| -c.r_adh[0], &d_fast)),
+        Series::new(
+            "0.3 mm in 10 s",
+            history(&bip, pb, |c| -c.r_adh[0], &d_slow),
+        ),
+        Series::new(
+            "0.3 mm in 1 s",
+            history(&fast, pb, |c| -c.r_adh[0], &d_fast),
+        ),
     ];
     write_series_csv(&out.join("beta_point_b.csv"), "u_y_mm", "beta", &beta_b)?;
-    write_series_csv(&out.join("adhesive_reaction_point_b.csv"), "u_y_mm", "minus_r_adh_n_N", &radh_b)?;
-    line_plot(&out.join("beta_point_b.svg"), "β at point B (fig. 5.12)", "imposed u_y (mm)", "β", &beta_b)?;
-    line_plot(&out.join("adhesive_reaction_point_b.svg"), "Adhesive normal reaction at B (fig. 5.13)", "imposed u_y (mm)", "−r_adh,n (N per mm)", &radh_b)?;
+    write_series_csv(
+        &out.join("adhesive_reaction_point_b.csv"),
+        "u_y_mm",
+        "minus_r_adh_n_N",
+        &radh_b,
+    )?;
+    line_plot(
+        &out.join("beta_point_b.svg"),
+        "β at point B (fig. 5.12)",
+        "imposed u_y (mm)",
+        "β",
+        &beta_b,
+    )?;
+    line_plot(
+        &out.join("adhesive_reaction_point_b.svg"),
+        "Adhesive normal reaction at B (fig. 5.13)",
+        "imposed u_y (mm)",
+        "−r_adh,n (N per mm)",
+        &radh_b,
+    )?;
 
     // Table 5.1 on this machine.
     let mut md = String::new();
-    writeln!(md, "| step | β iterations (bipotential) | contact iterations (bipotential) | time/step ms (bipotential) | β iterations (classic) | contact iterations (classic) | time/step ms (classic) |")?;
+    writeln!(
+        md,
+        "| step | β iterations (bipotential) | contact iterations (bipotential) | time/step ms (bipotential) | β iterations (classic) | contact iterations (classic) | time/step ms (classic) |"
+    )?;
     writeln!(md, "|---|---|---|---|---|---|---|")?;
-    for k in [1, 10, 40, 60, 100, 150, 200].into_iter().filter(|&k| k <= steps) {
+    for k in [1, 10, 40, 60, 100, 150, 200]
+        .into_iter()
+        .filter(|&k| k <= steps)
+    {
         let (a, b) = (&bip.results[k - 1].report, &cla.results[k - 1].report);
         writeln!(
             md,
             "| {k} | {} | {} | {:.2} | {} | {} | {:.2} |",
-            a.adhesion_iterations, a.contact_iterations, a.wall_time.as_secs_f64() * 1e3,
-            b.adhesion_iterations, b.contact_iterations, b.wall_time.as_secs_f64() * 1e3
+            a.adhesion_iterations,
+            a.contact_iterations,
+            a.wall_time.as_secs_f64() * 1e3,
+            b.adhesion_iterations,
+            b.contact_iterations,
+            b.wall_time.as_secs_f64() * 1e3
         )?;
     }
     let sum = |r: &Run, f: fn(&StepResult) -> usize| r.results.iter().map(f).sum::<usize>();
     writeln!(
         md,
         "| total | {} | {} | {:.3} s | {} | {} | {:.3} s |",
-        sum(&bip, |s| s.report.adhesion_iterations), sum(&bip, |s| s.report.contact_iterations), bip.total_seconds,
-        sum(&cla, |s| s.report.adhesion_iterations), sum(&cla, |s| s.report.contact_iterations), cla.total_seconds
+        sum(&bip, |s| s.report.adhesion_iterations),
+        sum(&bip, |s| s.report.contact_iterations),
+        bip.total_seconds,
+        sum(&cla, |s| s.report.adhesion_iterations),
+        sum(&cla, |s| s.report.contact_iterations),
+        cla.total_seconds
     )?;
     std::fs::write(out.join("table_5_1.md"), &md)?;
     print!("{md}");

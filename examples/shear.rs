@@ -25,7 +25,11 @@ struct Run {
     total_seconds: f64,
 }
 
-fn run(spec: &ShearSpec, algorithm: Algorithm, snapshots: &[usize]) -> Result<(Run, Scene), Box<dyn Error>> {
+fn run(
+    spec: &ShearSpec,
+    algorithm: Algorithm,
+    snapshots: &[usize],
+) -> Result<(Run, Scene), Box<dyn Error>> {
     let mut settings = SimulationSettings::default();
     settings.solver.algorithm = algorithm;
     let mut scene = spec.build(settings)?;
@@ -39,7 +43,14 @@ fn run(spec: &ShearSpec, algorithm: Algorithm, snapshots: &[usize]) -> Result<(R
         }
     }
     let total_seconds = start.elapsed().as_secs_f64();
-    Ok((Run { results, shapes, total_seconds }, scene))
+    Ok((
+        Run {
+            results,
+            shapes,
+            total_seconds,
+        },
+        scene,
+    ))
 }
 
 fn along(res: &StepResult) -> Vec<&ContactRecord> {
@@ -49,10 +60,17 @@ fn along(res: &StepResult) -> Vec<&ContactRecord> {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let steps: usize = std::env::args().nth(1).map(|s| s.parse()).transpose()?.unwrap_or(210);
+    let steps: usize = std::env::args()
+        .nth(1)
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(210);
     let out = PathBuf::from("out/shear");
     std::fs::create_dir_all(&out)?;
-    let spec = ShearSpec { steps, ..ShearSpec::default() };
+    let spec = ShearSpec {
+        steps,
+        ..ShearSpec::default()
+    };
     let step_at = |t: f64| ((t / spec.duration * steps as f64).round() as usize).clamp(1, steps);
     let snaps: Vec<usize> = [2.143, 3.143, 3.571].iter().map(|&t| step_at(t)).collect();
 
@@ -65,19 +83,34 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut shape_series = Vec::new();
     for (k, u) in &bip.shapes {
         let mut pts = Vec::new();
-        for (set, sort_x, reverse) in [("bottom", true, false), ("right", false, false), ("top", true, true), ("left", false, true)] {
+        for (set, sort_x, reverse) in [
+            ("bottom", true, false),
+            ("right", false, false),
+            ("top", true, true),
+            ("left", false, true),
+        ] {
             let mut nodes = mesh.node_set(set)?.to_vec();
             let c = if sort_x { 0 } else { 1 };
             nodes.sort_by(|a, b| mesh.nodes()[*a][c].total_cmp(&mesh.nodes()[*b][c]));
             if reverse {
                 nodes.reverse();
             }
-            pts.extend(nodes.iter().map(|&n| (mesh.nodes()[n][0] + u[n][0], mesh.nodes()[n][1] + u[n][1])));
+            pts.extend(
+                nodes
+                    .iter()
+                    .map(|&n| (mesh.nodes()[n][0] + u[n][0], mesh.nodes()[n][1] + u[n][1])),
+            );
         }
         shape_series.push(Series::new(format!("t = {:.3} s", t_of(*k)), pts));
     }
     write_series_csv(&out.join("deformed.csv"), "x_mm", "y_mm", &shape_series)?;
-    line_plot(&out.join("deformed.svg"), "Deformed block (fig. 5.15)", "x (mm)", "y (mm)", &shape_series)?;
+    line_plot(
+        &out.join("deformed.svg"),
+        "Deformed block (fig. 5.15)",
+        "x (mm)",
+        "y (mm)",
+        &shape_series,
+    )?;
 
     // Along the interface (figs 5.16–5.18).
     type Field = fn(&ContactRecord) -> f64;
@@ -90,12 +123,26 @@ fn main() -> Result<(), Box<dyn Error>> {
         let mut series = Vec::new();
         for (name, r) in [("bipotential", &bip), ("classic RCCM", &cla)] {
             for &k in &snaps {
-                let pts = along(&r.results[k - 1]).iter().map(|c| (c.position[0], f(c))).collect();
+                let pts = along(&r.results[k - 1])
+                    .iter()
+                    .map(|c| (c.position[0], f(c)))
+                    .collect();
                 series.push(Series::new(format!("{name}, t = {:.3} s", t_of(k)), pts));
             }
         }
-        write_series_csv(&out.join(format!("interface_{file}.csv")), "x_mm", file, &series)?;
-        line_plot(&out.join(format!("interface_{file}.svg")), &format!("{label} along the interface"), "x (mm)", label, &series)?;
+        write_series_csv(
+            &out.join(format!("interface_{file}.csv")),
+            "x_mm",
+            file,
+            &series,
+        )?;
+        line_plot(
+            &out.join(format!("interface_{file}.svg")),
+            &format!("{label} along the interface"),
+            "x (mm)",
+            label,
+            &series,
+        )?;
     }
 
     // Reactions at point A (figs 5.19–5.21): adhesive, contact (r̄) and total, normal and
@@ -121,34 +168,69 @@ fn main() -> Result<(), Box<dyn Error>> {
             reactions.push(Series::new(format!("{what} {label}"), pts));
         }
     }
-    write_series_csv(&out.join("reactions_point_a.csv"), "t_s", "reaction_N_per_mm", &reactions)?;
-    line_plot(&out.join("reactions_point_a_normal.svg"), "Normal reactions at A (figs 5.19–5.21)", "t (s)", "r_n (N per mm)", &reactions[..3])?;
-    line_plot(&out.join("reactions_point_a_tangential.svg"), "Tangential reactions at A", "t (s)", "r_t (N per mm)", &reactions[3..])?;
+    write_series_csv(
+        &out.join("reactions_point_a.csv"),
+        "t_s",
+        "reaction_N_per_mm",
+        &reactions,
+    )?;
+    line_plot(
+        &out.join("reactions_point_a_normal.svg"),
+        "Normal reactions at A (figs 5.19–5.21)",
+        "t (s)",
+        "r_n (N per mm)",
+        &reactions[..3],
+    )?;
+    line_plot(
+        &out.join("reactions_point_a_tangential.svg"),
+        "Tangential reactions at A",
+        "t (s)",
+        "r_t (N per mm)",
+        &reactions[3..],
+    )?;
 
     // Table 5.2 on this machine.
     let mut md = String::new();
-    writeln!(md, "| step | β iterations (bipotential) | contact iterations (bipotential) | time/step ms (bipotential) | β iterations (classic) | contact iterations (classic) | time/step ms (classic) |")?;
+    writeln!(
+        md,
+        "| step | β iterations (bipotential) | contact iterations (bipotential) | time/step ms (bipotential) | β iterations (classic) | contact iterations (classic) | time/step ms (classic) |"
+    )?;
     writeln!(md, "|---|---|---|---|---|---|---|")?;
-    for k in [1, 10, 40, 60, 100, 150, 200].into_iter().filter(|&k| k <= steps) {
+    for k in [1, 10, 40, 60, 100, 150, 200]
+        .into_iter()
+        .filter(|&k| k <= steps)
+    {
         let (x, y) = (&bip.results[k - 1].report, &cla.results[k - 1].report);
         writeln!(
             md,
             "| {k} | {} | {} | {:.2} | {} | {} | {:.2} |",
-            x.adhesion_iterations, x.contact_iterations, x.wall_time.as_secs_f64() * 1e3,
-            y.adhesion_iterations, y.contact_iterations, y.wall_time.as_secs_f64() * 1e3
+            x.adhesion_iterations,
+            x.contact_iterations,
+            x.wall_time.as_secs_f64() * 1e3,
+            y.adhesion_iterations,
+            y.contact_iterations,
+            y.wall_time.as_secs_f64() * 1e3
         )?;
     }
     let sum = |r: &Run, f: fn(&StepResult) -> usize| r.results.iter().map(f).sum::<usize>();
     writeln!(
         md,
         "| total | {} | {} | {:.3} s | {} | {} | {:.3} s |",
-        sum(&bip, |s| s.report.adhesion_iterations), sum(&bip, |s| s.report.contact_iterations), bip.total_seconds,
-        sum(&cla, |s| s.report.adhesion_iterations), sum(&cla, |s| s.report.contact_iterations), cla.total_seconds
+        sum(&bip, |s| s.report.adhesion_iterations),
+        sum(&bip, |s| s.report.contact_iterations),
+        bip.total_seconds,
+        sum(&cla, |s| s.report.adhesion_iterations),
+        sum(&cla, |s| s.report.contact_iterations),
+        cla.total_seconds
     )?;
     std::fs::write(out.join("table_5_2.md"), &md)?;
     print!("{md}");
     let last = along(bip.results.last().unwrap());
     let debonded = last.iter().filter(|c| c.beta < 1e-3).count();
-    println!("\n{steps} steps; at the end {debonded} of {} interface nodes debonded; outputs in {}", last.len(), out.display());
+    println!(
+        "\n{steps} steps; at the end {debonded} of {} interface nodes debonded; outputs in {}",
+        last.len(),
+        out.display()
+    );
     Ok(())
 }

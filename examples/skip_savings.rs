@@ -5,16 +5,23 @@
 
 use bipotential::contact_laws::Signorini;
 use bipotential::contact_solver::scenes::{DelaminationSpec, ShearSpec};
-use bipotential::contact_solver::{ContactSimulation, ContactZone, Counters, RigidLine, SimulationSettings, SkipRules};
+use bipotential::contact_solver::{
+    ContactSimulation, ContactZone, Counters, RigidLine, SimulationSettings, SkipRules,
+};
 use bipotential::fem_core::generate::{RectangleSpec, rectangle};
-use bipotential::fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
+use bipotential::fem_core::{
+    Component, ElementKind, Idealization, LinearElasticModel, Material, Supports,
+};
 use std::error::Error;
 use std::time::Instant;
 
 type Outcome = (f64, Counters);
 
 fn seed_scene(delamination: bool, skip: SkipRules) -> Result<Outcome, Box<dyn Error>> {
-    let settings = SimulationSettings { skip, ..SimulationSettings::default() };
+    let settings = SimulationSettings {
+        skip,
+        ..SimulationSettings::default()
+    };
     let mut scene = if delamination {
         DelaminationSpec::default().build(settings)?
     } else {
@@ -36,22 +43,45 @@ fn block(skip: SkipRules) -> Result<Outcome, Box<dyn Error>> {
     let top = mesh.node_set("top")?.to_vec();
     let bottom = mesh.node_set("bottom")?.to_vec();
     let mut supports = Supports::new();
-    supports.prescribe(&top, Component::Y, 0.0)?.fix(&top, Component::X);
-    let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, Material::new(200.0, 0.3, 0.0)?)], supports)?;
+    supports
+        .prescribe(&top, Component::Y, 0.0)?
+        .fix(&top, Component::X);
+    let model = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(0, Material::new(200.0, 0.3, 0.0)?)],
+        supports,
+    )?;
     // the outer quarters face a LINE 0.5 lower: out of reach
     let (mid, outer): (Vec<usize>, Vec<usize>) = bottom.iter().partition(|&&n| {
         let x = model.mesh().nodes()[n][0];
         (1.0..=3.0).contains(&x)
     });
     let zones = vec![
-        ContactZone::rigid("middle", mid, RigidLine::new([0.9, 0.0], [3.1, 0.0])?, Signorini, 0.01),
-        ContactZone::rigid("outer", outer, RigidLine::new([-1.0, -0.5], [5.0, -0.5])?, Signorini, 0.01),
+        ContactZone::rigid(
+            "middle",
+            mid,
+            RigidLine::new([0.9, 0.0], [3.1, 0.0])?,
+            Signorini,
+            0.01,
+        ),
+        ContactZone::rigid(
+            "outer",
+            outer,
+            RigidLine::new([-1.0, -0.5], [5.0, -0.5])?,
+            Signorini,
+            0.01,
+        ),
     ];
-    let settings = SimulationSettings { skip, ..SimulationSettings::default() };
+    let settings = SimulationSettings {
+        skip,
+        ..SimulationSettings::default()
+    };
     let mut sim = ContactSimulation::new(model, zones, settings)?;
     let start = Instant::now();
     for k in 1..=20 {
-        sim.structure_mut().set_prescribed(&top, Component::Y, -0.002 * k as f64)?;
+        sim.structure_mut()
+            .set_prescribed(&top, Component::Y, -0.002 * k as f64)?;
         sim.step(k as f64, 1.0)?;
     }
     Ok((start.elapsed().as_secs_f64(), sim.counters()))
@@ -61,14 +91,44 @@ fn main() -> Result<(), Box<dyn Error>> {
     let on = SkipRules::default();
     let variants = [
         ("all rules on", on),
-        ("reuse F* off", SkipRules { reuse_flexibility: false, ..on }),
-        ("alert distance off", SkipRules { alert_distance: false, ..on }),
-        ("normal-only F* off", SkipRules { frictionless_normal_only: false, ..on }),
-        ("adhesion loop always", SkipRules { adhesion_loop_only_when_adhesive: false, ..on }),
+        (
+            "reuse F* off",
+            SkipRules {
+                reuse_flexibility: false,
+                ..on
+            },
+        ),
+        (
+            "alert distance off",
+            SkipRules {
+                alert_distance: false,
+                ..on
+            },
+        ),
+        (
+            "normal-only F* off",
+            SkipRules {
+                frictionless_normal_only: false,
+                ..on
+            },
+        ),
+        (
+            "adhesion loop always",
+            SkipRules {
+                adhesion_loop_only_when_adhesive: false,
+                ..on
+            },
+        ),
     ];
-    println!("| scene | rules | time (s) | F* builds | F* columns solved | β iterations | contact iterations |");
+    println!(
+        "| scene | rules | time (s) | F* builds | F* columns solved | β iterations | contact iterations |"
+    );
     println!("|---|---|---|---|---|---|---|");
-    for scene in ["5.6.1 delamination", "5.6.2 shear", "frictionless block (P2, 20 steps)"] {
+    for scene in [
+        "5.6.1 delamination",
+        "5.6.2 shear",
+        "frictionless block (P2, 20 steps)",
+    ] {
         for (name, skip) in variants {
             let (t, c) = match scene {
                 "5.6.1 delamination" => seed_scene(true, skip)?,
@@ -77,7 +137,10 @@ fn main() -> Result<(), Box<dyn Error>> {
             };
             println!(
                 "| {scene} | {name} | {t:.3} | {} | {} | {} | {} |",
-                c.flexibility_builds, c.flexibility_columns, c.adhesion_iterations, c.contact_iterations
+                c.flexibility_builds,
+                c.flexibility_columns,
+                c.adhesion_iterations,
+                c.contact_iterations
             );
         }
     }

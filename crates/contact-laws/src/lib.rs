@@ -60,8 +60,8 @@ pub use de_saxce::{contact_bipotential, contact_fenchel_gap, modified_velocity};
 pub use error::LawError;
 pub use law::ContactLaw;
 pub use local::{LocalVec, LocalVec2, LocalVec3};
-pub use standard::StandardLaw;
 pub use rccm::{
     BetaScheme, Rccm, RccmParams, RccmState, adhesion_bipotential, beta_implicit_euler,
     beta_rate_independent, beta_theta,
 };
+pub use standard::StandardLaw;

@@ -212,7 +212,10 @@ mod tests {
         let s0 = c.initial_state();
         assert!(!c.has_adhesion() && !c.adhesion_active(&s0));
         assert_eq!(c.adhesive_stiffness(&s0), [0.0, 0.0]);
-        assert_eq!(c.project(&tau, &s0), Coulomb::new(0.4).unwrap().project(&tau, &()));
+        assert_eq!(
+            c.project(&tau, &s0),
+            Coulomb::new(0.4).unwrap().project(&tau, &())
+        );
         let f = StandardLaw::from(Signorini);
         assert!(!f.has_friction());
         assert_eq!(f.friction_coefficient(&s0), Some(0.0));

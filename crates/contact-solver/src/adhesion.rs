@@ -349,7 +349,8 @@ impl Anderson {
         let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
         if let (Some(fp), Some(up)) = (&self.f_prev, &self.u_prev) {
             let (nf, nfp) = (norm(&f), norm(fp));
-            let cos = f.iter().zip(fp).map(|(a, b)| a * b).sum::<f64>() / (nf * nfp).max(f64::MIN_POSITIVE);
+            let cos = f.iter().zip(fp).map(|(a, b)| a * b).sum::<f64>()
+                / (nf * nfp).max(f64::MIN_POSITIVE);
             if cos < -0.5 && nf > 0.5 * nfp {
                 // the iterates swing back and forth (a cycle): forget the history, damp more
                 self.du.clear();
@@ -375,7 +376,11 @@ impl Anderson {
             // normal equations (ΔFᵀΔF + εI) γ = ΔFᵀ f, tiny and regularised
             let a = Mat::<f64>::from_fn(k, k, |i, j| {
                 let d: f64 = self.df[i].iter().zip(&self.df[j]).map(|(x, y)| x * y).sum();
-                if i == j { d * (1.0 + 1e-10) + f64::MIN_POSITIVE } else { d }
+                if i == j {
+                    d * (1.0 + 1e-10) + f64::MIN_POSITIVE
+                } else {
+                    d
+                }
             });
             let b = Mat::<f64>::from_fn(k, 1, |i, _| {
                 self.df[i].iter().zip(&f).map(|(x, y)| x * y).sum()

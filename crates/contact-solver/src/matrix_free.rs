@@ -55,7 +55,13 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
-fn natural_residual<L: ContactLaw>(laws: &[L], states: &[L::State], rho0: &[f64], r: &[f64], x: &[f64]) -> f64 {
+fn natural_residual<L: ContactLaw>(
+    laws: &[L],
+    states: &[L::State],
+    rho0: &[f64],
+    r: &[f64],
+    x: &[f64],
+) -> f64 {
     let mut s2 = 0.0;
     for (i, &rho) in rho0.iter().enumerate() {
         let ri = local(r, i);
@@ -119,7 +125,11 @@ pub fn solve_matrix_free<L: ContactLaw>(
             });
         }
     }
-    if let Some((index, &value)) = rho0.iter().enumerate().find(|(_, a)| !(a.is_finite() && **a > 0.0)) {
+    if let Some((index, &value)) = rho0
+        .iter()
+        .enumerate()
+        .find(|(_, a)| !(a.is_finite() && **a > 0.0))
+    {
         return Err(SolverError::NonFinite {
             what: "rho0",
             index,
@@ -190,10 +200,15 @@ pub fn solve_matrix_free<L: ContactLaw>(
         if scale_q == 0.0 {
             scale_q = rho_max * norm(x);
         }
-        let change2: f64 = r_new.iter().zip(r.iter()).map(|(a, b)| (a - b) * (a - b)).sum();
+        let change2: f64 = r_new
+            .iter()
+            .zip(r.iter())
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum();
         let r_norm = norm(&r_new);
         let change = change2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
-        residual = natural_residual(laws, states, rho0, &r_new, &x_new) / r_norm.max(scale_q).max(f64::MIN_POSITIVE);
+        residual = natural_residual(laws, states, rho0, &r_new, &x_new)
+            / r_norm.max(scale_q).max(f64::MIN_POSITIVE);
         history.push(residual);
         // accept r_new
         r_prev.copy_from_slice(r);

@@ -163,7 +163,11 @@ impl RigidArc {
         side: ArcSide,
     ) -> Result<Self, SolverError> {
         let center = finite_point("ARC centre", center)?;
-        for (what, value) in [("ARC radius", radius), ("ARC angle", start_angle), ("ARC sweep", sweep)] {
+        for (what, value) in [
+            ("ARC radius", radius),
+            ("ARC angle", start_angle),
+            ("ARC sweep", sweep),
+        ] {
             if !value.is_finite() {
                 return Err(SolverError::NonFinite {
                     what,

@@ -19,8 +19,8 @@
 //! 6. `u = u_free + K⁻¹ Hᵀ r` (one back-substitution, no refactorisation). Inactive candidates
 //!    that ended up penetrating are added to the active set and the step is redone.
 
-use crate::error::SolverError;
 use crate::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+use crate::error::SolverError;
 use crate::matrix_free::solve_matrix_free;
 use crate::reduced::ReducedProblem;
 use crate::uzawa::{UzawaSettings, UzawaSolver};
@@ -490,7 +490,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
         let ndof = self.structure.dof_count();
         let mut u_free = vec![0.0; ndof];
-        self.structure.free_response_into(load_factor, &mut u_free)?;
+        self.structure
+            .free_response_into(load_factor, &mut u_free)?;
         self.counters.structure_solves += 1;
         let free = self.local_jumps_of(&u_free);
 
@@ -570,7 +571,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             let penetrating: Vec<usize> = (0..self.candidates.len())
                 .filter(|i| self.w_active.binary_search(i).is_err() && jumps[*i][0] < 0.0)
                 .collect();
-            if penetrating.is_empty() || report.detection_passes >= self.settings.max_detection_passes {
+            if penetrating.is_empty()
+                || report.detection_passes >= self.settings.max_detection_passes
+            {
                 return Ok(self.accept(time, u, jumps, solved, report, start));
             }
             active.extend(penetrating);
@@ -691,7 +694,15 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             }
             Ok(())
         };
-        let mf = solve_matrix_free(apply, &laws, &states, &rho0, &self.settings.solver, &mut r, &mut x)?;
+        let mf = solve_matrix_free(
+            apply,
+            &laws,
+            &states,
+            &rho0,
+            &self.settings.solver,
+            &mut r,
+            &mut x,
+        )?;
         self.counters.operator_applications += applications;
         self.counters.structure_solves += applications;
         self.counters.matrix_free_steps += 1;
@@ -927,4 +938,3 @@ pub(crate) fn symmetrize(w: &mut [f64], m: usize) {
         }
     }
 }
-

@@ -3,7 +3,9 @@
 //! `−μ ×` the total normal reaction (issue: 1e-8), and every base node slips the same way.
 
 use contact_laws::Coulomb;
-use contact_solver::{ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings, StepResult};
+use contact_solver::{
+    ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings, StepResult,
+};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 
@@ -35,26 +37,46 @@ fn block_sticks_below_threshold_and_slides_at_mu() {
         .unwrap();
         let ground = RigidLine::new([-1.0, 0.0], [3.0, 0.0]).unwrap();
         let zone = ContactZone::rigid("base", bottom, ground, Coulomb::new(MU).unwrap(), 0.1);
-        let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default()).unwrap();
+        let mut sim =
+            ContactSimulation::new(model, vec![zone], SimulationSettings::default()).unwrap();
 
         // press: δ = 0.01 → N ≈ E' ε × 2
-        sim.structure_mut().set_prescribed(&top, Component::Y, -0.01).unwrap();
+        sim.structure_mut()
+            .set_prescribed(&top, Component::Y, -0.01)
+            .unwrap();
         let pressed = sim.step(1.0, 1.0).unwrap();
         let (n, t) = totals(&pressed);
         assert!(n > 0.0 && t.abs() <= 1e-9 * n, "{kind:?}: N {n}, T {t}");
 
         // small push: far below μN, the base sticks (no slip increment anywhere)
-        sim.structure_mut().set_prescribed(&top, Component::X, 1e-5).unwrap();
+        sim.structure_mut()
+            .set_prescribed(&top, Component::X, 1e-5)
+            .unwrap();
         let small = sim.step(2.0, 1.0).unwrap();
         let (n, t) = totals(&small);
-        assert!(t < 0.0 && t.abs() < 0.5 * MU * n, "{kind:?}: T {t} vs μN {}", MU * n);
+        assert!(
+            t < 0.0 && t.abs() < 0.5 * MU * n,
+            "{kind:?}: T {t} vs μN {}",
+            MU * n
+        );
         for c in small.contacts.iter().filter(|c| c.r[0] > 1e-6 * n) {
-            assert_eq!(c.status, InterfaceStatus::Stick, "{kind:?}: node {}", c.node);
-            assert!(c.slip_increment.abs() <= 1e-9 * 0.01, "{kind:?}: slip {}", c.slip_increment);
+            assert_eq!(
+                c.status,
+                InterfaceStatus::Stick,
+                "{kind:?}: node {}",
+                c.node
+            );
+            assert!(
+                c.slip_increment.abs() <= 1e-9 * 0.01,
+                "{kind:?}: slip {}",
+                c.slip_increment
+            );
         }
 
         // large push: the block slides; T = −μ N to 1e-8
-        sim.structure_mut().set_prescribed(&top, Component::X, 0.05).unwrap();
+        sim.structure_mut()
+            .set_prescribed(&top, Component::X, 0.05)
+            .unwrap();
         let slid = sim.step(3.0, 1.0).unwrap();
         let (n, t) = totals(&slid);
         assert!(

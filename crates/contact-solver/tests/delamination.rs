@@ -30,8 +30,15 @@ fn bipotential_and_classic_agree_and_bipotential_iterates_less() {
     let mut worst = 0.0_f64;
     for (a, b) in bip.iter().zip(&cla) {
         for (x, y) in a.contacts.iter().zip(&b.contacts) {
-            worst = worst.max((x.r[0] - y.r[0]).abs()).max((x.r[1] - y.r[1]).abs());
-            assert!((x.beta - y.beta).abs() <= 1e-6, "β {} vs {}", x.beta, y.beta);
+            worst = worst
+                .max((x.r[0] - y.r[0]).abs())
+                .max((x.r[1] - y.r[1]).abs());
+            assert!(
+                (x.beta - y.beta).abs() <= 1e-6,
+                "β {} vs {}",
+                x.beta,
+                y.beta
+            );
         }
     }
     eprintln!(
@@ -39,11 +46,26 @@ fn bipotential_and_classic_agree_and_bipotential_iterates_less() {
          classic {cla_iters} / {cla_adh}; max |Δr| = {worst:e} (scale {scale:e})"
     );
     assert!(worst <= 1e-6 * scale, "max |Δr| {worst} vs scale {scale}");
-    assert!(bip_iters < cla_iters, "bipotential {bip_iters} vs classic {cla_iters}");
+    assert!(
+        bip_iters < cla_iters,
+        "bipotential {bip_iters} vs classic {cla_iters}"
+    );
     // the layer debonds from the lifted end: β falls there and stays 1 at the far end
     let last = bip.last().unwrap();
-    let right = last.contacts.iter().max_by(|a, b| a.position[0].total_cmp(&b.position[0])).unwrap();
-    let left = last.contacts.iter().min_by(|a, b| a.position[0].total_cmp(&b.position[0])).unwrap();
-    assert!(right.beta < 0.5 && right.gap > 0.0, "β at A's end {}", right.beta);
+    let right = last
+        .contacts
+        .iter()
+        .max_by(|a, b| a.position[0].total_cmp(&b.position[0]))
+        .unwrap();
+    let left = last
+        .contacts
+        .iter()
+        .min_by(|a, b| a.position[0].total_cmp(&b.position[0]))
+        .unwrap();
+    assert!(
+        right.beta < 0.5 && right.gap > 0.0,
+        "β at A's end {}",
+        right.beta
+    );
     assert!(left.beta > 0.99 && left.status != InterfaceStatus::Inactive);
 }

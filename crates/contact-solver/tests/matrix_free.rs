@@ -35,7 +35,10 @@ fn matrix_free_agrees_with_gauss_seidel() {
         )
         .unwrap();
         let scale = dense.r.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
-        let diff = r.iter().zip(&dense.r).fold(0.0_f64, |a, (u, v)| a.max((u - v).abs()));
+        let diff = r
+            .iter()
+            .zip(&dense.r)
+            .fold(0.0_f64, |a, (u, v)| a.max((u - v).abs()));
         eprintln!(
             "n_c {nc}: matrix-free {} iterations / {} products ({} restarts), GS {} sweeps; max |Δr| {diff:e}",
             report.iterations, report.applications, report.restarts, dense.report.iterations
@@ -49,7 +52,10 @@ fn matrix_free_agrees_with_gauss_seidel() {
 fn matrix_free_reports_non_convergence_with_history() {
     let p = random_problem(20, 4);
     let laws = p.coulomb_laws();
-    let settings = UzawaSettings { max_iterations: 3, ..UzawaSettings::default() };
+    let settings = UzawaSettings {
+        max_iterations: 3,
+        ..UzawaSettings::default()
+    };
     let (mut r, mut x) = (vec![0.0; 40], vec![0.0; 40]);
     let e = solve_matrix_free(
         |r: &[f64], x: &mut [f64]| {
@@ -64,7 +70,11 @@ fn matrix_free_reports_non_convergence_with_history() {
         &mut x,
     );
     match e {
-        Err(contact_solver::SolverError::NotConverged { iterations, history, .. }) => {
+        Err(contact_solver::SolverError::NotConverged {
+            iterations,
+            history,
+            ..
+        }) => {
             assert_eq!(iterations, 3);
             assert_eq!(history.len(), 3);
         }
@@ -77,7 +87,9 @@ fn matrix_free_reports_non_convergence_with_history() {
 #[test]
 fn simulation_matrix_free_matches_dense() {
     use contact_laws::Coulomb;
-    use contact_solver::{ContactSimulation, ContactZone, FlexibilityMode, RigidLine, SimulationSettings};
+    use contact_solver::{
+        ContactSimulation, ContactZone, FlexibilityMode, RigidLine, SimulationSettings,
+    };
     use fem_core::generate::{RectangleSpec, rectangle};
     use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
     let run = |mode: FlexibilityMode| {
@@ -89,17 +101,33 @@ fn simulation_matrix_free_matches_dense() {
         let mut supports = Supports::new();
         supports.prescribe(&top, Component::Y, 0.0).unwrap();
         supports.prescribe(&top, Component::X, 0.0).unwrap();
-        let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())], supports).unwrap();
+        let model = LinearElasticModel::new(
+            mesh,
+            Idealization::PlaneStrain,
+            &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())],
+            supports,
+        )
+        .unwrap();
         // a LINE tilted slightly: the contact opens towards the right end
         let ground = RigidLine::new([-1.0, -0.01], [3.0, -0.03]).unwrap();
         let zone = ContactZone::rigid("base", bottom, ground, Coulomb::new(0.3).unwrap(), 0.1);
-        let mut settings = SimulationSettings { flexibility: mode, ..SimulationSettings::default() };
+        let mut settings = SimulationSettings {
+            flexibility: mode,
+            ..SimulationSettings::default()
+        };
         settings.solver.tol = 1e-11;
         let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
         let mut out = Vec::new();
-        for (k, (dy, dx)) in [(-0.02, 0.0), (-0.03, 0.002), (-0.03, 0.02)].into_iter().enumerate() {
-            sim.structure_mut().set_prescribed(&top, Component::Y, dy).unwrap();
-            sim.structure_mut().set_prescribed(&top, Component::X, dx).unwrap();
+        for (k, (dy, dx)) in [(-0.02, 0.0), (-0.03, 0.002), (-0.03, 0.02)]
+            .into_iter()
+            .enumerate()
+        {
+            sim.structure_mut()
+                .set_prescribed(&top, Component::Y, dy)
+                .unwrap();
+            sim.structure_mut()
+                .set_prescribed(&top, Component::X, dx)
+                .unwrap();
             out.push(sim.step(k as f64 + 1.0, 1.0).unwrap());
         }
         (out, sim.counters())
@@ -109,12 +137,20 @@ fn simulation_matrix_free_matches_dense() {
     assert_eq!(cd.matrix_free_steps, 0);
     assert_eq!(cf.matrix_free_steps, 3);
     assert_eq!(cf.flexibility_builds, 0);
-    let scale = dense.iter().flat_map(|s| &s.contacts).fold(0.0_f64, |a, c| a.max(c.r[0].abs()));
+    let scale = dense
+        .iter()
+        .flat_map(|s| &s.contacts)
+        .fold(0.0_f64, |a, c| a.max(c.r[0].abs()));
     let mut statuses = std::collections::HashSet::new();
     for (a, b) in dense.iter().zip(&free) {
         for (x, y) in a.contacts.iter().zip(&b.contacts) {
             for d in 0..2 {
-                assert!((x.r[d] - y.r[d]).abs() <= 1e-7 * scale, "{:?} vs {:?}", x.r, y.r);
+                assert!(
+                    (x.r[d] - y.r[d]).abs() <= 1e-7 * scale,
+                    "{:?} vs {:?}",
+                    x.r,
+                    y.r
+                );
             }
             if x.r[0] > 1e-6 * scale {
                 assert_eq!(x.status, y.status);

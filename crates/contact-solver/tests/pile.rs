@@ -177,18 +177,33 @@ fn pullout_curve_and_parametric_trends() {
     // the last (the plateau of full slip)
     let slope = |c: &[(f64, f64)], k: usize| (c[k + 1].1 - c[k].1) / (c[k + 1].0 - c[k].0);
     let n = base.len();
-    assert!(slope(&base, 0) > 10.0 * slope(&base, n - 2), "{} vs {}", slope(&base, 0), slope(&base, n - 2));
+    assert!(
+        slope(&base, 0) > 10.0 * slope(&base, n - 2),
+        "{} vs {}",
+        slope(&base, 0),
+        slope(&base, n - 2)
+    );
     // higher C: higher load after the first increment
     let mut stiff = coarse(10);
     stiff.interface.c_n *= 4.0;
     stiff.interface.c_t *= 4.0;
     let stiff = load(stiff);
-    assert!(stiff[1].1 > base[1].1 * 1.05, "C×4: {} vs {}", stiff[1].1, base[1].1);
+    assert!(
+        stiff[1].1 > base[1].1 * 1.05,
+        "C×4: {} vs {}",
+        stiff[1].1,
+        base[1].1
+    );
     // higher μ: higher load once slipping
     let mut rough = coarse(10);
     rough.interface.mu *= 1.5;
     let rough = load(rough);
-    assert!(rough[n - 1].1 > base[n - 1].1 * 1.2, "μ×1.5: {} vs {}", rough[n - 1].1, base[n - 1].1);
+    assert!(
+        rough[n - 1].1 > base[n - 1].1 * 1.2,
+        "μ×1.5: {} vs {}",
+        rough[n - 1].1,
+        base[n - 1].1
+    );
     // higher w: the glue holds longer, so at the first increment less of the shaft slips
     let mut tough = coarse(10);
     tough.interface.w *= 10.0;
@@ -206,6 +221,11 @@ fn pullout_curve_and_parametric_trends() {
         let c = &r.steps[0].result.contacts;
         c.iter().map(|c| c.beta).sum::<f64>() / c.len() as f64
     };
-    assert!(mean_beta(&tough_run) > mean_beta(&base_run), "w×10: β {} vs {}", mean_beta(&tough_run), mean_beta(&base_run));
+    assert!(
+        mean_beta(&tough_run) > mean_beta(&base_run),
+        "w×10: β {} vs {}",
+        mean_beta(&tough_run),
+        mean_beta(&base_run)
+    );
     assert!(slipping(&tough_run) <= slipping(&base_run));
 }

@@ -4,7 +4,9 @@
 //! with the loading rate (seed figs 5.12–5.13).
 
 use contact_laws::{BetaScheme, Rccm, RccmParams};
-use contact_solver::{ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings};
+use contact_solver::{
+    ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings,
+};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
 
@@ -59,7 +61,11 @@ fn pull(alpha: f64, path: &[f64], duration: f64) -> Vec<(f64, f64)> {
         let u_n = res.contacts.iter().map(|c| c.gap).sum::<f64>() / res.contacts.len() as f64;
         // the interface opens uniformly (ν = 0, uniaxial) and no r̄ acts in tension
         for c in &res.contacts {
-            assert!((c.gap - u_n).abs() <= 1e-9 * u_n.abs().max(1e-12), "{} vs {u_n}", c.gap);
+            assert!(
+                (c.gap - u_n).abs() <= 1e-9 * u_n.abs().max(1e-12),
+                "{} vs {u_n}",
+                c.gap
+            );
             if u_n > 0.0 {
                 assert_eq!(c.status, InterfaceStatus::Open);
                 assert_eq!(c.r_bar, [0.0, 0.0]);
@@ -94,8 +100,15 @@ fn rate_independent_peak_and_work() {
     );
     // stress–opening curve follows σ = C u before the peak and w²/(C u³) after it
     for &(u, s) in &curve {
-        let law = if u <= (W / C_N).sqrt() { C_N * u } else { W * W / (C_N * u.powi(3)) };
-        assert!((s - law).abs() <= 1e-6 * peak_exact, "u {u}: σ {s} vs {law}");
+        let law = if u <= (W / C_N).sqrt() {
+            C_N * u
+        } else {
+            W * W / (C_N * u.powi(3))
+        };
+        assert!(
+            (s - law).abs() <= 1e-6 * peak_exact,
+            "u {u}: σ {s} vs {law}"
+        );
     }
     // work to decohesion: trapezoids, plus the analytic tail ∫_u^∞ w²/(C v³) dv = σ u / 2
     let mut work = 0.0;
@@ -121,6 +134,12 @@ fn viscous_adhesion_peaks_higher_when_pulled_faster() {
     let (slow, fast) = (peak(100.0), peak(10.0));
     let limit = (W * C_N).sqrt();
     eprintln!("alpha = 1: peak slow {slow:.6}, fast {fast:.6}, rate-independent {limit:.6}");
-    assert!(slow > limit * 1.001, "viscosity delays damage: {slow} vs {limit}");
-    assert!(fast > slow * 1.01, "faster loading, higher peak: {fast} vs {slow}");
+    assert!(
+        slow > limit * 1.001,
+        "viscosity delays damage: {slow} vs {limit}"
+    );
+    assert!(
+        fast > slow * 1.01,
+        "faster loading, higher peak: {fast} vs {slow}"
+    );
 }

@@ -13,7 +13,10 @@ fn sorted(res: &StepResult) -> Vec<ContactRecord> {
 
 #[test]
 fn delamination_beta_decreases_from_the_lifted_end() {
-    let spec = DelaminationSpec { steps: 42, ..DelaminationSpec::default() };
+    let spec = DelaminationSpec {
+        steps: 42,
+        ..DelaminationSpec::default()
+    };
     let mut scene = spec.build(SimulationSettings::default()).unwrap();
     let mut damaged_somewhere = false;
     for k in 1..=spec.steps {
@@ -23,9 +26,17 @@ fn delamination_beta_decreases_from_the_lifted_end() {
         // (β < 0.9) β is non-increasing towards it. Ahead of the front the layer, a beam on an
         // elastic foundation, oscillates, so β may wiggle slightly (by 4e-5 at β = 0.988) there.
         let end = line.last().unwrap().beta;
-        assert!(line.iter().all(|c| c.beta >= end), "step {k}: β at the end {end}");
+        assert!(
+            line.iter().all(|c| c.beta >= end),
+            "step {k}: β at the end {end}"
+        );
         for w in line.windows(2).filter(|w| w[0].beta < 0.9) {
-            assert!(w[1].beta <= w[0].beta + 1e-12, "step {k}: β {} then {}", w[0].beta, w[1].beta);
+            assert!(
+                w[1].beta <= w[0].beta + 1e-12,
+                "step {k}: β {} then {}",
+                w[0].beta,
+                w[1].beta
+            );
         }
         damaged_somewhere |= end < 0.5;
     }
@@ -34,8 +45,14 @@ fn delamination_beta_decreases_from_the_lifted_end() {
 
 #[test]
 fn faster_loading_delays_damage() {
-    let slow = DelaminationSpec { steps: 42, ..DelaminationSpec::default() };
-    let fast = DelaminationSpec { duration: 1.0, ..slow.clone() };
+    let slow = DelaminationSpec {
+        steps: 42,
+        ..DelaminationSpec::default()
+    };
+    let fast = DelaminationSpec {
+        duration: 1.0,
+        ..slow.clone()
+    };
     let (mut a, mut b) = (
         slow.build(SimulationSettings::default()).unwrap(),
         fast.build(SimulationSettings::default()).unwrap(),
@@ -45,7 +62,13 @@ fn faster_loading_delays_damage() {
         let (ra, rb) = (sorted(&a.step(k).unwrap()), sorted(&b.step(k).unwrap()));
         // same imposed displacement at step k: the fast run keeps at least as much adhesion
         for (x, y) in ra.iter().zip(&rb) {
-            assert!(y.beta >= x.beta - 1e-12, "step {k}, x = {}: fast β {} < slow β {}", x.position[0], y.beta, x.beta);
+            assert!(
+                y.beta >= x.beta - 1e-12,
+                "step {k}, x = {}: fast β {} < slow β {}",
+                x.position[0],
+                y.beta,
+                x.beta
+            );
             strictly |= y.beta > x.beta + 1e-3;
         }
     }
@@ -54,7 +77,10 @@ fn faster_loading_delays_damage() {
 
 #[test]
 fn shear_debonded_contacts_obey_coulomb() {
-    let spec = ShearSpec { steps: 30, ..ShearSpec::default() };
+    let spec = ShearSpec {
+        steps: 30,
+        ..ShearSpec::default()
+    };
     let mu = spec.interface.mu;
     let mut scene = spec.build(SimulationSettings::default()).unwrap();
     let mut previous: Option<Vec<ContactRecord>> = None;
@@ -66,7 +92,11 @@ fn shear_debonded_contacts_obey_coulomb() {
             // means β < 1e-4, where the adhesive reaction is negligible
             if c.beta < 1e-4 {
                 let rb = c.r_bar[0].hypot(c.r_bar[1]);
-                assert!(c.r_adh[0].hypot(c.r_adh[1]) <= 1e-6 * rb.max(1e-12), "r_adh {:?}", c.r_adh);
+                assert!(
+                    c.r_adh[0].hypot(c.r_adh[1]) <= 1e-6 * rb.max(1e-12),
+                    "r_adh {:?}",
+                    c.r_adh
+                );
                 let mu_bar = mu * (1.0 - c.beta); // f(β) = 1 − β (m = 1)
                 assert!(c.r_bar[1].abs() <= mu_bar * c.r_bar[0] * (1.0 + 1e-9) + 1e-12);
                 if c.status == InterfaceStatus::Slip {
@@ -83,14 +113,23 @@ fn shear_debonded_contacts_obey_coulomb() {
         }
         previous = Some(line);
     }
-    assert!(debonded_slipping > 0, "the block should slide once debonded");
+    assert!(
+        debonded_slipping > 0,
+        "the block should slide once debonded"
+    );
 }
 
 #[test]
 fn anderson_acceleration_changes_the_work_not_the_answer() {
-    let spec = DelaminationSpec { steps: 42, ..DelaminationSpec::default() };
+    let spec = DelaminationSpec {
+        steps: 42,
+        ..DelaminationSpec::default()
+    };
     let run = |window: usize| {
-        let settings = SimulationSettings { adhesion_anderson_window: window, ..SimulationSettings::default() };
+        let settings = SimulationSettings {
+            adhesion_anderson_window: window,
+            ..SimulationSettings::default()
+        };
         let mut scene = spec.build(settings).unwrap();
         let results: Vec<StepResult> = (1..=spec.steps).map(|k| scene.step(k).unwrap()).collect();
         (results, scene.simulation.counters().adhesion_iterations)
@@ -99,7 +138,12 @@ fn anderson_acceleration_changes_the_work_not_the_answer() {
     let (fast, n_fast) = run(1);
     for (a, b) in plain.iter().zip(&fast) {
         for (x, y) in a.contacts.iter().zip(&b.contacts) {
-            assert!((x.beta - y.beta).abs() <= 1e-6, "β {} vs {}", x.beta, y.beta);
+            assert!(
+                (x.beta - y.beta).abs() <= 1e-6,
+                "β {} vs {}",
+                x.beta,
+                y.beta
+            );
         }
     }
     assert!(n_fast < n_plain, "Anderson {n_fast} vs plain {n_plain}");

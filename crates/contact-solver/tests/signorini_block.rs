@@ -2,11 +2,18 @@
 //! uniform pressure `σ = E' δ / h` and no penetration (issue: 1e-10 relative).
 
 use contact_laws::Signorini;
-use contact_solver::{ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings};
+use contact_solver::{
+    ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings,
+};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 
-fn block(kind: ElementKind, nu: f64, lift: f64, alert: f64) -> ContactSimulation<LinearElasticModel, Signorini> {
+fn block(
+    kind: ElementKind,
+    nu: f64,
+    lift: f64,
+    alert: f64,
+) -> ContactSimulation<LinearElasticModel, Signorini> {
     // 2 × 1 block, bottom initially at y = lift above the LINE y = 0.
     let mut spec = RectangleSpec::new([0.0, 2.0], [lift, 1.0 + lift], 8, 4);
     spec.kind = kind;
@@ -34,7 +41,11 @@ fn block(kind: ElementKind, nu: f64, lift: f64, alert: f64) -> ContactSimulation
 
 #[test]
 fn pressed_block_gets_uniform_pressure_and_no_penetration() {
-    for (kind, alert) in [(ElementKind::Tri3, 0.5), (ElementKind::Tri6, 0.5), (ElementKind::Tri6, 1e-4)] {
+    for (kind, alert) in [
+        (ElementKind::Tri3, 0.5),
+        (ElementKind::Tri6, 0.5),
+        (ElementKind::Tri6, 1e-4),
+    ] {
         let lift = 0.001;
         let delta = 0.011; // top moved down by 0.011: 0.01 of compression after closing the gap
         let mut sim = block(kind, 0.0, lift, alert);
@@ -48,7 +59,11 @@ fn pressed_block_gets_uniform_pressure_and_no_penetration() {
         let expected_active = if alert > lift { r1.contacts.len() } else { 0 };
         assert_eq!(r1.report.active_contacts, expected_active);
         assert!(r1.contacts.iter().all(|c| c.r == [0.0, 0.0]));
-        assert!(r1.contacts.iter().all(|c| (c.gap - 0.5 * lift).abs() < 1e-14));
+        assert!(
+            r1.contacts
+                .iter()
+                .all(|c| (c.gap - 0.5 * lift).abs() < 1e-14)
+        );
         // step 2: pressed
         sim.structure_mut()
             .set_prescribed(&top, Component::Y, -delta)

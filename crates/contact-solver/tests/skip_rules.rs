@@ -2,13 +2,22 @@
 //! answer is the same as with the rule switched off.
 
 use contact_laws::{BetaScheme, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
-use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings, SkipRules, StepResult};
+use contact_solver::{
+    ContactSimulation, ContactZone, RigidLine, SimulationSettings, SkipRules, StepResult,
+};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 
 /// A block with its bottom 0.001 above a LINE, top pushed down in `steps` steps; the bottom's
 /// left half faces the LINE, the right half is lifted by a step of 0.5 (out of reach).
-fn run(law: StandardLaw, skip: SkipRules, steps: usize) -> (Vec<StepResult>, ContactSimulation<LinearElasticModel, StandardLaw>) {
+fn run(
+    law: StandardLaw,
+    skip: SkipRules,
+    steps: usize,
+) -> (
+    Vec<StepResult>,
+    ContactSimulation<LinearElasticModel, StandardLaw>,
+) {
     let mut spec = RectangleSpec::new([0.0, 2.0], [0.001, 1.001], 8, 4);
     spec.kind = ElementKind::Tri6;
     let mesh = rectangle(&spec).unwrap();
@@ -17,11 +26,22 @@ fn run(law: StandardLaw, skip: SkipRules, steps: usize) -> (Vec<StepResult>, Con
     let mut supports = Supports::new();
     supports.prescribe(&top, Component::Y, 0.0).unwrap();
     supports.fix(&top, Component::X);
-    let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, Material::new(200.0, 0.3, 0.0).unwrap())], supports).unwrap();
+    let model = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(0, Material::new(200.0, 0.3, 0.0).unwrap())],
+        supports,
+    )
+    .unwrap();
     let near = RigidLine::new([-1.0, 0.0], [1.0, 0.0]).unwrap();
     let far = RigidLine::new([1.0, -0.5], [3.0, -0.5]).unwrap();
-    let settings = SimulationSettings { skip, ..SimulationSettings::default() };
-    let (l, r): (Vec<usize>, Vec<usize>) = bottom.iter().partition(|&&n| model.mesh().nodes()[n][0] < 1.0);
+    let settings = SimulationSettings {
+        skip,
+        ..SimulationSettings::default()
+    };
+    let (l, r): (Vec<usize>, Vec<usize>) = bottom
+        .iter()
+        .partition(|&&n| model.mesh().nodes()[n][0] < 1.0);
     let zones = vec![
         ContactZone::rigid("near", l, near, law, 0.01),
         ContactZone::rigid("far", r, far, law, 0.01),
@@ -29,7 +49,9 @@ fn run(law: StandardLaw, skip: SkipRules, steps: usize) -> (Vec<StepResult>, Con
     let mut sim = ContactSimulation::new(model, zones, settings).unwrap();
     let mut out = Vec::new();
     for k in 1..=steps {
-        sim.structure_mut().set_prescribed(&top, Component::Y, -0.004 * k as f64).unwrap();
+        sim.structure_mut()
+            .set_prescribed(&top, Component::Y, -0.004 * k as f64)
+            .unwrap();
         out.push(sim.step(k as f64, 1.0).unwrap());
     }
     (out, sim)
@@ -39,9 +61,19 @@ fn same(a: &[StepResult], b: &[StepResult], tol: f64) {
     for (x, y) in a.iter().zip(b) {
         for (p, q) in x.contacts.iter().zip(&y.contacts) {
             for d in 0..2 {
-                assert!((p.r[d] - q.r[d]).abs() <= tol * 1.0, "{:?} vs {:?}", p.r, q.r);
+                assert!(
+                    (p.r[d] - q.r[d]).abs() <= tol * 1.0,
+                    "{:?} vs {:?}",
+                    p.r,
+                    q.r
+                );
             }
-            assert!((p.gap - q.gap).abs() <= 1e-9 * 0.004, "gap {} vs {}", p.gap, q.gap);
+            assert!(
+                (p.gap - q.gap).abs() <= 1e-9 * 0.004,
+                "gap {} vs {}",
+                p.gap,
+                q.gap
+            );
         }
     }
 }
@@ -57,7 +89,10 @@ const ALL_OFF: SkipRules = SkipRules {
 fn frictionless_laws_skip_the_tangential_columns() {
     let law = StandardLaw::from(Signorini);
     let (on, sim_on) = run(law, SkipRules::default(), 3);
-    let off_rule = SkipRules { frictionless_normal_only: false, ..SkipRules::default() };
+    let off_rule = SkipRules {
+        frictionless_normal_only: false,
+        ..SkipRules::default()
+    };
     let (off, sim_off) = run(law, off_rule, 3);
     same(&on, &off, 1e-9);
     let (c_on, c_off) = (sim_on.counters(), sim_off.counters());
@@ -91,7 +126,17 @@ fn inactive_candidates_stay_out_and_f_star_is_reused() {
 fn no_adhesion_loop_when_every_beta_is_zero() {
     // RCCM with β₀ = 0 is plain Coulomb friction (seed fig. 6.5): no fixed point
     let law = StandardLaw::from(
-        Rccm::new(RccmParams { c_n: 1e3, c_t: 1e3, w: 1e-3, alpha: 0.0, mu: 0.3, m: 1, beta_0: 0.0, scheme: BetaScheme::ImplicitEuler }).unwrap(),
+        Rccm::new(RccmParams {
+            c_n: 1e3,
+            c_t: 1e3,
+            w: 1e-3,
+            alpha: 0.0,
+            mu: 0.3,
+            m: 1,
+            beta_0: 0.0,
+            scheme: BetaScheme::ImplicitEuler,
+        })
+        .unwrap(),
     );
     let (res, sim) = run(law, SkipRules::default(), 3);
     assert_eq!(sim.counters().adhesion_iterations, 0);

@@ -6,7 +6,9 @@
 use contact_laws::Signorini;
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings};
 use fem_core::generate::{RectangleSpec, rectangle};
-use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports};
+use fem_core::{
+    Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports,
+};
 
 const E_LOW: f64 = 100.0;
 const E_UP: f64 = 300.0;
@@ -30,7 +32,8 @@ fn stacked(nx_low: usize, nx_up: usize) -> (LinearElasticModel, Vec<usize>, Vec<
     let up_bottom = shift(up.node_set("bottom").unwrap());
     let up_top = shift(up.node_set("top").unwrap());
     mesh.add_node_set("up_top", up_top.clone()).unwrap();
-    mesh.add_node_set("bottom", low.node_set("bottom").unwrap().to_vec()).unwrap();
+    mesh.add_node_set("bottom", low.node_set("bottom").unwrap().to_vec())
+        .unwrap();
     let mut supports = Supports::new();
     supports
         .fix(low.node_set("bottom").unwrap(), Component::X)
@@ -73,7 +76,11 @@ fn node_pairs_give_the_series_solution() {
         assert!(c.gap.abs() <= 1e-10 * DELTA, "gap {}", c.gap);
         // the consistent nodal force of a uniform pressure: h/2 at the ends, h inside
         let h = 2.0 / 6.0;
-        let weight = if c.position[0] == 0.0 || c.position[0] == 2.0 { h / 2.0 } else { h };
+        let weight = if c.position[0] == 0.0 || c.position[0] == 2.0 {
+            h / 2.0
+        } else {
+            h
+        };
         assert!((c.r[0] - sigma_exact() * weight).abs() <= 1e-9 * exact);
     }
 }
@@ -87,7 +94,10 @@ fn node_to_segment_carries_the_load_on_non_matching_meshes() {
     let res = sim.step(1.0, 1.0).unwrap();
     let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
     let exact = 2.0 * sigma_exact();
-    eprintln!("node-to-segment: total {total}, exact {exact}, error {:.2e}", (total - exact) / exact);
+    eprintln!(
+        "node-to-segment: total {total}, exact {exact}, error {:.2e}",
+        (total - exact) / exact
+    );
     // node-to-segment does not pass the patch test exactly: the total within 2 %
     assert!((total - exact).abs() <= 2e-2 * exact, "{total} vs {exact}");
     for c in &res.contacts {
