@@ -390,7 +390,7 @@ fn solver_settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     let mut out = SimulationSettings::default();
     if let Some(a) = s.algorithm {
         out.solver.algorithm = match a {
-            AlgorithmSpec::Bipotential => Algorithm::GaussSeidel,
+            AlgorithmSpec::Bipotential => Algorithm::default(),
             AlgorithmSpec::Uzawa => Algorithm::Uzawa,
             AlgorithmSpec::RccmClassic => Algorithm::ClassicRccm,
         };

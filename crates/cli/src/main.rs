@@ -394,7 +394,7 @@ fn solve_local(
         tol,
         max_iterations,
         algorithm: match algorithm {
-            AlgorithmArg::Bipotential => Algorithm::GaussSeidel,
+            AlgorithmArg::Bipotential => Algorithm::default(),
             AlgorithmArg::Uzawa => Algorithm::Uzawa,
             AlgorithmArg::RccmClassic => Algorithm::ClassicRccm,
         },

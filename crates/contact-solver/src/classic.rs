@@ -134,6 +134,39 @@ pub(crate) struct ClassicRun {
     pub change: f64,
 }
 
+/// Collects `μ̄_i = law_i.friction_coefficient(state_i)` of the `nc` contacts into `mu_bar`
+/// (cleared first), for the solvers that need a Coulomb cone (this one and
+/// [`Algorithm::Newton`](crate::Algorithm::Newton)).
+///
+/// # Errors
+/// [`SolverError::NoFrictionCoefficient`] / [`SolverError::InvalidLaw`] if a law's
+/// `friction_coefficient` is `None` / not finite and `≥ 0`.
+pub(crate) fn friction_coefficients_into<L: ContactLaw>(
+    laws: &[L],
+    states: &[L::State],
+    nc: usize,
+    mu_bar: &mut Vec<f64>,
+) -> Result<(), SolverError> {
+    mu_bar.clear();
+    for contact in 0..nc {
+        match pick(laws, contact).friction_coefficient(pick(states, contact)) {
+            None => return Err(SolverError::NoFrictionCoefficient { contact }),
+            Some(m) if m.is_finite() && m >= 0.0 => mu_bar.push(m),
+            Some(value) => {
+                return Err(SolverError::InvalidLaw {
+                    contact,
+                    source: LawError::InvalidParameter {
+                        name: "mu_bar",
+                        value,
+                        expected: "a finite value >= 0",
+                    },
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// One projected SOR sweep on the unknowns `k = 2i + component`:
 /// `r_k ← project(i, r_k − ω x_k / W_kk)`, then `x += W[:, k] Δr_k`. Returns the relative
 /// change `‖Δr_c‖/‖r_c‖` of those unknowns over the sweep.
@@ -190,23 +223,7 @@ impl ClassicScratch {
         let nc = problem.contact_count();
         let m = problem.size();
         let w = problem.w();
-        self.mu_bar.clear();
-        for contact in 0..nc {
-            match pick(laws, contact).friction_coefficient(pick(states, contact)) {
-                None => return Err(SolverError::NoFrictionCoefficient { contact }),
-                Some(mu_bar) if mu_bar.is_finite() && mu_bar >= 0.0 => self.mu_bar.push(mu_bar),
-                Some(value) => {
-                    return Err(SolverError::InvalidLaw {
-                        contact,
-                        source: LawError::InvalidParameter {
-                            name: "mu_bar",
-                            value,
-                            expected: "a finite value >= 0",
-                        },
-                    });
-                }
-            }
-        }
+        friction_coefficients_into(laws, states, nc, &mut self.mu_bar)?;
         let frictional = self.mu_bar.iter().any(|&mu_bar| mu_bar > 0.0);
         if !frictional && r.iter().skip(1).step_by(2).any(|&r_t| r_t != 0.0) {
             // Frictionless: r_t = 0 exactly (drop a warm start's r_t).

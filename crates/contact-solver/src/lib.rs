@@ -27,10 +27,12 @@
 #![warn(missing_docs)]
 
 pub mod adhesion;
+pub mod anderson;
 pub mod classic;
 pub mod error;
 pub mod generate;
 pub mod matrix_free;
+pub mod newton;
 pub mod obstacle;
 pub mod output;
 pub mod reduced;

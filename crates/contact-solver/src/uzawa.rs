@@ -4,21 +4,41 @@
 //! prediction (5.26a):  τ_i = r_i + ρ_i v_i(x),   v_i = law_i.modified_velocity(x_i)
 //! correction (5.26b):  r_i ← law_i.project(τ_i)
 //! ```
-//! Three algorithms are offered ([`Algorithm`]); the first two are bipotential sweeps:
+//! Six algorithms are offered ([`Algorithm`]), all stopping on the rule below. Two are the
+//! plain bipotential sweeps:
 //! - [`Algorithm::Uzawa`]: all contacts from the same `x` (a projected-gradient / Jacobi
-//!   step), then `x = W r + q` once per iteration;
+//!   step), then `x = W r + q` once per iteration — the seed's algorithm, kept as the
+//!   reference;
 //! - [`Algorithm::GaussSeidel`]: contact by contact, each using the current `x`, which is
 //!   updated right after with the two columns of `W` that the contact touches (De Saxcé–Feng's
-//!   projected Gauss–Seidel). It is the default: on seeded random SPD problems
+//!   projected Gauss–Seidel). On seeded random SPD problems
 //!   ([`generate::random_problem`](crate::generate::random_problem), `n_c` = 10/100/300,
 //!   release build) it takes 57–60 sweeps against 79–101 for Uzawa and is 1.5–9× faster
 //!   (n_c = 300: 2.6 ms against 23 ms), because a sweep costs one pass over `W` while an
 //!   Uzawa step costs one product `W r` per trial, and a few trials are redone.
 //!
-//! The third, [`Algorithm::ClassicRccm`], is the classical solver the seed compares the
-//! bipotential with (GYPTIS, seed §5.6): Signorini and friction solved separately, with a fixed
-//! point on the friction threshold; it is described in [`classic`](crate::classic) and stops on
-//! the same rule as the two sweeps.
+//! Two accelerate them ([`anderson`](crate::anderson)): [`Algorithm::AndersonGaussSeidel`] —
+//! **the default** — and [`Algorithm::AndersonUzawa`], safeguarded Anderson mixing of the last
+//! 5 iterates of the sweep. [`Algorithm::Newton`] ([`newton`](crate::newton)) is a semi-smooth
+//! Newton method on the same projection equation, for Coulomb-type laws. And
+//! [`Algorithm::ClassicRccm`] is the classical solver the seed compares the bipotential with
+//! (GYPTIS, seed §5.6): Signorini and friction solved separately, with a fixed point on the
+//! friction threshold ([`classic`](crate::classic)).
+//!
+//! # Which algorithm
+//! Measured by `examples/work_precision_local.rs` (`docs/benchmarks.md`, "Local solver:
+//! work–precision"): time to reach a residual of 1e-10 on random problems (`n_c` = 10 to 5000)
+//! and on FE reduced problems of the Hertz scene (21 and 141 contacts, frictionless and with
+//! partial slip).
+//! - Newton is the fastest on every FE problem (5–8× faster than Gauss–Seidel) and on random
+//!   problems up to `n_c` ≈ 1000, but its dense factorisation grows as `n_c³` (at `n_c` = 5000
+//!   it is 4–5× slower than the accelerated sweep) and it needs
+//!   [`ContactLaw::friction_coefficient`].
+//! - The accelerated Gauss–Seidel sweep is 1.1–3× faster than Gauss–Seidel on every problem,
+//!   needs nothing but `project` and `modified_velocity` (any law), and converges where
+//!   Gauss–Seidel does not in 10 000 sweeps (issue 8's stress suite: a stiffness contrast of
+//!   1e8, 40 sweeps). It is the default; choose Newton for Coulomb-type problems up to about a
+//!   thousand contacts.
 //!
 //! # The penalty ρ
 //! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s 2×2 diagonal block:
@@ -55,8 +75,10 @@
 //! `tiny = f64::MIN_POSITIVE`. The residual is the natural map of the fixed point (zero
 //! exactly on solutions); [`UzawaReport::history`] records it at every iteration.
 
+use crate::anderson::{AndersonScratch, BaseMap};
 use crate::classic::ClassicScratch;
 use crate::error::SolverError;
+use crate::newton::NewtonScratch;
 use crate::reduced::ReducedProblem;
 use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
 
@@ -76,14 +98,25 @@ const STATUS_TOL: f64 = 1e-8;
 pub enum Algorithm {
     /// Every contact from the same `x`, then `x = W r + q` (Jacobi / projected gradient).
     Uzawa,
-    /// Contact by contact with the current `x` (projected Gauss–Seidel). The default.
-    #[default]
+    /// Contact by contact with the current `x` (projected Gauss–Seidel).
     GaussSeidel,
     /// The classical solver (seed §5.6, GYPTIS): contact and friction treated separately, by
     /// projected SOR sweeps on the normal then the tangential components, with a fixed point
     /// on the threshold `s_i = μ̄_i r_n,i`. Needs
     /// [`ContactLaw::friction_coefficient`]; see [`classic`](crate::classic).
     ClassicRccm,
+    /// Anderson acceleration (memory [`ANDERSON_DEPTH`](crate::anderson::ANDERSON_DEPTH),
+    /// safeguarded) of the projected Gauss–Seidel sweep; see [`anderson`](crate::anderson).
+    /// The default (chosen by measurement, see the [module docs](self#which-algorithm)).
+    #[default]
+    AndersonGaussSeidel,
+    /// Anderson acceleration (safeguarded) of the Uzawa step; see
+    /// [`anderson`](crate::anderson).
+    AndersonUzawa,
+    /// Semi-smooth Newton on `r − P_K(r + ρ v(W r + q)) = 0` with a dense LU of the reduced
+    /// Newton system, a line search and Gauss–Seidel fallback. Needs
+    /// [`ContactLaw::friction_coefficient`]; see [`newton`](crate::newton).
+    Newton,
 }
 
 /// Settings of the reduced solver.
@@ -126,10 +159,12 @@ pub struct UzawaReport {
     /// The algorithm that ran.
     pub algorithm: Algorithm,
     /// Iterations (sweeps) done: for [`Algorithm::ClassicRccm`], every normal and tangential
-    /// sweep of every outer iteration (see [`classic`](crate::classic)).
+    /// sweep of every outer iteration (see [`classic`](crate::classic)); for the Anderson
+    /// variants, base steps (rejected ones included); for [`Algorithm::Newton`], Newton steps
+    /// plus Gauss–Seidel sweeps.
     pub iterations: usize,
-    /// Outer iterations: threshold updates of [`Algorithm::ClassicRccm`]; equal to
-    /// `iterations` for the bipotential sweeps.
+    /// Outer iterations: threshold updates of [`Algorithm::ClassicRccm`], Newton steps (dense
+    /// factorisations) of [`Algorithm::Newton`]; equal to `iterations` for the sweeps.
     pub outer_iterations: usize,
     /// Sweeps of the friction sub-problem of [`Algorithm::ClassicRccm`] (so
     /// `iterations − tangential_sweeps` are Signorini sweeps); 0 for the bipotential sweeps,
@@ -184,6 +219,8 @@ pub struct UzawaSolver {
     rho0: Vec<f64>,
     rho: Vec<f64>,
     classic: ClassicScratch,
+    anderson: AndersonScratch,
+    newton: NewtonScratch,
 }
 
 /// Solves `problem` with one Coulomb law `Coulomb::new(μ_i)` per contact — the entry point for
@@ -213,12 +250,12 @@ pub(crate) fn pick<T>(s: &[T], i: usize) -> &T {
 }
 
 #[inline]
-fn local(v: &[f64], i: usize) -> LocalVec2 {
+pub(crate) fn local(v: &[f64], i: usize) -> LocalVec2 {
     LocalVec2::planar(v[2 * i], v[2 * i + 1])
 }
 
 #[inline]
-fn set_local(v: &mut [f64], i: usize, a: &LocalVec2) {
+pub(crate) fn set_local(v: &mut [f64], i: usize, a: &LocalVec2) {
     v[2 * i] = a.n;
     v[2 * i + 1] = a.t[0];
 }
@@ -368,10 +405,7 @@ impl UzawaSolver {
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
         if st.algorithm == Algorithm::Uzawa {
-            for i in 0..nc {
-                let v = pick(laws, i).modified_velocity(&local(&x, i), pick(states, i));
-                set_local(&mut self.v, i, &v);
-            }
+            self.set_velocity(laws, states, &x);
         }
         let mut history = Vec::with_capacity(st.max_iterations.min(100_000));
         let denom_q = self.rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
@@ -403,16 +437,56 @@ impl UzawaSolver {
             change = run.change;
             self.rho.copy_from_slice(&self.rho0);
         }
-        while st.algorithm != Algorithm::ClassicRccm && iterations < st.max_iterations {
+        if let Some(base) = match st.algorithm {
+            Algorithm::AndersonGaussSeidel => Some(BaseMap::GaussSeidel),
+            Algorithm::AndersonUzawa => Some(BaseMap::Uzawa),
+            _ => None,
+        } {
+            let mut scratch = std::mem::take(&mut self.anderson);
+            let run = scratch.solve(
+                self,
+                base,
+                problem,
+                laws,
+                states,
+                &st,
+                denom_q,
+                &mut theta,
+                &mut r,
+                &mut x,
+                &mut history,
+            );
+            self.anderson = scratch;
+            (iterations, outer_iterations) = (run.iterations, run.iterations);
+            (converged, residual, change) = (run.converged, run.residual, run.change);
+        }
+        if st.algorithm == Algorithm::Newton {
+            let mut scratch = std::mem::take(&mut self.newton);
+            let run = scratch.solve(
+                self,
+                problem,
+                laws,
+                states,
+                &st,
+                denom_q,
+                &mut r,
+                &mut x,
+                &mut history,
+            );
+            self.newton = scratch;
+            let run = run?;
+            (iterations, outer_iterations) = (run.iterations, run.newton_steps);
+            (converged, residual, change) = (run.converged, run.residual, run.change);
+        }
+        let sweeps = matches!(st.algorithm, Algorithm::Uzawa | Algorithm::GaussSeidel);
+        while sweeps && iterations < st.max_iterations {
             iterations += 1;
             let dr2 = match st.algorithm {
                 Algorithm::Uzawa => {
                     self.uzawa_step(problem, laws, states, &mut r, &mut x, &mut theta)
                 }
-                // (ClassicRccm ran above and never enters this loop.)
-                Algorithm::GaussSeidel | Algorithm::ClassicRccm => {
-                    self.gauss_seidel_sweep(problem, laws, states, &mut r, &mut x)
-                }
+                // (The other algorithms ran above and never enter this loop.)
+                _ => self.gauss_seidel_sweep(problem, laws, states, &mut r, &mut x),
             };
             outer_iterations = iterations;
             let r_norm = norm(&r);
@@ -438,7 +512,7 @@ impl UzawaSolver {
             });
         }
         problem.displacement_into(&r, &mut x);
-        if st.algorithm == Algorithm::Uzawa {
+        if matches!(st.algorithm, Algorithm::Uzawa | Algorithm::AndersonUzawa) {
             for (rho, rho0) in self.rho.iter_mut().zip(&self.rho0) {
                 *rho = theta * rho0;
             }
@@ -474,8 +548,27 @@ impl UzawaSolver {
         Ok(Solution { r, x, report })
     }
 
+    /// The base penalties `ρ⁰_i = 1/λ_max(W_ii)` of the current solve.
+    pub(crate) fn rho0(&self) -> &[f64] {
+        &self.rho0
+    }
+
+    /// `self.v = v(x)`, the precondition of [`uzawa_step`](Self::uzawa_step).
+    pub(crate) fn set_velocity<L: ContactLaw>(
+        &mut self,
+        laws: &[L],
+        states: &[L::State],
+        x: &[f64],
+    ) {
+        for i in 0..self.rho0.len() {
+            let v = pick(laws, i).modified_velocity(&local(x, i), pick(states, i));
+            set_local(&mut self.v, i, &v);
+        }
+    }
+
     /// One Jacobi step with the globally adapted factor `theta`; returns `‖Δr‖²`.
-    fn uzawa_step<L: ContactLaw>(
+    /// `self.v` must hold `v(x)` on entry (it holds `v` of the new `x` on return).
+    pub(crate) fn uzawa_step<L: ContactLaw>(
         &mut self,
         problem: &ReducedProblem,
         laws: &[L],
@@ -527,7 +620,7 @@ impl UzawaSolver {
     }
 
     /// One projected Gauss–Seidel sweep with per-contact adapted `ρ_i`; returns `‖Δr‖²`.
-    fn gauss_seidel_sweep<L: ContactLaw>(
+    pub(crate) fn gauss_seidel_sweep<L: ContactLaw>(
         &mut self,
         problem: &ReducedProblem,
         laws: &[L],
