@@ -62,9 +62,10 @@ pub enum SolverError {
     /// The law at a contact has no friction coefficient
     /// ([`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient)
     /// returned `None`), which [`Algorithm::ClassicRccm`](crate::Algorithm::ClassicRccm)
-    /// needs for its threshold `s = μ̄ r_n`.
+    /// needs for its threshold `s = μ̄ r_n` and [`Algorithm::Newton`](crate::Algorithm::Newton)
+    /// for its generalized Jacobian.
     #[error(
-        "the law at contact {contact} has no friction coefficient: the classical RCCM solver needs a Coulomb-type law (use the bipotential solver for this law)"
+        "the law at contact {contact} has no friction coefficient: the classical RCCM solver and the Newton solver need a Coulomb-type law (use a bipotential sweep for this law)"
     )]
     NoFrictionCoefficient {
         /// Index of the contact.
@@ -95,6 +96,10 @@ pub enum SolverError {
     /// range, empty node set, …).
     #[error("invalid contact geometry: {0}")]
     InvalidGeometry(String),
+    /// The requested solution path does not apply to this step (e.g.
+    /// `FlexibilityMode::ActiveSet` on a node-to-segment zone); the message says why.
+    #[error("unsupported for this step: {0}")]
+    Unsupported(String),
     /// An invalid setting (tolerance, alert distance, time step, …).
     #[error("invalid setting `{what}` = {value}: {expected}")]
     InvalidSetting {

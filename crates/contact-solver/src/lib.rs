@@ -35,6 +35,7 @@ pub mod matrix_free;
 pub mod newton;
 pub mod obstacle;
 pub mod output;
+pub mod primal;
 pub mod reduced;
 pub mod scenes;
 pub mod simulation;

@@ -55,9 +55,10 @@ pub const CONTACT_COLUMNS: [&str; 19] = [
     "area",
 ];
 
-/// Columns of [`ReportWriter`], in order. The flags `flexibility_rebuilt`, `converged` and
-/// `matrix_free` are written `0` / `1` (so every column is numeric), `wall_time_s` in seconds.
-pub const REPORT_COLUMNS: [&str; 12] = [
+/// Columns of [`ReportWriter`], in order. The flags `flexibility_rebuilt`, `converged`,
+/// `matrix_free` and `active_set` are written `0` / `1` (so every column is numeric),
+/// `wall_time_s` in seconds.
+pub const REPORT_COLUMNS: [&str; 13] = [
     "step",
     "time",
     "load_factor",
@@ -70,6 +71,7 @@ pub const REPORT_COLUMNS: [&str; 12] = [
     "converged",
     "wall_time_s",
     "matrix_free",
+    "active_set",
 ];
 
 /// The integer code of a status in the VTK output: 0 inactive, 1 open, 2 stick, 3 slip.
@@ -252,12 +254,13 @@ impl<W: Write> HistoryWriter<W> {
 /// let report = StepReport {
 ///     step: 1, time: 0.5, load_factor: 1.0, active_contacts: 9, adhesion_iterations: 0,
 ///     contact_iterations: 12, detection_passes: 1, flexibility_rebuilt: true, matrix_free: false,
+///     active_set: false,
 ///     residual: 3e-13, converged: true, wall_time: Duration::from_millis(250),
 /// };
 /// let mut log = ReportWriter::new(Vec::new())?;
 /// log.write_report(&report)?;
 /// let text = String::from_utf8(log.finish()?).unwrap();
-/// assert_eq!(text.lines().nth(1), Some("1,0.5,1,9,0,12,1,1,3e-13,1,0.25,0"));
+/// assert_eq!(text.lines().nth(1), Some("1,0.5,1,9,0,12,1,1,3e-13,1,0.25,0,0"));
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
 #[derive(Debug)]
@@ -321,7 +324,12 @@ impl<W: Write> ReportWriter<W> {
         push_float(line, r.residual);
         let _ = write!(line, ",{}", u8::from(r.converged));
         push_float(line, r.wall_time.as_secs_f64());
-        let _ = write!(line, ",{}", u8::from(r.matrix_free));
+        let _ = write!(
+            line,
+            ",{},{}",
+            u8::from(r.matrix_free),
+            u8::from(r.active_set)
+        );
         line.push('\n');
         self.flush_line()
     }

@@ -22,6 +22,7 @@
 use crate::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
 use crate::error::SolverError;
 use crate::matrix_free::solve_matrix_free;
+use crate::primal::{LocalFrame, PrimalCache, PrimalStep, frames, solve_primal};
 use crate::reduced::ReducedProblem;
 use crate::uzawa::{UzawaSettings, UzawaSolver};
 use crate::zone::{Candidate, ContactZone, recognize};
@@ -59,8 +60,12 @@ pub struct SimulationSettings {
 /// How the reduced problem is held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FlexibilityMode {
-    /// Dense `F*` up to `dense_limit` active contacts, matrix-free beyond (when no active law
-    /// is adhesive: the exact condensation of the springs needs the dense `F*`).
+    /// Dense `F*` up to `dense_limit` active contacts; beyond, the primal active-set solve
+    /// when the step is in its scope ([`crate::primal`]: rigid obstacles, no active adhesion, a
+    /// structure that exposes its stiffness), else matrix-free (when no active law is adhesive:
+    /// the exact condensation of the springs needs the dense `F*`). A step whose active-set
+    /// iteration does not converge is solved again with a dense `F*` (up to 8000 contacts) or
+    /// matrix-free (`Counters::active_set_fallbacks`).
     Auto {
         /// Largest active set solved with a dense `F*`.
         dense_limit: usize,
@@ -69,13 +74,19 @@ pub enum FlexibilityMode {
     Dense,
     /// Never store `F*`: one structure solve per iteration. Adhesive laws are refused.
     MatrixFree,
+    /// No `F*` at all: the semi-smooth Newton (primal–dual active-set) iteration on the
+    /// factorised stiffness, one numeric factorisation per change of the closed/sticking set
+    /// ([`crate::primal`]). Steps outside its scope are refused with the reason.
+    ActiveSet,
 }
 
-/// Default [`FlexibilityMode::Auto`] limit: a dense `F*` of 8000 contacts takes 2 GiB. The
-/// limit is set by memory, not time: the matrix-free iteration needs more structure solves than
-/// the `2 n_c` that build `F*` (its iterations grow about linearly with `n_c` on FE problems,
-/// `docs/benchmarks.md`, "Scale"), so it only pays when `F*` would not fit.
-pub const DEFAULT_DENSE_LIMIT: usize = 8000;
+/// Largest active set that `Auto` solves with a dense `F*` when its active-set iteration did
+/// not converge (a dense `F*` of 8000 contacts takes 2 GiB); matrix-free beyond.
+const FALLBACK_DENSE_LIMIT: usize = 8000;
+
+/// Default [`FlexibilityMode::Auto`] limit, measured (`docs/benchmarks.md`, "Scale"): past
+/// it the primal active-set solve beats building a dense `F*`.
+pub const DEFAULT_DENSE_LIMIT: usize = 500;
 
 impl Default for FlexibilityMode {
     fn default() -> Self {
@@ -204,6 +215,8 @@ pub struct StepReport {
     pub flexibility_rebuilt: bool,
     /// Whether the step was solved matrix-free (no `F*`).
     pub matrix_free: bool,
+    /// Whether the step was solved by the primal active-set iteration (no `F*`).
+    pub active_set: bool,
     /// Natural-map residual of the last reduced solve.
     pub residual: f64,
     /// Whether every solve of the step met its tolerance (always `true` unless the settings
@@ -234,6 +247,15 @@ pub struct Counters {
     pub matrix_free_steps: usize,
     /// Products `F* r` done matrix-free (one structure solve each).
     pub operator_applications: usize,
+    /// Steps solved by the primal active-set iteration.
+    pub active_set_steps: usize,
+    /// Numeric factorisations of the constrained stiffness by the active-set iteration.
+    pub active_set_factorizations: usize,
+    /// Solves with the constrained stiffness by the active-set iteration.
+    pub active_set_solves: usize,
+    /// Steps where `Auto`'s active-set iteration did not converge and the step was solved
+    /// again with a dense `F*` (up to 8000 contacts) or matrix-free.
+    pub active_set_fallbacks: usize,
 }
 
 /// The result of one step.
@@ -295,6 +317,7 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     counters: Counters,
     last_problem: Option<ReducedProblem>,
     last_version: u64,
+    primal: PrimalCache,
 }
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
@@ -367,6 +390,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             solver: UzawaSolver::new(settings.solver),
             counters: Counters::default(),
             last_problem: None,
+            primal: PrimalCache::default(),
         };
         sim.jumps = sim.local_jumps_of(&sim.u);
         Ok(sim)
@@ -516,6 +540,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             detection_passes: 0,
             flexibility_rebuilt: false,
             matrix_free: false,
+            active_set: false,
             residual: 0.0,
             converged: true,
             wall_time: Duration::ZERO,
@@ -523,7 +548,36 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let mut u = vec![0.0; ndof];
         loop {
             report.detection_passes += 1;
-            let solved = if self.use_matrix_free(&active)? {
+            let mut path = self.path(&active)?;
+            let mut primal = None;
+            if let Path::ActiveSet(frames) = &path {
+                self.w_active.clone_from(&active);
+                self.w.clear();
+                self.w_version = None;
+                self.last_problem = None;
+                match self.solve_active_set(&free, frames, &mut report) {
+                    Ok(solved) => {
+                        report.active_set = true;
+                        primal = Some(solved);
+                    }
+                    // Auto chose this path: fall back to one that converges more surely (the
+                    // lagged friction coupling of the active set fails for large μ)
+                    Err(SolverError::NotConverged { .. })
+                        if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) =>
+                    {
+                        self.counters.active_set_fallbacks += 1;
+                        path = if active.len() <= FALLBACK_DENSE_LIMIT {
+                            Path::Dense
+                        } else {
+                            Path::MatrixFree
+                        };
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            let solved = if let Some(solved) = primal {
+                solved
+            } else if path == Path::MatrixFree {
                 if active != self.w_active {
                     self.w_active.clone_from(&active);
                 }
@@ -581,22 +635,123 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
     }
 
-    /// Whether this step's active set is solved matrix-free.
-    fn use_matrix_free(&self, active: &[usize]) -> Result<bool, SolverError> {
+    /// How this step's active set is solved.
+    fn path(&self, active: &[usize]) -> Result<Path, SolverError> {
         let adhesive = active.iter().any(|&i| {
             let law = &self.zones[self.candidates[i].zone].law;
             law.has_adhesion() && law.adhesion_active(&self.states[i])
         });
         match self.settings.flexibility {
-            FlexibilityMode::Dense => Ok(false),
-            FlexibilityMode::Auto { dense_limit } => Ok(!adhesive && active.len() > dense_limit),
-            FlexibilityMode::MatrixFree if adhesive => Err(SolverError::InvalidSetting {
-                what: "flexibility",
-                value: active.len() as f64,
-                expected: "Dense or Auto for adhesive laws (the springs are condensed on a dense F*)",
-            }),
-            FlexibilityMode::MatrixFree => Ok(!active.is_empty()),
+            FlexibilityMode::Dense => Ok(Path::Dense),
+            FlexibilityMode::Auto { dense_limit } => {
+                if adhesive || active.len() <= dense_limit {
+                    Ok(Path::Dense)
+                } else if let Ok(f) = self.active_set_frames(active) {
+                    Ok(Path::ActiveSet(f))
+                } else {
+                    Ok(Path::MatrixFree)
+                }
+            }
+            FlexibilityMode::MatrixFree | FlexibilityMode::ActiveSet if adhesive => {
+                Err(SolverError::InvalidSetting {
+                    what: "flexibility",
+                    value: active.len() as f64,
+                    expected: "Dense or Auto for adhesive laws (the springs are condensed on a dense F*)",
+                })
+            }
+            FlexibilityMode::MatrixFree if active.is_empty() => Ok(Path::Dense),
+            FlexibilityMode::MatrixFree => Ok(Path::MatrixFree),
+            FlexibilityMode::ActiveSet if active.is_empty() => Ok(Path::Dense),
+            FlexibilityMode::ActiveSet => self
+                .active_set_frames(active)
+                .map(Path::ActiveSet)
+                .map_err(SolverError::Unsupported),
         }
+    }
+
+    /// The local frames of the primal active-set path, or why it does not apply.
+    fn active_set_frames(&self, active: &[usize]) -> Result<Vec<LocalFrame>, String> {
+        if self.structure.stiffness_matrix().is_none() {
+            return Err("the structure does not expose its stiffness matrix".into());
+        }
+        let mut frictional = Vec::with_capacity(active.len());
+        for &i in active {
+            let law = &self.zones[self.candidates[i].zone].law;
+            if law.friction_coefficient(&self.states[i]).is_none() {
+                return Err(format!(
+                    "zone `{}`: its law has no friction coefficient (not a Coulomb-cone law)",
+                    self.zones[self.candidates[i].zone].name
+                ));
+            }
+            frictional.push(self.tangent_needed(i));
+        }
+        frames(
+            &self.h_rows,
+            active,
+            &frictional,
+            self.structure.dof_count(),
+        )
+    }
+
+    /// The primal active-set solve of the step (no `F*`).
+    fn solve_active_set(
+        &mut self,
+        free: &[[f64; 2]],
+        frames: &[LocalFrame],
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = self.w_active.clone();
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let tangent: Vec<bool> = active.iter().map(|&i| self.tangent_needed(i)).collect();
+        let mu: Vec<f64> = laws
+            .iter()
+            .zip(&states)
+            .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
+            .collect();
+        let mut q = vec![0.0; 2 * active.len()];
+        for (k, &i) in active.iter().enumerate() {
+            q[2 * k] = free[i][0];
+            if tangent[k] {
+                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
+        }
+        let r0: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let step = PrimalStep {
+            active: &active,
+            frames,
+            laws: &laws,
+            states: &states,
+            mu: &mu,
+            tangent: &tangent,
+            q: &q,
+            r0: &r0,
+            tol: self.settings.solver.tol,
+            max_iterations: self
+                .settings
+                .solver
+                .max_iterations
+                .min(crate::primal::PRIMAL_MAX_ITERATIONS),
+            accept_non_converged: self.settings.solver.accept_non_converged,
+        };
+        let before = self.primal.factorizations;
+        let sol = solve_primal(&self.structure, &mut self.primal, &step)?;
+        self.counters.active_set_steps += 1;
+        self.counters.active_set_factorizations += self.primal.factorizations - before;
+        self.counters.active_set_solves += sol.solves;
+        report.contact_iterations += sol.iterations;
+        report.residual = sol.residual;
+        report.converged &= sol.converged;
+        Ok(Solved {
+            r: sol.r.clone(),
+            r_bar: sol.r,
+            x: sol.x,
+            statuses: sol.statuses,
+            states,
+        })
     }
 
     /// `ρ⁰_i = 1/λ_max` of the diagonal blocks of `F*`, computed exactly on up to
@@ -904,6 +1059,14 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             contacts: records,
         }
     }
+}
+
+/// How one detection pass solves its active set.
+#[derive(Debug, PartialEq)]
+enum Path {
+    Dense,
+    MatrixFree,
+    ActiveSet(Vec<LocalFrame>),
 }
 
 /// Contacts whose diagonal block of `F*` is computed exactly to set `ρ⁰` in matrix-free steps.

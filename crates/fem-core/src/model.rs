@@ -681,6 +681,10 @@ impl Structure for LinearElasticModel {
     fn stiffness_version(&self) -> u64 {
         self.version
     }
+
+    fn stiffness_matrix(&self) -> Option<faer::sparse::SparseColMatRef<'_, usize, f64>> {
+        Some(self.stiffness())
+    }
 }
 
 #[cfg(test)]

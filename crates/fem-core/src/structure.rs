@@ -3,6 +3,7 @@
 use crate::error::FemError;
 use crate::idealization::Idealization;
 use faer::MatMut;
+use faer::sparse::SparseColMatRef;
 
 /// A linear(ised) structure seen from the contact solver.
 ///
@@ -82,4 +83,16 @@ pub trait Structure {
     /// A counter that changes whenever `K` (or its dof numbering) changes: the solver rebuilds
     /// `F*` only when it does.
     fn stiffness_version(&self) -> u64;
+
+    /// The stiffness over the free dofs as its lower triangle in CSC form (row indices sorted
+    /// in each column, every diagonal entry stored), if the structure has it assembled.
+    ///
+    /// Optional: the dense and matrix-free contact paths only solve with `K`. The primal
+    /// active-set path (contact-solver's `FlexibilityMode::ActiveSet`, the default past a few
+    /// hundred contacts) needs the matrix itself, because it factorises `K` with the contact
+    /// conditions imposed as boundary conditions. Its pattern must couple both dofs of a node
+    /// with every dof the node is coupled to (true of any assembled FE stiffness).
+    fn stiffness_matrix(&self) -> Option<SparseColMatRef<'_, usize, f64>> {
+        None
+    }
 }

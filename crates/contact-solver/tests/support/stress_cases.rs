@@ -328,9 +328,22 @@ pub fn all_cases() -> Vec<Case> {
 /// The tolerance every case asks of the solver (the default).
 pub const TOL: f64 = 1e-10;
 
+/// Whether the cases force the primal active-set path (`tests/stress_active_set.rs`).
+static ACTIVE_SET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Makes every case of this test binary solve its steps with
+/// `FlexibilityMode::ActiveSet` instead of the default (a dense `F*` at these sizes).
+#[allow(dead_code)]
+pub fn force_active_set() {
+    ACTIVE_SET.store(true, std::sync::atomic::Ordering::Relaxed);
+}
+
 fn settings() -> SimulationSettings {
     let mut s = SimulationSettings::default();
     s.solver.tol = TOL;
+    if ACTIVE_SET.load(std::sync::atomic::Ordering::Relaxed) {
+        s.flexibility = contact_solver::FlexibilityMode::ActiveSet;
+    }
     s
 }
 

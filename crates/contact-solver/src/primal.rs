@@ -1,0 +1,705 @@
+//! The primal active-set solve of a step (no `F*`): a semi-smooth Newton iteration on the
+//! displacements, for contactor nodes against rigid obstacles.
+//!
+//! A dense `F* = H K⁻¹ Hᵀ` costs `2 n_c` structure solves and `4 n_c²` values; the matrix-free
+//! iteration costs one solve per iteration and its iteration count grows with the condition
+//! number of `F*` (about `H/h` on a layer of thickness `H` meshed at `h`). Here the contact
+//! conditions are imposed on the stiffness itself instead, as in the primal–dual active-set
+//! methods of Hüeber & Wohlmuth: each iteration guesses which contacts are closed, sticking or
+//! sliding, turns that guess into boundary conditions, and solves one linear system:
+//!
+//! * every candidate node is rotated into its local frame `(n, t)` (the rows of `H`), so that
+//!   the local jump is `x = q + w̃` with `w̃` the rotated contact displacement `K⁻¹ Hᵀ r`;
+//! * closed: `x_n = 0`, a Dirichlet condition on the rotated normal dof; sticking: also
+//!   `x_t = 0` on the tangential dof; sliding: the tangential dof is loaded by the Coulomb
+//!   force `r_t = μ r_n σ_t/|σ_t|` (with the `r_n` of the previous iterate); open: `r = 0`;
+//! * the guess is the semi-smooth Newton one, with `σ_n = r_n − c x_n` and
+//!   `σ_t = r_t − c x_t` (`c` the diagonal stiffness of the dof): closed iff `σ_n > 0`,
+//!   sticking iff `|σ_t| ≤ μ σ_n`;
+//! * the reactions of the Dirichlet dofs are the contact forces, `r_D = (K̃ w̃)_D`.
+//!
+//! The matrix with the Dirichlet rows and columns replaced by their diagonal keeps the
+//! pattern of `K`, so faer's symbolic Cholesky is done once and each change of the Dirichlet
+//! set costs one numeric factorisation; iterations that only update the sliding forces (the
+//! friction coupling) reuse it and cost one solve. The iteration stops when the guess repeats (the
+//! iterate then solves its own boundary conditions exactly) and the natural-map residual
+//! (relative, as for the other paths, with `ρ = c`), which then measures the friction lag, is
+//! below the tolerance.
+//!
+//! Scope: rigid-obstacle zones (the two rows of `H` of a candidate form a rotation of its
+//! node's two free dofs, or the normal row is a unit vector on the node's only free dof with
+//! a frictionless law), non-adhesive laws with a friction coefficient (`Signorini`, `Coulomb`,
+//! RCCM once fully debonded), one candidate per node, and a structure that exposes its
+//! stiffness ([`Structure::stiffness_matrix`]). [`supported`] says why a step is out of scope.
+
+use crate::error::SolverError;
+use crate::uzawa::natural_residual;
+use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{MatMut, Side};
+use fem_core::Structure;
+
+/// Most dofs whose condition may differ from the factorised one before the constrained
+/// stiffness is refactored: each costs one solve (a factorisation costs about 40 solves on the
+/// 1e6-dof scene of `docs/benchmarks.md`, "Scale").
+pub const MAX_LOW_RANK_UPDATE: usize = 24;
+
+/// Most iterations of one primal solve (also capped by the solver settings' `max_iterations`).
+/// The count grows with how far the stick/slip and contact fronts must travel, in nodes, from
+/// the first guess: 52 on 10 001 frictionless contacts, a few hundred with Coulomb friction
+/// (`docs/benchmarks.md`, "Scale").
+pub const PRIMAL_MAX_ITERATIONS: usize = 1000;
+
+/// One active contact as the primal solve sees it: the dofs of its node that carry the local
+/// normal and tangential components, and the rotation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LocalFrame {
+    /// Global dof renamed as the local normal (`[0]`) and tangential (`[1]`) component
+    /// (`[1]` is `None` for a node with one free dof).
+    pub dofs: [Option<usize>; 2],
+    /// `p[c][e]`: coefficient of original dof `dofs[e]` in local component `c`.
+    pub p: [[f64; 2]; 2],
+}
+
+/// The frames of the active contacts, or why the primal solve does not apply.
+pub(crate) fn frames(
+    h_rows: &[Vec<(usize, f64)>],
+    candidates: &[usize],
+    frictional: &[bool],
+    ndof: usize,
+) -> Result<Vec<LocalFrame>, String> {
+    let mut owner = vec![false; ndof];
+    let mut out = Vec::with_capacity(candidates.len());
+    for (k, &i) in candidates.iter().enumerate() {
+        let (hn, ht) = (&h_rows[2 * i], &h_rows[2 * i + 1]);
+        let mut dofs: Vec<usize> = hn.iter().chain(ht).map(|&(d, _)| d).collect();
+        dofs.sort_unstable();
+        dofs.dedup();
+        let coef = |row: &[(usize, f64)], d: usize| -> f64 {
+            row.iter().filter(|&&(e, _)| e == d).map(|&(_, a)| a).sum()
+        };
+        let frame = match *dofs.as_slice() {
+            [a, b] => {
+                let p = [[coef(hn, a), coef(hn, b)], [coef(ht, a), coef(ht, b)]];
+                let orth = (p[0][0] * p[0][0] + p[0][1] * p[0][1] - 1.0).abs()
+                    + (p[1][0] * p[1][0] + p[1][1] * p[1][1] - 1.0).abs()
+                    + (p[0][0] * p[1][0] + p[0][1] * p[1][1]).abs();
+                if orth > 1e-10 {
+                    return Err(format!(
+                        "candidate {i}: its jump is not a rotation of one node's displacement \
+                         (node-pair or node-to-segment zone)"
+                    ));
+                }
+                LocalFrame {
+                    dofs: [Some(a), Some(b)],
+                    p,
+                }
+            }
+            [a] => {
+                let (an, at) = (coef(hn, a), coef(ht, a));
+                if (an.abs() - 1.0).abs() > 1e-10 || at.abs() > 1e-10 || frictional[k] {
+                    return Err(format!(
+                        "candidate {i}: one free dof, not aligned with the normal of a \
+                         frictionless contact"
+                    ));
+                }
+                LocalFrame {
+                    dofs: [Some(a), None],
+                    p: [[an, 0.0], [0.0, 0.0]],
+                }
+            }
+            _ => {
+                return Err(format!(
+                    "candidate {i}: its jump involves {} dofs (node-pair or node-to-segment \
+                     zone)",
+                    dofs.len()
+                ));
+            }
+        };
+        for d in frame.dofs.into_iter().flatten() {
+            if std::mem::replace(&mut owner[d], true) {
+                return Err(format!("dof {d} belongs to two contact candidates"));
+            }
+        }
+        out.push(frame);
+    }
+    Ok(out)
+}
+
+/// What the primal solve keeps between steps: the symbolic analysis of `K`'s pattern, the
+/// rotated stiffness and the last numeric factorisation with its Dirichlet set.
+#[derive(Default)]
+pub(crate) struct PrimalCache {
+    symbolic: Option<(u64, SymbolicLlt<usize>)>,
+    /// Stiffness version and active list the rotated values were built for.
+    rotated_for: Option<(u64, Vec<usize>)>,
+    rotated: Vec<f64>,
+    factor: Option<Llt<usize, f64>>,
+    /// Dirichlet mask (by dof) of `factor`.
+    factor_mask: Vec<bool>,
+    /// Low-rank corrections of `factor` for dofs whose condition changed since it was
+    /// computed: `M₀⁻¹ u_c`, and for a released dof its row of `K̃`.
+    columns: Vec<Correction>,
+    /// Numeric factorisations done.
+    pub factorizations: usize,
+}
+
+/// The low-rank correction of a dof whose condition differs from the factorised one.
+struct Correction {
+    dof: usize,
+    /// `M₀⁻¹ u_c`.
+    column: Vec<f64>,
+    /// A released dof's row of `K̃` (its condition is `(K̃ w)_c = f_c`); `None` for a newly
+    /// constrained one (`w_c = z_c`).
+    row: Option<Vec<(usize, f64)>>,
+}
+
+/// The result of a primal solve, on the active list.
+pub(crate) struct PrimalSolution {
+    pub r: Vec<f64>,
+    pub x: Vec<f64>,
+    pub statuses: Vec<ContactStatus>,
+    pub iterations: usize,
+    pub residual: f64,
+    pub converged: bool,
+    pub solves: usize,
+}
+
+/// The problem of one step for [`solve_primal`].
+pub(crate) struct PrimalStep<'a, L: ContactLaw> {
+    pub active: &'a [usize],
+    pub frames: &'a [LocalFrame],
+    pub laws: &'a [L],
+    pub states: &'a [L::State],
+    /// Friction coefficient of each active contact (0: frictionless).
+    pub mu: &'a [f64],
+    /// Whether the tangential component takes part (else `x_t = r_t = 0`).
+    pub tangent: &'a [bool],
+    /// Local jumps of the free response, `x = q + H w`.
+    pub q: &'a [f64],
+    /// Starting reactions.
+    pub r0: &'a [f64],
+    pub tol: f64,
+    pub max_iterations: usize,
+    pub accept_non_converged: bool,
+}
+
+fn position(k: SymbolicSparseColMatRef<'_, usize>, row: usize, col: usize) -> Option<usize> {
+    let start = k.col_ptr()[col];
+    let rows = &k.row_idx()[start..k.col_ptr()[col + 1]];
+    rows.binary_search(&row).ok().map(|p| start + p)
+}
+
+/// `y = A z` for a symmetric `A` stored as its lower triangle.
+fn sym_matvec(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    values: &[f64],
+    z: &[f64],
+    y: &mut [f64],
+) {
+    y.fill(0.0);
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    for j in 0..pattern.ncols() {
+        let zj = z[j];
+        let mut acc = 0.0;
+        for p in cp[j]..cp[j + 1] {
+            let (i, v) = (ri[p], values[p]);
+            y[i] += v * zj;
+            if i != j {
+                acc += v * z[i];
+            }
+        }
+        y[j] += acc;
+    }
+}
+
+impl PrimalCache {
+    /// The rotated stiffness `K̃ = P K Pᵀ` (lower triangle, `K`'s pattern).
+    fn rotate(
+        &mut self,
+        k: SparseColMatRef<'_, usize, f64>,
+        frames: &[LocalFrame],
+    ) -> Result<(), SolverError> {
+        let pattern = k.symbolic();
+        let n = pattern.ncols();
+        let values = k.val();
+        // members[d]: the rotated dofs original dof d contributes to, with the coefficients
+        let mut members: Vec<[(usize, f64); 2]> = Vec::new();
+        let mut slot = vec![usize::MAX; n];
+        for f in frames {
+            for (e, d) in f.dofs.iter().enumerate() {
+                if let Some(d) = *d {
+                    slot[d] = members.len();
+                    let mut m = [(usize::MAX, 0.0); 2];
+                    for (c, dc) in f.dofs.iter().enumerate() {
+                        if let Some(dc) = *dc {
+                            m[c] = (dc, f.p[c][e]);
+                        }
+                    }
+                    members.push(m);
+                }
+            }
+        }
+        let out = &mut self.rotated;
+        out.clear();
+        out.resize(values.len(), 0.0);
+        let missing = || SolverError::InvalidSetting {
+            what: "flexibility",
+            value: 0.0,
+            expected: "a stiffness pattern that couples both dofs of every contact node (ActiveSet)",
+        };
+        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+        let add = |i: usize, j: usize, v: f64, out: &mut Vec<f64>| -> Result<(), SolverError> {
+            if i >= j {
+                let pos = position(pattern, i, j).ok_or_else(missing)?;
+                out[pos] += v;
+            }
+            Ok(())
+        };
+        let identity = |d: usize| [(d, 1.0), (usize::MAX, 0.0)];
+        for q in 0..n {
+            for p in cp[q]..cp[q + 1] {
+                let (row, v) = (ri[p], values[p]);
+                if slot[row] == usize::MAX && slot[q] == usize::MAX {
+                    out[p] += v;
+                    continue;
+                }
+                let mp = if slot[row] == usize::MAX {
+                    identity(row)
+                } else {
+                    members[slot[row]]
+                };
+                let mq = if slot[q] == usize::MAX {
+                    identity(q)
+                } else {
+                    members[slot[q]]
+                };
+                for &(i, a) in mp.iter().filter(|m| m.0 != usize::MAX) {
+                    for &(j, b) in mq.iter().filter(|m| m.0 != usize::MAX) {
+                        // ordered entry (row, q) → K̃[i, j]; its mirror (q, row) → K̃[j, i]
+                        add(i, j, a * v * b, out)?;
+                        if row != q {
+                            add(j, i, a * v * b, out)?;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The semi-smooth Newton (primal–dual active-set) solve of one step, see the module docs.
+pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
+    structure: &S,
+    cache: &mut PrimalCache,
+    step: &PrimalStep<'_, L>,
+) -> Result<PrimalSolution, SolverError> {
+    let k = structure
+        .stiffness_matrix()
+        .ok_or(SolverError::InvalidSetting {
+            what: "flexibility",
+            value: 0.0,
+            expected: "a structure that exposes its stiffness matrix (ActiveSet)",
+        })?;
+    let pattern = k.symbolic();
+    let n = pattern.ncols();
+    let na = step.active.len();
+    let version = structure.stiffness_version();
+    if cache.symbolic.as_ref().map(|s| s.0) != Some(version) {
+        let sym = SymbolicLlt::try_new(pattern, Side::Lower).map_err(fem_core::FemError::from)?;
+        cache.symbolic = Some((version, sym));
+        cache.factor = None;
+    }
+    let rotated_for = Some((version, step.active.to_vec()));
+    if cache.rotated_for != rotated_for {
+        cache.rotate(k, step.frames)?;
+        cache.rotated_for = rotated_for;
+        cache.factor = None;
+    }
+    // diagonal of K̃ at the local dofs: the complementarity constants c and ρ = 1/c
+    let diag = |d: usize| cache.rotated[position(pattern, d, d).unwrap_or(0)];
+    let c: Vec<[f64; 2]> = step
+        .frames
+        .iter()
+        .map(|f| {
+            let cn = f.dofs[0].map_or(1.0, diag);
+            [cn, f.dofs[1].map_or(cn, diag)]
+        })
+        .collect();
+    // ρ of the natural-map residual and of the statuses: the dof stiffness, the scale of the
+    // dense path's ρ⁰ = 1/λ_max(F*_ii)
+    let rho: Vec<f64> = c.iter().map(|c| c[0].max(c[1])).collect();
+    let denom = {
+        let qn = step.q.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let rq = rho.iter().fold(0.0_f64, |m, &r| m.max(r)) * qn;
+        move |r: &[f64]| {
+            let rn = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+            rn.max(rq).max(f64::MIN_POSITIVE)
+        }
+    };
+
+    let mut r = step.r0.to_vec();
+    let mut x = step.q.to_vec();
+    for (kk, &t) in step.tangent.iter().enumerate() {
+        if !t {
+            r[2 * kk + 1] = 0.0;
+            x[2 * kk + 1] = 0.0;
+        }
+    }
+    let mut mask = vec![false; n];
+    let mut w = vec![0.0; n];
+    let mut z = vec![0.0; n];
+    let mut force: Vec<(usize, f64)> = Vec::new();
+    let contact_dofs: Vec<usize> = step.frames.iter().flat_map(|f| f.dofs).flatten().collect();
+    // per contact: 0 open, 1 stick, 2 slip (with sign)
+    let mut sets: Vec<(u8, f64)> = vec![(0, 0.0); na];
+    let mut last_sets = sets.clone();
+    let mut history = Vec::new();
+    let mut solves = 0;
+    let mut residual = natural_residual(step.laws, step.states, &rho, &r, &x) / denom(&r);
+    let mut g: Vec<f64> = (0..na).map(|kk| step.mu[kk] * r[2 * kk].max(0.0)).collect();
+    // The guess is the semi-smooth Newton one with σ_n = r_n − c x_n and σ_t = r_t − c_t x_t in
+    // the limit c_t → 0⁺ (any c > 0 has the same solutions): a sliding node keeps sliding while
+    // it moves against its friction force and sticks otherwise (a large c_t would flip its
+    // direction, which cycles between the two full-slip guesses when friction nearly balances
+    // the drive); a sticking node slides once its reaction leaves the Tresca disc.
+    let guess = |r: &[f64], x: &[f64], g: &[f64], sets: &mut [(u8, f64)]| {
+        for kk in 0..na {
+            let (rn, xn) = (r[2 * kk], x[2 * kk]);
+            let sn = rn - c[kk][0] * xn;
+            let prev = sets[kk];
+            sets[kk] = if sn <= 0.0 {
+                (0, 0.0)
+            } else if !step.tangent[kk] || step.frames[kk].dofs[1].is_none() {
+                (2, 0.0)
+            } else if g[kk] == 0.0 {
+                // no friction force yet: slide, in the direction the node moves
+                (2, -x[2 * kk + 1].signum())
+            } else {
+                let (rt, xt) = (r[2 * kk + 1], x[2 * kk + 1]);
+                match prev {
+                    (2, s) if s != 0.0 && xt * s < 0.0 => (2, s),
+                    (2, s) if s != 0.0 => (1, 0.0),
+                    (1, _) if rt.abs() > g[kk] => (2, rt.signum()),
+                    _ => (1, 0.0),
+                }
+            };
+        }
+    };
+    for iteration in 0..=step.max_iterations {
+        // the semi-smooth Newton guess from the current iterate
+        if iteration > 0 {
+            // Coulomb thresholds from the current normal reactions (the friction coupling is
+            // lagged by one iteration: the linear systems stay symmetric)
+            for kk in 0..na {
+                g[kk] = step.mu[kk] * r[2 * kk].max(0.0);
+            }
+        }
+        last_sets.clone_from(&sets);
+        guess(&r, &x, &g, &mut sets);
+        if iteration > 0 && sets == last_sets && residual <= step.tol {
+            // the iterate solves its own guess exactly: converged once the friction lag is
+            // below the tolerance too
+            return Ok(finish(step, &rho, r, x, iteration, residual, true, solves));
+        }
+        if iteration == step.max_iterations {
+            break;
+        }
+        // the Dirichlet set and its values
+        mask.fill(false);
+        z.fill(0.0);
+        for (kk, f) in step.frames.iter().enumerate() {
+            if sets[kk].0 >= 1
+                && let Some(d) = f.dofs[0]
+            {
+                mask[d] = true;
+                z[d] = -step.q[2 * kk];
+            }
+            if sets[kk].0 == 1
+                && let Some(d) = f.dofs[1]
+            {
+                mask[d] = true;
+                z[d] = -step.q[2 * kk + 1];
+            }
+        }
+        // sliding forces on the free tangential dofs
+        force.clear();
+        for (kk, f) in step.frames.iter().enumerate() {
+            if sets[kk].0 == 2
+                && sets[kk].1 != 0.0
+                && let Some(d) = f.dofs[1]
+            {
+                force.push((d, g[kk] * sets[kk].1));
+            }
+        }
+        solves += solve_constrained(cache, pattern, &contact_dofs, &mask, &z, &force, &mut w)?;
+        if w.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::NotConverged {
+                iterations: iteration + 1,
+                residual: f64::NAN,
+                history,
+            });
+        }
+        // forces: reactions on Dirichlet dofs, the applied sliding force, zero elsewhere
+        sym_matvec(pattern, &cache.rotated, &w, &mut z);
+        for (kk, f) in step.frames.iter().enumerate() {
+            for comp in 0..2 {
+                let j = 2 * kk + comp;
+                match f.dofs[comp] {
+                    Some(d) => {
+                        x[j] = step.q[j] + w[d];
+                        r[j] = if mask[d] || (comp == 1 && sets[kk].0 == 2) {
+                            z[d]
+                        } else {
+                            0.0
+                        };
+                    }
+                    None => {
+                        x[j] = 0.0;
+                        r[j] = 0.0;
+                    }
+                }
+            }
+            if !step.tangent[kk] {
+                x[2 * kk + 1] = 0.0;
+                r[2 * kk + 1] = 0.0;
+            }
+            if sets[kk].0 >= 1 {
+                x[2 * kk] = 0.0;
+            }
+            if sets[kk].0 == 1 {
+                x[2 * kk + 1] = 0.0;
+            }
+        }
+        residual = natural_residual(step.laws, step.states, &rho, &r, &x) / denom(&r);
+        history.push(residual);
+    }
+    if step.accept_non_converged {
+        return Ok(finish(
+            step,
+            &rho,
+            r,
+            x,
+            step.max_iterations,
+            residual,
+            false,
+            solves,
+        ));
+    }
+    Err(SolverError::NotConverged {
+        iterations: step.max_iterations,
+        residual,
+        history,
+    })
+}
+
+/// Solves the rotated system with Dirichlet conditions `w_d = z_d` on `mask` and the applied
+/// `force` elsewhere, into `w`; returns the number of solves with the factor.
+///
+/// The factor `M₀` is of the mask `D₀` of its last factorisation. While the new mask differs
+/// from `D₀` on at most [`MAX_LOW_RANK_UPDATE`] dofs the difference is a low-rank correction
+/// (capacitance matrix): a newly constrained dof `c` gets an unknown reaction along `e_c`, a
+/// released one an unknown value with its column of `K̃` moved to the right-hand side, and a
+/// small dense system enforces `w_c = z_c`, respectively `(K̃ w)_c = f_c`. Each changed dof
+/// costs one solve, once per factorisation; beyond the limit the matrix is refactored.
+fn solve_constrained(
+    cache: &mut PrimalCache,
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    contact_dofs: &[usize],
+    mask: &[bool],
+    z: &[f64],
+    force: &[(usize, f64)],
+    w: &mut [f64],
+) -> Result<usize, SolverError> {
+    let n = pattern.ncols();
+    let internal = |what: &'static str| SolverError::InvalidSetting {
+        what: "flexibility",
+        value: 0.0,
+        expected: what,
+    };
+    let diag = |values: &[f64], d: usize| values[position(pattern, d, d).unwrap_or(0)];
+    let mut changed: Vec<usize> = match cache.factor {
+        Some(_) => contact_dofs
+            .iter()
+            .copied()
+            .filter(|&d| mask[d] != cache.factor_mask[d])
+            .collect(),
+        None => Vec::new(),
+    };
+    if cache.factor.is_none() || changed.len() > MAX_LOW_RANK_UPDATE {
+        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+        let mut m = cache.rotated.clone();
+        for j in 0..n {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                if i != j && (mask[i] || mask[j]) {
+                    m[p] = 0.0;
+                }
+            }
+        }
+        let sym = cache
+            .symbolic
+            .as_ref()
+            .map(|s| s.1.clone())
+            .ok_or_else(|| internal("a symbolic factorisation (internal)"))?;
+        cache.factor = None;
+        cache.columns.clear();
+        let llt = Llt::try_new_with_symbolic(sym, SparseColMatRef::new(pattern, &m), Side::Lower)
+            .map_err(fem_core::FemError::from)?;
+        cache.factor = Some(llt);
+        cache.factor_mask.clear();
+        cache.factor_mask.extend_from_slice(mask);
+        cache.factorizations += 1;
+        changed.clear();
+    }
+    let d0 = &cache.factor_mask;
+    // base right-hand side: the values kept from D₀, the forces elsewhere
+    let mut z0 = vec![0.0; n];
+    for &d in contact_dofs {
+        if mask[d] && d0[d] {
+            z0[d] = z[d];
+        }
+    }
+    sym_matvec(pattern, &cache.rotated, &z0, w);
+    for i in 0..n {
+        w[i] = if d0[i] {
+            diag(&cache.rotated, i) * z0[i]
+        } else {
+            -w[i]
+        };
+    }
+    for &(d, f) in force {
+        if !d0[d] {
+            w[d] += f;
+        }
+    }
+    let factor = cache
+        .factor
+        .as_ref()
+        .ok_or_else(|| internal("a numeric factorisation (internal)"))?;
+    factor.solve_in_place(MatMut::from_column_major_slice_mut(w, n, 1));
+    let mut solves = 1;
+    if changed.is_empty() {
+        return Ok(solves);
+    }
+    // correction columns of the dofs not seen yet with this factor, in one block
+    let missing: Vec<usize> = changed
+        .iter()
+        .copied()
+        .filter(|c| !cache.columns.iter().any(|col| col.dof == *c))
+        .collect();
+    if !missing.is_empty() {
+        let mut block = faer::Mat::<f64>::zeros(n, missing.len());
+        let mut rows = Vec::with_capacity(missing.len());
+        let (mut e, mut kc) = (vec![0.0; n], vec![0.0; n]);
+        for (b, &c) in missing.iter().enumerate() {
+            if d0[c] {
+                // released: unknown value y_c, its column of K̃ on the right-hand side
+                e[c] = 1.0;
+                sym_matvec(pattern, &cache.rotated, &e, &mut kc);
+                e[c] = 0.0;
+                for i in 0..n {
+                    if !d0[i] && kc[i] != 0.0 {
+                        block[(i, b)] = -kc[i];
+                    }
+                }
+                block[(c, b)] = diag(&cache.rotated, c);
+                rows.push(Some(
+                    (0..n)
+                        .filter(|&i| kc[i] != 0.0)
+                        .map(|i| (i, kc[i]))
+                        .collect(),
+                ));
+            } else {
+                // newly constrained: unknown reaction along e_c
+                block[(c, b)] = 1.0;
+                rows.push(None);
+            }
+        }
+        factor.solve_in_place(block.as_mut());
+        solves += missing.len();
+        for ((b, &c), row) in missing.iter().enumerate().zip(rows) {
+            cache.columns.push(Correction {
+                dof: c,
+                column: block.col(b).iter().copied().collect(),
+                row,
+            });
+        }
+    }
+    let cols: Vec<&Correction> = changed
+        .iter()
+        .map(|c| cache.columns.iter().find(|col| col.dof == *c))
+        .collect::<Option<_>>()
+        .ok_or_else(|| internal("a correction column (internal)"))?;
+    let k = cols.len();
+    let apply = |col: &Correction, v: &[f64]| -> f64 {
+        match &col.row {
+            None => v[col.dof],
+            Some(row) => row.iter().map(|&(i, a)| a * v[i]).sum(),
+        }
+    };
+    let mut cap = faer::Mat::<f64>::zeros(k, k);
+    let mut rhs = faer::Mat::<f64>::zeros(k, 1);
+    for (a, ca) in cols.iter().enumerate() {
+        for (b, cb) in cols.iter().enumerate() {
+            cap[(a, b)] = apply(ca, &cb.column);
+        }
+        let target = match ca.row {
+            None => z[ca.dof],
+            Some(_) => force
+                .iter()
+                .filter(|f| f.0 == ca.dof)
+                .map(|f| f.1)
+                .sum::<f64>(),
+        };
+        rhs[(a, 0)] = target - apply(ca, w);
+    }
+    let y = cap.partial_piv_lu().solve(&rhs);
+    for (b, cb) in cols.iter().enumerate() {
+        let yb = y[(b, 0)];
+        for (wi, ci) in w.iter_mut().zip(&cb.column) {
+            *wi += yb * ci;
+        }
+    }
+    Ok(solves)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish<L: ContactLaw>(
+    step: &PrimalStep<'_, L>,
+    rho: &[f64],
+    r: Vec<f64>,
+    x: Vec<f64>,
+    iterations: usize,
+    residual: f64,
+    converged: bool,
+    solves: usize,
+) -> PrimalSolution {
+    let statuses = (0..step.active.len())
+        .map(|k| {
+            let ri = LocalVec2::planar(r[2 * k], r[2 * k + 1]);
+            let xi = LocalVec2::planar(x[2 * k], x[2 * k + 1]);
+            let tau = ri + step.laws[k].modified_velocity(&xi, &step.states[k]) * rho[k];
+            let p = step.laws[k].project(&tau, &step.states[k]);
+            if p.n == 0.0 && p.t[0] == 0.0 {
+                ContactStatus::Separation
+            } else if (p - tau).norm() <= 1e-8 * tau.norm() {
+                ContactStatus::Stick
+            } else {
+                ContactStatus::Slip
+            }
+        })
+        .collect();
+    PrimalSolution {
+        r,
+        x,
+        statuses,
+        iterations,
+        residual,
+        converged,
+        solves,
+    }
+}
