@@ -142,6 +142,10 @@ pub(crate) struct PrimalCache {
     /// Low-rank corrections of `factor` for dofs whose condition changed since it was
     /// computed: `M₀⁻¹ u_c`, and for a released dof its row of `K̃`.
     columns: Vec<Correction>,
+    /// Slot of each contact dof (`usize::MAX` elsewhere) and, per slot, the entries of its row
+    /// left of the diagonal (column, position): with its column, the full row of `K̃`.
+    slot: Vec<usize>,
+    upper: Vec<Vec<(usize, usize)>>,
     /// Numeric factorisations done.
     pub factorizations: usize,
 }
@@ -242,6 +246,17 @@ impl PrimalCache {
                 }
             }
         }
+        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+        self.upper = vec![Vec::new(); members.len()];
+        for j in 0..n {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                if i != j && slot[i] != usize::MAX {
+                    self.upper[slot[i]].push((j, p));
+                }
+            }
+        }
+        self.slot.clone_from(&slot);
         let out = &mut self.rotated;
         out.clear();
         out.resize(values.len(), 0.0);
@@ -250,7 +265,6 @@ impl PrimalCache {
             value: 0.0,
             expected: "a stiffness pattern that couples both dofs of every contact node (ActiveSet)",
         };
-        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         let add = |i: usize, j: usize, v: f64, out: &mut Vec<f64>| -> Result<(), SolverError> {
             if i >= j {
                 let pos = position(pattern, i, j).ok_or_else(missing)?;
@@ -580,39 +594,45 @@ fn solve_constrained(
         .factor
         .as_ref()
         .ok_or_else(|| internal("a numeric factorisation (internal)"))?;
-    factor.solve_in_place(MatMut::from_column_major_slice_mut(w, n, 1));
-    let mut solves = 1;
-    if changed.is_empty() {
-        return Ok(solves);
-    }
-    // correction columns of the dofs not seen yet with this factor, in one block
+    // correction columns of the dofs not seen yet with this factor, solved in one block with
+    // the base right-hand side (column 0)
     let missing: Vec<usize> = changed
         .iter()
         .copied()
         .filter(|c| !cache.columns.iter().any(|col| col.dof == *c))
         .collect();
-    if !missing.is_empty() {
-        let mut block = faer::Mat::<f64>::zeros(n, missing.len());
+    if missing.is_empty() {
+        factor.solve_in_place(MatMut::from_column_major_slice_mut(w, n, 1));
+        if changed.is_empty() {
+            return Ok(1);
+        }
+    } else {
+        let mut block = faer::Mat::<f64>::zeros(n, 1 + missing.len());
+        for (i, &v) in w.iter().enumerate() {
+            block[(i, 0)] = v;
+        }
         let mut rows = Vec::with_capacity(missing.len());
-        let (mut e, mut kc) = (vec![0.0; n], vec![0.0; n]);
+        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         for (b, &c) in missing.iter().enumerate() {
+            let b = b + 1;
             if d0[c] {
                 // released: unknown value y_c, its column of K̃ on the right-hand side
-                e[c] = 1.0;
-                sym_matvec(pattern, &cache.rotated, &e, &mut kc);
-                e[c] = 0.0;
-                for i in 0..n {
-                    if !d0[i] && kc[i] != 0.0 {
-                        block[(i, b)] = -kc[i];
+                let upper = cache
+                    .slot
+                    .get(c)
+                    .and_then(|&k| cache.upper.get(k))
+                    .ok_or_else(|| internal("a contact dof's row (internal)"))?;
+                let kc: Vec<(usize, f64)> = (cp[c]..cp[c + 1])
+                    .map(|p| (ri[p], cache.rotated[p]))
+                    .chain(upper.iter().map(|&(j, p)| (j, cache.rotated[p])))
+                    .collect();
+                for &(i, v) in &kc {
+                    if !d0[i] && i != c {
+                        block[(i, b)] = -v;
                     }
                 }
                 block[(c, b)] = diag(&cache.rotated, c);
-                rows.push(Some(
-                    (0..n)
-                        .filter(|&i| kc[i] != 0.0)
-                        .map(|i| (i, kc[i]))
-                        .collect(),
-                ));
+                rows.push(Some(kc));
             } else {
                 // newly constrained: unknown reaction along e_c
                 block[(c, b)] = 1.0;
@@ -620,15 +640,18 @@ fn solve_constrained(
             }
         }
         factor.solve_in_place(block.as_mut());
-        solves += missing.len();
+        for (i, v) in w.iter_mut().enumerate() {
+            *v = block[(i, 0)];
+        }
         for ((b, &c), row) in missing.iter().enumerate().zip(rows) {
             cache.columns.push(Correction {
                 dof: c,
-                column: block.col(b).iter().copied().collect(),
+                column: block.col(b + 1).iter().copied().collect(),
                 row,
             });
         }
     }
+    let solves = 1 + missing.len();
     let cols: Vec<&Correction> = changed
         .iter()
         .map(|c| cache.columns.iter().find(|col| col.dof == *c))
