@@ -24,9 +24,9 @@ use crate::error::SolverError;
 use crate::matrix_free::solve_matrix_free;
 use crate::primal::{LocalFrame, PrimalCache, PrimalStep, frames, solve_primal};
 use crate::reduced::ReducedProblem;
-use crate::uzawa::{UzawaSettings, UzawaSolver};
+use crate::uzawa::{UzawaSettings, UzawaSolver, contact_statuses};
 use crate::zone::{Candidate, ContactZone, recognize};
-use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
+use contact_laws::{ContactLaw, ContactStatus};
 use faer::Mat;
 use fem_core::Structure;
 use std::time::{Duration, Instant};
@@ -459,7 +459,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
 
     /// The reduced problem of the last solve — after condensation of the adhesive springs,
     /// with `μ̄` per contact — on the active contacts (see [`Self::last_active`]); export it
-    /// with [`ReducedProblem::to_json`] to re-solve it elsewhere (e.g. Siconos).
+    /// with [`ReducedProblem::to_json`] to re-solve it elsewhere (e.g. Siconos). `None` when the
+    /// last step was solved without a dense `F*` (matrix-free or active set; force
+    /// `FlexibilityMode::Dense` to export a large step).
     pub fn last_reduced_problem(&self) -> Option<&ReducedProblem> {
         self.last_problem.as_ref()
     }
@@ -866,21 +868,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         report.contact_iterations += mf.iterations;
         report.residual = mf.residual;
         report.converged &= mf.converged;
-        let statuses = (0..na)
-            .map(|k| {
-                let ri = LocalVec2::planar(r[2 * k], r[2 * k + 1]);
-                let xi = LocalVec2::planar(x[2 * k], x[2 * k + 1]);
-                let tau = ri + laws[k].modified_velocity(&xi, &states[k]) * rho0[k];
-                let p = laws[k].project(&tau, &states[k]);
-                if p.n == 0.0 && p.t[0] == 0.0 {
-                    ContactStatus::Separation
-                } else if (p - tau).norm() <= 1e-8 * tau.norm() {
-                    ContactStatus::Stick
-                } else {
-                    ContactStatus::Slip
-                }
-            })
-            .collect();
+        let statuses = contact_statuses(&laws, &states, &rho0, &r, &x);
         Ok(Solved {
             r: r.clone(),
             r_bar: r,

@@ -270,6 +270,32 @@ fn rho_of_block([a, b, _, d]: [f64; 4]) -> f64 {
     1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
 }
 
+/// The status of each contact at `(r, x)`, from the projection `P(r + ρ v(x))`: separation
+/// when it is zero, stick when it leaves `τ` unchanged (to [`STATUS_TOL`]), slip otherwise.
+/// `laws` and `states` may hold one entry for every contact.
+pub(crate) fn contact_statuses<L: ContactLaw>(
+    laws: &[L],
+    states: &[L::State],
+    rho: &[f64],
+    r: &[f64],
+    x: &[f64],
+) -> Vec<ContactStatus> {
+    (0..rho.len())
+        .map(|i| {
+            let (law, s) = (pick(laws, i), pick(states, i));
+            let tau = local(r, i) + law.modified_velocity(&local(x, i), s) * rho[i];
+            let p = law.project(&tau, s);
+            if p.n == 0.0 && p.t[0] == 0.0 {
+                ContactStatus::Separation
+            } else if (p - tau).norm() <= STATUS_TOL * tau.norm() {
+                ContactStatus::Stick
+            } else {
+                ContactStatus::Slip
+            }
+        })
+        .collect()
+}
+
 /// `‖r − P(r + ρ⁰ v(x))‖` (absolute), the natural map of the fixed point with the base `ρ⁰`.
 pub(crate) fn natural_residual<L: ContactLaw>(
     laws: &[L],
@@ -517,21 +543,7 @@ impl UzawaSolver {
                 *rho = theta * rho0;
             }
         }
-        let statuses = (0..nc)
-            .map(|i| {
-                let (law, s) = (pick(laws, i), pick(states, i));
-                let ri = local(&r, i);
-                let tau = ri + law.modified_velocity(&local(&x, i), s) * self.rho0[i];
-                let p = law.project(&tau, s);
-                if p.n == 0.0 && p.t[0] == 0.0 {
-                    ContactStatus::Separation
-                } else if (p - tau).norm() <= STATUS_TOL * tau.norm() {
-                    ContactStatus::Stick
-                } else {
-                    ContactStatus::Slip
-                }
-            })
-            .collect();
+        let statuses = contact_statuses(laws, states, &self.rho0, &r, &x);
         let report = UzawaReport {
             algorithm: st.algorithm,
             iterations,
