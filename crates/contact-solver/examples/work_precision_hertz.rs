@@ -469,6 +469,8 @@ fn measure(
         let mut s = SimulationSettings::default();
         s.solver.tol = tol;
         s.solver.accept_non_converged = true;
+        // the study is of the dense reduced solve (its problem is re-timed alone below)
+        s.flexibility = contact_solver::FlexibilityMode::Dense;
         s
     });
     // per tolerance: (build, step) of the fastest run, every total, the last run

@@ -133,7 +133,11 @@ fn random_problem_fast(n_c: usize, seed: u64) -> ReducedProblem {
 
 fn hertz_problems(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn Error>> {
     let scene = HertzScene::new(Idealization::PlaneStrain, ElementKind::Tri6, cells);
-    let mut sim = scene.simulation(SimulationSettings::default());
+    // the reduced problem is exported, so the step must build a dense F*
+    let mut sim = scene.simulation(SimulationSettings {
+        flexibility: contact_solver::FlexibilityMode::Dense,
+        ..SimulationSettings::default()
+    });
     sim.step(1.0, 1.0)?;
     let p = sim
         .last_reduced_problem()
