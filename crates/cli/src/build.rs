@@ -8,8 +8,8 @@ use crate::scene::*;
 use contact_laws::{BetaScheme, Coulomb, LawError, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::scenes::{DelaminationSpec, ShearSpec};
 use contact_solver::{
-    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, RigidArc, RigidLine,
-    SimulationSettings, SolverError, recognize,
+    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
+    FlexibilityMode, RigidArc, RigidLine, SimulationSettings, SolverError, recognize,
 };
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner};
 use fem_core::{
@@ -420,6 +420,20 @@ fn solver_settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     if let Some(b) = s.accept_non_converged {
         out.solver.accept_non_converged = b;
     }
+    let dense_limit = s.dense_limit.unwrap_or(DEFAULT_DENSE_LIMIT);
+    out.flexibility = match s.flexibility.unwrap_or(FlexibilitySpec::Auto) {
+        FlexibilitySpec::Auto => FlexibilityMode::Auto { dense_limit },
+        other if s.dense_limit.is_some() => {
+            let p = root.key("dense_limit");
+            return Err(CliError::at(
+                &p,
+                format!("`{p}` only applies to flexibility = \"auto\" (here {other:?})"),
+            ));
+        }
+        FlexibilitySpec::Dense => FlexibilityMode::Dense,
+        FlexibilitySpec::ActiveSet => FlexibilityMode::ActiveSet,
+        FlexibilitySpec::MatrixFree => FlexibilityMode::MatrixFree,
+    };
     Ok(out)
 }
 

@@ -344,6 +344,12 @@ pub struct CountersOut {
     pub contact_iterations: usize,
     /// Stiffness changes.
     pub stiffness_changes: usize,
+    /// Steps solved by the primal active set (no `F*`).
+    pub active_set_steps: usize,
+    /// Factorisations of the constrained stiffness by the active set.
+    pub active_set_factorizations: usize,
+    /// Steps solved matrix-free.
+    pub matrix_free_steps: usize,
 }
 
 /// Which stages of the step ran.
@@ -1030,6 +1036,9 @@ fn since(now: Counters, start: Counters) -> CountersOut {
         adhesion_iterations: now.adhesion_iterations - start.adhesion_iterations,
         contact_iterations: now.contact_iterations - start.contact_iterations,
         stiffness_changes: now.stiffness_changes - start.stiffness_changes,
+        active_set_steps: now.active_set_steps - start.active_set_steps,
+        active_set_factorizations: now.active_set_factorizations - start.active_set_factorizations,
+        matrix_free_steps: now.matrix_free_steps - start.matrix_free_steps,
     }
 }
 

@@ -472,6 +472,27 @@ pub struct SolverSpec {
     pub max_detection_passes: Option<usize>,
     /// Accept non-converged steps.
     pub accept_non_converged: Option<bool>,
+    /// How a step is solved: `auto` (default), `dense`, `active-set` or `matrix-free`.
+    pub flexibility: Option<FlexibilitySpec>,
+    /// `auto`'s largest active set solved with a dense `F*` (default 500).
+    pub dense_limit: Option<usize>,
+}
+
+/// How a step's contact problem is solved (`contact_solver::FlexibilityMode`).
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+pub enum FlexibilitySpec {
+    /// Dense `F*` up to `dense_limit` contacts, the active set beyond.
+    #[serde(rename = "auto")]
+    Auto,
+    /// Always a dense `F*`.
+    #[serde(rename = "dense")]
+    Dense,
+    /// The primal active set (no `F*`).
+    #[serde(rename = "active-set", alias = "active_set")]
+    ActiveSet,
+    /// One structure solve per product `F* r`.
+    #[serde(rename = "matrix-free", alias = "matrix_free")]
+    MatrixFree,
 }
 
 /// Algorithm names.

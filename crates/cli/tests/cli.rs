@@ -398,3 +398,45 @@ fn phases_release_supports_and_scale_loads() {
     );
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// `[solver] flexibility = "active-set"` solves the block without `F*` and gives the dense
+/// path's numbers.
+#[test]
+fn block_scene_with_the_active_set_matches_the_dense_path() {
+    let text = std::fs::read_to_string(scenes().join("block.toml")).unwrap();
+    let dir = tmp("block_active");
+    let run = |flexibility: &str| -> serde_json::Value {
+        let scene = dir.join(format!("{flexibility}.toml"));
+        // the block scene's [solver] table gets the key
+        assert!(text.contains("[solver]\n"));
+        let s = text.replacen(
+            "[solver]\n",
+            &format!("[solver]\nflexibility = \"{flexibility}\"\n"),
+            1,
+        );
+        std::fs::write(&scene, s).unwrap();
+        let out = dir.join(flexibility);
+        ok(&bipo(&[
+            "run".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]));
+        summary(&out)
+    };
+    let dense = run("dense");
+    let active = run("active-set");
+    assert_eq!(active["status"], "completed");
+    assert_eq!(active["counters"]["flexibility_builds"], 0);
+    assert_eq!(active["counters"]["active_set_steps"], 4);
+    assert_eq!(dense["counters"]["active_set_steps"], 0);
+    assert_eq!(dense["counters"]["flexibility_builds"], 1);
+    let f = |s: &serde_json::Value| s["zones"][0]["final_force_n"].as_f64().unwrap();
+    assert!(
+        (f(&dense) - f(&active)).abs() < 1e-10,
+        "{} vs {}",
+        f(&dense),
+        f(&active)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -48,8 +48,8 @@ pub use obstacle::{ArcSide, Obstacle, ObstaclePoint, RigidArc, RigidLine};
 pub use output::{HistoryWriter, InterfaceSeries, ReportWriter, write_interface_vtu};
 pub use reduced::ReducedProblem;
 pub use simulation::{
-    ContactRecord, ContactSimulation, Counters, FlexibilityMode, InterfaceStatus,
-    SimulationSettings, SkipRules, StepReport, StepResult,
+    ContactRecord, ContactSimulation, Counters, DEFAULT_DENSE_LIMIT, FlexibilityMode,
+    InterfaceStatus, SimulationSettings, SkipRules, StepReport, StepResult,
 };
 pub use uzawa::{Algorithm, Solution, UzawaReport, UzawaSettings, UzawaSolver, solve_coulomb};
 pub use zone::{Candidate, ContactZone, Target, recognize};
