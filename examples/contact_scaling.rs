@@ -17,7 +17,8 @@
 //! cargo build --release --example contact_scaling
 //! E=target/release/examples/contact_scaling
 //! $E run --nx 50 --ny 250 --mode dense --law coulomb   # one configuration (dense | free |
-//!                                                      # active), one CSV row
+//!                                                      # active), one CSV row; --steps N
+//!                                                      # applies the load in N steps
 //! $E probe --nx 5000 --ny 25 --block 64                # build, time of 1 and 64 solves
 //! $E sweep dof  --timeout 300    # n_c = 101, DOF 1e3 … 1e6  -> out/scale/dof.csv
 //! $E sweep nc   --timeout 300    # DOF ≈ 1e5, n_c 51 … 4001  -> out/scale/nc.csv
@@ -77,6 +78,8 @@ struct Config {
     max_iterations: Option<usize>,
     /// Reduced solver of the dense path (`None`: the default).
     algorithm: Option<String>,
+    /// Load steps (the top displacement in equal increments; 1: the whole load at once).
+    steps: usize,
 }
 
 impl Config {
@@ -106,6 +109,7 @@ impl Config {
                 .iter()
                 .flat_map(|a| ["--algorithm".to_string(), a.clone()]),
         )
+        .chain(["--steps".to_string(), self.steps.to_string()])
         .collect()
     }
 
@@ -169,6 +173,7 @@ fn parse_config(args: &[String]) -> Result<Config, Box<dyn Error>> {
         height: get("--height", "1").parse()?,
         max_iterations: flag(args, "--max-iterations").map(str::parse).transpose()?,
         algorithm: flag(args, "--algorithm").map(String::from),
+        steps: get("--steps", "1").parse::<usize>()?.max(1),
     })
 }
 
@@ -196,7 +201,7 @@ fn model(cfg: &Config) -> Result<(LinearElasticModel, Vec<usize>, Vec<usize>), B
 /// sweep adds: wall time and peak memory).
 fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, Box<dyn Error>> {
     let t0 = Instant::now();
-    let (model, _top, bottom) = model(cfg)?;
+    let (model, top, bottom) = model(cfg)?;
     let t_build = t0.elapsed().as_secs_f64();
     let (dof, nnz) = (model.dof_count(), model.nnz());
     let (g0, slope) = (0.005 * cfg.height, 0.01 * cfg.height / cfg.width);
@@ -232,9 +237,37 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
     let t = Instant::now();
     let mut sim = ContactSimulation::new(model, vec![zone], settings)?;
     let t_sim = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let res = sim.step(1.0, 1.0)?;
-    let t_step = t.elapsed().as_secs_f64();
+    // the load in `steps` equal increments of the top displacement (the time, summed)
+    let delta = 0.01 * cfg.height;
+    let mut t_step = 0.0;
+    let mut iterations = 0;
+    let mut res = None;
+    for k in 1..=cfg.steps {
+        let f = k as f64 / cfg.steps as f64;
+        if cfg.steps > 1 {
+            sim.structure_mut()
+                .set_prescribed(&top, Component::Y, -delta * f)?;
+            sim.structure_mut()
+                .set_prescribed(&top, Component::X, 0.1 * delta * f)?;
+        }
+        let t = Instant::now();
+        let r = sim.step(k as f64, 1.0)?;
+        let dt = t.elapsed().as_secs_f64();
+        t_step += dt;
+        iterations += r.report.contact_iterations;
+        if cfg.steps > 1 {
+            let c = sim.counters();
+            eprintln!(
+                "step {k}/{}: {dt:.2} s, {} iterations (so far: {} factorisations, {} solves)",
+                cfg.steps,
+                r.report.contact_iterations,
+                c.active_set_factorizations,
+                c.active_set_solves
+            );
+        }
+        res = Some(r);
+    }
+    let res = res.ok_or("no step")?;
     let t_total = t0.elapsed().as_secs_f64();
     let c = sim.counters();
     let status = if res.report.converged { "ok" } else { "capped" };
@@ -261,7 +294,7 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
         c.flexibility_builds,
         c.operator_applications,
         c.matrix_free_steps,
-        res.report.contact_iterations,
+        iterations,
         res.report.residual,
         res.report.active_contacts,
         settings.solver.algorithm,
@@ -334,6 +367,7 @@ fn sweep(
         height: 1.0,
         max_iterations: None,
         algorithm: algorithm.clone(),
+        steps: 1,
     };
     // (series key, configurations in increasing cost)
     let mut plan: Vec<Config> = Vec::new();
