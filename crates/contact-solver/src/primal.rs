@@ -341,7 +341,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
         cache.rotated_for = rotated_for;
         cache.factor = None;
     }
-    // diagonal of K̃ at the local dofs: the complementarity constants c and ρ = 1/c
+    // diagonal of K̃ at the local dofs: the complementarity constants c
     let diag = |d: usize| cache.rotated[position(pattern, d, d).unwrap_or(0)];
     let c: Vec<[f64; 2]> = step
         .frames
