@@ -205,30 +205,18 @@ fn position(k: SymbolicSparseColMatRef<'_, usize>, row: usize, col: usize) -> Op
     rows.binary_search(&row).ok().map(|p| start + p)
 }
 
-/// `y = A z` for a symmetric `A` stored as its lower triangle.
-fn sym_matvec(
-    pattern: SymbolicSparseColMatRef<'_, usize>,
-    values: &[f64],
-    z: &[f64],
-    y: &mut [f64],
-) {
-    y.fill(0.0);
-    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    for j in 0..pattern.ncols() {
-        let zj = z[j];
-        let mut acc = 0.0;
-        for p in cp[j]..cp[j + 1] {
-            let (i, v) = (ri[p], values[p]);
-            y[i] += v * zj;
-            if i != j {
-                acc += v * z[i];
-            }
-        }
-        y[j] += acc;
-    }
-}
-
 impl PrimalCache {
+    /// `(K̃ v)_c` for a contact dof `c`: its column below the diagonal and its row left of it.
+    fn row_dot(&self, pattern: SymbolicSparseColMatRef<'_, usize>, c: usize, v: &[f64]) -> f64 {
+        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+        let lower: f64 = (cp[c]..cp[c + 1]).map(|p| self.rotated[p] * v[ri[p]]).sum();
+        let upper: f64 = self.upper[self.slot[c]]
+            .iter()
+            .map(|&(j, p)| self.rotated[p] * v[j])
+            .sum();
+        lower + upper
+    }
+
     /// The rotated stiffness `K̃ = P K Pᵀ` (lower triangle, `K`'s pattern).
     fn rotate(
         &mut self,
@@ -465,8 +453,11 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
                 history,
             });
         }
-        // forces: reactions on Dirichlet dofs, the applied sliding force, zero elsewhere
-        sym_matvec(pattern, &cache.rotated, &w, &mut z);
+        // forces: reactions on Dirichlet dofs, the applied sliding force, zero elsewhere (the
+        // rows of K̃ w at the contact dofs only)
+        for &d in &contact_dofs {
+            z[d] = cache.row_dot(pattern, d, &w);
+        }
         for (kk, f) in step.frames.iter().enumerate() {
             for comp in 0..2 {
                 let j = 2 * kk + comp;
@@ -579,19 +570,28 @@ fn solve_constrained(
     }
     let d0 = &cache.factor_mask;
     // base right-hand side: the values kept from D₀, the forces elsewhere
-    let mut z0 = vec![0.0; n];
+    // −K̃_{·D} z_D from the columns of the kept Dirichlet dofs (contact dofs only)
+    w.fill(0.0);
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
     for &d in contact_dofs {
         if mask[d] && d0[d] {
-            z0[d] = z[d];
+            let v = z[d];
+            for p in cp[d]..cp[d + 1] {
+                w[ri[p]] -= cache.rotated[p] * v;
+            }
+            for &(j, p) in &cache.upper[cache.slot[d]] {
+                w[j] -= cache.rotated[p] * v;
+            }
         }
     }
-    sym_matvec(pattern, &cache.rotated, &z0, w);
-    for i in 0..n {
-        w[i] = if d0[i] {
-            diag(&cache.rotated, i) * z0[i]
-        } else {
-            -w[i]
-        };
+    for &d in contact_dofs {
+        if d0[d] {
+            w[d] = if mask[d] {
+                diag(&cache.rotated, d) * z[d]
+            } else {
+                0.0
+            };
+        }
     }
     for &(d, f) in force {
         if !d0[d] {
@@ -620,7 +620,6 @@ fn solve_constrained(
             block[(i, 0)] = v;
         }
         let mut rows = Vec::with_capacity(missing.len());
-        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         for (b, &c) in missing.iter().enumerate() {
             let b = b + 1;
             if d0[c] {
