@@ -24,7 +24,7 @@
 //!
 //! The matrix with the Dirichlet rows and columns replaced by their diagonal keeps the
 //! pattern of `K`, so faer's symbolic Cholesky is done once. While the Dirichlet set differs
-//! from the factorised one on at most [`MAX_LOW_RANK_UPDATE`] dofs, the difference is a
+//! from the factorised one on at most [`max_low_rank_update`] dofs, the difference is a
 //! low-rank (capacitance) correction costing one solve per changed dof, once per
 //! factorisation; beyond, the matrix is refactored. The iteration stops when the guess repeats
 //! (the iterate then solves its own boundary conditions exactly) and the natural-map residual
@@ -50,10 +50,18 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{MatMut, Side};
 use fem_core::Structure;
 
+/// Most new corrections one iteration may add before the constrained stiffness is refactored
+/// instead (a large change of the guess, typically in the first iterations).
+pub const MAX_NEW_CORRECTIONS: usize = 24;
+
 /// Most dofs whose condition may differ from the factorised one before the constrained
-/// stiffness is refactored: each costs one solve (a factorisation costs about 40 solves on the
-/// 1e6-dof scene of `docs/benchmarks.md`, "Scale").
-pub const MAX_LOW_RANK_UPDATE: usize = 24;
+/// stiffness is refactored, for `n` free dofs: `n / 10 000`, clamped to 24..=128. Each changed
+/// dof costs one solve (once per factorisation) and one column of `n` values; a factorisation
+/// costs more solves the larger the mesh (10 at 1e5 dofs, 13 at 1e6 on the scene of
+/// `docs/benchmarks.md`, "Scale"), so more corrections pay before refactoring.
+pub fn max_low_rank_update(n: usize) -> usize {
+    (n / 10_000).clamp(24, 128)
+}
 
 /// Most iterations of one primal solve (also capped by the solver settings' `max_iterations`).
 /// The count grows with how far the stick/slip and contact fronts must travel, in nodes, from
@@ -513,7 +521,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
 /// `force` elsewhere, into `w`; returns the number of solves with the factor.
 ///
 /// The factor `M₀` is of the mask `D₀` of its last factorisation. While the new mask differs
-/// from `D₀` on at most [`MAX_LOW_RANK_UPDATE`] dofs the difference is a low-rank correction
+/// from `D₀` on at most [`max_low_rank_update`] dofs the difference is a low-rank correction
 /// (capacitance matrix): a newly constrained dof `c` gets an unknown reaction along `e_c`, a
 /// released one an unknown value with its column of `K̃` moved to the right-hand side, and a
 /// small dense system enforces `w_c = z_c`, respectively `(K̃ w)_c = f_c`. Each changed dof
@@ -542,7 +550,16 @@ fn solve_constrained(
             .collect(),
         None => Vec::new(),
     };
-    if cache.factor.is_none() || changed.len() > MAX_LOW_RANK_UPDATE {
+    // refactor when the corrections would be too many in all, or too many new at once (a
+    // large change of the guess: cheaper to refactor than to solve for its columns)
+    let new_columns = changed
+        .iter()
+        .filter(|c| !cache.columns.iter().any(|col| col.dof == **c))
+        .count();
+    if cache.factor.is_none()
+        || changed.len() > max_low_rank_update(n)
+        || new_columns > MAX_NEW_CORRECTIONS
+    {
         let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         let mut m = cache.rotated.clone();
         for j in 0..n {

@@ -86,7 +86,7 @@ const FALLBACK_DENSE_LIMIT: usize = 8000;
 
 /// Default [`FlexibilityMode::Auto`] limit, measured (`docs/benchmarks.md`, "Scale"): the
 /// primal active set and the dense `F*` cost the same at about 100 contacts, and the active set
-/// is 3–5× faster at 800 and 20–40× at 4000. The dense path is kept up to 500, where the two
+/// is 4–5× faster at 800 and 30–50× at 4000. The dense path is kept up to 500, where the two
 /// are within a factor 2, because it also serves adhesion and every zone kind.
 pub const DEFAULT_DENSE_LIMIT: usize = 500;
 
