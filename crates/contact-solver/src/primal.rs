@@ -552,13 +552,15 @@ fn solve_constrained(
     };
     // refactor when the corrections would be too many in all, or too many new at once (a
     // large change of the guess: cheaper to refactor than to solve for its columns)
-    let new_columns = changed
+    // the changed dofs without a correction column for this factor yet
+    let mut missing: Vec<usize> = changed
         .iter()
-        .filter(|c| !cache.columns.iter().any(|col| col.dof == **c))
-        .count();
+        .copied()
+        .filter(|c| !cache.columns.iter().any(|col| col.dof == *c))
+        .collect();
     if cache.factor.is_none()
         || changed.len() > max_low_rank_update(n)
-        || new_columns > MAX_NEW_CORRECTIONS
+        || missing.len() > MAX_NEW_CORRECTIONS
     {
         let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         let mut m = cache.rotated.clone();
@@ -584,10 +586,11 @@ fn solve_constrained(
         cache.factor_mask.extend_from_slice(mask);
         cache.factorizations += 1;
         changed.clear();
+        missing.clear();
     }
     let d0 = &cache.factor_mask;
-    // base right-hand side: the values kept from D₀, the forces elsewhere
-    // −K̃_{·D} z_D from the columns of the kept Dirichlet dofs (contact dofs only)
+    // base right-hand side: the values kept from D₀, the forces elsewhere; −K̃_{·D} z_D from
+    // the columns of the kept Dirichlet dofs (contact dofs only)
     w.fill(0.0);
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
     for &d in contact_dofs {
@@ -621,11 +624,6 @@ fn solve_constrained(
         .ok_or_else(|| internal("a numeric factorisation (internal)"))?;
     // correction columns of the dofs not seen yet with this factor, solved in one block with
     // the base right-hand side (column 0)
-    let missing: Vec<usize> = changed
-        .iter()
-        .copied()
-        .filter(|c| !cache.columns.iter().any(|col| col.dof == *c))
-        .collect();
     if missing.is_empty() {
         factor.solve_in_place(MatMut::from_column_major_slice_mut(w, n, 1));
         if changed.is_empty() {
