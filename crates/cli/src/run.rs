@@ -6,10 +6,10 @@ use crate::error::{CliError, CliResult};
 use crate::plot;
 use crate::scene::{CurveSpec, XAxis};
 use contact_laws::ContactLaw;
-use contact_solver::output::{HistoryWriter, InterfaceSeries, ReportWriter};
 use contact_solver::{
     ContactRecord, ContactSimulation, Counters, InterfaceStatus, SolverError, StepResult,
 };
+use contact_solver::{HistoryWriter, InterfaceSeries, ReportWriter};
 use fem_core::{Component, LinearElasticModel, Structure};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;

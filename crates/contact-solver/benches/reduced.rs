@@ -15,7 +15,7 @@
 #[path = "../tests/support/hertz_scene.rs"]
 mod hertz_scene;
 
-use contact_solver::generate::random_problem;
+use contact_solver::local::generate::random_problem;
 use contact_solver::{Algorithm, ReducedProblem, SimulationSettings, UzawaSettings, UzawaSolver};
 use criterion::{Criterion, criterion_group, criterion_main};
 use fem_core::{ElementKind, Idealization};

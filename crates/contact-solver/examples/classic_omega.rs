@@ -1,6 +1,6 @@
 //! Sweeps of the classical RCCM solver (`Algorithm::ClassicRccm`) for several over-relaxation
 //! factors ω, against the bipotential Gauss–Seidel sweeps: the measurement behind
-//! `classic::DEFAULT_OMEGA` (see the docs of `contact_solver::classic`).
+//! `classic::DEFAULT_OMEGA` (see the docs of `contact_solver::local::classic`).
 //!
 //! ```text
 //! cargo run --release -p contact-solver --example classic_omega
@@ -12,7 +12,7 @@
 //! parabolic punch `q_n = −1 + 6 ξ²` (ξ ∈ (−½, ½), the ends open) and pushed by
 //! `q_t = 0.5 + 0.3 ξ`.
 
-use contact_solver::generate::random_problem;
+use contact_solver::local::generate::random_problem;
 use contact_solver::{Algorithm, ReducedProblem, SolverError, UzawaSettings, UzawaSolver};
 
 /// The string problem of the module docs, with `n_c` contacts and friction `mu`.

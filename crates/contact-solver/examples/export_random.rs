@@ -8,7 +8,7 @@
 //! ```
 //! For each problem it also writes `random_<n_c>.solution.json` with our `r` and `x`.
 
-use contact_solver::generate::random_problem;
+use contact_solver::local::generate::random_problem;
 use contact_solver::{Algorithm, UzawaSettings, UzawaSolver};
 use std::time::Instant;
 

@@ -41,7 +41,7 @@
 #[path = "../tests/support/hertz_scene.rs"]
 mod hertz_scene;
 
-use contact_solver::generate::{SplitMix64, random_problem};
+use contact_solver::local::generate::{SplitMix64, random_problem};
 use contact_solver::{
     Algorithm, ReducedProblem, SimulationSettings, SolverError, UzawaSettings, UzawaSolver,
 };

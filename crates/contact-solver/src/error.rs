@@ -111,6 +111,7 @@ pub enum SolverError {
         expected: &'static str,
     },
     /// The structure failed (factorisation, solve, unknown node set).
+    #[cfg(feature = "fe")]
     #[error("structure: {0}")]
     Structure(#[from] fem_core::FemError),
     /// The fixed point between the contact solve and the adhesion update did not converge.
@@ -127,6 +128,7 @@ pub enum SolverError {
     },
 }
 
+#[cfg(feature = "serde")]
 impl From<serde_json::Error> for SolverError {
     fn from(e: serde_json::Error) -> Self {
         Self::Json(e.to_string())

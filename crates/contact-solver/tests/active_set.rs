@@ -2,6 +2,8 @@
 //! path on the same scenes: reactions, gaps and statuses agree to the solver tolerance;
 //! its scope is enforced with typed errors, and `Auto` falls back where it does not apply.
 
+#![cfg(feature = "fe")]
+
 mod support;
 
 use contact_laws::{BetaScheme, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
@@ -297,7 +299,10 @@ fn auto_falls_back_when_the_active_set_does_not_converge() {
             history,
             ..
         }) => {
-            assert_eq!(iterations, contact_solver::primal::PRIMAL_MAX_ITERATIONS);
+            assert_eq!(
+                iterations,
+                contact_solver::coupling::primal::PRIMAL_MAX_ITERATIONS
+            );
             assert_eq!(history.len(), iterations);
         }
         other => panic!("expected NotConverged, got {other:?}"),

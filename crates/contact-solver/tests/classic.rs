@@ -22,7 +22,7 @@ use approx::assert_relative_eq;
 use contact_solver::contact_laws::{
     BetaScheme, ContactLaw, ContactStatus, Coulomb, LawError, LocalVec, Rccm, RccmParams, RccmState,
 };
-use contact_solver::generate::random_problem;
+use contact_solver::local::generate::random_problem;
 use contact_solver::{
     Algorithm, ReducedProblem, Solution, SolverError, UzawaSettings, UzawaSolver,
 };
@@ -157,9 +157,9 @@ fn frictionless_skips_the_friction_sub_problem() {
 #[test]
 fn sweep_counts_are_printed() {
     // `cargo test -p contact-solver --test classic -- --nocapture sweep_counts` prints the
-    // figures quoted in the docs of `contact_solver::classic`, and checks them.
+    // figures quoted in the docs of `contact_solver::local::classic`, and checks them.
     println!("n_c seed | GS sweeps | classic sweeps (tangential) outer");
-    // (n_c, seed, classic sweeps quoted in the docs of `contact_solver::classic`)
+    // (n_c, seed, classic sweeps quoted in the docs of `contact_solver::local::classic`)
     for (nc, seed, quoted) in [
         (10, 1, 486),
         (10, 2, 179),

@@ -2,6 +2,8 @@
 //! below the threshold the base sticks; once sliding, the total tangential reaction is
 //! `−μ ×` the total normal reaction (issue: 1e-8), and every base node slips the same way.
 
+#![cfg(feature = "fe")]
+
 use contact_laws::Coulomb;
 use contact_solver::{
     ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings, StepResult,

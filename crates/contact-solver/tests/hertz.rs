@@ -38,6 +38,8 @@
 //! (2 per active contact): faer's solves are generic, so they are compiled with the
 //! workspace crates' opt-level 0, not with the dependencies' opt-level 3.
 
+#![cfg(feature = "fe")]
+
 mod support;
 
 use contact_laws::Signorini;

@@ -2,7 +2,8 @@
 //! never panics), and the JSON form round-trips.
 
 use contact_solver::contact_laws::LawError;
-use contact_solver::generate::random_problem;
+#[cfg(feature = "serde")]
+use contact_solver::local::generate::random_problem;
 use contact_solver::{ReducedProblem, SolverError};
 
 fn eye() -> Vec<f64> {
@@ -80,6 +81,7 @@ fn new_captures_negative_mu() {
     assert!(e.to_string().contains("contact 0"));
 }
 
+#[cfg(feature = "serde")]
 #[test]
 fn json_round_trip_works() {
     let p = random_problem(10, 7);
@@ -87,6 +89,7 @@ fn json_round_trip_works() {
     assert_eq!(back, p);
 }
 
+#[cfg(feature = "serde")]
 #[test]
 fn from_json_captures_errors() {
     assert!(matches!(

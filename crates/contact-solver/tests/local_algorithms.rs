@@ -25,12 +25,14 @@
 //! - typed errors: a law without friction coefficient and a negative one for Newton, a capped
 //!   iteration for every algorithm.
 
+#![cfg(feature = "fe")]
+
 mod support;
 
 use contact_solver::contact_laws::{
     BetaScheme, ContactLaw, ContactStatus, Coulomb, LawError, LocalVec, Rccm, RccmParams, RccmState,
 };
-use contact_solver::generate::random_problem;
+use contact_solver::local::generate::random_problem;
 use contact_solver::{
     Algorithm, ReducedProblem, SimulationSettings, Solution, SolverError, UzawaSettings,
     UzawaSolver,

@@ -9,6 +9,8 @@
 //! Fast variants (fewer steps) as in `tests/seed_studies.rs`; run with `--nocapture` for the
 //! contact iterations and wall time of each algorithm.
 
+#![cfg(feature = "fe")]
+
 use contact_solver::scenes::{DelaminationSpec, Scene, ShearSpec};
 use contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};
 use std::time::Instant;

@@ -1,8 +1,10 @@
 //! The matrix-free iteration against the dense Gauss–Seidel solver on seeded random problems,
 //! with the product `W r + q` as its only access to the problem.
 
-use contact_solver::generate::random_problem;
-use contact_solver::matrix_free::solve_matrix_free;
+#![cfg(feature = "fe")]
+
+use contact_solver::local::generate::random_problem;
+use contact_solver::local::matrix_free::solve_matrix_free;
 use contact_solver::{UzawaSettings, UzawaSolver};
 
 #[test]

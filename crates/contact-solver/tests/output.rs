@@ -1,4 +1,4 @@
-//! Output of the interface (`contact_solver::output`): CSV histories read back bit-exactly and
+//! Output of the interface (`contact_solver::coupling::output`): CSV histories read back bit-exactly and
 //! `.vtu` files read back with vtkio.
 //!
 //! Scene (as `tests/signorini_block.rs`): a 2 × 1 P1 block, plane strain, E = 200, ν = 0.3,
@@ -6,8 +6,10 @@
 //! node is a candidate in the reduced problem), left side fixed in x, top pushed down by
 //! 0.0005 (step 1: still open) then 0.011 (step 2: pressed).
 
+#![cfg(feature = "fe")]
+
 use contact_laws::Signorini;
-use contact_solver::output::{
+use contact_solver::coupling::output::{
     CONTACT_COLUMNS, HistoryWriter, InterfaceSeries, REPORT_COLUMNS, ReportWriter, status_code,
     write_interface_vtu,
 };

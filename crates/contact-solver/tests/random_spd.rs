@@ -1,4 +1,4 @@
-//! Random SPD reduced problems (`contact_solver::generate::random_problem`, seeded).
+//! Random SPD reduced problems (`contact_solver::local::generate::random_problem`, seeded).
 //!
 //! Reference: the optimality conditions themselves (seed 4.8–4.9, `docs/theory.md` §4): at a
 //! solution, per contact, `r_i ∈ K_μi`, `x_n ≥ 0` and the Fenchel gap
@@ -7,7 +7,7 @@
 //! in practice (not in general for Coulomb friction).
 
 use contact_solver::contact_laws::{CoulombCone, LocalVec2, contact_fenchel_gap};
-use contact_solver::generate::random_problem;
+use contact_solver::local::generate::random_problem;
 use contact_solver::{
     Algorithm, ReducedProblem, Solution, SolverError, UzawaSettings, solve_coulomb,
 };

@@ -3,6 +3,8 @@
 //! `√(w C_n)` at `u₀ = √(w/C_n)` and the work to decohesion is `w`; with α > 0 the peak rises
 //! with the loading rate (seed figs 5.12–5.13).
 
+#![cfg(feature = "fe")]
+
 use contact_laws::{BetaScheme, Rccm, RccmParams};
 use contact_solver::{
     ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings,

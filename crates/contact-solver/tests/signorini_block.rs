@@ -1,6 +1,8 @@
 //! An elastic block pressed on a rigid LINE by a uniform displacement of its top face:
 //! uniform pressure `σ = E' δ / h` and no penetration (issue: 1e-10 relative).
 
+#![cfg(feature = "fe")]
+
 use contact_laws::Signorini;
 use contact_solver::{
     ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings,

@@ -1,6 +1,8 @@
 //! "Skip what a scene does not need", one test per rule: the work is skipped (counters) and the
 //! answer is the same as with the rule switched off.
 
+#![cfg(feature = "fe")]
+
 use contact_laws::{BetaScheme, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::{
     ContactSimulation, ContactZone, RigidLine, SimulationSettings, SkipRules, StepResult,

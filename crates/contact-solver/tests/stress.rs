@@ -22,6 +22,8 @@
 //! in debug builds), about 250 000 solver sweeps in all. Run with `--nocapture` for the records,
 //! `--ignored` for the two known bugs (issue 8, see `docs/validation.md`).
 
+#![cfg(feature = "fe")]
+
 mod support;
 
 use support::stress_cases::{

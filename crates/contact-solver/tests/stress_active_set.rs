@@ -8,6 +8,8 @@
 //! out of its scope (`SolverError::Unsupported` / `InvalidSetting`, tested in
 //! `tests/active_set.rs`).
 
+#![cfg(feature = "fe")]
+
 mod support;
 
 use support::stress_cases::{

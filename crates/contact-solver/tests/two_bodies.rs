@@ -3,6 +3,8 @@
 //! series-spring solution `σ = δ / (h_u/E_u + h_l/E_l)`; non-matching meshes through
 //! node-to-segment carry the same total force with the contactor nodes closed.
 
+#![cfg(feature = "fe")]
+
 use contact_laws::Signorini;
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings};
 use fem_core::generate::{RectangleSpec, rectangle};

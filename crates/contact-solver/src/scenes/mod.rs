@@ -9,10 +9,10 @@ pub use pile::{
     BetaCoupling, Installation, PulloutRun, PulloutScene, PulloutSpec, PulloutStep, ShaftPoint,
 };
 
+use crate::coupling::obstacle::RigidLine;
+use crate::coupling::simulation::{ContactSimulation, SimulationSettings, StepResult};
+use crate::coupling::zone::ContactZone;
 use crate::error::SolverError;
-use crate::obstacle::RigidLine;
-use crate::simulation::{ContactSimulation, SimulationSettings, StepResult};
-use crate::zone::ContactZone;
 use contact_laws::{BetaScheme, Rccm, RccmParams};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};

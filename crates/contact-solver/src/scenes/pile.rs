@@ -81,11 +81,11 @@
 //!   show anything. We take the table's number in the simulation's units, `w = 3e-3 kN/m`
 //!   (3 J/m²): `√(wC)` = 5.6 kPa and `√(w/C)` = 0.53 mm for Plancoët.
 
-use crate::error::SolverError;
-use crate::simulation::{
+use crate::coupling::simulation::{
     ContactRecord, ContactSimulation, InterfaceStatus, SimulationSettings, StepResult,
 };
-use crate::zone::ContactZone;
+use crate::coupling::zone::ContactZone;
+use crate::error::SolverError;
 use contact_laws::{BetaScheme, Rccm, RccmParams};
 use fem_core::generate::{PILE, PileSpec, SOIL, TipCorner, pile_in_soil};
 use fem_core::{

@@ -33,7 +33,7 @@
 //! springs soften (β < 1) and the total reaction is a tension.
 //! ```
 //! use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
-//! use contact_solver::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+//! use contact_solver::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
 //! use contact_solver::{UzawaSettings, UzawaSolver};
 //! let law = Rccm::new(RccmParams { c_n: 100.0, c_t: 100.0, w: 0.01, alpha: 0.0, mu: 0.2,
 //!     m: 1, beta_0: 1.0, scheme: BetaScheme::ImplicitEuler })?;
@@ -55,10 +55,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use super::dense::symmetrize;
+use super::problem::ReducedProblem;
+use super::settings::UzawaReport;
+use super::solver::UzawaSolver;
 use crate::error::SolverError;
-use crate::reduced::ReducedProblem;
-use crate::simulation::symmetrize;
-use crate::uzawa::{UzawaReport, UzawaSolver};
 use contact_laws::{ContactLaw, LocalVec2};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef, Side};

@@ -5,7 +5,7 @@
 //! [`Algorithm::AndersonGaussSeidel`](crate::Algorithm::AndersonGaussSeidel) (the base map is
 //! one projected Gauss–Seidel sweep) or
 //! [`Algorithm::AndersonUzawa`](crate::Algorithm::AndersonUzawa) (one self-adaptive Uzawa
-//! step) in [`UzawaSolver`].
+//! step) in [`UzawaSolver`](crate::UzawaSolver).
 //!
 //! With `G` the base map (`g_k = G(r_k)`, `f_k = g_k − r_k`) and a memory of the last
 //! `d ≤` [`ANDERSON_DEPTH`] differences `Δf_j = f_{j+1} − f_j`, `Δg_j = g_{j+1} − g_j`:
@@ -37,12 +37,12 @@
 //! **Stopping rule.** Each iteration is judged like a plain sweep: the change is that of
 //! the base step, `‖g_k − r_k‖/‖g_k‖`, and the natural residual (with `ρ⁰`) is taken at
 //! `g_k`, the projected point; `g_k` is what is returned (see
-//! [`uzawa`](crate::uzawa#stopping-rule)). [`UzawaReport::iterations`](crate::UzawaReport)
+//! [layer docs](crate::local#stopping-rule)). [`UzawaReport::iterations`](crate::UzawaReport)
 //! counts base steps (including rejected ones).
 //!
 //! # Examples
 //! ```
-//! use contact_solver::{Algorithm, UzawaSettings, UzawaSolver, generate::random_problem};
+//! use contact_solver::{Algorithm, UzawaSettings, UzawaSolver, local::generate::random_problem};
 //! let p = random_problem(20, 1);
 //! let settings = UzawaSettings { algorithm: Algorithm::AndersonGaussSeidel, ..UzawaSettings::default() };
 //! let sol = UzawaSolver::new(settings).solve(&p, &p.coulomb_laws())?;
@@ -50,8 +50,10 @@
 //! # Ok::<(), contact_solver::SolverError>(())
 //! ```
 
-use crate::reduced::ReducedProblem;
-use crate::uzawa::{UzawaSettings, UzawaSolver, natural_residual, norm};
+use super::problem::ReducedProblem;
+use super::residual::{natural_residual, norm};
+use super::settings::UzawaSettings;
+use super::sweep::Sweeps;
 use contact_laws::ContactLaw;
 
 /// Memory depth `d` of the Anderson mixing (the "window"): the last `d` differences.
@@ -89,7 +91,7 @@ pub(crate) struct AndersonRun {
 }
 
 /// Scratch buffers of the accelerated iteration, kept in the
-/// [`UzawaSolver`] and reused across solves.
+/// [`UzawaSolver`](crate::UzawaSolver) and reused across solves.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct AndersonScratch {
     /// `g_k = G(r_k)` and `x(g_k)`.
@@ -219,7 +221,7 @@ impl AndersonScratch {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve<L: ContactLaw>(
         &mut self,
-        solver: &mut UzawaSolver,
+        sweeps: &mut Sweeps,
         base: BaseMap,
         problem: &ReducedProblem,
         laws: &[L],
@@ -251,11 +253,11 @@ impl AndersonScratch {
             self.xg.copy_from_slice(x);
             let dr2 = match base {
                 BaseMap::GaussSeidel => {
-                    solver.gauss_seidel_sweep(problem, laws, states, &mut self.g, &mut self.xg)
+                    sweeps.gauss_seidel_sweep(problem, laws, states, &mut self.g, &mut self.xg)
                 }
                 BaseMap::Uzawa => {
-                    solver.set_velocity(laws, states, x);
-                    solver.uzawa_step(problem, laws, states, &mut self.g, &mut self.xg, theta)
+                    sweeps.set_velocity(laws, states, x);
+                    sweeps.uzawa_step(problem, laws, states, &mut self.g, &mut self.xg, theta)
                 }
             };
             for ((f, g), a) in self.f.iter_mut().zip(&self.g).zip(r.iter()) {
@@ -265,7 +267,7 @@ impl AndersonScratch {
             let g_norm = norm(&self.g);
             run.change = f_norm / g_norm.max(f64::MIN_POSITIVE);
             let denom = g_norm.max(denom_q).max(f64::MIN_POSITIVE);
-            let rho0 = solver.rho0();
+            let rho0 = sweeps.rho0();
             run.residual = natural_residual(laws, states, rho0, &self.g, &self.xg) / denom;
             if run.change <= tol && run.residual <= tol {
                 // x(g) was built incrementally: confirm on the exact x = W g + q.

@@ -42,7 +42,7 @@
 //! with a dense `F*`).
 
 use crate::error::SolverError;
-use crate::uzawa::{contact_statuses, natural_residual};
+use crate::local::{contact_statuses, natural_residual};
 use contact_laws::{ContactLaw, ContactStatus};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};

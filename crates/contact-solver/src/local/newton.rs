@@ -1,5 +1,5 @@
 //! A semi-smooth Newton method on De Saxcé's projection equation, selected by
-//! [`Algorithm::Newton`](crate::Algorithm::Newton) in [`UzawaSolver`].
+//! [`Algorithm::Newton`](crate::Algorithm::Newton) in [`UzawaSolver`](crate::UzawaSolver).
 //!
 //! The solutions of the reduced problem are the zeros of the natural map (seed 5.26; De Saxcé,
 //! Feng 1998; the same map the stopping rule measures):
@@ -53,7 +53,7 @@
 //! are mostly within the noise of this shared machine, and 2 is never more than 20 % from the
 //! best column.
 //!
-//! **Stopping rule.** The rule of the sweeps ([`uzawa`](crate::uzawa#stopping-rule)), tested
+//! **Stopping rule.** The rule of the sweeps ([layer docs](crate::local#stopping-rule)), tested
 //! after every Newton step or sweep. Once the natural residual (with `ρ⁰`) is `≤ tol`, the
 //! iteration goes on with Gauss–Seidel sweeps (usually one) until the change of `r` is `≤ tol`
 //! too, and both tests are made on the exact `x = W r + q`. (A Newton step's change is its
@@ -67,7 +67,7 @@
 //!
 //! # Examples
 //! ```
-//! use contact_solver::{Algorithm, UzawaSettings, UzawaSolver, generate::random_problem};
+//! use contact_solver::{Algorithm, UzawaSettings, UzawaSolver, local::generate::random_problem};
 //! let p = random_problem(20, 1);
 //! let settings = UzawaSettings { algorithm: Algorithm::Newton, ..UzawaSettings::default() };
 //! let sol = UzawaSolver::new(settings).solve(&p, &p.coulomb_laws())?;
@@ -75,10 +75,12 @@
 //! # Ok::<(), contact_solver::SolverError>(())
 //! ```
 
-use crate::classic::friction_coefficients_into;
+use super::classic::friction_coefficients_into;
+use super::problem::ReducedProblem;
+use super::residual::{local, natural_residual, norm, pick, set_local};
+use super::settings::UzawaSettings;
+use super::sweep::Sweeps;
 use crate::error::SolverError;
-use crate::reduced::ReducedProblem;
-use crate::uzawa::{UzawaSettings, UzawaSolver, local, natural_residual, norm, pick, set_local};
 use contact_laws::ContactLaw;
 use faer::linalg::solvers::Solve;
 use faer::{MatMut, MatRef};
@@ -141,7 +143,7 @@ pub(crate) struct NewtonRun {
     pub change: f64,
 }
 
-/// Scratch buffers of the Newton solver, kept in the [`UzawaSolver`] and
+/// Scratch buffers of the Newton sweeps, kept in the [`UzawaSolver`](crate::UzawaSolver) and
 /// reused across solves.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct NewtonScratch {
@@ -281,7 +283,7 @@ fn product_into(w: &[f64], v: &[f64], out: &mut [f64]) {
 /// itself, recomputed with `ρ⁰` otherwise.
 #[allow(clippy::too_many_arguments)]
 fn relative_residual<L: ContactLaw>(
-    solver: &UzawaSolver,
+    sweeps: &Sweeps,
     laws: &[L],
     states: &[L::State],
     exact_rho: bool,
@@ -293,7 +295,7 @@ fn relative_residual<L: ContactLaw>(
     let absolute = if exact_rho {
         phi.sqrt()
     } else {
-        natural_residual(laws, states, solver.rho0(), r, x)
+        natural_residual(laws, states, sweeps.rho0(), r, x)
     };
     absolute / norm(r).max(denom_q).max(f64::MIN_POSITIVE)
 }
@@ -428,7 +430,7 @@ impl NewtonScratch {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve<L: ContactLaw>(
         &mut self,
-        solver: &mut UzawaSolver,
+        sweeps: &mut Sweeps,
         problem: &ReducedProblem,
         laws: &[L],
         states: &[L::State],
@@ -443,7 +445,7 @@ impl NewtonScratch {
         self.resize(m);
         self.rho.clear();
         self.rho
-            .extend(solver.rho0().iter().map(|a| a * settings.rho_scale));
+            .extend(sweeps.rho0().iter().map(|a| a * settings.rho_scale));
         let exact_rho = settings.rho_scale == 1.0;
         let tol = settings.tol;
         let mut run = NewtonRun {
@@ -496,17 +498,17 @@ impl NewtonScratch {
             }
             if !stepped {
                 // Warm-up, polishing or fallback: one projected Gauss–Seidel sweep.
-                let dr2 = solver.gauss_seidel_sweep(problem, laws, states, r, x);
+                let dr2 = sweeps.gauss_seidel_sweep(problem, laws, states, r, x);
                 run.change = dr2.sqrt() / norm(r).max(f64::MIN_POSITIVE);
                 phi = self.refresh(laws, states, r, x);
             }
-            run.residual = relative_residual(solver, laws, states, exact_rho, phi, denom_q, r, x);
+            run.residual = relative_residual(sweeps, laws, states, exact_rho, phi, denom_q, r, x);
             if run.residual <= tol && run.change <= tol {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);
                 phi = self.refresh(laws, states, r, x);
                 run.residual =
-                    relative_residual(solver, laws, states, exact_rho, phi, denom_q, r, x);
+                    relative_residual(sweeps, laws, states, exact_rho, phi, denom_q, r, x);
             }
             history.push(run.residual);
             if run.residual <= tol && run.change <= tol {

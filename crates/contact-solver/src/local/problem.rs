@@ -7,12 +7,11 @@
 //! Unknowns are ordered normal first per contact: `r = (r_n0, r_t0, r_n1, r_t1, …)`, size
 //! `m = 2 n_c`. Signs are those of [`contact_laws`](contact_laws#sign-conventions): `r_n ≥ 0`
 //! is compression, `x_n ≥ 0` an opening. This is also Siconos' `fc2d` form (`u = W r + q`,
-//! De Saxcé's `û = u + μ|u_t| n`), so [`ReducedProblem::to_json`] writes exactly what
+//! De Saxcé's `û = u + μ|u_t| n`), so `ReducedProblem::to_json` (feature `serde`) writes exactly what
 //! `shared/peers/siconos_fc.py` reads.
 
 use crate::error::SolverError;
 use contact_laws::{Coulomb, CoulombCone};
-use serde::{Deserialize, Serialize};
 
 /// Relative tolerance of the symmetry test of `W`: `|W_ij − W_ji| ≤ 1e-12 · max|W|`.
 pub const SYMMETRY_TOL: f64 = 1e-12;
@@ -28,24 +27,6 @@ pub struct ReducedProblem {
     w: Vec<f64>,
     q: Vec<f64>,
     mu: Vec<f64>,
-}
-
-/// The JSON form: `{"dim": 2, "W": flat row-major or list of rows, "q": [...], "mu": [...]}`.
-#[derive(Serialize, Deserialize)]
-struct JsonProblem {
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    dim: Option<usize>,
-    #[serde(rename = "W")]
-    w: JsonMatrix,
-    q: Vec<f64>,
-    mu: Vec<f64>,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(untagged)]
-enum JsonMatrix {
-    Flat(Vec<f64>),
-    Rows(Vec<Vec<f64>>),
 }
 
 impl ReducedProblem {
@@ -126,58 +107,6 @@ impl ReducedProblem {
             }
         }
         Ok(p)
-    }
-
-    /// Reads a problem from JSON `{"dim": 2, "W": [...], "q": [...], "mu": [...]}`, the format
-    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows, and
-    /// `dim` may be left out (it must be 2 when given).
-    ///
-    /// # Errors
-    /// [`SolverError::Json`] for malformed JSON, ragged rows or `dim ≠ 2`; otherwise those of
-    /// [`new`](Self::new).
-    ///
-    /// # Examples
-    /// ```
-    /// use contact_solver::ReducedProblem;
-    /// let p = ReducedProblem::from_json(r#"{"W": [[1, 0], [0, 1]], "q": [-1, 0], "mu": [0.5]}"#)?;
-    /// assert_eq!(p.w(), &[1.0, 0.0, 0.0, 1.0]);
-    /// # Ok::<(), contact_solver::SolverError>(())
-    /// ```
-    pub fn from_json(text: &str) -> Result<Self, SolverError> {
-        let j: JsonProblem = serde_json::from_str(text)?;
-        if let Some(dim) = j.dim
-            && dim != 2
-        {
-            return Err(SolverError::Json(format!(
-                "dim = {dim} is not supported: the reduced solver is 2D (dim = 2)"
-            )));
-        }
-        let w = match j.w {
-            JsonMatrix::Flat(w) => w,
-            JsonMatrix::Rows(rows) => {
-                let m = j.q.len();
-                if rows.iter().any(|r| r.len() != m) {
-                    return Err(SolverError::Json(format!(
-                        "W given as rows: every row must have {m} entries (the length of q)"
-                    )));
-                }
-                rows.concat()
-            }
-        };
-        Self::new(w, j.q, j.mu)
-    }
-
-    /// Writes the problem as JSON `{"dim": 2, "W": [flat row-major], "q": [...], "mu": [...]}`.
-    ///
-    /// # Errors
-    /// [`SolverError::Json`] if serialisation fails (it does not for a validated problem).
-    pub fn to_json(&self) -> Result<String, SolverError> {
-        Ok(serde_json::to_string(&JsonProblem {
-            dim: Some(2),
-            w: JsonMatrix::Flat(self.w.clone()),
-            q: self.q.clone(),
-            mu: self.mu.clone(),
-        })?)
     }
 
     /// Number of contacts `n_c`.
@@ -271,13 +200,5 @@ mod tests {
         assert_eq!(e, Err(SolverError::NotPositiveDefinite { contact: 0 }));
         // tangentially supported contact: [W_nn 0; 0 0]
         assert!(ReducedProblem::new(vec![1.0, 0.0, 0.0, 0.0], vec![-1.0, 0.0], vec![0.2]).is_ok());
-    }
-
-    #[test]
-    fn from_json_rejects_dim_3_and_ragged_rows() {
-        let e = ReducedProblem::from_json(r#"{"dim":3,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
-        assert!(matches!(e, Err(SolverError::Json(_))));
-        let e = ReducedProblem::from_json(r#"{"W":[[1,0],[0]],"q":[0,0],"mu":[0]}"#);
-        assert!(matches!(e, Err(SolverError::Json(_))));
     }
 }

@@ -6,7 +6,7 @@
 //! ```
 //! The generator is SplitMix64, so a seed gives the same problem on every platform.
 
-use crate::reduced::ReducedProblem;
+use super::problem::ReducedProblem;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny seeded generator of `u64`.
 #[derive(Clone, Debug)]
@@ -38,7 +38,7 @@ impl SplitMix64 {
 ///
 /// # Examples
 /// ```
-/// let p = contact_solver::generate::random_problem(10, 42);
+/// let p = contact_solver::local::generate::random_problem(10, 42);
 /// assert_eq!(p.contact_count(), 10);
 /// ```
 pub fn random_problem(n_c: usize, seed: u64) -> ReducedProblem {

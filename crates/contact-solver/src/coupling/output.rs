@@ -19,8 +19,8 @@
 //! writer with one `write_all` per step; wrap a file in a [`std::io::BufWriter`] all the same
 //! when a step has few contacts.
 
+use crate::coupling::simulation::{ContactRecord, InterfaceStatus, StepReport, StepResult};
 use crate::error::SolverError;
-use crate::simulation::{ContactRecord, InterfaceStatus, StepReport, StepResult};
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -79,7 +79,7 @@ pub const REPORT_COLUMNS: [&str; 13] = [
 /// # Examples
 /// ```
 /// use contact_solver::InterfaceStatus;
-/// use contact_solver::output::status_code;
+/// use contact_solver::coupling::output::status_code;
 /// assert_eq!(status_code(InterfaceStatus::Inactive), 0);
 /// assert_eq!(status_code(InterfaceStatus::Slip), 3);
 /// ```
@@ -102,7 +102,7 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 ///
 /// # Examples
 /// ```
-/// use contact_solver::output::HistoryWriter;
+/// use contact_solver::coupling::output::HistoryWriter;
 /// use contact_solver::{ContactRecord, InterfaceStatus};
 /// let c = ContactRecord {
 ///     zone: 0, node: 7, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Stick,
@@ -132,7 +132,7 @@ impl<W: Write> HistoryWriter<W> {
     ///
     /// # Examples
     /// ```
-    /// use contact_solver::output::{CONTACT_COLUMNS, HistoryWriter};
+    /// use contact_solver::coupling::output::{CONTACT_COLUMNS, HistoryWriter};
     /// let text = HistoryWriter::new(Vec::new())?.finish()?;
     /// assert_eq!(String::from_utf8(text).unwrap().trim_end(), CONTACT_COLUMNS.join(","));
     /// # Ok::<(), contact_solver::SolverError>(())
@@ -157,7 +157,7 @@ impl<W: Write> HistoryWriter<W> {
     /// # Examples
     /// See [`HistoryWriter`] and `tests/output.rs` (a whole simulation).
     /// ```
-    /// # use contact_solver::output::HistoryWriter;
+    /// # use contact_solver::coupling::output::HistoryWriter;
     /// # fn log(sim_step: &contact_solver::StepResult) -> Result<(), contact_solver::SolverError> {
     /// let mut history = HistoryWriter::new(Vec::new())?;
     /// history.write_step(sim_step)?;
@@ -177,7 +177,7 @@ impl<W: Write> HistoryWriter<W> {
     /// # Examples
     /// See [`HistoryWriter`].
     /// ```
-    /// # use contact_solver::output::HistoryWriter;
+    /// # use contact_solver::coupling::output::HistoryWriter;
     /// let mut history = HistoryWriter::new(Vec::new())?;
     /// history.write_contacts(1, 1.0, 1.0, &[])?; // no candidates: no row
     /// assert_eq!(history.finish()?.iter().filter(|&&b| b == b'\n').count(), 1);
@@ -221,7 +221,7 @@ impl<W: Write> HistoryWriter<W> {
     /// # Examples
     /// See [`HistoryWriter`].
     /// ```
-    /// # use contact_solver::output::HistoryWriter;
+    /// # use contact_solver::coupling::output::HistoryWriter;
     /// let bytes: Vec<u8> = HistoryWriter::new(Vec::new())?.finish()?;
     /// assert!(bytes.starts_with(b"step,time,load_factor,zone,node,"));
     /// # Ok::<(), contact_solver::SolverError>(())
@@ -249,7 +249,7 @@ impl<W: Write> HistoryWriter<W> {
 /// # Examples
 /// ```
 /// use contact_solver::StepReport;
-/// use contact_solver::output::ReportWriter;
+/// use contact_solver::coupling::output::ReportWriter;
 /// use std::time::Duration;
 /// let report = StepReport {
 ///     step: 1, time: 0.5, load_factor: 1.0, active_contacts: 9, adhesion_iterations: 0,
@@ -277,7 +277,7 @@ impl<W: Write> ReportWriter<W> {
     ///
     /// # Examples
     /// ```
-    /// use contact_solver::output::{REPORT_COLUMNS, ReportWriter};
+    /// use contact_solver::coupling::output::{REPORT_COLUMNS, ReportWriter};
     /// let text = ReportWriter::new(Vec::new())?.finish()?;
     /// assert_eq!(String::from_utf8(text).unwrap().trim_end(), REPORT_COLUMNS.join(","));
     /// # Ok::<(), contact_solver::SolverError>(())
@@ -301,7 +301,7 @@ impl<W: Write> ReportWriter<W> {
     /// # Examples
     /// See [`ReportWriter`].
     /// ```
-    /// # use contact_solver::output::ReportWriter;
+    /// # use contact_solver::coupling::output::ReportWriter;
     /// # fn log(result: &contact_solver::StepResult) -> Result<(), contact_solver::SolverError> {
     /// let mut log = ReportWriter::new(Vec::new())?;
     /// log.write_report(&result.report)?;
@@ -342,7 +342,7 @@ impl<W: Write> ReportWriter<W> {
     /// # Examples
     /// See [`ReportWriter`].
     /// ```
-    /// # use contact_solver::output::ReportWriter;
+    /// # use contact_solver::coupling::output::ReportWriter;
     /// let bytes: Vec<u8> = ReportWriter::new(Vec::new())?.finish()?;
     /// assert!(bytes.starts_with(b"step,time,"));
     /// # Ok::<(), contact_solver::SolverError>(())
@@ -381,7 +381,7 @@ impl<W: Write> ReportWriter<W> {
 ///
 /// # Examples
 /// ```
-/// use contact_solver::output::write_interface_vtu;
+/// use contact_solver::coupling::output::write_interface_vtu;
 /// use contact_solver::{ContactRecord, InterfaceStatus};
 /// let c = ContactRecord {
 ///     zone: 0, node: 1, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Open,
@@ -501,7 +501,7 @@ fn interface_model(
 ///
 /// # Examples
 /// ```
-/// use contact_solver::output::InterfaceSeries;
+/// use contact_solver::coupling::output::InterfaceSeries;
 /// let dir = std::env::temp_dir().join("contact_solver_series_doc");
 /// std::fs::create_dir_all(&dir).unwrap();
 /// let mut series = InterfaceSeries::new(&dir, "interface");
@@ -523,7 +523,7 @@ impl InterfaceSeries {
     ///
     /// # Examples
     /// ```
-    /// use contact_solver::output::InterfaceSeries;
+    /// use contact_solver::coupling::output::InterfaceSeries;
     /// let series = InterfaceSeries::new(std::env::temp_dir(), "contacts");
     /// assert!(series.pvd_path().ends_with("contacts.pvd"));
     /// ```
@@ -540,7 +540,7 @@ impl InterfaceSeries {
     /// # Examples
     /// See [`InterfaceSeries::new`].
     /// ```
-    /// # use contact_solver::output::InterfaceSeries;
+    /// # use contact_solver::coupling::output::InterfaceSeries;
     /// let series = InterfaceSeries::new("out", "contacts");
     /// assert_eq!(series.pvd_path(), std::path::Path::new("out/contacts.pvd"));
     /// ```
@@ -559,7 +559,7 @@ impl InterfaceSeries {
     /// # Examples
     /// See [`InterfaceSeries`].
     /// ```
-    /// # use contact_solver::output::InterfaceSeries;
+    /// # use contact_solver::coupling::output::InterfaceSeries;
     /// # use contact_solver::SolverError;
     /// let mut series = InterfaceSeries::new(std::env::temp_dir(), "contacts_doc");
     /// assert!(matches!(series.write_step(f64::NAN, &[], None), Err(SolverError::NonFinite { .. })));

@@ -6,7 +6,7 @@
 //! (`Hᵀ r`, solve, `H ·`). It is De Saxcé's projected iteration (seed 5.26) with
 //!
 //! - per-contact `ρ_i = θ ρ⁰_i`, `ρ⁰_i` from (estimated) diagonal blocks of `F*`, and the global
-//!   factor `θ` adapted by the Khobotov / Solodov–Tseng ratio rule of [`crate::uzawa`];
+//!   factor `θ` adapted by the Khobotov / Solodov–Tseng ratio rule of the [layer docs](crate::local#the-penalty-ρ);
 //! - Nesterov momentum on `r` with adaptive restart (O'Donoghue & Candès 2015): the momentum is
 //!   dropped whenever the natural-map residual grows. Since `x` is affine in `r`, the
 //!   extrapolated `x` is the same combination of the last two products: one structure solve per
@@ -23,8 +23,8 @@
 //! `n_c = 33`, 633 for 129; Coulomb: 194 and 2790. Building `F*` costs `2 n_c` solves, so the
 //! dense path is faster whenever `F*` fits in memory; this solver is for when it does not.
 
+use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, UzawaSettings};
 use crate::error::SolverError;
-use crate::uzawa::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, UzawaSettings};
 use contact_laws::{ContactLaw, LocalVec2};
 
 /// What the matrix-free solve did.
@@ -86,7 +86,7 @@ fn natural_residual<L: ContactLaw>(
 /// # Examples
 /// ```
 /// use contact_laws::Coulomb;
-/// use contact_solver::matrix_free::solve_matrix_free;
+/// use contact_solver::local::matrix_free::solve_matrix_free;
 /// use contact_solver::UzawaSettings;
 /// // one contact, W = 2 I, pressed (q_n = −1) and pushed (q_t = 0.5), μ = 0.2: slip
 /// let apply = |r: &[f64], x: &mut [f64]| {

@@ -18,8 +18,8 @@
 //! its gap at the start of the step or under the free response is within `Δx`, or while it is
 //! adhesive (β > 0). See [`crate::simulation`].
 
+use crate::coupling::obstacle::Obstacle;
 use crate::error::SolverError;
-use crate::obstacle::Obstacle;
 use fem_core::{Idealization, Structure};
 use std::sync::Arc;
 

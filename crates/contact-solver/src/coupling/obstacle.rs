@@ -38,7 +38,7 @@ impl ObstaclePoint {
 ///
 /// # Examples
 /// ```
-/// use contact_solver::obstacle::{Obstacle, RigidLine};
+/// use contact_solver::coupling::obstacle::{Obstacle, RigidLine};
 /// let ground = RigidLine::new([0.0, 0.0], [10.0, 0.0])?; // contactor above (left of a → b)
 /// let p = ground.project([2.0, 0.5]).unwrap();
 /// assert_eq!((p.point, p.normal, p.gap), ([2.0, 0.0], [0.0, 1.0], 0.5));

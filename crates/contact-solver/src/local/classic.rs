@@ -30,7 +30,7 @@
 //! against 1917 for the string with `n_c = 40`).
 //!
 //! # Stopping rule and what is counted
-//! The rule is the bipotential solver's (see [`uzawa`](crate::uzawa#stopping-rule)), tested
+//! The rule is the bipotential solver's (see [layer docs](crate::local#stopping-rule)), tested
 //! after each outer iteration: the relative change of the whole `r` over the outer iteration
 //! and the natural-map residual `‖r − P_K(r + ρ⁰ v(W r + q))‖`, computed with the laws'
 //! projection and the base `ρ⁰_i = 1/λ_max(W_ii)` exactly as for the bipotential sweeps, must
@@ -94,14 +94,13 @@
 //! # Ok::<(), contact_solver::SolverError>(())
 //! ```
 
+use super::problem::ReducedProblem;
+use super::residual::{natural_residual, norm, pick};
+use super::settings::UzawaSettings;
 use crate::error::SolverError;
-use crate::reduced::ReducedProblem;
-use crate::uzawa::{UzawaSettings, natural_residual, norm, pick};
 use contact_laws::{ContactLaw, LawError};
 
-/// Default over-relaxation factor `ω` of the projected SOR sweeps (chosen by measurement, see
-/// the [module docs](self)).
-pub const DEFAULT_OMEGA: f64 = 1.0;
+pub use super::settings::DEFAULT_OMEGA;
 
 /// Scratch buffers of the classical solver, kept in the [`UzawaSolver`](crate::UzawaSolver)
 /// and reused across solves.

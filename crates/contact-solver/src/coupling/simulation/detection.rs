@@ -1,0 +1,73 @@
+//! Stage 1, detection: the step's inputs checked, the free response `u_free` of the structure
+//! to the loads, the active set (candidates within their alert distance at the start of the
+//! step or under `u_free`, plus every adhesive one), and after the solve the inactive
+//! candidates that penetrate.
+
+use super::ContactSimulation;
+use crate::error::SolverError;
+use contact_laws::ContactLaw;
+use fem_core::Structure;
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// Checks `time` and `load_factor` and counts a change of the stiffness; returns the
+    /// stiffness version of the step.
+    pub(super) fn begin_step(&mut self, time: f64, load_factor: f64) -> Result<u64, SolverError> {
+        if !(time.is_finite() && time >= self.time) {
+            return Err(SolverError::InvalidSetting {
+                what: "time",
+                value: time,
+                expected: "a finite time not before the current time",
+            });
+        }
+        if !load_factor.is_finite() {
+            return Err(SolverError::InvalidSetting {
+                what: "load_factor",
+                value: load_factor,
+                expected: "a finite number",
+            });
+        }
+        let version = self.structure.stiffness_version();
+        if version != self.last_version {
+            self.counters.stiffness_changes += 1;
+            self.last_version = version;
+        }
+        Ok(version)
+    }
+
+    /// `u_free`, the response to the loads scaled by `load_factor` without contact, and the
+    /// candidates' local jumps under it.
+    pub(super) fn free_response(
+        &mut self,
+        load_factor: f64,
+    ) -> Result<(Vec<f64>, Vec<[f64; 2]>), SolverError> {
+        let mut u_free = vec![0.0; self.structure.dof_count()];
+        self.structure
+            .free_response_into(load_factor, &mut u_free)?;
+        self.counters.structure_solves += 1;
+        let free = self.local_jumps_of(&u_free);
+        Ok((u_free, free))
+    }
+
+    /// The candidates of the reduced problem: within the alert distance at the start of the
+    /// step or under the free response (`free`), or adhesive; all of them without the
+    /// alert-distance skip rule.
+    pub(super) fn initial_active_set(&self, free: &[[f64; 2]]) -> Vec<usize> {
+        let all = !self.settings.skip.alert_distance;
+        (0..self.candidates.len())
+            .filter(|&i| {
+                let c = &self.candidates[i];
+                let zone = &self.zones[c.zone];
+                all || zone.law.adhesion_active(&self.states[i])
+                    || self.jumps[i][0] <= zone.alert_distance
+                    || free[i][0] <= zone.alert_distance
+            })
+            .collect()
+    }
+
+    /// The candidates outside the solved active set whose gap under `jumps` is negative.
+    pub(super) fn penetrating(&self, jumps: &[[f64; 2]]) -> Vec<usize> {
+        (0..self.candidates.len())
+            .filter(|i| self.w_active.binary_search(i).is_err() && jumps[*i][0] < 0.0)
+            .collect()
+    }
+}

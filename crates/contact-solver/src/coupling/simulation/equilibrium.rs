@@ -1,0 +1,108 @@
+//! Stage 4, equilibrium and report: `u = u_free + K⁻¹ Hᵀ r` (one back-substitution), the jumps
+//! of every candidate, and, once no inactive candidate penetrates, the accepted state and the
+//! [`StepResult`].
+
+use super::ContactSimulation;
+use super::report::{ContactRecord, InterfaceStatus, StepReport, StepResult};
+use super::solve::Solved;
+use crate::error::SolverError;
+use contact_laws::{ContactLaw, ContactStatus};
+use fem_core::Structure;
+use std::time::Instant;
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// `u = u_free + K⁻¹ Hᵀ r` and the local jumps of every candidate under it (the active
+    /// contacts keep the reduced solution's own jumps).
+    pub(super) fn equilibrium(
+        &mut self,
+        u_free: &[f64],
+        solved: &Solved<L::State>,
+    ) -> Result<(Vec<f64>, Vec<[f64; 2]>), SolverError> {
+        let mut u = vec![0.0; self.structure.dof_count()];
+        for (k, &i) in self.w_active.iter().enumerate() {
+            for d in 0..2 {
+                let r = solved.r[2 * k + d];
+                for &(dof, a) in &self.h_rows[2 * i + d] {
+                    u[dof] += a * r;
+                }
+            }
+        }
+        self.structure.solve_in_place(&mut u)?;
+        self.counters.structure_solves += 1;
+        for (a, b) in u.iter_mut().zip(u_free) {
+            *a += b;
+        }
+        let mut jumps = self.local_jumps_of(&u);
+        // active contacts: the reduced solution's own jumps. Recomputing them from `u` adds
+        // the rounding of `u` (an ulp of the load) times the stiffness contrast, which is
+        // large for stiff glue (C h / E ≫ 1); the next step starts from these jumps.
+        for (k, &i) in self.w_active.iter().enumerate() {
+            jumps[i][0] = solved.x[2 * k];
+            if self.tangent_needed(i) {
+                jumps[i][1] = self.jumps[i][1] + solved.x[2 * k + 1];
+            }
+        }
+        Ok((u, jumps))
+    }
+
+    pub(super) fn accept(
+        &mut self,
+        time: f64,
+        u: Vec<f64>,
+        jumps: Vec<[f64; 2]>,
+        solved: Solved<L::State>,
+        mut report: StepReport,
+        start: Instant,
+    ) -> StepResult {
+        let mut records: Vec<ContactRecord> = self
+            .candidates
+            .iter()
+            .enumerate()
+            .map(|(i, c)| ContactRecord {
+                zone: c.zone,
+                node: c.node,
+                position: self.structure.node_position(c.node),
+                area: c.area,
+                status: InterfaceStatus::Inactive,
+                gap: jumps[i][0],
+                u_t: jumps[i][1],
+                slip_increment: jumps[i][1] - self.jumps[i][1],
+                beta: self.zones[c.zone].law.adhesion_intensity(&self.states[i]),
+                r: [0.0; 2],
+                r_bar: [0.0; 2],
+                r_adh: [0.0; 2],
+            })
+            .collect();
+        for r in self.r_bar.iter_mut() {
+            *r = [0.0; 2];
+        }
+        for (k, &i) in self.w_active.iter().enumerate() {
+            let law = &self.zones[self.candidates[i].zone].law;
+            self.states[i] = solved.states[k];
+            let rb = [solved.r_bar[2 * k], solved.r_bar[2 * k + 1]];
+            self.r_bar[i] = rb;
+            let rec = &mut records[i];
+            rec.beta = law.adhesion_intensity(&self.states[i]);
+            rec.r_bar = rb;
+            rec.r = [solved.r[2 * k], solved.r[2 * k + 1]];
+            rec.r_adh = [rec.r[0] - rb[0], rec.r[1] - rb[1]];
+            rec.status = match solved.statuses[k] {
+                ContactStatus::Separation => InterfaceStatus::Open,
+                ContactStatus::Stick => InterfaceStatus::Stick,
+                ContactStatus::Slip => InterfaceStatus::Slip,
+            };
+        }
+        self.jumps = jumps;
+        self.u = u;
+        self.time = time;
+        self.counters.steps += 1;
+        self.counters.adhesion_iterations += report.adhesion_iterations;
+        self.counters.contact_iterations += report.contact_iterations;
+        report.active_contacts = self.w_active.len();
+        report.wall_time = start.elapsed();
+        StepResult {
+            report,
+            contacts: records,
+        }
+    }
+}

@@ -1,0 +1,311 @@
+//! The quasi-static contact simulation (seed 5.3–5.5): a [`Structure`], contact zones, and one
+//! [`ContactSimulation::step`] per load increment.
+//!
+//! # One step (`docs/theory.md` §13), stage by stage
+//! [`ContactSimulation::step`] is the list of the stages, one file each: `detection` (1–2 and
+//! the penetration check), `path` and `flexibility` (3), `solve` (4–5), `equilibrium` (6 and
+//! the report); `settings` and `report` hold the public data types.
+//!
+//! 1. Free response `u_free` of the structure to the current loads and prescribed values.
+//! 2. Active set: candidates whose gap at the start of the step or under `u_free` is within
+//!    their zone's alert distance, plus every adhesive candidate (β > 0).
+//! 3. `F* = H K⁻¹ Hᵀ` on the active set, rebuilt only when the active set or the structure's
+//!    [`stiffness_version`](Structure::stiffness_version) changed.
+//! 4. Reduced problem `x = F* r + q` with `x = (x_n, Δu_t)` per contact: the normal part is the
+//!    gap, the tangential part the slip increment of the step,
+//!    `q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)`.
+//! 5. Adhesion: the springs `r_adh = −(k_n u_n, k_t u_t)` of each law
+//!    ([`ContactLaw::adhesive_stiffness`]) are condensed exactly,
+//!    `x = W̃ r̄ + q̃`, `W̃ = (F*⁻¹ + B)⁻¹`, and the bipotential solver finds `r̄ ∈ K_μ̄`; then
+//!    the state (β) is updated from the jump and the solve repeated until the largest state
+//!    change is below [`SimulationSettings::adhesion_tol`] (seed 5.43–5.48). Skipped when no
+//!    active law is adhesive.
+//! 6. `u = u_free + K⁻¹ Hᵀ r` (one back-substitution, no refactorisation). Inactive candidates
+//!    that ended up penetrating are added to the active set and the step is redone.
+
+mod detection;
+mod equilibrium;
+mod flexibility;
+mod path;
+mod report;
+mod settings;
+mod solve;
+
+pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
+pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
+
+use crate::coupling::primal::PrimalCache;
+use crate::coupling::zone::{Candidate, ContactZone, recognize};
+use crate::error::SolverError;
+use crate::local::{ReducedProblem, UzawaSolver};
+use contact_laws::ContactLaw;
+use fem_core::Structure;
+use std::time::Instant;
+
+/// A quasi-static contact simulation: structure, zones, per-contact state and the cached `F*`.
+///
+/// # Examples
+/// An elastic block (P1, plane strain) pressed on a rigid LINE by a prescribed displacement of
+/// its top: the bottom nodes come into contact and the pressure is uniform.
+/// ```
+/// use contact_solver::{ContactSimulation, ContactZone, SimulationSettings};
+/// use contact_solver::coupling::obstacle::RigidLine;
+/// use contact_laws::Signorini;
+/// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+/// use fem_core::generate::{RectangleSpec, rectangle};
+///
+/// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 4, 4))?; // P1
+/// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+/// let mut supports = Supports::new();
+/// supports.prescribe(&top, Component::Y, -0.01)?.fix(&top, Component::X);
+/// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+///     &[(0, Material::new(100.0, 0.0, 0.0)?)], supports)?;
+/// let ground = RigidLine::new([-1.0, 0.0], [2.0, 0.0])?;
+/// let zone = ContactZone::rigid("base", bottom, ground, Signorini, 0.1);
+/// let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default())?;
+/// let res = sim.step(1.0, 1.0)?;
+/// let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+/// assert!((total - 1.0).abs() < 1e-9);         // σ = E ε = 100 × 0.01 over a width of 1
+/// assert!(res.contacts.iter().all(|c| c.gap.abs() < 1e-11)); // closed to 1e-9 of the 0.01 push
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct ContactSimulation<S: Structure, L: ContactLaw> {
+    structure: S,
+    zones: Vec<ContactZone<L>>,
+    settings: SimulationSettings,
+    candidates: Vec<Candidate>,
+    /// H rows (n then t per candidate) on free dofs: (dof, coefficient).
+    h_rows: Vec<Vec<(usize, f64)>>,
+    /// Accepted state at the end of the last step.
+    states: Vec<L::State>,
+    /// Accepted (gap, u_t) at the end of the last step.
+    jumps: Vec<[f64; 2]>,
+    /// Last accepted r̄ (warm start).
+    r_bar: Vec<[f64; 2]>,
+    /// Active set of the cached W.
+    w_active: Vec<usize>,
+    w: Vec<f64>,
+    w_version: Option<u64>,
+    u: Vec<f64>,
+    time: f64,
+    solver: UzawaSolver,
+    counters: Counters,
+    last_problem: Option<ReducedProblem>,
+    last_version: u64,
+    primal: PrimalCache,
+}
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// Recognises the candidates of `zones` on `structure` (reference configuration) and
+    /// starts at time 0 with every law's initial state.
+    ///
+    /// # Errors
+    /// As for [`recognize`]; [`SolverError::InvalidSetting`] for bad settings;
+    /// [`SolverError::InvalidGeometry`] if no zone has a candidate.
+    pub fn new(
+        structure: S,
+        zones: Vec<ContactZone<L>>,
+        settings: SimulationSettings,
+    ) -> Result<Self, SolverError> {
+        if !(settings.adhesion_tol > 0.0 && settings.adhesion_tol.is_finite()) {
+            return Err(SolverError::InvalidSetting {
+                what: "adhesion_tol",
+                value: settings.adhesion_tol,
+                expected: "a finite tolerance > 0",
+            });
+        }
+        if settings.columns_per_solve == 0 {
+            return Err(SolverError::InvalidSetting {
+                what: "columns_per_solve",
+                value: 0.0,
+                expected: "at least 1",
+            });
+        }
+        let candidates = recognize(&structure, &zones)?;
+        if candidates.is_empty() {
+            return Err(SolverError::InvalidGeometry(
+                "no contactor node projects on its target: the simulation has no contact candidate"
+                    .into(),
+            ));
+        }
+        let mut h_rows = Vec::with_capacity(2 * candidates.len());
+        for c in &candidates {
+            for dir in [c.normal, c.tangent] {
+                let mut row = Vec::with_capacity(6);
+                c.h_row(&structure, dir, &mut row);
+                h_rows.push(row);
+            }
+            if h_rows[h_rows.len() - 2].is_empty() {
+                return Err(SolverError::InvalidGeometry(format!(
+                    "zone `{}`: the normal displacement of contactor node {} relative to its \
+                     target is fully prescribed, so it cannot take part in contact",
+                    zones[c.zone].name, c.node
+                )));
+            }
+        }
+        let states = candidates
+            .iter()
+            .map(|c| zones[c.zone].law.initial_state())
+            .collect();
+        let mut sim = Self {
+            u: vec![0.0; structure.dof_count()],
+            last_version: structure.stiffness_version(),
+            structure,
+            zones,
+            settings,
+            h_rows,
+            states,
+            jumps: vec![[0.0; 2]; candidates.len()],
+            r_bar: vec![[0.0; 2]; candidates.len()],
+            candidates,
+            w_active: Vec::new(),
+            w: Vec::new(),
+            w_version: None,
+            time: 0.0,
+            solver: UzawaSolver::new(settings.solver),
+            counters: Counters::default(),
+            last_problem: None,
+            primal: PrimalCache::default(),
+        };
+        sim.jumps = sim.local_jumps_of(&sim.u);
+        Ok(sim)
+    }
+
+    /// The structure.
+    pub fn structure(&self) -> &S {
+        &self.structure
+    }
+
+    /// The structure, to change loads or prescribed values between steps.
+    pub fn structure_mut(&mut self) -> &mut S {
+        &mut self.structure
+    }
+
+    /// The zones.
+    pub fn zones(&self) -> &[ContactZone<L>] {
+        &self.zones
+    }
+
+    /// The candidates found by recognition.
+    pub fn candidates(&self) -> &[Candidate] {
+        &self.candidates
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &SimulationSettings {
+        &self.settings
+    }
+
+    /// Replaces the settings (e.g. to switch algorithm between steps).
+    pub fn set_settings(&mut self, settings: SimulationSettings) {
+        self.settings = settings;
+        self.solver = UzawaSolver::new(settings.solver);
+    }
+
+    /// Current time.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Per-candidate law states at the end of the last step.
+    pub fn states(&self) -> &[L::State] {
+        &self.states
+    }
+
+    /// Counters since the start.
+    pub fn counters(&self) -> Counters {
+        self.counters
+    }
+
+    /// The free-dof displacements at the end of the last step.
+    pub fn displacement(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Nodal displacements `[u_x, u_y]` at the end of the last step (prescribed components
+    /// included).
+    pub fn nodal_displacements(&self) -> Vec<[f64; 2]> {
+        (0..self.structure.node_count())
+            .map(|n| nodal(&self.structure, &self.u, n))
+            .collect()
+    }
+
+    /// The reduced problem of the last solve — after condensation of the adhesive springs,
+    /// with `μ̄` per contact — on the active contacts (see [`Self::last_active`]); export it
+    /// with [`ReducedProblem::to_json`] to re-solve it elsewhere (e.g. Siconos). `None` when the
+    /// last step was solved without a dense `F*` (matrix-free or active set; force
+    /// `FlexibilityMode::Dense` to export a large step).
+    pub fn last_reduced_problem(&self) -> Option<&ReducedProblem> {
+        self.last_problem.as_ref()
+    }
+
+    /// Candidate indices of the contacts of the last reduced problem, in its order.
+    pub fn last_active(&self) -> &[usize] {
+        &self.w_active
+    }
+
+    /// Resets the displacement and the tangential reference to zero while keeping the law
+    /// states (e.g. after an installation phase whose displacements are discarded).
+    pub fn reset_displacements(&mut self) {
+        self.u.fill(0.0);
+        self.jumps = self.local_jumps_of(&self.u);
+        self.r_bar.iter_mut().for_each(|r| *r = [0.0; 2]);
+    }
+
+    fn local_jumps_of(&self, u: &[f64]) -> Vec<[f64; 2]> {
+        self.candidates
+            .iter()
+            .map(|c| c.local(c.relative(|n| nodal(&self.structure, u, n))))
+            .collect()
+    }
+
+    /// Solves one load step ending at `time` (`≥` the current time) with the structure's loads
+    /// scaled by `load_factor` (and its current prescribed values).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] if `time` is not finite or goes backwards;
+    /// [`SolverError::Structure`] if a structure solve fails; [`SolverError::NotConverged`] or
+    /// [`SolverError::AdhesionNotConverged`] unless the settings accept non-converged results.
+    /// On error the simulation keeps the state of the previous step.
+    pub fn step(&mut self, time: f64, load_factor: f64) -> Result<StepResult, SolverError> {
+        let start = Instant::now();
+        let version = self.begin_step(time, load_factor)?;
+        let dt = time - self.time;
+        // 1. detection: the free response and the active set
+        let (u_free, free) = self.free_response(load_factor)?;
+        let mut active = self.initial_active_set(&free);
+        let mut report = StepReport::start(self.counters.steps + 1, time, load_factor);
+        loop {
+            report.detection_passes += 1;
+            // 2–3. the path and its operator, then the local solve (with the adhesion loop)
+            let solved = self.solve_pass(&active, &free, dt, version, &mut report)?;
+            // 4. equilibrium, then the penetration check and the report
+            let (u, jumps) = self.equilibrium(&u_free, &solved)?;
+            let penetrating = self.penetrating(&jumps);
+            if penetrating.is_empty()
+                || report.detection_passes >= self.settings.max_detection_passes
+            {
+                return Ok(self.accept(time, u, jumps, solved, report, start));
+            }
+            active.extend(penetrating);
+            active.sort_unstable();
+        }
+    }
+
+    /// Whether candidate `i`'s tangential unknown takes part (friction or adhesion), under the
+    /// skip rules.
+    fn tangent_needed(&self, i: usize) -> bool {
+        let law = &self.zones[self.candidates[i].zone].law;
+        !self.settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
+    }
+}
+
+fn nodal<S: Structure + ?Sized>(s: &S, u: &[f64], node: usize) -> [f64; 2] {
+    let mut v = s.prescribed_displacement(node);
+    for (c, d) in s.node_dofs(node).into_iter().enumerate() {
+        if let Some(i) = d {
+            v[c] = u[i];
+        }
+    }
+    v
+}

@@ -1,0 +1,137 @@
+//! Stage 2, the path: how this pass's active set is solved — a dense `F*` (with the adhesion
+//! loop), the matrix-free iteration or the primal active set ([`crate::coupling::primal`]) —
+//! and the fallback when `Auto`'s active-set iteration does not converge.
+
+use super::ContactSimulation;
+use super::report::StepReport;
+use super::settings::{FALLBACK_DENSE_LIMIT, FlexibilityMode};
+use super::solve::Solved;
+use crate::coupling::primal::{LocalFrame, frames};
+use crate::error::SolverError;
+use contact_laws::ContactLaw;
+use fem_core::Structure;
+
+/// How one detection pass solves its active set.
+#[derive(Debug, PartialEq)]
+pub(super) enum Path {
+    Dense,
+    MatrixFree,
+    ActiveSet(Vec<LocalFrame>),
+}
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// Chooses the path of `active`, builds its operator (`F*` when dense and changed) and
+    /// solves the reduced problem (stage 3) on it.
+    pub(super) fn solve_pass(
+        &mut self,
+        active: &[usize],
+        free: &[[f64; 2]],
+        dt: f64,
+        version: u64,
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let mut path = self.path(active)?;
+        if let Path::ActiveSet(frames) = &path {
+            self.w_active = active.to_vec();
+            self.w.clear();
+            self.w_version = None;
+            self.last_problem = None;
+            match self.solve_active_set(free, frames, report) {
+                Ok(solved) => {
+                    report.active_set = true;
+                    return Ok(solved);
+                }
+                // Auto chose this path: fall back to one that converges more surely (the
+                // lagged friction coupling of the active set fails for large μ)
+                Err(SolverError::NotConverged { .. })
+                    if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) =>
+                {
+                    self.counters.active_set_fallbacks += 1;
+                    path = if active.len() <= FALLBACK_DENSE_LIMIT {
+                        Path::Dense
+                    } else {
+                        Path::MatrixFree
+                    };
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        if path == Path::MatrixFree {
+            if active != self.w_active {
+                self.w_active = active.to_vec();
+            }
+            self.w.clear();
+            self.w_version = None;
+            self.last_problem = None;
+            report.matrix_free = true;
+            return self.solve_matrix_free_active(free, report);
+        }
+        if active != self.w_active
+            || self.w_version != Some(version)
+            || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
+        {
+            self.build_flexibility(active)?;
+            self.w_version = Some(version);
+            report.flexibility_rebuilt = true;
+        }
+        self.solve_active(free, dt, report)
+    }
+
+    /// How this step's active set is solved.
+    fn path(&self, active: &[usize]) -> Result<Path, SolverError> {
+        let adhesive = active.iter().any(|&i| {
+            let law = &self.zones[self.candidates[i].zone].law;
+            law.has_adhesion() && law.adhesion_active(&self.states[i])
+        });
+        match self.settings.flexibility {
+            FlexibilityMode::Dense => Ok(Path::Dense),
+            FlexibilityMode::Auto { dense_limit } => {
+                if adhesive || active.len() <= dense_limit {
+                    Ok(Path::Dense)
+                } else if let Ok(f) = self.active_set_frames(active) {
+                    Ok(Path::ActiveSet(f))
+                } else {
+                    Ok(Path::MatrixFree)
+                }
+            }
+            FlexibilityMode::MatrixFree | FlexibilityMode::ActiveSet if adhesive => {
+                Err(SolverError::InvalidSetting {
+                    what: "flexibility",
+                    value: active.len() as f64,
+                    expected: "Dense or Auto for adhesive laws (the springs are condensed on a dense F*)",
+                })
+            }
+            FlexibilityMode::MatrixFree if active.is_empty() => Ok(Path::Dense),
+            FlexibilityMode::MatrixFree => Ok(Path::MatrixFree),
+            FlexibilityMode::ActiveSet if active.is_empty() => Ok(Path::Dense),
+            FlexibilityMode::ActiveSet => self
+                .active_set_frames(active)
+                .map(Path::ActiveSet)
+                .map_err(SolverError::Unsupported),
+        }
+    }
+
+    /// The local frames of the primal active-set path, or why it does not apply.
+    fn active_set_frames(&self, active: &[usize]) -> Result<Vec<LocalFrame>, String> {
+        if self.structure.stiffness_matrix().is_none() {
+            return Err("the structure does not expose its stiffness matrix".into());
+        }
+        let mut frictional = Vec::with_capacity(active.len());
+        for &i in active {
+            let law = &self.zones[self.candidates[i].zone].law;
+            if law.friction_coefficient(&self.states[i]).is_none() {
+                return Err(format!(
+                    "zone `{}`: its law has no friction coefficient (not a Coulomb-cone law)",
+                    self.zones[self.candidates[i].zone].name
+                ));
+            }
+            frictional.push(self.tangent_needed(i));
+        }
+        frames(
+            &self.h_rows,
+            active,
+            &frictional,
+            self.structure.dof_count(),
+        )
+    }
+}

@@ -1,0 +1,153 @@
+//! What a step reports: per contact ([`ContactRecord`]), per step ([`StepReport`]) and over the
+//! whole simulation ([`Counters`]).
+
+use std::time::Duration;
+
+/// What a contact is doing at the end of a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum InterfaceStatus {
+    /// Outside the alert distance: not in the reduced problem.
+    Inactive,
+    /// In the reduced problem, `r̄ = 0` (open; adhesive springs may still pull).
+    Open,
+    /// Compressed, sticking.
+    Stick,
+    /// Compressed, sliding.
+    Slip,
+}
+
+impl InterfaceStatus {
+    /// A short lowercase name (`inactive`, `open`, `stick`, `slip`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Inactive => "inactive",
+            Self::Open => "open",
+            Self::Stick => "stick",
+            Self::Slip => "slip",
+        }
+    }
+}
+
+/// One contact candidate at the end of a step. Local components are `[normal, tangential]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactRecord {
+    /// Zone index.
+    pub zone: usize,
+    /// Contactor node.
+    pub node: usize,
+    /// Reference position of the contactor node.
+    pub position: [f64; 2],
+    /// Tributary area of the node: `r / area` is the interface stress.
+    pub area: f64,
+    /// Status.
+    pub status: InterfaceStatus,
+    /// Normal gap `x_n = g₀ + u_n` (`≥ 0`: open). For a glued interface (`g₀ = 0`) it is the
+    /// normal jump `u_n` of the RCCM law.
+    pub gap: f64,
+    /// Total tangential relative displacement `u_t`.
+    pub u_t: f64,
+    /// Tangential relative displacement of this step (the slip increment when sliding).
+    pub slip_increment: f64,
+    /// Adhesion intensity β ([`ContactLaw::adhesion_intensity`](contact_laws::ContactLaw::adhesion_intensity), 0 without adhesion).
+    pub beta: f64,
+    /// Total reaction `r = r̄ + r_adh` on the contactor (`r_n > 0` compression).
+    pub r: [f64; 2],
+    /// Reaction of the contact law proper, `r̄ ∈ K_μ̄`.
+    pub r_bar: [f64; 2],
+    /// Adhesive reaction `r_adh`.
+    pub r_adh: [f64; 2],
+}
+
+/// Counters and timing of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepReport {
+    /// Step number (1-based).
+    pub step: usize,
+    /// Time at the end of the step.
+    pub time: f64,
+    /// Load factor of the step.
+    pub load_factor: f64,
+    /// Candidates in the reduced problem.
+    pub active_contacts: usize,
+    /// Adhesion fixed-point iterations (0 when the step had no adhesion).
+    pub adhesion_iterations: usize,
+    /// Contact iterations: solver sweeps summed over the adhesion iterations and passes.
+    pub contact_iterations: usize,
+    /// Passes of the penetration check (1 unless inactive candidates penetrated).
+    pub detection_passes: usize,
+    /// Whether `F*` was rebuilt in this step.
+    pub flexibility_rebuilt: bool,
+    /// Whether the step was solved matrix-free (no `F*`).
+    pub matrix_free: bool,
+    /// Whether the step was solved by the primal active-set iteration (no `F*`).
+    pub active_set: bool,
+    /// Natural-map residual of the last reduced solve.
+    pub residual: f64,
+    /// Whether every solve of the step met its tolerance (always `true` unless the settings
+    /// accept non-converged results).
+    pub converged: bool,
+    /// Wall time of the step.
+    pub wall_time: Duration,
+}
+
+/// Counters over the whole simulation: what work was done (and skipped).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Steps done.
+    pub steps: usize,
+    /// `F*` builds.
+    pub flexibility_builds: usize,
+    /// Right-hand sides solved to build `F*`.
+    pub flexibility_columns: usize,
+    /// Structure solves outside `F*` (free response and final displacement).
+    pub structure_solves: usize,
+    /// Adhesion fixed-point iterations.
+    pub adhesion_iterations: usize,
+    /// Contact (solver) iterations.
+    pub contact_iterations: usize,
+    /// Steps where the structure's stiffness version changed.
+    pub stiffness_changes: usize,
+    /// Steps solved matrix-free.
+    pub matrix_free_steps: usize,
+    /// Products `F* r` done matrix-free (one structure solve each).
+    pub operator_applications: usize,
+    /// Steps solved by the primal active-set iteration.
+    pub active_set_steps: usize,
+    /// Numeric factorisations of the constrained stiffness by the active-set iteration.
+    pub active_set_factorizations: usize,
+    /// Solves with the constrained stiffness by the active-set iteration.
+    pub active_set_solves: usize,
+    /// Steps where `Auto`'s active-set iteration did not converge and the step was solved
+    /// again with a dense `F*` (up to 8000 contacts) or matrix-free.
+    pub active_set_fallbacks: usize,
+}
+
+/// The result of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepResult {
+    /// Counters and timing.
+    pub report: StepReport,
+    /// Every candidate, in recognition order.
+    pub contacts: Vec<ContactRecord>,
+}
+
+impl StepReport {
+    /// The report of a step before any work: one pass, converged, nothing counted yet.
+    pub(super) fn start(step: usize, time: f64, load_factor: f64) -> Self {
+        Self {
+            step,
+            time,
+            load_factor,
+            active_contacts: 0,
+            adhesion_iterations: 0,
+            contact_iterations: 0,
+            detection_passes: 0,
+            flexibility_rebuilt: false,
+            matrix_free: false,
+            active_set: false,
+            residual: 0.0,
+            converged: true,
+            wall_time: Duration::ZERO,
+        }
+    }
+}

@@ -1,0 +1,217 @@
+//! Stage 3, the local solve on the active set: the reduced problem on the dense `F*` inside the
+//! adhesion loop ([`crate::local::adhesion`]), the matrix-free sweep
+//! ([`crate::local::matrix_free`]), or the primal active-set iteration
+//! ([`crate::coupling::primal`]). Each gathers the active contacts' laws, states and free
+//! gaps, solves, and returns the reactions on the active set.
+
+use super::ContactSimulation;
+use super::report::StepReport;
+use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
+use crate::error::SolverError;
+use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+use crate::local::contact_statuses;
+use crate::local::matrix_free::solve_matrix_free;
+use contact_laws::{ContactLaw, ContactStatus};
+use fem_core::Structure;
+
+/// The solution of the reduced problem of a step, on the active set.
+pub(super) struct Solved<T> {
+    pub(super) r: Vec<f64>,
+    pub(super) r_bar: Vec<f64>,
+    /// `x = (gap, slip increment)` of the reduced solution.
+    pub(super) x: Vec<f64>,
+    pub(super) statuses: Vec<ContactStatus>,
+    pub(super) states: Vec<T>,
+}
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// The primal active-set solve of the step (no `F*`).
+    pub(super) fn solve_active_set(
+        &mut self,
+        free: &[[f64; 2]],
+        frames: &[LocalFrame],
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = self.w_active.clone();
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let tangent: Vec<bool> = active.iter().map(|&i| self.tangent_needed(i)).collect();
+        let mu: Vec<f64> = laws
+            .iter()
+            .zip(&states)
+            .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
+            .collect();
+        let mut q = vec![0.0; 2 * active.len()];
+        for (k, &i) in active.iter().enumerate() {
+            q[2 * k] = free[i][0];
+            if tangent[k] {
+                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
+        }
+        let r0: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let step = PrimalStep {
+            active: &active,
+            frames,
+            laws: &laws,
+            states: &states,
+            mu: &mu,
+            tangent: &tangent,
+            q: &q,
+            r0: &r0,
+            tol: self.settings.solver.tol,
+            max_iterations: self
+                .settings
+                .solver
+                .max_iterations
+                .min(crate::coupling::primal::PRIMAL_MAX_ITERATIONS),
+            accept_non_converged: self.settings.solver.accept_non_converged,
+        };
+        let before = self.primal.factorizations;
+        let sol = solve_primal(&self.structure, &mut self.primal, &step)?;
+        self.counters.active_set_steps += 1;
+        self.counters.active_set_factorizations += self.primal.factorizations - before;
+        self.counters.active_set_solves += sol.solves;
+        report.contact_iterations += sol.iterations;
+        report.residual = sol.residual;
+        report.converged &= sol.converged;
+        Ok(Solved {
+            r: sol.r.clone(),
+            r_bar: sol.r,
+            x: sol.x,
+            statuses: sol.statuses,
+            states,
+        })
+    }
+
+    /// The reduced solve without `F*`: one structure solve per product `F* r`.
+    pub(super) fn solve_matrix_free_active(
+        &mut self,
+        free: &[[f64; 2]],
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = self.w_active.clone();
+        let na = active.len();
+        let m = 2 * na;
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let mut q = vec![0.0; m];
+        for (k, &i) in active.iter().enumerate() {
+            q[2 * k] = free[i][0];
+            if self.tangent_needed(i) {
+                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
+        }
+        let rho0 = self.estimate_rho0(&active)?;
+        let mut r: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let mut x = vec![0.0; m];
+        let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
+        let (structure, h_rows) = (&self.structure, &self.h_rows);
+        let mut scratch = vec![0.0; structure.dof_count()];
+        let mut applications = 0;
+        let apply = |r: &[f64], x: &mut [f64]| -> Result<(), SolverError> {
+            scratch.fill(0.0);
+            for (j, &row) in rows.iter().enumerate() {
+                if r[j] != 0.0 {
+                    for &(dof, a) in &h_rows[row] {
+                        scratch[dof] += a * r[j];
+                    }
+                }
+            }
+            structure.solve_in_place(&mut scratch)?;
+            applications += 1;
+            for (j, &row) in rows.iter().enumerate() {
+                x[j] = q[j]
+                    + h_rows[row]
+                        .iter()
+                        .map(|&(dof, a)| a * scratch[dof])
+                        .sum::<f64>();
+            }
+            Ok(())
+        };
+        let mf = solve_matrix_free(
+            apply,
+            &laws,
+            &states,
+            &rho0,
+            &self.settings.solver,
+            &mut r,
+            &mut x,
+        )?;
+        self.counters.operator_applications += applications;
+        self.counters.structure_solves += applications;
+        self.counters.matrix_free_steps += 1;
+        report.contact_iterations += mf.iterations;
+        report.residual = mf.residual;
+        report.converged &= mf.converged;
+        let statuses = contact_statuses(&laws, &states, &rho0, &r, &x);
+        Ok(Solved {
+            r: r.clone(),
+            r_bar: r,
+            x,
+            statuses,
+            states,
+        })
+    }
+
+    /// The adhesion fixed point around the reduced solve, on the cached active set.
+    pub(super) fn solve_active(
+        &mut self,
+        free: &[[f64; 2]],
+        dt: f64,
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = &self.w_active;
+        let m = 2 * active.len();
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+        let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+        // q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)
+        let mut q = vec![0.0; m];
+        for (k, &i) in active.iter().enumerate() {
+            q[2 * k] = free[i][0];
+            if self.tangent_needed(i) {
+                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
+        }
+        let r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let step = AdhesiveStep {
+            w: &self.w,
+            q: &q,
+            laws: &laws,
+            start_states: &start_states,
+            u_start: &u_start,
+            areas: &areas,
+            dt,
+        };
+        let options = AdhesionOptions {
+            tol: self.settings.adhesion_tol,
+            max_iterations: self.settings.max_adhesion_iterations,
+            accept_non_converged: self.settings.solver.accept_non_converged,
+            always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
+            anderson_window: self.settings.adhesion_anderson_window,
+        };
+        let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
+        report.contact_iterations += sol.contact_iterations;
+        report.adhesion_iterations += sol.adhesion_iterations;
+        report.residual = sol.report.residual;
+        report.converged &= sol.converged;
+        self.last_problem = Some(sol.condensed);
+        Ok(Solved {
+            r: sol.r,
+            r_bar: sol.r_bar,
+            x: sol.x,
+            statuses: sol.report.statuses,
+            states: sol.states,
+        })
+    }
+}

@@ -1,0 +1,74 @@
+//! The projected Gauss–Seidel sweep of the bipotential iteration (De Saxcé–Feng): contact by
+//! contact with the current `x`, which is updated right after with the two columns of `W` that
+//! the contact touches; each contact adapts its own `ρ_i` with its local step (`x_i` moves by
+//! `W_ii Δr_i`), see the [layer docs](crate::local#the-penalty-ρ).
+//!
+//! ```text
+//! τ_i = r_i + ρ_i v_i(x_i),   Δr_i = P_K(τ_i) − r_i,   x ← x + W[:, i] Δr_i
+//! ```
+
+use super::problem::ReducedProblem;
+use super::residual::{local, pick, set_local};
+use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE};
+use super::sweep::{MAX_SHRINKS, Sweeps};
+use contact_laws::{ContactLaw, LocalVec2};
+
+impl Sweeps {
+    /// One projected Gauss–Seidel sweep with per-contact adapted `ρ_i`; returns `‖Δr‖²`.
+    pub(crate) fn gauss_seidel_sweep<L: ContactLaw>(
+        &mut self,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r: &mut [f64],
+        x: &mut [f64],
+    ) -> f64 {
+        let m = problem.size();
+        let w = problem.w();
+        let mut dr2 = 0.0;
+        for i in 0..problem.contact_count() {
+            let (law, s) = (pick(laws, i), pick(states, i));
+            let [b_nn, b_nt, b_tn, b_tt] = problem.diagonal_block(i);
+            let ri = local(r, i);
+            let xi = local(x, i);
+            let v = law.modified_velocity(&xi, s);
+            let mut shrinks = 0;
+            let d = loop {
+                let rho = self.rho[i];
+                let d = law.project(&(ri + v * rho), s) - ri;
+                let dd = d.dot(&d);
+                if dd == 0.0 {
+                    break d;
+                }
+                // x_i moves by W_ii Δr_i when only r_i changes.
+                let xn = LocalVec2::planar(
+                    xi.n + b_nn * d.n + b_nt * d.t[0],
+                    xi.t[0] + b_tn * d.n + b_tt * d.t[0],
+                );
+                let dv = law.modified_velocity(&xn, s) - v;
+                let ratio = rho * (dv.dot(&dv) / dd).sqrt();
+                if ratio > ADAPT_SHRINK_ABOVE && shrinks < MAX_SHRINKS {
+                    self.rho[i] *= 0.5;
+                    shrinks += 1;
+                    continue;
+                }
+                if ratio < ADAPT_GROW_BELOW {
+                    self.rho[i] *= ADAPT_GROWTH;
+                }
+                break d;
+            };
+            if d.n == 0.0 && d.t[0] == 0.0 {
+                continue;
+            }
+            dr2 += d.dot(&d);
+            set_local(r, i, &(ri + d));
+            // x += W[:, 2i] Δr_n + W[:, 2i+1] Δr_t, read as rows (W is symmetric).
+            let row_n = &w[2 * i * m..(2 * i + 1) * m];
+            let row_t = &w[(2 * i + 1) * m..(2 * i + 2) * m];
+            for ((xk, a), b) in x.iter_mut().zip(row_n).zip(row_t) {
+                *xk += a * d.n + b * d.t[0];
+            }
+        }
+        dr2
+    }
+}

@@ -1,0 +1,92 @@
+//! The JSON form of a reduced problem (feature `serde`): `{"dim": 2, "W": flat row-major or
+//! list of rows, "q": [...], "mu": [...]}` — what `shared/peers/siconos_fc.py` reads and
+//! `bipo solve-local` takes.
+
+use super::problem::ReducedProblem;
+use crate::error::SolverError;
+use serde::{Deserialize, Serialize};
+
+/// The JSON form: `{"dim": 2, "W": flat row-major or list of rows, "q": [...], "mu": [...]}`.
+#[derive(Serialize, Deserialize)]
+struct JsonProblem {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dim: Option<usize>,
+    #[serde(rename = "W")]
+    w: JsonMatrix,
+    q: Vec<f64>,
+    mu: Vec<f64>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(untagged)]
+enum JsonMatrix {
+    Flat(Vec<f64>),
+    Rows(Vec<Vec<f64>>),
+}
+
+impl ReducedProblem {
+    /// Reads a problem from JSON `{"dim": 2, "W": [...], "q": [...], "mu": [...]}`, the format
+    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows, and
+    /// `dim` may be left out (it must be 2 when given).
+    ///
+    /// # Errors
+    /// [`SolverError::Json`] for malformed JSON, ragged rows or `dim ≠ 2`; otherwise those of
+    /// [`new`](Self::new).
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::ReducedProblem;
+    /// let p = ReducedProblem::from_json(r#"{"W": [[1, 0], [0, 1]], "q": [-1, 0], "mu": [0.5]}"#)?;
+    /// assert_eq!(p.w(), &[1.0, 0.0, 0.0, 1.0]);
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn from_json(text: &str) -> Result<Self, SolverError> {
+        let j: JsonProblem = serde_json::from_str(text)?;
+        if let Some(dim) = j.dim
+            && dim != 2
+        {
+            return Err(SolverError::Json(format!(
+                "dim = {dim} is not supported: the reduced solver is 2D (dim = 2)"
+            )));
+        }
+        let w = match j.w {
+            JsonMatrix::Flat(w) => w,
+            JsonMatrix::Rows(rows) => {
+                let m = j.q.len();
+                if rows.iter().any(|r| r.len() != m) {
+                    return Err(SolverError::Json(format!(
+                        "W given as rows: every row must have {m} entries (the length of q)"
+                    )));
+                }
+                rows.concat()
+            }
+        };
+        Self::new(w, j.q, j.mu)
+    }
+
+    /// Writes the problem as JSON `{"dim": 2, "W": [flat row-major], "q": [...], "mu": [...]}`.
+    ///
+    /// # Errors
+    /// [`SolverError::Json`] if serialisation fails (it does not for a validated problem).
+    pub fn to_json(&self) -> Result<String, SolverError> {
+        Ok(serde_json::to_string(&JsonProblem {
+            dim: Some(2),
+            w: JsonMatrix::Flat(self.w().to_vec()),
+            q: self.q().to_vec(),
+            mu: self.mu().to_vec(),
+        })?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn from_json_rejects_dim_3_and_ragged_rows() {
+        let e = ReducedProblem::from_json(r#"{"dim":3,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
+        assert!(matches!(e, Err(SolverError::Json(_))));
+        let e = ReducedProblem::from_json(r#"{"W":[[1,0],[0]],"q":[0,0],"mu":[0]}"#);
+        assert!(matches!(e, Err(SolverError::Json(_))));
+    }
+}

@@ -1,0 +1,124 @@
+//! The reduced-problem layer: `x = W r + q` with `r_i ∈ K_μi`, and every algorithm that solves
+//! it (seed 5.26, 5.52). It depends on `contact-laws` and `faer` only (and `serde` for the JSON
+//! form), so an FE code that condenses its own problem can use it without the FE coupling:
+//! `contact-solver = { version = "0.1", default-features = false }` (see the crate docs).
+//!
+//! # Files
+//! - [`problem`]: the validated problem [`ReducedProblem`]; `json` (feature `serde`) its JSON
+//!   form; [`generate`]: seeded random problems;
+//! - `settings`: [`Algorithm`], [`UzawaSettings`], [`UzawaReport`], [`Solution`];
+//!   `residual`: the natural map, norms, statuses (the toolbox every algorithm uses);
+//! - one file per algorithm: `uzawa`, `gauss_seidel` (the base sweeps, on the shared `sweep`
+//!   state), `plain` (their stopping loop), [`anderson`], [`newton`], [`classic`], and
+//!   [`matrix_free`] (the sweep on an operator instead of a matrix);
+//! - `solver`: the dispatcher [`UzawaSolver`] (validates, runs the chosen algorithm, reports);
+//! - [`adhesion`]: the adhesive springs condensed on `W` and the β fixed point around a solve.
+//!
+//! Imports go one way: `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
+//! `classic` → `solver` → `adhesion`.
+//!
+//! # The iteration
+//!
+//! ```text
+//! prediction (5.26a):  τ_i = r_i + ρ_i v_i(x),   v_i = law_i.modified_velocity(x_i)
+//! correction (5.26b):  r_i ← law_i.project(τ_i)
+//! ```
+//! Six algorithms are offered ([`Algorithm`]), all stopping on the rule below. Two are the
+//! plain bipotential sweeps:
+//! - [`Algorithm::Uzawa`]: all contacts from the same `x` (a projected-gradient / Jacobi
+//!   step), then `x = W r + q` once per iteration — the seed's algorithm, kept as the
+//!   reference;
+//! - [`Algorithm::GaussSeidel`]: contact by contact, each using the current `x`, which is
+//!   updated right after with the two columns of `W` that the contact touches (De Saxcé–Feng's
+//!   projected Gauss–Seidel). On seeded random SPD problems
+//!   ([`generate::random_problem`](generate::random_problem), `n_c` = 10/100/300,
+//!   release build) it takes 57–60 sweeps against 79–101 for Uzawa and is 1.5–9× faster
+//!   (n_c = 300: 2.6 ms against 23 ms), because a sweep costs one pass over `W` while an
+//!   Uzawa step costs one product `W r` per trial, and a few trials are redone.
+//!
+//! Two accelerate them ([`anderson`]): [`Algorithm::AndersonGaussSeidel`] —
+//! **the default** — and [`Algorithm::AndersonUzawa`], safeguarded Anderson mixing of the last
+//! 5 iterates of the sweep. [`Algorithm::Newton`] ([`newton`]) is a semi-smooth
+//! Newton method on the same projection equation, for Coulomb-type laws. And
+//! [`Algorithm::ClassicRccm`] is the classical solver the seed compares the bipotential with
+//! (GYPTIS, seed §5.6): Signorini and friction solved separately, with a fixed point on the
+//! friction threshold ([`classic`]).
+//!
+//! # Which algorithm
+//! Measured by `examples/work_precision_local.rs` (`docs/benchmarks.md`, "Local solver:
+//! work–precision"): time to reach a residual of 1e-10 on random problems (`n_c` = 10 to 5000)
+//! and on FE reduced problems of the Hertz scene (21 and 141 contacts, frictionless and with
+//! partial slip).
+//! - Newton is the fastest on every FE problem (5–8× faster than Gauss–Seidel) and on random
+//!   problems up to `n_c` ≈ 1000, but its dense factorisation grows as `n_c³` (at `n_c` = 5000
+//!   it is 4–5× slower than the accelerated sweep) and it needs
+//!   [`ContactLaw::friction_coefficient`].
+//! - The accelerated Gauss–Seidel sweep is 1.1–3× faster than Gauss–Seidel on every problem,
+//!   needs nothing but `project` and `modified_velocity` (any law), and converges where
+//!   Gauss–Seidel does not in 10 000 sweeps (issue 8's stress suite: a stiffness contrast of
+//!   1e8, 40 sweeps). It is the default; choose Newton for Coulomb-type problems up to about a
+//!   thousand contacts.
+//!
+//! # The penalty ρ
+//! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s 2×2 diagonal block:
+//! the largest step for which the local map `r_i ↦ r_i − ρ W_ii r_i` is non-expansive, i.e. the
+//! local step never overshoots, whatever the block's anisotropy (`1/W_nn` can exceed it when
+//! `W_tt > W_nn`). The user may scale it by [`UzawaSettings::rho_scale`]. It is then adapted
+//! (Khobotov 1987, Solodov–Tseng 1996): after a trial step `r → r'`,
+//!
+//! ```text
+//! ratio = ‖ρ (v(x(r')) − v(x(r)))‖ / ‖r' − r‖
+//! ratio > ν = 1.5   → ρ ← ρ/2 and redo the step
+//! ratio < 0.3       → ρ ← 1.5 ρ for the next step
+//! ```
+//! We use `ν = 1.5` rather than the extragradient's `ν < 1`: this is a plain projected
+//! step, which for the associated (frictionless) part converges for `ρ L < 2`; and with
+//! `ν < 1` the exact local step `ρ = 1/λ` of an isotropic block (ratio exactly 1) would be
+//! rejected. Measured on the random problems, `ν = 0.9` costs Gauss–Seidel 89–96 sweeps
+//! against 57–60 with `ν = 1.5` (Uzawa: 83–103 against 79–101).
+//!
+//! `ρ⁰ = 1/W_nn` was measured too: within ±15 % of the sweeps of `1/λ_max` on these nearly
+//! isotropic blocks; `1/λ_max` is kept because it stays safe on anisotropic ones.
+//! For Uzawa the norms are global and one factor scales every `ρ_i`; for Gauss–Seidel each
+//! contact adapts its own `ρ_i` with its local step (`x_i` changes by `W_ii Δr_i`). So a `ρ`
+//! that is `10³` times too large or too small still converges.
+//!
+//! # Stopping rule
+//! Both must hold at the same iterate (so the rule does not depend on the adapted ρ):
+//!
+//! ```text
+//! change   = ‖r_{k+1} − r_k‖ / max(‖r_{k+1}‖, tiny)                          ≤ tol
+//! residual = ‖r − P_K(r + ρ⁰ v(W r + q))‖ / max(‖r‖, max_i ρ⁰_i ‖q‖, tiny)   ≤ tol
+//! ```
+//! with `ρ⁰` the *base* penalty (not the adapted one, nor the user's scale) and
+//! `tiny = f64::MIN_POSITIVE`. The residual is the natural map of the fixed point (zero
+//! exactly on solutions); [`UzawaReport::history`] records it at every iteration.
+
+pub mod adhesion;
+pub mod anderson;
+pub mod classic;
+mod dense;
+mod gauss_seidel;
+pub mod generate;
+#[cfg(feature = "serde")]
+mod json;
+pub mod matrix_free;
+pub mod newton;
+mod plain;
+pub mod problem;
+mod residual;
+mod settings;
+mod solver;
+mod sweep;
+mod uzawa;
+
+#[cfg(feature = "fe")]
+pub(crate) use dense::symmetrize;
+pub use problem::{ReducedProblem, SYMMETRY_TOL};
+#[cfg(feature = "fe")]
+pub(crate) use residual::{contact_statuses, natural_residual};
+pub use settings::{
+    ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, Algorithm, DEFAULT_OMEGA, Solution,
+    UzawaReport, UzawaSettings,
+};
+pub use solver::{UzawaSolver, solve_coulomb};

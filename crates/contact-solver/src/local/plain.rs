@@ -1,0 +1,62 @@
+//! The plain bipotential iteration ([`Algorithm::Uzawa`] and [`Algorithm::GaussSeidel`]): base
+//! steps until both tests of the [stopping rule](crate::local#stopping-rule) hold.
+
+use super::problem::ReducedProblem;
+use super::residual::{natural_residual, norm};
+use super::settings::{Algorithm, UzawaSettings};
+use super::sweep::Sweeps;
+use contact_laws::ContactLaw;
+
+/// What a plain run did.
+pub(crate) struct PlainRun {
+    pub(crate) iterations: usize,
+    pub(crate) converged: bool,
+    pub(crate) residual: f64,
+    pub(crate) change: f64,
+}
+
+/// Runs Uzawa steps (`algorithm == Uzawa`, with the global factor `theta`) or Gauss–Seidel
+/// sweeps from `(r, x)` (`x = W r + q`; for Uzawa, `sweeps.v` must hold `v(x)`), pushing the
+/// relative natural residual of every iteration to `history`; `denom_q = max_i ρ⁰_i ‖q‖`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run<L: ContactLaw>(
+    sweeps: &mut Sweeps,
+    problem: &ReducedProblem,
+    laws: &[L],
+    states: &[L::State],
+    st: &UzawaSettings,
+    denom_q: f64,
+    theta: &mut f64,
+    r: &mut [f64],
+    x: &mut [f64],
+    history: &mut Vec<f64>,
+) -> PlainRun {
+    let mut run = PlainRun {
+        iterations: 0,
+        converged: false,
+        residual: f64::INFINITY,
+        change: f64::INFINITY,
+    };
+    while run.iterations < st.max_iterations {
+        run.iterations += 1;
+        let dr2 = match st.algorithm {
+            Algorithm::Uzawa => sweeps.uzawa_step(problem, laws, states, r, x, theta),
+            _ => sweeps.gauss_seidel_sweep(problem, laws, states, r, x),
+        };
+        let r_norm = norm(r);
+        run.change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
+        let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
+        run.residual = natural_residual(laws, states, &sweeps.rho0, r, x) / denom;
+        if run.change <= st.tol && run.residual <= st.tol && st.algorithm != Algorithm::Uzawa {
+            // x was updated incrementally: confirm on the exact x = W r + q.
+            problem.displacement_into(r, x);
+            run.residual = natural_residual(laws, states, &sweeps.rho0, r, x) / denom;
+        }
+        history.push(run.residual);
+        if run.change <= st.tol && run.residual <= st.tol {
+            run.converged = true;
+            break;
+        }
+    }
+    run
+}

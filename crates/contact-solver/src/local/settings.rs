@@ -1,0 +1,120 @@
+//! Settings, report and solution of the reduced-problem solvers, shared by every algorithm
+//! (the stopping rule and the penalty ρ are described in the [layer docs](crate::local)).
+
+use contact_laws::ContactStatus;
+
+/// Threshold ν of the self-adaptive rule: a step whose ratio exceeds it is redone with ρ/2.
+pub const ADAPT_SHRINK_ABOVE: f64 = 1.5;
+/// A step whose ratio is below this grows ρ by [`ADAPT_GROWTH`] for the next step.
+pub const ADAPT_GROW_BELOW: f64 = 0.3;
+/// Growth factor of ρ after an easy step.
+pub const ADAPT_GROWTH: f64 = 1.5;
+
+/// Default over-relaxation factor of the classical solver's projected SOR sweeps (plain
+/// Gauss–Seidel; see [`classic`](crate::local::classic)).
+pub const DEFAULT_OMEGA: f64 = 1.0;
+
+/// Which sweep the solver runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Algorithm {
+    /// Every contact from the same `x`, then `x = W r + q` (Jacobi / projected gradient).
+    Uzawa,
+    /// Contact by contact with the current `x` (projected Gauss–Seidel).
+    GaussSeidel,
+    /// The classical solver (seed §5.6, GYPTIS): contact and friction treated separately, by
+    /// projected SOR sweeps on the normal then the tangential components, with a fixed point
+    /// on the threshold `s_i = μ̄_i r_n,i`. Needs
+    /// [`ContactLaw::friction_coefficient`]; see [`classic`](crate::local::classic).
+    ClassicRccm,
+    /// Anderson acceleration (memory [`ANDERSON_DEPTH`](crate::local::anderson::ANDERSON_DEPTH),
+    /// safeguarded) of the projected Gauss–Seidel sweep; see [`anderson`](crate::local::anderson).
+    /// The default (chosen by measurement, see the [module docs](crate::local#which-algorithm)).
+    #[default]
+    AndersonGaussSeidel,
+    /// Anderson acceleration (safeguarded) of the Uzawa step; see
+    /// [`anderson`](crate::local::anderson).
+    AndersonUzawa,
+    /// Semi-smooth Newton on `r − P_K(r + ρ v(W r + q)) = 0` with a dense LU of the reduced
+    /// Newton system, a line search and Gauss–Seidel fallback. Needs
+    /// [`ContactLaw::friction_coefficient`]; see [`newton`](crate::local::newton).
+    Newton,
+}
+
+/// Settings of the reduced solver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UzawaSettings {
+    /// Which sweep to run.
+    pub algorithm: Algorithm,
+    /// Tolerance of both tests of the stopping rule (see the [layer docs](crate::local)).
+    pub tol: f64,
+    /// Maximum number of iterations (sweeps).
+    pub max_iterations: usize,
+    /// Factor applied to the base `ρ⁰_i = 1/λ_max(W_ii)` at the start (adapted afterwards).
+    /// Not used by [`Algorithm::ClassicRccm`].
+    pub rho_scale: f64,
+    /// Over-relaxation factor `ω ∈ (0, 2)` of the projected SOR sweeps of
+    /// [`Algorithm::ClassicRccm`] (default [`DEFAULT_OMEGA`](DEFAULT_OMEGA));
+    /// not used by the bipotential sweeps.
+    pub omega: f64,
+    /// Return `Ok` with `report.converged == false` instead of
+    /// [`SolverError::NotConverged`](crate::SolverError::NotConverged).
+    pub accept_non_converged: bool,
+}
+
+impl Default for UzawaSettings {
+    fn default() -> Self {
+        Self {
+            algorithm: Algorithm::default(),
+            tol: 1e-10,
+            max_iterations: 10_000,
+            rho_scale: 1.0,
+            omega: DEFAULT_OMEGA,
+            accept_non_converged: false,
+        }
+    }
+}
+
+/// What the solver did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UzawaReport {
+    /// The algorithm that ran.
+    pub algorithm: Algorithm,
+    /// Iterations (sweeps) done: for [`Algorithm::ClassicRccm`], every normal and tangential
+    /// sweep of every outer iteration (see [`classic`](crate::local::classic)); for the Anderson
+    /// variants, base steps (rejected ones included); for [`Algorithm::Newton`], Newton steps
+    /// plus Gauss–Seidel sweeps.
+    pub iterations: usize,
+    /// Outer iterations: threshold updates of [`Algorithm::ClassicRccm`], Newton steps (dense
+    /// factorisations) of [`Algorithm::Newton`]; equal to `iterations` for the sweeps.
+    pub outer_iterations: usize,
+    /// Sweeps of the friction sub-problem of [`Algorithm::ClassicRccm`] (so
+    /// `iterations − tangential_sweeps` are Signorini sweeps); 0 for the bipotential sweeps,
+    /// which treat both components of a contact together.
+    pub tangential_sweeps: usize,
+    /// `true` when the stopping rule was met.
+    pub converged: bool,
+    /// Natural-map residual at the returned iterate (relative, see the [layer docs](crate::local)).
+    pub residual: f64,
+    /// Relative change `‖r_{k+1} − r_k‖/‖r_{k+1}‖` of the last iteration.
+    pub change: f64,
+    /// The natural-map residual of every iteration (of every outer iteration for
+    /// [`Algorithm::ClassicRccm`]).
+    pub history: Vec<f64>,
+    /// Smallest adapted `ρ_i` at the end (the base `ρ⁰_i` for [`Algorithm::ClassicRccm`]).
+    pub rho_min: f64,
+    /// Largest adapted `ρ_i` at the end (the base `ρ⁰_i` for [`Algorithm::ClassicRccm`]).
+    pub rho_max: f64,
+    /// Status of each contact at the returned iterate (case of the projection with `ρ⁰`).
+    pub statuses: Vec<ContactStatus>,
+}
+
+/// The solution of a reduced problem.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution {
+    /// Reactions, normal first per contact (`r_n ≥ 0` is compression).
+    pub r: Vec<f64>,
+    /// Displacements / gaps `x = W r + q` (`x_n ≥ 0` is an opening).
+    pub x: Vec<f64>,
+    /// How the solver got there.
+    pub report: UzawaReport,
+}

@@ -1,0 +1,316 @@
+//! The dispatcher of the reduced-problem solvers: [`UzawaSolver`] validates the settings and
+//! the starting point, runs the chosen [`Algorithm`] (one file each, below it), and reports.
+
+use super::anderson::{AndersonScratch, BaseMap};
+use super::classic::ClassicScratch;
+use super::newton::NewtonScratch;
+use super::plain;
+use super::problem::ReducedProblem;
+use super::residual::{contact_statuses, norm};
+use super::settings::{Algorithm, Solution, UzawaReport, UzawaSettings};
+use super::sweep::Sweeps;
+use crate::error::SolverError;
+use contact_laws::ContactLaw;
+
+/// The reduced-problem solver: settings plus scratch buffers reused across solves.
+///
+/// # Examples
+/// ```
+/// use contact_solver::{ReducedProblem, UzawaSettings, UzawaSolver};
+/// // One contact, W = I, pressed by q_n = −1 with a tangential push 0.5 and μ = 0.2: slip.
+/// let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-1.0, 0.5], vec![0.2])?;
+/// let sol = UzawaSolver::new(UzawaSettings::default()).solve(&p, &p.coulomb_laws())?;
+/// assert!((sol.r[0] - 1.0).abs() < 1e-9 && (sol.r[1] + 0.2).abs() < 1e-9);
+/// # Ok::<(), contact_solver::SolverError>(())
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct UzawaSolver {
+    settings: UzawaSettings,
+    sweeps: Sweeps,
+    classic: ClassicScratch,
+    anderson: AndersonScratch,
+    newton: NewtonScratch,
+}
+
+/// Solves `problem` with one Coulomb law `Coulomb::new(μ_i)` per contact — the entry point for
+/// a problem read from JSON or exported by another FE code.
+///
+/// # Errors
+/// [`SolverError::NotConverged`] unless `settings.accept_non_converged`.
+///
+/// # Examples
+/// ```
+/// use contact_solver::{ReducedProblem, UzawaSettings, solve_coulomb};
+/// let p = ReducedProblem::new(vec![2.0, 0.0, 0.0, 2.0], vec![-1.0, 0.5], vec![0.8])?;
+/// let sol = solve_coulomb(&p, &UzawaSettings::default())?;
+/// assert!((sol.r[1] + 0.25).abs() < 1e-9); // stick: r_t = −q_t/f
+/// # Ok::<(), contact_solver::SolverError>(())
+/// ```
+pub fn solve_coulomb(
+    problem: &ReducedProblem,
+    settings: &UzawaSettings,
+) -> Result<Solution, SolverError> {
+    UzawaSolver::new(*settings).solve(problem, &problem.coulomb_laws())
+}
+
+impl UzawaSolver {
+    /// A solver with these settings (buffers are sized at the first solve).
+    pub fn new(settings: UzawaSettings) -> Self {
+        Self {
+            settings,
+            ..Self::default()
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &UzawaSettings {
+        &self.settings
+    }
+
+    /// Solves `problem` from `r = 0` with the laws' initial states.
+    ///
+    /// `laws` holds one law per contact, or a single law shared by all contacts.
+    ///
+    /// # Errors
+    /// [`SolverError::SizeMismatch`] if `laws` has neither 1 nor `n_c` entries;
+    /// [`SolverError::NotConverged`] unless `accept_non_converged`.
+    pub fn solve<L: ContactLaw>(
+        &mut self,
+        problem: &ReducedProblem,
+        laws: &[L],
+    ) -> Result<Solution, SolverError> {
+        let states: Vec<L::State> = laws.iter().map(|l| l.initial_state()).collect();
+        self.solve_with_states(problem, laws, &states, None)
+    }
+
+    /// Solves `problem` with given per-contact states (1 shared or `n_c`) and an optional
+    /// starting reaction `r_start` (warm start, `m` entries).
+    ///
+    /// # Errors
+    /// [`SolverError::SizeMismatch`] if `laws`, `states` or `r_start` has the wrong length;
+    /// [`SolverError::NonFinite`] if `r_start` is not finite, or `tol` or `rho_scale` is not
+    /// finite and positive; [`SolverError::InvalidSetting`] if `omega` is not in `(0, 2)`;
+    /// for [`Algorithm::ClassicRccm`], [`SolverError::NoFrictionCoefficient`] if a law's
+    /// [`friction_coefficient`](ContactLaw::friction_coefficient) is `None` and
+    /// [`SolverError::InvalidLaw`] if it is negative or not finite;
+    /// [`SolverError::NotConverged`] unless `accept_non_converged`.
+    pub fn solve_with_states<L: ContactLaw>(
+        &mut self,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r_start: Option<&[f64]>,
+    ) -> Result<Solution, SolverError> {
+        let nc = problem.contact_count();
+        let m = problem.size();
+        let st = self.settings;
+        for (what, len) in [("laws", laws.len()), ("states", states.len())] {
+            if len != nc && !(len == 1 && nc > 0) {
+                return Err(SolverError::SizeMismatch {
+                    what,
+                    expected: nc,
+                    found: len,
+                });
+            }
+        }
+        if !(st.tol.is_finite() && st.tol > 0.0) {
+            return Err(SolverError::NonFinite {
+                what: "tol",
+                index: 0,
+                value: st.tol,
+            });
+        }
+        if !(st.rho_scale.is_finite() && st.rho_scale > 0.0) {
+            return Err(SolverError::NonFinite {
+                what: "rho_scale",
+                index: 0,
+                value: st.rho_scale,
+            });
+        }
+        if !(st.omega > 0.0 && st.omega < 2.0) {
+            return Err(SolverError::InvalidSetting {
+                what: "omega",
+                value: st.omega,
+                expected: "expected a value in (0, 2)",
+            });
+        }
+        let mut r = vec![0.0; m];
+        if let Some(r0) = r_start {
+            if r0.len() != m {
+                return Err(SolverError::SizeMismatch {
+                    what: "r_start",
+                    expected: m,
+                    found: r0.len(),
+                });
+            }
+            if let Some((index, &value)) = r0.iter().enumerate().find(|(_, a)| !a.is_finite()) {
+                return Err(SolverError::NonFinite {
+                    what: "r_start",
+                    index,
+                    value,
+                });
+            }
+            r.copy_from_slice(r0);
+        }
+        self.sweeps.reset(problem, st.rho_scale);
+        let mut x = vec![0.0; m];
+        problem.displacement_into(&r, &mut x);
+        if st.algorithm == Algorithm::Uzawa {
+            self.sweeps.set_velocity(laws, states, &x);
+        }
+        let mut history = Vec::with_capacity(st.max_iterations.min(100_000));
+        let denom_q = self.sweeps.rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
+        // Uzawa's global scale factor of ρ⁰ (Gauss–Seidel adapts `sweeps.rho` per contact).
+        let mut theta = st.rho_scale;
+        let (r_, x_, h_) = (&mut r, &mut x, &mut history);
+        // (iterations, outer iterations, tangential sweeps, converged, residual, change)
+        let (iterations, outer_iterations, tangential_sweeps, converged, residual, change) =
+            match st.algorithm {
+                Algorithm::Uzawa | Algorithm::GaussSeidel => {
+                    let run = plain::run(
+                        &mut self.sweeps,
+                        problem,
+                        laws,
+                        states,
+                        &st,
+                        denom_q,
+                        &mut theta,
+                        r_,
+                        x_,
+                        h_,
+                    );
+                    let (n, c) = (run.iterations, run.converged);
+                    (n, n, 0, c, run.residual, run.change)
+                }
+                Algorithm::ClassicRccm => {
+                    let run = self.classic.solve(
+                        problem,
+                        laws,
+                        states,
+                        &self.sweeps.rho0,
+                        &st,
+                        r_,
+                        x_,
+                        h_,
+                    )?;
+                    self.sweeps.rho.copy_from_slice(&self.sweeps.rho0);
+                    let (n, o, t) = (run.iterations, run.outer_iterations, run.tangential_sweeps);
+                    (n, o, t, run.converged, run.residual, run.change)
+                }
+                Algorithm::AndersonGaussSeidel | Algorithm::AndersonUzawa => {
+                    let base = if st.algorithm == Algorithm::AndersonUzawa {
+                        BaseMap::Uzawa
+                    } else {
+                        BaseMap::GaussSeidel
+                    };
+                    let run = self.anderson.solve(
+                        &mut self.sweeps,
+                        base,
+                        problem,
+                        laws,
+                        states,
+                        &st,
+                        denom_q,
+                        &mut theta,
+                        r_,
+                        x_,
+                        h_,
+                    );
+                    let n = run.iterations;
+                    (n, n, 0, run.converged, run.residual, run.change)
+                }
+                Algorithm::Newton => {
+                    let run = self.newton.solve(
+                        &mut self.sweeps,
+                        problem,
+                        laws,
+                        states,
+                        &st,
+                        denom_q,
+                        r_,
+                        x_,
+                        h_,
+                    )?;
+                    let (n, o) = (run.iterations, run.newton_steps);
+                    (n, o, 0, run.converged, run.residual, run.change)
+                }
+            };
+        if !converged && !st.accept_non_converged {
+            return Err(SolverError::NotConverged {
+                iterations,
+                residual,
+                history,
+            });
+        }
+        problem.displacement_into(&r, &mut x);
+        if matches!(st.algorithm, Algorithm::Uzawa | Algorithm::AndersonUzawa) {
+            for (rho, rho0) in self.sweeps.rho.iter_mut().zip(&self.sweeps.rho0) {
+                *rho = theta * rho0;
+            }
+        }
+        let statuses = contact_statuses(laws, states, &self.sweeps.rho0, &r, &x);
+        let report = UzawaReport {
+            algorithm: st.algorithm,
+            iterations,
+            outer_iterations,
+            tangential_sweeps,
+            converged,
+            residual,
+            change,
+            history,
+            rho_min: self.sweeps.rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
+            rho_max: self.sweeps.rho.iter().fold(0.0, |a, &b| a.max(b)),
+            statuses,
+        };
+        Ok(Solution { r, x, report })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use contact_laws::{Coulomb, Signorini};
+
+    #[test]
+    fn shared_law_works() {
+        let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-2.0, 1.0], vec![0.0]).unwrap();
+        let sol = UzawaSolver::new(UzawaSettings::default())
+            .solve(&p, &[Signorini])
+            .unwrap();
+        assert_eq!(sol.r, vec![2.0, 0.0]);
+    }
+
+    #[test]
+    fn bipotential_report_counts_work() {
+        // Every bipotential sweep is an outer iteration and none is a "tangential sweep".
+        let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-2.0, 1.0], vec![0.3]).unwrap();
+        for algorithm in [Algorithm::Uzawa, Algorithm::GaussSeidel] {
+            let st = UzawaSettings {
+                algorithm,
+                ..UzawaSettings::default()
+            };
+            let rep = UzawaSolver::new(st)
+                .solve(&p, &p.coulomb_laws())
+                .unwrap()
+                .report;
+            assert_eq!(rep.outer_iterations, rep.iterations);
+            assert_eq!(rep.history.len(), rep.iterations);
+            assert_eq!(rep.tangential_sweeps, 0);
+        }
+    }
+
+    #[test]
+    fn solve_rejects_wrong_law_count() {
+        let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-2.0, 1.0], vec![0.0]).unwrap();
+        let laws = [Coulomb::new(0.1).unwrap(); 2];
+        let e = UzawaSolver::new(UzawaSettings::default()).solve(&p, &laws);
+        assert!(matches!(
+            e,
+            Err(SolverError::SizeMismatch {
+                what: "laws",
+                expected: 1,
+                found: 2
+            })
+        ));
+    }
+}

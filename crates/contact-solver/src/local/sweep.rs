@@ -1,0 +1,61 @@
+//! The state the bipotential sweeps share: the base penalties `ρ⁰_i = 1/λ_max(W_ii)`, the
+//! adapted `ρ_i`, and the trial buffers of the Uzawa step. The sweeps themselves live one per
+//! file ([`uzawa`](super::uzawa), [`gauss_seidel`](super::gauss_seidel)); the accelerated and
+//! Newton solvers drive them through this type.
+
+use super::problem::ReducedProblem;
+use super::residual::{local, pick, rho_of_block, set_local};
+use contact_laws::ContactLaw;
+
+/// Maximum number of halvings of ρ within one step (`2⁻⁶⁰ ≈ 10⁻¹⁸`).
+pub(crate) const MAX_SHRINKS: usize = 60;
+
+/// Buffers and penalties of the bipotential sweeps, reused across solves.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Sweeps {
+    pub(crate) r_trial: Vec<f64>,
+    pub(crate) x_trial: Vec<f64>,
+    pub(crate) v: Vec<f64>,
+    pub(crate) v_trial: Vec<f64>,
+    pub(crate) rho0: Vec<f64>,
+    pub(crate) rho: Vec<f64>,
+}
+
+impl Sweeps {
+    /// Sizes the buffers for `problem` and sets `ρ⁰_i = 1/λ_max(W_ii)`, `ρ_i = rho_scale·ρ⁰_i`.
+    pub(crate) fn reset(&mut self, problem: &ReducedProblem, rho_scale: f64) {
+        let m = problem.size();
+        for buf in [
+            &mut self.r_trial,
+            &mut self.x_trial,
+            &mut self.v,
+            &mut self.v_trial,
+        ] {
+            buf.clear();
+            buf.resize(m, 0.0);
+        }
+        self.rho0.clear();
+        self.rho0
+            .extend((0..problem.contact_count()).map(|i| rho_of_block(problem.diagonal_block(i))));
+        self.rho.clear();
+        self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
+    }
+
+    /// The base penalties `ρ⁰_i = 1/λ_max(W_ii)` of the current solve.
+    pub(crate) fn rho0(&self) -> &[f64] {
+        &self.rho0
+    }
+
+    /// `self.v = v(x)`, the precondition of [`uzawa_step`](super::uzawa).
+    pub(crate) fn set_velocity<L: ContactLaw>(
+        &mut self,
+        laws: &[L],
+        states: &[L::State],
+        x: &[f64],
+    ) {
+        for i in 0..self.rho0.len() {
+            let v = pick(laws, i).modified_velocity(&local(x, i), pick(states, i));
+            set_local(&mut self.v, i, &v);
+        }
+    }
+}
