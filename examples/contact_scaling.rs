@@ -276,7 +276,7 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
         .iter()
         .filter(|r| matches!(r.status, InterfaceStatus::Stick | InterfaceStatus::Slip))
         .count();
-    let sum_rn: f64 = res.contacts.iter().map(|r| r.r[0]).sum();
+    let sum_rn: f64 = res.contacts.iter().map(|r| r.r.n).sum();
     let n_c = sim.candidates().len();
     let dense_bytes = if res.report.matrix_free || res.report.active_set {
         0

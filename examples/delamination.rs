@@ -196,14 +196,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         Series::new("0.3 mm in 1 s", history(&fast, pb, |c| c.beta, &d_fast)),
     ];
     let radh_b = vec![
-        Series::new(
-            "0.3 mm in 10 s",
-            history(&bip, pb, |c| -c.r_adh[0], &d_slow),
-        ),
-        Series::new(
-            "0.3 mm in 1 s",
-            history(&fast, pb, |c| -c.r_adh[0], &d_fast),
-        ),
+        Series::new("0.3 mm in 10 s", history(&bip, pb, |c| -c.r_adh.n, &d_slow)),
+        Series::new("0.3 mm in 1 s", history(&fast, pb, |c| -c.r_adh.n, &d_fast)),
     ];
     write_series_csv(&out.join("beta_point_b.csv"), "u_y_mm", "beta", &beta_b)?;
     write_series_csv(

@@ -158,9 +158,9 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .map(|s| {
                     let c = at_a(s);
                     let v = match f {
-                        0 => c.r_adh[comp],
-                        1 => c.r_bar[comp],
-                        _ => c.r[comp],
+                        0 => [c.r_adh.n, c.r_adh.t[0]][comp],
+                        1 => [c.r_bar.n, c.r_bar.t[0]][comp],
+                        _ => [c.r.n, c.r.t[0]][comp],
                     };
                     (s.report.time, v)
                 })

@@ -634,7 +634,7 @@ impl Recorder {
             r.write_report(rep)
                 .map_err(|e| io(&self.dir.join("steps.csv"), e))?;
         }
-        if res.contacts.iter().any(|c| c.r[1] != 0.0) {
+        if res.contacts.iter().any(|c| c.r.t[0] != 0.0) {
             self.tangential_steps += 1;
         }
         if rep.detection_passes > 1 {
@@ -646,8 +646,8 @@ impl Recorder {
             let (mut fn_, mut ft, mut bmin) = (0.0, 0.0, f64::INFINITY);
             let mut st = StatusCount::default();
             for c in mine {
-                fn_ += c.r[0];
-                ft += c.r[1];
+                fn_ += c.r.n;
+                ft += c.r.t[0];
                 bmin = bmin.min(c.beta);
                 match c.status {
                     InterfaceStatus::Inactive => st.inactive += 1,
@@ -874,8 +874,8 @@ fn curve_value(
         "adhesion_iterations" => rep.adhesion_iterations as f64,
         "active_contacts" => rep.active_contacts as f64,
         "residual" => rep.residual,
-        "force_n" => res.contacts.iter().filter(in_zone).map(|r| r.r[0]).sum(),
-        "force_t" => res.contacts.iter().filter(in_zone).map(|r| r.r[1]).sum(),
+        "force_n" => res.contacts.iter().filter(in_zone).map(|r| r.r.n).sum(),
+        "force_t" => res.contacts.iter().filter(in_zone).map(|r| r.r.t[0]).sum(),
         "closed" => res
             .contacts
             .iter()
@@ -909,8 +909,8 @@ fn curve_value(
                     "gap" => r.gap,
                     "u_t" => r.u_t,
                     "beta" => r.beta,
-                    "r_n" => r.r[0],
-                    _ => r.r[1],
+                    "r_n" => r.r.n,
+                    _ => r.r.t[0],
                 },
                 None => f64::NAN,
             }

@@ -165,8 +165,8 @@ fn delamination_preset_gives_the_library_numbers() {
     for (row, rec) in last.iter().zip(expected) {
         assert_eq!(row["node"].parse::<usize>().unwrap(), rec.node);
         for (col, v) in [
-            ("r_n", rec.r[0]),
-            ("r_t", rec.r[1]),
+            ("r_n", rec.r.n),
+            ("r_t", rec.r.t[0]),
             ("gap", rec.gap),
             ("u_t", rec.u_t),
             ("beta", rec.beta),

@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let r: Vec<f64> = sim
         .last_active()
         .iter()
-        .flat_map(|&i| res.contacts[i].r_bar)
+        .flat_map(|&i| [res.contacts[i].r_bar.n, res.contacts[i].r_bar.t[0]])
         .collect();
     std::fs::write(
         &ours,

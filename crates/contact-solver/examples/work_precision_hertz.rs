@@ -391,7 +391,7 @@ fn errors(scene: &HertzScene, sim: &Simulation, res: &StepResult) -> Errors {
     let mesh = sim.structure().mesh();
     let mut force = vec![0.0; mesh.node_count()];
     for c in &res.contacts {
-        force[c.node] = c.r[0];
+        force[c.node] = c.r.n;
     }
     let recovered = project_pressure(mesh, &force, axisymmetric);
     let l2_error = pressure_l2_error(

@@ -78,20 +78,20 @@ fn compare(a: &[StepResult], b: &[StepResult]) -> (f64, f64) {
     let r_scale = a
         .iter()
         .flat_map(|s| &s.contacts)
-        .fold(0.0_f64, |m, c| m.max(c.r[0].abs()));
+        .fold(0.0_f64, |m, c| m.max(c.r.n.abs()));
     let g_scale = a.iter().flat_map(|s| &s.contacts).fold(0.0_f64, |m, c| {
         m.max(c.gap.abs()).max(c.slip_increment.abs())
     });
     let (mut dr, mut dg) = (0.0_f64, 0.0_f64);
     for (sa, sb) in a.iter().zip(b) {
         for (x, y) in sa.contacts.iter().zip(&sb.contacts) {
-            for d in 0..2 {
-                dr = dr.max((x.r[d] - y.r[d]).abs());
-            }
+            dr = dr
+                .max((x.r.n - y.r.n).abs())
+                .max((x.r.t[0] - y.r.t[0]).abs());
             dg = dg
                 .max((x.gap - y.gap).abs())
                 .max((x.slip_increment - y.slip_increment).abs());
-            if x.r[0] > 1e-6 * r_scale {
+            if x.r.n > 1e-6 * r_scale {
                 assert_eq!(x.status, y.status, "{x:?} vs {y:?}");
             }
         }

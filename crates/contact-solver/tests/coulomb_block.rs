@@ -16,7 +16,7 @@ const MU: f64 = 0.3;
 fn totals(res: &StepResult) -> (f64, f64) {
     res.contacts
         .iter()
-        .fold((0.0, 0.0), |(n, t), c| (n + c.r[0], t + c.r[1]))
+        .fold((0.0, 0.0), |(n, t), c| (n + c.r.n, t + c.r.t[0]))
 }
 
 #[test]
@@ -61,7 +61,7 @@ fn block_sticks_below_threshold_and_slides_at_mu() {
             "{kind:?}: T {t} vs μN {}",
             MU * n
         );
-        for c in small.contacts.iter().filter(|c| c.r[0] > 1e-6 * n) {
+        for c in small.contacts.iter().filter(|c| c.r.n > 1e-6 * n) {
             assert_eq!(
                 c.status,
                 InterfaceStatus::Stick,
@@ -86,10 +86,10 @@ fn block_sticks_below_threshold_and_slides_at_mu() {
             "{kind:?}: T {t} vs −μN {}",
             -MU * n
         );
-        for c in slid.contacts.iter().filter(|c| c.r[0] > 0.0) {
+        for c in slid.contacts.iter().filter(|c| c.r.n > 0.0) {
             assert_eq!(c.status, InterfaceStatus::Slip, "{kind:?}: node {}", c.node);
             assert!(c.slip_increment > 0.0);
-            assert!((c.r[1] + MU * c.r[0]).abs() <= 1e-8 * MU * n);
+            assert!((c.r.t[0] + MU * c.r.n).abs() <= 1e-8 * MU * n);
         }
         // the normal problem is unchanged by sliding on a rigid plane (ν = 0: no coupling)
         let (n_pressed, _) = totals(&pressed);

@@ -27,14 +27,14 @@ fn bipotential_and_classic_agree_and_bipotential_iterates_less() {
     let (cla, cla_iters, cla_adh) = run(Algorithm::ClassicRccm, steps);
     let scale = bip
         .iter()
-        .flat_map(|s| s.contacts.iter().map(|c| c.r[0].abs().max(c.r[1].abs())))
+        .flat_map(|s| s.contacts.iter().map(|c| c.r.n.abs().max(c.r.t[0].abs())))
         .fold(0.0, f64::max);
     let mut worst = 0.0_f64;
     for (a, b) in bip.iter().zip(&cla) {
         for (x, y) in a.contacts.iter().zip(&b.contacts) {
             worst = worst
-                .max((x.r[0] - y.r[0]).abs())
-                .max((x.r[1] - y.r[1]).abs());
+                .max((x.r.n - y.r.n).abs())
+                .max((x.r.t[0] - y.r.t[0]).abs());
             assert!(
                 (x.beta - y.beta).abs() <= 1e-6,
                 "β {} vs {}",

@@ -95,7 +95,7 @@ fn equilibrium_defect(
         .filter(|((_, c), _)| *c == Component::Y)
         .map(|(_, r)| r)
         .sum();
-    let contact: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+    let contact: f64 = res.contacts.iter().map(|c| c.r.n).sum();
     (support + contact, contact)
 }
 
@@ -192,7 +192,7 @@ fn rho_scale_does_not_change_the_hertz_reactions() {
             res.report.contact_iterations
         );
         assert!(res.report.converged);
-        res.contacts.iter().map(|c| c.r[0]).collect::<Vec<f64>>()
+        res.contacts.iter().map(|c| c.r.n).collect::<Vec<f64>>()
     };
     let reference = reactions(1.0);
     let largest = reference.iter().fold(0.0_f64, |a, r| a.max(r.abs()));

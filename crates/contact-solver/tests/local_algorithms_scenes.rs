@@ -51,7 +51,7 @@ fn compare(name: &str, steps: usize, build: impl Fn(SimulationSettings) -> Scene
     let scale = reference
         .iter()
         .flatten()
-        .map(|c| c.r[0].hypot(c.r[1]))
+        .map(|c| c.r.n.hypot(c.r.t[0]))
         .fold(0.0, f64::max);
     for algorithm in [Algorithm::AndersonGaussSeidel, Algorithm::Newton] {
         for (k, (a, b)) in run(algorithm).iter().zip(&reference).enumerate() {
@@ -66,7 +66,7 @@ fn compare(name: &str, steps: usize, build: impl Fn(SimulationSettings) -> Scene
                     c.beta,
                     d.beta
                 );
-                let dr = (c.r[0] - d.r[0]).hypot(c.r[1] - d.r[1]);
+                let dr = (c.r.n - d.r.n).hypot(c.r.t[0] - d.r.t[0]);
                 assert!(
                     dr <= 1e-6 * scale,
                     "{name}, {algorithm:?}, step {}: |Δr| = {dr:e} (scale {scale:e})",

@@ -88,7 +88,7 @@ fn history_round_trips_exactly_works() {
     let candidates = sim.candidates().len();
     assert!(candidates > 0);
     // the pressed step has compressed contacts, so the history is not all zeros
-    assert!(results[1].contacts.iter().any(|c| c.r[0] > 0.0));
+    assert!(results[1].contacts.iter().any(|c| c.r.n > 0.0));
     let mut history = HistoryWriter::new(Vec::new()).unwrap();
     for res in &results {
         history.write_step(res).unwrap();
@@ -117,7 +117,7 @@ fn history_round_trips_exactly_works() {
         #[rustfmt::skip]
         let expected = [
             c.position[0], c.position[1], c.gap, c.u_t, c.slip_increment, c.beta,
-            c.r[0], c.r[1], c.r_bar[0], c.r_bar[1], c.r_adh[0], c.r_adh[1], c.area,
+            c.r.n, c.r.t[0], c.r_bar.n, c.r_bar.t[0], c.r_adh.n, c.r_adh.t[0], c.area,
         ];
         // bit-exact: the writer uses round-trip formatting
         assert_eq!(floats, expected);
@@ -209,7 +209,7 @@ fn interface_vtu_reads_back_works() {
         r_local,
         contacts
             .iter()
-            .flat_map(|c| [c.r[0], c.r[1], 0.0])
+            .flat_map(|c| [c.r.n, c.r.t[0], 0.0])
             .collect::<Vec<_>>()
     );
     let status = array::<u8>(&data, "status");

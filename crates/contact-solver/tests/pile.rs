@@ -58,24 +58,24 @@ fn geostatic_phase_is_an_equilibrium_at_rest() {
         let expect = k0 * gamma * (-c.position[1]) * c.area;
         // P2-consistent areas make the nodal force of a linear stress exact
         assert!(
-            (c.r[0] - expect).abs() <= 1e-8 * (1.0 + expect),
+            (c.r.n - expect).abs() <= 1e-8 * (1.0 + expect),
             "z = {}: r_n = {} vs K0 γ |z| A = {expect}",
             c.position[1],
-            c.r[0]
+            c.r.n
         );
         if c.zone == 1 {
             // the tip corner carries its share of the tip pressure tangentially, sticking
             assert_eq!(c.status, InterfaceStatus::Stick);
-            assert!(c.r[1].abs() <= spec.interface.mu * c.r[0]);
+            assert!(c.r.t[0].abs() <= spec.interface.mu * c.r.n);
         } else {
-            assert!(c.r[1].abs() < 1e-8, "spurious shaft shear {}", c.r[1]);
+            assert!(c.r.t[0].abs() < 1e-8, "spurious shaft shear {}", c.r.t[0]);
             assert_eq!(c.beta, 1.0);
         }
     }
     for &i in &scene.tip_candidates {
         let c = &res.contacts[i];
         let expect = gamma * length * c.area;
-        assert!((c.r[0] - expect).abs() <= 1e-8 * (1.0 + expect));
+        assert!((c.r.n - expect).abs() <= 1e-8 * (1.0 + expect));
     }
     let q0 = scene.head_load(&res).unwrap();
     assert!(

@@ -59,7 +59,7 @@ fn pull(alpha: f64, path: &[f64], duration: f64) -> Vec<(f64, f64)> {
             .set_prescribed(&top, Component::Y, d)
             .unwrap();
         let res = sim.step(duration * (k + 1) as f64 / n, 1.0).unwrap();
-        let tension: f64 = -res.contacts.iter().map(|c| c.r[0]).sum::<f64>() / WIDTH;
+        let tension: f64 = -res.contacts.iter().map(|c| c.r.n).sum::<f64>() / WIDTH;
         let u_n = res.contacts.iter().map(|c| c.gap).sum::<f64>() / res.contacts.len() as f64;
         // the interface opens uniformly (ν = 0, uniaxial) and no r̄ acts in tension
         for c in &res.contacts {
@@ -70,7 +70,7 @@ fn pull(alpha: f64, path: &[f64], duration: f64) -> Vec<(f64, f64)> {
             );
             if u_n > 0.0 {
                 assert_eq!(c.status, InterfaceStatus::Open);
-                assert_eq!(c.r_bar, [0.0, 0.0]);
+                assert_eq!(c.r_bar, contact_laws::LocalVec2::zeros());
             }
         }
         out.push((u_n, tension));

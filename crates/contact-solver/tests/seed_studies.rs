@@ -93,18 +93,18 @@ fn shear_debonded_contacts_obey_coulomb() {
             // the viscous law drives β to 0 only asymptotically (β → w/(C u²)): "debonded"
             // means β < 1e-4, where the adhesive reaction is negligible
             if c.beta < 1e-4 {
-                let rb = c.r_bar[0].hypot(c.r_bar[1]);
+                let rb = c.r_bar.n.hypot(c.r_bar.t[0]);
                 assert!(
-                    c.r_adh[0].hypot(c.r_adh[1]) <= 1e-6 * rb.max(1e-12),
+                    c.r_adh.n.hypot(c.r_adh.t[0]) <= 1e-6 * rb.max(1e-12),
                     "r_adh {:?}",
                     c.r_adh
                 );
                 let mu_bar = mu * (1.0 - c.beta); // f(β) = 1 − β (m = 1)
-                assert!(c.r_bar[1].abs() <= mu_bar * c.r_bar[0] * (1.0 + 1e-9) + 1e-12);
+                assert!(c.r_bar.t[0].abs() <= mu_bar * c.r_bar.n * (1.0 + 1e-9) + 1e-12);
                 if c.status == InterfaceStatus::Slip {
                     debonded_slipping += 1;
-                    assert!((c.r_bar[1].abs() - mu_bar * c.r_bar[0]).abs() <= 1e-8 * rb);
-                    assert!(c.r_bar[1] * c.slip_increment < 0.0); // friction opposes the slip
+                    assert!((c.r_bar.t[0].abs() - mu_bar * c.r_bar.n).abs() <= 1e-8 * rb);
+                    assert!(c.r_bar.t[0] * c.slip_increment < 0.0); // friction opposes the slip
                 }
             }
         }

@@ -60,7 +60,11 @@ fn pressed_block_gets_uniform_pressure_and_no_penetration() {
         // within the alert distance every candidate enters the problem, else none does
         let expected_active = if alert > lift { r1.contacts.len() } else { 0 };
         assert_eq!(r1.report.active_contacts, expected_active);
-        assert!(r1.contacts.iter().all(|c| c.r == [0.0, 0.0]));
+        assert!(
+            r1.contacts
+                .iter()
+                .all(|c| c.r == contact_laws::LocalVec2::zeros())
+        );
         assert!(
             r1.contacts
                 .iter()
@@ -73,7 +77,7 @@ fn pressed_block_gets_uniform_pressure_and_no_penetration() {
         let res = sim.step(1.0, 1.0).unwrap();
         // ν = 0: uniaxial, σ = E ε, ε = 0.01/1, over a width of 2
         let sigma = 200.0 * 0.01;
-        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
         assert!(
             (total - 2.0 * sigma).abs() <= 1e-10 * 2.0 * sigma,
             "{kind:?}: total {total}"
@@ -81,7 +85,7 @@ fn pressed_block_gets_uniform_pressure_and_no_penetration() {
         // every node closed exactly; tangential reactions zero; statuses compressed
         for c in &res.contacts {
             assert!(c.gap.abs() <= 1e-10 * delta, "{kind:?}: gap {}", c.gap);
-            assert_eq!(c.r[1], 0.0);
+            assert_eq!(c.r.t[0], 0.0);
             assert_ne!(c.status, InterfaceStatus::Open);
         }
         // nodal forces of a uniform pressure: consistent loads of the bottom edge

@@ -71,7 +71,7 @@ fn node_pairs_give_the_series_solution() {
         assert_eq!(c.gap0, 0.0);
     }
     let res = sim.step(1.0, 1.0).unwrap();
-    let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+    let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
     let exact = 2.0 * sigma_exact();
     assert!((total - exact).abs() <= 1e-10 * exact, "{total} vs {exact}");
     for c in &res.contacts {
@@ -83,7 +83,7 @@ fn node_pairs_give_the_series_solution() {
         } else {
             h
         };
-        assert!((c.r[0] - sigma_exact() * weight).abs() <= 1e-9 * exact);
+        assert!((c.r.n - sigma_exact() * weight).abs() <= 1e-9 * exact);
     }
 }
 
@@ -94,7 +94,7 @@ fn node_to_segment_carries_the_load_on_non_matching_meshes() {
     let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default()).unwrap();
     assert_eq!(sim.candidates().len(), contactor.len()); // ends project on the end segments
     let res = sim.step(1.0, 1.0).unwrap();
-    let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+    let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
     let exact = 2.0 * sigma_exact();
     eprintln!(
         "node-to-segment: total {total}, exact {exact}, error {:.2e}",
@@ -104,7 +104,7 @@ fn node_to_segment_carries_the_load_on_non_matching_meshes() {
     assert!((total - exact).abs() <= 2e-2 * exact, "{total} vs {exact}");
     for c in &res.contacts {
         assert!(c.gap.abs() <= 1e-9 * DELTA, "gap {}", c.gap);
-        assert!(c.r[0] > 0.0);
+        assert!(c.r.n > 0.0);
     }
     // action = reaction: the lower block's bottom reactions balance the contact force
     let u = sim.nodal_displacements();

@@ -103,11 +103,12 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 /// # Examples
 /// ```
 /// use contact_solver::coupling::output::HistoryWriter;
-/// use contact_solver::{ContactRecord, InterfaceStatus};
+/// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
 /// let c = ContactRecord {
 ///     zone: 0, node: 7, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Stick,
 ///     gap: 0.0, u_t: 1e-3, slip_increment: 0.0, beta: 1.0,
-///     r: [2.0, -0.1], r_bar: [2.0, -0.1], r_adh: [0.0, 0.0],
+///     r: LocalVec2::planar(2.0, -0.1), r_bar: LocalVec2::planar(2.0, -0.1),
+///     r_adh: LocalVec2::zeros(),
 /// };
 /// let mut history = HistoryWriter::new(Vec::new())?;
 /// history.write_contacts(1, 0.5, 1.0, &[c])?;
@@ -204,7 +205,10 @@ impl<W: Write> HistoryWriter<W> {
             for x in [c.gap, c.u_t, c.slip_increment, c.beta] {
                 push_float(line, x);
             }
-            for x in [c.r, c.r_bar, c.r_adh].into_iter().flatten() {
+            for x in [c.r, c.r_bar, c.r_adh]
+                .into_iter()
+                .flat_map(|v| [v.n, v.t[0]])
+            {
                 push_float(line, x);
             }
             push_float(line, c.area);
@@ -382,11 +386,11 @@ impl<W: Write> ReportWriter<W> {
 /// # Examples
 /// ```
 /// use contact_solver::coupling::output::write_interface_vtu;
-/// use contact_solver::{ContactRecord, InterfaceStatus};
+/// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
 /// let c = ContactRecord {
 ///     zone: 0, node: 1, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Open,
 ///     gap: 1e-3, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
-///     r: [0.0; 2], r_bar: [0.0; 2], r_adh: [0.0; 2],
+///     r: LocalVec2::zeros(), r_bar: LocalVec2::zeros(), r_adh: LocalVec2::zeros(),
 /// };
 /// let u = [[0.0, 0.0], [1e-4, -2e-4]];
 /// let path = std::env::temp_dir().join("contact_solver_output_doc.vtu");
@@ -468,9 +472,9 @@ fn interface_model(
         scalar("u_t", |c| c.u_t),
         scalar("slip_increment", |c| c.slip_increment),
         scalar("beta", |c| c.beta),
-        local("r_local", |c| c.r),
-        local("r_bar_local", |c| c.r_bar),
-        local("r_adh_local", |c| c.r_adh),
+        local("r_local", |c| [c.r.n, c.r.t[0]]),
+        local("r_bar_local", |c| [c.r_bar.n, c.r_bar.t[0]]),
+        local("r_adh_local", |c| [c.r_adh.n, c.r_adh.t[0]]),
     ];
     if let Some(u) = displacements {
         data.point.push(
@@ -614,6 +618,7 @@ fn io_error(what: &str, e: std::io::Error) -> SolverError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use contact_laws::LocalVec2;
 
     fn record(node: usize, status: InterfaceStatus) -> ContactRecord {
         ContactRecord {
@@ -626,9 +631,9 @@ mod tests {
             u_t: 0.0,
             slip_increment: 0.0,
             beta: 0.0,
-            r: [1.0, 0.0],
-            r_bar: [1.0, 0.0],
-            r_adh: [0.0, 0.0],
+            r: LocalVec2::planar(1.0, 0.0),
+            r_bar: LocalVec2::planar(1.0, 0.0),
+            r_adh: LocalVec2::zeros(),
         }
     }
 

@@ -728,7 +728,7 @@ impl PulloutScene {
         let candidates = self.simulation.candidates();
         for (c, rec) in candidates.iter().zip(&result.contacts) {
             // global force on the contactor, −w times it on each target
-            let f_z = rec.r[0] * c.normal[1] + rec.r[1] * c.tangent[1];
+            let f_z = rec.r.n * c.normal[1] + rec.r.t[0] * c.tangent[1];
             if self.head.binary_search(&c.node).is_ok() {
                 q -= f_z;
             }
@@ -751,8 +751,8 @@ impl PulloutScene {
                 let per_area = |f: f64| if a > 0.0 { f / a } else { 0.0 };
                 ShaftPoint {
                     z: c.position[1],
-                    sigma_n: per_area(c.r[0]),
-                    tau: per_area(c.r[1]),
+                    sigma_n: per_area(c.r.n),
+                    tau: per_area(c.r.t[0]),
                     beta: c.beta,
                     u_t: c.u_t,
                     status: c.status,
@@ -767,7 +767,7 @@ impl PulloutScene {
             * self
                 .shaft_candidates
                 .iter()
-                .map(|&i| result.contacts[i].r[0])
+                .map(|&i| result.contacts[i].r.n)
                 .sum::<f64>()
     }
 
@@ -777,7 +777,7 @@ impl PulloutScene {
             * self
                 .shaft_candidates
                 .iter()
-                .map(|&i| result.contacts[i].r[1])
+                .map(|&i| result.contacts[i].r.t[0])
                 .sum::<f64>()
     }
 
@@ -787,7 +787,7 @@ impl PulloutScene {
             * self
                 .tip_candidates
                 .iter()
-                .map(|&i| result.contacts[i].r[0])
+                .map(|&i| result.contacts[i].r.n)
                 .sum::<f64>()
     }
 

@@ -211,7 +211,7 @@ impl HertzScene {
         let mut force = vec![0.0; sim.structure().mesh().node_count()];
         let mut closed = 0;
         for c in &res.contacts {
-            let (f, x) = (c.r[0], c.position[0]);
+            let (f, x) = (c.r.n, c.position[0]);
             s0 += f;
             s2 += f * x * x;
             force[c.node] = f;

@@ -28,7 +28,7 @@
 #![allow(dead_code)] // the test and the example each take what they need
 
 use super::hertz_scene::HertzScene;
-use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini};
+use contact_laws::{BetaScheme, ContactLaw, Coulomb, LocalVec2, Rccm, RccmParams, Signorini};
 use contact_solver::{
     Algorithm, ArcSide, ContactSimulation, ContactZone, InterfaceStatus, RigidArc, RigidLine,
     SimulationSettings, SolverError, StepResult,
@@ -189,12 +189,12 @@ impl Tally {
                 c.u_t,
                 c.slip_increment,
                 c.beta,
-                c.r[0],
-                c.r[1],
-                c.r_bar[0],
-                c.r_bar[1],
-                c.r_adh[0],
-                c.r_adh[1],
+                c.r.n,
+                c.r.t[0],
+                c.r_bar.n,
+                c.r_bar.t[0],
+                c.r_adh.n,
+                c.r_adh.t[0],
             ];
             ensure!(
                 values.iter().all(|v| v.is_finite()),
@@ -373,7 +373,7 @@ fn check_coulomb(
         // through the cone's generatrix (a factor 1/√(1 + μ²)): the gap is known ~μ² times less
         // well (μ = 10, residual 1e-10: gaps to 1.1e-10 = 1.1e-8 δ)
         let tol_gap = tol_gap * (1.0 + m) * (1.0 + m);
-        let [rn, rt] = c.r;
+        let (rn, rt) = (c.r.n, c.r.t[0]);
         ensure!(
             c.gap >= -tol_gap,
             "step {k}: node {} penetrates: gap {:e}",
@@ -409,7 +409,7 @@ fn check_coulomb(
         }
         if c.status == InterfaceStatus::Inactive {
             ensure!(
-                c.r == [0.0, 0.0],
+                c.r == LocalVec2::zeros(),
                 "step {k}: inactive node {} carries {:?}",
                 c.node,
                 c.r
@@ -434,8 +434,8 @@ fn equilibrium_sum(
     }
     for (cand, rec) in sim.candidates().iter().zip(&res.contacts) {
         let f = [
-            rec.r[0] * cand.normal[0] + rec.r[1] * cand.tangent[0],
-            rec.r[0] * cand.normal[1] + rec.r[1] * cand.tangent[1],
+            rec.r.n * cand.normal[0] + rec.r.t[0] * cand.tangent[0],
+            rec.r.n * cand.normal[1] + rec.r.t[0] * cand.tangent[1],
         ];
         let mut add = |node: usize, w: f64| {
             for (c, d) in model.node_dofs(node).into_iter().enumerate() {
@@ -455,13 +455,13 @@ fn equilibrium_sum(
 fn totals(res: &StepResult) -> (f64, f64) {
     res.contacts
         .iter()
-        .fold((0.0, 0.0), |(n, t), c| (n + c.r[0], t + c.r[1]))
+        .fold((0.0, 0.0), |(n, t), c| (n + c.r.n, t + c.r.t[0]))
 }
 
 fn max_abs_r(res: &StepResult) -> f64 {
     res.contacts
         .iter()
-        .map(|c| c.r[0].abs().max(c.r[1].abs()))
+        .map(|c| c.r.n.abs().max(c.r.t[0].abs()))
         .fold(0.0, f64::max)
 }
 
@@ -661,7 +661,7 @@ fn pile_run(contrast: f64, tally: &mut Tally) -> Result<(f64, String), Fail> {
         "equilibrium defect {:e} for a head force {q:e}",
         sum[1]
     );
-    let closed = res.contacts.iter().filter(|c| c.r[0] > 0.0).count();
+    let closed = res.contacts.iter().filter(|c| c.r.n > 0.0).count();
     let slip = res
         .contacts
         .iter()
@@ -816,7 +816,7 @@ fn jump_tol(p: &RccmParams, d: f64, pressed: bool) -> impl Fn(f64) -> f64 {
 }
 
 fn pressed(res: &StepResult) -> bool {
-    res.contacts.iter().any(|c| c.r_bar != [0.0, 0.0])
+    res.contacts.iter().any(|c| c.r_bar != LocalVec2::zeros())
 }
 
 /// The β of the law's update from `b0` for the jump energy `energy` over `dt`.
@@ -868,7 +868,7 @@ fn check_glue_step(
         // open (beyond the tolerance on the jump) ⇒ r̄ = 0
         if u_n > tol_u(u_n) {
             ensure!(
-                c.r_bar == [0.0, 0.0],
+                c.r_bar == LocalVec2::zeros(),
                 "step {k}: node {} open (gap {u_n:e}) with r̄ {:?}",
                 c.node,
                 c.r_bar
@@ -884,7 +884,7 @@ fn check_glue_step(
             let (c_d, u_d) = [(p.c_n, u_n), (p.c_t, u_t)][dim];
             let tol = c.area * c_d * (beta * beta * tol_u(u_d) + 3e-8 * u_d.abs());
             ensure!(
-                (c.r_adh[dim] - expect[dim]).abs() <= tol + 1e-300,
+                ([c.r_adh.n, c.r_adh.t[0]][dim] - expect[dim]).abs() <= tol + 1e-300,
                 "step {k}: node {}: r_adh {:?} vs −A β² C u {expect:?}",
                 c.node,
                 c.r_adh
@@ -893,15 +893,15 @@ fn check_glue_step(
         // the adhesive stress never exceeds √(w C) when α = 0 (max of min(1, w/(Cu²))² C u)
         if p.alpha == 0.0 {
             ensure!(
-                c.r_adh[0].abs() <= c.area * peak_n * (1.0 + 1e-6)
-                    && c.r_adh[1].abs() <= c.area * peak_t * (1.0 + 1e-6),
+                c.r_adh.n.abs() <= c.area * peak_n * (1.0 + 1e-6)
+                    && c.r_adh.t[0].abs() <= c.area * peak_t * (1.0 + 1e-6),
                 "step {k}: node {}: adhesive stress {:?} above √(wC) ({peak_n:e}, {peak_t:e})",
                 c.node,
-                [c.r_adh[0] / c.area, c.r_adh[1] / c.area]
+                [c.r_adh.n / c.area, c.r_adh.t[0] / c.area]
             );
         }
     }
-    let tension = -res.contacts.iter().map(|c| c.r[0]).sum::<f64>() / GLUE_WIDTH;
+    let tension = -res.contacts.iter().map(|c| c.r.n).sum::<f64>() / GLUE_WIDTH;
     let u_mean = res.contacts.iter().map(|c| c.gap).sum::<f64>() / res.contacts.len() as f64;
     Ok((tension, u_mean))
 }
@@ -1007,7 +1007,7 @@ fn press_and_shear(
             );
             // μ̄ of the last fixed-point iterate's β (within 1e-8 of the reported one)
             let mu_bar = p.mu * (1.0 - c.beta);
-            let [rn, rt] = c.r_bar;
+            let (rn, rt) = (c.r_bar.n, c.r_bar.t[0]);
             ensure!(
                 rn >= -1e-9 * r_max,
                 "step {}: node {}: r̄_n {rn:e} < 0",
@@ -1031,7 +1031,7 @@ fn press_and_shear(
             k + 1
         );
         beta = res.contacts.iter().map(|c| c.beta).collect();
-        peak = peak.max(-res.contacts.iter().map(|c| c.r[1]).sum::<f64>() / GLUE_WIDTH);
+        peak = peak.max(-res.contacts.iter().map(|c| c.r.t[0]).sum::<f64>() / GLUE_WIDTH);
     }
     Ok(peak)
 }
@@ -1054,7 +1054,7 @@ fn glued_opening(c: f64, tally: &mut Tally) -> Result<String, Fail> {
     let (mut gap_err, mut r_err) = (0.0_f64, 0.0_f64);
     for rec in &res.contacts {
         gap_err = gap_err.max(((rec.gap - exact) / exact).abs());
-        r_err = r_err.max(((rec.r[0] / rec.area + c * exact) / (c * exact)).abs());
+        r_err = r_err.max(((rec.r.n / rec.area + c * exact) / (c * exact)).abs());
     }
     // the reactions carry the rounding of x ≈ ε d/u = ε C h/E relative (5e-9 at 1e7); the
     // opening is what the user reads: 1e-6
@@ -1369,7 +1369,7 @@ pub fn friction_cases() -> Vec<Case> {
                     .iter()
                     .fold((0.0, 0.0), |a, (_, r)| (a.0 + r[0], a.1 + r[1]));
                 let sticks = bonded.iter().all(|(_, r)| r[1].abs() <= mu * r[0]);
-                let compressed = pushed.contacts.iter().filter(|c| c.r[0] > 1e-9 * n);
+                let compressed = pushed.contacts.iter().filter(|c| c.r.n > 1e-9 * n);
                 if sticks {
                     let r_max = bonded
                         .iter()
@@ -1380,7 +1380,7 @@ pub fn friction_cases() -> Vec<Case> {
                         // two solves of the same problem: the solver's tolerance (1e-10),
                         // conditioning aside
                         ensure!(
-                            (c.r[0] - r[0]).abs().max((c.r[1] - r[1]).abs()) <= 1e-8 * r_max,
+                            (c.r.n - r[0]).abs().max((c.r.t[0] - r[1]).abs()) <= 1e-8 * r_max,
                             "node {}: r {:?} but the all-stick solution is {r:?}",
                             c.node,
                             c.r
@@ -1461,7 +1461,7 @@ pub fn rho_cases() -> Vec<Case> {
                     for (a, b) in steps.iter().zip(&reference) {
                         let r_max = max_abs_r(b);
                         for (ca, cb) in a.contacts.iter().zip(&b.contacts) {
-                            let d = (ca.r[0] - cb.r[0]).abs().max((ca.r[1] - cb.r[1]).abs());
+                            let d = (ca.r.n - cb.r.n).abs().max((ca.r.t[0] - cb.r.t[0]).abs());
                             worst = worst.max(d / r_max);
                         }
                     }
@@ -1524,7 +1524,7 @@ fn hang(path: &[f64], tally: &mut Tally) -> Result<Vec<Vec<[f64; 2]>>, Fail> {
         out.push(
             res.contacts
                 .iter()
-                .map(|c| [c.r[0] / lambda, c.r[1] / lambda])
+                .map(|c| [c.r.n / lambda, c.r.t[0] / lambda])
                 .collect(),
         );
     }
@@ -1763,7 +1763,7 @@ pub fn geometry_cases() -> Vec<Case> {
             );
             for c in &res.contacts {
                 ensure!(
-                    c.r == [0.0, 0.0] && c.gap == 0.0 && c.status == InterfaceStatus::Open,
+                    c.r == LocalVec2::zeros() && c.gap == 0.0 && c.status == InterfaceStatus::Open,
                     "unloaded: {c:?}"
                 );
             }
@@ -1774,7 +1774,7 @@ pub fn geometry_cases() -> Vec<Case> {
             tally.add(&res, TOL)?;
             for c in &res.contacts {
                 ensure!(
-                    c.r == [0.0, 0.0] && (c.gap - 0.01).abs() <= 1e-14,
+                    c.r == LocalVec2::zeros() && (c.gap - 0.01).abs() <= 1e-14,
                     "lifted: {c:?}"
                 );
             }
@@ -1795,7 +1795,7 @@ pub fn geometry_cases() -> Vec<Case> {
             tally.add(&res, TOL)?;
             for c in &res.contacts {
                 ensure!(
-                    c.r[0].abs() <= 1e-12 * n && c.r[1].abs() <= 1e-12 * n && c.gap.abs() <= 1e-14,
+                    c.r.n.abs() <= 1e-12 * n && c.r.t[0].abs() <= 1e-12 * n && c.gap.abs() <= 1e-14,
                     "released: {c:?}"
                 );
             }
@@ -1828,7 +1828,9 @@ pub fn geometry_cases() -> Vec<Case> {
             );
             for c in &res.contacts {
                 ensure!(
-                    c.status == InterfaceStatus::Inactive && c.r == [0.0, 0.0] && c.gap == g,
+                    c.status == InterfaceStatus::Inactive
+                        && c.r == LocalVec2::zeros()
+                        && c.gap == g,
                     "{c:?}"
                 );
             }
@@ -1865,7 +1867,9 @@ pub fn geometry_cases() -> Vec<Case> {
             );
             for c in &res.contacts {
                 ensure!(
-                    c.status == InterfaceStatus::Open && c.r == [0.0, 0.0] && c.gap == alert,
+                    c.status == InterfaceStatus::Open
+                        && c.r == LocalVec2::zeros()
+                        && c.gap == alert,
                     "{c:?}"
                 );
             }
@@ -1902,8 +1906,8 @@ pub fn geometry_cases() -> Vec<Case> {
             let (exx, eyy) = (g / 2.0, -delta);
             let sxx = (lambda + mu2) * exx + lambda * eyy;
             let syy = lambda * exx + (lambda + mu2) * eyy;
-            let base: f64 = res.contacts.iter().filter(|c| c.zone == 0).map(|c| c.r[0]).sum();
-            let side: f64 = res.contacts.iter().filter(|c| c.zone == 1).map(|c| c.r[0]).sum();
+            let base: f64 = res.contacts.iter().filter(|c| c.zone == 0).map(|c| c.r.n).sum();
+            let side: f64 = res.contacts.iter().filter(|c| c.zone == 1).map(|c| c.r.n).sum();
             let scale = -2.0 * syy;
             check_coulomb(&res, |_| 0.0, 1e-9 * scale, 1e-9 * delta)?;
             // uniform strain: exact in P1
@@ -2032,7 +2036,7 @@ fn arc_case(
         .contacts
         .iter()
         .filter(|c| ends.contains(&c.node))
-        .map(|c| c.r[0])
+        .map(|c| c.r.n)
         .collect();
     ensure!(
         end_forces.iter().all(|&f| f > 0.0),

@@ -6,7 +6,7 @@ use super::ContactSimulation;
 use super::report::{ContactRecord, InterfaceStatus, StepReport, StepResult};
 use super::solve::Solved;
 use crate::error::SolverError;
-use contact_laws::{ContactLaw, ContactStatus};
+use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
 use fem_core::Structure;
 use std::time::Instant;
 
@@ -68,9 +68,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 u_t: jumps[i][1],
                 slip_increment: jumps[i][1] - self.jumps[i][1],
                 beta: self.zones[c.zone].law.adhesion_intensity(&self.states[i]),
-                r: [0.0; 2],
-                r_bar: [0.0; 2],
-                r_adh: [0.0; 2],
+                r: LocalVec2::zeros(),
+                r_bar: LocalVec2::zeros(),
+                r_adh: LocalVec2::zeros(),
             })
             .collect();
         for r in self.r_bar.iter_mut() {
@@ -83,9 +83,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             self.r_bar[i] = rb;
             let rec = &mut records[i];
             rec.beta = law.adhesion_intensity(&self.states[i]);
-            rec.r_bar = rb;
-            rec.r = [solved.r[2 * k], solved.r[2 * k + 1]];
-            rec.r_adh = [rec.r[0] - rb[0], rec.r[1] - rb[1]];
+            rec.r_bar = LocalVec2::planar(rb[0], rb[1]);
+            rec.r = LocalVec2::planar(solved.r[2 * k], solved.r[2 * k + 1]);
+            rec.r_adh = LocalVec2::planar(rec.r.n - rb[0], rec.r.t[0] - rb[1]);
             rec.status = match solved.statuses[k] {
                 ContactStatus::Separation => InterfaceStatus::Open,
                 ContactStatus::Stick => InterfaceStatus::Stick,

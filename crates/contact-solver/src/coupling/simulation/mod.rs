@@ -64,7 +64,7 @@ use std::time::Instant;
 /// let zone = ContactZone::rigid("base", bottom, ground, Signorini, 0.1);
 /// let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default())?;
 /// let res = sim.step(1.0, 1.0)?;
-/// let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+/// let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
 /// assert!((total - 1.0).abs() < 1e-9);         // σ = E ε = 100 × 0.01 over a width of 1
 /// assert!(res.contacts.iter().all(|c| c.gap.abs() < 1e-11)); // closed to 1e-9 of the 0.01 push
 /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -1,6 +1,7 @@
 //! What a step reports: per contact ([`ContactRecord`]), per step ([`StepReport`]) and over the
 //! whole simulation ([`Counters`]).
 
+use contact_laws::LocalVec2;
 use std::time::Duration;
 
 /// What a contact is doing at the end of a step.
@@ -28,7 +29,8 @@ impl InterfaceStatus {
     }
 }
 
-/// One contact candidate at the end of a step. Local components are `[normal, tangential]`.
+/// One contact candidate at the end of a step. Local vectors have named components: `r.n` (normal,
+/// `> 0` compression) and `r.t` (tangential).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactRecord {
     /// Zone index.
@@ -51,11 +53,11 @@ pub struct ContactRecord {
     /// Adhesion intensity β ([`ContactLaw::adhesion_intensity`](contact_laws::ContactLaw::adhesion_intensity), 0 without adhesion).
     pub beta: f64,
     /// Total reaction `r = r̄ + r_adh` on the contactor (`r_n > 0` compression).
-    pub r: [f64; 2],
+    pub r: LocalVec2,
     /// Reaction of the contact law proper, `r̄ ∈ K_μ̄`.
-    pub r_bar: [f64; 2],
+    pub r_bar: LocalVec2,
     /// Adhesive reaction `r_adh`.
-    pub r_adh: [f64; 2],
+    pub r_adh: LocalVec2,
 }
 
 /// Counters and timing of one step.
