@@ -266,7 +266,12 @@ fn run(o: &Options) -> Result<(), Box<dyn Error>> {
                 let sol = match last {
                     Some(Ok(s)) => s,
                     Some(Err(e)) => return Err(e.into()),
-                    None => return Err(SolverError::Json("no run".into()).into()),
+                    None => {
+                        return Err(SolverError::Format {
+                            reason: "no run".into(),
+                        }
+                        .into());
+                    }
                 };
                 let row = Row {
                     problem: name.clone(),

@@ -4,6 +4,9 @@
 //! the solver's loop then only fails by not converging.
 
 use contact_laws::LawError;
+use std::error::Error;
+use std::fmt;
+use std::sync::Arc;
 
 /// Error of `contact-solver`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -50,8 +53,9 @@ pub enum SolverError {
         /// Index of the contact.
         contact: usize,
     },
-    /// A friction coefficient was rejected by the local law.
-    #[error("invalid friction coefficient at contact {contact}: {source}")]
+    /// A friction coefficient was rejected by the local law (the law's error is the
+    /// [`source`](std::error::Error::source)).
+    #[error("invalid friction coefficient at contact {contact}")]
     InvalidLaw {
         /// Index of the contact.
         contact: usize,
@@ -71,15 +75,33 @@ pub enum SolverError {
         /// Index of the contact.
         contact: usize,
     },
-    /// A local law was rejected (without a contact index).
-    #[error("invalid contact law: {0}")]
+    /// A local law was rejected (without a contact index; the law's error is the source).
+    #[error("invalid contact law")]
     Law(#[from] LawError),
-    /// The JSON text is not a reduced problem.
-    #[error("cannot read the reduced problem from JSON: {0}")]
-    Json(String),
-    /// Writing an output file or stream failed ([`output`](crate::output)).
-    #[error("I/O error: {0}")]
-    Io(String),
+    /// The text is not JSON, or not JSON of the expected shape (the parser's error is the
+    /// source).
+    #[error("cannot read the reduced problem from JSON")]
+    Json {
+        /// The parser's error.
+        #[source]
+        source: Cause,
+    },
+    /// JSON that parses but does not describe a supported reduced problem (`dim ≠ 2`, rows of
+    /// `W` of the wrong length).
+    #[error("cannot read the reduced problem from JSON: {reason}")]
+    Format {
+        /// What is wrong, in the file's terms.
+        reason: String,
+    },
+    /// Writing an output file or stream failed (the I/O error is the source).
+    #[error("I/O error: {what}")]
+    Io {
+        /// What could not be written (``cannot write `out/a.vtu` ``).
+        what: String,
+        /// The underlying error.
+        #[source]
+        source: Cause,
+    },
     /// The iteration reached `max_iterations` before meeting the stopping rule.
     #[error(
         "the contact iteration did not converge in {iterations} iterations (residual {residual:e})"
@@ -110,9 +132,10 @@ pub enum SolverError {
         /// What was expected.
         expected: &'static str,
     },
-    /// The structure failed (factorisation, solve, unknown node set).
+    /// The structure failed (factorisation, solve, unknown node set); the structure's error is
+    /// the source.
     #[cfg(feature = "fe")]
-    #[error("structure: {0}")]
+    #[error("structure")]
     Structure(#[from] fem_core::FemError),
     /// The fixed point between the contact solve and the adhesion update did not converge.
     #[error(
@@ -131,8 +154,67 @@ pub enum SolverError {
 #[cfg(feature = "serde")]
 impl From<serde_json::Error> for SolverError {
     fn from(e: serde_json::Error) -> Self {
-        Self::Json(e.to_string())
+        Self::Json {
+            source: Cause::new(e),
+        }
     }
+}
+
+/// The underlying error of a [`SolverError`] (I/O, JSON parser), shared so that the error stays
+/// `Clone`. Its `Display` is the underlying error's; two causes are equal when their messages
+/// are.
+#[derive(Clone, Debug)]
+pub struct Cause(Arc<dyn Error + Send + Sync + 'static>);
+
+impl Cause {
+    /// Wraps an error.
+    pub fn new(e: impl Error + Send + Sync + 'static) -> Self {
+        Self(Arc::new(e))
+    }
+
+    /// A cause that is only a message (an error reported as text by another layer).
+    pub fn message(text: impl Into<String>) -> Self {
+        Self(Arc::from(Box::<dyn Error + Send + Sync>::from(text.into())))
+    }
+}
+
+impl fmt::Display for Cause {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl Error for Cause {
+    fn source(&self) -> Option<&(dyn Error + 'static)> {
+        self.0.source()
+    }
+}
+
+impl PartialEq for Cause {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.to_string() == other.0.to_string()
+    }
+}
+
+/// `e` and its chain of sources, joined by `: ` (what `anyhow`'s `{:#}` prints): each error's
+/// `Display` says what failed in its own words, the chain says why.
+///
+/// # Examples
+/// ```
+/// use contact_solver::error::chain;
+/// let law = contact_laws::Coulomb::new(-1.0).unwrap_err();
+/// let e = contact_solver::SolverError::from(law);
+/// assert!(chain(&e).starts_with("invalid contact law: invalid parameter `mu`"));
+/// ```
+pub fn chain(e: &(dyn Error + 'static)) -> String {
+    let mut text = e.to_string();
+    let mut next = e.source();
+    while let Some(s) = next {
+        text.push_str(": ");
+        text.push_str(&s.to_string());
+        next = s.source();
+    }
+    text
 }
 
 #[cfg(test)]
@@ -149,9 +231,9 @@ mod tests {
         assert_eq!(e.to_string(), "invalid size of `q`: expected 4, found 3");
         let law = contact_laws::Coulomb::new(-1.0).unwrap_err();
         let e: SolverError = law.into();
-        assert!(
-            e.to_string()
-                .starts_with("invalid contact law: invalid parameter `mu`")
-        );
+        // the law's message once: in the chain, not in the variant's own Display
+        assert_eq!(e.to_string(), "invalid contact law");
+        assert!(chain(&e).starts_with("invalid contact law: invalid parameter `mu`"));
+        assert_eq!(chain(&e).matches("invalid parameter").count(), 1);
     }
 }

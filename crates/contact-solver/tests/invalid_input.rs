@@ -94,7 +94,7 @@ fn json_round_trip_works() {
 fn from_json_captures_errors() {
     assert!(matches!(
         ReducedProblem::from_json("{"),
-        Err(SolverError::Json(_))
+        Err(SolverError::Json { .. })
     ));
     assert!(matches!(
         ReducedProblem::from_json(r#"{"W":[[1,0],[0,1]],"q":[-1,0],"mu":[-1]}"#),

@@ -281,16 +281,19 @@ fn output_captures_errors() {
         .join(format!("contact_solver_no_such_dir_{}", std::process::id()))
         .join("sub");
     let e = write_interface_vtu(&missing.join("a.vtu"), &results[1].contacts, None).unwrap_err();
-    let SolverError::Io(msg) = &e else {
+    let SolverError::Io { what, .. } = &e else {
         panic!("expected SolverError::Io, got {e:?}");
     };
-    assert!(msg.contains("a.vtu"), "{msg}");
+    assert!(what.contains("a.vtu"), "{what}");
     assert!(e.to_string().starts_with("I/O error: cannot write"), "{e}");
+    // the OS error once, as the source
+    let full = contact_solver::error::chain(&e);
+    assert_eq!(full.matches("No such file").count(), 1, "{full}");
 
     let mut series = InterfaceSeries::new(&missing, "interface");
     assert!(matches!(
         series.write_step(0.5, &results[0].contacts, None),
-        Err(SolverError::Io(_))
+        Err(SolverError::Io { .. })
     ));
 
     // displacements with too few nodes: an error, not an out-of-bounds panic
@@ -319,13 +322,22 @@ fn output_captures_errors() {
             Ok(())
         }
     }
-    assert!(matches!(HistoryWriter::new(Full), Err(SolverError::Io(_))));
-    assert!(matches!(ReportWriter::new(Full), Err(SolverError::Io(_))));
+    assert!(matches!(
+        HistoryWriter::new(Full),
+        Err(SolverError::Io { .. })
+    ));
+    assert!(matches!(
+        ReportWriter::new(Full),
+        Err(SolverError::Io { .. })
+    ));
     // a file opened read-only: writing the header fails
     let dir = temp_dir("readonly");
     let path = dir.join("h.csv");
     std::fs::write(&path, "").unwrap();
     let file = std::fs::File::open(&path).unwrap();
-    assert!(matches!(HistoryWriter::new(file), Err(SolverError::Io(_))));
+    assert!(matches!(
+        HistoryWriter::new(file),
+        Err(SolverError::Io { .. })
+    ));
     std::fs::remove_dir_all(&dir).unwrap();
 }

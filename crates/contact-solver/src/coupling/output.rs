@@ -20,7 +20,7 @@
 //! when a step has few contacts.
 
 use crate::coupling::simulation::{ContactRecord, InterfaceStatus, StepReport, StepResult};
-use crate::error::SolverError;
+use crate::error::{Cause, SolverError};
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -403,13 +403,14 @@ pub fn write_interface_vtu(
     displacements: Option<&[[f64; 2]]>,
 ) -> Result<(), SolverError> {
     let vtk = interface_model(records, displacements)?;
-    let io = |e: &dyn std::fmt::Display| {
-        SolverError::Io(format!("cannot write `{}`: {e}", path.display()))
+    let io = |source: Cause| SolverError::Io {
+        what: format!("cannot write `{}`", path.display()),
+        source,
     };
-    let file = std::fs::File::create(path).map_err(|e| io(&e))?;
+    let file = std::fs::File::create(path).map_err(|e| io(Cause::new(e)))?;
     let mut writer = std::io::BufWriter::new(file);
-    vtk.write_xml(&mut writer).map_err(|e| io(&e))?;
-    writer.flush().map_err(|e| io(&e))
+    vtk.write_xml(&mut writer).map_err(|e| io(Cause::new(e)))?;
+    writer.flush().map_err(|e| io(Cause::new(e)))
 }
 
 /// The VTK model of [`write_interface_vtu`].
@@ -589,9 +590,10 @@ impl InterfaceSeries {
             self.entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
         let pvd = self.pvd_path();
         fem_core::vtk::write_pvd(&pvd, &entries).map_err(|e| match e {
-            fem_core::FemError::Io { path, detail } => {
-                SolverError::Io(format!("cannot write `{path}`: {detail}"))
-            }
+            fem_core::FemError::Io { path, detail } => SolverError::Io {
+                what: format!("cannot write `{path}`"),
+                source: Cause::message(detail),
+            },
             other => SolverError::Structure(other),
         })?;
         Ok(path)
@@ -612,7 +614,10 @@ fn push_float(line: &mut String, x: f64) {
 
 /// An I/O error while writing `what`.
 fn io_error(what: &str, e: std::io::Error) -> SolverError {
-    SolverError::Io(format!("cannot write the {what}: {e}"))
+    SolverError::Io {
+        what: format!("cannot write the {what}"),
+        source: Cause::new(e),
+    }
 }
 
 #[cfg(test)]
@@ -654,9 +659,15 @@ mod tests {
         let e = HistoryWriter::new(Broken).unwrap_err();
         assert_eq!(
             e,
-            SolverError::Io("cannot write the contact history: disk full".into())
+            SolverError::Io {
+                what: "cannot write the contact history".into(),
+                source: Cause::message("disk full")
+            }
         );
-        assert!(matches!(ReportWriter::new(Broken), Err(SolverError::Io(_))));
+        assert!(matches!(
+            ReportWriter::new(Broken),
+            Err(SolverError::Io { .. })
+        ));
     }
 
     #[test]

@@ -30,7 +30,8 @@ impl ReducedProblem {
     /// `dim` may be left out (it must be 2 when given).
     ///
     /// # Errors
-    /// [`SolverError::Json`] for malformed JSON, ragged rows or `dim ≠ 2`; otherwise those of
+    /// [`SolverError::Json`] for malformed JSON, [`SolverError::Format`] for ragged rows or
+    /// `dim ≠ 2`; otherwise those of
     /// [`new`](Self::new).
     ///
     /// # Examples
@@ -45,18 +46,20 @@ impl ReducedProblem {
         if let Some(dim) = j.dim
             && dim != 2
         {
-            return Err(SolverError::Json(format!(
-                "dim = {dim} is not supported: the reduced solver is 2D (dim = 2)"
-            )));
+            return Err(SolverError::Format {
+                reason: format!("dim = {dim} is not supported: the reduced solver is 2D (dim = 2)"),
+            });
         }
         let w = match j.w {
             JsonMatrix::Flat(w) => w,
             JsonMatrix::Rows(rows) => {
                 let m = j.q.len();
                 if rows.iter().any(|r| r.len() != m) {
-                    return Err(SolverError::Json(format!(
-                        "W given as rows: every row must have {m} entries (the length of q)"
-                    )));
+                    return Err(SolverError::Format {
+                        reason: format!(
+                            "W given as rows: every row must have {m} entries (the length of q)"
+                        ),
+                    });
                 }
                 rows.concat()
             }
@@ -85,8 +88,17 @@ mod tests {
     #[test]
     fn from_json_rejects_dim_3_and_ragged_rows() {
         let e = ReducedProblem::from_json(r#"{"dim":3,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
-        assert!(matches!(e, Err(SolverError::Json(_))));
+        assert!(matches!(e, Err(SolverError::Format { .. })));
         let e = ReducedProblem::from_json(r#"{"W":[[1,0],[0]],"q":[0,0],"mu":[0]}"#);
-        assert!(matches!(e, Err(SolverError::Json(_))));
+        assert!(matches!(e, Err(SolverError::Format { .. })));
+        let e = ReducedProblem::from_json("{").unwrap_err();
+        assert!(matches!(e, SolverError::Json { .. }));
+        // the parser's message once, in the chain
+        assert_eq!(e.to_string(), "cannot read the reduced problem from JSON");
+        assert!(
+            crate::error::chain(&e).contains("EOF"),
+            "{}",
+            crate::error::chain(&e)
+        );
     }
 }
