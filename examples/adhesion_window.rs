@@ -28,10 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("|---|---|---|---|---|---|");
     for window in [0, 1, 2, 3, 5, 8] {
-        let settings = SimulationSettings {
-            adhesion_anderson_window: window,
-            ..SimulationSettings::default()
-        };
+        let settings = SimulationSettings::default().with_adhesion_anderson_window(window);
         for (name, scene) in [
             (
                 "5.6.1 delamination",

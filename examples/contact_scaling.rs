@@ -210,15 +210,12 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
         [2.0 * cfg.width, -g0 - 2.0 * slope * cfg.width],
     )?;
     let zone = ContactZone::rigid("base", bottom, ground, law, cfg.height);
-    let mut settings = SimulationSettings {
-        flexibility: match cfg.mode.as_str() {
-            "dense" => FlexibilityMode::Dense,
-            "free" => FlexibilityMode::MatrixFree,
-            "active" => FlexibilityMode::ActiveSet,
-            other => return Err(format!("unknown mode `{other}` (dense | free | active)").into()),
-        },
-        ..SimulationSettings::default()
-    };
+    let mut settings = SimulationSettings::default().with_flexibility(match cfg.mode.as_str() {
+        "dense" => FlexibilityMode::Dense,
+        "free" => FlexibilityMode::MatrixFree,
+        "active" => FlexibilityMode::ActiveSet,
+        other => return Err(format!("unknown mode `{other}` (dense | free | active)").into()),
+    });
     settings.solver.tol = TOL;
     settings.solver.algorithm = match cfg.algorithm.as_deref() {
         None => Algorithm::default(),

@@ -18,10 +18,7 @@ use std::time::Instant;
 type Outcome = (f64, Counters);
 
 fn seed_scene(delamination: bool, skip: SkipRules) -> Result<Outcome, Box<dyn Error>> {
-    let settings = SimulationSettings {
-        skip,
-        ..SimulationSettings::default()
-    };
+    let settings = SimulationSettings::default().with_skip(skip);
     let mut scene = if delamination {
         DelaminationSpec::default().build(settings)?
     } else {
@@ -73,10 +70,7 @@ fn block(skip: SkipRules) -> Result<Outcome, Box<dyn Error>> {
             0.01,
         ),
     ];
-    let settings = SimulationSettings {
-        skip,
-        ..SimulationSettings::default()
-    };
+    let settings = SimulationSettings::default().with_skip(skip);
     let mut sim = ContactSimulation::new(model, zones, settings)?;
     let start = Instant::now();
     for k in 1..=20 {
@@ -91,33 +85,15 @@ fn main() -> Result<(), Box<dyn Error>> {
     let on = SkipRules::default();
     let variants = [
         ("all rules on", on),
-        (
-            "reuse F* off",
-            SkipRules {
-                reuse_flexibility: false,
-                ..on
-            },
-        ),
-        (
-            "alert distance off",
-            SkipRules {
-                alert_distance: false,
-                ..on
-            },
-        ),
+        ("reuse F* off", on.with_reuse_flexibility(false)),
+        ("alert distance off", on.with_alert_distance(false)),
         (
             "normal-only F* off",
-            SkipRules {
-                frictionless_normal_only: false,
-                ..on
-            },
+            on.with_frictionless_normal_only(false),
         ),
         (
             "adhesion loop always",
-            SkipRules {
-                adhesion_loop_only_when_adhesive: false,
-                ..on
-            },
+            on.with_adhesion_loop_only_when_adhesive(false),
         ),
     ];
     println!(

@@ -373,6 +373,7 @@ fn solve_local(
     algorithm: AlgorithmArg,
     json: bool,
 ) -> CliResult<()> {
+    use contact_solver::error::chain;
     use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, solve_coulomb};
     let text = std::fs::read_to_string(path).map_err(|e| {
         CliError::input(format!(
@@ -381,7 +382,7 @@ fn solve_local(
         ))
     })?;
     let problem = ReducedProblem::from_json(&text)
-        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+        .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))?;
     if !(tol.is_finite() && tol > 0.0) {
         return Err(CliError::input(format!(
             "--tol {tol}: expected a finite tolerance > 0"
@@ -390,18 +391,16 @@ fn solve_local(
     if max_iterations == 0 {
         return Err(CliError::input("--max-iterations 0: expected at least 1"));
     }
-    let settings = UzawaSettings {
-        tol,
-        max_iterations,
-        algorithm: match algorithm {
+    let settings = UzawaSettings::default()
+        .with_tol(tol)
+        .with_max_iterations(max_iterations)
+        .with_algorithm(match algorithm {
             AlgorithmArg::Bipotential => Algorithm::default(),
             AlgorithmArg::Uzawa => Algorithm::Uzawa,
             AlgorithmArg::RccmClassic => Algorithm::ClassicRccm,
-        },
-        ..UzawaSettings::default()
-    };
+        });
     let sol = solve_coulomb(&problem, &settings)
-        .map_err(|e| CliError::failed(format!("{}: {e}", path.display())))?;
+        .map_err(|e| CliError::failed(format!("{}: {}", path.display(), chain(&e))))?;
     if json {
         let v = serde_json::json!({
             "r": sol.r,

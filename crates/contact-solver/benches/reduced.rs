@@ -54,12 +54,12 @@ fn bench_reduced(c: &mut Criterion) {
         let laws = p.coulomb_laws();
         let mut g = c.benchmark_group(format!("solver/reduced_{name}"));
         for algorithm in ALGORITHMS {
-            let mut solver = UzawaSolver::new(UzawaSettings {
-                algorithm,
-                tol: 1e-10,
-                max_iterations: 1_000_000,
-                ..UzawaSettings::default()
-            });
+            let mut solver = UzawaSolver::new(
+                UzawaSettings::default()
+                    .with_algorithm(algorithm)
+                    .with_tol(1e-10)
+                    .with_max_iterations(1_000_000),
+            );
             g.bench_function(format!("{algorithm:?}"), |b| {
                 b.iter(|| black_box(solver.solve(black_box(p), &laws).unwrap()))
             });

@@ -92,18 +92,13 @@ fn main() -> Result<(), SolverError> {
     println!("\n{:26} {:>6} {:>16}", "", "sweeps", "sweeps (tang.)");
     for (name, p) in &problems {
         let laws = p.coulomb_laws();
-        let base = UzawaSettings {
-            max_iterations: 1_000_000,
-            ..UzawaSettings::default()
-        };
+        let base = UzawaSettings::default().with_max_iterations(1_000_000);
         let gs = UzawaSolver::new(base).solve(p, &laws)?;
         print!("{name:26} {:6}", gs.report.iterations);
         for omega in omegas {
-            let settings = UzawaSettings {
-                algorithm: Algorithm::ClassicRccm,
-                omega,
-                ..base
-            };
+            let settings = base
+                .with_algorithm(Algorithm::ClassicRccm)
+                .with_omega(omega);
             let s = UzawaSolver::new(settings).solve(p, &laws)?;
             print!(
                 " {:>16}",

@@ -34,12 +34,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 &[1e-3, 1.0, 1e3]
             };
             for &rho_scale in scales {
-                let mut solver = UzawaSolver::new(UzawaSettings {
-                    algorithm,
-                    rho_scale,
-                    max_iterations: 100_000,
-                    ..UzawaSettings::default()
-                });
+                let mut solver = UzawaSolver::new(
+                    UzawaSettings::default()
+                        .with_algorithm(algorithm)
+                        .with_rho_scale(rho_scale)
+                        .with_max_iterations(100_000),
+                );
                 let mut times = Vec::new();
                 let mut last = None;
                 for _ in 0..5 {

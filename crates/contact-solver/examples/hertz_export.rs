@@ -36,11 +36,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     let scene = HertzScene::new(Idealization::PlaneStrain, ElementKind::Tri6, 8);
-    let mut settings = SimulationSettings {
-        // the reduced problem is exported, so the step must build a dense F*
-        flexibility: contact_solver::FlexibilityMode::Dense,
-        ..SimulationSettings::default()
-    };
+    // the reduced problem is exported, so the step must build a dense F*
+    let mut settings =
+        SimulationSettings::default().with_flexibility(contact_solver::FlexibilityMode::Dense);
     settings.solver.tol = 1e-12; // so that our side of the comparison is well below 1e-8
     let start = Instant::now();
     let mut sim = scene.simulation(settings);
@@ -90,10 +88,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // The same reduced problem alone, cold start, as Siconos sees it.
     let laws = problem.coulomb_laws();
-    let mut solver = UzawaSolver::new(UzawaSettings {
-        tol: 1e-12,
-        ..UzawaSettings::default()
-    });
+    let mut solver = UzawaSolver::new(UzawaSettings::default().with_tol(1e-12));
     let mut times = Vec::new();
     let mut last = None;
     for _ in 0..5 {

@@ -134,10 +134,9 @@ fn random_problem_fast(n_c: usize, seed: u64) -> ReducedProblem {
 fn hertz_problems(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn Error>> {
     let scene = HertzScene::new(Idealization::PlaneStrain, ElementKind::Tri6, cells);
     // the reduced problem is exported, so the step must build a dense F*
-    let mut sim = scene.simulation(SimulationSettings {
-        flexibility: contact_solver::FlexibilityMode::Dense,
-        ..SimulationSettings::default()
-    });
+    let mut sim = scene.simulation(
+        SimulationSettings::default().with_flexibility(contact_solver::FlexibilityMode::Dense),
+    );
     sim.step(1.0, 1.0)?;
     let p = sim
         .last_reduced_problem()
@@ -238,13 +237,13 @@ fn run(o: &Options) -> Result<(), Box<dyn Error>> {
                     eprintln!("{name} {algorithm:?}: budget spent, tol {tol:e} skipped");
                     continue;
                 }
-                let mut solver = UzawaSolver::new(UzawaSettings {
-                    algorithm,
-                    tol,
-                    max_iterations: 1_000_000,
-                    accept_non_converged: true,
-                    ..UzawaSettings::default()
-                });
+                let mut solver = UzawaSolver::new(
+                    UzawaSettings::default()
+                        .with_algorithm(algorithm)
+                        .with_tol(tol)
+                        .with_max_iterations(1_000_000)
+                        .with_accept_non_converged(true),
+                );
                 let mut times = Vec::new();
                 let mut last = None;
                 let start = Instant::now();

@@ -50,10 +50,7 @@ fn pushed_block<L: contact_laws::ContactLaw + Clone>(
     let model = model(mesh, &top);
     let ground = RigidLine::new([-1.0, -0.01], [3.0, -0.03]).unwrap();
     let zone = ContactZone::rigid("base", bottom, ground, law, 0.1);
-    let mut settings = SimulationSettings {
-        flexibility: mode,
-        ..SimulationSettings::default()
-    };
+    let mut settings = SimulationSettings::default().with_flexibility(mode);
     settings.solver.tol = tol;
     let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
     let mut out = Vec::new();
@@ -153,10 +150,7 @@ fn hertz_axisymmetric_matches_dense_including_the_axis_node() {
     // the axis node has one free dof (u_r = 0 prescribed): it is handled as a scalar frame
     let scene = HertzScene::new(Idealization::Axisymmetric, ElementKind::Tri6, 4);
     let run = |mode| {
-        let mut settings = SimulationSettings {
-            flexibility: mode,
-            ..SimulationSettings::default()
-        };
+        let mut settings = SimulationSettings::default().with_flexibility(mode);
         settings.solver.tol = 1e-11;
         let mut sim = scene.simulation(settings);
         let res = sim.step(1.0, 1.0).unwrap();
@@ -205,10 +199,7 @@ fn auto_uses_the_active_set_past_the_limit_and_falls_back_for_adhesion() {
     let (mesh, top, bottom) = block(ElementKind::Tri6, 8, 4);
     let ground = RigidLine::new([-1.0, -0.01], [3.0, -0.03]).unwrap();
     let zone = ContactZone::rigid("base", bottom, ground, rccm, 0.1);
-    let settings = SimulationSettings {
-        flexibility: FlexibilityMode::ActiveSet,
-        ..SimulationSettings::default()
-    };
+    let settings = SimulationSettings::default().with_flexibility(FlexibilityMode::ActiveSet);
     let mut sim = ContactSimulation::new(model(mesh, &top), vec![zone], settings).unwrap();
     match sim.step(1.0, 1.0) {
         Err(SolverError::InvalidSetting { what, .. }) => assert_eq!(what, "flexibility"),
@@ -246,10 +237,7 @@ fn two_bodies_are_out_of_scope_with_a_reason() {
     )
     .unwrap();
     let zone = ContactZone::node_to_segment("interface", up_bottom, low_top, Signorini, 0.1);
-    let settings = SimulationSettings {
-        flexibility: FlexibilityMode::ActiveSet,
-        ..SimulationSettings::default()
-    };
+    let settings = SimulationSettings::default().with_flexibility(FlexibilityMode::ActiveSet);
     let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
     match sim.step(1.0, 1.0) {
         Err(SolverError::Unsupported(why)) => {
@@ -279,10 +267,7 @@ fn auto_falls_back_when_the_active_set_does_not_converge() {
         .unwrap();
         let ground = RigidLine::new([-1.0, 0.0], [3.0, 0.0]).unwrap();
         let zone = ContactZone::rigid("base", bottom, ground, Coulomb::new(10.0).unwrap(), 0.1);
-        let mut settings = SimulationSettings {
-            flexibility: mode,
-            ..SimulationSettings::default()
-        };
+        let mut settings = SimulationSettings::default().with_flexibility(mode);
         settings.solver.max_iterations = 100_000;
         let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
         let mut out = Vec::new();

@@ -28,11 +28,9 @@ use contact_solver::{
 };
 
 fn settings(algorithm: Algorithm) -> UzawaSettings {
-    UzawaSettings {
-        algorithm,
-        max_iterations: 100_000,
-        ..UzawaSettings::default()
-    }
+    UzawaSettings::default()
+        .with_algorithm(algorithm)
+        .with_max_iterations(100_000)
 }
 
 fn solve<L: ContactLaw>(p: &ReducedProblem, laws: &[L], algorithm: Algorithm) -> Solution {
@@ -341,10 +339,7 @@ fn solve_captures_invalid_omega() {
     let laws = p.coulomb_laws();
     for omega in [0.0, 2.0, -1.0, f64::NAN, f64::INFINITY] {
         for algorithm in [Algorithm::ClassicRccm, Algorithm::GaussSeidel] {
-            let st = UzawaSettings {
-                omega,
-                ..settings(algorithm)
-            };
+            let st = settings(algorithm).with_omega(omega);
             let e = UzawaSolver::new(st).solve(&p, &laws).unwrap_err();
             match e {
                 SolverError::InvalidSetting {
@@ -359,10 +354,7 @@ fn solve_captures_invalid_omega() {
     // Inside (0, 2) over-relaxation converges to the same solution.
     let reference = solve(&p, &laws, Algorithm::GaussSeidel);
     for omega in [0.5, 1.5, 1.9] {
-        let st = UzawaSettings {
-            omega,
-            ..settings(Algorithm::ClassicRccm)
-        };
+        let st = settings(Algorithm::ClassicRccm).with_omega(omega);
         let s = UzawaSolver::new(st).solve(&p, &laws).unwrap();
         // As in the random comparison: both within a few 1e-10 of the solution.
         assert!(
@@ -376,10 +368,7 @@ fn solve_captures_invalid_omega() {
 fn classic_captures_non_convergence() {
     let p = random_problem(10, 1);
     let laws = p.coulomb_laws();
-    let st = UzawaSettings {
-        max_iterations: 5,
-        ..settings(Algorithm::ClassicRccm)
-    };
+    let st = settings(Algorithm::ClassicRccm).with_max_iterations(5);
     match UzawaSolver::new(st).solve(&p, &laws) {
         Err(SolverError::NotConverged {
             iterations,
@@ -393,10 +382,7 @@ fn classic_captures_non_convergence() {
         }
         other => panic!("expected NotConverged, got {other:?}"),
     }
-    let st = UzawaSettings {
-        accept_non_converged: true,
-        ..st
-    };
+    let st = st.with_accept_non_converged(true);
     let s = UzawaSolver::new(st).solve(&p, &laws).unwrap();
     assert!(!s.report.converged);
     assert_eq!(s.report.iterations, 5);

@@ -49,11 +49,9 @@ const NEW: [Algorithm; 3] = [
 ];
 
 fn settings(algorithm: Algorithm) -> UzawaSettings {
-    UzawaSettings {
-        algorithm,
-        max_iterations: 100_000,
-        ..UzawaSettings::default()
-    }
+    UzawaSettings::default()
+        .with_algorithm(algorithm)
+        .with_max_iterations(100_000)
 }
 
 fn solve<L: ContactLaw>(p: &ReducedProblem, laws: &[L], algorithm: Algorithm) -> Solution {
@@ -242,10 +240,7 @@ fn local_algorithms_are_robust_to_rho_scale() {
     let reference = solve(&p, &laws, Algorithm::GaussSeidel);
     for algorithm in NEW {
         for rho_scale in [1e-3, 1e3] {
-            let st = UzawaSettings {
-                rho_scale,
-                ..settings(algorithm)
-            };
+            let st = settings(algorithm).with_rho_scale(rho_scale);
             let s = UzawaSolver::new(st).solve(&p, &laws).unwrap();
             // Same argument as on the random problems.
             let d = relative_distance(&s.r, &reference.r);
@@ -356,10 +351,7 @@ fn local_algorithms_capture_non_convergence() {
     let p = random_problem(20, 1);
     let laws = p.coulomb_laws();
     for algorithm in NEW {
-        let st = UzawaSettings {
-            max_iterations: 2,
-            ..settings(algorithm)
-        };
+        let st = settings(algorithm).with_max_iterations(2);
         match UzawaSolver::new(st).solve(&p, &laws) {
             Err(SolverError::NotConverged {
                 iterations,
@@ -373,11 +365,9 @@ fn local_algorithms_capture_non_convergence() {
             }
             other => panic!("{algorithm:?}: expected NotConverged, got {other:?}"),
         }
-        let st = UzawaSettings {
-            accept_non_converged: true,
-            max_iterations: 2,
-            ..settings(algorithm)
-        };
+        let st = settings(algorithm)
+            .with_accept_non_converged(true)
+            .with_max_iterations(2);
         let s = UzawaSolver::new(st).solve(&p, &laws).unwrap();
         assert!(!s.report.converged && s.r.iter().all(|a| a.is_finite()));
     }

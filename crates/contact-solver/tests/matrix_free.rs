@@ -54,10 +54,7 @@ fn matrix_free_agrees_with_gauss_seidel() {
 fn matrix_free_reports_non_convergence_with_history() {
     let p = random_problem(20, 4);
     let laws = p.coulomb_laws();
-    let settings = UzawaSettings {
-        max_iterations: 3,
-        ..UzawaSettings::default()
-    };
+    let settings = UzawaSettings::default().with_max_iterations(3);
     let (mut r, mut x) = (vec![0.0; 40], vec![0.0; 40]);
     let e = solve_matrix_free(
         |r: &[f64], x: &mut [f64]| {
@@ -113,10 +110,7 @@ fn simulation_matrix_free_matches_dense() {
         // a LINE tilted slightly: the contact opens towards the right end
         let ground = RigidLine::new([-1.0, -0.01], [3.0, -0.03]).unwrap();
         let zone = ContactZone::rigid("base", bottom, ground, Coulomb::new(0.3).unwrap(), 0.1);
-        let mut settings = SimulationSettings {
-            flexibility: mode,
-            ..SimulationSettings::default()
-        };
+        let mut settings = SimulationSettings::default().with_flexibility(mode);
         settings.solver.tol = 1e-11;
         let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
         let mut out = Vec::new();

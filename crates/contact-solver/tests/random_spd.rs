@@ -13,11 +13,9 @@ use contact_solver::{
 };
 
 fn run(p: &ReducedProblem, algorithm: Algorithm, rho_scale: f64) -> Solution {
-    let settings = UzawaSettings {
-        algorithm,
-        rho_scale,
-        ..UzawaSettings::default()
-    };
+    let settings = UzawaSettings::default()
+        .with_algorithm(algorithm)
+        .with_rho_scale(rho_scale);
     solve_coulomb(p, &settings).unwrap()
 }
 
@@ -91,10 +89,7 @@ fn bad_rho_still_converges() {
 #[test]
 fn not_converged_carries_the_history() {
     let p = random_problem(10, 1);
-    let settings = UzawaSettings {
-        max_iterations: 3,
-        ..UzawaSettings::default()
-    };
+    let settings = UzawaSettings::default().with_max_iterations(3);
     match solve_coulomb(&p, &settings) {
         Err(SolverError::NotConverged {
             iterations,
@@ -107,10 +102,7 @@ fn not_converged_carries_the_history() {
         }
         other => panic!("expected NotConverged, got {other:?}"),
     }
-    let settings = UzawaSettings {
-        accept_non_converged: true,
-        ..settings
-    };
+    let settings = settings.with_accept_non_converged(true);
     let s = solve_coulomb(&p, &settings).unwrap();
     assert!(!s.report.converged);
     assert_eq!(s.report.history.len(), 3);

@@ -128,10 +128,7 @@ fn anderson_acceleration_changes_the_work_not_the_answer() {
         ..DelaminationSpec::default()
     };
     let run = |window: usize| {
-        let settings = SimulationSettings {
-            adhesion_anderson_window: window,
-            ..SimulationSettings::default()
-        };
+        let settings = SimulationSettings::default().with_adhesion_anderson_window(window);
         let mut scene = spec.build(settings).unwrap();
         let results: Vec<StepResult> = (1..=spec.steps).map(|k| scene.step(k).unwrap()).collect();
         (results, scene.simulation.counters().adhesion_iterations)

@@ -18,10 +18,7 @@ const F: f64 = 2.5e-3; // a flexibility in mm/N: ρ⁰ = 400 N/mm, far from 1
 
 fn solve(q: [f64; 2], mu: f64, algorithm: Algorithm) -> contact_solver::Solution {
     let p = ReducedProblem::new(vec![F, 0.0, 0.0, F], q.to_vec(), vec![mu]).unwrap();
-    let settings = UzawaSettings {
-        algorithm,
-        ..UzawaSettings::default()
-    };
+    let settings = UzawaSettings::default().with_algorithm(algorithm);
     solve_coulomb(&p, &settings).unwrap()
 }
 

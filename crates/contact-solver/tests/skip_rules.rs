@@ -37,10 +37,7 @@ fn run(
     .unwrap();
     let near = RigidLine::new([-1.0, 0.0], [1.0, 0.0]).unwrap();
     let far = RigidLine::new([1.0, -0.5], [3.0, -0.5]).unwrap();
-    let settings = SimulationSettings {
-        skip,
-        ..SimulationSettings::default()
-    };
+    let settings = SimulationSettings::default().with_skip(skip);
     let (l, r): (Vec<usize>, Vec<usize>) = bottom
         .iter()
         .partition(|&&n| model.mesh().nodes()[n][0] < 1.0);
@@ -75,21 +72,13 @@ fn same(a: &[StepResult], b: &[StepResult], tol: f64) {
     }
 }
 
-const ALL_OFF: SkipRules = SkipRules {
-    reuse_flexibility: false,
-    alert_distance: false,
-    frictionless_normal_only: false,
-    adhesion_loop_only_when_adhesive: false,
-};
+const ALL_OFF: SkipRules = SkipRules::none();
 
 #[test]
 fn frictionless_laws_skip_the_tangential_columns() {
     let law = StandardLaw::from(Signorini);
     let (on, sim_on) = run(law, SkipRules::default(), 3);
-    let off_rule = SkipRules {
-        frictionless_normal_only: false,
-        ..SkipRules::default()
-    };
+    let off_rule = SkipRules::default().with_frictionless_normal_only(false);
     let (off, sim_off) = run(law, off_rule, 3);
     same(&on, &off, 1e-9);
     let (c_on, c_off) = (sim_on.counters(), sim_off.counters());

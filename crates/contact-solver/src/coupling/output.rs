@@ -252,19 +252,25 @@ impl<W: Write> HistoryWriter<W> {
 ///
 /// # Examples
 /// ```
-/// use contact_solver::StepReport;
 /// use contact_solver::coupling::output::ReportWriter;
-/// use std::time::Duration;
-/// let report = StepReport {
-///     step: 1, time: 0.5, load_factor: 1.0, active_contacts: 9, adhesion_iterations: 0,
-///     contact_iterations: 12, detection_passes: 1, flexibility_rebuilt: true, matrix_free: false,
-///     active_set: false,
-///     residual: 3e-13, converged: true, wall_time: Duration::from_millis(250),
-/// };
+/// # use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
+/// # use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+/// # use fem_core::generate::{RectangleSpec, rectangle};
+/// # let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+/// # let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+/// # let mut supports = Supports::new();
+/// # supports.prescribe(&top, Component::Y, -0.01)?.fix(&top, Component::X);
+/// # let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+/// #     &[(0, Material::new(100.0, 0.0, 0.0)?)], supports)?;
+/// # let ground = RigidLine::new([-1.0, 0.0], [2.0, 0.0])?;
+/// # let zone = ContactZone::rigid("base", bottom, ground, contact_laws::Signorini, 0.1);
+/// # let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default())?;
+/// let report = sim.step(0.5, 1.0)?.report; // a simulation's step (a block pressed on a LINE)
 /// let mut log = ReportWriter::new(Vec::new())?;
 /// log.write_report(&report)?;
 /// let text = String::from_utf8(log.finish()?).unwrap();
-/// assert_eq!(text.lines().nth(1), Some("1,0.5,1,9,0,12,1,1,3e-13,1,0.25,0,0"));
+/// // step 1 at t = 0.5, load factor 1, 3 active contacts, no adhesion iteration, …
+/// assert!(text.lines().nth(1).unwrap().starts_with("1,0.5,1,3,0,"));
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
 #[derive(Debug)]

@@ -117,6 +117,7 @@ impl Default for AdhesionOptions {
 
 /// The solution of an [`AdhesiveStep`].
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct AdhesiveSolution<S> {
     /// Total reactions `r = r̄ + r_adh` (nodal forces).
     pub r: Vec<f64>,

@@ -44,7 +44,7 @@
 //! ```
 //! use contact_solver::{Algorithm, UzawaSettings, UzawaSolver, local::generate::random_problem};
 //! let p = random_problem(20, 1);
-//! let settings = UzawaSettings { algorithm: Algorithm::AndersonGaussSeidel, ..UzawaSettings::default() };
+//! let settings = UzawaSettings::default().with_algorithm(Algorithm::AndersonGaussSeidel);
 //! let sol = UzawaSolver::new(settings).solve(&p, &p.coulomb_laws())?;
 //! assert!(sol.report.converged && sol.report.residual <= 1e-10);
 //! # Ok::<(), contact_solver::SolverError>(())

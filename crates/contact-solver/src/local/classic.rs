@@ -87,7 +87,7 @@
 //! use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, UzawaSolver};
 //! // One contact, W = I, q = (−1, 0.5), μ = 0.2: slip, r = (1, −0.2).
 //! let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-1.0, 0.5], vec![0.2])?;
-//! let settings = UzawaSettings { algorithm: Algorithm::ClassicRccm, ..UzawaSettings::default() };
+//! let settings = UzawaSettings::default().with_algorithm(Algorithm::ClassicRccm);
 //! let sol = UzawaSolver::new(settings).solve(&p, &p.coulomb_laws())?;
 //! assert!((sol.r[0] - 1.0).abs() < 1e-9 && (sol.r[1] + 0.2).abs() < 1e-9);
 //! assert!(sol.report.tangential_sweeps > 0);

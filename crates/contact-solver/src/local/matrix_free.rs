@@ -29,6 +29,8 @@ use contact_laws::{ContactLaw, LocalVec2};
 
 /// What the matrix-free solve did.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct MatrixFreeReport {
     /// Accepted iterations.
     pub iterations: usize,

@@ -69,7 +69,7 @@
 //! ```
 //! use contact_solver::{Algorithm, UzawaSettings, UzawaSolver, local::generate::random_problem};
 //! let p = random_problem(20, 1);
-//! let settings = UzawaSettings { algorithm: Algorithm::Newton, ..UzawaSettings::default() };
+//! let settings = UzawaSettings::default().with_algorithm(Algorithm::Newton);
 //! let sol = UzawaSolver::new(settings).solve(&p, &p.coulomb_laws())?;
 //! assert!(sol.report.converged && sol.report.outer_iterations < 20);
 //! # Ok::<(), contact_solver::SolverError>(())

@@ -16,6 +16,7 @@ pub const DEFAULT_OMEGA: f64 = 1.0;
 
 /// Which sweep the solver runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum Algorithm {
     /// Every contact from the same `x`, then `x = W r + q` (Jacobi / projected gradient).
     Uzawa,
@@ -40,8 +41,18 @@ pub enum Algorithm {
     Newton,
 }
 
-/// Settings of the reduced solver.
+/// Settings of the reduced solver: `Default` and the `with_*` setters (the struct is
+/// `#[non_exhaustive]`, so new settings do not break callers).
+///
+/// # Examples
+/// ```
+/// use contact_solver::{Algorithm, UzawaSettings};
+/// let st = UzawaSettings::default().with_algorithm(Algorithm::Newton).with_tol(1e-12);
+/// assert_eq!((st.algorithm, st.tol, st.max_iterations), (Algorithm::Newton, 1e-12, 10_000));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct UzawaSettings {
     /// Which sweep to run.
     pub algorithm: Algorithm,
@@ -76,6 +87,7 @@ impl Default for UzawaSettings {
 
 /// What the solver did.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct UzawaReport {
     /// The algorithm that ran.
     pub algorithm: Algorithm,
@@ -110,6 +122,7 @@ pub struct UzawaReport {
 
 /// The solution of a reduced problem.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Solution {
     /// Reactions, normal first per contact (`r_n ≥ 0` is compression).
     pub r: Vec<f64>,
@@ -117,4 +130,48 @@ pub struct Solution {
     pub x: Vec<f64>,
     /// How the solver got there.
     pub report: UzawaReport,
+}
+
+impl UzawaSettings {
+    /// These settings with [`algorithm`](Self::algorithm) replaced.
+    #[must_use]
+    pub fn with_algorithm(mut self, algorithm: Algorithm) -> Self {
+        self.algorithm = algorithm;
+        self
+    }
+
+    /// These settings with [`tol`](Self::tol) replaced.
+    #[must_use]
+    pub fn with_tol(mut self, tol: f64) -> Self {
+        self.tol = tol;
+        self
+    }
+
+    /// These settings with [`max_iterations`](Self::max_iterations) replaced.
+    #[must_use]
+    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// These settings with [`rho_scale`](Self::rho_scale) replaced.
+    #[must_use]
+    pub fn with_rho_scale(mut self, rho_scale: f64) -> Self {
+        self.rho_scale = rho_scale;
+        self
+    }
+
+    /// These settings with [`omega`](Self::omega) replaced.
+    #[must_use]
+    pub fn with_omega(mut self, omega: f64) -> Self {
+        self.omega = omega;
+        self
+    }
+
+    /// These settings with [`accept_non_converged`](Self::accept_non_converged) replaced.
+    #[must_use]
+    pub fn with_accept_non_converged(mut self, accept_non_converged: bool) -> Self {
+        self.accept_non_converged = accept_non_converged;
+        self
+    }
 }

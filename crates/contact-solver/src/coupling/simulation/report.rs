@@ -6,6 +6,7 @@ use std::time::Duration;
 
 /// What a contact is doing at the end of a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum InterfaceStatus {
     /// Outside the alert distance: not in the reduced problem.
     Inactive,
@@ -62,6 +63,8 @@ pub struct ContactRecord {
 
 /// Counters and timing of one step.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct StepReport {
     /// Step number (1-based).
     pub step: usize,
@@ -94,6 +97,8 @@ pub struct StepReport {
 
 /// Counters over the whole simulation: what work was done (and skipped).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct Counters {
     /// Steps done.
     pub steps: usize,
@@ -126,6 +131,7 @@ pub struct Counters {
 
 /// The result of one step.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct StepResult {
     /// Counters and timing.
     pub report: StepReport,

@@ -5,6 +5,8 @@ use crate::local::UzawaSettings;
 
 /// Settings of a simulation.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct SimulationSettings {
     /// The reduced solver (algorithm, tolerance, ρ scale, …).
     pub solver: UzawaSettings,
@@ -31,6 +33,7 @@ pub struct SimulationSettings {
 
 /// How the reduced problem is held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum FlexibilityMode {
     /// Dense `F*` up to `dense_limit` active contacts; beyond, the primal active-set solve
     /// when the step is in its scope ([`crate::coupling::primal`]: rigid obstacles, no active adhesion, a
@@ -73,6 +76,8 @@ impl Default for FlexibilityMode {
 /// "Skip what a scene does not need": each rule is on by default and only exists as a switch
 /// so that its saving can be measured (`docs/benchmarks.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub struct SkipRules {
     /// Reuse `F*` while the active set and the stiffness are unchanged (off: rebuild it every
     /// step).
@@ -110,5 +115,107 @@ impl Default for SimulationSettings {
             skip: SkipRules::default(),
             flexibility: FlexibilityMode::default(),
         }
+    }
+}
+
+impl SimulationSettings {
+    /// These settings with [`solver`](Self::solver) replaced.
+    #[must_use]
+    pub fn with_solver(mut self, solver: UzawaSettings) -> Self {
+        self.solver = solver;
+        self
+    }
+
+    /// These settings with [`adhesion_tol`](Self::adhesion_tol) replaced.
+    #[must_use]
+    pub fn with_adhesion_tol(mut self, adhesion_tol: f64) -> Self {
+        self.adhesion_tol = adhesion_tol;
+        self
+    }
+
+    /// These settings with [`max_adhesion_iterations`](Self::max_adhesion_iterations) replaced.
+    #[must_use]
+    pub fn with_max_adhesion_iterations(mut self, max_adhesion_iterations: usize) -> Self {
+        self.max_adhesion_iterations = max_adhesion_iterations;
+        self
+    }
+
+    /// These settings with [`adhesion_anderson_window`](Self::adhesion_anderson_window) replaced.
+    #[must_use]
+    pub fn with_adhesion_anderson_window(mut self, adhesion_anderson_window: usize) -> Self {
+        self.adhesion_anderson_window = adhesion_anderson_window;
+        self
+    }
+
+    /// These settings with [`max_detection_passes`](Self::max_detection_passes) replaced.
+    #[must_use]
+    pub fn with_max_detection_passes(mut self, max_detection_passes: usize) -> Self {
+        self.max_detection_passes = max_detection_passes;
+        self
+    }
+
+    /// These settings with [`columns_per_solve`](Self::columns_per_solve) replaced.
+    #[must_use]
+    pub fn with_columns_per_solve(mut self, columns_per_solve: usize) -> Self {
+        self.columns_per_solve = columns_per_solve;
+        self
+    }
+
+    /// These settings with [`skip`](Self::skip) replaced.
+    #[must_use]
+    pub fn with_skip(mut self, skip: SkipRules) -> Self {
+        self.skip = skip;
+        self
+    }
+
+    /// These settings with [`flexibility`](Self::flexibility) replaced.
+    #[must_use]
+    pub fn with_flexibility(mut self, flexibility: FlexibilityMode) -> Self {
+        self.flexibility = flexibility;
+        self
+    }
+}
+
+impl SkipRules {
+    /// Every rule off: the simulation does all the work a scene could need (to measure what
+    /// the rules save).
+    pub const fn none() -> Self {
+        Self {
+            reuse_flexibility: false,
+            alert_distance: false,
+            frictionless_normal_only: false,
+            adhesion_loop_only_when_adhesive: false,
+        }
+    }
+
+    /// These settings with [`reuse_flexibility`](Self::reuse_flexibility) replaced.
+    #[must_use]
+    pub fn with_reuse_flexibility(mut self, reuse_flexibility: bool) -> Self {
+        self.reuse_flexibility = reuse_flexibility;
+        self
+    }
+
+    /// These settings with [`alert_distance`](Self::alert_distance) replaced.
+    #[must_use]
+    pub fn with_alert_distance(mut self, alert_distance: bool) -> Self {
+        self.alert_distance = alert_distance;
+        self
+    }
+
+    /// These settings with [`frictionless_normal_only`](Self::frictionless_normal_only) replaced.
+    #[must_use]
+    pub fn with_frictionless_normal_only(mut self, frictionless_normal_only: bool) -> Self {
+        self.frictionless_normal_only = frictionless_normal_only;
+        self
+    }
+
+    /// These settings with [`adhesion_loop_only_when_adhesive`](Self::adhesion_loop_only_when_adhesive) replaced.
+    #[must_use]
+    pub fn with_adhesion_loop_only_when_adhesive(
+        mut self,
+        adhesion_loop_only_when_adhesive: bool,
+    ) -> Self {
+        self.adhesion_loop_only_when_adhesive = adhesion_loop_only_when_adhesive;
+        self
     }
 }
