@@ -177,8 +177,11 @@ fn parse_config(args: &[String]) -> Result<Config, Box<dyn Error>> {
     })
 }
 
+/// A model with two node sets.
+type ModelWithSets = (LinearElasticModel, Vec<usize>, Vec<usize>);
+
 /// The block, its top nodes, and its bottom (contactor) nodes.
-fn model(cfg: &Config) -> Result<(LinearElasticModel, Vec<usize>, Vec<usize>), Box<dyn Error>> {
+fn model(cfg: &Config) -> Result<ModelWithSets, Box<dyn Error>> {
     let spec = RectangleSpec {
         kind: ElementKind::Tri6,
         ..RectangleSpec::new([0.0, cfg.width], [0.0, cfg.height], cfg.nx, cfg.ny)
