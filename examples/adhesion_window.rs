@@ -3,8 +3,8 @@
 //!
 //! `cargo run --release --example adhesion_window`
 
+use bipo::presets::{DelaminationSpec, Scene, ShearSpec};
 use bipotential::contact_solver::SimulationSettings;
-use bipotential::contact_solver::scenes::{DelaminationSpec, Scene, ShearSpec};
 use std::time::Instant;
 
 fn measure(mut scene: Scene) -> Result<(usize, usize, usize, f64), Box<dyn std::error::Error>> {

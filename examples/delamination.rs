@@ -12,7 +12,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use bipotential::contact_solver::scenes::{DelaminationSpec, Scene};
+use bipo::presets::{DelaminationSpec, Scene};
 use bipotential::contact_solver::{Algorithm, SimulationSettings, StepResult};
 use common::{Series, line_plot, write_series_csv};
 use std::error::Error;

@@ -4,7 +4,7 @@
 //!
 //! Units: kN, m, kPa; loads are full-ring forces. The head load `Q` is the force the jack
 //! applies on the pile (it holds the pile's excess weight `Q₀ = (γ_p − γ_s) π R² L_p` at
-//! `v = 0`; at full slip `Q = W_p + Q_f`). Modelling choices: `contact_solver::scenes::pile`
+//! `v = 0`; at full slip `Q = W_p + Q_f`). Modelling choices: `bipo::presets::pile`
 //! and `docs/validation.md` ("Pile pull-out").
 //!
 //! Writes under `out/pile/`: `load_displacement.csv` and one SVG per site (RCCM vs Coulomb),
@@ -17,9 +17,9 @@
 #[path = "common/mod.rs"]
 mod common;
 
+use bipo::presets::{PulloutRun, PulloutScene, PulloutSpec};
 use bipotential::contact_laws::RccmParams;
 use bipotential::contact_solver::SimulationSettings;
-use bipotential::contact_solver::scenes::{PulloutRun, PulloutScene, PulloutSpec};
 use common::{Series, line_plot, write_csv, write_series_csv};
 use std::error::Error;
 use std::path::{Path, PathBuf};

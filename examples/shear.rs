@@ -11,7 +11,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use bipotential::contact_solver::scenes::{Scene, ShearSpec};
+use bipo::presets::{Scene, ShearSpec};
 use bipotential::contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};
 use common::{Series, line_plot, write_series_csv};
 use std::error::Error;

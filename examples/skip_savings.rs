@@ -3,8 +3,8 @@
 //!
 //! `cargo run --release --example skip_savings`
 
+use bipo::presets::{DelaminationSpec, ShearSpec};
 use bipotential::contact_laws::Signorini;
-use bipotential::contact_solver::scenes::{DelaminationSpec, ShearSpec};
 use bipotential::contact_solver::{
     ContactSimulation, ContactZone, Counters, RigidLine, SimulationSettings, SkipRules,
 };

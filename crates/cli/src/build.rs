@@ -5,8 +5,8 @@
 
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::*;
+use bipo::presets::{DelaminationSpec, ShearSpec};
 use contact_laws::{BetaScheme, Coulomb, LawError, Rccm, RccmParams, Signorini, StandardLaw};
-use contact_solver::scenes::{DelaminationSpec, ShearSpec};
 use contact_solver::{
     Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
     FlexibilityMode, RigidArc, RigidLine, SimulationSettings, SolverError, recognize,
@@ -299,9 +299,9 @@ pub struct Custom {
 /// The library's scene of a preset.
 pub enum Library {
     /// Delamination or shear (one loading phase).
-    Seed(Box<contact_solver::scenes::Scene>),
+    Seed(Box<bipo::presets::Scene>),
     /// The pile pull-out (three phases).
-    Pile(Box<contact_solver::scenes::PulloutScene>),
+    Pile(Box<bipo::presets::PulloutScene>),
 }
 
 /// A seed study built by the library.
@@ -881,7 +881,7 @@ fn finish_preset(
 }
 
 fn build_pile(scene: &Scene, preset: &Preset) -> CliResult<Study> {
-    use contact_solver::scenes::{Installation, PulloutSpec};
+    use bipo::presets::{Installation, PulloutSpec};
     let Preset::Pile {
         site,
         coulomb,

@@ -3,15 +3,15 @@
 //! - Signorini block (block.toml): an elastic block (E = 100, ν = 0) pressed by 0.01 on a rigid
 //!   LINE: uniaxial strain, so Σ r_n = E · 0.01 · width = 1 (exact up to the solver tolerance).
 //! - Seed 5.6.1 (delamination.toml): the preset scene must give the same numbers as
-//!   `contact_solver::scenes::DelaminationSpec` stepped through the library, bit for bit (the
+//!   `bipo::presets::DelaminationSpec` stepped through the library, bit for bit (the
 //!   CSV floats are written with the shortest round-trip digits).
 //! - Two phases (tests/scenes/phases.toml): a support released between phases, loads with
 //!   their own functions and a phase override, gravity, plane stress, P2.
 //! - Hertz (hertz.toml, Johnson 1985 ch. 4): half-width `a = √(4PR/(πE*))` against the last
 //!   closed node.
 
+use bipo::presets::DelaminationSpec;
 use contact_solver::SimulationSettings;
-use contact_solver::scenes::DelaminationSpec;
 use fem_core::Component;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -276,9 +276,9 @@ fn pile_preset_runs_its_three_phases() {
         .find(|c| c["label"] == "Q (kN)")
         .unwrap();
     // the same study through the library: the same head load at the last increment
-    let spec = contact_solver::scenes::PulloutSpec {
+    let spec = bipo::presets::PulloutSpec {
         steps: 2,
-        ..contact_solver::scenes::PulloutSpec::plancoet()
+        ..bipo::presets::PulloutSpec::plancoet()
     };
     let mut lib = spec.build(SimulationSettings::default()).unwrap();
     let run = lib.run().unwrap();

@@ -45,8 +45,6 @@
 pub mod coupling;
 pub mod error;
 pub mod local;
-#[cfg(feature = "fe")]
-pub mod scenes;
 
 pub use contact_laws;
 pub use error::SolverError;

@@ -2,9 +2,8 @@
 //! β decreases from the loaded end; faster loading delays damage; once debonded the adhesive
 //! reaction vanishes and the contact reaction obeys Coulomb; damage never heals.
 
-#![cfg(feature = "fe")]
 
-use contact_solver::scenes::{DelaminationSpec, ShearSpec};
+use bipo::presets::{DelaminationSpec, ShearSpec};
 use contact_solver::{ContactRecord, InterfaceStatus, SimulationSettings, StepResult};
 
 fn sorted(res: &StepResult) -> Vec<ContactRecord> {

@@ -17,9 +17,8 @@
 //!   springs `C` in series with the soil) and both reach the same ultimate load: with
 //!   `f(β) = 1 − β` the RCCM shear never exceeds `max(√(wC), μ σ_n)` locally.
 
-#![cfg(feature = "fe")]
 
-use contact_solver::scenes::{PulloutRun, PulloutScene, PulloutSpec};
+use bipo::presets::{PulloutRun, PulloutScene, PulloutSpec};
 use contact_solver::{InterfaceStatus, SimulationSettings};
 
 /// Plancoët on a coarse mesh (17 shaft pairs), `steps` increments to 15 mm.

@@ -1,5 +1,5 @@
 //! The accelerated and Newton local solvers inside whole simulations: the seed's RCCM scenes
-//! (§5.6.1 delamination, §5.6.2 shear of a compressed block; `contact_solver::scenes`), where
+//! (§5.6.1 delamination, §5.6.2 shear of a compressed block; `bipo::presets`), where
 //! the reduced solver runs inside the adhesion fixed point with warm starts, and the laws are
 //! RCCM with `μ̄ = μ f(β)` read through `friction_coefficient`.
 //!
@@ -9,9 +9,8 @@
 //! Fast variants (fewer steps) as in `tests/seed_studies.rs`; run with `--nocapture` for the
 //! contact iterations and wall time of each algorithm.
 
-#![cfg(feature = "fe")]
 
-use contact_solver::scenes::{DelaminationSpec, Scene, ShearSpec};
+use bipo::presets::{DelaminationSpec, Scene, ShearSpec};
 use contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};
 use std::time::Instant;
 

@@ -3,17 +3,11 @@
 //! data; the choices the seed leaves open are documented on the fields and in
 //! `docs/validation.md` ("Reproducing the seed").
 
-pub mod pile;
-
-pub use pile::{
-    BetaCoupling, Installation, PulloutRun, PulloutScene, PulloutSpec, PulloutStep, ShaftPoint,
-};
-
-use crate::coupling::obstacle::RigidLine;
-use crate::coupling::simulation::{ContactSimulation, SimulationSettings, StepResult};
-use crate::coupling::zone::ContactZone;
-use crate::error::SolverError;
 use contact_laws::{BetaScheme, Rccm, RccmParams};
+use contact_solver::SolverError;
+use contact_solver::coupling::obstacle::RigidLine;
+use contact_solver::coupling::simulation::{ContactSimulation, SimulationSettings, StepResult};
+use contact_solver::coupling::zone::ContactZone;
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 

@@ -2,9 +2,8 @@
 //! classical RCCM solver agree, and the bipotential needs fewer contact iterations (seed
 //! table 5.1: about 8 per step against about 132).
 
-#![cfg(feature = "fe")]
 
-use contact_solver::scenes::DelaminationSpec;
+use bipo::presets::DelaminationSpec;
 use contact_solver::{Algorithm, InterfaceStatus, SimulationSettings, StepResult};
 
 fn run(algorithm: Algorithm, steps: usize) -> (Vec<StepResult>, usize, usize) {
