@@ -2,7 +2,6 @@
 //! classical RCCM solver agree, and the bipotential needs fewer contact iterations (seed
 //! table 5.1: about 8 per step against about 132).
 
-
 use bipo::presets::DelaminationSpec;
 use contact_solver::{Algorithm, InterfaceStatus, SimulationSettings, StepResult};
 

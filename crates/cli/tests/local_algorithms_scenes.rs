@@ -9,7 +9,6 @@
 //! Fast variants (fewer steps) as in `tests/seed_studies.rs`; run with `--nocapture` for the
 //! contact iterations and wall time of each algorithm.
 
-
 use bipo::presets::{DelaminationSpec, Scene, ShearSpec};
 use contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};
 use std::time::Instant;

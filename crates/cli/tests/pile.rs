@@ -17,7 +17,6 @@
 //!   springs `C` in series with the soil) and both reach the same ultimate load: with
 //!   `f(β) = 1 − β` the RCCM shear never exceeds `max(√(wC), μ σ_n)` locally.
 
-
 use bipo::presets::{PulloutRun, PulloutScene, PulloutSpec};
 use contact_solver::{InterfaceStatus, SimulationSettings};
 

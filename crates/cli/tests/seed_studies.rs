@@ -2,7 +2,6 @@
 //! β decreases from the loaded end; faster loading delays damage; once debonded the adhesive
 //! reaction vanishes and the contact reaction obeys Coulomb; damage never heals.
 
-
 use bipo::presets::{DelaminationSpec, ShearSpec};
 use contact_solver::{ContactRecord, InterfaceStatus, SimulationSettings, StepResult};
 

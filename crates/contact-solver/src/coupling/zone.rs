@@ -16,7 +16,7 @@
 //! ```
 //! At each step, a candidate becomes a contact element (enters the reduced problem) only when
 //! its gap at the start of the step or under the free response is within `Δx`, or while it is
-//! adhesive (β > 0). See [`crate::simulation`].
+//! adhesive (β > 0). See [`crate::coupling::simulation`].
 
 use crate::coupling::obstacle::Obstacle;
 use crate::error::SolverError;

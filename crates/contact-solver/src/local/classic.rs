@@ -53,7 +53,7 @@
 //! # Measured sweeps and the choice of ω
 //! Tol 1e-10, sweeps to convergence (`iterations`, with the tangential ones in brackets) of
 //! the classic solver for several ω, against the bipotential Gauss–Seidel sweeps (GS) on the
-//! same problem. "random" is [`generate::random_problem`](crate::generate::random_problem)
+//! same problem. "random" is [`generate::random_problem`](crate::local::generate::random_problem)
 //! (Coulomb, `μ ~ U(0, 1)`); "string" is a strongly coupled FE-like `W = K⁻¹` (two strings on
 //! an elastic foundation pressed by a parabolic punch, see `examples/classic_omega.rs`, which
 //! prints this table):

@@ -31,7 +31,7 @@
 //! - [`Algorithm::GaussSeidel`]: contact by contact, each using the current `x`, which is
 //!   updated right after with the two columns of `W` that the contact touches (De Saxcé–Feng's
 //!   projected Gauss–Seidel). On seeded random SPD problems
-//!   ([`generate::random_problem`](generate::random_problem), `n_c` = 10/100/300,
+//!   ([`generate::random_problem`], `n_c` = 10/100/300,
 //!   release build) it takes 57–60 sweeps against 79–101 for Uzawa and is 1.5–9× faster
 //!   (n_c = 300: 2.6 ms against 23 ms), because a sweep costs one pass over `W` while an
 //!   Uzawa step costs one product `W r` per trial, and a few trials are redone.
@@ -52,7 +52,7 @@
 //! - Newton is the fastest on every FE problem (5–8× faster than Gauss–Seidel) and on random
 //!   problems up to `n_c` ≈ 1000, but its dense factorisation grows as `n_c³` (at `n_c` = 5000
 //!   it is 4–5× slower than the accelerated sweep) and it needs
-//!   [`ContactLaw::friction_coefficient`].
+//!   [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient).
 //! - The accelerated Gauss–Seidel sweep is 1.1–3× faster than Gauss–Seidel on every problem,
 //!   needs nothing but `project` and `modified_velocity` (any law), and converges where
 //!   Gauss–Seidel does not in 10 000 sweeps (issue 8's stress suite: a stiffness contrast of

@@ -25,7 +25,7 @@ pub enum Algorithm {
     /// The classical solver (seed §5.6, GYPTIS): contact and friction treated separately, by
     /// projected SOR sweeps on the normal then the tangential components, with a fixed point
     /// on the threshold `s_i = μ̄_i r_n,i`. Needs
-    /// [`ContactLaw::friction_coefficient`]; see [`classic`](crate::local::classic).
+    /// [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient); see [`classic`](crate::local::classic).
     ClassicRccm,
     /// Anderson acceleration (memory [`ANDERSON_DEPTH`](crate::local::anderson::ANDERSON_DEPTH),
     /// safeguarded) of the projected Gauss–Seidel sweep; see [`anderson`](crate::local::anderson).
@@ -37,7 +37,7 @@ pub enum Algorithm {
     AndersonUzawa,
     /// Semi-smooth Newton on `r − P_K(r + ρ v(W r + q)) = 0` with a dense LU of the reduced
     /// Newton system, a line search and Gauss–Seidel fallback. Needs
-    /// [`ContactLaw::friction_coefficient`]; see [`newton`](crate::local::newton).
+    /// [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient); see [`newton`](crate::local::newton).
     Newton,
 }
 
