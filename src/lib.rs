@@ -3,9 +3,11 @@
 
 /// Local contact laws: Coulomb cone, projection onto `K_μ̄`, `b_c`, `b_β`, RCCM.
 pub use contact_laws;
-/// Contact solver: obstacle recognition, `F*`, Uzawa, adhesion coupling (in progress).
+/// Contact solver: the reduced problem `x = W r + q` and its algorithms (`local`), and the FE
+/// coupling (`coupling`): obstacles, zones, `F*` or the active set, adhesion, load stepping.
 pub use contact_solver;
-/// Finite-element core: P1/P2 triangles, idealizations, sparse assembly (in progress).
+/// Finite-element core: meshes, P1/P2 triangles, idealizations, sparse assembly, the
+/// `Structure` trait.
 pub use fem_core;
 
 /// The user guide (`docs/guide.md`), included here so that its examples are compiled and
