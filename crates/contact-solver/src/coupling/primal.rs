@@ -379,34 +379,6 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
     let mut solves = 0;
     let mut residual = natural_residual(step.laws, step.states, &rho, &r, &x) / denom(&r);
     let mut g: Vec<f64> = (0..na).map(|kk| step.mu[kk] * r[2 * kk].max(0.0)).collect();
-    // The guess is the semi-smooth Newton one with σ_n = r_n − c x_n and σ_t = r_t − c_t x_t in
-    // the limit c_t → 0⁺ (any c > 0 has the same solutions): a sliding node keeps sliding while
-    // it moves against its friction force and sticks otherwise (a large c_t would flip its
-    // direction, which cycles between the two full-slip guesses when friction nearly balances
-    // the drive); a sticking node slides once its reaction leaves the Tresca disc.
-    let guess = |r: &[f64], x: &[f64], g: &[f64], sets: &mut [(u8, f64)]| {
-        for kk in 0..na {
-            let (rn, xn) = (r[2 * kk], x[2 * kk]);
-            let sn = rn - c[kk][0] * xn;
-            let prev = sets[kk];
-            sets[kk] = if sn <= 0.0 {
-                (0, 0.0)
-            } else if !step.tangent[kk] || step.frames[kk].dofs[1].is_none() {
-                (2, 0.0)
-            } else if g[kk] == 0.0 {
-                // no friction force yet: slide, in the direction the node moves
-                (2, -x[2 * kk + 1].signum())
-            } else {
-                let (rt, xt) = (r[2 * kk + 1], x[2 * kk + 1]);
-                match prev {
-                    (2, s) if s != 0.0 && xt * s < 0.0 => (2, s),
-                    (2, s) if s != 0.0 => (1, 0.0),
-                    (1, _) if rt.abs() > g[kk] => (2, rt.signum()),
-                    _ => (1, 0.0),
-                }
-            };
-        }
-    };
     for iteration in 0..=step.max_iterations {
         // the semi-smooth Newton guess from the current iterate
         if iteration > 0 {
@@ -417,7 +389,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
             }
         }
         last_sets.clone_from(&sets);
-        guess(&r, &x, &g, &mut sets);
+        guess_sets(step, &c, &r, &x, &g, &mut sets);
         if iteration > 0 && sets == last_sets && residual <= step.tol {
             // the iterate solves its own guess exactly: converged once the friction lag is
             // below the tolerance too
@@ -426,33 +398,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
         if iteration == step.max_iterations {
             break;
         }
-        // the Dirichlet set and its values
-        mask.fill(false);
-        z.fill(0.0);
-        for (kk, f) in step.frames.iter().enumerate() {
-            if sets[kk].0 >= 1
-                && let Some(d) = f.dofs[0]
-            {
-                mask[d] = true;
-                z[d] = -step.q[2 * kk];
-            }
-            if sets[kk].0 == 1
-                && let Some(d) = f.dofs[1]
-            {
-                mask[d] = true;
-                z[d] = -step.q[2 * kk + 1];
-            }
-        }
-        // sliding forces on the free tangential dofs
-        force.clear();
-        for (kk, f) in step.frames.iter().enumerate() {
-            if sets[kk].0 == 2
-                && sets[kk].1 != 0.0
-                && let Some(d) = f.dofs[1]
-            {
-                force.push((d, g[kk] * sets[kk].1));
-            }
-        }
+        constraints(step, &sets, &g, &mut mask, &mut z, &mut force);
         solves += solve_constrained(cache, pattern, &contact_dofs, &mask, &z, &force, &mut w)?;
         if w.iter().any(|v| !v.is_finite()) {
             return Err(SolverError::NotConverged {
@@ -466,35 +412,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
         for &d in &contact_dofs {
             z[d] = cache.row_dot(pattern, d, &w);
         }
-        for (kk, f) in step.frames.iter().enumerate() {
-            for comp in 0..2 {
-                let j = 2 * kk + comp;
-                match f.dofs[comp] {
-                    Some(d) => {
-                        x[j] = step.q[j] + w[d];
-                        r[j] = if mask[d] || (comp == 1 && sets[kk].0 == 2) {
-                            z[d]
-                        } else {
-                            0.0
-                        };
-                    }
-                    None => {
-                        x[j] = 0.0;
-                        r[j] = 0.0;
-                    }
-                }
-            }
-            if !step.tangent[kk] {
-                x[2 * kk + 1] = 0.0;
-                r[2 * kk + 1] = 0.0;
-            }
-            if sets[kk].0 >= 1 {
-                x[2 * kk] = 0.0;
-            }
-            if sets[kk].0 == 1 {
-                x[2 * kk + 1] = 0.0;
-            }
-        }
+        read_back(step, &sets, &mask, &z, &w, &mut r, &mut x);
         residual = natural_residual(step.laws, step.states, &rho, &r, &x) / denom(&r);
         history.push(residual);
     }
@@ -515,6 +433,128 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
         residual,
         history,
     })
+}
+
+/// Per contact: `(0, 0)` open, `(1, 0)` stick, `(2, ±1)` slip with the sign of the friction
+/// force (`(2, 0)` for a frictionless or normal-only contact); `sets` holds the previous guess.
+///
+/// The guess is the semi-smooth Newton one with σ_n = r_n − c x_n and σ_t = r_t − c_t x_t in
+/// the limit c_t → 0⁺ (any c > 0 has the same solutions): a sliding node keeps sliding while
+/// it moves against its friction force and sticks otherwise (a large c_t would flip its
+/// direction, which cycles between the two full-slip guesses when friction nearly balances
+/// the drive); a sticking node slides once its reaction leaves the Tresca disc.
+fn guess_sets<L: ContactLaw>(
+    step: &PrimalStep<'_, L>,
+    c: &[[f64; 2]],
+    r: &[f64],
+    x: &[f64],
+    g: &[f64],
+    sets: &mut [(u8, f64)],
+) {
+    let na = sets.len();
+    for kk in 0..na {
+        let (rn, xn) = (r[2 * kk], x[2 * kk]);
+        let sn = rn - c[kk][0] * xn;
+        let prev = sets[kk];
+        sets[kk] = if sn <= 0.0 {
+            (0, 0.0)
+        } else if !step.tangent[kk] || step.frames[kk].dofs[1].is_none() {
+            (2, 0.0)
+        } else if g[kk] == 0.0 {
+            // no friction force yet: slide, in the direction the node moves
+            (2, -x[2 * kk + 1].signum())
+        } else {
+            let (rt, xt) = (r[2 * kk + 1], x[2 * kk + 1]);
+            match prev {
+                (2, s) if s != 0.0 && xt * s < 0.0 => (2, s),
+                (2, s) if s != 0.0 => (1, 0.0),
+                (1, _) if rt.abs() > g[kk] => (2, rt.signum()),
+                _ => (1, 0.0),
+            }
+        };
+    }
+}
+
+/// The guess `sets` as constraints of the rotated system: the Dirichlet set `mask` with its values
+/// `z` (closed normals, sticking tangents) and the sliding forces `g · s` on the free
+/// tangential dofs.
+fn constraints<L: ContactLaw>(
+    step: &PrimalStep<'_, L>,
+    sets: &[(u8, f64)],
+    g: &[f64],
+    mask: &mut [bool],
+    z: &mut [f64],
+    force: &mut Vec<(usize, f64)>,
+) {
+    // the Dirichlet set and its values
+    mask.fill(false);
+    z.fill(0.0);
+    for (kk, f) in step.frames.iter().enumerate() {
+        if sets[kk].0 >= 1
+            && let Some(d) = f.dofs[0]
+        {
+            mask[d] = true;
+            z[d] = -step.q[2 * kk];
+        }
+        if sets[kk].0 == 1
+            && let Some(d) = f.dofs[1]
+        {
+            mask[d] = true;
+            z[d] = -step.q[2 * kk + 1];
+        }
+    }
+    // sliding forces on the free tangential dofs
+    force.clear();
+    for (kk, f) in step.frames.iter().enumerate() {
+        if sets[kk].0 == 2
+            && sets[kk].1 != 0.0
+            && let Some(d) = f.dofs[1]
+        {
+            force.push((d, g[kk] * sets[kk].1));
+        }
+    }
+}
+
+/// The local jumps `x = q + w` and reactions `r` of a solve: the reaction `z` on a Dirichlet dof or
+/// a sliding tangent, zero elsewhere; the constrained components of `x` exactly zero.
+fn read_back<L: ContactLaw>(
+    step: &PrimalStep<'_, L>,
+    sets: &[(u8, f64)],
+    mask: &[bool],
+    z: &[f64],
+    w: &[f64],
+    r: &mut [f64],
+    x: &mut [f64],
+) {
+    for (kk, f) in step.frames.iter().enumerate() {
+        for comp in 0..2 {
+            let j = 2 * kk + comp;
+            match f.dofs[comp] {
+                Some(d) => {
+                    x[j] = step.q[j] + w[d];
+                    r[j] = if mask[d] || (comp == 1 && sets[kk].0 == 2) {
+                        z[d]
+                    } else {
+                        0.0
+                    };
+                }
+                None => {
+                    x[j] = 0.0;
+                    r[j] = 0.0;
+                }
+            }
+        }
+        if !step.tangent[kk] {
+            x[2 * kk + 1] = 0.0;
+            r[2 * kk + 1] = 0.0;
+        }
+        if sets[kk].0 >= 1 {
+            x[2 * kk] = 0.0;
+        }
+        if sets[kk].0 == 1 {
+            x[2 * kk + 1] = 0.0;
+        }
+    }
 }
 
 /// Solves the rotated system with Dirichlet conditions `w_d = z_d` on `mask` and the applied
@@ -562,62 +602,13 @@ fn solve_constrained(
         || changed.len() > max_low_rank_update(n)
         || missing.len() > MAX_NEW_CORRECTIONS
     {
-        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-        let mut m = cache.rotated.clone();
-        for j in 0..n {
-            for p in cp[j]..cp[j + 1] {
-                let i = ri[p];
-                if i != j && (mask[i] || mask[j]) {
-                    m[p] = 0.0;
-                }
-            }
-        }
-        let sym = cache
-            .symbolic
-            .as_ref()
-            .map(|s| s.1.clone())
-            .ok_or_else(|| internal("a symbolic factorisation (internal)"))?;
-        cache.factor = None;
-        cache.columns.clear();
-        let llt = Llt::try_new_with_symbolic(sym, SparseColMatRef::new(pattern, &m), Side::Lower)
-            .map_err(fem_core::FemError::from)?;
-        cache.factor = Some(llt);
-        cache.factor_mask.clear();
-        cache.factor_mask.extend_from_slice(mask);
-        cache.factorizations += 1;
+        refactor(cache, pattern, mask)?;
         changed.clear();
         missing.clear();
     }
+    base_rhs(cache, pattern, contact_dofs, mask, z, force, w);
     let d0 = &cache.factor_mask;
-    // base right-hand side: the values kept from D₀, the forces elsewhere; −K̃_{·D} z_D from
-    // the columns of the kept Dirichlet dofs (contact dofs only)
-    w.fill(0.0);
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    for &d in contact_dofs {
-        if mask[d] && d0[d] {
-            let v = z[d];
-            for p in cp[d]..cp[d + 1] {
-                w[ri[p]] -= cache.rotated[p] * v;
-            }
-            for &(j, p) in &cache.upper[cache.slot[d]] {
-                w[j] -= cache.rotated[p] * v;
-            }
-        }
-    }
-    for &d in contact_dofs {
-        if d0[d] {
-            w[d] = if mask[d] {
-                diag(&cache.rotated, d) * z[d]
-            } else {
-                0.0
-            };
-        }
-    }
-    for &(d, f) in force {
-        if !d0[d] {
-            w[d] += f;
-        }
-    }
     let factor = cache
         .factor
         .as_ref()
@@ -710,6 +701,90 @@ fn solve_constrained(
         }
     }
     Ok(solves)
+}
+
+/// Factorises the rotated matrix with the Dirichlet rows and columns of `mask` decoupled (kept
+/// diagonal) and forgets the correction columns of the previous factor.
+fn refactor(
+    cache: &mut PrimalCache,
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    mask: &[bool],
+) -> Result<(), SolverError> {
+    let n = pattern.ncols();
+    let internal = |what: &'static str| SolverError::InvalidSetting {
+        what: "flexibility",
+        value: 0.0,
+        expected: what,
+    };
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let mut m = cache.rotated.clone();
+    for j in 0..n {
+        for p in cp[j]..cp[j + 1] {
+            let i = ri[p];
+            if i != j && (mask[i] || mask[j]) {
+                m[p] = 0.0;
+            }
+        }
+    }
+    let sym = cache
+        .symbolic
+        .as_ref()
+        .map(|s| s.1.clone())
+        .ok_or_else(|| internal("a symbolic factorisation (internal)"))?;
+    cache.factor = None;
+    cache.columns.clear();
+    let llt = Llt::try_new_with_symbolic(sym, SparseColMatRef::new(pattern, &m), Side::Lower)
+        .map_err(fem_core::FemError::from)?;
+    cache.factor = Some(llt);
+    cache.factor_mask.clear();
+    cache.factor_mask.extend_from_slice(mask);
+    cache.factorizations += 1;
+    Ok(())
+}
+
+/// The right-hand side of a solve with the current factor (of the mask `D₀`) into `w`: the values
+/// kept from `D₀`, the forces elsewhere, and `−K̃_{·D} z_D` from the columns of the kept
+/// Dirichlet dofs (contact dofs only).
+fn base_rhs(
+    cache: &PrimalCache,
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    contact_dofs: &[usize],
+    mask: &[bool],
+    z: &[f64],
+    force: &[(usize, f64)],
+    w: &mut [f64],
+) {
+    let d0 = &cache.factor_mask;
+    let diag = |values: &[f64], d: usize| values[position(pattern, d, d).unwrap_or(0)];
+    // base right-hand side: the values kept from D₀, the forces elsewhere; −K̃_{·D} z_D from
+    // the columns of the kept Dirichlet dofs (contact dofs only)
+    w.fill(0.0);
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    for &d in contact_dofs {
+        if mask[d] && d0[d] {
+            let v = z[d];
+            for p in cp[d]..cp[d + 1] {
+                w[ri[p]] -= cache.rotated[p] * v;
+            }
+            for &(j, p) in &cache.upper[cache.slot[d]] {
+                w[j] -= cache.rotated[p] * v;
+            }
+        }
+    }
+    for &d in contact_dofs {
+        if d0[d] {
+            w[d] = if mask[d] {
+                diag(&cache.rotated, d) * z[d]
+            } else {
+                0.0
+            };
+        }
+    }
+    for &(d, f) in force {
+        if !d0[d] {
+            w[d] += f;
+        }
+    }
 }
 
 #[allow(clippy::too_many_arguments)]

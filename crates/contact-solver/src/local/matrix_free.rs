@@ -111,33 +111,9 @@ pub fn solve_matrix_free<L: ContactLaw>(
     r: &mut [f64],
     x: &mut [f64],
 ) -> Result<MatrixFreeReport, SolverError> {
+    check_sizes(laws.len(), states.len(), rho0, r.len(), x.len())?;
     let nc = rho0.len();
     let m = 2 * nc;
-    for (what, len, expected) in [
-        ("laws", laws.len(), nc),
-        ("states", states.len(), nc),
-        ("r", r.len(), m),
-        ("x", x.len(), m),
-    ] {
-        if len != expected {
-            return Err(SolverError::SizeMismatch {
-                what,
-                expected,
-                found: len,
-            });
-        }
-    }
-    if let Some((index, &value)) = rho0
-        .iter()
-        .enumerate()
-        .find(|(_, a)| !(a.is_finite() && **a > 0.0))
-    {
-        return Err(SolverError::NonFinite {
-            what: "rho0",
-            index,
-            value,
-        });
-    }
     let mut applications = 1;
     apply(r, x)?;
     // q = x − W r is not needed: the residual scale uses ‖x(0)‖ through the first product
@@ -254,4 +230,43 @@ pub fn solve_matrix_free<L: ContactLaw>(
         restarts,
         theta,
     })
+}
+
+/// The sizes of a matrix-free solve (`n_c` laws and states, `2 n_c` reactions and jumps) and
+/// its base penalties (finite, positive).
+fn check_sizes(
+    n_laws: usize,
+    n_states: usize,
+    rho0: &[f64],
+    n_r: usize,
+    n_x: usize,
+) -> Result<(), SolverError> {
+    let nc = rho0.len();
+    let m = 2 * nc;
+    for (what, len, expected) in [
+        ("laws", n_laws, nc),
+        ("states", n_states, nc),
+        ("r", n_r, m),
+        ("x", n_x, m),
+    ] {
+        if len != expected {
+            return Err(SolverError::SizeMismatch {
+                what,
+                expected,
+                found: len,
+            });
+        }
+    }
+    if let Some((index, &value)) = rho0
+        .iter()
+        .enumerate()
+        .find(|(_, a)| !(a.is_finite() && **a > 0.0))
+    {
+        return Err(SolverError::NonFinite {
+            what: "rho0",
+            index,
+            value,
+        });
+    }
+    Ok(())
 }

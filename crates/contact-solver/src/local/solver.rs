@@ -101,57 +101,9 @@ impl UzawaSolver {
         states: &[L::State],
         r_start: Option<&[f64]>,
     ) -> Result<Solution, SolverError> {
-        let nc = problem.contact_count();
         let m = problem.size();
         let st = self.settings;
-        for (what, len) in [("laws", laws.len()), ("states", states.len())] {
-            if len != nc && !(len == 1 && nc > 0) {
-                return Err(SolverError::SizeMismatch {
-                    what,
-                    expected: nc,
-                    found: len,
-                });
-            }
-        }
-        if !(st.tol.is_finite() && st.tol > 0.0) {
-            return Err(SolverError::NonFinite {
-                what: "tol",
-                index: 0,
-                value: st.tol,
-            });
-        }
-        if !(st.rho_scale.is_finite() && st.rho_scale > 0.0) {
-            return Err(SolverError::NonFinite {
-                what: "rho_scale",
-                index: 0,
-                value: st.rho_scale,
-            });
-        }
-        if !(st.omega > 0.0 && st.omega < 2.0) {
-            return Err(SolverError::InvalidSetting {
-                what: "omega",
-                value: st.omega,
-                expected: "expected a value in (0, 2)",
-            });
-        }
-        let mut r = vec![0.0; m];
-        if let Some(r0) = r_start {
-            if r0.len() != m {
-                return Err(SolverError::SizeMismatch {
-                    what: "r_start",
-                    expected: m,
-                    found: r0.len(),
-                });
-            }
-            if let Some((index, &value)) = r0.iter().enumerate().find(|(_, a)| !a.is_finite()) {
-                return Err(SolverError::NonFinite {
-                    what: "r_start",
-                    index,
-                    value,
-                });
-            }
-            r.copy_from_slice(r0);
-        }
+        let mut r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
         self.sweeps.reset(problem, st.rho_scale);
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
@@ -264,6 +216,68 @@ impl UzawaSolver {
         };
         Ok(Solution { r, x, report })
     }
+}
+
+/// Checks the sizes and the settings of a solve and returns the starting reactions (`r_start`,
+/// or zero).
+fn starting_reactions(
+    st: &UzawaSettings,
+    problem: &ReducedProblem,
+    n_laws: usize,
+    n_states: usize,
+    r_start: Option<&[f64]>,
+) -> Result<Vec<f64>, SolverError> {
+    let nc = problem.contact_count();
+    let m = problem.size();
+    for (what, len) in [("laws", n_laws), ("states", n_states)] {
+        if len != nc && !(len == 1 && nc > 0) {
+            return Err(SolverError::SizeMismatch {
+                what,
+                expected: nc,
+                found: len,
+            });
+        }
+    }
+    if !(st.tol.is_finite() && st.tol > 0.0) {
+        return Err(SolverError::NonFinite {
+            what: "tol",
+            index: 0,
+            value: st.tol,
+        });
+    }
+    if !(st.rho_scale.is_finite() && st.rho_scale > 0.0) {
+        return Err(SolverError::NonFinite {
+            what: "rho_scale",
+            index: 0,
+            value: st.rho_scale,
+        });
+    }
+    if !(st.omega > 0.0 && st.omega < 2.0) {
+        return Err(SolverError::InvalidSetting {
+            what: "omega",
+            value: st.omega,
+            expected: "expected a value in (0, 2)",
+        });
+    }
+    let mut r = vec![0.0; m];
+    if let Some(r0) = r_start {
+        if r0.len() != m {
+            return Err(SolverError::SizeMismatch {
+                what: "r_start",
+                expected: m,
+                found: r0.len(),
+            });
+        }
+        if let Some((index, &value)) = r0.iter().enumerate().find(|(_, a)| !a.is_finite()) {
+            return Err(SolverError::NonFinite {
+                what: "r_start",
+                index,
+                value,
+            });
+        }
+        r.copy_from_slice(r0);
+    }
+    Ok(r)
 }
 
 #[cfg(test)]

@@ -334,28 +334,7 @@ impl PulloutSpec {
             ),
         ];
 
-        // Installation forces for a unit δ: the soil alone (the pile is detached and held at its
-        // head, so K stays definite), u_r = δ₁ on the soil's interface nodes.
-        let unit_delta = 1e-3;
-        let mut inst_supports = supports.clone();
-        inst_supports.prescribe(&shaft_soil, Component::X, unit_delta)?;
-        let inst_model = LinearElasticModel::new(
-            mesh.clone(),
-            Idealization::Axisymmetric,
-            &materials,
-            inst_supports,
-        )?;
-        let u_unit = inst_model.solve(1.0)?;
-        let reactions = inst_model.reactions(&u_unit, 1.0)?;
-        let unit_forces: Vec<f64> = shaft_soil
-            .iter()
-            .map(|&n| {
-                reactions
-                    .iter()
-                    .find(|((node, c), _)| *node == n && *c == Component::X)
-                    .map_or(0.0, |(_, r)| r / unit_delta)
-            })
-            .collect();
+        let unit_forces = unit_installation_forces(&mesh, &materials, &supports, &shaft_soil)?;
 
         let mut model =
             LinearElasticModel::new(mesh, Idealization::Axisymmetric, &materials, supports)?;
@@ -513,6 +492,39 @@ impl PulloutSpec {
             _ => Ok(()),
         }
     }
+}
+
+/// The soil's radial reactions per unit installation displacement `δ` at its interface nodes
+/// (`shaft_soil`): the soil alone (the pile is detached and held at its head, so `K` stays
+/// definite) with `u_r = δ₁` prescribed on those nodes, divided by `δ₁`.
+fn unit_installation_forces(
+    mesh: &Mesh,
+    materials: &[(u32, Material)],
+    supports: &Supports,
+    shaft_soil: &[usize],
+) -> Result<Vec<f64>, SolverError> {
+    // Installation forces for a unit δ: the soil alone (the pile is detached and held at its
+    // head, so K stays definite), u_r = δ₁ on the soil's interface nodes.
+    let unit_delta = 1e-3;
+    let mut inst_supports = supports.clone();
+    inst_supports.prescribe(shaft_soil, Component::X, unit_delta)?;
+    let inst_model = LinearElasticModel::new(
+        mesh.clone(),
+        Idealization::Axisymmetric,
+        materials,
+        inst_supports,
+    )?;
+    let u_unit = inst_model.solve(1.0)?;
+    let reactions = inst_model.reactions(&u_unit, 1.0)?;
+    Ok(shaft_soil
+        .iter()
+        .map(|&n| {
+            reactions
+                .iter()
+                .find(|((node, c), _)| *node == n && *c == Component::X)
+                .map_or(0.0, |(_, r)| r / unit_delta)
+        })
+        .collect())
 }
 
 /// Duplicates the pile's tip nodes at `r < radius` (bonded to the soil by the generator) so the
