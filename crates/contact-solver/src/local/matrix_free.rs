@@ -23,9 +23,10 @@
 //! `n_c = 33`, 633 for 129; Coulomb: 194 and 2790. Building `F*` costs `2 n_c` solves, so the
 //! dense path is faster whenever `F*` fits in memory; this solver is for when it does not.
 
+use super::residual::{local, natural_residual, norm};
 use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, UzawaSettings};
 use crate::error::SolverError;
-use contact_laws::{ContactLaw, LocalVec2};
+use contact_laws::ContactLaw;
 
 /// What the matrix-free solve did.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,32 +47,6 @@ pub struct MatrixFreeReport {
     pub restarts: usize,
     /// Final global factor `θ` of `ρ⁰`.
     pub theta: f64,
-}
-
-#[inline]
-fn local(v: &[f64], i: usize) -> LocalVec2 {
-    LocalVec2::planar(v[2 * i], v[2 * i + 1])
-}
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|a| a * a).sum::<f64>().sqrt()
-}
-
-fn natural_residual<L: ContactLaw>(
-    laws: &[L],
-    states: &[L::State],
-    rho0: &[f64],
-    r: &[f64],
-    x: &[f64],
-) -> f64 {
-    let mut s2 = 0.0;
-    for (i, &rho) in rho0.iter().enumerate() {
-        let ri = local(r, i);
-        let tau = ri + laws[i].modified_velocity(&local(x, i), &states[i]) * rho;
-        let d = laws[i].project(&tau, &states[i]) - ri;
-        s2 += d.dot(&d);
-    }
-    s2.sqrt()
 }
 
 /// Solves `x = W r + q` given only `apply(r, x)`, which must write `W r + q` into `x`.
