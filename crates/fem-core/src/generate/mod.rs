@@ -10,8 +10,9 @@
 //! h_i = h_0 q^i,  i = 0 … n−1,   q = ratio^(1/(n−1)),   Σ h_i = b − a
 //! ```
 //!
-//! Boundaries are named: edge sets hold the boundary [`Side`]s (sorted along the boundary) and
-//! node sets of the same name hold all their nodes, mid-side nodes included.
+//! Boundaries are named: edge sets hold the boundary [`Side`](crate::mesh::Side)s (sorted
+//! along the boundary) and node sets of the same name hold all their nodes, mid-side nodes
+//! included.
 //!
 //! The pile mesh follows Terfaya (2019), ch. 6: axisymmetric `(r, z)` with `z` up and the
 //! ground surface at `z = 0`, a pile of diameter `D = 0.27 m` and length `L_p = 13 m`, soil at
