@@ -1,5 +1,7 @@
 //! Errors of `fem-core`.
 
+use crate::component::Component;
+
 /// Error of `fem-core`: invalid mesh, material, boundary condition or load, or a failure of
 /// the sparse factorisation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -114,15 +116,36 @@ pub enum FemError {
         /// Actual length.
         got: usize,
     },
-    /// The stiffness is not positive definite: a rigid-body mode (missing supports) or a
-    /// mechanism. `pivot` is the first non-positive pivot of the Cholesky factorisation, in the
-    /// fill-reducing order.
+    /// The stiffness of a model is not positive definite: a rigid-body mode (missing
+    /// supports), a mechanism, or a node that no element connects. The Cholesky factorisation
+    /// stopped at the dof `component` of node `node`: that dof takes part in the zero-energy
+    /// motion (for a node that no element connects, it is that node).
     #[error(
-        "stiffness matrix is not positive definite (pivot {pivot}): the structure probably lacks supports against a rigid-body motion"
+        "stiffness matrix is not positive definite at node {node}, component {component} \
+         (row {row} of the reduced system): the structure probably lacks supports against a \
+         rigid-body motion of that dof, or no element connects that node"
     )]
     NotPositiveDefinite {
-        /// Index of the first non-positive pivot.
-        pivot: usize,
+        /// Index of the node (in the mesh's numbering) whose dof had the first non-positive
+        /// pivot.
+        node: usize,
+        /// Which of its displacement components.
+        component: Component,
+        /// The same dof as a row of the reduced system (the free-dof index of the model's
+        /// [`DofMap`](crate::DofMap)), not faer's permuted pivot index.
+        row: usize,
+    },
+    /// A matrix is not positive definite: its Cholesky factorisation met a non-positive
+    /// pivot. [`SpdSolver::factor`](crate::SpdSolver::factor) reports the `row` of the matrix
+    /// (in the matrix's own numbering, mapped back through the fill-reducing permutation); a
+    /// faer factorisation converted with `From<faer::sparse::linalg::LltError>` cannot be
+    /// mapped back (faer's index is in its permuted order), so `row` is `None`. A
+    /// [`LinearElasticModel`](crate::LinearElasticModel) reports
+    /// [`FemError::NotPositiveDefinite`] instead, with the node and component.
+    #[error("matrix is not positive definite: non-positive Cholesky pivot{}", at_row(.row))]
+    NonPositivePivot {
+        /// Row (and column) of the matrix whose pivot failed, when known.
+        row: Option<usize>,
     },
     /// The sparse linear algebra failed for a reason other than definiteness (allocation,
     /// index overflow).
@@ -158,14 +181,22 @@ impl From<faer::sparse::CreationError> for FemError {
 }
 
 impl From<faer::sparse::linalg::LltError> for FemError {
+    /// For factorisations done with faer directly (not through [`crate::SpdSolver`]): faer's
+    /// pivot index is in its fill-reducing order, which its high-level `Llt` does not expose,
+    /// so the row is left unknown.
     fn from(e: faer::sparse::linalg::LltError) -> Self {
         match e {
             faer::sparse::linalg::LltError::Numeric(
-                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index },
-            ) => FemError::NotPositiveDefinite { pivot: index },
+                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { .. },
+            ) => FemError::NonPositivePivot { row: None },
             faer::sparse::linalg::LltError::Generic(g) => g.into(),
         }
     }
+}
+
+/// ` at row {row}`, or nothing when the row is unknown.
+fn at_row(row: &Option<usize>) -> String {
+    row.map_or_else(String::new, |row| format!(" at row {row}"))
 }
 
 /// Checks that `value` is finite and `> 0`.

@@ -23,6 +23,7 @@
 #![warn(missing_docs)]
 
 pub mod analytical;
+mod component;
 pub mod error;
 pub mod generate;
 pub mod gmsh;

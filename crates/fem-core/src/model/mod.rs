@@ -161,9 +161,27 @@ impl LinearElasticModel {
             );
         }
         self.coupling = merge(coupling);
-        self.solver.factor(self.pattern.view(&self.values))?;
+        self.solver
+            .factor(self.pattern.view(&self.values))
+            .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
         Ok(())
+    }
+
+    /// Names the node and component of a failed pivot: the solver reports a row of the
+    /// reduced system, which the dof map turns into `(node, component)`.
+    fn name_failed_dof(&self, e: FemError) -> FemError {
+        match e {
+            FemError::NonPositivePivot { row: Some(row) } => match self.dofs.free_dof_owner(row) {
+                Some((node, component)) => FemError::NotPositiveDefinite {
+                    node,
+                    component,
+                    row,
+                },
+                None => e,
+            },
+            e => e,
+        }
     }
 
     /// The mesh.
@@ -632,5 +650,82 @@ mod tests {
                 element: 0
             }
         );
+    }
+
+    /// Issue 13: a stiffness that is not positive definite names a node and a component of
+    /// the model, not faer's pivot in its permuted order.
+    #[test]
+    fn issue_13_not_positive_definite_names_node() {
+        use crate::generate::{RectangleSpec, rectangle};
+        let m = Material::new(210e9, 0.3, 0.0).unwrap();
+
+        // A supported 3 × 2 rectangle plus one node (inserted as node 5) that no element
+        // connects. Its two rows and columns of K are zero but for the structural diagonal
+        // (0). Every leading block of P K Pᵀ without its dofs is a principal submatrix of the
+        // supported rectangle's stiffness (SPD), and the first block that holds one of its
+        // dofs has the pivot 0 − 0 = 0 exactly: the factorisation must stop at node 5,
+        // whichever of its components the ordering puts first.
+        let rect = rectangle(&RectangleSpec::new([0.0, 3.0], [0.0, 2.0], 3, 2)).unwrap();
+        let extra = 5;
+        let shift = |n: usize| if n >= extra { n + 1 } else { n };
+        let mut nodes = rect.nodes().to_vec();
+        nodes.insert(extra, [10.0, 10.0]);
+        let connectivity = rect.connectivity().iter().map(|&n| shift(n)).collect();
+        let mesh = Mesh::new(nodes, ElementKind::Tri3, connectivity, vec![]).unwrap();
+        let bottom: Vec<usize> = rect
+            .node_set("bottom")
+            .unwrap()
+            .iter()
+            .map(|&n| shift(n))
+            .collect();
+        let mut supports = Supports::new();
+        supports
+            .fix(&bottom, Component::X)
+            .fix(&bottom, Component::Y);
+        let dofs = DofMap::new(mesh.node_count(), &supports).unwrap();
+        let err = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
+            .unwrap_err();
+        let FemError::NotPositiveDefinite {
+            node,
+            component,
+            row,
+        } = err
+        else {
+            panic!("expected NotPositiveDefinite, got {err:?}");
+        };
+        assert_eq!(node, extra);
+        assert_eq!(dofs.free_dofs(node)[component as usize], Some(row));
+        assert!(
+            err.to_string()
+                .contains(&format!("node {extra}, component {component}"))
+        );
+
+        // Rectangles fixed in y only along the bottom: the one rigid-body mode is the
+        // translation along x, u = (1, 0) at every node. Its leading block first becomes
+        // singular at the last x dof eliminated, so a failure must name an x dof. (Round-off
+        // can instead leave that pivot tiny and positive, and the factorisation succeeds: so
+        // only the meshes that fail are checked, and at least one must.)
+        let mut failures = 0;
+        for kind in [ElementKind::Tri3, ElementKind::Tri6] {
+            for (nx, ny) in [(1, 1), (2, 3), (4, 4), (10, 7)] {
+                let spec = RectangleSpec {
+                    kind,
+                    ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], nx, ny)
+                };
+                let mesh = rectangle(&spec).unwrap();
+                let mut supports = Supports::new();
+                supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
+                match LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
+                {
+                    Ok(_) => {}
+                    Err(FemError::NotPositiveDefinite { component, .. }) => {
+                        assert_eq!(component, Component::X, "{kind:?} {nx}×{ny}");
+                        failures += 1;
+                    }
+                    Err(e) => panic!("{kind:?} {nx}×{ny}: {e:?}"),
+                }
+            }
+        }
+        assert!(failures > 0);
     }
 }
