@@ -1,6 +1,9 @@
 //! Errors of `fem-core`.
 
 use crate::component::Component;
+use std::error::Error;
+use std::fmt;
+use std::sync::Arc;
 
 /// Error of `fem-core`: invalid mesh, material, boundary condition or load, or a failure of
 /// the sparse factorisation.
@@ -154,14 +157,81 @@ pub enum FemError {
         /// faer's own description.
         detail: String,
     },
-    /// Reading or writing a file failed.
+    /// Reading or writing a file failed, or a file's content is not valid. `detail` says
+    /// what failed in words; the underlying error, when there is one (the operating system's
+    /// I/O error, the VTK writer's error), is the [`source`](std::error::Error::source) and
+    /// is not repeated in the message.
     #[error("{path}: {detail}")]
     Io {
         /// The file.
         path: String,
-        /// What went wrong.
+        /// What went wrong: `cannot read the file`, `cannot write the file`, …, or, for
+        /// invalid content, the parser's message.
         detail: String,
+        /// The underlying error; `None` when the content is invalid.
+        #[source]
+        source: Option<IoCause>,
     },
+}
+
+/// The underlying error of a [`FemError::Io`] (an I/O error, the VTK writer's error), shared
+/// so that [`FemError`] stays `Clone`. Its `Display` is the wrapped error's; two causes are
+/// equal when their messages are.
+#[derive(Clone, Debug)]
+pub struct IoCause(Arc<dyn Error + Send + Sync + 'static>);
+
+impl IoCause {
+    /// Wraps an error.
+    pub fn new(e: impl Error + Send + Sync + 'static) -> Self {
+        Self(Arc::new(e))
+    }
+
+    /// The wrapped error (e.g. to downcast it with `downcast_ref::<std::io::Error>()`).
+    pub fn get_ref(&self) -> &(dyn Error + Send + Sync + 'static) {
+        &*self.0
+    }
+}
+
+impl fmt::Display for IoCause {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl Error for IoCause {
+    fn source(&self) -> Option<&(dyn Error + 'static)> {
+        self.0.source()
+    }
+}
+
+impl PartialEq for IoCause {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.to_string() == other.0.to_string()
+    }
+}
+
+impl FemError {
+    /// A [`FemError::Io`] for `path` with the underlying error `source`.
+    pub(crate) fn io(
+        path: impl Into<String>,
+        detail: impl Into<String>,
+        source: impl Error + Send + Sync + 'static,
+    ) -> Self {
+        FemError::Io {
+            path: path.into(),
+            detail: detail.into(),
+            source: Some(IoCause::new(source)),
+        }
+    }
+
+    /// A [`FemError::Io`] for invalid content of `path` (no underlying error).
+    pub(crate) fn invalid_file(path: impl Into<String>, detail: impl Into<String>) -> Self {
+        FemError::Io {
+            path: path.into(),
+            detail: detail.into(),
+            source: None,
+        }
+    }
 }
 
 impl From<faer::sparse::FaerError> for FemError {
