@@ -5,17 +5,9 @@
 //! prescribed *value* between load steps needs no refactorisation; changing *which* dofs are
 //! constrained changes the dof numbering (and so the pattern and the factorisation).
 
+pub use crate::component::Component;
 use crate::error::{FemError, finite};
 use std::collections::BTreeMap;
-
-/// A displacement component: `X` (`u_x`, or `u_r` in axisymmetry) or `Y` (`u_y`, or `u_z`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Component {
-    /// First component (`x` or `r`).
-    X = 0,
-    /// Second component (`y` or `z`).
-    Y = 1,
-}
 
 /// The set of constrained dofs with their prescribed values (`0` for a fixed dof).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -177,6 +169,17 @@ impl DofMap {
     pub fn prescribed(&self) -> &[(usize, Component)] {
         &self.prescribed
     }
+
+    /// The node and component of free dof `dof` (a row of the reduced system), `None` if
+    /// `dof >= free_count()`. A linear search: meant for error reports, not for loops.
+    pub fn free_dof_owner(&self, dof: usize) -> Option<(usize, Component)> {
+        self.dofs.iter().enumerate().find_map(|(node, d)| {
+            [Component::X, Component::Y]
+                .into_iter()
+                .zip(d)
+                .find_map(|(c, d)| (*d == Dof::Free(dof)).then_some((node, c)))
+        })
+    }
 }
 
 #[cfg(test)]
@@ -195,6 +198,9 @@ mod tests {
         assert_eq!(map.dofs(2), [Dof::Free(3), Dof::Prescribed(1)]);
         assert_eq!(map.free_dofs(1), [Some(1), Some(2)]);
         assert_eq!(map.prescribed(), &[(0, Component::X), (2, Component::Y)]);
+        assert_eq!(map.free_dof_owner(0), Some((0, Component::Y)));
+        assert_eq!(map.free_dof_owner(3), Some((2, Component::X)));
+        assert_eq!(map.free_dof_owner(4), None);
     }
 
     #[test]

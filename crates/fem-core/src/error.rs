@@ -1,5 +1,10 @@
 //! Errors of `fem-core`.
 
+use crate::component::Component;
+use std::error::Error;
+use std::fmt;
+use std::sync::Arc;
+
 /// Error of `fem-core`: invalid mesh, material, boundary condition or load, or a failure of
 /// the sparse factorisation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -114,15 +119,36 @@ pub enum FemError {
         /// Actual length.
         got: usize,
     },
-    /// The stiffness is not positive definite: a rigid-body mode (missing supports) or a
-    /// mechanism. `pivot` is the first non-positive pivot of the Cholesky factorisation, in the
-    /// fill-reducing order.
+    /// The stiffness of a model is not positive definite: a rigid-body mode (missing
+    /// supports), a mechanism, or a node that no element connects. The Cholesky factorisation
+    /// stopped at the dof `component` of node `node`: that dof takes part in the zero-energy
+    /// motion (for a node that no element connects, it is that node).
     #[error(
-        "stiffness matrix is not positive definite (pivot {pivot}): the structure probably lacks supports against a rigid-body motion"
+        "stiffness matrix is not positive definite at node {node}, component {component} \
+         (row {row} of the reduced system): the structure probably lacks supports against a \
+         rigid-body motion of that dof, or no element connects that node"
     )]
     NotPositiveDefinite {
-        /// Index of the first non-positive pivot.
-        pivot: usize,
+        /// Index of the node (in the mesh's numbering) whose dof had the first non-positive
+        /// pivot.
+        node: usize,
+        /// Which of its displacement components.
+        component: Component,
+        /// The same dof as a row of the reduced system (the free-dof index of the model's
+        /// [`DofMap`](crate::DofMap)), not faer's permuted pivot index.
+        row: usize,
+    },
+    /// A matrix is not positive definite: its Cholesky factorisation met a non-positive
+    /// pivot. [`SpdSolver::factor`](crate::SpdSolver::factor) reports the `row` of the matrix
+    /// (in the matrix's own numbering, mapped back through the fill-reducing permutation); a
+    /// faer factorisation converted with `From<faer::sparse::linalg::LltError>` cannot be
+    /// mapped back (faer's index is in its permuted order), so `row` is `None`. A
+    /// [`LinearElasticModel`](crate::LinearElasticModel) reports
+    /// [`FemError::NotPositiveDefinite`] instead, with the node and component.
+    #[error("matrix is not positive definite: non-positive Cholesky pivot{}", at_row(.row))]
+    NonPositivePivot {
+        /// Row (and column) of the matrix whose pivot failed, when known.
+        row: Option<usize>,
     },
     /// The sparse linear algebra failed for a reason other than definiteness (allocation,
     /// index overflow).
@@ -131,14 +157,81 @@ pub enum FemError {
         /// faer's own description.
         detail: String,
     },
-    /// Reading or writing a file failed.
+    /// Reading or writing a file failed, or a file's content is not valid. `detail` says
+    /// what failed in words; the underlying error, when there is one (the operating system's
+    /// I/O error, the VTK writer's error), is the [`source`](std::error::Error::source) and
+    /// is not repeated in the message.
     #[error("{path}: {detail}")]
     Io {
         /// The file.
         path: String,
-        /// What went wrong.
+        /// What went wrong: `cannot read the file`, `cannot write the file`, …, or, for
+        /// invalid content, the parser's message.
         detail: String,
+        /// The underlying error; `None` when the content is invalid.
+        #[source]
+        source: Option<IoCause>,
     },
+}
+
+/// The underlying error of a [`FemError::Io`] (an I/O error, the VTK writer's error), shared
+/// so that [`FemError`] stays `Clone`. Its `Display` is the wrapped error's; two causes are
+/// equal when their messages are.
+#[derive(Clone, Debug)]
+pub struct IoCause(Arc<dyn Error + Send + Sync + 'static>);
+
+impl IoCause {
+    /// Wraps an error.
+    pub fn new(e: impl Error + Send + Sync + 'static) -> Self {
+        Self(Arc::new(e))
+    }
+
+    /// The wrapped error (e.g. to downcast it with `downcast_ref::<std::io::Error>()`).
+    pub fn get_ref(&self) -> &(dyn Error + Send + Sync + 'static) {
+        &*self.0
+    }
+}
+
+impl fmt::Display for IoCause {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl Error for IoCause {
+    fn source(&self) -> Option<&(dyn Error + 'static)> {
+        self.0.source()
+    }
+}
+
+impl PartialEq for IoCause {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.to_string() == other.0.to_string()
+    }
+}
+
+impl FemError {
+    /// A [`FemError::Io`] for `path` with the underlying error `source`.
+    pub(crate) fn io(
+        path: impl Into<String>,
+        detail: impl Into<String>,
+        source: impl Error + Send + Sync + 'static,
+    ) -> Self {
+        FemError::Io {
+            path: path.into(),
+            detail: detail.into(),
+            source: Some(IoCause::new(source)),
+        }
+    }
+
+    /// A [`FemError::Io`] for invalid content of `path` (no underlying error).
+    pub(crate) fn invalid_file(path: impl Into<String>, detail: impl Into<String>) -> Self {
+        FemError::Io {
+            path: path.into(),
+            detail: detail.into(),
+            source: None,
+        }
+    }
 }
 
 impl From<faer::sparse::FaerError> for FemError {
@@ -158,14 +251,22 @@ impl From<faer::sparse::CreationError> for FemError {
 }
 
 impl From<faer::sparse::linalg::LltError> for FemError {
+    /// For factorisations done with faer directly (not through [`crate::SpdSolver`]): faer's
+    /// pivot index is in its fill-reducing order, which its high-level `Llt` does not expose,
+    /// so the row is left unknown.
     fn from(e: faer::sparse::linalg::LltError) -> Self {
         match e {
             faer::sparse::linalg::LltError::Numeric(
-                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index },
-            ) => FemError::NotPositiveDefinite { pivot: index },
+                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { .. },
+            ) => FemError::NonPositivePivot { row: None },
             faer::sparse::linalg::LltError::Generic(g) => g.into(),
         }
     }
+}
+
+/// ` at row {row}`, or nothing when the row is unknown.
+fn at_row(row: &Option<usize>) -> String {
+    row.map_or_else(String::new, |row| format!(" at row {row}"))
 }
 
 /// Checks that `value` is finite and `> 0`.

@@ -45,10 +45,8 @@ use std::path::Path;
 /// ```
 pub fn read_msh(path: &Path) -> Result<Mesh, FemError> {
     let origin = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| FemError::Io {
-        path: origin.clone(),
-        detail: e.to_string(),
-    })?;
+    let bytes =
+        std::fs::read(path).map_err(|e| FemError::io(origin.clone(), "cannot read the file", e))?;
     parse(&bytes, &origin)
 }
 
@@ -72,10 +70,7 @@ pub fn parse_msh(bytes: &[u8]) -> Result<Mesh, FemError> {
 }
 
 fn parse(bytes: &[u8], origin: &str) -> Result<Mesh, FemError> {
-    let io = |detail: String| FemError::Io {
-        path: origin.to_string(),
-        detail,
-    };
+    let io = |detail: String| FemError::invalid_file(origin, detail);
     check_header(bytes).map_err(|e| match e {
         HeaderError::Version(v) => FemError::Unsupported {
             what: format!(
@@ -184,10 +179,7 @@ fn parser_error(e: &MshParserError<&[u8]>, bytes: &[u8], origin: &str) -> FemErr
         };
     }
     let Some((rest, kind)) = trace.first() else {
-        return FemError::Io {
-            path: origin.to_string(),
-            detail: "invalid MSH 4.1 data".to_string(),
-        };
+        return FemError::invalid_file(origin, "invalid MSH 4.1 data");
     };
     let offset = bytes.len().saturating_sub(rest.len());
     let line = bytes[..offset].iter().filter(|&&b| b == b'\n').count() + 1;
@@ -203,13 +195,13 @@ fn parser_error(e: &MshParserError<&[u8]>, bytes: &[u8], origin: &str) -> FemErr
         }
         None => kind.to_string(),
     };
-    FemError::Io {
-        path: origin.to_string(),
-        detail: format!(
+    FemError::invalid_file(
+        origin,
+        format!(
             "invalid MSH 4.1 data near line {line}, byte {offset} (in {}): {what}",
             context.join(" > ")
         ),
-    }
+    )
 }
 
 /// `MSH_QUA_4`-style name of a Gmsh element type (as in Gmsh's `GmshDefines.h`).
@@ -250,10 +242,7 @@ fn build(
     names: &HashMap<(i32, i32), String>,
     origin: &str,
 ) -> Result<Mesh, FemError> {
-    let io = |detail: String| FemError::Io {
-        path: origin.to_string(),
-        detail,
-    };
+    let io = |detail: String| FemError::invalid_file(origin, detail);
     let data = file.data;
 
     // Physical tags by entity (dimension, tag).

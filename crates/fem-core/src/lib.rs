@@ -1,12 +1,29 @@
-//! Finite-element core of `bipotential`: 3-node (P1) and 6-node (P2) triangles, plane
-//! strain, plane stress and axisymmetry, sparse assembly and Cholesky factorisation.
+//! Finite-element core of `bipotential`: 2D linear elasticity on triangle meshes.
 //!
-//! It knows nothing about contact. The contact solver sees a body only through the
-//! `Structure` trait (in progress, issue 4).
+//! What the crate holds:
+//! - **Meshes** ([`mesh`]): 3-node (P1) and 6-node (P2) triangles with regions, node sets and
+//!   edge sets; structured generators ([`generate`]: graded rectangles, the axisymmetric
+//!   pile-in-soil domain); a Gmsh `.msh` 4.1 reader ([`gmsh`]); VTK `.vtu`/`.pvd` output for
+//!   ParaView ([`vtk`]).
+//! - **Elements** ([`element`]): the [`Element`] trait and the isoparametric triangles
+//!   [`Tri3`] and [`Tri6`], integrated with the rules of [`quadrature`], for an isotropic
+//!   [`Material`] under plane strain, plane stress or axisymmetry ([`Idealization`]).
+//! - **Assembly and solution**: supports and the free/prescribed dof numbering
+//!   ([`dirichlet`]), the sparsity pattern built once and refilled in place ([`assembly`]),
+//!   and a sparse Cholesky solver whose symbolic analysis is done once per pattern
+//!   ([`linear_solver`], [`SpdSolver`]).
+//! - **The model** ([`model`]): [`LinearElasticModel`] assembles and factors the reduced
+//!   stiffness, applies loads, solves, and recovers stresses, strains and reactions.
+//! - **The seam to the contact solver**: the [`Structure`] trait, implemented by
+//!   [`LinearElasticModel`] and by users' own FE codes.
+//! - **Verification**: closed-form elasticity solutions ([`analytical`]).
+//!
+//! It knows nothing about contact. Errors are [`FemError`].
 
 #![warn(missing_docs)]
 
 pub mod analytical;
+mod component;
 pub mod error;
 pub mod generate;
 pub mod gmsh;
@@ -17,7 +34,7 @@ pub mod vtk;
 
 pub use error::FemError;
 pub use idealization::Idealization;
-pub use material::Material;
+pub use material::{Material, MaterialParams};
 pub use mesh::{ElementKind, Mesh, Side};
 pub mod element;
 pub mod quadrature;

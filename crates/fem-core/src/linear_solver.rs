@@ -3,19 +3,29 @@
 //! The symbolic analysis (fill-reducing ordering, elimination tree) is done once per sparsity
 //! pattern; the numeric factorisation is redone only when the values change; solves take one
 //! or many right-hand sides.
+//!
+//! The wrapper drives faer's low-level `SymbolicCholesky` (with the same default parameters
+//! as faer's `SymbolicLlt`/`Llt`, so the numbers are the same) because only that level
+//! exposes the fill-reducing permutation: a failed pivot is reported by faer in the permuted
+//! order, and [`SpdSolver::factor`] maps it back to a row of the caller's matrix.
 
 use crate::error::FemError;
-use faer::MatMut;
-use faer::Side;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltError;
+use faer::sparse::linalg::cholesky::{
+    LltRef, SymbolicCholesky, SymbolicCholeskyRaw, factorize_symbolic_cholesky,
+};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Side};
+use std::sync::Arc;
 
 /// A sparse SPD solver for matrices given by their lower triangle in CSC form.
 #[derive(Clone, Debug)]
 pub struct SpdSolver {
-    symbolic: SymbolicLlt<usize>,
-    numeric: Option<Llt<usize, f64>>,
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    /// Numeric values of the factor `L` (valid when `factored`).
+    values: Vec<f64>,
+    factored: bool,
     dim: usize,
     factorizations: usize,
 }
@@ -26,27 +36,94 @@ impl SpdSolver {
     /// # Errors
     /// [`FemError::LinearAlgebra`] if faer fails (allocation, index overflow).
     pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<Self, FemError> {
-        let symbolic = SymbolicLlt::try_new(pattern, Side::Lower)?;
-        Ok(Self {
-            symbolic,
-            numeric: None,
-            dim: pattern.nrows(),
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            Default::default(),
+            Default::default(),
+        )?;
+        Ok(Self::with_symbolic(symbolic))
+    }
+
+    fn with_symbolic(symbolic: SymbolicCholesky<usize>) -> Self {
+        Self {
+            dim: symbolic.nrows(),
+            symbolic: Arc::new(symbolic),
+            values: Vec::new(),
+            factored: false,
             factorizations: 0,
-        })
+        }
     }
 
     /// Numeric Cholesky factorisation of `matrix` (lower triangle, same pattern as given to
     /// [`SpdSolver::new`]).
     ///
     /// # Errors
-    /// [`FemError::NotPositiveDefinite`] if a pivot is not positive (typically a rigid-body
-    /// mode: missing supports), [`FemError::LinearAlgebra`] otherwise.
+    /// - [`FemError::NonPositivePivot`] if a pivot is not positive (typically a rigid-body
+    ///   mode: missing supports), with `row: Some(r)`, `r` the row of `matrix` (not faer's
+    ///   permuted index) whose pivot failed;
+    /// - [`FemError::LinearAlgebra`] otherwise.
     pub fn factor(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> Result<(), FemError> {
-        self.numeric = None;
-        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), matrix, Side::Lower)?;
-        self.numeric = Some(llt);
-        self.factorizations += 1;
-        Ok(())
+        self.factored = false;
+        let symbolic = &*self.symbolic;
+        let len_val = symbolic.len_val();
+        self.values.clear();
+        self.values
+            .try_reserve_exact(len_val)
+            .map_err(|_| faer::sparse::FaerError::OutOfMemory)?;
+        self.values.resize(len_val, 0.0);
+        let par = faer::get_global_parallelism();
+        let mut scratch = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|_| faer::sparse::FaerError::OutOfMemory)?;
+        let result = symbolic.factorize_numeric_llt::<f64>(
+            &mut self.values,
+            matrix,
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        );
+        match result.map(|_| ()) {
+            Ok(()) => {
+                self.factored = true;
+                self.factorizations += 1;
+                Ok(())
+            }
+            Err(LltError::NonPositivePivot { index }) => Err(self.failed_row(index)),
+        }
+    }
+
+    /// The row of the caller's matrix whose pivot failed, from faer's `index`.
+    ///
+    /// faer 0.24 reports `index` in the *permuted* matrix `P A Pᵀ`, and not with the same
+    /// base on its two paths: the simplicial factorisation reports column `k` as `k + 1`,
+    /// the supernodal one (a dense Cholesky per supernode) as `k`. Column `k` of `P A Pᵀ` is
+    /// row `perm_fwd[k]` of `A` (faer's own solve gathers `x[k] = b[perm_fwd[k]]`). The
+    /// unit tests `failed_pivot_row_works_*` pin both paths: a strongly negative diagonal
+    /// entry in a positive definite matrix fails exactly at its own pivot.
+    fn failed_row(&self, index: usize) -> FemError {
+        let k = match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(_) => index.checked_sub(1),
+            SymbolicCholeskyRaw::Supernodal(_) => Some(index),
+        };
+        let row = match (k, self.symbolic.perm()) {
+            (Some(k), Some(perm)) => perm.arrays().0.get(k).copied(),
+            (Some(k), None) => (k < self.dim).then_some(k),
+            (None, _) => None,
+        };
+        match row {
+            Some(row) => FemError::NonPositivePivot { row: Some(row) },
+            None => FemError::LinearAlgebra {
+                detail: format!(
+                    "the Cholesky factorisation reported a non-positive pivot at index {index}, \
+                     outside the matrix of dimension {}",
+                    self.dim
+                ),
+            },
+        }
     }
 
     /// Dimension of the system.
@@ -79,9 +156,99 @@ impl SpdSolver {
     #[track_caller]
     pub fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) {
         assert_eq!(rhs.nrows(), self.dim, "right-hand side rows");
-        self.numeric
-            .as_ref()
-            .expect("SpdSolver::factor must succeed before solving")
-            .solve_in_place(rhs);
+        assert!(
+            self.factored,
+            "SpdSolver::factor must succeed before solving"
+        );
+        let par = faer::get_global_parallelism();
+        let mut scratch = MemBuffer::new(
+            self.symbolic
+                .solve_in_place_scratch::<f64>(rhs.ncols(), par),
+        );
+        LltRef::<usize, f64>::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            par,
+            MemStack::new(&mut scratch),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::linalg::SupernodalThreshold;
+    use faer::sparse::linalg::cholesky::CholeskySymbolicParams;
+    use faer::sparse::{SparseColMat, Triplet};
+
+    /// Lower triangle of the 5-point Laplacian on an `m × m` grid (SPD), plus `shift` on
+    /// the diagonal of `row`.
+    fn laplacian(m: usize, row: usize, shift: f64) -> SparseColMat<usize, f64> {
+        let n = m * m;
+        let mut t = Vec::new();
+        for j in 0..m {
+            for i in 0..m {
+                let k = j * m + i;
+                t.push(Triplet::new(k, k, 4.0 + if k == row { shift } else { 0.0 }));
+                if i + 1 < m {
+                    t.push(Triplet::new(k + 1, k, -1.0));
+                }
+                if j + 1 < m {
+                    t.push(Triplet::new(k + m, k, -1.0));
+                }
+            }
+        }
+        SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
+    }
+
+    fn solver(a: &SparseColMat<usize, f64>, threshold: SupernodalThreshold) -> SpdSolver {
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: threshold,
+            ..Default::default()
+        };
+        let symbolic =
+            factorize_symbolic_cholesky(a.symbolic(), Side::Lower, Default::default(), params)
+                .unwrap();
+        SpdSolver::with_symbolic(symbolic)
+    }
+
+    /// A strongly negative diagonal entry in an SPD matrix fails at its own pivot: every
+    /// leading block of `P A Pᵀ` before it is a principal submatrix of the SPD Laplacian, and
+    /// its own pivot is `a_rr − (≥ 0) < 0`. So the reported row must be `row`, whatever the
+    /// ordering; the permutation is checked to move `row`, so that an unmapped (or
+    /// off-by-one) index would be caught.
+    fn check(threshold: SupernodalThreshold, supernodal: bool) {
+        for row in [0, 37, 200, 399] {
+            let a = laplacian(20, row, -1e3);
+            let mut s = solver(&a, threshold);
+            assert_eq!(
+                matches!(s.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+                supernodal
+            );
+            let perm = s.symbolic.perm().expect("AMD ordering").arrays().0.to_vec();
+            assert_ne!(perm[row], row, "the ordering moves row {row}");
+            assert_eq!(
+                s.factor(a.as_ref()),
+                Err(FemError::NonPositivePivot { row: Some(row) })
+            );
+            assert_eq!(s.factorizations(), 0);
+        }
+        // Without the negative entry it factors and solves.
+        let a = laplacian(20, 0, 0.0);
+        let mut s = solver(&a, threshold);
+        s.factor(a.as_ref()).unwrap();
+        let mut b = vec![1.0; 400];
+        s.solve_in_place(&mut b);
+        assert!(b.iter().all(|x| x.is_finite() && *x > 0.0));
+    }
+
+    #[test]
+    fn failed_pivot_row_works_simplicial() {
+        check(SupernodalThreshold::FORCE_SIMPLICIAL, false);
+    }
+
+    #[test]
+    fn failed_pivot_row_works_supernodal() {
+        check(SupernodalThreshold::FORCE_SUPERNODAL, true);
     }
 }

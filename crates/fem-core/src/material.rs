@@ -6,6 +6,10 @@ use nalgebra::Matrix4;
 
 /// An isotropic linear-elastic material with a unit weight.
 ///
+/// Build it with [`Material::new`] (positional: `young, poisson, unit_weight`) or, with the
+/// parameters named at the call site, [`Material::from_params`] (or `try_from`) on a
+/// [`MaterialParams`]; both validate the same way.
+///
 /// Strain and stress vectors are ordered `(xx, yy, xy)` in the plane and
 /// `(rr, zz, rz, θθ)` in axisymmetry, with engineering shear strain `γ = 2ε`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,13 +19,46 @@ pub struct Material {
     unit_weight: f64,
 }
 
+/// The parameters of a [`Material`], by name: the input of [`Material::from_params`].
+///
+/// # Examples
+/// ```
+/// use fem_core::{Material, MaterialParams};
+/// let steel = Material::from_params(MaterialParams {
+///     young: 210e9,
+///     poisson: 0.3,
+///     unit_weight: 78.5e3,
+/// })?;
+/// assert_eq!(steel, Material::new(210e9, 0.3, 78.5e3)?);
+/// # Ok::<(), fem_core::FemError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialParams {
+    /// Young's modulus `E > 0` (stress).
+    pub young: f64,
+    /// Poisson's ratio `−1 < ν < 0.5`.
+    pub poisson: f64,
+    /// Unit weight `γ ≥ 0` (force per volume, acting along `−y` / `−z`).
+    pub unit_weight: f64,
+}
+
 impl Material {
     /// Builds a material from Young's modulus `young > 0` (stress), Poisson's ratio
     /// `−1 < poisson < 0.5` and unit weight `unit_weight ≥ 0` (force per volume, acting along
     /// `−y` / `−z`; seed table 6.2 gives γ in kN/m³).
     ///
+    /// The three floats are positional; [`Material::from_params`] takes them by name.
+    ///
     /// # Errors
     /// [`FemError::InvalidParameter`] naming the offending parameter.
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::Material;
+    /// let soil = Material::new(30e3, 0.3, 18.0)?; // kPa, -, kN/m³
+    /// assert_eq!(soil.poisson(), 0.3);
+    /// # Ok::<(), fem_core::FemError>(())
+    /// ```
     pub fn new(young: f64, poisson: f64, unit_weight: f64) -> Result<Self, FemError> {
         let young = positive("young", young)?;
         if !(poisson > -1.0 && poisson < 0.5) {
@@ -37,6 +74,21 @@ impl Material {
             poisson,
             unit_weight,
         })
+    }
+
+    /// Builds a material from its parameters given by name; the same checks as
+    /// [`Material::new`] (see [`MaterialParams`] for an example).
+    ///
+    /// # Errors
+    /// [`FemError::InvalidParameter`] naming the offending parameter (`young`, `poisson` or
+    /// `unit_weight`).
+    pub fn from_params(params: MaterialParams) -> Result<Self, FemError> {
+        let MaterialParams {
+            young,
+            poisson,
+            unit_weight,
+        } = params;
+        Self::new(young, poisson, unit_weight)
     }
 
     /// Young's modulus `E`.
@@ -99,6 +151,15 @@ impl Material {
     }
 }
 
+impl TryFrom<MaterialParams> for Material {
+    type Error = FemError;
+
+    /// As [`Material::from_params`].
+    fn try_from(params: MaterialParams) -> Result<Self, FemError> {
+        Self::from_params(params)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,6 +178,42 @@ mod tests {
             match Material::new(e, nu, g) {
                 Err(FemError::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
                 other => panic!("expected InvalidParameter({name}), got {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn from_params_agrees_with_new() {
+        for (young, poisson, unit_weight) in [
+            (210e9, 0.3, 78.5e3),
+            (1.0, -0.5, 0.0),
+            (30e3, 0.499, 18.0),
+            // rejected, with the same error
+            (0.0, 0.3, 0.0),
+            (f64::NAN, 0.3, 0.0),
+            (1.0, 0.5, 0.0),
+            (1.0, f64::NAN, 0.0),
+            (1.0, 0.3, -1.0),
+            (1.0, 0.3, f64::INFINITY),
+        ] {
+            let params = MaterialParams {
+                young,
+                poisson,
+                unit_weight,
+            };
+            let named = Material::from_params(params);
+            let positional = Material::new(young, poisson, unit_weight);
+            // `InvalidParameter` holds the value, so compare NaN errors by Debug.
+            assert_eq!(format!("{named:?}"), format!("{positional:?}"));
+            assert_eq!(
+                format!("{:?}", Material::try_from(params)),
+                format!("{positional:?}")
+            );
+            if let Ok(m) = named {
+                assert_eq!(
+                    (m.young(), m.poisson(), m.unit_weight()),
+                    (young, poisson, unit_weight)
+                );
             }
         }
     }

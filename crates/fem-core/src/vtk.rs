@@ -78,14 +78,15 @@ pub fn write_vtu(
     cell_data: &[(&str, Field<'_>)],
 ) -> Result<(), FemError> {
     let vtk = model(mesh, point_data, cell_data)?;
-    let io = |detail: String| FemError::Io {
-        path: path.display().to_string(),
-        detail,
-    };
-    let file = std::fs::File::create(path).map_err(|e| io(e.to_string()))?;
+    let origin = path.display().to_string();
+    let file = std::fs::File::create(path)
+        .map_err(|e| FemError::io(origin.clone(), "cannot create the file", e))?;
     let mut writer = std::io::BufWriter::new(file);
-    vtk.write_xml(&mut writer).map_err(|e| io(e.to_string()))?;
-    writer.flush().map_err(|e| io(e.to_string()))
+    vtk.write_xml(&mut writer)
+        .map_err(|e| FemError::io(origin.clone(), "cannot write the VTK XML", e))?;
+    writer
+        .flush()
+        .map_err(|e| FemError::io(origin, "cannot write the file", e))
 }
 
 fn model(
@@ -185,10 +186,8 @@ pub fn write_pvd(path: &Path, entries: &[(f64, &str)]) -> Result<(), FemError> {
         ));
     }
     xml.push_str("  </Collection>\n</VTKFile>\n");
-    std::fs::write(path, xml).map_err(|e| FemError::Io {
-        path: path.display().to_string(),
-        detail: e.to_string(),
-    })
+    std::fs::write(path, xml)
+        .map_err(|e| FemError::io(path.display().to_string(), "cannot write the file", e))
 }
 
 /// Escapes a string for an XML attribute value.

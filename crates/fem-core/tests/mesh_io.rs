@@ -473,10 +473,30 @@ fn read_msh_works() {
 #[test]
 fn read_msh_rejects_missing_file() {
     let path = tmp("mesh_io_does_not_exist.msh");
-    match read_msh(&path) {
-        Err(FemError::Io { path: p, .. }) => assert!(p.ends_with("mesh_io_does_not_exist.msh")),
-        other => panic!("expected Io, got {other:?}"),
+    let e = read_msh(&path).unwrap_err();
+    let FemError::Io {
+        path: p, source, ..
+    } = &e
+    else {
+        panic!("expected Io, got {e:?}");
+    };
+    assert!(p.ends_with("mesh_io_does_not_exist.msh"));
+    // The I/O error is kept as the source, and printed by the chain, not by the message.
+    let io = source
+        .as_ref()
+        .and_then(|c| c.get_ref().downcast_ref::<std::io::Error>())
+        .expect("an std::io::Error source");
+    assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
+    let os = io.to_string();
+    assert!(!e.to_string().contains(&os), "{e}");
+    let mut chain = e.to_string();
+    let mut next = std::error::Error::source(&e);
+    while let Some(s) = next {
+        chain = format!("{chain}: {s}");
+        next = s.source();
     }
+    assert_eq!(chain.matches(&os).count(), 1, "{chain}");
+    assert_eq!(e.clone(), e);
 }
 
 #[test]
@@ -552,7 +572,7 @@ fn parse_msh_rejects_garbage() {
     let undefined = SPARSE_TAGS.replace("100 10 30 40", "100 10 30 41");
     assert!(matches!(
         parse_msh(undefined.as_bytes()),
-        Err(FemError::Io { detail, .. }) if detail.contains("41")
+        Err(FemError::Io { detail, source: None, .. }) if detail.contains("41")
     ));
 }
 

@@ -596,9 +596,13 @@ impl InterfaceSeries {
             self.entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
         let pvd = self.pvd_path();
         fem_core::vtk::write_pvd(&pvd, &entries).map_err(|e| match e {
-            fem_core::FemError::Io { path, detail } => SolverError::Io {
+            fem_core::FemError::Io {
+                path,
+                detail,
+                source,
+            } => SolverError::Io {
                 what: format!("cannot write `{path}`"),
-                source: Cause::message(detail),
+                source: source.map_or_else(|| Cause::message(detail), Cause::new),
             },
             other => SolverError::Structure(other),
         })?;

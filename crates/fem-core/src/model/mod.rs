@@ -1,5 +1,8 @@
 //! [`LinearElasticModel`]: a linear-elastic body on a triangle mesh, assembled and factored
-//! once, that implements [`Structure`].
+//! once, that implements [`Structure`]. Recovery from a solution (stresses, strains, nodal
+//! stresses, reactions) is in `post.rs`.
+
+mod post;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
@@ -158,9 +161,27 @@ impl LinearElasticModel {
             );
         }
         self.coupling = merge(coupling);
-        self.solver.factor(self.pattern.view(&self.values))?;
+        self.solver
+            .factor(self.pattern.view(&self.values))
+            .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
         Ok(())
+    }
+
+    /// Names the node and component of a failed pivot: the solver reports a row of the
+    /// reduced system, which the dof map turns into `(node, component)`.
+    fn name_failed_dof(&self, e: FemError) -> FemError {
+        match e {
+            FemError::NonPositivePivot { row: Some(row) } => match self.dofs.free_dof_owner(row) {
+                Some((node, component)) => FemError::NotPositiveDefinite {
+                    node,
+                    component,
+                    row,
+                },
+                None => e,
+            },
+            e => e,
+        }
     }
 
     /// The mesh.
@@ -462,171 +483,6 @@ impl LinearElasticModel {
         self.free_response_into(load_factor, &mut u)?;
         Ok(self.nodal_displacements(&u))
     }
-
-    /// Stresses `σ₀ + D B u` at the quadrature points of every element, with their positions,
-    /// element by element.
-    ///
-    /// # Errors
-    /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
-    pub fn stresses(&self, displacements: &[[f64; 2]]) -> Result<Vec<Vec<StressPoint>>, FemError> {
-        let mut out = self.elastic_stresses(displacements)?;
-        if let Some(s0) = &self.initial_stress {
-            for (x, s) in out.iter_mut().flatten() {
-                let s_0 = s0(*x);
-                for k in 0..4 {
-                    s[k] += s_0[k];
-                }
-            }
-        }
-        Ok(out)
-    }
-
-    /// `D B u` at the quadrature points, without the initial stress.
-    fn elastic_stresses(
-        &self,
-        displacements: &[[f64; 2]],
-    ) -> Result<Vec<Vec<StressPoint>>, FemError> {
-        if displacements.len() != self.mesh.node_count() {
-            return Err(FemError::LengthMismatch {
-                what: "nodal displacements",
-                expected: self.mesh.node_count(),
-                got: displacements.len(),
-            });
-        }
-        let element = element_of(self.mesh.kind());
-        let mut out = Vec::with_capacity(self.mesh.element_count());
-        let mut coords = Vec::with_capacity(6);
-        let mut u_e = Vec::with_capacity(12);
-        for e in 0..self.mesh.element_count() {
-            let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            u_e.clear();
-            u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
-            let material = &self.materials[&self.mesh.regions()[e]];
-            let mut pts = Vec::new();
-            element.stresses_into(e, &coords, material, &self.idealization, &u_e, &mut pts)?;
-            out.push(pts);
-        }
-        Ok(out)
-    }
-
-    /// Strains `ε = B u` at the quadrature points of every element (the same points as
-    /// [`LinearElasticModel::stresses`]), components `(xx, yy, γ_xy, zz)` with engineering
-    /// shear `γ = 2ε`; `zz` is `0` in plane strain, `−ν/(1−ν)(ε_xx + ε_yy)` in plane stress,
-    /// and the hoop strain `u_r/r` in axisymmetry (order `(rr, zz, γ_rz, θθ)`).
-    ///
-    /// # Errors
-    /// As for [`LinearElasticModel::stresses`].
-    pub fn strains(&self, displacements: &[[f64; 2]]) -> Result<Vec<Vec<StressPoint>>, FemError> {
-        let elastic = self.elastic_stresses(displacements)?;
-        let m = self.idealization.strain_size();
-        Ok(elastic
-            .into_iter()
-            .enumerate()
-            .map(|(e, pts)| {
-                let material = &self.materials[&self.mesh.regions()[e]];
-                let d = material.elasticity(&self.idealization);
-                // D is SPD on its m × m block: ε = D⁻¹ σ.
-                let compliance = d
-                    .view((0, 0), (m, m))
-                    .into_owned()
-                    .cholesky()
-                    .map(|c| c.inverse())
-                    .unwrap_or_else(|| nalgebra::DMatrix::zeros(m, m));
-                pts.into_iter()
-                    .map(|(x, s)| {
-                        let mut eps = [0.0; 4];
-                        for (r, er) in eps.iter_mut().enumerate().take(m) {
-                            *er = (0..m).map(|k| compliance[(r, k)] * s[k]).sum();
-                        }
-                        if let Idealization::PlaneStress { .. } = self.idealization {
-                            let nu = material.poisson();
-                            eps[3] = -nu / (1.0 - nu) * (eps[0] + eps[1]);
-                        }
-                        (x, eps)
-                    })
-                    .collect()
-            })
-            .collect())
-    }
-
-    /// Nodal stresses: the average over the elements around each node of the element's mean
-    /// quadrature-point stress (a simple, robust smoothing for plots).
-    ///
-    /// # Errors
-    /// As for [`LinearElasticModel::stresses`].
-    pub fn nodal_stresses(&self, displacements: &[[f64; 2]]) -> Result<Vec<Stress>, FemError> {
-        let per_element = self.stresses(displacements)?;
-        let mut sum = vec![[0.0; 4]; self.mesh.node_count()];
-        let mut count = vec![0usize; self.mesh.node_count()];
-        for (e, pts) in per_element.iter().enumerate() {
-            let mut mean = [0.0; 4];
-            for (_, s) in pts {
-                for k in 0..4 {
-                    mean[k] += s[k] / pts.len() as f64;
-                }
-            }
-            for &n in self.mesh.element(e) {
-                for k in 0..4 {
-                    sum[n][k] += mean[k];
-                }
-                count[n] += 1;
-            }
-        }
-        Ok(sum
-            .into_iter()
-            .zip(count)
-            .map(|(s, c)| if c == 0 { s } else { s.map(|v| v / c as f64) })
-            .collect())
-    }
-
-    /// Support reactions `R = K u − f` at every prescribed dof, for the displacements
-    /// `displacements` (from [`LinearElasticModel::solve`]) at `load_factor`:
-    /// `((node, component), reaction)`.
-    ///
-    /// # Errors
-    /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
-    pub fn reactions(
-        &self,
-        displacements: &[[f64; 2]],
-        load_factor: f64,
-    ) -> Result<Vec<Reaction>, FemError> {
-        if displacements.len() != self.mesh.node_count() {
-            return Err(FemError::LengthMismatch {
-                what: "nodal displacements",
-                expected: self.mesh.node_count(),
-                got: displacements.len(),
-            });
-        }
-        let prescribed = self.dofs.prescribed();
-        let mut r: Vec<f64> = prescribed
-            .iter()
-            .map(|&(n, c)| {
-                let g = 2 * n + c as usize;
-                -(load_factor * self.load[g] + self.initial_force[g])
-            })
-            .collect();
-        let mut free_value = vec![0.0; self.dofs.free_count()];
-        for (n, u) in displacements.iter().enumerate() {
-            for (c, d) in self.dofs.free_dofs(n).into_iter().enumerate() {
-                if let Some(i) = d {
-                    free_value[i] = u[c];
-                }
-            }
-        }
-        for &(p, dof, k) in self.coupling.entries() {
-            let u = match dof {
-                Dof::Free(i) => free_value[i],
-                Dof::Prescribed(q) => {
-                    let (n, c) = prescribed[q];
-                    displacements[n][c as usize]
-                }
-            };
-            r[p] += k * u;
-        }
-        Ok(prescribed.iter().copied().zip(r).collect())
-    }
 }
 
 impl Structure for LinearElasticModel {
@@ -794,5 +650,82 @@ mod tests {
                 element: 0
             }
         );
+    }
+
+    /// Issue 13: a stiffness that is not positive definite names a node and a component of
+    /// the model, not faer's pivot in its permuted order.
+    #[test]
+    fn issue_13_not_positive_definite_names_node() {
+        use crate::generate::{RectangleSpec, rectangle};
+        let m = Material::new(210e9, 0.3, 0.0).unwrap();
+
+        // A supported 3 × 2 rectangle plus one node (inserted as node 5) that no element
+        // connects. Its two rows and columns of K are zero but for the structural diagonal
+        // (0). Every leading block of P K Pᵀ without its dofs is a principal submatrix of the
+        // supported rectangle's stiffness (SPD), and the first block that holds one of its
+        // dofs has the pivot 0 − 0 = 0 exactly: the factorisation must stop at node 5,
+        // whichever of its components the ordering puts first.
+        let rect = rectangle(&RectangleSpec::new([0.0, 3.0], [0.0, 2.0], 3, 2)).unwrap();
+        let extra = 5;
+        let shift = |n: usize| if n >= extra { n + 1 } else { n };
+        let mut nodes = rect.nodes().to_vec();
+        nodes.insert(extra, [10.0, 10.0]);
+        let connectivity = rect.connectivity().iter().map(|&n| shift(n)).collect();
+        let mesh = Mesh::new(nodes, ElementKind::Tri3, connectivity, vec![]).unwrap();
+        let bottom: Vec<usize> = rect
+            .node_set("bottom")
+            .unwrap()
+            .iter()
+            .map(|&n| shift(n))
+            .collect();
+        let mut supports = Supports::new();
+        supports
+            .fix(&bottom, Component::X)
+            .fix(&bottom, Component::Y);
+        let dofs = DofMap::new(mesh.node_count(), &supports).unwrap();
+        let err = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
+            .unwrap_err();
+        let FemError::NotPositiveDefinite {
+            node,
+            component,
+            row,
+        } = err
+        else {
+            panic!("expected NotPositiveDefinite, got {err:?}");
+        };
+        assert_eq!(node, extra);
+        assert_eq!(dofs.free_dofs(node)[component as usize], Some(row));
+        assert!(
+            err.to_string()
+                .contains(&format!("node {extra}, component {component}"))
+        );
+
+        // Rectangles fixed in y only along the bottom: the one rigid-body mode is the
+        // translation along x, u = (1, 0) at every node. Its leading block first becomes
+        // singular at the last x dof eliminated, so a failure must name an x dof. (Round-off
+        // can instead leave that pivot tiny and positive, and the factorisation succeeds: so
+        // only the meshes that fail are checked, and at least one must.)
+        let mut failures = 0;
+        for kind in [ElementKind::Tri3, ElementKind::Tri6] {
+            for (nx, ny) in [(1, 1), (2, 3), (4, 4), (10, 7)] {
+                let spec = RectangleSpec {
+                    kind,
+                    ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], nx, ny)
+                };
+                let mesh = rectangle(&spec).unwrap();
+                let mut supports = Supports::new();
+                supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
+                match LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
+                {
+                    Ok(_) => {}
+                    Err(FemError::NotPositiveDefinite { component, .. }) => {
+                        assert_eq!(component, Component::X, "{kind:?} {nx}×{ny}");
+                        failures += 1;
+                    }
+                    Err(e) => panic!("{kind:?} {nx}×{ny}: {e:?}"),
+                }
+            }
+        }
+        assert!(failures > 0);
     }
 }
