@@ -62,4 +62,4 @@ pub use coupling::simulation::{
     InterfaceStatus, SimulationSettings, SkipRules, StepReport, StepResult,
 };
 #[cfg(feature = "fe")]
-pub use coupling::zone::{Candidate, ContactZone, Target, recognize};
+pub use coupling::zone::{Candidate, ContactZone, Target, check_rigid_targets, recognize};

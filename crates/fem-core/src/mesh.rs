@@ -273,6 +273,55 @@ impl Mesh {
             .map(move |&l| cell[l])
     }
 
+    /// The sides that belong to one element only (the boundary of the body, holes included),
+    /// sorted.
+    pub fn boundary_sides(&self) -> Vec<Side> {
+        let mut count: BTreeMap<[usize; 2], (usize, Side)> = BTreeMap::new();
+        for element in 0..self.element_count() {
+            let cell = self.element(element);
+            for side in 0..3u8 {
+                let local = self.kind.side_nodes(side as usize);
+                let (a, b) = (cell[local[0]], cell[local[1]]);
+                count
+                    .entry([a.min(b), a.max(b)])
+                    .or_insert((0, Side { element, side }))
+                    .0 += 1;
+            }
+        }
+        let mut sides: Vec<Side> = count
+            .into_values()
+            .filter_map(|(n, side)| (n == 1).then_some(side))
+            .collect();
+        sides.sort_unstable();
+        sides
+    }
+
+    /// The unit outward normal of the boundary at every node (`None` inside the body): the
+    /// sum of the outward normals `(Δy, −Δx)` of the boundary sides through the node (elements
+    /// are counter-clockwise, so the body lies left of each side), weighted by their lengths,
+    /// normalised. At a corner it bisects the two faces.
+    pub fn outward_normals(&self) -> Vec<Option<[f64; 2]>> {
+        let mut sum = vec![[0.0_f64; 2]; self.node_count()];
+        let mut on_boundary = vec![false; self.node_count()];
+        for side in self.boundary_sides() {
+            let nodes: Vec<usize> = self.side_nodes(side).collect();
+            let (a, b) = (self.nodes[nodes[0]], self.nodes[nodes[1]]);
+            let n = [b[1] - a[1], a[0] - b[0]];
+            for &node in &nodes {
+                sum[node][0] += n[0];
+                sum[node][1] += n[1];
+                on_boundary[node] = true;
+            }
+        }
+        sum.iter()
+            .zip(on_boundary)
+            .map(|(s, on)| {
+                let len = s[0].hypot(s[1]);
+                (on && len > 0.0 && len.is_finite()).then(|| [s[0] / len, s[1] / len])
+            })
+            .collect()
+    }
+
     /// Nodes of the sides of an edge set (sorted, without duplicates).
     ///
     /// # Errors
@@ -295,6 +344,29 @@ mod tests {
 
     fn square() -> Vec<[f64; 2]> {
         vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    }
+
+    #[test]
+    fn boundary_sides_and_outward_normals_work() {
+        // a square of two triangles plus a centre node: 4 triangles around (0.5, 0.5)
+        let mut nodes = square();
+        nodes.push([0.5, 0.5]);
+        let m = Mesh::new(
+            nodes,
+            ElementKind::Tri3,
+            vec![0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4],
+            vec![],
+        )
+        .unwrap();
+        assert_eq!(m.boundary_sides().len(), 4);
+        let n = m.outward_normals();
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        // corners bisect their two faces; the centre is inside
+        for (node, expected) in [(0, [-h, -h]), (1, [h, -h]), (2, [h, h]), (3, [-h, h])] {
+            let got = n[node].unwrap();
+            assert!((got[0] - expected[0]).abs() < 1e-15 && (got[1] - expected[1]).abs() < 1e-15);
+        }
+        assert_eq!(n[4], None);
     }
 
     #[test]

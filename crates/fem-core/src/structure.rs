@@ -46,6 +46,17 @@ pub trait Structure {
     /// The 2D idealisation (plane strain, plane stress or axisymmetry).
     fn idealization(&self) -> Idealization;
 
+    /// The unit outward normal of the body's boundary at `node`, or `None` for a node inside
+    /// the body or a structure that does not know it (the default). The contact coupling uses
+    /// it to refuse a rigid target that faces away from the body touching it.
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    fn outward_normal(&self, node: usize) -> Option<[f64; 2]> {
+        let _ = node;
+        None
+    }
+
     /// A named set of nodes (e.g. a contactor surface).
     ///
     /// # Errors

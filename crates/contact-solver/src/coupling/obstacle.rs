@@ -48,6 +48,14 @@ impl ObstaclePoint {
 pub trait Obstacle: Debug + Send + Sync {
     /// The closest point to `p`, or `None` if `p` has no orthogonal projection on the surface.
     fn project(&self, p: [f64; 2]) -> Option<ObstaclePoint>;
+
+    /// A length of the surface (a LINE's length, an ARC's length), if it has one: a simulation
+    /// refuses a target that is degenerate against the body it faces (see
+    /// [`check_rigid_targets`](crate::coupling::zone::check_rigid_targets)). `None` (the
+    /// default) skips that check.
+    fn extent(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// Relative tolerance on the ends of a LINE and an ARC: a point projecting exactly on an end
@@ -110,6 +118,10 @@ impl RigidLine {
 }
 
 impl Obstacle for RigidLine {
+    fn extent(&self) -> Option<f64> {
+        Some(self.length)
+    }
+
     fn project(&self, p: [f64; 2]) -> Option<ObstaclePoint> {
         let d = [p[0] - self.a[0], p[1] - self.a[1]];
         let s = d[0] * self.t[0] + d[1] * self.t[1];
@@ -215,6 +227,10 @@ impl RigidArc {
 }
 
 impl Obstacle for RigidArc {
+    fn extent(&self) -> Option<f64> {
+        Some(self.radius * self.sweep.abs())
+    }
+
     fn project(&self, p: [f64; 2]) -> Option<ObstaclePoint> {
         let d = [p[0] - self.center[0], p[1] - self.center[1]];
         let dist = d[0].hypot(d[1]);

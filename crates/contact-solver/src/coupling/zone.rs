@@ -229,6 +229,78 @@ fn check_node<S: Structure + ?Sized>(s: &S, zone: &str, node: usize) -> Result<(
     Ok(())
 }
 
+/// A rigid target shorter than this fraction of the contactor's extent is degenerate.
+pub const DEGENERATE_TARGET: f64 = 1e-9;
+
+/// Physical checks of the rigid zones after [`recognize`], where the sign of a gap alone is
+/// ambiguous (run by [`ContactSimulation::new`](crate::ContactSimulation::new)):
+/// - every rigid zone has at least one candidate (a zone whose contactor nodes all miss the
+///   obstacle would never act: recognition is done once, on the reference configuration);
+/// - the obstacle is not degenerate: its [`extent`](crate::Obstacle::extent) is at least
+///   [`DEGENERATE_TARGET`] times the diagonal of the contactor's bounding box;
+/// - the obstacle faces the body: at the candidate closest to it (smallest `|g₀|`), the
+///   body's own [outward normal](fem_core::Structure::outward_normal), where the structure
+///   knows it, must point against the obstacle's normal (`n_body · n_obstacle ≤ 0`). A LINE
+///   given from `b` to `a` while the body touches it has gaps of 0 on the wrong side: without
+///   this check the body would fall through.
+///
+/// # Errors
+/// [`SolverError::InvalidGeometry`] naming the zone (and the node) for each case.
+pub fn check_rigid_targets<S: Structure + ?Sized, L>(
+    s: &S,
+    zones: &[ContactZone<L>],
+    candidates: &[Candidate],
+) -> Result<(), SolverError> {
+    for (z, zone) in zones.iter().enumerate() {
+        let Target::Rigid(obstacle) = &zone.target else {
+            continue;
+        };
+        let name = zone.name.as_str();
+        let mine: Vec<&Candidate> = candidates.iter().filter(|c| c.zone == z).collect();
+        let Some(closest) = mine
+            .iter()
+            .min_by(|a, b| a.gap0.abs().total_cmp(&b.gap0.abs()))
+        else {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{name}`: none of its {} contactor nodes projects onto its obstacle \
+                 (check the obstacle's ends and its side)",
+                zone.contactor.len()
+            )));
+        };
+        if let Some(extent) = obstacle.extent() {
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for &n in &zone.contactor {
+                let x = s.node_position(n);
+                for k in 0..2 {
+                    lo[k] = lo[k].min(x[k]);
+                    hi[k] = hi[k].max(x[k]);
+                }
+            }
+            let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+            if extent < DEGENERATE_TARGET * size {
+                return Err(SolverError::InvalidGeometry(format!(
+                    "zone `{name}`: its obstacle is {extent:e} long, less than \
+                     {DEGENERATE_TARGET:e} of the contactor's extent {size:e}: a degenerate target"
+                )));
+            }
+        }
+        if let Some(outward) = s.outward_normal(closest.node) {
+            let n = closest.normal;
+            if outward[0] * n[0] + outward[1] * n[1] > 0.0 {
+                let x = s.node_position(closest.node);
+                return Err(SolverError::InvalidGeometry(format!(
+                    "zone `{name}`: contactor node {} at ({}, {}) faces away from its obstacle \
+                     (the body's outward normal ({:.3}, {:.3}), the obstacle's normal towards \
+                     the contactor ({:.3}, {:.3})): the obstacle is given on the wrong side (a \
+                     LINE has the contactor on its left, from a to b; an ARC has its side)",
+                    closest.node, x[0], x[1], outward[0], outward[1], n[0], n[1]
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Obstacle recognition on the reference configuration: the candidates of every zone, in zone
 /// order then contactor order. Contactor nodes of a rigid zone with no orthogonal projection on
 /// the obstacle are not candidates.

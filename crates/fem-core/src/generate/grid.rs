@@ -3,7 +3,6 @@
 
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh, Side};
-use std::collections::HashMap;
 
 /// Checks that a generated coordinate list is strictly increasing.
 pub(super) fn increasing(name: &'static str, points: &[f64]) -> Result<(), FemError> {
@@ -126,35 +125,6 @@ impl Line {
     fn along(&self, p: [f64; 2]) -> f64 {
         p[1 - self.axis]
     }
-}
-
-/// Sides whose pair of corner nodes belongs to a single element.
-pub(super) fn boundary_sides(mesh: &Mesh) -> Vec<Side> {
-    let kind = mesh.kind();
-    let mut count: HashMap<[usize; 2], (usize, Side)> = HashMap::new();
-    for element in 0..mesh.element_count() {
-        let cell = mesh.element(element);
-        for side in 0..3 {
-            let [a, b] = [
-                cell[kind.side_nodes(side)[0]],
-                cell[kind.side_nodes(side)[1]],
-            ];
-            let entry = count.entry([a.min(b), a.max(b)]).or_insert((
-                0,
-                Side {
-                    element,
-                    side: side as u8,
-                },
-            ));
-            entry.0 += 1;
-        }
-    }
-    let mut sides: Vec<Side> = count
-        .into_values()
-        .filter_map(|(n, side)| (n == 1).then_some(side))
-        .collect();
-    sides.sort_unstable();
-    sides
 }
 
 /// The sides of `candidates` whose two corners lie on `line` and satisfy

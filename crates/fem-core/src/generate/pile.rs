@@ -1,6 +1,6 @@
 //! The axisymmetric pile-in-soil domain of the seed's chapter 6: [`pile_in_soil`].
 
-use super::grid::{Grid, Line, add_edge_and_node_set, boundary_sides, increasing, select_sides};
+use super::grid::{Grid, Line, add_edge_and_node_set, increasing, select_sides};
 use super::{Grading, graded_points};
 use crate::error::{FemError, positive};
 use crate::mesh::{ElementKind, Mesh};
@@ -214,7 +214,7 @@ pub fn pile_in_soil(spec: &PileSpec) -> Result<Mesh, FemError> {
 
     let mut mesh = Mesh::new(nodes, spec.kind, connectivity, regions)?;
     let tol = 1e-12 * width.max(depth);
-    let boundary = boundary_sides(&mesh);
+    let boundary = mesh.boundary_sides();
     let named = [
         ("axis", Line::x(0.0, tol), None),
         ("outer", Line::x(width, tol), None),

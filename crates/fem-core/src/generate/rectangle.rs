@@ -1,6 +1,6 @@
 //! Layered rectangles: [`rectangle`] and its [`RectangleSpec`].
 
-use super::grid::{Grid, Line, add_edge_and_node_set, boundary_sides, increasing, select_sides};
+use super::grid::{Grid, Line, add_edge_and_node_set, increasing, select_sides};
 use super::{Grading, graded_points};
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh};
@@ -128,7 +128,7 @@ pub fn rectangle(spec: &RectangleSpec) -> Result<Mesh, FemError> {
     let [x0, x1] = [xs[0], xs[spec.nx]];
     let [y0, y1] = [ys[0], ys[ys.len() - 1]];
     let tol = 1e-12 * (x1 - x0).max(y1 - y0);
-    let boundary = boundary_sides(&mesh);
+    let boundary = mesh.boundary_sides();
     let named = [
         ("bottom", Line::y(y0, tol)),
         ("top", Line::y(y1, tol)),

@@ -64,6 +64,8 @@ pub struct LinearElasticModel {
     initial_force: Vec<f64>,
     initial_stress: Option<StressField>,
     version: u64,
+    /// Outward normals of the boundary nodes, computed at the first request.
+    normals: std::sync::OnceLock<Vec<Option<[f64; 2]>>>,
 }
 
 impl core::fmt::Debug for LinearElasticModel {
@@ -134,6 +136,7 @@ impl LinearElasticModel {
             initial_force: vec![0.0; n2],
             initial_stress: None,
             version: 0,
+            normals: std::sync::OnceLock::new(),
         };
         model.assemble_and_factor()?;
         Ok(model)
@@ -486,6 +489,10 @@ impl LinearElasticModel {
 }
 
 impl Structure for LinearElasticModel {
+    fn outward_normal(&self, node: usize) -> Option<[f64; 2]> {
+        self.normals.get_or_init(|| self.mesh.outward_normals())[node]
+    }
+
     fn dof_count(&self) -> usize {
         self.dofs.free_count()
     }

@@ -35,7 +35,7 @@ pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResul
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
 
 use crate::coupling::primal::PrimalCache;
-use crate::coupling::zone::{Candidate, ContactZone, recognize};
+use crate::coupling::zone::{Candidate, ContactZone, check_rigid_targets, recognize};
 use crate::error::SolverError;
 use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::ContactLaw;
@@ -128,6 +128,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                     .into(),
             ));
         }
+        check_rigid_targets(&structure, &zones, &candidates)?;
         let mut h_rows = Vec::with_capacity(2 * candidates.len());
         for c in &candidates {
             for dir in [c.normal, c.tangent] {
