@@ -96,12 +96,12 @@ impl DofMap {
     /// Numbers the dofs of `node_count` nodes with the constraints of `supports`.
     ///
     /// # Errors
-    /// [`FemError::NodeOutOfRange`] (with `element = usize::MAX`) if a support names a node
+    /// [`FemError::UnknownNode`] if a support names a node
     /// that does not exist.
     pub fn new(node_count: usize, supports: &Supports) -> Result<Self, FemError> {
         if let Some(((node, _), _)) = supports.iter().find(|((n, _), _)| *n >= node_count) {
-            return Err(FemError::NodeOutOfRange {
-                element: usize::MAX,
+            return Err(FemError::UnknownNode {
+                what: "a support",
                 node,
                 node_count,
             });
@@ -210,7 +210,7 @@ mod tests {
         s.fix(&[5], Component::Y);
         assert!(matches!(
             DofMap::new(3, &s),
-            Err(FemError::NodeOutOfRange { node: 5, .. })
+            Err(FemError::UnknownNode { node: 5, .. })
         ));
     }
 }

@@ -30,6 +30,42 @@ pub enum FemError {
         /// Second coordinate (y or z).
         y: f64,
     },
+    /// Something other than an element (a node set, a support, a nodal force) refers to a
+    /// node that does not exist.
+    #[error("{what} refers to node {node}, but the mesh has {node_count} nodes")]
+    UnknownNode {
+        /// What refers to it: "a node set", "a support", "a nodal force".
+        what: &'static str,
+        /// The offending node index.
+        node: usize,
+        /// Number of nodes of the mesh.
+        node_count: usize,
+    },
+    /// An element's stiffness is not finite: the product of its material's Young modulus and
+    /// its size overflows (or a parameter is absurd, e.g. `young = 1e308`).
+    #[error(
+        "the stiffness of element {element} (region {region}) is not finite: its Young modulus \
+         {young:e} and its size overflow"
+    )]
+    NonFiniteStiffness {
+        /// Element index.
+        element: usize,
+        /// Its region.
+        region: u32,
+        /// The region's Young modulus.
+        young: f64,
+    },
+    /// A solve met a non-finite value: a load factor, a load or a prescribed value, or a
+    /// displacement that overflowed.
+    #[error("{what} is not finite ({value}){}", at_node(.node))]
+    NonFiniteSolve {
+        /// What was not finite: "load factor", "right-hand side", "displacement".
+        what: &'static str,
+        /// The node and component concerned, when known.
+        node: Option<(usize, crate::Component)>,
+        /// The value.
+        value: f64,
+    },
     /// An element refers to a node that does not exist.
     #[error("element {element} refers to node {node}, but the mesh has {node_count} nodes")]
     NodeOutOfRange {
@@ -270,6 +306,13 @@ fn at_row(row: &Option<usize>) -> String {
 }
 
 /// Checks that `value` is finite and `> 0`.
+fn at_node(node: &Option<(usize, crate::Component)>) -> String {
+    match node {
+        Some((n, c)) => format!(" at node {n}, component {c}"),
+        None => String::new(),
+    }
+}
+
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, FemError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)

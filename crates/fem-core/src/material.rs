@@ -61,6 +61,14 @@ impl Material {
     /// ```
     pub fn new(young: f64, poisson: f64, unit_weight: f64) -> Result<Self, FemError> {
         let young = positive("young", young)?;
+        if young < f64::MIN_POSITIVE {
+            // subnormal: its inverse overflows and the stiffness loses every digit
+            return Err(FemError::InvalidParameter {
+                name: "young",
+                value: young,
+                expected: "a finite value > 0 that is not subnormal (>= 2.2e-308)",
+            });
+        }
         if !(poisson > -1.0 && poisson < 0.5) {
             return Err(FemError::InvalidParameter {
                 name: "poisson",

@@ -121,6 +121,18 @@ impl Mesh {
                 .iter()
                 .map(|(p, q)| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2))
                 .fold(0.0, f64::max);
+            if !(area.is_finite() && l2.is_finite()) {
+                // the coordinates are finite, but their products overflow
+                let value = [a, b, c]
+                    .iter()
+                    .flat_map(|p| p.iter())
+                    .fold(0.0_f64, |m, v| m.max(v.abs()));
+                return Err(FemError::InvalidParameter {
+                    name: "node coordinates",
+                    value,
+                    expected: "magnitudes whose products stay finite (below about 1e150)",
+                });
+            }
             if area.abs() <= 1e-12 * l2 || l2 == 0.0 {
                 return Err(FemError::DegenerateElement { element, area });
             }
@@ -144,11 +156,11 @@ impl Mesh {
     /// Adds (or replaces) a named node set.
     ///
     /// # Errors
-    /// [`FemError::NodeOutOfRange`] (with `element = usize::MAX`) for an unknown node.
+    /// [`FemError::UnknownNode`] for an unknown node.
     pub fn add_node_set(&mut self, name: &str, mut nodes: Vec<usize>) -> Result<(), FemError> {
         if let Some(&node) = nodes.iter().find(|&&n| n >= self.nodes.len()) {
-            return Err(FemError::NodeOutOfRange {
-                element: usize::MAX,
+            return Err(FemError::UnknownNode {
+                what: "a node set",
                 node,
                 node_count: self.nodes.len(),
             });

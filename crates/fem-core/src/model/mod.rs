@@ -96,7 +96,10 @@ impl LinearElasticModel {
     /// - [`FemError::MissingMaterial`] if a region has no material;
     /// - [`FemError::NegativeRadius`] in axisymmetry for a node at `r < 0`;
     /// - [`FemError::InvertedElement`] for a (curved) element with a non-positive Jacobian;
-    /// - [`FemError::NodeOutOfRange`] for a support on a missing node;
+    /// - [`FemError::UnknownNode`] for a support on a missing node;
+    /// - [`FemError::InvalidParameter`] for a plane-stress thickness that is not finite and
+    ///   positive;
+    /// - [`FemError::NonFiniteStiffness`] for an element whose stiffness overflows;
     /// - [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body mode.
     pub fn new(
         mesh: Mesh,
@@ -104,6 +107,9 @@ impl LinearElasticModel {
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<Self, FemError> {
+        if let Idealization::PlaneStress { thickness } = idealization {
+            crate::error::positive("thickness", thickness)?;
+        }
         let materials: BTreeMap<u32, Material> = materials.iter().copied().collect();
         for (element, region) in mesh.regions().iter().enumerate() {
             if !materials.contains_key(region) {
@@ -154,6 +160,13 @@ impl LinearElasticModel {
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
             let material = &self.materials[&self.mesh.regions()[e]];
             element.stiffness_into(e, &coords, material, &self.idealization, &mut k_e)?;
+            if k_e.iter().any(|v| !v.is_finite()) {
+                return Err(FemError::NonFiniteStiffness {
+                    element: e,
+                    region: self.mesh.regions()[e],
+                    young: material.young(),
+                });
+            }
             scatter(
                 &self.pattern,
                 &self.dofs,
@@ -169,6 +182,18 @@ impl LinearElasticModel {
             .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
         Ok(())
+    }
+
+    /// [`FemError::NonFiniteSolve`] at the first non-finite entry of a free-dof vector.
+    fn check_finite(&self, what: &'static str, v: &[f64]) -> Result<(), FemError> {
+        match v.iter().position(|x| !x.is_finite()) {
+            None => Ok(()),
+            Some(i) => Err(FemError::NonFiniteSolve {
+                what,
+                node: self.dofs.free_dof_owner(i),
+                value: v[i],
+            }),
+        }
     }
 
     /// Names the node and component of a failed pivot: the solver reports a row of the
@@ -270,11 +295,11 @@ impl LinearElasticModel {
     /// the idealisation says).
     ///
     /// # Errors
-    /// [`FemError::NodeOutOfRange`] or [`FemError::InvalidParameter`] for non-finite values.
+    /// [`FemError::UnknownNode`] or [`FemError::InvalidParameter`] for non-finite values.
     pub fn add_nodal_force(&mut self, node: usize, force: [f64; 2]) -> Result<(), FemError> {
         if node >= self.mesh.node_count() {
-            return Err(FemError::NodeOutOfRange {
-                element: usize::MAX,
+            return Err(FemError::UnknownNode {
+                what: "a nodal force",
                 node,
                 node_count: self.mesh.node_count(),
             });
@@ -536,9 +561,17 @@ impl Structure for LinearElasticModel {
     }
 
     fn free_response_into(&self, load_factor: f64, u: &mut [f64]) -> Result<(), FemError> {
+        if !load_factor.is_finite() {
+            return Err(FemError::NonFiniteSolve {
+                what: "load factor",
+                node: None,
+                value: load_factor,
+            });
+        }
         self.rhs_into(load_factor, u);
+        self.check_finite("right-hand side", u)?;
         self.solver.solve_in_place(u);
-        Ok(())
+        self.check_finite("displacement", u)
     }
 
     fn stiffness_version(&self) -> u64 {
