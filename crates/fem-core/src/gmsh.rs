@@ -81,6 +81,7 @@ fn parse(bytes: &[u8], origin: &str) -> Result<Mesh, FemError> {
         HeaderError::Invalid(detail) => io(detail),
     })?;
     let names = physical_names(bytes).map_err(io)?;
+    check_ascii_node_tags(bytes).map_err(io)?;
     // `mshio` still has a few `unimplemented!` and unchecked subtractions on odd input (e.g.
     // an empty element block count); a panic there must not reach the caller.
     let parsed = std::panic::catch_unwind(|| mshio::parse_msh_bytes(bytes))
@@ -124,6 +125,89 @@ fn check_header(bytes: &[u8]) -> Result<(), HeaderError> {
 }
 
 /// The `$PhysicalNames` section (ASCII in both file types), by `(dimension, tag)`.
+/// Checks the node tags of an ASCII `$Nodes` section before `mshio` reads it: `mshio` trusts
+/// the section's header, and when it announces contiguous tags (`max − min = n − 1`) it drops
+/// the tags and numbers the nodes `min, min + 1, …` in file order, so a repeated or stray tag
+/// would silently move a node. Each tag must appear once, within `[min, max]`, and, when the
+/// header announces contiguous tags, in that order. Binary files are left to `mshio`.
+fn check_ascii_node_tags(bytes: &[u8]) -> Result<(), String> {
+    let ascii = String::from_utf8_lossy(&bytes[..bytes.len().min(256)])
+        .lines()
+        .nth(1)
+        .and_then(|l| l.split_whitespace().nth(1).map(|f| f == "0"))
+        .unwrap_or(false);
+    const START: &[u8] = b"$Nodes";
+    let Some(start) = bytes
+        .windows(START.len() + 1)
+        .position(|w| &w[..START.len()] == START && w[START.len()].is_ascii_whitespace())
+        .filter(|&p| p == 0 || bytes[p - 1] == b'\n')
+    else {
+        return Ok(());
+    };
+    if !ascii {
+        return Ok(());
+    }
+    let body = &bytes[start + START.len()..];
+    let end = body
+        .windows(9)
+        .position(|w| w == b"$EndNodes")
+        .unwrap_or(body.len());
+    let text = String::from_utf8_lossy(&body[..end]);
+    let mut tokens = text.split_whitespace();
+    let mut next = |what: &str| -> Result<u64, String> {
+        let token = tokens.next();
+        if what == "a coordinate" {
+            return Ok(0);
+        }
+        token
+            .and_then(|s| s.parse::<u64>().ok())
+            .ok_or_else(|| format!("$Nodes: expected {what}"))
+    };
+    let (blocks, count, min, max) = (
+        next("the number of blocks")?,
+        next("the number of nodes")?,
+        next("the minimum tag")?,
+        next("the maximum tag")?,
+    );
+    let contiguous = count > 0 && max.checked_sub(min) == Some(count - 1);
+    let mut seen = std::collections::HashSet::new();
+    let mut expected = min;
+    for _ in 0..blocks {
+        let (_dim, _entity, parametric, n) = (
+            next("a block's dimension")?,
+            next("a block's entity tag")?,
+            next("a block's parametric flag")?,
+            next("a block's node count")?,
+        );
+        for _ in 0..n {
+            let tag = next("a node tag")?;
+            if !(min..=max).contains(&tag) {
+                return Err(format!(
+                    "node tag {tag} is outside the range {min}…{max} announced by the $Nodes header"
+                ));
+            }
+            if !seen.insert(tag) {
+                return Err(format!("node tag {tag} is defined twice"));
+            }
+            if contiguous && tag != expected {
+                return Err(format!(
+                    "node tag {tag} where {expected} was expected: the $Nodes header announces \
+                     the contiguous tags {min}…{max}"
+                ));
+            }
+            expected += 1;
+        }
+        // the coordinates (3 per node, plus parametric ones, which `mshio` refuses anyway)
+        if parametric != 0 {
+            return Ok(());
+        }
+        for _ in 0..3 * n {
+            next("a coordinate")?;
+        }
+    }
+    Ok(())
+}
+
 fn physical_names(bytes: &[u8]) -> Result<HashMap<(i32, i32), String>, String> {
     const START: &[u8] = b"$PhysicalNames";
     let Some(start) = bytes
@@ -260,28 +344,10 @@ fn build(
     }
     let tags_of = |dim: i32, tag: i32| physical.get(&(dim, tag)).map_or(&[][..], Vec::as_slice);
 
-    // Node coordinates by tag. Sparse blocks carry their tags; for contiguous tags `mshio`
-    // keeps none, and they run from the minimum tag in file order (as Gmsh writes them).
     let nodes_section = data
         .nodes
         .ok_or_else(|| io("no $Nodes section".to_string()))?;
-    let mut coords: HashMap<u64, [f64; 2]> = HashMap::new();
-    let mut next_tag = nodes_section.min_node_tag;
-    for block in &nodes_section.node_blocks {
-        let tagged: Vec<(u64, usize)> = match &block.node_tags {
-            Some(map) => map.iter().map(|(&tag, &i)| (tag, i)).collect(),
-            None => (0..block.nodes.len())
-                .map(|i| (next_tag + i as u64, i))
-                .collect(),
-        };
-        next_tag += block.nodes.len() as u64;
-        for (tag, i) in tagged {
-            let n = &block.nodes[i];
-            if coords.insert(tag, [n.x, n.y]).is_some() {
-                return Err(io(format!("node tag {tag} is defined twice")));
-            }
-        }
-    }
+    let coords = node_coordinates(&nodes_section, &io)?;
 
     // Triangles (with their region) and the lines and points of physical groups.
     let elements = data
@@ -373,6 +439,25 @@ fn build(
     }
     let mut mesh = Mesh::new(nodes, kind, connectivity, regions)?;
 
+    add_physical_sets(&mut mesh, &lines, &points, &index, names, &physical, origin)?;
+    Ok(mesh)
+}
+
+/// The physical curves and points as edge and node sets of `mesh`: line elements matched to
+/// triangle sides (directed corner pairs), point elements to nodes; named by `names` or
+/// `curve_N` / `point_N`.
+fn add_physical_sets(
+    mesh: &mut Mesh,
+    lines: &[Lower],
+    points: &[Lower],
+    index: &HashMap<u64, usize>,
+    names: &HashMap<(i32, i32), String>,
+    physical: &HashMap<(i32, i32), Vec<i32>>,
+    origin: &str,
+) -> Result<(), FemError> {
+    let tags_of = |physical: &HashMap<(i32, i32), Vec<i32>>, dim: i32, tag: i32| {
+        physical.get(&(dim, tag)).map_or(Vec::new(), Clone::clone)
+    };
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
     for element in 0..mesh.element_count() {
@@ -384,15 +469,14 @@ fn build(
         }
     }
     let mut edge_sets: BTreeMap<String, Vec<Side>> = BTreeMap::new();
-    for line in &lines {
-        let side =
-            match_side(&mesh, &sides, &index, line).ok_or_else(|| FemError::Unsupported {
-                what: format!(
-                    "a line element of curve {} (nodes {:?}) in {origin} is not a triangle side",
-                    line.entity, line.nodes
-                ),
-            })?;
-        for &p in tags_of(1, line.entity) {
+    for line in lines {
+        let side = match_side(mesh, &sides, index, line).ok_or_else(|| FemError::Unsupported {
+            what: format!(
+                "a line element of curve {} (nodes {:?}) in {origin} is not a triangle side",
+                line.entity, line.nodes
+            ),
+        })?;
+        for p in tags_of(physical, 1, line.entity) {
             let name = names
                 .get(&(1, p))
                 .cloned()
@@ -408,7 +492,7 @@ fn build(
         mesh.add_edge_set(&name, set)?;
         node_sets.insert(name.clone(), mesh.edge_set_nodes(&name)?);
     }
-    for point in &points {
+    for point in points {
         let node = point
             .nodes
             .first()
@@ -420,7 +504,7 @@ fn build(
                     point.entity, point.nodes
                 ),
             })?;
-        for &p in tags_of(0, point.entity) {
+        for p in tags_of(physical, 0, point.entity) {
             let name = names
                 .get(&(0, p))
                 .cloned()
@@ -431,7 +515,48 @@ fn build(
     for (name, set) in node_sets {
         mesh.add_node_set(&name, set)?;
     }
-    Ok(mesh)
+    Ok(())
+}
+
+/// Node coordinates by tag. Sparse blocks carry their tags; for contiguous tags `mshio` keeps
+/// none, and they run from the minimum tag in file order (as Gmsh writes them).
+///
+/// # Errors
+/// A tag defined twice, in two blocks or within one (where `mshio`'s map of tags would keep
+/// only one of them).
+fn node_coordinates(
+    nodes_section: &mshio::Nodes<u64, i32, f64>,
+    io: &dyn Fn(String) -> FemError,
+) -> Result<HashMap<u64, [f64; 2]>, FemError> {
+    let mut coords: HashMap<u64, [f64; 2]> = HashMap::new();
+    let mut next_tag = nodes_section.min_node_tag;
+    for block in &nodes_section.node_blocks {
+        let tagged: Vec<(u64, usize)> = match &block.node_tags {
+            Some(map) => {
+                if map.len() != block.nodes.len() {
+                    return Err(io(format!(
+                        "a $Nodes block of entity {} lists {} nodes but only {} distinct tags: \
+                         a node tag is repeated",
+                        block.entity_tag,
+                        block.nodes.len(),
+                        map.len()
+                    )));
+                }
+                map.iter().map(|(&tag, &i)| (tag, i)).collect()
+            }
+            None => (0..block.nodes.len())
+                .map(|i| (next_tag + i as u64, i))
+                .collect(),
+        };
+        next_tag += block.nodes.len() as u64;
+        for (tag, i) in tagged {
+            let n = &block.nodes[i];
+            if coords.insert(tag, [n.x, n.y]).is_some() {
+                return Err(io(format!("node tag {tag} is defined twice")));
+            }
+        }
+    }
+    Ok(coords)
 }
 
 /// The triangle side of a line element: to the left of the line if two triangles share it.

@@ -720,3 +720,26 @@ fn write_pvd_works() {
         Err(FemError::InvalidParameter { name: "time", .. })
     ));
 }
+
+/// Node tags that contradict the `$Nodes` header: `mshio` trusts a header that announces
+/// contiguous tags and renumbers the nodes in file order, so a repeated tag, a tag outside
+/// the announced range or tags out of order would silently move nodes. Each is refused.
+#[test]
+fn node_tags_that_contradict_the_header_are_refused() {
+    let file = |tags: &str| {
+        format!(
+            "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n{tags}\n\
+             0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n$Elements\n1 2 1 2\n2 1 2 2\n1 1 2 3\n\
+             2 1 3 4\n$EndElements\n"
+        )
+    };
+    assert!(parse_msh(file("1\n2\n3\n4").as_bytes()).is_ok());
+    for (tags, expected) in [
+        ("1\n2\n2\n4", "node tag 2 is defined twice"),
+        ("1\n2\n3\n5", "node tag 5 is outside the range 1…4"),
+        ("1\n2\n4\n3", "node tag 4 where 3 was expected"),
+    ] {
+        let e = parse_msh(file(tags).as_bytes()).unwrap_err().to_string();
+        assert!(e.contains(expected), "{tags:?}: {e}");
+    }
+}
