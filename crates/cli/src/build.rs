@@ -5,6 +5,7 @@
 
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::*;
+use crate::spec::*;
 use bipo::presets::{DelaminationSpec, ShearSpec};
 use contact_laws::{BetaScheme, Coulomb, LawError, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::{

@@ -14,6 +14,7 @@ mod plot;
 mod raw;
 mod run;
 mod scene;
+mod spec;
 mod templates;
 
 use clap::{Parser, Subcommand, ValueEnum};

@@ -1,13 +1,13 @@
 //! The tables of the scene that have a `type` (or `generator`, `kind`) key, as read: one flat
 //! struct per table, every key optional, then [`resolve`](RawLaw::resolve)d into the typed
-//! enums of [`crate::scene`] with a check of which keys that type needs and accepts.
+//! enums of [`crate::spec`] with a check of which keys that type needs and accepts.
 //!
 //! Why not serde's internally tagged enums: they buffer the table before choosing the variant,
 //! so a wrong value inside (`nx = "two"`) is reported at the table, without the key. Flat
 //! structs keep the line, the column and the key path of every value.
 
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::scene::*;
+use crate::spec::*;
 use serde::Deserialize;
 
 /// `need(path, &opt, "key", "what")`: the value, or the error "`path`: what needs `key`".
