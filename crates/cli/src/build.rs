@@ -8,6 +8,7 @@ use crate::scene::*;
 use crate::spec::*;
 use bipo::presets::{DelaminationSpec, ShearSpec};
 use contact_laws::{BetaScheme, Coulomb, LawError, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::error::chain;
 use contact_solver::{
     Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
     FlexibilityMode, RigidArc, RigidLine, SimulationSettings, SolverError, recognize,
@@ -136,7 +137,7 @@ fn fem(path: &KeyPath, e: FemError) -> CliError {
         }
         _ => "",
     };
-    CliError::at(path, format!("{e}{hint}"))
+    CliError::at(path, format!("{}{hint}", chain(&e)))
 }
 
 fn law_error(path: &KeyPath, e: LawError) -> CliError {
@@ -153,7 +154,7 @@ fn law_error(path: &KeyPath, e: LawError) -> CliError {
             let p = path.key("m");
             CliError::at(&p, format!("`{p}` = {m}: expected 1 or 2"))
         }
-        other => CliError::at(path, other.to_string()),
+        other => CliError::at(path, chain(&other)),
     }
 }
 
@@ -705,7 +706,7 @@ fn override_rccm(
 fn solver_error(path: &KeyPath, e: SolverError) -> CliError {
     match e {
         SolverError::Structure(f) => fem(path, f),
-        other => CliError::at(path, other.to_string()),
+        other => CliError::at(path, chain(&other)),
     }
 }
 

@@ -6,6 +6,7 @@ use crate::error::{CliError, CliResult};
 use crate::plot;
 use crate::scene::{CurveSpec, XAxis};
 use contact_laws::ContactLaw;
+use contact_solver::error::chain;
 use contact_solver::{
     ContactRecord, ContactSimulation, Counters, InterfaceStatus, SolverError, StepResult,
 };
@@ -50,7 +51,7 @@ struct CustomDriver<'a> {
 }
 
 fn fem_failed(what: &str, e: fem_core::FemError) -> CliError {
-    CliError::failed(format!("{what}: {e}"))
+    CliError::failed(format!("{what}: {}", chain(&e)))
 }
 
 impl Driver for CustomDriver<'_> {
@@ -229,7 +230,11 @@ fn step_error(e: SolverError, phase: &Phase, t: f64) -> CliError {
         }
         _ => "",
     };
-    CliError::failed(format!("phase `{}` at t = {t}: {e}{hint}", phase.name))
+    CliError::failed(format!(
+        "phase `{}` at t = {t}: {}{hint}",
+        phase.name,
+        chain(&e)
+    ))
 }
 
 /// Options of `bipo run`.
@@ -487,8 +492,10 @@ enum WriteSteps {
     List(Vec<usize>),
 }
 
-fn io(what: &Path, e: impl std::fmt::Display) -> CliError {
-    CliError::failed(format!("cannot write {}: {e}", what.display()))
+/// "cannot write `what`: " and the whole error chain (a `String` from the plotter is one link).
+fn io(what: &Path, e: impl Into<Box<dyn std::error::Error + Send + Sync>>) -> CliError {
+    let e: Box<dyn std::error::Error + Send + Sync> = e.into();
+    CliError::failed(format!("cannot write {}: {}", what.display(), chain(&*e)))
 }
 
 fn create(dir: &Path, name: &str) -> CliResult<BufWriter<File>> {
