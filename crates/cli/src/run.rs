@@ -332,31 +332,6 @@ pub struct PhaseSummary {
     pub wall_time_s: f64,
 }
 
-/// Counters, serialisable.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct CountersOut {
-    /// Steps.
-    pub steps: usize,
-    /// F* builds.
-    pub flexibility_builds: usize,
-    /// F* columns.
-    pub flexibility_columns: usize,
-    /// Structure solves.
-    pub structure_solves: usize,
-    /// Adhesion iterations.
-    pub adhesion_iterations: usize,
-    /// Contact iterations.
-    pub contact_iterations: usize,
-    /// Stiffness changes.
-    pub stiffness_changes: usize,
-    /// Steps solved by the primal active set (no `F*`).
-    pub active_set_steps: usize,
-    /// Factorisations of the constrained stiffness by the active set.
-    pub active_set_factorizations: usize,
-    /// Steps solved matrix-free.
-    pub matrix_free_steps: usize,
-}
-
 /// Which stages of the step ran.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Stages {
@@ -417,8 +392,8 @@ pub struct Summary {
     pub wall_time_s: f64,
     /// Mesh facts.
     pub mesh: MeshFacts,
-    /// Counters.
-    pub counters: CountersOut,
+    /// The library's counters of the work done by this run (`contact_solver::Counters`).
+    pub counters: Counters,
     /// Stages.
     pub stages: Stages,
     /// Phases.
@@ -1034,19 +1009,27 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
 }
 
 /// The work done since `start` (a preset's builder may have stepped already, e.g. to calibrate).
-fn since(now: Counters, start: Counters) -> CountersOut {
-    CountersOut {
-        steps: now.steps - start.steps,
-        flexibility_builds: now.flexibility_builds - start.flexibility_builds,
-        flexibility_columns: now.flexibility_columns - start.flexibility_columns,
-        structure_solves: now.structure_solves - start.structure_solves,
-        adhesion_iterations: now.adhesion_iterations - start.adhesion_iterations,
-        contact_iterations: now.contact_iterations - start.contact_iterations,
-        stiffness_changes: now.stiffness_changes - start.stiffness_changes,
-        active_set_steps: now.active_set_steps - start.active_set_steps,
-        active_set_factorizations: now.active_set_factorizations - start.active_set_factorizations,
-        matrix_free_steps: now.matrix_free_steps - start.matrix_free_steps,
-    }
+///
+/// `Counters` is `#[non_exhaustive]`, so it cannot be built here with a struct expression, and
+/// the library has no difference of two counters: the difference is taken field by field on a
+/// copy of `now` (its fields are public). A field the library adds later must be added here,
+/// or it is reported since the start of the simulation rather than of the run.
+fn since(now: Counters, start: Counters) -> Counters {
+    let mut d = now;
+    d.steps -= start.steps;
+    d.flexibility_builds -= start.flexibility_builds;
+    d.flexibility_columns -= start.flexibility_columns;
+    d.structure_solves -= start.structure_solves;
+    d.adhesion_iterations -= start.adhesion_iterations;
+    d.contact_iterations -= start.contact_iterations;
+    d.stiffness_changes -= start.stiffness_changes;
+    d.matrix_free_steps -= start.matrix_free_steps;
+    d.operator_applications -= start.operator_applications;
+    d.active_set_steps -= start.active_set_steps;
+    d.active_set_factorizations -= start.active_set_factorizations;
+    d.active_set_solves -= start.active_set_solves;
+    d.active_set_fallbacks -= start.active_set_fallbacks;
+    d
 }
 
 fn facts<L: ContactLaw + Clone>(sim: &ContactSimulation<LinearElasticModel, L>) -> MeshFacts {
