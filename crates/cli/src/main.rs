@@ -14,6 +14,7 @@ mod plot;
 mod raw;
 mod run;
 mod scene;
+mod spec;
 mod templates;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -209,7 +210,11 @@ fn with_scene(path: &Path, f: impl FnOnce(&build::Loaded) -> CliResult<()>) -> u
         Ok(s) => s,
         Err(e) => {
             return finish(
-                Err(CliError::input(format!("cannot read the scene file: {e}")).in_file(path)),
+                Err(CliError::input(format!(
+                    "cannot read the scene file: {}",
+                    contact_solver::error::chain(&e)
+                ))
+                .in_file(path)),
                 None,
             );
         }

@@ -3,29 +3,15 @@
 //! Every table denies unknown keys, so a typo is an error with its line and column. The
 //! *meaning* of the values (positive moduli, existing node sets, increasing time tables, …) is
 //! checked afterwards by [`crate::build`], which names the key path of the offending value.
+//! The tables with a `type` key are read flat by [`crate::raw`] and resolved into the typed
+//! values of [`crate::spec`].
 //! The format is documented key by key in `docs/guide.md` ("Scene files and the `bipo`
 //! command").
 
-use serde::{Deserialize, Deserializer};
+use crate::raw::{RawAnalysis, RawInitialStress, RawLaw, RawLoad, RawMesh, RawPreset, RawTarget};
+use crate::spec::Pair;
+use serde::Deserialize;
 use std::collections::BTreeMap;
-
-/// Two numbers `[a, b]` (a point, a vector, a `[time, value]` row): exactly two, so that a
-/// third value is an error rather than silently dropped.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Pair(pub [f64; 2]);
-
-impl<'de> Deserialize<'de> for Pair {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let v = Vec::<f64>::deserialize(d)?;
-        match v[..] {
-            [a, b] => Ok(Pair([a, b])),
-            _ => Err(serde::de::Error::invalid_length(
-                v.len(),
-                &"two numbers [a, b]",
-            )),
-        }
-    }
-}
 
 /// A whole scene file.
 #[derive(Debug, Deserialize)]
@@ -36,16 +22,16 @@ pub struct Scene {
     /// Free-text note of the unit system (the code needs only consistency).
     pub units: Option<Units>,
     /// A seed study built by the library (`delamination`, `shear`, `pile`).
-    pub preset: Option<crate::raw::RawPreset>,
+    pub preset: Option<RawPreset>,
     /// The mesh.
-    pub mesh: Option<crate::raw::RawMesh>,
+    pub mesh: Option<RawMesh>,
     /// The 2D idealisation.
-    pub analysis: Option<crate::raw::RawAnalysis>,
+    pub analysis: Option<RawAnalysis>,
     /// Materials per region.
     #[serde(default)]
     pub materials: Vec<MaterialSpec>,
     /// Initial stress field.
-    pub initial_stress: Option<crate::raw::RawInitialStress>,
+    pub initial_stress: Option<RawInitialStress>,
     /// Piecewise linear time functions, by name.
     #[serde(default)]
     pub functions: BTreeMap<String, Vec<Pair>>,
@@ -54,7 +40,7 @@ pub struct Scene {
     pub supports: Vec<SupportSpec>,
     /// Loads.
     #[serde(default)]
-    pub loads: Vec<crate::raw::RawLoad>,
+    pub loads: Vec<RawLoad>,
     /// Contact zones.
     #[serde(default)]
     pub contact: Vec<ZoneSpec>,
@@ -88,143 +74,6 @@ pub struct Units {
     pub stress: Option<String>,
 }
 
-/// P1 or P2 triangles.
-#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
-pub enum Element {
-    /// 3-node triangles.
-    #[serde(alias = "p1", alias = "tri3")]
-    P1,
-    /// 6-node triangles.
-    #[serde(alias = "p2", alias = "tri6")]
-    P2,
-}
-
-/// Geometric grading of a 1D subdivision.
-#[derive(Debug, Clone, Copy)]
-pub enum GradingSpec {
-    /// Equal cells.
-    Uniform {},
-    /// Last cell over first cell = `ratio`.
-    Geometric {
-        /// h_last / h_first.
-        ratio: f64,
-    },
-    /// Refined toward both ends, `ratio` = h_middle / h_end.
-    BothEnds {
-        /// h_middle / h_end.
-        ratio: f64,
-    },
-}
-
-impl Default for GradingSpec {
-    fn default() -> Self {
-        Self::Uniform {}
-    }
-}
-
-/// One layer of a rectangle.
-#[derive(Debug, Clone)]
-pub struct LayerSpec {
-    /// Upper edge.
-    pub top: f64,
-    /// Cells across.
-    pub ny: usize,
-    /// Grading upward.
-    pub grading: GradingSpec,
-    /// Region id.
-    pub region: u32,
-}
-
-/// The mesh: a generator or a Gmsh file.
-#[derive(Debug, Clone)]
-pub enum MeshSpec {
-    /// `fem_core::generate::rectangle`.
-    Rectangle {
-        /// P1 / P2.
-        element: Element,
-        /// `[x0, x1]`.
-        x: Pair,
-        /// Cells along x.
-        nx: usize,
-        /// Grading along x.
-        grading_x: GradingSpec,
-        /// `[y0, y1]` (one layer; or `y0` and `layers`).
-        y: Option<Pair>,
-        /// Cells along y for the one-layer form.
-        ny: Option<usize>,
-        /// Grading along y for the one-layer form.
-        grading_y: Option<GradingSpec>,
-        /// Region of the one-layer form.
-        region: Option<u32>,
-        /// Bottom edge (layered form).
-        y0: Option<f64>,
-        /// Layers from bottom to top (layered form).
-        layers: Option<Vec<LayerSpec>>,
-    },
-    /// `fem_core::generate::pile_in_soil` (axisymmetric).
-    Pile {
-        /// P1 / P2 (default P2).
-        element: Option<Element>,
-        /// Pile diameter.
-        diameter: Option<f64>,
-        /// Embedded length.
-        length: Option<f64>,
-        /// Radial extent of the soil.
-        width: Option<f64>,
-        /// Depth of the soil.
-        depth: Option<f64>,
-        /// Cells across the pile radius.
-        cells_pile_r: Option<usize>,
-        /// Cells in the soil, radially.
-        cells_soil_r: Option<usize>,
-        /// Cells along the shaft.
-        cells_shaft: Option<usize>,
-        /// Cells below the tip.
-        cells_below_tip: Option<usize>,
-        /// Grading across the pile radius.
-        grading_pile_r: Option<GradingSpec>,
-        /// Grading of the soil, outward.
-        grading_soil_r: Option<GradingSpec>,
-        /// Grading along the shaft, upward.
-        grading_shaft: Option<GradingSpec>,
-        /// Grading below the tip, upward.
-        grading_below_tip: Option<GradingSpec>,
-        /// `split` or `shared`.
-        tip_corner: Option<TipCornerSpec>,
-    },
-    /// A Gmsh `.msh` 4.1 file.
-    Gmsh {
-        /// Path, relative to the scene file.
-        file: String,
-        /// Expected element order (checked against the file).
-        element: Option<Element>,
-    },
-}
-
-/// Pile tip corner.
-#[derive(Debug, Deserialize, Clone, Copy)]
-#[serde(rename_all = "snake_case")]
-pub enum TipCornerSpec {
-    /// Duplicated, first interface pair.
-    Split,
-    /// Shared by pile and soil.
-    Shared,
-}
-
-/// The idealisation.
-#[derive(Debug, Clone, Copy)]
-pub enum Analysis {
-    /// Plane strain (per unit thickness).
-    PlaneStrain {},
-    /// Plane stress with a thickness.
-    PlaneStress {
-        /// Thickness.
-        thickness: f64,
-    },
-    /// Axisymmetric `(r, z)`, per radian.
-    Axisymmetric {},
-}
-
 /// A material on one or several regions.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
@@ -243,20 +92,6 @@ pub struct MaterialSpec {
     /// Unit weight (for gravity loads).
     #[serde(default)]
     pub unit_weight: f64,
-}
-
-/// Initial stress.
-#[derive(Debug, Clone, Copy)]
-pub enum InitialStress {
-    /// `fem_core::geostatic(gamma, k0, z_surface)`.
-    Geostatic {
-        /// Unit weight.
-        gamma: f64,
-        /// Earth pressure coefficient at rest.
-        k0: f64,
-        /// Ground surface elevation.
-        z_surface: f64,
-    },
 }
 
 /// Which displacement components a support constrains.
@@ -290,55 +125,6 @@ pub struct SupportSpec {
     pub phases: Option<Vec<String>>,
 }
 
-/// A load.
-#[derive(Debug, Clone)]
-pub enum LoadSpec {
-    /// Traction (force per area, global frame) on an edge set.
-    Traction {
-        /// A name.
-        name: Option<String>,
-        /// Edge set.
-        set: String,
-        /// `[t_x, t_y]`.
-        value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
-    },
-    /// A force on every node of a node set.
-    NodalForce {
-        /// A name.
-        name: Option<String>,
-        /// Node set.
-        set: String,
-        /// `[f_x, f_y]` per node.
-        value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
-    },
-    /// A uniform body force (force per volume) over the whole mesh.
-    BodyForce {
-        /// A name.
-        name: Option<String>,
-        /// `[b_x, b_y]`.
-        value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
-    },
-    /// The self-weight of every region (its material's `unit_weight`, along −y), in full.
-    Gravity {
-        /// A name.
-        name: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
-    },
-}
-
 /// A contact zone.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
@@ -348,106 +134,11 @@ pub struct ZoneSpec {
     /// Contactor node set.
     pub contactor: String,
     /// What the contactor faces.
-    pub target: crate::raw::RawTarget,
+    pub target: RawTarget,
     /// Interface law.
-    pub law: crate::raw::RawLaw,
+    pub law: RawLaw,
     /// Alert distance Δx.
     pub alert_distance: f64,
-}
-
-/// Side of an ARC.
-#[derive(Debug, Deserialize, Clone, Copy)]
-#[serde(rename_all = "snake_case")]
-pub enum ArcSideSpec {
-    /// Contactor outside the circle.
-    Outside,
-    /// Contactor inside the circle.
-    Inside,
-}
-
-/// Target of a zone.
-#[derive(Debug, Clone)]
-pub enum TargetSpec {
-    /// Rigid segment a → b, contactor on its left.
-    Line {
-        /// Start.
-        a: Pair,
-        /// End.
-        b: Pair,
-    },
-    /// Rigid circular arc.
-    Arc {
-        /// Centre.
-        center: Pair,
-        /// Radius.
-        radius: f64,
-        /// Start angle (radians, counter-clockwise from +x).
-        start_angle: f64,
-        /// Sweep (radians, default 2π).
-        sweep: Option<f64>,
-        /// `outside` or `inside`.
-        side: ArcSideSpec,
-    },
-    /// Node-to-node pairs with a node set of the same length.
-    NodePairs {
-        /// Target node set.
-        set: String,
-        /// Fixed normal.
-        normal: Option<Pair>,
-    },
-    /// Node-to-segment on the polyline of a node set.
-    Segments {
-        /// Target node set (in order).
-        set: String,
-    },
-}
-
-/// β time integration.
-#[derive(Debug, Deserialize, Clone, Copy, Default, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum SchemeSpec {
-    /// Implicit Euler.
-    #[default]
-    ImplicitEuler,
-    /// θ-method (with `theta`).
-    Theta,
-}
-
-/// Interface law.
-#[derive(Debug, Clone, Copy)]
-pub enum LawSpec {
-    /// Frictionless unilateral contact.
-    Signorini {},
-    /// Coulomb friction.
-    Coulomb {
-        /// Friction coefficient.
-        mu: f64,
-    },
-    /// RCCM adhesion.
-    Rccm(RccmSpec),
-}
-
-/// RCCM parameters (all required except `m`, `beta_0`, `scheme`, `theta`).
-#[derive(Debug, Clone, Copy)]
-pub struct RccmSpec {
-    /// Normal stiffness.
-    pub c_n: f64,
-    /// Tangential stiffness.
-    pub c_t: f64,
-    /// Dupré's energy.
-    pub w: f64,
-    /// Viscosity.
-    pub alpha: f64,
-    /// Friction coefficient.
-    pub mu: f64,
-    /// Exponent of f(β).
-    pub m: u32,
-    /// Initial β.
-    pub beta_0: f64,
-    /// β scheme.
-    pub scheme: SchemeSpec,
-    /// θ of the θ-scheme.
-    pub theta: Option<f64>,
 }
 
 /// Solver settings (all optional).
@@ -621,170 +312,4 @@ pub struct CurveSpec {
     pub set: Option<String>,
     /// Legend.
     pub label: Option<String>,
-}
-
-/// A seed study built by the library.
-#[derive(Debug, Clone)]
-pub enum Preset {
-    /// Seed 5.6.1.
-    Delamination {
-        /// Length.
-        length: Option<f64>,
-        /// Height.
-        height: Option<f64>,
-        /// Young's modulus.
-        young: Option<f64>,
-        /// Poisson's ratio.
-        poisson: Option<f64>,
-        /// Cells along the interface.
-        nx: Option<usize>,
-        /// Cells across.
-        ny: Option<usize>,
-        /// P1 / P2.
-        element: Option<Element>,
-        /// Lift of point A.
-        lift: Option<f64>,
-        /// Duration.
-        duration: Option<f64>,
-        /// Steps.
-        steps: Option<usize>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
-    },
-    /// Seed 5.6.2.
-    Shear {
-        /// Length.
-        length: Option<f64>,
-        /// Height.
-        height: Option<f64>,
-        /// Young's modulus.
-        young: Option<f64>,
-        /// Poisson's ratio.
-        poisson: Option<f64>,
-        /// Cells along the interface.
-        nx: Option<usize>,
-        /// Cells across.
-        ny: Option<usize>,
-        /// P1 / P2.
-        element: Option<Element>,
-        /// Top `u_y` at the end.
-        press: Option<f64>,
-        /// Left `u_x` at the end.
-        push: Option<f64>,
-        /// Duration.
-        duration: Option<f64>,
-        /// Steps.
-        steps: Option<usize>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
-    },
-    /// Seed chapter 6: pile pull-out (geostatic, installation, pull-out phases).
-    Pile {
-        /// `plancoet` (default) or `cran`.
-        site: Option<Site>,
-        /// Plain Coulomb interface (β₀ = 0) instead of RCCM.
-        coulomb: bool,
-        /// Pile Young's modulus (kPa).
-        pile_young: Option<f64>,
-        /// Pile Poisson's ratio.
-        pile_poisson: Option<f64>,
-        /// Pile unit weight (kN/m³).
-        pile_unit_weight: Option<f64>,
-        /// Soil Young's modulus (kPa).
-        soil_young: Option<f64>,
-        /// Soil Poisson's ratio.
-        soil_poisson: Option<f64>,
-        /// Soil unit weight (kN/m³).
-        soil_unit_weight: Option<f64>,
-        /// K0.
-        k0: Option<f64>,
-        /// Phase 2.
-        installation: Option<InstallationSpec>,
-        /// Final head displacement (m).
-        head_displacement: Option<f64>,
-        /// Pull-out increments.
-        steps: Option<usize>,
-        /// Alert distance (m).
-        alert_distance: Option<f64>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
-        /// Mesh overrides.
-        mesh: Option<PileMeshOverride>,
-    },
-}
-
-/// Which pile of the seed a pile preset starts from.
-#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum Site {
-    /// Plancoët (L_p = 13 m).
-    #[serde(alias = "plancoët")]
-    Plancoet,
-    /// Cran (L_p = 17 m).
-    Cran,
-}
-
-/// Phase 2 of the pile preset.
-#[derive(Debug, Clone, Copy)]
-pub enum InstallationSpec {
-    /// No installation.
-    None {},
-    /// Imposed radial displacement δ of the soil's interface nodes.
-    RadialDisplacement {
-        /// δ (m).
-        value: f64,
-    },
-    /// δ such that the shaft normal force is this multiple of the geostatic one.
-    NormalForceRatio {
-        /// Ratio (>= 1).
-        value: f64,
-    },
-}
-
-/// Mesh overrides of the pile preset.
-#[derive(Debug, Deserialize, Clone, Copy, Default)]
-#[serde(deny_unknown_fields)]
-pub struct PileMeshOverride {
-    /// P1 / P2.
-    pub element: Option<Element>,
-    /// Pile diameter.
-    pub diameter: Option<f64>,
-    /// Embedded length.
-    pub length: Option<f64>,
-    /// Radial extent.
-    pub width: Option<f64>,
-    /// Depth.
-    pub depth: Option<f64>,
-    /// Cells across the pile radius.
-    pub cells_pile_r: Option<usize>,
-    /// Cells in the soil, radially.
-    pub cells_soil_r: Option<usize>,
-    /// Cells along the shaft.
-    pub cells_shaft: Option<usize>,
-    /// Cells below the tip.
-    pub cells_below_tip: Option<usize>,
-}
-
-/// Optional overrides of RCCM parameters.
-#[derive(Debug, Deserialize, Clone, Copy, Default)]
-#[serde(deny_unknown_fields)]
-pub struct RccmOverride {
-    /// Normal stiffness.
-    pub c_n: Option<f64>,
-    /// Tangential stiffness.
-    pub c_t: Option<f64>,
-    /// Dupré's energy.
-    pub w: Option<f64>,
-    /// Viscosity.
-    pub alpha: Option<f64>,
-    /// Friction.
-    pub mu: Option<f64>,
-    /// Exponent.
-    pub m: Option<u32>,
-    /// Initial β.
-    pub beta_0: Option<f64>,
-    /// Scheme.
-    pub scheme: Option<SchemeSpec>,
-    /// θ.
-    pub theta: Option<f64>,
 }

@@ -1,0 +1,157 @@
+//! The checks of single values (finite, positive, counts, Poisson's ratios), the names of the
+//! element kinds, and the library errors turned into errors at a key path (with the whole
+//! source chain).
+
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::spec::{Element, GradingSpec, Pair};
+use contact_laws::LawError;
+use contact_solver::SolverError;
+use contact_solver::error::chain;
+use fem_core::generate::Grading;
+use fem_core::{ElementKind, FemError, Mesh};
+use std::collections::BTreeSet;
+
+/// `value`, or the error "`path` = value: expected `expected`" when not `ok`.
+pub(super) fn expect(path: &KeyPath, value: f64, ok: bool, expected: &str) -> CliResult<f64> {
+    if ok {
+        Ok(value)
+    } else {
+        Err(CliError::at(
+            path,
+            format!("`{path}` = {value:?}: expected {expected}"),
+        ))
+    }
+}
+
+/// A finite number > 0.
+pub(super) fn positive(path: &KeyPath, v: f64) -> CliResult<f64> {
+    expect(path, v, v.is_finite() && v > 0.0, "a finite number > 0")
+}
+
+/// A finite number >= 0.
+pub(super) fn non_negative(path: &KeyPath, v: f64) -> CliResult<f64> {
+    expect(path, v, v.is_finite() && v >= 0.0, "a finite number >= 0")
+}
+
+/// A finite number.
+pub(super) fn finite(path: &KeyPath, v: f64) -> CliResult<f64> {
+    expect(path, v, v.is_finite(), "a finite number (not nan or inf)")
+}
+
+/// Two finite numbers (the error names the index).
+pub(super) fn finite2(path: &KeyPath, v: Pair) -> CliResult<[f64; 2]> {
+    let v = v.0;
+    finite(&path.index(0), v[0])?;
+    finite(&path.index(1), v[1])?;
+    Ok(v)
+}
+
+/// An integer >= `min`.
+pub(super) fn at_least(path: &KeyPath, v: usize, min: usize) -> CliResult<usize> {
+    if v >= min {
+        Ok(v)
+    } else {
+        Err(CliError::at(
+            path,
+            format!("`{path}` = {v}: expected an integer >= {min}"),
+        ))
+    }
+}
+
+/// The generator's grading (a ratio must be > 0).
+pub(super) fn grading(path: &KeyPath, g: GradingSpec) -> CliResult<Grading> {
+    Ok(match g {
+        GradingSpec::Uniform {} => Grading::Uniform,
+        GradingSpec::Geometric { ratio } => Grading::Geometric {
+            ratio: positive(&path.key("ratio"), ratio)?,
+        },
+        GradingSpec::BothEnds { ratio } => Grading::BothEnds {
+            ratio: positive(&path.key("ratio"), ratio)?,
+        },
+    })
+}
+
+/// The element kind of a scene's element name.
+pub(super) fn kind(e: Element) -> ElementKind {
+    match e {
+        Element::P1 => ElementKind::Tri3,
+        Element::P2 => ElementKind::Tri6,
+    }
+}
+
+/// Name of an element kind for messages.
+pub fn kind_name(k: ElementKind) -> &'static str {
+    match k {
+        ElementKind::Tri3 => "P1 (3-node triangles)",
+        ElementKind::Tri6 => "P2 (6-node triangles)",
+    }
+}
+
+/// A `FemError` at `path`, with a hint for a singular stiffness.
+pub(super) fn fem(path: &KeyPath, e: FemError) -> CliError {
+    let hint = match e {
+        FemError::NotPositiveDefinite { .. } => {
+            " — add supports so that the body cannot move as a rigid body"
+        }
+        _ => "",
+    };
+    CliError::at(path, format!("{}{hint}", chain(&e)))
+}
+
+/// A `LawError` at the key of the offending parameter under `path`.
+pub(super) fn law_error(path: &KeyPath, e: LawError) -> CliError {
+    match e {
+        LawError::InvalidParameter {
+            name,
+            value,
+            expected,
+        } => {
+            let p = path.key(name);
+            CliError::at(&p, format!("`{p}` = {value:?}: expected {expected}"))
+        }
+        LawError::InvalidExponent { m } => {
+            let p = path.key("m");
+            CliError::at(&p, format!("`{p}` = {m}: expected 1 or 2"))
+        }
+        other => CliError::at(path, chain(&other)),
+    }
+}
+
+/// A `SolverError` at `path` (a structure error as [`fem`] does).
+pub(super) fn solver_error(path: &KeyPath, e: SolverError) -> CliError {
+    match e {
+        SolverError::Structure(f) => fem(path, f),
+        other => CliError::at(path, chain(&other)),
+    }
+}
+
+/// "`a`, `b`" (or "none").
+pub(super) fn list_names<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let v: Vec<String> = names.map(|n| format!("`{n}`")).collect();
+    if v.is_empty() {
+        "none".into()
+    } else {
+        v.join(", ")
+    }
+}
+
+/// "1, 2, 3".
+pub(super) fn join(s: &BTreeSet<u32>) -> String {
+    s.iter()
+        .map(|r| r.to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The nodes of a node set of the mesh, or an error naming the sets there are.
+pub(super) fn node_set(path: &KeyPath, mesh: &Mesh, name: &str) -> CliResult<Vec<usize>> {
+    mesh.node_set(name).map(|s| s.to_vec()).map_err(|_| {
+        CliError::at(
+            path,
+            format!(
+                "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
+                list_names(mesh.node_set_names())
+            ),
+        )
+    })
+}

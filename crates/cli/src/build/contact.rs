@@ -1,0 +1,390 @@
+//! Contact: the solver settings, the laws and the targets of the zones checked first, then the
+//! zones built on the model's node sets, recognised (every zone must have a candidate within its
+//! alert distance at the start), and the simulation made.
+
+use super::checks::{
+    at_least, expect, finite, finite2, law_error, node_set, non_negative, positive, solver_error,
+};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::{AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
+use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
+use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::{
+    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
+    FlexibilityMode, RigidArc, RigidLine, SimulationSettings, recognize,
+};
+use fem_core::LinearElasticModel;
+use std::collections::BTreeSet;
+use std::f64::consts::TAU;
+
+/// What a zone faces, checked; node sets are looked up in the mesh at build.
+enum TargetPlan {
+    Line(RigidLine),
+    Arc(RigidArc),
+    NodePairs {
+        set: String,
+        normal: Option<[f64; 2]>,
+    },
+    Segments {
+        set: String,
+    },
+}
+
+/// A contact zone, checked.
+pub(super) struct ZonePlan {
+    path: KeyPath,
+    name: String,
+    contactor: String,
+    law: StandardLaw,
+    law_name: &'static str,
+    alert: f64,
+    target: TargetPlan,
+}
+
+/// The zones of a scene, checked, how many have adhesion and friction, and the solver settings.
+pub(super) struct ContactPlan {
+    /// Zones, in the scene's order.
+    pub(super) zones: Vec<ZonePlan>,
+    /// Zones whose law has adhesion.
+    pub(super) adhesive: usize,
+    /// Zones whose law has friction.
+    pub(super) friction: usize,
+    /// `[solver]`.
+    pub(super) settings: SimulationSettings,
+}
+
+/// `[solver]`, checked, as the library's settings.
+pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
+    let root = KeyPath::root().key("solver");
+    let mut out = SimulationSettings::default();
+    if let Some(a) = s.algorithm {
+        out.solver.algorithm = match a {
+            AlgorithmSpec::Bipotential => Algorithm::default(),
+            AlgorithmSpec::Uzawa => Algorithm::Uzawa,
+            AlgorithmSpec::RccmClassic => Algorithm::ClassicRccm,
+        };
+    }
+    if let Some(t) = s.tol {
+        out.solver.tol = positive(&root.key("tol"), t)?;
+    }
+    if let Some(r) = s.rho_scale {
+        out.solver.rho_scale = positive(&root.key("rho_scale"), r)?;
+    }
+    if let Some(n) = s.max_iterations {
+        out.solver.max_iterations = at_least(&root.key("max_iterations"), n, 1)?;
+    }
+    if let Some(w) = s.omega {
+        let p = root.key("omega");
+        out.solver.omega = expect(&p, w, w > 0.0 && w < 2.0, "a factor in (0, 2)")?;
+    }
+    if let Some(t) = s.adhesion_tol {
+        out.adhesion_tol = positive(&root.key("adhesion_tol"), t)?;
+    }
+    if let Some(n) = s.max_adhesion_iterations {
+        out.max_adhesion_iterations = at_least(&root.key("max_adhesion_iterations"), n, 1)?;
+    }
+    if let Some(n) = s.max_detection_passes {
+        out.max_detection_passes = at_least(&root.key("max_detection_passes"), n, 1)?;
+    }
+    if let Some(b) = s.accept_non_converged {
+        out.solver.accept_non_converged = b;
+    }
+    let dense_limit = s.dense_limit.unwrap_or(DEFAULT_DENSE_LIMIT);
+    out.flexibility = match s.flexibility.unwrap_or(FlexibilitySpec::Auto) {
+        FlexibilitySpec::Auto => FlexibilityMode::Auto { dense_limit },
+        other if s.dense_limit.is_some() => {
+            let p = root.key("dense_limit");
+            return Err(CliError::at(
+                &p,
+                format!("`{p}` only applies to flexibility = \"auto\" (here {other:?})"),
+            ));
+        }
+        FlexibilitySpec::Dense => FlexibilityMode::Dense,
+        FlexibilitySpec::ActiveSet => FlexibilityMode::ActiveSet,
+        FlexibilitySpec::MatrixFree => FlexibilityMode::MatrixFree,
+    };
+    Ok(out)
+}
+
+/// RCCM parameters, checked (the θ key against the scheme, then the law's own checks).
+pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams> {
+    let scheme = match (r.scheme, r.theta) {
+        (SchemeSpec::ImplicitEuler, None) => BetaScheme::ImplicitEuler,
+        (SchemeSpec::ImplicitEuler, Some(_)) => {
+            let p = path.key("theta");
+            return Err(CliError::at(
+                &p,
+                format!(
+                    "`{p}` is only read with scheme = \"theta\" (the scheme is implicit_euler)"
+                ),
+            ));
+        }
+        (SchemeSpec::Theta, Some(t)) => {
+            let p = path.key("theta");
+            BetaScheme::Theta(expect(
+                &p,
+                t,
+                (0.0..=1.0).contains(&t),
+                "a value in [0, 1]",
+            )?)
+        }
+        (SchemeSpec::Theta, None) => {
+            return Err(CliError::at(
+                path,
+                format!("`{path}`: scheme = \"theta\" needs `theta` (a value in [0, 1])"),
+            ));
+        }
+    };
+    let p = RccmParams {
+        c_n: r.c_n,
+        c_t: r.c_t,
+        w: r.w,
+        alpha: r.alpha,
+        mu: r.mu,
+        m: r.m,
+        beta_0: r.beta_0,
+        scheme,
+    };
+    Rccm::new(p).map_err(|e| law_error(path, e))?;
+    Ok(p)
+}
+
+/// The law of a zone, checked, and its name for reports.
+fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'static str)> {
+    Ok(match l {
+        LawSpec::Signorini {} => (Signorini.into(), "signorini"),
+        LawSpec::Coulomb { mu } => (
+            Coulomb::new(*mu).map_err(|e| law_error(path, e))?.into(),
+            "coulomb",
+        ),
+        LawSpec::Rccm(r) => {
+            let p = rccm_params(path, r)?;
+            (Rccm::new(p).map_err(|e| law_error(path, e))?.into(), "rccm")
+        }
+    })
+}
+
+/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry) and
+/// `[solver]`.
+pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
+    let root = KeyPath::root();
+    if scene.contact.is_empty() {
+        return Err(CliError::at(
+            &root,
+            "the scene has no [[contact]] zone (bipo solves contact problems)",
+        ));
+    }
+    let settings = settings(&scene.solver)?;
+    let mut zones = Vec::new();
+    let mut names = BTreeSet::new();
+    let (mut adhesive, mut friction) = (0, 0);
+    for (i, z) in scene.contact.iter().enumerate() {
+        let p = root.key("contact").index(i);
+        if !names.insert(z.name.clone()) {
+            return Err(CliError::at(
+                &p.key("name"),
+                format!("zone name `{}` is used twice", z.name),
+            ));
+        }
+        let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
+        let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
+        if l.has_adhesion() {
+            adhesive += 1;
+        }
+        if l.has_friction() {
+            friction += 1;
+        }
+        let target = target(&p.key("target"), &z.target.resolve(&p.key("target"))?)?;
+        zones.push(ZonePlan {
+            path: p,
+            name: z.name.clone(),
+            contactor: z.contactor.clone(),
+            law: l,
+            law_name,
+            alert,
+            target,
+        });
+    }
+    Ok(ContactPlan {
+        zones,
+        adhesive,
+        friction,
+        settings,
+    })
+}
+
+/// The geometry of a target at `tp`, checked (rigid lines and arcs are built here).
+fn target(tp: &KeyPath, t: &TargetSpec) -> CliResult<TargetPlan> {
+    Ok(match t {
+        TargetSpec::Line { a, b } => {
+            let a = finite2(&tp.key("a"), *a)?;
+            let b = finite2(&tp.key("b"), *b)?;
+            TargetPlan::Line(RigidLine::new(a, b).map_err(|e| solver_error(tp, e))?)
+        }
+        TargetSpec::Arc {
+            center,
+            radius,
+            start_angle,
+            sweep,
+            side,
+        } => {
+            let center = finite2(&tp.key("center"), *center)?;
+            let radius = positive(&tp.key("radius"), *radius)?;
+            let start = finite(&tp.key("start_angle"), *start_angle)?;
+            let sweep = match sweep {
+                Some(s) => expect(
+                    &tp.key("sweep"),
+                    *s,
+                    *s > 0.0 && *s <= TAU * (1.0 + 1e-12),
+                    "an angle in (0, 2π] radians",
+                )?,
+                None => TAU,
+            };
+            let side = match side {
+                ArcSideSpec::Outside => ArcSide::Outside,
+                ArcSideSpec::Inside => ArcSide::Inside,
+            };
+            TargetPlan::Arc(
+                RigidArc::new(center, radius, start, sweep, side)
+                    .map_err(|e| solver_error(tp, e))?,
+            )
+        }
+        TargetSpec::NodePairs { set, normal } => {
+            if let Some(n) = normal {
+                let n = finite2(&tp.key("normal"), *n)?;
+                if n[0] == 0.0 && n[1] == 0.0 {
+                    return Err(CliError::at(
+                        &tp.key("normal"),
+                        "the normal [0, 0] has no direction",
+                    ));
+                }
+            }
+            TargetPlan::NodePairs {
+                set: set.clone(),
+                normal: normal.map(|n| n.0),
+            }
+        }
+        TargetSpec::Segments { set } => TargetPlan::Segments { set: set.clone() },
+    })
+}
+
+/// The zones on the model's node sets, recognised and checked, and the simulation; also gives
+/// each zone's law name.
+pub(super) fn build(
+    model: LinearElasticModel,
+    plan: Vec<ZonePlan>,
+    settings: SimulationSettings,
+) -> CliResult<(
+    ContactSimulation<LinearElasticModel, StandardLaw>,
+    Vec<String>,
+)> {
+    let root = KeyPath::root();
+    let mut zones = Vec::new();
+    let mut zone_laws = Vec::new();
+    for z in plan {
+        let p = &z.path;
+        let mesh = model.mesh();
+        let contactor = node_set(&p.key("contactor"), mesh, &z.contactor)?;
+        zone_laws.push(z.law_name.to_string());
+        let tp = p.key("target");
+        let (l, alert) = (z.law, z.alert);
+        let zone = match z.target {
+            TargetPlan::Line(line) => ContactZone::rigid(&z.name, contactor, line, l, alert),
+            TargetPlan::Arc(arc) => ContactZone::rigid(&z.name, contactor, arc, l, alert),
+            TargetPlan::NodePairs { set, normal } => {
+                let targets = node_set(&tp.key("set"), mesh, &set)?;
+                if targets.len() != contactor.len() {
+                    return Err(CliError::at(
+                        &tp.key("set"),
+                        format!(
+                            "node set `{set}` has {} nodes but the contactor set `{}` has {}: \
+                             node pairs need sets of the same length, in matching order",
+                            targets.len(),
+                            z.contactor,
+                            contactor.len()
+                        ),
+                    ));
+                }
+                ContactZone::node_pairs(&z.name, contactor, targets, normal, l, alert)
+            }
+            TargetPlan::Segments { set } => {
+                let surface = node_set(&tp.key("set"), mesh, &set)?;
+                if surface.len() < 2 {
+                    return Err(CliError::at(
+                        &tp.key("set"),
+                        format!(
+                            "node set `{set}` has {} node: a target polyline needs at least two",
+                            surface.len()
+                        ),
+                    ));
+                }
+                ContactZone::node_to_segment(&z.name, contactor, surface, l, alert)
+            }
+        };
+        zones.push(zone);
+    }
+    let candidates =
+        recognize(&model, &zones).map_err(|e| solver_error(&root.key("contact"), e))?;
+    check_candidates(&candidates, &zones, &model)?;
+    let sim = ContactSimulation::new(model, zones, settings)
+        .map_err(|e| solver_error(&root.key("contact"), e))?;
+    Ok((sim, zone_laws))
+}
+
+/// Every zone must have a candidate, none deeper inside its target than the alert distance, and
+/// one within the alert distance.
+fn check_candidates(
+    candidates: &[Candidate],
+    zones: &[ContactZone<StandardLaw>],
+    model: &LinearElasticModel,
+) -> CliResult<()> {
+    use fem_core::Structure;
+    for (z, zone) in zones.iter().enumerate() {
+        let p = KeyPath::root().key("contact").index(z);
+        let mine: Vec<&Candidate> = candidates.iter().filter(|c| c.zone == z).collect();
+        if mine.is_empty() {
+            return Err(CliError::at(
+                &p.key("target"),
+                format!(
+                    "zone `{}`: none of its {} contactor nodes projects onto the target \
+                     (a LINE or ARC must face the nodes; check its ends and its side)",
+                    zone.name,
+                    zone.contactor.len()
+                ),
+            ));
+        }
+        let closest = mine
+            .iter()
+            .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
+            .expect("non-empty");
+        let deepest = mine
+            .iter()
+            .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
+            .expect("non-empty");
+        if deepest.gap0 < -zone.alert_distance {
+            let x = model.node_position(deepest.node);
+            return Err(CliError::at(
+                &p.key("target"),
+                format!(
+                    "zone `{}`: contactor node {} at ({}, {}) starts inside the target by {}, more \
+                     than the alert distance {}: is the target on the right side (a LINE has the \
+                     contactor on its left, from a to b; an ARC has `side`)?",
+                    zone.name, deepest.node, x[0], x[1], -deepest.gap0, zone.alert_distance
+                ),
+            ));
+        }
+        if closest.gap0 > zone.alert_distance {
+            let x = model.node_position(closest.node);
+            return Err(CliError::at(
+                &p.key("alert_distance"),
+                format!(
+                    "zone `{}`: every contactor node is outside the alert distance {} at the start \
+                     (the closest, node {} at ({}, {}), has a gap of {}); move the target closer \
+                     or raise `alert_distance`",
+                    zone.name, zone.alert_distance, closest.node, x[0], x[1], closest.gap0
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,299 @@
+//! The mesh: `[mesh]`'s values checked into a generator's spec (or a Gmsh file to read), then
+//! the mesh generated or read, and the axisymmetric mesh checked to lie right of the axis.
+
+use super::checks::{at_least, fem, finite, finite2, grading, kind, kind_name, positive};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::spec::{Element, MeshSpec, TipCornerSpec};
+use fem_core::generate::{Layer, PileSpec, RectangleSpec, TipCorner};
+use fem_core::{Idealization, Mesh};
+use std::path::{Path, PathBuf};
+
+/// A mesh to build, its values checked.
+pub(super) enum MeshPlan {
+    /// `fem_core::generate::rectangle`.
+    Rectangle(RectangleSpec),
+    /// `fem_core::generate::pile_in_soil`.
+    Pile(PileSpec),
+    /// An existing Gmsh file and the element order it must hold.
+    Gmsh {
+        /// As written in the scene (relative to the scene file).
+        file: String,
+        /// Its path.
+        path: PathBuf,
+        /// `mesh.element`, if given.
+        element: Option<Element>,
+    },
+}
+
+/// Checks the values of `[mesh]` (at `mp`) and gives the generator's spec, or the file to read
+/// (which must exist; `base_dir` is the scene file's folder).
+pub(super) fn validate(
+    mp: &KeyPath,
+    spec: &MeshSpec,
+    idealization: Idealization,
+    base_dir: &Path,
+) -> CliResult<MeshPlan> {
+    match spec {
+        MeshSpec::Rectangle { .. } => rectangle(mp, spec),
+        MeshSpec::Pile { .. } => pile(mp, spec, idealization),
+        MeshSpec::Gmsh { file, element } => {
+            let path = base_dir.join(file);
+            if !path.is_file() {
+                return Err(CliError::at(
+                    &mp.key("file"),
+                    format!(
+                        "`mesh.file` = \"{file}\": no such file ({}; paths are relative to the scene file)",
+                        path.display()
+                    ),
+                ));
+            }
+            Ok(MeshPlan::Gmsh {
+                file: file.clone(),
+                path,
+                element: *element,
+            })
+        }
+    }
+}
+
+/// The rectangle generator: one layer (`y`, `ny`, …) or `y0` and `layers`.
+fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
+    let MeshSpec::Rectangle {
+        element,
+        x,
+        nx,
+        grading_x,
+        y,
+        ny,
+        grading_y,
+        region,
+        y0,
+        layers,
+    } = spec
+    else {
+        unreachable!("called for the rectangle generator")
+    };
+    let xs = finite2(&mp.key("x"), *x)?;
+    if xs[0] >= xs[1] {
+        return Err(CliError::at(
+            &mp.key("x"),
+            format!(
+                "`{}` = [{}, {}]: expected x0 < x1",
+                mp.key("x"),
+                xs[0],
+                xs[1]
+            ),
+        ));
+    }
+    let mut spec = RectangleSpec::new(xs, [0.0, 1.0], at_least(&mp.key("nx"), *nx, 1)?, 1);
+    spec.grading_x = grading(&mp.key("grading_x"), *grading_x)?;
+    spec.kind = kind(*element);
+    match (y, layers) {
+        (Some(y), None) => {
+            if y0.is_some() {
+                return Err(CliError::at(
+                    &mp.key("y0"),
+                    "`y0` goes with `layers`; with `y = [y0, y1]` leave it out",
+                ));
+            }
+            let ys = finite2(&mp.key("y"), *y)?;
+            if ys[0] >= ys[1] {
+                return Err(CliError::at(
+                    &mp.key("y"),
+                    format!(
+                        "`{}` = [{}, {}]: expected y0 < y1",
+                        mp.key("y"),
+                        ys[0],
+                        ys[1]
+                    ),
+                ));
+            }
+            let ny = ny.ok_or_else(|| CliError::at(mp, "`mesh.ny` is missing (cells along y)"))?;
+            spec.y0 = ys[0];
+            spec.layers = vec![Layer {
+                top: ys[1],
+                ny: at_least(&mp.key("ny"), ny, 1)?,
+                grading: grading(&mp.key("grading_y"), grading_y.unwrap_or_default())?,
+                region: region.unwrap_or(0),
+            }];
+        }
+        (None, Some(layers)) => {
+            for (k, key) in [
+                (ny.is_some(), "ny"),
+                (grading_y.is_some(), "grading_y"),
+                (region.is_some(), "region"),
+            ] {
+                if k {
+                    return Err(CliError::at(
+                        &mp.key(key),
+                        format!(
+                            "`mesh.{key}` goes with `y = [y0, y1]`; with `layers` give it per layer"
+                        ),
+                    ));
+                }
+            }
+            spec.y0 = finite(&mp.key("y0"), y0.unwrap_or(0.0))?;
+            if layers.is_empty() {
+                return Err(CliError::at(&mp.key("layers"), "`mesh.layers` is empty"));
+            }
+            let mut below = spec.y0;
+            spec.layers = Vec::new();
+            for (i, l) in layers.iter().enumerate() {
+                let lp = mp.key("layers").index(i);
+                let top = finite(&lp.key("top"), l.top)?;
+                if top <= below {
+                    return Err(CliError::at(
+                        &lp.key("top"),
+                        format!(
+                            "`{}` = {top}: layers go upward, expected a top above {below}",
+                            lp.key("top")
+                        ),
+                    ));
+                }
+                below = top;
+                spec.layers.push(Layer {
+                    top,
+                    ny: at_least(&lp.key("ny"), l.ny, 1)?,
+                    grading: grading(&lp.key("grading"), l.grading)?,
+                    region: l.region,
+                });
+            }
+        }
+        (Some(_), Some(_)) => {
+            return Err(CliError::at(
+                &mp.key("layers"),
+                "give `y = [y0, y1]` or `layers`, not both",
+            ));
+        }
+        (None, None) => {
+            return Err(CliError::at(
+                mp,
+                "the rectangle needs `y = [y0, y1]` and `ny`, or `y0` and `layers`",
+            ));
+        }
+    }
+    Ok(MeshPlan::Rectangle(spec))
+}
+
+/// The pile generator: the seed's pile with optional overrides (axisymmetric only).
+fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Idealization) -> CliResult<MeshPlan> {
+    let MeshSpec::Pile {
+        element,
+        diameter,
+        length,
+        width,
+        depth,
+        cells_pile_r,
+        cells_soil_r,
+        cells_shaft,
+        cells_below_tip,
+        grading_pile_r,
+        grading_soil_r,
+        grading_shaft,
+        grading_below_tip,
+        tip_corner,
+    } = spec
+    else {
+        unreachable!("called for the pile generator")
+    };
+    if !matches!(idealization, Idealization::Axisymmetric) {
+        return Err(CliError::at(
+            &KeyPath::root().key("analysis"),
+            "the pile generator builds an axisymmetric (r, z) mesh: it needs \
+             [analysis] type = \"axisymmetric\"",
+        ));
+    }
+    let mut s = PileSpec::default();
+    macro_rules! pos {
+        ($f:ident) => {
+            if let Some(v) = $f {
+                s.$f = positive(&mp.key(stringify!($f)), *v)?;
+            }
+        };
+    }
+    macro_rules! cnt {
+        ($f:ident) => {
+            if let Some(v) = $f {
+                s.$f = at_least(&mp.key(stringify!($f)), *v, 1)?;
+            }
+        };
+    }
+    macro_rules! grd {
+        ($f:ident) => {
+            if let Some(v) = $f {
+                s.$f = grading(&mp.key(stringify!($f)), *v)?;
+            }
+        };
+    }
+    if length.is_some() && width.is_none() && depth.is_none() {
+        // keep the seed's proportions W = 2 L_p, H = 3.5 L_p
+        let l = positive(&mp.key("length"), length.unwrap_or(13.0))?;
+        s.width = 2.0 * l;
+        s.depth = 3.5 * l;
+    }
+    pos!(diameter);
+    pos!(length);
+    pos!(width);
+    pos!(depth);
+    cnt!(cells_pile_r);
+    cnt!(cells_soil_r);
+    cnt!(cells_shaft);
+    cnt!(cells_below_tip);
+    grd!(grading_pile_r);
+    grd!(grading_soil_r);
+    grd!(grading_shaft);
+    grd!(grading_below_tip);
+    if let Some(e) = element {
+        s.kind = kind(*e);
+    }
+    if let Some(t) = tip_corner {
+        s.tip_corner = match t {
+            TipCornerSpec::Split => TipCorner::Split,
+            TipCornerSpec::Shared => TipCorner::Shared,
+        };
+    }
+    Ok(MeshPlan::Pile(s))
+}
+
+/// Generates or reads the mesh of `plan` (`[mesh]` at `mp`); an axisymmetric mesh must lie at
+/// x >= 0.
+pub(super) fn build(mp: &KeyPath, plan: MeshPlan, idealization: Idealization) -> CliResult<Mesh> {
+    let mesh = match plan {
+        MeshPlan::Rectangle(spec) => {
+            fem_core::generate::rectangle(&spec).map_err(|e| fem(mp, e))?
+        }
+        MeshPlan::Pile(s) => fem_core::generate::pile_in_soil(&s).map_err(|e| fem(mp, e))?,
+        MeshPlan::Gmsh {
+            file,
+            path,
+            element,
+        } => {
+            let mesh = fem_core::gmsh::read_msh(&path).map_err(|e| fem(&mp.key("file"), e))?;
+            if let Some(e) = element
+                && kind(e) != mesh.kind()
+            {
+                return Err(CliError::at(
+                    &mp.key("element"),
+                    format!(
+                        "`mesh.element` = \"{e:?}\" but `{file}` holds {}",
+                        kind_name(mesh.kind())
+                    ),
+                ));
+            }
+            mesh
+        }
+    };
+    if let Idealization::Axisymmetric = idealization
+        && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)
+    {
+        return Err(CliError::at(
+            &KeyPath::root().key("analysis"),
+            format!(
+                "axisymmetric analysis needs every node at r = x >= 0, but node {node} is at x = {} \
+                 (the mesh must lie right of the axis x = 0)",
+                p[0]
+            ),
+        ));
+    }
+    Ok(mesh)
+}

@@ -1,0 +1,136 @@
+//! From a parsed [`Scene`] to a ready-to-step [`Study`], in two passes.
+//!
+//! 1. [`validate`] checks every value with its key path and gives a validated scene: the
+//!    generator's spec of the mesh, the materials, supports, loads, laws and targets, the solver
+//!    settings and phases (or a preset's checked overrides).
+//! 2. The build makes, from it, through the library's public API: the mesh ([`mesh`]), the model
+//!    ([`model`]), the contact zones, their recognition and the simulation ([`contact`]), or the
+//!    preset ([`presets`]); then [`outputs`] checks `[output]` and the plots against the study.
+//!    The checks that need the mesh or the study (node and edge sets, regions, candidates within
+//!    the alert distance, contactor nodes of the plots) are made there, still with key paths.
+//!
+//! [`checks`] holds the value checks and error conversions, [`phases`] the time functions and
+//! phases, [`study`] what a build gives.
+
+mod checks;
+mod contact;
+mod mesh;
+mod model;
+mod outputs;
+mod phases;
+mod presets;
+mod study;
+mod validate;
+
+pub use checks::kind_name;
+pub use phases::{Phase, function_value};
+pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study};
+
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::Scene;
+use std::path::PathBuf;
+use validate::{Plan, Validated};
+
+/// A scene file read from disk.
+pub struct Loaded {
+    /// Its path.
+    pub path: PathBuf,
+    /// Its text.
+    pub source: String,
+    /// Its content.
+    pub scene: Scene,
+}
+
+/// Parses scene text.
+pub fn parse(source: &str) -> CliResult<Scene> {
+    let de = toml::Deserializer::parse(source).map_err(|e| CliError {
+        file: None,
+        span: e.span(),
+        path: None,
+        message: format!("invalid TOML: {}", e.message()),
+        code: 2,
+    })?;
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let message = inner.message().trim_end().to_string();
+        let message = if path.is_empty() || path == "." {
+            message
+        } else {
+            format!("`{path}`: {message}")
+        };
+        CliError {
+            file: None,
+            span: inner.span(),
+            path: None,
+            message,
+            code: 2,
+        }
+    })
+}
+
+/// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
+pub fn build(loaded: &Loaded) -> CliResult<Study> {
+    match validate::validate(&loaded.scene, &loaded.path)? {
+        Validated::Preset(plan) => presets::build(&loaded.scene, *plan),
+        Validated::Custom(plan) => build_custom(loaded, *plan),
+    }
+}
+
+/// Builds a scene described key by key from its validated form.
+fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
+    let scene = &loaded.scene;
+    let Plan {
+        functions,
+        phases,
+        mesh,
+        model,
+        contact,
+    } = plan;
+    let idealization = model.idealization;
+    let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, idealization)?;
+    let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
+    let (sim, zone_laws) = contact::build(model, contact.zones, contact.settings)?;
+    let zone_names = sim.zones().iter().map(|z| z.name.clone()).collect();
+    let mut study = Study {
+        title: scene.title.clone().unwrap_or_else(|| {
+            loaded
+                .path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        }),
+        units: scene.units.clone().unwrap_or_default(),
+        body: Body::Custom(Box::new(Custom {
+            sim,
+            supports,
+            loads,
+            functions,
+        })),
+        phases,
+        output: scene.output.clone(),
+        plots: Vec::new(),
+        zone_names,
+        zone_laws,
+        adhesive_zones: contact.adhesive,
+        friction_zones: contact.friction,
+    };
+    outputs::check_outputs(scene, &mut study)?;
+    Ok(study)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_rejects_unknown_keys_with_a_span() {
+        let e = parse("title = \"x\"\ncolour = 1\n").unwrap_err();
+        assert!(
+            e.message.contains("unknown field `colour`"),
+            "{}",
+            e.message
+        );
+        assert_eq!(e.span.map(|s| s.start), Some(12));
+    }
+}

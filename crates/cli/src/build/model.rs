@@ -1,0 +1,392 @@
+//! The model: materials, supports, loads and the initial stress, their values checked first
+//! (with the time functions and phases they name), then applied to the mesh (regions, node and
+//! edge sets) to build the [`LinearElasticModel`] with the supports of the first phase at t = 0.
+
+use super::checks::{
+    expect, fem, finite, finite2, join, list_names, node_set, non_negative, positive,
+};
+use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
+use super::study::{LoadKind, LoadRt, SupportRt};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::{ComponentSpec, Scene};
+use crate::spec::{InitialStress, LoadSpec};
+use fem_core::{Component, Idealization, LinearElasticModel, Material, Mesh, Supports};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// A material, checked, and the regions it is given to (with their key paths).
+pub(super) struct MaterialPlan {
+    material: Material,
+    regions: Vec<(KeyPath, u32)>,
+}
+
+/// A support, checked; its node set is looked up in the mesh at build.
+pub(super) struct SupportPlan {
+    path: KeyPath,
+    set: String,
+    rt: SupportRt,
+}
+
+/// What a load is, checked; its set is looked up in the mesh at build.
+enum LoadPlanKind {
+    Traction(String, [f64; 2]),
+    Nodal(String, [f64; 2]),
+    Body([f64; 2]),
+    Gravity,
+}
+
+/// A load, checked.
+pub(super) struct LoadPlan {
+    path: KeyPath,
+    name: Option<String>,
+    kind: LoadPlanKind,
+    function: Option<String>,
+    phases: Vec<bool>,
+}
+
+/// Geostatic initial stress: (gamma, k0, z_surface), checked.
+pub(super) type InitialStressPlan = Option<(f64, f64, f64)>;
+
+/// Checks `[[materials]]`: moduli, unit weights and the form of `region` / `regions`. Also
+/// says whether any material has a unit weight (for gravity loads).
+pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
+    let root = KeyPath::root();
+    if scene.materials.is_empty() {
+        return Err(CliError::at(
+            &root,
+            "the scene has no [[materials]] (each with `region`, `young`, `poisson`)",
+        ));
+    }
+    let mut plans = Vec::new();
+    let mut any_weight = false;
+    for (i, m) in scene.materials.iter().enumerate() {
+        let p = root.key("materials").index(i);
+        let young = positive(&p.key("young"), m.young)?;
+        let poisson = expect(
+            &p.key("poisson"),
+            m.poisson,
+            m.poisson > -1.0 && m.poisson < 0.5,
+            "a Poisson's ratio in (-1, 0.5)",
+        )?;
+        let weight = non_negative(&p.key("unit_weight"), m.unit_weight)?;
+        any_weight |= weight > 0.0;
+        let material = Material::new(young, poisson, weight).map_err(|e| fem(&p, e))?;
+        let regions: Vec<(KeyPath, u32)> = match (&m.region, &m.regions) {
+            (Some(r), None) => vec![(p.key("region"), *r)],
+            (None, Some(rs)) if !rs.is_empty() => rs
+                .iter()
+                .enumerate()
+                .map(|(k, r)| (p.key("regions").index(k), *r))
+                .collect(),
+            (Some(_), Some(_)) => {
+                return Err(CliError::at(&p, "give `region` or `regions`, not both"));
+            }
+            _ => {
+                return Err(CliError::at(
+                    &p,
+                    format!("`{p}` needs `region = <id>` or `regions = [ids]`"),
+                ));
+            }
+        };
+        plans.push(MaterialPlan { material, regions });
+    }
+    Ok((plans, any_weight))
+}
+
+/// Checks `[[supports]]`: values, function names and phase lists (one support at least).
+pub(super) fn validate_supports(
+    scene: &Scene,
+    functions: &BTreeMap<String, TimeFunction>,
+    phases: &[Phase],
+) -> CliResult<Vec<SupportPlan>> {
+    let root = KeyPath::root();
+    let mut supports = Vec::new();
+    for (i, s) in scene.supports.iter().enumerate() {
+        let p = root.key("supports").index(i);
+        let value = finite(&p.key("value"), s.value)?;
+        check_function(&p.key("function"), &s.function, functions)?;
+        let components = match s.component {
+            ComponentSpec::X => vec![Component::X],
+            ComponentSpec::Y => vec![Component::Y],
+            ComponentSpec::Both => vec![Component::X, Component::Y],
+        };
+        supports.push(SupportPlan {
+            path: p.key("set"),
+            set: s.set.clone(),
+            rt: SupportRt {
+                name: s.name.clone(),
+                nodes: Vec::new(),
+                components,
+                value,
+                function: s.function.clone(),
+                phases: phase_mask(&p.key("phases"), &s.phases, phases)?,
+            },
+        });
+    }
+    if supports.is_empty() {
+        return Err(CliError::at(
+            &root,
+            "the scene has no [[supports]]: a body without supports has rigid-body modes",
+        ));
+    }
+    Ok(supports)
+}
+
+/// Checks `[[loads]]`: their `type` and keys, values, function names and phase lists (a gravity
+/// load needs a unit weight).
+pub(super) fn validate_loads(
+    scene: &Scene,
+    functions: &BTreeMap<String, TimeFunction>,
+    phases: &[Phase],
+    any_weight: bool,
+) -> CliResult<Vec<LoadPlan>> {
+    let root = KeyPath::root();
+    let mut loads = Vec::new();
+    for (i, l) in scene.loads.iter().enumerate() {
+        let p = root.key("loads").index(i);
+        let l = &l.resolve(&p)?;
+        let (name, kind, function, ph) = match l {
+            LoadSpec::Traction {
+                name,
+                set,
+                value,
+                function,
+                phases,
+            } => (
+                name,
+                LoadPlanKind::Traction(set.clone(), finite2(&p.key("value"), *value)?),
+                function,
+                phases,
+            ),
+            LoadSpec::NodalForce {
+                name,
+                set,
+                value,
+                function,
+                phases,
+            } => (
+                name,
+                LoadPlanKind::Nodal(set.clone(), finite2(&p.key("value"), *value)?),
+                function,
+                phases,
+            ),
+            LoadSpec::BodyForce {
+                name,
+                value,
+                function,
+                phases,
+            } => (
+                name,
+                LoadPlanKind::Body(finite2(&p.key("value"), *value)?),
+                function,
+                phases,
+            ),
+            LoadSpec::Gravity { name, phases } => {
+                if !any_weight {
+                    return Err(CliError::at(
+                        &p,
+                        "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
+                    ));
+                }
+                (name, LoadPlanKind::Gravity, &None, phases)
+            }
+        };
+        check_function(&p.key("function"), function, functions)?;
+        loads.push(LoadPlan {
+            path: p,
+            name: name.clone(),
+            kind,
+            function: function.clone(),
+            phases: phase_mask(&root.key("loads").index(i).key("phases"), ph, phases)?,
+        });
+    }
+    Ok(loads)
+}
+
+/// Checks the names of supports and loads (unique) and the phases' function overrides, which
+/// name them.
+pub(super) fn validate_names(
+    scene: &Scene,
+    loads: &[LoadPlan],
+    functions: &BTreeMap<String, TimeFunction>,
+    phases: &[Phase],
+) -> CliResult<()> {
+    let root = KeyPath::root();
+    let mut named: BTreeSet<String> = BTreeSet::new();
+    for (i, s) in scene.supports.iter().enumerate() {
+        if let Some(n) = &s.name
+            && !named.insert(n.clone())
+        {
+            return Err(CliError::at(
+                &root.key("supports").index(i).key("name"),
+                format!("name `{n}` is used twice among supports and loads"),
+            ));
+        }
+    }
+    for l in loads {
+        if let Some(n) = &l.name
+            && !named.insert(n.clone())
+        {
+            return Err(CliError::at(
+                &root.key("loads"),
+                format!("name `{n}` is used twice among supports and loads"),
+            ));
+        }
+    }
+    for (i, ph) in phases.iter().enumerate() {
+        for (target, f) in &ph.overrides {
+            let p = root.key("phases").index(i).key("functions").key(target);
+            if !named.contains(target) {
+                return Err(CliError::at(
+                    &p,
+                    format!(
+                        "`{p}`: no support or load is named `{target}` (named: {})",
+                        list_names(named.iter().map(|s| s.as_str()))
+                    ),
+                ));
+            }
+            check_function(&p, &Some(f.clone()), functions)?;
+        }
+    }
+    Ok(())
+}
+
+/// Checks `[initial_stress]`.
+pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
+    let root = KeyPath::root();
+    let initial = scene
+        .initial_stress
+        .map(|s| s.resolve(&root.key("initial_stress")))
+        .transpose()?;
+    Ok(match initial {
+        Some(InitialStress::Geostatic {
+            gamma,
+            k0,
+            z_surface,
+        }) => {
+            let p = root.key("initial_stress");
+            let gamma = non_negative(&p.key("gamma"), gamma)?;
+            let k0 = non_negative(&p.key("k0"), k0)?;
+            let z = finite(&p.key("z_surface"), z_surface)?;
+            Some((gamma, k0, z))
+        }
+        None => None,
+    })
+}
+
+/// What the model is built from.
+pub(super) struct ModelPlan {
+    /// The idealisation.
+    pub(super) idealization: Idealization,
+    /// Materials.
+    pub(super) materials: Vec<MaterialPlan>,
+    /// Supports.
+    pub(super) supports: Vec<SupportPlan>,
+    /// Loads.
+    pub(super) loads: Vec<LoadPlan>,
+    /// Initial stress.
+    pub(super) initial_stress: InitialStressPlan,
+}
+
+/// The materials on the mesh's regions (every region exactly one), the supports' and loads'
+/// sets, and the model with the supports of the first phase at t = 0.
+pub(super) fn build(
+    mesh: Mesh,
+    plan: ModelPlan,
+    functions: &BTreeMap<String, TimeFunction>,
+    phases: &[Phase],
+) -> CliResult<(LinearElasticModel, Vec<SupportRt>, Vec<LoadRt>)> {
+    let root = KeyPath::root();
+    let materials = regions(&mesh, plan.materials)?;
+    let mut supports = Vec::new();
+    for s in plan.supports {
+        let mut rt = s.rt;
+        rt.nodes = node_set(&s.path, &mesh, &s.set)?;
+        supports.push(rt);
+    }
+    let mut loads = Vec::new();
+    for l in plan.loads {
+        let p = &l.path;
+        let kind = match l.kind {
+            LoadPlanKind::Traction(set, value) => {
+                if mesh.edge_set(&set).is_err() {
+                    return Err(CliError::at(
+                        &p.key("set"),
+                        format!(
+                            "`{}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
+                            p.key("set"),
+                            list_names(mesh.edge_set_names())
+                        ),
+                    ));
+                }
+                LoadKind::Traction(set, value)
+            }
+            LoadPlanKind::Nodal(set, value) => {
+                LoadKind::Nodal(node_set(&p.key("set"), &mesh, &set)?, value)
+            }
+            LoadPlanKind::Body(value) => LoadKind::Body(value),
+            LoadPlanKind::Gravity => LoadKind::Gravity,
+        };
+        loads.push(LoadRt {
+            name: l.name,
+            kind,
+            function: l.function,
+            phases: l.phases,
+        });
+    }
+    let mut sup = Supports::new();
+    for s in supports.iter().filter(|s| s.phases[0]) {
+        let f = function_value(&phases[0], &s.name, &s.function, functions, 0.0);
+        for &c in &s.components {
+            sup.prescribe(&s.nodes, c, s.value * f)
+                .map_err(|e| fem(&root.key("supports"), e))?;
+        }
+    }
+    let mut model = LinearElasticModel::new(mesh, plan.idealization, &materials, sup)
+        .map_err(|e| fem(&root.key("supports"), e))?;
+    if let Some((gamma, k0, z)) = plan.initial_stress {
+        let p = root.key("initial_stress");
+        model
+            .set_initial_stress(fem_core::geostatic(gamma, k0, z))
+            .map_err(|e| fem(&p, e))?;
+    }
+    Ok((model, supports, loads))
+}
+
+/// Each material on its regions: every region must exist in the mesh, have one material only,
+/// and every region of the mesh must have one.
+fn regions(mesh: &Mesh, plans: Vec<MaterialPlan>) -> CliResult<Vec<(u32, Material)>> {
+    let mesh_regions: BTreeSet<u32> = mesh.regions().iter().copied().collect();
+    let mut materials: Vec<(u32, Material)> = Vec::new();
+    for m in plans {
+        for (rp, r) in m.regions {
+            if !mesh_regions.contains(&r) {
+                return Err(CliError::at(
+                    &rp,
+                    format!(
+                        "`{rp}` = {r}: the mesh has no element in region {r} (regions: {})",
+                        join(&mesh_regions)
+                    ),
+                ));
+            }
+            if materials.iter().any(|(q, _)| *q == r) {
+                return Err(CliError::at(
+                    &rp,
+                    format!("`{rp}` = {r}: region {r} already has a material"),
+                ));
+            }
+            materials.push((r, m.material));
+        }
+    }
+    if let Some(r) = mesh_regions
+        .iter()
+        .find(|r| !materials.iter().any(|(q, _)| q == *r))
+    {
+        return Err(CliError::at(
+            &KeyPath::root().key("materials"),
+            format!(
+                "region {r} of the mesh has no material (add a [[materials]] with region = {r})"
+            ),
+        ));
+    }
+    Ok(materials)
+}

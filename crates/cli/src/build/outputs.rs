@@ -1,0 +1,249 @@
+//! The checks of `[output]` and `[[plots]]` against the built study: steps in range, zones and
+//! contactor nodes that exist, plot files, and what each plotted quantity needs.
+
+use super::checks::{at_least, list_names, node_set};
+use super::study::{Body, Study};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::{CurveSpec, Scene};
+use fem_core::Component;
+use std::collections::BTreeSet;
+
+/// Quantities of the plots: (name, needs).
+pub const QUANTITIES: &[(&str, &str)] = &[
+    ("force_n", "zone"),
+    ("force_t", "zone"),
+    ("beta_mean", "zone"),
+    ("beta_min", "zone"),
+    ("closed", "zone"),
+    ("gap", "node"),
+    ("u_t", "node"),
+    ("beta", "node"),
+    ("r_n", "node"),
+    ("r_t", "node"),
+    ("u_x", "point"),
+    ("u_y", "point"),
+    ("reaction_x", "set"),
+    ("reaction_y", "set"),
+    ("contact_iterations", "step"),
+    ("adhesion_iterations", "step"),
+    ("active_contacts", "step"),
+    ("residual", "step"),
+    ("head_load", "pile"),
+    ("head_displacement", "pile"),
+];
+
+/// Checks `[output]` and the plots of `scene` against `study`, and keeps the plots.
+pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
+    let root = KeyPath::root();
+    let op = root.key("output");
+    let o = &study.output;
+    at_least(&op.key("every"), o.every, 1)?;
+    let total = study.total_steps();
+    if let Some(steps) = &o.steps {
+        for (i, s) in steps.iter().enumerate() {
+            if *s < 1 || *s > total {
+                let p = op.key("steps").index(i);
+                return Err(CliError::at(
+                    &p,
+                    format!("`{p}` = {s}: expected a step in 1..={total}"),
+                ));
+            }
+        }
+    }
+    if let Some(zs) = &o.zones {
+        for (i, z) in zs.iter().enumerate() {
+            zone_index(&op.key("zones").index(i), &study.zone_names, z)?;
+        }
+    }
+    let node_count = study.model().mesh().node_count();
+    if let Some(ns) = &o.nodes {
+        for (i, n) in ns.iter().enumerate() {
+            if !study.candidates().iter().any(|c| c.node == *n) {
+                let p = op.key("nodes").index(i);
+                return Err(CliError::at(
+                    &p,
+                    format!(
+                        "`{p}` = {n}: not a contactor node of any zone (the mesh has {node_count} nodes)"
+                    ),
+                ));
+            }
+        }
+    }
+    let mut files = BTreeSet::new();
+    for (i, plot) in scene.plots.iter().enumerate() {
+        let pp = root.key("plots").index(i);
+        if !plot.file.ends_with(".svg") || plot.file.contains(['/', '\\']) {
+            return Err(CliError::at(
+                &pp.key("file"),
+                format!(
+                    "`{}` = \"{}\": expected a file name ending in .svg (written in the output directory)",
+                    pp.key("file"),
+                    plot.file
+                ),
+            ));
+        }
+        if !files.insert(plot.file.clone()) {
+            return Err(CliError::at(
+                &pp.key("file"),
+                format!("plot file `{}` is used twice", plot.file),
+            ));
+        }
+        if plot.curves.is_empty() {
+            return Err(CliError::at(
+                &pp.key("curves"),
+                "a plot needs at least one curve",
+            ));
+        }
+        for (k, c) in plot.curves.iter().enumerate() {
+            check_curve(&pp.key("curves").index(k), c, study)?;
+        }
+        if let Some(c) = &plot.x_quantity {
+            check_curve(&pp.key("x_quantity"), c, study)?;
+        }
+    }
+    study.plots = scene.plots.clone();
+    Ok(())
+}
+
+/// Index of a zone by name.
+pub fn zone_index(path: &KeyPath, names: &[String], name: &str) -> CliResult<usize> {
+    names.iter().position(|n| n == name).ok_or_else(|| {
+        CliError::at(
+            path,
+            format!(
+                "`{path}` = \"{name}\": no such contact zone (zones: {})",
+                list_names(names.iter().map(|s| s.as_str()))
+            ),
+        )
+    })
+}
+
+/// Checks one curve (or abscissa) of a plot: its quantity and what that quantity needs.
+fn check_curve(p: &KeyPath, c: &CurveSpec, study: &Study) -> CliResult<()> {
+    let Some((_, needs)) = QUANTITIES.iter().find(|(q, _)| *q == c.quantity) else {
+        let q = p.key("quantity");
+        return Err(CliError::at(
+            &q,
+            format!(
+                "`{q}` = \"{}\": unknown quantity (expected one of {})",
+                c.quantity,
+                QUANTITIES
+                    .iter()
+                    .map(|(q, _)| *q)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    };
+    let zone = match &c.zone {
+        Some(z) => Some(zone_index(&p.key("zone"), &study.zone_names, z)?),
+        None => None,
+    };
+    let mesh = study.model().mesh();
+    match *needs {
+        "zone" if zone.is_none() && study.zone_names.len() > 1 => {
+            return Err(CliError::at(
+                p,
+                format!(
+                    "`{p}`: quantity `{}` needs `zone` (the scene has several zones)",
+                    c.quantity
+                ),
+            ));
+        }
+        "node" => {
+            let Some(n) = c.node else {
+                return Err(CliError::at(
+                    p,
+                    format!(
+                        "`{p}`: quantity `{}` needs `node` (a contactor node)",
+                        c.quantity
+                    ),
+                ));
+            };
+            if !study
+                .candidates()
+                .iter()
+                .any(|k| k.node == n && zone.is_none_or(|z| z == k.zone))
+            {
+                let q = p.key("node");
+                return Err(CliError::at(
+                    &q,
+                    format!(
+                        "`{q}` = {n}: not a contactor node{} (the mesh has {} nodes)",
+                        zone.map(|z| format!(" of zone `{}`", study.zone_names[z]))
+                            .unwrap_or_default(),
+                        mesh.node_count()
+                    ),
+                ));
+            }
+        }
+        "point" => match (c.node, &c.set) {
+            (Some(n), None) => {
+                if n >= mesh.node_count() {
+                    let q = p.key("node");
+                    return Err(CliError::at(
+                        &q,
+                        format!(
+                            "`{q}` = {n}: the mesh has {} nodes (0..{})",
+                            mesh.node_count(),
+                            mesh.node_count()
+                        ),
+                    ));
+                }
+            }
+            (None, Some(s)) => {
+                node_set(&p.key("set"), mesh, s)?;
+            }
+            _ => {
+                return Err(CliError::at(
+                    p,
+                    format!(
+                        "`{p}`: quantity `{}` needs `node` or `set` (one of them)",
+                        c.quantity
+                    ),
+                ));
+            }
+        },
+        "pile" if !matches!(&study.body, Body::Preset(p) if p.kind == "pile") => {
+            return Err(CliError::at(
+                &p.key("quantity"),
+                format!(
+                    "`{}` = \"{}\": only the pile preset has this quantity",
+                    p.key("quantity"),
+                    c.quantity
+                ),
+            ));
+        }
+        "set" => {
+            let Some(s) = &c.set else {
+                return Err(CliError::at(
+                    p,
+                    format!(
+                        "`{p}`: quantity `{}` needs `set` (a supported node set)",
+                        c.quantity
+                    ),
+                ));
+            };
+            let nodes = node_set(&p.key("set"), mesh, s)?;
+            let comp = if c.quantity == "reaction_x" {
+                Component::X
+            } else {
+                Component::Y
+            };
+            let supports = study.model().supports();
+            let any = nodes.iter().any(|&n| supports.value(n, comp).is_some())
+                || matches!(&study.body, Body::Custom(cu) if cu.supports.iter().any(|s| s.components.contains(&comp) && s.nodes.iter().any(|n| nodes.contains(n))));
+            if !any {
+                let q = p.key("set");
+                return Err(CliError::at(
+                    &q,
+                    format!(
+                        "`{q}` = \"{s}\": no node of this set has a support on {comp:?}, so it has no reaction"
+                    ),
+                ));
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}

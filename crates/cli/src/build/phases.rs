@@ -1,0 +1,258 @@
+//! Time: the piecewise linear functions of `[functions]` and the phases of load steps
+//! (`[steps]` or `[[phases]]`), with the phase masks and function names of supports and loads.
+
+use super::checks::{at_least, finite2, list_names, positive};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::Scene;
+use crate::spec::Pair;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// A piecewise linear function of time, constant beyond its first and last points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimeFunction {
+    points: Vec<[f64; 2]>,
+}
+
+impl TimeFunction {
+    /// Value at `t`.
+    pub fn eval(&self, t: f64) -> f64 {
+        let p = &self.points;
+        if t <= p[0][0] {
+            return p[0][1];
+        }
+        for w in p.windows(2) {
+            let ([t0, v0], [t1, v1]) = (w[0], w[1]);
+            if t <= t1 {
+                return v0 + (v1 - v0) * (t - t0) / (t1 - t0);
+            }
+        }
+        p[p.len() - 1][1]
+    }
+}
+
+/// The function of the `[time, value]` points at `path` (times increasing strictly).
+pub(super) fn time_function(path: &KeyPath, pts: &[Pair]) -> CliResult<TimeFunction> {
+    let pts: Vec<[f64; 2]> = pts.iter().map(|p| p.0).collect();
+    if pts.is_empty() {
+        return Err(CliError::at(
+            path,
+            format!("`{path}` is empty: expected a table of [time, value] points"),
+        ));
+    }
+    for (i, p) in pts.iter().enumerate() {
+        finite2(&path.index(i), Pair(*p))?;
+        if i > 0 && p[0] <= pts[i - 1][0] {
+            let q = path.index(i).index(0);
+            return Err(CliError::at(
+                &q,
+                format!(
+                    "`{q}` = {}: times must increase strictly (the previous point is at t = {})",
+                    p[0],
+                    pts[i - 1][0]
+                ),
+            ));
+        }
+    }
+    Ok(TimeFunction { points: pts })
+}
+
+/// One phase of load steps.
+#[derive(Clone, Debug)]
+pub struct Phase {
+    /// Name.
+    pub name: String,
+    /// Steps.
+    pub steps: usize,
+    /// Start time.
+    pub t0: f64,
+    /// End time.
+    pub t1: f64,
+    /// Function overrides: load or support name → function name.
+    pub overrides: BTreeMap<String, String>,
+    /// Reset displacements at the end.
+    pub reset_displacements: bool,
+}
+
+impl Phase {
+    /// Time at the end of step `k` (1-based) of this phase.
+    pub fn time(&self, k: usize) -> f64 {
+        if k == self.steps {
+            self.t1
+        } else {
+            self.t0 + (self.t1 - self.t0) * k as f64 / self.steps as f64
+        }
+    }
+}
+
+/// A phase without overrides.
+pub(super) fn phase(name: &str, steps: usize, t0: f64, t1: f64) -> Phase {
+    Phase {
+        name: name.into(),
+        steps,
+        t0,
+        t1,
+        overrides: BTreeMap::new(),
+        reset_displacements: false,
+    }
+}
+
+/// The phases of the scene: `[steps]`, `[[phases]]`, or the preset's `total_default`.
+pub(super) fn phases_of(
+    scene: &Scene,
+    total_default: Option<(usize, f64)>,
+) -> CliResult<Vec<Phase>> {
+    let mut out = Vec::new();
+    match (&scene.steps, scene.phases.is_empty(), total_default) {
+        (Some(_), false, _) => {
+            return Err(CliError::at(
+                &KeyPath::root().key("phases"),
+                "give either [steps] (one phase) or [[phases]], not both",
+            ));
+        }
+        (Some(s), true, _) => {
+            let p = KeyPath::root().key("steps");
+            out.push(Phase {
+                name: "steps".into(),
+                steps: at_least(&p.key("count"), s.count, 1)?,
+                t0: 0.0,
+                t1: positive(&p.key("duration"), s.duration)?,
+                overrides: BTreeMap::new(),
+                reset_displacements: false,
+            });
+        }
+        (None, false, _) => {
+            let mut t = 0.0;
+            let mut names = BTreeSet::new();
+            for (i, ph) in scene.phases.iter().enumerate() {
+                let p = KeyPath::root().key("phases").index(i);
+                if !names.insert(ph.name.clone()) {
+                    return Err(CliError::at(
+                        &p.key("name"),
+                        format!("phase name `{}` is used twice", ph.name),
+                    ));
+                }
+                let d = positive(&p.key("duration"), ph.duration)?;
+                out.push(Phase {
+                    name: ph.name.clone(),
+                    steps: at_least(&p.key("steps"), ph.steps, 1)?,
+                    t0: t,
+                    t1: t + d,
+                    overrides: ph.functions.clone(),
+                    reset_displacements: ph.reset_displacements,
+                });
+                t += d;
+            }
+        }
+        (None, true, Some((steps, duration))) => out.push(Phase {
+            name: "loading".into(),
+            steps,
+            t0: 0.0,
+            t1: duration,
+            overrides: BTreeMap::new(),
+            reset_displacements: false,
+        }),
+        (None, true, None) => {
+            return Err(CliError::at(
+                &KeyPath::root(),
+                "the scene has no load steps: add [steps] with `count` and `duration`, or [[phases]]",
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Which phases a support or load acts in (all without a list).
+pub(super) fn phase_mask(
+    path: &KeyPath,
+    list: &Option<Vec<String>>,
+    phases: &[Phase],
+) -> CliResult<Vec<bool>> {
+    match list {
+        None => Ok(vec![true; phases.len()]),
+        Some(names) => {
+            let mut mask = vec![false; phases.len()];
+            for (i, n) in names.iter().enumerate() {
+                match phases.iter().position(|p| &p.name == n) {
+                    Some(k) => mask[k] = true,
+                    None => {
+                        let p = path.index(i);
+                        return Err(CliError::at(
+                            &p,
+                            format!(
+                                "`{p}` = \"{n}\": no such phase (phases: {})",
+                                list_names(phases.iter().map(|p| p.name.as_str()))
+                            ),
+                        ));
+                    }
+                }
+            }
+            Ok(mask)
+        }
+    }
+}
+
+/// Checks that a function name exists in `[functions]`.
+pub(super) fn check_function(
+    path: &KeyPath,
+    name: &Option<String>,
+    f: &BTreeMap<String, TimeFunction>,
+) -> CliResult<()> {
+    if let Some(n) = name
+        && !f.contains_key(n)
+    {
+        return Err(CliError::at(
+            path,
+            format!(
+                "`{path}` = \"{n}\": no such function in [functions] (functions: {})",
+                list_names(f.keys().map(|k| k.as_str()))
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The value of the time function of a support or load at `t` in `phase` (with the phase's
+/// override by name); 1 without a function.
+pub fn function_value(
+    phase: &Phase,
+    name: &Option<String>,
+    function: &Option<String>,
+    functions: &BTreeMap<String, TimeFunction>,
+    t: f64,
+) -> f64 {
+    let f = name
+        .as_ref()
+        .and_then(|n| phase.overrides.get(n))
+        .or(function.as_ref());
+    f.and_then(|f| functions.get(f)).map_or(1.0, |f| f.eval(t))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_functions_interpolate_and_hold_works() {
+        let p = KeyPath::root().key("functions").key("f");
+        let f = time_function(&p, &[Pair([0.0, 0.0]), Pair([1.0, 2.0]), Pair([3.0, 2.0])]).unwrap();
+        assert_eq!(f.eval(-1.0), 0.0);
+        assert_eq!(f.eval(0.5), 1.0);
+        assert_eq!(f.eval(2.0), 2.0);
+        assert_eq!(f.eval(10.0), 2.0);
+    }
+
+    #[test]
+    fn time_functions_rejects_non_increasing_times() {
+        let p = KeyPath::root().key("functions").key("f");
+        let e = time_function(&p, &[Pair([0.0, 0.0]), Pair([0.0, 1.0])]).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "functions.f[1][0]");
+        assert!(time_function(&p, &[]).is_err());
+    }
+
+    #[test]
+    fn phase_times_end_exactly_works() {
+        let ph = phase("p", 3, 2.0, 2.3);
+        assert_eq!(ph.time(3), 2.3);
+        assert!((ph.time(1) - 2.1).abs() < 1e-15);
+    }
+}

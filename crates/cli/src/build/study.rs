@@ -1,0 +1,153 @@
+//! What a build gives: a [`Study`] ready to run, its body (a scene described key by key, with
+//! its supports, loads and time functions ready to apply, or a library preset) and its phases.
+
+use super::phases::{Phase, TimeFunction};
+use crate::scene::{OutputSpec, PlotSpec, Units};
+use contact_laws::{Rccm, StandardLaw};
+use contact_solver::{Candidate, ContactSimulation};
+use fem_core::{Component, LinearElasticModel};
+use std::collections::BTreeMap;
+
+/// A support ready to apply.
+#[derive(Clone, Debug)]
+pub struct SupportRt {
+    /// Name.
+    pub name: Option<String>,
+    /// Nodes.
+    pub nodes: Vec<usize>,
+    /// Components.
+    pub components: Vec<Component>,
+    /// Value.
+    pub value: f64,
+    /// Function name.
+    pub function: Option<String>,
+    /// Phase mask.
+    pub phases: Vec<bool>,
+}
+
+/// What a load is.
+#[derive(Clone, Debug)]
+pub enum LoadKind {
+    /// Edge traction.
+    Traction(String, [f64; 2]),
+    /// Force on each node.
+    Nodal(Vec<usize>, [f64; 2]),
+    /// Body force.
+    Body([f64; 2]),
+    /// Self-weight.
+    Gravity,
+}
+
+/// A load ready to apply.
+#[derive(Clone, Debug)]
+pub struct LoadRt {
+    /// Name.
+    pub name: Option<String>,
+    /// Kind.
+    pub kind: LoadKind,
+    /// Function name.
+    pub function: Option<String>,
+    /// Phase mask.
+    pub phases: Vec<bool>,
+}
+
+/// A scene described key by key.
+pub struct Custom {
+    /// The simulation.
+    pub sim: ContactSimulation<LinearElasticModel, StandardLaw>,
+    /// Supports.
+    pub supports: Vec<SupportRt>,
+    /// Loads.
+    pub loads: Vec<LoadRt>,
+    /// Time functions.
+    pub functions: BTreeMap<String, TimeFunction>,
+}
+
+/// The library's scene of a preset.
+pub enum Library {
+    /// Delamination or shear (one loading phase).
+    Seed(Box<bipo::presets::Scene>),
+    /// The pile pull-out (three phases).
+    Pile(Box<bipo::presets::PulloutScene>),
+}
+
+/// A seed study built by the library.
+pub struct PresetStudy {
+    /// `delamination`, `shear` or `pile`.
+    pub kind: &'static str,
+    /// The library's scene.
+    pub scene: Library,
+}
+
+impl PresetStudy {
+    /// The simulation.
+    pub fn sim(&self) -> &ContactSimulation<LinearElasticModel, Rccm> {
+        match &self.scene {
+            Library::Seed(s) => &s.simulation,
+            Library::Pile(p) => &p.simulation,
+        }
+    }
+}
+
+/// The body of a study.
+pub enum Body {
+    /// Key by key.
+    Custom(Box<Custom>),
+    /// A preset.
+    Preset(Box<PresetStudy>),
+}
+
+/// A scene ready to run.
+pub struct Study {
+    /// Title.
+    pub title: String,
+    /// Units.
+    pub units: Units,
+    /// The body.
+    pub body: Body,
+    /// Phases.
+    pub phases: Vec<Phase>,
+    /// Outputs.
+    pub output: OutputSpec,
+    /// Plots (validated).
+    pub plots: Vec<PlotSpec>,
+    /// Zone names.
+    pub zone_names: Vec<String>,
+    /// Zone law names.
+    pub zone_laws: Vec<String>,
+    /// Zones with adhesion.
+    pub adhesive_zones: usize,
+    /// Zones with friction.
+    pub friction_zones: usize,
+}
+
+impl Study {
+    /// The candidates.
+    pub fn candidates(&self) -> &[Candidate] {
+        match &self.body {
+            Body::Custom(c) => c.sim.candidates(),
+            Body::Preset(p) => p.sim().candidates(),
+        }
+    }
+
+    /// The model.
+    pub fn model(&self) -> &LinearElasticModel {
+        match &self.body {
+            Body::Custom(c) => c.sim.structure(),
+            Body::Preset(p) => p.sim().structure(),
+        }
+    }
+
+    /// Alert distance of each zone.
+    pub fn alert_distances(&self) -> Vec<f64> {
+        match &self.body {
+            Body::Custom(c) => c.sim.zones().iter().map(|z| z.alert_distance).collect(),
+            Body::Preset(p) => p.sim().zones().iter().map(|z| z.alert_distance).collect(),
+        }
+    }
+
+    /// Total steps.
+    pub fn total_steps(&self) -> usize {
+        self.phases.iter().map(|p| p.steps).sum()
+    }
+}

@@ -1,0 +1,113 @@
+//! The validation pass: from the parsed [`Scene`] to a [`Validated`] one, every value checked
+//! with its key path (types and keys of the tagged tables, numbers, names of functions, phases,
+//! supports and loads, laws and target geometry, solver settings, a preset's overrides), before
+//! anything is built. What only the mesh or the built study can tell (node and edge sets,
+//! regions, candidates, the plots' nodes) is checked by the build that follows.
+
+use super::checks::positive;
+use super::contact::{self, ContactPlan};
+use super::mesh::{self, MeshPlan};
+use super::model::{self, ModelPlan};
+use super::phases::{Phase, TimeFunction, phases_of, time_function};
+use super::presets::{self, PresetPlan};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::Scene;
+use crate::spec::Analysis;
+use fem_core::Idealization;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// A scene whose values are checked, ready to build.
+pub(super) enum Validated {
+    /// A scene described key by key.
+    Custom(Box<Plan>),
+    /// A preset.
+    Preset(Box<PresetPlan>),
+}
+
+/// A scene described key by key, checked.
+pub(super) struct Plan {
+    /// Time functions by name.
+    pub(super) functions: BTreeMap<String, TimeFunction>,
+    /// Phases.
+    pub(super) phases: Vec<Phase>,
+    /// The mesh to generate or read.
+    pub(super) mesh: MeshPlan,
+    /// Materials, supports, loads, initial stress.
+    pub(super) model: ModelPlan,
+    /// Contact zones and solver settings.
+    pub(super) contact: ContactPlan,
+}
+
+/// Checks every value of the scene that does not need the mesh, in the order of the file's
+/// sections (so that the first error reported is the first one met, as before the split);
+/// `path` is the scene file's (Gmsh files are relative to it).
+pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
+    let root = KeyPath::root();
+    if let Some(preset) = &scene.preset {
+        let preset = preset.resolve(&root.key("preset"))?;
+        return Ok(Validated::Preset(Box::new(presets::validate(
+            scene, &preset,
+        )?)));
+    }
+    let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+
+    // time functions and phases first: supports and loads refer to them
+    let mut functions = BTreeMap::new();
+    for (name, pts) in &scene.functions {
+        functions.insert(
+            name.clone(),
+            time_function(&root.key("functions").key(name), pts)?,
+        );
+    }
+    let phases = phases_of(scene, None)?;
+
+    // mesh and analysis
+    let mesh_raw = scene.mesh.as_ref().ok_or_else(|| {
+        CliError::at(
+            &root,
+            "the scene has no [mesh] (give `generator = \"rectangle\"`, `\"pile\"` or `\"gmsh\"`) \
+             and no [preset]",
+        )
+    })?;
+    let mp = root.key("mesh");
+    let mesh_spec = &mesh_raw.resolve(&mp)?;
+    let analysis = scene.analysis.ok_or_else(|| {
+        CliError::at(
+            &root,
+            "the scene has no [analysis] (type = \"plane_strain\", \"plane_stress\" or \"axisymmetric\")",
+        )
+    })?;
+    let analysis = analysis.resolve(&root.key("analysis"))?;
+    let idealization = match analysis {
+        Analysis::PlaneStrain {} => Idealization::PlaneStrain,
+        Analysis::PlaneStress { thickness } => Idealization::PlaneStress {
+            thickness: positive(&root.key("analysis").key("thickness"), thickness)?,
+        },
+        Analysis::Axisymmetric {} => Idealization::Axisymmetric,
+    };
+    let mesh = mesh::validate(&mp, mesh_spec, idealization, &base_dir)?;
+
+    // the model
+    let (materials, any_weight) = model::validate_materials(scene)?;
+    let supports = model::validate_supports(scene, &functions, &phases)?;
+    let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
+    model::validate_names(scene, &loads, &functions, &phases)?;
+    let initial_stress = model::validate_initial_stress(scene)?;
+
+    // contact (the solver settings with it)
+    let contact = contact::validate(scene)?;
+    Ok(Validated::Custom(Box::new(Plan {
+        functions,
+        phases,
+        mesh,
+        model: ModelPlan {
+            idealization,
+            materials,
+            supports,
+            loads,
+            initial_stress,
+        },
+        contact,
+    })))
+}

@@ -1,0 +1,36 @@
+//! The two checks every flat table makes once its `type` is known: the keys it needs, and no
+//! key it does not read.
+
+use crate::error::{CliError, CliResult, KeyPath};
+
+/// `need(path, &opt, "key", "what")`: the value, or the error "`path`: what needs `key`".
+pub(super) fn need<T: Clone>(path: &KeyPath, v: &Option<T>, key: &str, what: &str) -> CliResult<T> {
+    v.clone()
+        .ok_or_else(|| CliError::at(path, format!("`{path}`: {what} needs `{key}`")))
+}
+
+/// Refuses the keys present that `what` does not read.
+pub(super) fn only(
+    path: &KeyPath,
+    what: &str,
+    present: &[(&str, bool)],
+    accepted: &[&str],
+) -> CliResult<()> {
+    if let Some((k, _)) = present.iter().find(|(k, p)| *p && !accepted.contains(k)) {
+        let p = path.key(k);
+        let keys = if accepted.is_empty() {
+            "none".to_string()
+        } else {
+            accepted
+                .iter()
+                .map(|a| format!("`{a}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        return Err(CliError::at(
+            &p,
+            format!("`{p}` is not a key of {what} (its keys: {keys})"),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,240 @@
+//! `[mesh]` as read (one flat table for the three generators) and its gradings.
+
+use super::keys::{need, only};
+use crate::error::{CliResult, KeyPath};
+use crate::spec::*;
+use serde::Deserialize;
+
+/// Grading kinds.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum GradingKind {
+    /// Equal cells.
+    Uniform,
+    /// Geometric.
+    Geometric,
+    /// Both ends.
+    BothEnds,
+}
+
+/// `{ type = "geometric", ratio = 4.0 }`.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RawGrading {
+    #[serde(rename = "type")]
+    kind: GradingKind,
+    ratio: Option<f64>,
+}
+
+impl RawGrading {
+    /// The grading.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<GradingSpec> {
+        Ok(match self.kind {
+            GradingKind::Uniform => {
+                only(
+                    p,
+                    "a uniform grading",
+                    &[("ratio", self.ratio.is_some())],
+                    &[],
+                )?;
+                GradingSpec::Uniform {}
+            }
+            GradingKind::Geometric => GradingSpec::Geometric {
+                ratio: need(p, &self.ratio, "ratio", "a geometric grading")?,
+            },
+            GradingKind::BothEnds => GradingSpec::BothEnds {
+                ratio: need(p, &self.ratio, "ratio", "a both_ends grading")?,
+            },
+        })
+    }
+}
+
+fn grading(p: &KeyPath, g: &Option<RawGrading>) -> CliResult<Option<GradingSpec>> {
+    g.as_ref().map(|g| g.resolve(p)).transpose()
+}
+
+/// One layer.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawLayer {
+    top: f64,
+    ny: usize,
+    grading: Option<RawGrading>,
+    #[serde(default)]
+    region: u32,
+}
+
+/// Mesh generators.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Generator {
+    /// `rectangle`.
+    Rectangle,
+    /// `pile`.
+    Pile,
+    /// `gmsh`.
+    Gmsh,
+}
+
+/// `[mesh]`.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawMesh {
+    generator: Generator,
+    element: Option<Element>,
+    // rectangle
+    x: Option<Pair>,
+    nx: Option<usize>,
+    grading_x: Option<RawGrading>,
+    y: Option<Pair>,
+    ny: Option<usize>,
+    grading_y: Option<RawGrading>,
+    region: Option<u32>,
+    y0: Option<f64>,
+    layers: Option<Vec<RawLayer>>,
+    // pile
+    diameter: Option<f64>,
+    length: Option<f64>,
+    width: Option<f64>,
+    depth: Option<f64>,
+    cells_pile_r: Option<usize>,
+    cells_soil_r: Option<usize>,
+    cells_shaft: Option<usize>,
+    cells_below_tip: Option<usize>,
+    grading_pile_r: Option<RawGrading>,
+    grading_soil_r: Option<RawGrading>,
+    grading_shaft: Option<RawGrading>,
+    grading_below_tip: Option<RawGrading>,
+    tip_corner: Option<TipCornerSpec>,
+    // gmsh
+    file: Option<String>,
+}
+
+const RECTANGLE_KEYS: &[&str] = &[
+    "element",
+    "x",
+    "nx",
+    "grading_x",
+    "y",
+    "ny",
+    "grading_y",
+    "region",
+    "y0",
+    "layers",
+];
+const PILE_KEYS: &[&str] = &[
+    "element",
+    "diameter",
+    "length",
+    "width",
+    "depth",
+    "cells_pile_r",
+    "cells_soil_r",
+    "cells_shaft",
+    "cells_below_tip",
+    "grading_pile_r",
+    "grading_soil_r",
+    "grading_shaft",
+    "grading_below_tip",
+    "tip_corner",
+];
+const GMSH_KEYS: &[&str] = &["element", "file"];
+
+impl RawMesh {
+    /// The mesh spec.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<MeshSpec> {
+        let present = [
+            ("element", self.element.is_some()),
+            ("x", self.x.is_some()),
+            ("nx", self.nx.is_some()),
+            ("grading_x", self.grading_x.is_some()),
+            ("y", self.y.is_some()),
+            ("ny", self.ny.is_some()),
+            ("grading_y", self.grading_y.is_some()),
+            ("region", self.region.is_some()),
+            ("y0", self.y0.is_some()),
+            ("layers", self.layers.is_some()),
+            ("diameter", self.diameter.is_some()),
+            ("length", self.length.is_some()),
+            ("width", self.width.is_some()),
+            ("depth", self.depth.is_some()),
+            ("cells_pile_r", self.cells_pile_r.is_some()),
+            ("cells_soil_r", self.cells_soil_r.is_some()),
+            ("cells_shaft", self.cells_shaft.is_some()),
+            ("cells_below_tip", self.cells_below_tip.is_some()),
+            ("grading_pile_r", self.grading_pile_r.is_some()),
+            ("grading_soil_r", self.grading_soil_r.is_some()),
+            ("grading_shaft", self.grading_shaft.is_some()),
+            ("grading_below_tip", self.grading_below_tip.is_some()),
+            ("tip_corner", self.tip_corner.is_some()),
+            ("file", self.file.is_some()),
+        ];
+        Ok(match self.generator {
+            Generator::Rectangle => {
+                only(p, "the rectangle generator", &present, RECTANGLE_KEYS)?;
+                let what = "the rectangle generator";
+                let layers = match &self.layers {
+                    None => None,
+                    Some(ls) => Some(
+                        ls.iter()
+                            .enumerate()
+                            .map(|(i, l)| {
+                                Ok(LayerSpec {
+                                    top: l.top,
+                                    ny: l.ny,
+                                    grading: grading(
+                                        &p.key("layers").index(i).key("grading"),
+                                        &l.grading,
+                                    )?
+                                    .unwrap_or_default(),
+                                    region: l.region,
+                                })
+                            })
+                            .collect::<CliResult<Vec<_>>>()?,
+                    ),
+                };
+                MeshSpec::Rectangle {
+                    element: need(p, &self.element, "element", what)?,
+                    x: need(p, &self.x, "x", what)?,
+                    nx: need(p, &self.nx, "nx", what)?,
+                    grading_x: grading(&p.key("grading_x"), &self.grading_x)?.unwrap_or_default(),
+                    y: self.y,
+                    ny: self.ny,
+                    grading_y: grading(&p.key("grading_y"), &self.grading_y)?,
+                    region: self.region,
+                    y0: self.y0,
+                    layers,
+                }
+            }
+            Generator::Pile => {
+                only(p, "the pile generator", &present, PILE_KEYS)?;
+                MeshSpec::Pile {
+                    element: self.element,
+                    diameter: self.diameter,
+                    length: self.length,
+                    width: self.width,
+                    depth: self.depth,
+                    cells_pile_r: self.cells_pile_r,
+                    cells_soil_r: self.cells_soil_r,
+                    cells_shaft: self.cells_shaft,
+                    cells_below_tip: self.cells_below_tip,
+                    grading_pile_r: grading(&p.key("grading_pile_r"), &self.grading_pile_r)?,
+                    grading_soil_r: grading(&p.key("grading_soil_r"), &self.grading_soil_r)?,
+                    grading_shaft: grading(&p.key("grading_shaft"), &self.grading_shaft)?,
+                    grading_below_tip: grading(
+                        &p.key("grading_below_tip"),
+                        &self.grading_below_tip,
+                    )?,
+                    tip_corner: self.tip_corner,
+                }
+            }
+            Generator::Gmsh => {
+                only(p, "a gmsh mesh", &present, GMSH_KEYS)?;
+                MeshSpec::Gmsh {
+                    file: need(p, &self.file, "file", "a gmsh mesh")?,
+                    element: self.element,
+                }
+            }
+        })
+    }
+}

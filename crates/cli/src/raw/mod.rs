@@ -1,0 +1,344 @@
+//! The tables of the scene that have a `type` (or `generator`, `kind`) key, as read: one flat
+//! struct per table, every key optional, then [`resolve`](RawLaw::resolve)d into the typed
+//! enums of [`crate::spec`] with a check of which keys that type needs and accepts.
+//!
+//! Why not serde's internally tagged enums: they buffer the table before choosing the variant,
+//! so a wrong value inside (`nx = "two"`) is reported at the table, without the key. Flat
+//! structs keep the line, the column and the key path of every value.
+//!
+//! [`keys`] holds the two checks of keys; `[mesh]` and `[preset]`, the two largest tables, have
+//! a file each.
+
+mod keys;
+mod mesh;
+mod preset;
+
+pub use mesh::RawMesh;
+pub use preset::RawPreset;
+
+use crate::error::{CliResult, KeyPath};
+use crate::spec::*;
+use keys::{need, only};
+use serde::Deserialize;
+
+/// Analysis types.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum AnalysisKind {
+    /// Plane strain.
+    PlaneStrain,
+    /// Plane stress.
+    PlaneStress,
+    /// Axisymmetric.
+    Axisymmetric,
+}
+
+/// `[analysis]`.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RawAnalysis {
+    #[serde(rename = "type")]
+    kind: AnalysisKind,
+    thickness: Option<f64>,
+}
+
+impl RawAnalysis {
+    /// The analysis.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<Analysis> {
+        let present = [("thickness", self.thickness.is_some())];
+        Ok(match self.kind {
+            AnalysisKind::PlaneStrain => {
+                only(
+                    p,
+                    "a plane strain analysis (per unit thickness)",
+                    &present,
+                    &[],
+                )?;
+                Analysis::PlaneStrain {}
+            }
+            AnalysisKind::PlaneStress => Analysis::PlaneStress {
+                thickness: need(p, &self.thickness, "thickness", "a plane stress analysis")?,
+            },
+            AnalysisKind::Axisymmetric => {
+                only(p, "an axisymmetric analysis (per radian)", &present, &[])?;
+                Analysis::Axisymmetric {}
+            }
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Initial stress types.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialStressKind {
+    /// Geostatic.
+    Geostatic,
+}
+
+/// `[initial_stress]`.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RawInitialStress {
+    #[serde(rename = "type")]
+    kind: InitialStressKind,
+    gamma: Option<f64>,
+    k0: Option<f64>,
+    z_surface: Option<f64>,
+}
+
+impl RawInitialStress {
+    /// The initial stress.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<InitialStress> {
+        let what = "a geostatic initial stress";
+        match self.kind {
+            InitialStressKind::Geostatic => Ok(InitialStress::Geostatic {
+                gamma: need(p, &self.gamma, "gamma", what)?,
+                k0: need(p, &self.k0, "k0", what)?,
+                z_surface: self.z_surface.unwrap_or(0.0),
+            }),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Load types.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum LoadKindSpec {
+    /// Traction.
+    Traction,
+    /// Nodal force.
+    NodalForce,
+    /// Body force.
+    BodyForce,
+    /// Gravity.
+    Gravity,
+}
+
+/// `[[loads]]`.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawLoad {
+    #[serde(rename = "type")]
+    kind: LoadKindSpec,
+    name: Option<String>,
+    set: Option<String>,
+    value: Option<Pair>,
+    function: Option<String>,
+    phases: Option<Vec<String>>,
+}
+
+impl RawLoad {
+    /// The load.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<LoadSpec> {
+        let present = [
+            ("set", self.set.is_some()),
+            ("value", self.value.is_some()),
+            ("function", self.function.is_some()),
+        ];
+        let (name, function, phases) = (
+            self.name.clone(),
+            self.function.clone(),
+            self.phases.clone(),
+        );
+        Ok(match self.kind {
+            LoadKindSpec::Traction => LoadSpec::Traction {
+                set: need(p, &self.set, "set", "a traction (an edge set)")?,
+                value: need(p, &self.value, "value", "a traction")?,
+                name,
+                function,
+                phases,
+            },
+            LoadKindSpec::NodalForce => LoadSpec::NodalForce {
+                set: need(p, &self.set, "set", "a nodal force (a node set)")?,
+                value: need(p, &self.value, "value", "a nodal force")?,
+                name,
+                function,
+                phases,
+            },
+            LoadKindSpec::BodyForce => {
+                only(p, "a body force", &present, &["value", "function"])?;
+                LoadSpec::BodyForce {
+                    value: need(p, &self.value, "value", "a body force")?,
+                    name,
+                    function,
+                    phases,
+                }
+            }
+            LoadKindSpec::Gravity => {
+                only(
+                    p,
+                    "a gravity load (the self-weight is applied in full: it has no function)",
+                    &present,
+                    &[],
+                )?;
+                LoadSpec::Gravity { name, phases }
+            }
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Target types.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetKind {
+    /// LINE.
+    Line,
+    /// ARC.
+    Arc,
+    /// Node pairs.
+    NodePairs,
+    /// Node-to-segment.
+    Segments,
+}
+
+/// `target = {...}`.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawTarget {
+    #[serde(rename = "type")]
+    kind: TargetKind,
+    a: Option<Pair>,
+    b: Option<Pair>,
+    center: Option<Pair>,
+    radius: Option<f64>,
+    start_angle: Option<f64>,
+    sweep: Option<f64>,
+    side: Option<ArcSideSpec>,
+    set: Option<String>,
+    normal: Option<Pair>,
+}
+
+impl RawTarget {
+    /// The target.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<TargetSpec> {
+        let present = [
+            ("a", self.a.is_some()),
+            ("b", self.b.is_some()),
+            ("center", self.center.is_some()),
+            ("radius", self.radius.is_some()),
+            ("start_angle", self.start_angle.is_some()),
+            ("sweep", self.sweep.is_some()),
+            ("side", self.side.is_some()),
+            ("set", self.set.is_some()),
+            ("normal", self.normal.is_some()),
+        ];
+        Ok(match self.kind {
+            TargetKind::Line => {
+                only(p, "a LINE target", &present, &["a", "b"])?;
+                TargetSpec::Line {
+                    a: need(p, &self.a, "a", "a LINE target")?,
+                    b: need(p, &self.b, "b", "a LINE target")?,
+                }
+            }
+            TargetKind::Arc => {
+                let what = "an ARC target";
+                only(
+                    p,
+                    what,
+                    &present,
+                    &["center", "radius", "start_angle", "sweep", "side"],
+                )?;
+                TargetSpec::Arc {
+                    center: need(p, &self.center, "center", what)?,
+                    radius: need(p, &self.radius, "radius", what)?,
+                    start_angle: self.start_angle.unwrap_or(0.0),
+                    sweep: self.sweep,
+                    side: need(p, &self.side, "side", what)?,
+                }
+            }
+            TargetKind::NodePairs => {
+                only(p, "a node_pairs target", &present, &["set", "normal"])?;
+                TargetSpec::NodePairs {
+                    set: need(p, &self.set, "set", "a node_pairs target")?,
+                    normal: self.normal,
+                }
+            }
+            TargetKind::Segments => {
+                only(p, "a segments target", &present, &["set"])?;
+                TargetSpec::Segments {
+                    set: need(p, &self.set, "set", "a segments target")?,
+                }
+            }
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Law types.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum LawKind {
+    /// Signorini.
+    Signorini,
+    /// Coulomb.
+    Coulomb,
+    /// RCCM.
+    Rccm,
+}
+
+/// `law = {...}`.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RawLaw {
+    #[serde(rename = "type")]
+    kind: LawKind,
+    mu: Option<f64>,
+    c_n: Option<f64>,
+    c_t: Option<f64>,
+    w: Option<f64>,
+    alpha: Option<f64>,
+    m: Option<u32>,
+    beta_0: Option<f64>,
+    scheme: Option<SchemeSpec>,
+    theta: Option<f64>,
+}
+
+impl RawLaw {
+    /// The law.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<LawSpec> {
+        let present = [
+            ("mu", self.mu.is_some()),
+            ("c_n", self.c_n.is_some()),
+            ("c_t", self.c_t.is_some()),
+            ("w", self.w.is_some()),
+            ("alpha", self.alpha.is_some()),
+            ("m", self.m.is_some()),
+            ("beta_0", self.beta_0.is_some()),
+            ("scheme", self.scheme.is_some()),
+            ("theta", self.theta.is_some()),
+        ];
+        Ok(match self.kind {
+            LawKind::Signorini => {
+                only(p, "the signorini law (frictionless)", &present, &[])?;
+                LawSpec::Signorini {}
+            }
+            LawKind::Coulomb => {
+                only(p, "the coulomb law", &present, &["mu"])?;
+                LawSpec::Coulomb {
+                    mu: need(p, &self.mu, "mu", "the coulomb law")?,
+                }
+            }
+            LawKind::Rccm => {
+                let what = "the rccm law";
+                LawSpec::Rccm(RccmSpec {
+                    c_n: need(p, &self.c_n, "c_n", what)?,
+                    c_t: need(p, &self.c_t, "c_t", what)?,
+                    w: need(p, &self.w, "w", what)?,
+                    alpha: need(p, &self.alpha, "alpha", what)?,
+                    mu: need(p, &self.mu, "mu", what)?,
+                    m: self.m.unwrap_or(1),
+                    beta_0: self.beta_0.unwrap_or(1.0),
+                    scheme: self.scheme.unwrap_or_default(),
+                    theta: self.theta,
+                })
+            }
+        })
+    }
+}

@@ -1,0 +1,225 @@
+//! `[preset]` as read (one flat table for the three presets) and its `installation`.
+
+use super::keys::{need, only};
+use crate::error::{CliResult, KeyPath};
+use crate::spec::*;
+use serde::Deserialize;
+
+/// Preset kinds.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PresetKind {
+    /// Seed 5.6.1.
+    Delamination,
+    /// Seed 5.6.2.
+    Shear,
+    /// Seed ch. 6.
+    Pile,
+}
+
+/// Installation types.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum InstallationKind {
+    /// None.
+    None,
+    /// Radial displacement.
+    RadialDisplacement,
+    /// Normal force ratio.
+    NormalForceRatio,
+}
+
+/// `installation = {...}`.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RawInstallation {
+    #[serde(rename = "type")]
+    kind: InstallationKind,
+    value: Option<f64>,
+}
+
+/// `[preset]`.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawPreset {
+    kind: PresetKind,
+    length: Option<f64>,
+    height: Option<f64>,
+    young: Option<f64>,
+    poisson: Option<f64>,
+    nx: Option<usize>,
+    ny: Option<usize>,
+    element: Option<Element>,
+    lift: Option<f64>,
+    press: Option<f64>,
+    push: Option<f64>,
+    duration: Option<f64>,
+    steps: Option<usize>,
+    interface: Option<RccmOverride>,
+    // pile
+    site: Option<Site>,
+    coulomb: Option<bool>,
+    pile_young: Option<f64>,
+    pile_poisson: Option<f64>,
+    pile_unit_weight: Option<f64>,
+    soil_young: Option<f64>,
+    soil_poisson: Option<f64>,
+    soil_unit_weight: Option<f64>,
+    k0: Option<f64>,
+    installation: Option<RawInstallation>,
+    head_displacement: Option<f64>,
+    alert_distance: Option<f64>,
+    mesh: Option<PileMeshOverride>,
+}
+
+impl RawPreset {
+    /// The preset.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<Preset> {
+        let present = [
+            ("length", self.length.is_some()),
+            ("height", self.height.is_some()),
+            ("young", self.young.is_some()),
+            ("poisson", self.poisson.is_some()),
+            ("nx", self.nx.is_some()),
+            ("ny", self.ny.is_some()),
+            ("element", self.element.is_some()),
+            ("lift", self.lift.is_some()),
+            ("press", self.press.is_some()),
+            ("push", self.push.is_some()),
+            ("duration", self.duration.is_some()),
+            ("steps", self.steps.is_some()),
+            ("interface", self.interface.is_some()),
+            ("site", self.site.is_some()),
+            ("coulomb", self.coulomb.is_some()),
+            ("pile_young", self.pile_young.is_some()),
+            ("pile_poisson", self.pile_poisson.is_some()),
+            ("pile_unit_weight", self.pile_unit_weight.is_some()),
+            ("soil_young", self.soil_young.is_some()),
+            ("soil_poisson", self.soil_poisson.is_some()),
+            ("soil_unit_weight", self.soil_unit_weight.is_some()),
+            ("k0", self.k0.is_some()),
+            ("installation", self.installation.is_some()),
+            ("head_displacement", self.head_displacement.is_some()),
+            ("alert_distance", self.alert_distance.is_some()),
+            ("mesh", self.mesh.is_some()),
+        ];
+        const COMMON: &[&str] = &[
+            "length",
+            "height",
+            "young",
+            "poisson",
+            "nx",
+            "ny",
+            "element",
+            "duration",
+            "steps",
+            "interface",
+        ];
+        Ok(match self.kind {
+            PresetKind::Delamination => {
+                let keys: Vec<&str> = COMMON.iter().copied().chain(["lift"]).collect();
+                only(p, "the delamination preset", &present, &keys)?;
+                Preset::Delamination {
+                    length: self.length,
+                    height: self.height,
+                    young: self.young,
+                    poisson: self.poisson,
+                    nx: self.nx,
+                    ny: self.ny,
+                    element: self.element,
+                    lift: self.lift,
+                    duration: self.duration,
+                    steps: self.steps,
+                    interface: self.interface,
+                }
+            }
+            PresetKind::Shear => {
+                let keys: Vec<&str> = COMMON.iter().copied().chain(["press", "push"]).collect();
+                only(p, "the shear preset", &present, &keys)?;
+                Preset::Shear {
+                    length: self.length,
+                    height: self.height,
+                    young: self.young,
+                    poisson: self.poisson,
+                    nx: self.nx,
+                    ny: self.ny,
+                    element: self.element,
+                    press: self.press,
+                    push: self.push,
+                    duration: self.duration,
+                    steps: self.steps,
+                    interface: self.interface,
+                }
+            }
+            PresetKind::Pile => {
+                only(
+                    p,
+                    "the pile preset",
+                    &present,
+                    &[
+                        "site",
+                        "coulomb",
+                        "pile_young",
+                        "pile_poisson",
+                        "pile_unit_weight",
+                        "soil_young",
+                        "soil_poisson",
+                        "soil_unit_weight",
+                        "k0",
+                        "installation",
+                        "head_displacement",
+                        "steps",
+                        "alert_distance",
+                        "interface",
+                        "mesh",
+                    ],
+                )?;
+                let installation = match self.installation {
+                    None => None,
+                    Some(i) => {
+                        let ip = p.key("installation");
+                        let what = "this installation";
+                        Some(match i.kind {
+                            InstallationKind::None => {
+                                only(
+                                    &ip,
+                                    "installation \"none\"",
+                                    &[("value", i.value.is_some())],
+                                    &[],
+                                )?;
+                                InstallationSpec::None {}
+                            }
+                            InstallationKind::RadialDisplacement => {
+                                InstallationSpec::RadialDisplacement {
+                                    value: need(&ip, &i.value, "value", what)?,
+                                }
+                            }
+                            InstallationKind::NormalForceRatio => {
+                                InstallationSpec::NormalForceRatio {
+                                    value: need(&ip, &i.value, "value", what)?,
+                                }
+                            }
+                        })
+                    }
+                };
+                Preset::Pile {
+                    site: self.site,
+                    coulomb: self.coulomb.unwrap_or(false),
+                    pile_young: self.pile_young,
+                    pile_poisson: self.pile_poisson,
+                    pile_unit_weight: self.pile_unit_weight,
+                    soil_young: self.soil_young,
+                    soil_poisson: self.soil_poisson,
+                    soil_unit_weight: self.soil_unit_weight,
+                    k0: self.k0,
+                    installation,
+                    head_displacement: self.head_displacement,
+                    steps: self.steps,
+                    alert_distance: self.alert_distance,
+                    interface: self.interface,
+                    mesh: self.mesh,
+                }
+            }
+        })
+    }
+}

@@ -1,0 +1,230 @@
+//! What steps a study: the scene-file driver (supports released and applied per phase, loads
+//! scaled by their time functions) or a library preset (its own step functions).
+
+use super::errors::{fem_failed, step_error};
+use crate::build::{Custom, Library, LoadKind, Phase, PresetStudy, function_value};
+use crate::error::{CliError, CliResult};
+use contact_laws::ContactLaw;
+use contact_solver::{ContactSimulation, StepResult};
+use fem_core::LinearElasticModel;
+
+/// What steps the simulation: the scene-file driver or a library preset.
+pub(super) trait Driver {
+    type Law: ContactLaw + Clone;
+    fn sim(&self) -> &ContactSimulation<LinearElasticModel, Self::Law>;
+    fn begin_phase(&mut self, phases: &[Phase], p: usize) -> CliResult<()>;
+    fn step(
+        &mut self,
+        phases: &[Phase],
+        p: usize,
+        k: usize,
+        t: f64,
+    ) -> Result<StepResult, CliError>;
+    fn end_phase(&mut self, phases: &[Phase], p: usize);
+    /// Quantities only this driver knows (the pile's head load), at the last step.
+    fn extras(&self) -> Extras {
+        Extras::default()
+    }
+}
+
+/// Quantities of the pile preset at the last step.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Extras {
+    /// Load on the pile head.
+    pub(super) head_load: Option<f64>,
+    /// Displacement of the pile head.
+    pub(super) head_displacement: Option<f64>,
+}
+
+/// Steps a scene described key by key.
+pub(super) struct CustomDriver<'a> {
+    c: &'a mut Custom,
+    last_loads: Option<Vec<f64>>,
+}
+
+impl<'a> CustomDriver<'a> {
+    /// The driver of `c`, before its first phase.
+    pub(super) fn new(c: &'a mut Custom) -> Self {
+        Self {
+            c,
+            last_loads: None,
+        }
+    }
+}
+
+impl Driver for CustomDriver<'_> {
+    type Law = contact_laws::StandardLaw;
+
+    fn sim(&self) -> &ContactSimulation<LinearElasticModel, Self::Law> {
+        &self.c.sim
+    }
+
+    fn begin_phase(&mut self, phases: &[Phase], p: usize) -> CliResult<()> {
+        if p == 0 {
+            return Ok(());
+        }
+        let c = &mut *self.c;
+        let model = c.sim.structure_mut();
+        let mut changed = false;
+        for s in c
+            .supports
+            .iter()
+            .filter(|s| s.phases[p - 1] && !s.phases[p])
+        {
+            for &comp in &s.components {
+                model.release(&s.nodes, comp).map_err(|e| {
+                    fem_failed(
+                        &format!(
+                            "phase `{}`: releasing the supports that end",
+                            phases[p].name
+                        ),
+                        e,
+                    )
+                })?;
+            }
+            changed = true;
+        }
+        let t = phases[p].t0;
+        for s in c
+            .supports
+            .iter()
+            .filter(|s| s.phases[p] && (changed || !s.phases[p - 1]))
+        {
+            let v = s.value * function_value(&phases[p], &s.name, &s.function, &c.functions, t);
+            for &comp in &s.components {
+                model.set_prescribed(&s.nodes, comp, v).map_err(|e| {
+                    fem_failed(
+                        &format!("phase `{}`: applying the supports", phases[p].name),
+                        e,
+                    )
+                })?;
+            }
+        }
+        self.last_loads = None;
+        Ok(())
+    }
+
+    fn step(
+        &mut self,
+        phases: &[Phase],
+        p: usize,
+        _k: usize,
+        t: f64,
+    ) -> Result<StepResult, CliError> {
+        let c = &mut *self.c;
+        let phase = &phases[p];
+        let model = c.sim.structure_mut();
+        for s in c.supports.iter().filter(|s| s.phases[p]) {
+            let v = s.value * function_value(phase, &s.name, &s.function, &c.functions, t);
+            for &comp in &s.components {
+                model
+                    .set_prescribed(&s.nodes, comp, v)
+                    .map_err(|e| fem_failed("prescribed displacement", e))?;
+            }
+        }
+        let factors: Vec<f64> = c
+            .loads
+            .iter()
+            .map(|l| {
+                if l.phases[p] {
+                    function_value(phase, &l.name, &l.function, &c.functions, t)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        if self.last_loads.as_ref() != Some(&factors) {
+            model.clear_loads();
+            for (l, &f) in c.loads.iter().zip(&factors) {
+                if !l.phases[p] {
+                    continue;
+                }
+                match &l.kind {
+                    LoadKind::Traction(set, v) => {
+                        let v = [v[0] * f, v[1] * f];
+                        model.add_edge_traction(set, |_| v)
+                    }
+                    LoadKind::Nodal(nodes, v) => nodes
+                        .iter()
+                        .try_for_each(|&n| model.add_nodal_force(n, [v[0] * f, v[1] * f])),
+                    LoadKind::Body(v) => {
+                        let v = [v[0] * f, v[1] * f];
+                        model.add_body_force(|_| v)
+                    }
+                    LoadKind::Gravity => model.add_self_weight(),
+                }
+                .map_err(|e| fem_failed("load", e))?;
+            }
+            self.last_loads = Some(factors);
+        }
+        c.sim.step(t, 1.0).map_err(|e| step_error(e, phase, t))
+    }
+
+    fn end_phase(&mut self, phases: &[Phase], p: usize) {
+        if phases[p].reset_displacements {
+            self.c.sim.reset_displacements();
+        }
+    }
+}
+
+/// Steps a library preset.
+pub(super) struct PresetDriver<'a> {
+    p: &'a mut PresetStudy,
+    extras: Extras,
+}
+
+impl<'a> PresetDriver<'a> {
+    /// The driver of `p`, before its first step.
+    pub(super) fn new(p: &'a mut PresetStudy) -> Self {
+        Self {
+            p,
+            extras: Extras::default(),
+        }
+    }
+}
+
+impl Driver for PresetDriver<'_> {
+    type Law = contact_laws::Rccm;
+
+    fn sim(&self) -> &ContactSimulation<LinearElasticModel, Self::Law> {
+        self.p.sim()
+    }
+
+    fn begin_phase(&mut self, _: &[Phase], _: usize) -> CliResult<()> {
+        Ok(())
+    }
+
+    fn step(
+        &mut self,
+        phases: &[Phase],
+        p: usize,
+        k: usize,
+        t: f64,
+    ) -> Result<StepResult, CliError> {
+        let err = |e| step_error(e, &phases[p], t);
+        match &mut self.p.scene {
+            Library::Seed(s) => s.step(k).map_err(err),
+            Library::Pile(s) => {
+                let (res, v) = match p {
+                    0 => (s.geostatic().map_err(err)?, 0.0),
+                    1 => (s.install().map_err(err)?, 0.0),
+                    _ => {
+                        let r = s.pull(k).map_err(err)?;
+                        (r.result, r.head_displacement)
+                    }
+                };
+                self.extras = Extras {
+                    head_load: Some(s.head_load(&res).map_err(err)?),
+                    head_displacement: Some(v),
+                };
+                Ok(res)
+            }
+        }
+    }
+
+    fn end_phase(&mut self, _: &[Phase], _: usize) {}
+
+    fn extras(&self) -> Extras {
+        self.extras
+    }
+}

@@ -1,0 +1,83 @@
+//! The VTK series: the interface (`interface_*.vtu` + `interface.pvd`, through the library's
+//! [`InterfaceSeries`]) and the whole mesh (`mesh_*.vtu` + `mesh.pvd`: displacement and nodal
+//! stress).
+
+use super::errors::{fem_failed, io};
+use crate::error::CliResult;
+use contact_solver::{ContactRecord, InterfaceSeries};
+use fem_core::LinearElasticModel;
+use std::path::{Path, PathBuf};
+
+/// The two series, each optional.
+pub(super) struct VtkWriter {
+    dir: PathBuf,
+    interface: Option<InterfaceSeries>,
+    mesh_entries: Option<Vec<(f64, String)>>,
+}
+
+impl VtkWriter {
+    /// The series asked for (nothing is written before the first step).
+    pub(super) fn new(dir: &Path, interface: bool, mesh: bool) -> Self {
+        Self {
+            dir: dir.to_path_buf(),
+            interface: interface.then(|| InterfaceSeries::new(dir, "interface")),
+            mesh_entries: mesh.then(Vec::new),
+        }
+    }
+
+    /// Whether a written step needs the nodal displacements.
+    pub(super) fn is_active(&self) -> bool {
+        self.interface.is_some() || self.mesh_entries.is_some()
+    }
+
+    /// One written step at time `t`; `disp` is given whenever [`is_active`](Self::is_active).
+    pub(super) fn write_step(
+        &mut self,
+        t: f64,
+        selected: &[ContactRecord],
+        disp: Option<&[[f64; 2]]>,
+        model: &LinearElasticModel,
+    ) -> CliResult<()> {
+        if let Some(s) = &mut self.interface {
+            s.write_step(t, selected, disp)
+                .map_err(|e| io(&self.dir, e))?;
+        }
+        if let Some(entries) = &mut self.mesh_entries {
+            let d = disp.expect("computed by the recorder");
+            let stress = model
+                .nodal_stresses(d)
+                .map_err(|e| fem_failed("nodal stresses", e))?;
+            let name = format!("mesh_{:04}.vtu", entries.len());
+            let path = self.dir.join(&name);
+            fem_core::vtk::write_vtu(
+                &path,
+                model.mesh(),
+                &[
+                    ("u", fem_core::vtk::Field::Vector(d)),
+                    ("stress", fem_core::vtk::Field::SymTensor(&stress)),
+                ],
+                &[],
+            )
+            .map_err(|e| io(&path, e))?;
+            entries.push((t, name));
+            let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
+            let pvd = self.dir.join("mesh.pvd");
+            fem_core::vtk::write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))?;
+        }
+        Ok(())
+    }
+
+    /// The `.pvd` files written, for the list of outputs.
+    pub(super) fn files(&self) -> Vec<String> {
+        let mut files = Vec::new();
+        if let Some(s) = &self.interface
+            && s.pvd_path().exists()
+        {
+            files.push("interface.pvd".into());
+        }
+        if self.mesh_entries.as_ref().is_some_and(|e| !e.is_empty()) {
+            files.push("mesh.pvd".into());
+        }
+        files
+    }
+}
