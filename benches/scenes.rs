@@ -13,7 +13,6 @@
 //! samples each: the scenes take 0.05–5 s, so criterion's default hundred would take minutes.
 
 #[path = "../crates/contact-solver/tests/support/hertz_scene.rs"]
-#[allow(dead_code)]
 mod hertz_scene;
 
 use bipo::presets::{DelaminationSpec, PulloutSpec, ShearSpec};
