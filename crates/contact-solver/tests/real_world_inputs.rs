@@ -235,3 +235,20 @@ fn a_law_that_cannot_be_rescaled_refuses_extreme_magnitudes() {
     );
     assert!(s.report.rescaled);
 }
+
+/// `Algorithm::Auto` runs Newton on a Coulomb problem (friction coefficients known, few
+/// contacts) and the accelerated Gauss–Seidel sweep for a law without a friction coefficient;
+/// the report names the one that ran, and the answer is the one of that algorithm.
+#[test]
+fn auto_picks_newton_for_coulomb_and_the_sweep_for_other_laws() {
+    let p = random_problem(12, 9);
+    let auto = solve_coulomb(&p, &settings(Algorithm::Auto)).unwrap();
+    assert_eq!(auto.report.algorithm, Algorithm::Newton);
+    let newton = solve_coulomb(&p, &settings(Algorithm::Newton)).unwrap();
+    assert_eq!(auto.r, newton.r);
+    let laws = vec![Tresca(0.05); 12];
+    let s = UzawaSolver::new(settings(Algorithm::Auto))
+        .solve(&p, &laws)
+        .unwrap();
+    assert_eq!(s.report.algorithm, Algorithm::AndersonGaussSeidel);
+}

@@ -39,7 +39,18 @@ pub enum Algorithm {
     /// Newton system, a line search and Gauss–Seidel fallback. Needs
     /// [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient); see [`newton`](crate::local::newton).
     Newton,
+    /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
+    /// [`Newton`](Self::Newton) when every law has a friction coefficient and there are at
+    /// most [`AUTO_NEWTON_MAX_CONTACTS`] contacts, else
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel); the report names the one that ran.
+    Auto,
 }
+
+/// [`Algorithm::Auto`] picks Newton up to this many contacts: Newton is the fastest on every
+/// FE problem measured and on random problems up to `n_c` ≈ 1000, beyond which its dense
+/// factorisation (`n_c³`) loses to the accelerated sweep (4–5× slower at `n_c` = 5000,
+/// `docs/benchmarks.md`, "Local solver: work–precision").
+pub const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
 
 /// Settings of the reduced solver: `Default` and the `with_*` setters (the struct is
 /// `#[non_exhaustive]`, so new settings do not break callers).

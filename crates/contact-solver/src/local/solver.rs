@@ -9,7 +9,7 @@ use super::problem::ReducedProblem;
 use super::residual::{
     contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm,
 };
-use super::settings::{Algorithm, Solution, UzawaReport, UzawaSettings};
+use super::settings::{AUTO_NEWTON_MAX_CONTACTS, Algorithm, Solution, UzawaReport, UzawaSettings};
 use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
@@ -113,15 +113,23 @@ impl UzawaSolver {
         states: &[L::State],
         r_start: Option<&[f64]>,
     ) -> Result<Solution, SolverError> {
-        let st = self.settings;
+        let mut st = self.settings;
         let r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
+        let mu = friction_coefficients(laws, states, problem.contact_count());
+        if st.algorithm == Algorithm::Auto {
+            st.algorithm = if mu.is_some() && problem.contact_count() <= AUTO_NEWTON_MAX_CONTACTS {
+                Algorithm::Newton
+            } else {
+                Algorithm::AndersonGaussSeidel
+            };
+        }
         if let Some(sol) = self.solve_rescaled(problem, laws, states, &r)? {
             return Ok(sol);
         }
         self.sweeps.reset(problem, st.rho_scale);
-        let mu = friction_coefficients(laws, states, problem.contact_count());
         if r.iter().all(|&v| v == 0.0)
-            && let Some(sol) = self.open_solution(problem, laws, states, mu.as_deref())
+            && let Some(sol) =
+                self.open_solution(st.algorithm, problem, laws, states, mu.as_deref())
         {
             return Ok(sol);
         }
@@ -183,6 +191,7 @@ impl UzawaSolver {
     /// Coulomb-type laws (`mu`), else a natural residual of exactly 0 at `r = 0`.
     fn open_solution<L: ContactLaw>(
         &self,
+        algorithm: Algorithm,
         problem: &ReducedProblem,
         laws: &[L],
         states: &[L::State],
@@ -201,7 +210,7 @@ impl UzawaSolver {
         let statuses = contact_statuses(laws, states, &self.sweeps.rho0, &r, &x);
         let rho = &self.sweeps.rho;
         let report = UzawaReport {
-            algorithm: self.settings.algorithm,
+            algorithm,
             iterations: 0,
             outer_iterations: 0,
             tangential_sweeps: 0,
@@ -357,7 +366,8 @@ impl UzawaSolver {
                     let n = run.iterations;
                     (n, n, 0, run.converged, run.residual, run.change)
                 }
-                Algorithm::Newton => {
+                // resolved in solve_with_states
+                Algorithm::Newton | Algorithm::Auto => {
                     let run = self.newton.solve(
                         &mut self.sweeps,
                         problem,
