@@ -55,6 +55,11 @@ impl ContactLaw for Signorini {
     }
 
     #[inline]
+    fn is_scale_invariant(&self) -> bool {
+        true
+    }
+
+    #[inline]
     fn friction_coefficient(&self, _: &()) -> Option<f64> {
         Some(0.0)
     }
@@ -81,6 +86,11 @@ impl ContactLaw for Coulomb {
     #[inline]
     fn has_friction(&self) -> bool {
         self.cone.mu() > 0.0
+    }
+
+    #[inline]
+    fn is_scale_invariant(&self) -> bool {
+        true
     }
 
     #[inline]

@@ -99,6 +99,17 @@ pub trait ContactLaw {
         0.0
     }
 
+    /// Whether [`project`](Self::project) and [`modified_velocity`](Self::modified_velocity)
+    /// are positively homogeneous of degree 1 in their vector argument, in every state
+    /// (`project(s τ) = s project(τ)` for `s > 0`): true for cones (Signorini, Coulomb, the
+    /// RCCM law's `K_μ̄`), false for a law with a threshold of its own (Tresca). A
+    /// reduced-problem solver may then rescale `W` and `q` by powers of two, exactly, to keep
+    /// extreme magnitudes (1e-300 … 1e300) within range. Defaults to `false`.
+    #[inline]
+    fn is_scale_invariant(&self) -> bool {
+        false
+    }
+
     /// The friction coefficient `μ̄` of the law's cone in `state`, for Coulomb-type laws (a
     /// closed cone `‖r̄_t‖ ≤ μ̄ r̄_n`); `None` for laws that are not of this type. The classical
     /// RCCM solver (`contact_solver::Algorithm::ClassicRccm`) needs it; the bipotential

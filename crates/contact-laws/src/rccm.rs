@@ -430,6 +430,11 @@ impl ContactLaw for Rccm {
     }
 
     #[inline]
+    fn is_scale_invariant(&self) -> bool {
+        true
+    }
+
+    #[inline]
     fn friction_coefficient(&self, state: &RccmState) -> Option<f64> {
         Some(self.cone(state).mu())
     }

@@ -125,6 +125,11 @@ impl ContactLaw for StandardLaw {
     }
 
     #[inline]
+    fn is_scale_invariant(&self) -> bool {
+        true
+    }
+
+    #[inline]
     fn friction_coefficient(&self, state: &RccmState) -> Option<f64> {
         match self {
             Self::Signorini(l) => l.friction_coefficient(&()),

@@ -89,7 +89,22 @@ fn bad_rho_still_converges() {
 #[test]
 fn not_converged_carries_the_history() {
     let p = random_problem(10, 1);
-    let settings = UzawaSettings::default().with_max_iterations(3);
+    // with the fallback (default), the error carries both runs: 3 sweeps, then the classical
+    // solver's iterations
+    match solve_coulomb(&p, &UzawaSettings::default().with_max_iterations(3)) {
+        Err(SolverError::NotConverged {
+            iterations,
+            residual,
+            history,
+        }) => {
+            assert!(iterations > 3 && history.len() > 3);
+            assert_eq!(history.last(), Some(&residual));
+        }
+        other => panic!("expected NotConverged, got {other:?}"),
+    }
+    let settings = UzawaSettings::default()
+        .with_max_iterations(3)
+        .with_fallback(false);
     match solve_coulomb(&p, &settings) {
         Err(SolverError::NotConverged {
             iterations,

@@ -7,7 +7,8 @@
 pub(crate) fn symmetrize(w: &mut [f64], m: usize) {
     for i in 0..m {
         for j in 0..i {
-            let a = 0.5 * (w[i * m + j] + w[j * m + i]);
+            // halves first: the same bits as 0.5·(a + b), without overflow near f64::MAX
+            let a = 0.5 * w[i * m + j] + 0.5 * w[j * m + i];
             w[i * m + j] = a;
             w[j * m + i] = a;
         }

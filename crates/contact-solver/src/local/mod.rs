@@ -58,6 +58,11 @@
 //!   Gauss–Seidel does not in 10 000 sweeps (issue 8's stress suite: a stiffness contrast of
 //!   1e8, 40 sweeps). It is the default; choose Newton for Coulomb-type problems up to about a
 //!   thousand contacts.
+//! - [`Algorithm::Auto`] applies that rule per problem: Newton when every law has a friction
+//!   coefficient and `n_c ≤` [`AUTO_NEWTON_MAX_CONTACTS`] (1000), else the accelerated
+//!   Gauss–Seidel sweep. It is the default of `bipo solve-local`; the simulation's default
+//!   stays the accelerated sweep, whose iteration counts the seed's tables and
+//!   `docs/benchmarks.md` quote.
 //!
 //! # The penalty ρ
 //! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s 2×2 diagonal block:
@@ -94,6 +99,36 @@
 //! `tiny = f64::MIN_POSITIVE`. The residual is the natural map of the fixed point (zero
 //! exactly on solutions); [`UzawaReport::history`] records it at every iteration.
 
+//!
+//! # Problems as other codes export them
+//! Before and after the chosen algorithm, the dispatcher ([`UzawaSolver`]) handles what a
+//! problem from another code may bring (`tests/real_world_inputs.rs`):
+//! - **Round-off asymmetry.** [`ReducedProblem::new`] symmetrises `W` when
+//!   `max|W_ij − W_ji| / max|W|` is between [`SYMMETRY_TOL`] (1e-12) and
+//!   [`DEFAULT_ASYMMETRY_TOL`] (1e-6, or [`ReducedProblem::with_asymmetry_tolerance`]) and
+//!   reports it ([`UzawaReport::asymmetry`]); beyond, a typed error gives the entry and the
+//!   difference.
+//! - **Every gap open.** With `r = 0` as the start and every `q_n ≥ 0` (Coulomb-type laws; for
+//!   other laws, a natural residual of exactly 0 at `r = 0`), `r = 0` is the exact answer:
+//!   returned with no iteration.
+//! - **Extreme magnitudes.** `W` or `q` with entries beyond `1e±100` ([`RESCALE_ABOVE`]) are
+//!   solved on a copy scaled by powers of two (exact), when every law is
+//!   [scale invariant](contact_laws::ContactLaw::is_scale_invariant) (the built-in laws are);
+//!   for other laws, magnitudes beyond `1e±150` (where squares overflow) are refused with a
+//!   typed error. [`UzawaReport::rescaled`] says when it happened.
+//! - **A converged answer is checked.** For Coulomb-type laws the Signorini–Coulomb
+//!   conditions are checked without the modified velocity (`r_n − max(0, r_n − ρ⁰ x_n)`,
+//!   `r_t − clamp(r_t − ρ⁰ x_t, ±μ̄ r_n)`, relative like the residual) to [`CHECK_FACTOR`]
+//!   × `tol`: with a huge `μ̄` the sum `x_n + μ̄|x_t|` can absorb a penetration and the
+//!   bipotential residual reads 0 on a wrong answer (`μ = 1e100` did).
+//! - **Fallback.** When the algorithm stalls (no convergence in `max_iterations`) or fails the
+//!   check, [`UzawaSettings::fallback`] (on by default) solves again with
+//!   [`Algorithm::ClassicRccm`], which splits contact and friction and does not see
+//!   `μ̄|x_t|`: one contact that sticks with `μ` from 100 to 1e100 is solved by every
+//!   algorithm this way. [`UzawaReport::fallback_from`] names the algorithm that failed;
+//!   the error, when both fail, carries both histories. The fallback costs the first
+//!   algorithm's `max_iterations`: a stall detector that stops it earlier is future work.
+
 pub mod adhesion;
 pub mod anderson;
 pub mod classic;
@@ -114,11 +149,11 @@ mod uzawa;
 
 #[cfg(feature = "fe")]
 pub(crate) use dense::symmetrize;
-pub use problem::{ReducedProblem, SYMMETRY_TOL};
+pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
 #[cfg(feature = "fe")]
 pub(crate) use residual::{contact_statuses, natural_residual};
 pub use settings::{
-    ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, Algorithm, DEFAULT_OMEGA, Solution,
-    UzawaReport, UzawaSettings,
+    ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS, Algorithm,
+    DEFAULT_OMEGA, Solution, UzawaReport, UzawaSettings,
 };
-pub use solver::{UzawaSolver, solve_coulomb};
+pub use solver::{CHECK_FACTOR, RESCALE_ABOVE, UzawaSolver, solve_coulomb};

@@ -13,20 +13,29 @@
 use crate::error::SolverError;
 use contact_laws::{Coulomb, CoulombCone};
 
-/// Relative tolerance of the symmetry test of `W`: `|W_ij − W_ji| ≤ 1e-12 · max|W|`.
+/// Asymmetry below which `W` is taken as given: `|W_ij − W_ji| ≤ 1e-12 · max|W|` (round-off
+/// of a symmetric assembly).
 pub const SYMMETRY_TOL: f64 = 1e-12;
+
+/// Default relative asymmetry [`ReducedProblem::new`] repairs: up to
+/// `|W_ij − W_ji| ≤ 1e-6 · max|W|` (round-off of the exporting code) `W` is replaced by
+/// `(W + Wᵀ)/2` and [`ReducedProblem::asymmetry`] says by how much; beyond it, an error.
+pub const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 
 /// A validated 2D reduced contact problem `x = W r + q` with friction coefficients `μ_i`.
 ///
 /// Invariants (checked by [`new`](Self::new)): `W` is `m × m` (dense, row-major), `q` has `m`
-/// entries, `μ` has `n_c = m/2`; every entry is finite; `W` is symmetric to [`SYMMETRY_TOL`];
-/// every 2×2 diagonal block of `W` is positive definite; `μ_i ≥ 0`. Full positive
+/// entries, `μ` has `n_c = m/2`; every entry is finite; `W` is symmetric (to [`SYMMETRY_TOL`]
+/// as given, or symmetrised, see [`new`](Self::new)); every 2×2 diagonal block of `W` is
+/// positive definite; `μ_i ≥ 0`. Full positive
 /// definiteness of `W` is *not* checked (it would cost a Cholesky factorisation).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReducedProblem {
     w: Vec<f64>,
     q: Vec<f64>,
     mu: Vec<f64>,
+    /// Relative asymmetry `max|W_ij − W_ji| / max|W|` removed by symmetrising (0 if none).
+    asymmetry: f64,
 }
 
 impl ReducedProblem {
@@ -36,7 +45,11 @@ impl ReducedProblem {
     /// # Errors
     /// - [`SolverError::SizeMismatch`] if `q` has an odd length, or `W`, `μ` do not match it;
     /// - [`SolverError::NonFinite`] for a NaN or infinite entry;
-    /// - [`SolverError::NotSymmetric`] if `|W_ij − W_ji| > 1e-12·max|W|`;
+    /// - [`SolverError::NotSymmetric`] if `|W_ij − W_ji| > 1e-6·max|W|`
+    ///   ([`DEFAULT_ASYMMETRY_TOL`]); between [`SYMMETRY_TOL`] and that, `W` is replaced by
+    ///   `(W + Wᵀ)/2` and [`asymmetry`](Self::asymmetry) reports the relative asymmetry
+    ///   removed (set the tolerance with
+    ///   [`with_asymmetry_tolerance`](Self::with_asymmetry_tolerance));
     /// - [`SolverError::NotPositiveDefinite`] if a 2×2 diagonal block of `W` is not SPD —
     ///   except that a block `[W_nn 0; 0 0]` with `W_nn > 0` is accepted: it is a contact whose
     ///   tangential displacement is prescribed (a supported node), so `x_t = q_t` whatever `r`;
@@ -51,6 +64,39 @@ impl ReducedProblem {
     /// # Ok::<(), SolverError>(())
     /// ```
     pub fn new(w: Vec<f64>, q: Vec<f64>, mu: Vec<f64>) -> Result<Self, SolverError> {
+        Self::with_asymmetry_tolerance(w, q, mu, DEFAULT_ASYMMETRY_TOL)
+    }
+
+    /// As [`new`](Self::new), repairing a relative asymmetry of `W` up to `tolerance` (`0`:
+    /// only round-off below [`SYMMETRY_TOL`] is accepted).
+    ///
+    /// # Errors
+    /// As for [`new`](Self::new); [`SolverError::InvalidSetting`] if `tolerance` is negative or
+    /// not finite.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::ReducedProblem;
+    /// // W symmetric to 3e-7 relative: repaired by default, refused with a tolerance of 1e-9.
+    /// let w = vec![2.0, 0.3, 0.3 + 6e-7, 1.0];
+    /// let p = ReducedProblem::new(w.clone(), vec![-1.0, 0.5], vec![0.3])?;
+    /// assert!((p.asymmetry() - 3e-7).abs() < 1e-12 && p.w()[1] == p.w()[2]);
+    /// assert!(ReducedProblem::with_asymmetry_tolerance(w, vec![-1.0, 0.5], vec![0.3], 1e-9).is_err());
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn with_asymmetry_tolerance(
+        mut w: Vec<f64>,
+        q: Vec<f64>,
+        mu: Vec<f64>,
+        tolerance: f64,
+    ) -> Result<Self, SolverError> {
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err(SolverError::InvalidSetting {
+                what: "asymmetry tolerance",
+                value: tolerance,
+                expected: "a finite relative tolerance >= 0",
+            });
+        }
         let m = q.len();
         if !m.is_multiple_of(2) {
             return Err(SolverError::SizeMismatch {
@@ -83,30 +129,52 @@ impl ReducedProblem {
             CoulombCone::new(m_i).map_err(|source| SolverError::InvalidLaw { contact, source })?;
         }
         let w_max = w.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        let tolerance = SYMMETRY_TOL * w_max;
+        // the worst pair, compared scale-free (w_max may be near overflow or underflow)
+        let (mut worst, mut row, mut col) = (0.0_f64, 0, 0);
         for i in 0..m {
             for j in (i + 1)..m {
-                let difference = (w[i * m + j] - w[j * m + i]).abs();
-                if difference > tolerance {
-                    return Err(SolverError::NotSymmetric {
-                        row: i,
-                        col: j,
-                        difference,
-                        tolerance,
-                    });
+                let difference = (w[i * m + j] / w_max - w[j * m + i] / w_max).abs();
+                if difference > worst {
+                    (worst, row, col) = (difference, i, j);
                 }
             }
         }
-        let p = Self { w, q, mu };
+        let mut asymmetry = 0.0;
+        if worst > tolerance.max(SYMMETRY_TOL) {
+            return Err(SolverError::NotSymmetric {
+                row,
+                col,
+                difference: (w[row * m + col] - w[col * m + row]).abs(),
+                tolerance: tolerance.max(SYMMETRY_TOL) * w_max,
+            });
+        } else if worst > SYMMETRY_TOL {
+            asymmetry = worst;
+            super::dense::symmetrize(&mut w, m);
+        }
+        let p = Self {
+            w,
+            q,
+            mu,
+            asymmetry,
+        };
         for contact in 0..nc {
             let [a, b, _, d] = p.diagonal_block(contact);
             // a tangentially supported node has an exactly zero tangential row: allowed
             let fixed_tangent = d == 0.0 && b == 0.0;
+            // scale-free, so that blocks of 1e300 or 1e-300 neither overflow nor underflow
+            let s = a.abs().max(d.abs());
+            let (a, b, d) = (a / s, b / s, d / s);
             if !(a > 0.0 && (a * d - b * b > 0.0 || fixed_tangent)) {
                 return Err(SolverError::NotPositiveDefinite { contact });
             }
         }
         Ok(p)
+    }
+
+    /// Relative asymmetry `max|W_ij − W_ji| / max|W|` of the `W` given, removed by
+    /// symmetrising it (0 when it was symmetric to [`SYMMETRY_TOL`]).
+    pub fn asymmetry(&self) -> f64 {
+        self.asymmetry
     }
 
     /// Number of contacts `n_c`.

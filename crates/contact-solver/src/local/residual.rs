@@ -82,6 +82,38 @@ pub(crate) fn natural_residual<L: ContactLaw>(
     s2.sqrt()
 }
 
+/// The friction coefficients `μ̄_i` of the laws in their states, if every law has one and it is
+/// finite and `≥ 0` (Coulomb-type laws); `None` otherwise.
+pub(crate) fn friction_coefficients<L: ContactLaw>(
+    laws: &[L],
+    states: &[L::State],
+    nc: usize,
+) -> Option<Vec<f64>> {
+    (0..nc)
+        .map(|i| {
+            pick(laws, i)
+                .friction_coefficient(pick(states, i))
+                .filter(|m| m.is_finite() && *m >= 0.0)
+        })
+        .collect()
+}
+
+/// The Signorini–Coulomb conditions checked without De Saxcé's modified velocity:
+/// `‖(r_n − max(0, r_n − ρ⁰ x_n), r_t − clamp(r_t − ρ⁰ x_t, ±μ̄ r_n⁺))‖` (absolute). Zero
+/// exactly at a solution, like the natural residual, but the normal test sees `x_n` itself:
+/// with a huge `μ̄` the modified velocity's `x_n + μ̄|x_t|` can absorb a penetration.
+pub(crate) fn coulomb_residual(mu: &[f64], rho0: &[f64], r: &[f64], x: &[f64]) -> f64 {
+    let mut s2 = 0.0;
+    for (i, (&mu, &rho)) in mu.iter().zip(rho0).enumerate() {
+        let (ri, xi) = (local(r, i), local(x, i));
+        let dn = ri.n - (ri.n - rho * xi.n).max(0.0);
+        let g = mu * ri.n.max(0.0);
+        let dt = ri.t[0] - (ri.t[0] - rho * xi.t[0]).clamp(-g, g);
+        s2 += dn * dn + dt * dt;
+    }
+    s2.sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -39,7 +39,18 @@ pub enum Algorithm {
     /// Newton system, a line search and Gauss–Seidel fallback. Needs
     /// [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient); see [`newton`](crate::local::newton).
     Newton,
+    /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
+    /// [`Newton`](Self::Newton) when every law has a friction coefficient and there are at
+    /// most [`AUTO_NEWTON_MAX_CONTACTS`] contacts, else
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel); the report names the one that ran.
+    Auto,
 }
+
+/// [`Algorithm::Auto`] picks Newton up to this many contacts: Newton is the fastest on every
+/// FE problem measured and on random problems up to `n_c` ≈ 1000, beyond which its dense
+/// factorisation (`n_c³`) loses to the accelerated sweep (4–5× slower at `n_c` = 5000,
+/// `docs/benchmarks.md`, "Local solver: work–precision").
+pub const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
 
 /// Settings of the reduced solver: `Default` and the `with_*` setters (the struct is
 /// `#[non_exhaustive]`, so new settings do not break callers).
@@ -70,6 +81,13 @@ pub struct UzawaSettings {
     /// Return `Ok` with `report.converged == false` instead of
     /// [`SolverError::NotConverged`](crate::SolverError::NotConverged).
     pub accept_non_converged: bool,
+    /// When the chosen algorithm stalls (no convergence in `max_iterations`) or its answer
+    /// fails the independent check of the Signorini–Coulomb conditions, solve again with
+    /// [`Algorithm::ClassicRccm`] from the same start (laws with a
+    /// [`friction_coefficient`](contact_laws::ContactLaw::friction_coefficient) only; not
+    /// with `accept_non_converged`). The report's
+    /// [`fallback_from`](UzawaReport::fallback_from) says it happened. Default `true`.
+    pub fallback: bool,
 }
 
 impl Default for UzawaSettings {
@@ -81,6 +99,7 @@ impl Default for UzawaSettings {
             rho_scale: 1.0,
             omega: DEFAULT_OMEGA,
             accept_non_converged: false,
+            fallback: true,
         }
     }
 }
@@ -118,6 +137,16 @@ pub struct UzawaReport {
     pub rho_max: f64,
     /// Status of each contact at the returned iterate (case of the projection with `ρ⁰`).
     pub statuses: Vec<ContactStatus>,
+    /// The algorithm that was tried first and failed, when the answer comes from the fallback
+    /// ([`UzawaSettings::fallback`]); `iterations`, `outer_iterations` and `history` then
+    /// count both runs.
+    pub fallback_from: Option<Algorithm>,
+    /// Relative asymmetry of the problem's `W`, removed by symmetrising it
+    /// ([`ReducedProblem::asymmetry`](crate::ReducedProblem::asymmetry)).
+    pub asymmetry: f64,
+    /// Whether `W` and `q` were rescaled internally (by powers of two, exactly) because their
+    /// magnitudes were outside `[1e-100, 1e100]`.
+    pub rescaled: bool,
 }
 
 /// The solution of a reduced problem.
@@ -137,6 +166,13 @@ impl UzawaSettings {
     #[must_use]
     pub fn with_algorithm(mut self, algorithm: Algorithm) -> Self {
         self.algorithm = algorithm;
+        self
+    }
+
+    /// These settings with [`fallback`](Self::fallback) replaced.
+    #[must_use]
+    pub fn with_fallback(mut self, fallback: bool) -> Self {
+        self.fallback = fallback;
         self
     }
 

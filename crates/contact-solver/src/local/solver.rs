@@ -6,11 +6,23 @@ use super::classic::ClassicScratch;
 use super::newton::NewtonScratch;
 use super::plain;
 use super::problem::ReducedProblem;
-use super::residual::{contact_statuses, norm};
-use super::settings::{Algorithm, Solution, UzawaReport, UzawaSettings};
+use super::residual::{
+    contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm,
+};
+use super::settings::{AUTO_NEWTON_MAX_CONTACTS, Algorithm, Solution, UzawaReport, UzawaSettings};
 use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
+
+/// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
+/// checked without the modified velocity to this factor of the tolerance (relative), or it is
+/// not accepted (see [`UzawaSettings::fallback`]). Near a solution both residuals are of the
+/// same order; a penetration hidden by `x_n + μ̄|x_t|` (huge `μ̄`) is of order one.
+pub const CHECK_FACTOR: f64 = 1e3;
+
+/// `W` or `q` with magnitudes beyond `[1/RESCALE_ABOVE, RESCALE_ABOVE]` is rescaled internally
+/// (scale-invariant laws only).
+pub const RESCALE_ABOVE: f64 = 1e100;
 
 /// The reduced-problem solver: settings plus scratch buffers reused across solves.
 ///
@@ -101,9 +113,192 @@ impl UzawaSolver {
         states: &[L::State],
         r_start: Option<&[f64]>,
     ) -> Result<Solution, SolverError> {
+        let mut st = self.settings;
+        let r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
+        let mu = friction_coefficients(laws, states, problem.contact_count());
+        if st.algorithm == Algorithm::Auto {
+            st.algorithm = if mu.is_some() && problem.contact_count() <= AUTO_NEWTON_MAX_CONTACTS {
+                Algorithm::Newton
+            } else {
+                Algorithm::AndersonGaussSeidel
+            };
+        }
+        if let Some(sol) = self.solve_rescaled(problem, laws, states, &r)? {
+            return Ok(sol);
+        }
+        self.sweeps.reset(problem, st.rho_scale);
+        if r.iter().all(|&v| v == 0.0)
+            && let Some(sol) =
+                self.open_solution(st.algorithm, problem, laws, states, mu.as_deref())
+        {
+            return Ok(sol);
+        }
+        let mut sol = self.attempt(st, problem, laws, states, r.clone())?;
+        self.check(problem, &mut sol, mu.as_deref());
+        if !sol.report.converged
+            && st.fallback
+            && !st.accept_non_converged
+            && st.algorithm != Algorithm::ClassicRccm
+            && mu.is_some()
+        {
+            let first = sol.report;
+            let classic = UzawaSettings {
+                algorithm: Algorithm::ClassicRccm,
+                ..st
+            };
+            sol = self.attempt(classic, problem, laws, states, r)?;
+            self.check(problem, &mut sol, mu.as_deref());
+            let report = &mut sol.report;
+            report.fallback_from = Some(st.algorithm);
+            report.iterations += first.iterations;
+            report.outer_iterations += first.outer_iterations;
+            let mut history = first.history;
+            history.append(&mut report.history);
+            report.history = history;
+        }
+        if !sol.report.converged && !st.accept_non_converged {
+            return Err(SolverError::NotConverged {
+                iterations: sol.report.iterations,
+                residual: sol.report.residual,
+                history: sol.report.history,
+            });
+        }
+        sol.report.asymmetry = problem.asymmetry();
+        Ok(sol)
+    }
+
+    /// The independent check of a converged answer, for Coulomb-type laws (`mu`): the
+    /// Signorini–Coulomb conditions without the modified velocity
+    /// ([`coulomb_residual`](super::residual::coulomb_residual)), relative like the natural
+    /// residual, must be within [`CHECK_FACTOR`]` × tol`; else the answer is not converged.
+    fn check(&self, problem: &ReducedProblem, sol: &mut Solution, mu: Option<&[f64]>) {
+        let Some(mu) = mu else { return };
+        if !sol.report.converged {
+            return;
+        }
+        let rho0 = &self.sweeps.rho0;
+        let rho_max = rho0.iter().fold(0.0_f64, |a, &b| a.max(b));
+        let denom = norm(&sol.r)
+            .max(rho_max * norm(problem.q()))
+            .max(f64::MIN_POSITIVE);
+        let error = coulomb_residual(mu, rho0, &sol.r, &sol.x) / denom;
+        if error.is_nan() || error > CHECK_FACTOR * self.settings.tol {
+            sol.report.converged = false;
+        }
+    }
+
+    /// `r = 0` when it is the exact solution, with no iteration: every `q_n ≥ 0` for
+    /// Coulomb-type laws (`mu`), else a natural residual of exactly 0 at `r = 0`.
+    fn open_solution<L: ContactLaw>(
+        &self,
+        algorithm: Algorithm,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        mu: Option<&[f64]>,
+    ) -> Option<Solution> {
+        let (q, m) = (problem.q(), problem.size());
+        let r = vec![0.0; m];
+        let open = match mu {
+            Some(_) => q.iter().step_by(2).all(|&qn| qn >= 0.0),
+            None => natural_residual(laws, states, &self.sweeps.rho0, &r, q) == 0.0,
+        };
+        if !open {
+            return None;
+        }
+        let x = q.to_vec();
+        let statuses = contact_statuses(laws, states, &self.sweeps.rho0, &r, &x);
+        let rho = &self.sweeps.rho;
+        let report = UzawaReport {
+            algorithm,
+            iterations: 0,
+            outer_iterations: 0,
+            tangential_sweeps: 0,
+            converged: true,
+            residual: 0.0,
+            change: 0.0,
+            history: Vec::new(),
+            rho_min: rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
+            rho_max: rho.iter().fold(0.0, |a, &b| a.max(b)),
+            statuses,
+            fallback_from: None,
+            asymmetry: problem.asymmetry(),
+            rescaled: false,
+        };
+        Some(Solution { r, x, report })
+    }
+
+    /// Solves a problem whose `W` or `q` has magnitudes outside `[1e-100, 1e100]` on a copy
+    /// rescaled by powers of two (exact: `W' = s_w W`, `q' = s_q q`, then `r = r' s_w / s_q`,
+    /// `x = x' / s_q`), when every law is scale invariant; `None` when no rescaling is needed.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] for magnitudes outside `[1e-150, 1e150]` (where the
+    /// squares in the norms overflow) with a law that is not scale invariant; errors of the
+    /// solve.
+    fn solve_rescaled<L: ContactLaw>(
+        &mut self,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r: &[f64],
+    ) -> Result<Option<Solution>, SolverError> {
+        let max_abs = |v: &[f64]| v.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        let (w_max, q_max) = (max_abs(problem.w()), max_abs(problem.q()));
+        let outside = |v: f64, bound: f64| v != 0.0 && !(1.0 / bound..=bound).contains(&v);
+        if !outside(w_max, RESCALE_ABOVE) && !outside(q_max, RESCALE_ABOVE) {
+            return Ok(None);
+        }
+        if !laws.iter().all(ContactLaw::is_scale_invariant) {
+            for (what, value) in [("W", w_max), ("q", q_max)] {
+                if outside(value, 1e150) {
+                    return Err(SolverError::InvalidSetting {
+                        what,
+                        value,
+                        expected: "magnitudes within [1e-150, 1e150], or laws that are scale \
+                                   invariant (ContactLaw::is_scale_invariant) so that W and q \
+                                   can be rescaled",
+                    });
+                }
+            }
+            return Ok(None);
+        }
+        // powers of two: the rescaled problem has the same bits up to the exponents
+        let power = |v: f64| {
+            if v == 0.0 {
+                1.0
+            } else {
+                2f64.powi(-(v.log2().round() as i32).clamp(-1020, 1020))
+            }
+        };
+        let (sw, sq) = (power(w_max), power(q_max));
+        let w = problem.w().iter().map(|v| v * sw).collect();
+        let q = problem.q().iter().map(|v| v * sq).collect();
+        let scaled = ReducedProblem::with_asymmetry_tolerance(w, q, problem.mu().to_vec(), 0.0)?;
+        let r_scaled: Vec<f64> = r.iter().map(|v| v * sq / sw).collect();
+        let start = r.iter().any(|&v| v != 0.0).then_some(r_scaled.as_slice());
+        let mut sol = self.solve_with_states(&scaled, laws, states, start)?;
+        sol.r.iter_mut().for_each(|v| *v = *v * sw / sq);
+        sol.x.iter_mut().for_each(|v| *v /= sq);
+        let report = &mut sol.report;
+        report.rho_min *= sw;
+        report.rho_max *= sw;
+        report.rescaled = true;
+        report.asymmetry = problem.asymmetry();
+        Ok(Some(sol))
+    }
+
+    /// One run of `st.algorithm` from `r` (the sweeps' `ρ⁰` already set for `problem`), with
+    /// its report; `converged` is the algorithm's own stopping rule.
+    fn attempt<L: ContactLaw>(
+        &mut self,
+        st: UzawaSettings,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        mut r: Vec<f64>,
+    ) -> Result<Solution, SolverError> {
         let m = problem.size();
-        let st = self.settings;
-        let mut r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
         self.sweeps.reset(problem, st.rho_scale);
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
@@ -171,7 +366,8 @@ impl UzawaSolver {
                     let n = run.iterations;
                     (n, n, 0, run.converged, run.residual, run.change)
                 }
-                Algorithm::Newton => {
+                // resolved in solve_with_states
+                Algorithm::Newton | Algorithm::Auto => {
                     let run = self.newton.solve(
                         &mut self.sweeps,
                         problem,
@@ -187,13 +383,6 @@ impl UzawaSolver {
                     (n, o, 0, run.converged, run.residual, run.change)
                 }
             };
-        if !converged && !st.accept_non_converged {
-            return Err(SolverError::NotConverged {
-                iterations,
-                residual,
-                history,
-            });
-        }
         problem.displacement_into(&r, &mut x);
         if matches!(st.algorithm, Algorithm::Uzawa | Algorithm::AndersonUzawa) {
             for (rho, rho0) in self.sweeps.rho.iter_mut().zip(&self.sweeps.rho0) {
@@ -213,6 +402,9 @@ impl UzawaSolver {
             rho_min: self.sweeps.rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
             rho_max: self.sweeps.rho.iter().fold(0.0, |a, &b| a.max(b)),
             statuses,
+            fallback_from: None,
+            asymmetry: 0.0,
+            rescaled: false,
         };
         Ok(Solution { r, x, report })
     }
