@@ -10,6 +10,7 @@
 
 mod build;
 mod error;
+mod out;
 mod plot;
 mod raw;
 mod run;
@@ -89,7 +90,10 @@ Examples:
   bipo solve-local problem.json --tol 1e-12 --json > solution.json
 
 W is m x m (flat row-major or a list of rows), q has m = 2 n_c entries (normal first per
-contact), mu has n_c. Signs: r_n >= 0 is compression, x_n >= 0 an opening."
+contact), mu has n_c. Signs: r_n >= 0 is compression, x_n >= 0 an opening. W symmetric to 1e-6
+(relative) is symmetrised; magnitudes beyond 1e+-100 are rescaled internally; an algorithm that
+stalls or whose answer fails the Signorini-Coulomb check falls back to rccm-classic (the
+output says so)."
     )]
     SolveLocal {
         /// The problem file (JSON).
@@ -101,9 +105,10 @@ contact), mu has n_c. Signs: r_n >= 0 is compression, x_n >= 0 an opening."
         #[arg(long, default_value_t = 10_000)]
         max_iterations: usize,
         /// Algorithm.
-        #[arg(long, value_enum, default_value_t = AlgorithmArg::Bipotential)]
+        #[arg(long, value_enum, default_value_t = AlgorithmArg::Auto)]
         algorithm: AlgorithmArg,
-        /// Print the solution as JSON {r, x, iterations, residual, converged}.
+        /// Print the solution as JSON {r, x, algorithm, fallback_from, iterations, residual,
+        /// converged, asymmetry, rescaled}.
         #[arg(long)]
         json: bool,
     },
@@ -129,12 +134,37 @@ Examples:
 
 #[derive(Clone, Copy, ValueEnum)]
 enum AlgorithmArg {
-    /// Projected Gauss–Seidel bipotential sweeps.
+    /// Newton up to 1000 contacts, else the Anderson-accelerated Gauss–Seidel sweep (measured
+    /// rule, docs/benchmarks.md).
+    Auto,
+    /// Semi-smooth Newton on De Saxcé's projection equation.
+    Newton,
+    /// Anderson-accelerated projected Gauss–Seidel bipotential sweeps (the simulation's
+    /// default).
     Bipotential,
+    /// Plain projected Gauss–Seidel bipotential sweeps.
+    GaussSeidel,
     /// Jacobi (all contacts at once) bipotential sweeps.
     Uzawa,
+    /// Anderson-accelerated Jacobi sweeps.
+    AndersonUzawa,
     /// The classical RCCM solver (normal and tangential split).
     RccmClassic,
+}
+
+impl AlgorithmArg {
+    fn algorithm(self) -> contact_solver::Algorithm {
+        use contact_solver::Algorithm;
+        match self {
+            Self::Auto => Algorithm::Auto,
+            Self::Newton => Algorithm::Newton,
+            Self::Bipotential => Algorithm::AndersonGaussSeidel,
+            Self::GaussSeidel => Algorithm::GaussSeidel,
+            Self::Uzawa => Algorithm::Uzawa,
+            Self::AndersonUzawa => Algorithm::AndersonUzawa,
+            Self::RccmClassic => Algorithm::ClassicRccm,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -180,7 +210,7 @@ fn main() -> ExitCode {
         Command::Check { scene } => with_scene(&scene, |loaded| {
             let study = build::build(loaded)?;
             print_header("check", loaded, &study);
-            println!(
+            out::outln!(
                 "ok: the scene is valid ({} steps to run)",
                 study.total_steps()
             );
@@ -258,7 +288,7 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
     use fem_core::Structure;
     let model = study.model();
     let mesh = model.mesh();
-    println!(
+    out::outln!(
         "bipo {cmd}: {} — {} ({})",
         loaded.path.display(),
         study.title,
@@ -267,7 +297,7 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
             build::Body::Preset(p) => format!("preset {}", p.kind),
         }
     );
-    println!(
+    out::outln!(
         "  mesh: {} nodes, {} elements, {}; {}; {} free dofs",
         mesh.node_count(),
         mesh.element_count(),
@@ -286,7 +316,7 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
         let c: Vec<_> = study.candidates().iter().filter(|c| c.zone == z).collect();
         let within = c.iter().filter(|c| c.gap0 <= alert[z]).count();
         let min_gap = c.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
-        println!(
+        out::outln!(
             "  zone `{name}` ({}): {} candidates, {within} within the alert distance {} at the start (smallest gap {min_gap:.4e})",
             study.zone_laws[z],
             c.len(),
@@ -294,9 +324,12 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
         );
     }
     for p in &study.phases {
-        println!(
+        out::outln!(
             "  phase `{}`: {} steps, t {} → {}",
-            p.name, p.steps, p.t0, p.t1
+            p.name,
+            p.steps,
+            p.t0,
+            p.t1
         );
     }
 }
@@ -308,9 +341,12 @@ fn print_summary(s: &run::Summary, dir: &Path) {
     } else {
         String::new()
     };
-    println!(
+    out::outln!(
         "done: {} steps{solver_steps} in {:.3} s (t = {}), {} contact iterations",
-        s.steps, s.wall_time_s, s.time, c.contact_iterations
+        s.steps,
+        s.wall_time_s,
+        s.time,
+        c.contact_iterations
     );
     let st = &s.stages;
     let adhesion = if st.adhesive_zones == 0 {
@@ -318,36 +354,38 @@ fn print_summary(s: &run::Summary, dir: &Path) {
     } else {
         String::new()
     };
-    println!("  stages that ran:");
-    println!(
+    out::outln!("  stages that ran:");
+    out::outln!(
         "    adhesion iterations   {}{adhesion}",
         st.adhesion_iterations
     );
-    println!(
+    out::outln!(
         "    F* rebuilds           {} ({} columns)",
-        c.flexibility_builds, c.flexibility_columns
+        c.flexibility_builds,
+        c.flexibility_columns
     );
-    println!(
+    out::outln!(
         "    stiffness changes     {} (refactorisations of K after the first)",
         c.stiffness_changes
     );
-    println!("    contact iterations    {}", c.contact_iterations);
-    println!("    structure solves      {}", c.structure_solves);
+    out::outln!("    contact iterations    {}", c.contact_iterations);
+    out::outln!("    structure solves      {}", c.structure_solves);
     let friction = if st.friction_zones == 0 {
         " (no zone with friction)".to_string()
     } else {
         String::new()
     };
-    println!(
+    out::outln!(
         "    tangential reactions  in {} of {} steps{friction}",
-        st.steps_with_tangential_reaction, s.steps
+        st.steps_with_tangential_reaction,
+        s.steps
     );
     for z in &s.zones {
         let peak = |p: &Option<run::Peak>| {
             p.map(|p| format!("{:.6e} at step {} (t = {})", p.value, p.step, p.time))
                 .unwrap_or_else(|| "-".into())
         };
-        println!(
+        out::outln!(
             "  zone `{}` ({}, {} candidates): max Σr_n {}, min Σr_n {}, max |Σr_t| {}{}",
             z.name,
             z.law,
@@ -362,13 +400,17 @@ fn print_summary(s: &run::Summary, dir: &Path) {
     }
     for cv in &s.curves {
         if let (Some(lo), Some(hi)) = (cv.min, cv.max) {
-            println!(
+            out::outln!(
                 "  {}: min {:.6e} (step {}), max {:.6e} (step {})",
-                cv.label, lo.value, lo.step, hi.value, hi.step
+                cv.label,
+                lo.value,
+                lo.step,
+                hi.value,
+                hi.step
             );
         }
     }
-    println!("  outputs in {}: {}", dir.display(), s.files.join(", "));
+    out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 
 fn solve_local(
@@ -379,7 +421,7 @@ fn solve_local(
     json: bool,
 ) -> CliResult<()> {
     use contact_solver::error::chain;
-    use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, solve_coulomb};
+    use contact_solver::{ReducedProblem, UzawaSettings, solve_coulomb};
     let text = std::fs::read_to_string(path).map_err(|e| {
         CliError::input(format!(
             "{}: cannot read the problem file: {e}",
@@ -399,33 +441,52 @@ fn solve_local(
     let settings = UzawaSettings::default()
         .with_tol(tol)
         .with_max_iterations(max_iterations)
-        .with_algorithm(match algorithm {
-            AlgorithmArg::Bipotential => Algorithm::default(),
-            AlgorithmArg::Uzawa => Algorithm::Uzawa,
-            AlgorithmArg::RccmClassic => Algorithm::ClassicRccm,
-        });
+        .with_algorithm(algorithm.algorithm());
     let sol = solve_coulomb(&problem, &settings)
         .map_err(|e| CliError::failed(format!("{}: {}", path.display(), chain(&e))))?;
     if json {
+        let rep = &sol.report;
         let v = serde_json::json!({
             "r": sol.r,
             "x": sol.x,
-            "iterations": sol.report.iterations,
-            "residual": sol.report.residual,
-            "converged": sol.report.converged,
+            "algorithm": format!("{:?}", rep.algorithm),
+            "fallback_from": rep.fallback_from.map(|a| format!("{a:?}")),
+            "iterations": rep.iterations,
+            "residual": rep.residual,
+            "converged": rep.converged,
+            "asymmetry": rep.asymmetry,
+            "rescaled": rep.rescaled,
         });
-        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        out::outln!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
         return Ok(());
     }
-    println!(
-        "{} contacts, converged in {} iterations, residual {:.3e}",
+    let rep = &sol.report;
+    out::outln!(
+        "{} contacts, {:?} converged in {} iterations, residual {:.3e}",
         problem.contact_count(),
-        sol.report.iterations,
-        sol.report.residual
+        rep.algorithm,
+        rep.iterations,
+        rep.residual
     );
-    println!("contact      r_n             r_t             u_n (gap)       u_t         status");
+    if let Some(first) = rep.fallback_from {
+        out::outln!(
+            "note: {first:?} did not converge (or failed the Signorini-Coulomb check); the answer \
+             is {:?}'s",
+            rep.algorithm
+        );
+    }
+    if rep.asymmetry > 0.0 {
+        out::outln!(
+            "note: W was symmetric only to {:.1e} (relative) and was symmetrised",
+            rep.asymmetry
+        );
+    }
+    if rep.rescaled {
+        out::outln!("note: W and q were rescaled internally (magnitudes beyond 1e+-100)");
+    }
+    out::outln!("contact      r_n             r_t             u_n (gap)       u_t         status");
     for i in 0..problem.contact_count() {
-        println!(
+        out::outln!(
             "{i:>7}  {:>14.6e}  {:>14.6e}  {:>14.6e}  {:>14.6e}  {:?}",
             sol.r[2 * i],
             sol.r[2 * i + 1],

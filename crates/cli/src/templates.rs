@@ -76,8 +76,8 @@ pub fn write(kind: Kind, output: Option<PathBuf>, force: bool) -> CliResult<()> 
     for (p, text) in &files {
         std::fs::write(p, text)
             .map_err(|e| CliError::failed(format!("cannot write {}: {e}", p.display())))?;
-        println!("wrote {}", p.display());
+        crate::out::outln!("wrote {}", p.display());
     }
-    println!("next: bipo check {0} && bipo run {0}", path.display());
+    crate::out::outln!("next: bipo check {0} && bipo run {0}", path.display());
     Ok(())
 }

@@ -55,7 +55,7 @@ impl Progress {
             s.wall_time_s
         );
         if !self.quiet {
-            self.bar.suspend(|| println!("{line}"));
+            self.bar.suspend(|| crate::out::outln!("{line}"));
         }
     }
 
