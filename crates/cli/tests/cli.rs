@@ -440,3 +440,48 @@ fn block_scene_with_the_active_set_matches_the_dense_path() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `bipo … | head -1`: the reader closes the pipe after one line; bipo must end with status 0
+/// and no "internal error" (a `println!` would panic on the closed pipe, exit 101).
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let problem = std::env::temp_dir().join(format!("bipo_pipe_{}.json", std::process::id()));
+    // 1000 open contacts: 1000 table rows (85 kB), more than a pipe buffer (64 kB) holds, so
+    // bipo is still writing when the reader is gone
+    let n = 1000;
+    let m = 2 * n;
+    let mut text = String::from("{\"dim\": 2, \"W\": [");
+    for i in 0..m {
+        let row: Vec<&str> = (0..m).map(|j| if i == j { "1" } else { "0" }).collect();
+        text += &format!("{}[{}]", if i > 0 { "," } else { "" }, row.join(","));
+    }
+    let q: Vec<&str> = (0..m)
+        .map(|k| if k % 2 == 0 { "1" } else { "0.5" })
+        .collect();
+    text += &format!(
+        "], \"q\": [{}], \"mu\": [{}]}}",
+        q.join(","),
+        vec!["0.3"; n].join(",")
+    );
+    std::fs::write(&problem, text).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_bipo"))
+        .arg("solve-local")
+        .arg(&problem)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    // the reader is dropped here: the pipe is closed
+    let out = child.wait_with_output().unwrap();
+    let _ = std::fs::remove_file(&problem);
+    assert!(first.contains("1000 contacts"), "{first}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+    assert!(!stderr.contains("internal error"), "{stderr}");
+}
