@@ -66,6 +66,16 @@ pub enum FemError {
         /// The value.
         value: f64,
     },
+    /// A generator asked for more than it may build: refused before anything is allocated.
+    #[error("{what}: {} exceeds the limit of {limit}", requested.map_or("more than usize::MAX".to_string(), |n| n.to_string()))]
+    TooLarge {
+        /// What was counted ("nodes of the generated mesh", "cells of a graded line").
+        what: &'static str,
+        /// The count asked for (`None` if it overflows `usize`).
+        requested: Option<usize>,
+        /// The limit.
+        limit: usize,
+    },
     /// An element refers to a node that does not exist.
     #[error("element {element} refers to node {node}, but the mesh has {node_count} nodes")]
     NodeOutOfRange {

@@ -142,3 +142,35 @@ fn unknown_nodes_are_named_without_a_fake_element() {
     assert!(text.contains("a node set refers to node 99"), "{text}");
     assert!(!text.contains(&usize::MAX.to_string()), "{text}");
 }
+
+/// Huge counts are refused before anything is allocated (an allocation failure would abort
+/// the process; `usize::MAX` overflowed the capacity): `nx = 1e9`, `nx = usize::MAX`, a huge
+/// layer, a huge pile mesh.
+#[test]
+fn huge_meshes_are_refused_before_allocation() {
+    use fem_core::generate::{MAX_GENERATED_NODES, PileSpec, pile_in_soil};
+    for nx in [1_000_000_000, usize::MAX, MAX_GENERATED_NODES] {
+        let e = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], nx, 2)).unwrap_err();
+        assert!(matches!(e, FemError::TooLarge { .. }), "{nx}: {e:?}");
+    }
+    let e = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, usize::MAX)).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            FemError::TooLarge {
+                requested: None,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("more than usize::MAX"), "{e}");
+    let mut pile = PileSpec::default();
+    pile.cells_soil_r = usize::MAX - 1;
+    assert!(matches!(
+        pile_in_soil(&pile),
+        Err(FemError::TooLarge { .. })
+    ));
+    // the limit itself is reachable: a 100 × 100 grid is far below it
+    assert!(rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 100, 100)).is_ok());
+}

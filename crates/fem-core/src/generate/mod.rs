@@ -124,6 +124,37 @@ impl Grading {
     }
 }
 
+/// The most nodes a generator builds (1e8: 1.6 GB of coordinates before the model's own
+/// storage); a larger request is [`FemError::TooLarge`] before anything is allocated, instead
+/// of an allocation failure that aborts the process.
+pub const MAX_GENERATED_NODES: usize = 100_000_000;
+
+/// Checks a structured grid of `cells_x × cells_y` cells (P2: twice the nodes per direction)
+/// against [`MAX_GENERATED_NODES`] with overflow-checked arithmetic.
+pub(crate) fn check_grid_size(
+    cells_x: usize,
+    cells_y: usize,
+    kind: crate::ElementKind,
+) -> Result<(), FemError> {
+    let per = if kind == crate::ElementKind::Tri6 {
+        2
+    } else {
+        1
+    };
+    let line = |cells: usize| cells.checked_mul(per).and_then(|n| n.checked_add(1));
+    let nodes = line(cells_x)
+        .zip(line(cells_y))
+        .and_then(|(a, b)| a.checked_mul(b));
+    match nodes {
+        Some(n) if n <= MAX_GENERATED_NODES => Ok(()),
+        requested => Err(FemError::TooLarge {
+            what: "nodes of the generated mesh",
+            requested,
+            limit: MAX_GENERATED_NODES,
+        }),
+    }
+}
+
 /// The `n + 1` points of a subdivision of `[a, b]` into `n` cells graded by `grading`,
 /// from `a` to `b` exactly (strictly monotone; `b < a` is allowed and runs backwards).
 ///
@@ -139,6 +170,13 @@ impl Grading {
 /// assert_eq!(p, vec![0.0, 1.0, 3.0, 7.0]);
 /// ```
 pub fn graded_points(a: f64, b: f64, n: usize, grading: Grading) -> Result<Vec<f64>, FemError> {
+    if n > MAX_GENERATED_NODES {
+        return Err(FemError::TooLarge {
+            what: "cells of a graded line",
+            requested: Some(n),
+            limit: MAX_GENERATED_NODES,
+        });
+    }
     for (name, value) in [("a", a), ("b", b)] {
         if !value.is_finite() {
             return Err(FemError::InvalidParameter {

@@ -98,8 +98,6 @@ impl Default for RectangleSpec {
 /// assert_eq!(mesh.node_set("top_right").unwrap(), &[mesh.node_count() - 1]);
 /// ```
 pub fn rectangle(spec: &RectangleSpec) -> Result<Mesh, FemError> {
-    let xs = graded_points(spec.x[0], spec.x[1], spec.nx, spec.grading_x)?;
-    increasing("x", &xs)?;
     if spec.layers.is_empty() {
         return Err(FemError::InvalidParameter {
             name: "layers",
@@ -107,6 +105,14 @@ pub fn rectangle(spec: &RectangleSpec) -> Result<Mesh, FemError> {
             expected: "at least one layer",
         });
     }
+    let rows = spec
+        .layers
+        .iter()
+        .try_fold(0usize, |acc, l| acc.checked_add(l.ny))
+        .unwrap_or(usize::MAX);
+    super::check_grid_size(spec.nx, rows, spec.kind)?;
+    let xs = graded_points(spec.x[0], spec.x[1], spec.nx, spec.grading_x)?;
+    increasing("x", &xs)?;
     let mut ys = vec![spec.y0];
     let mut layer_of_row = Vec::new();
     for layer in &spec.layers {
