@@ -163,10 +163,9 @@ pub fn pile_in_soil(spec: &PileSpec) -> Result<Mesh, FemError> {
             expected: "a soil depth H > L_p",
         });
     }
-    let sum = |a: usize, b: usize| a.checked_add(b).unwrap_or(usize::MAX);
     super::check_grid_size(
-        sum(spec.cells_pile_r, spec.cells_soil_r),
-        sum(spec.cells_below_tip, spec.cells_shaft),
+        spec.cells_pile_r.saturating_add(spec.cells_soil_r),
+        spec.cells_below_tip.saturating_add(spec.cells_shaft),
         spec.kind,
     )?;
     let mut rs = graded_points(0.0, radius, spec.cells_pile_r, spec.grading_pile_r)?;

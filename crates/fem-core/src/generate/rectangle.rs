@@ -108,8 +108,7 @@ pub fn rectangle(spec: &RectangleSpec) -> Result<Mesh, FemError> {
     let rows = spec
         .layers
         .iter()
-        .try_fold(0usize, |acc, l| acc.checked_add(l.ny))
-        .unwrap_or(usize::MAX);
+        .fold(0usize, |acc, l| acc.saturating_add(l.ny));
     super::check_grid_size(spec.nx, rows, spec.kind)?;
     let xs = graded_points(spec.x[0], spec.x[1], spec.nx, spec.grading_x)?;
     increasing("x", &xs)?;
