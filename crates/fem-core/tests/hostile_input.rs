@@ -165,8 +165,10 @@ fn huge_meshes_are_refused_before_allocation() {
         "{e:?}"
     );
     assert!(e.to_string().contains("more than usize::MAX"), "{e}");
-    let mut pile = PileSpec::default();
-    pile.cells_soil_r = usize::MAX - 1;
+    let pile = PileSpec {
+        cells_soil_r: usize::MAX - 1,
+        ..PileSpec::default()
+    };
     assert!(matches!(
         pile_in_soil(&pile),
         Err(FemError::TooLarge { .. })
