@@ -10,13 +10,15 @@ use super::study::{LoadKind, LoadRt, SupportRt};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{ComponentSpec, Scene};
 use crate::spec::{InitialStress, LoadSpec};
-use fem_core::{Component, Idealization, LinearElasticModel, Material, Mesh, Supports};
+use fem_core::{Component, FemError, Idealization, LinearElasticModel, Material, Mesh, Supports};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A material, checked, and the regions it is given to (with their key paths).
 pub(super) struct MaterialPlan {
     material: Material,
     regions: Vec<(KeyPath, u32)>,
+    /// `materials[i].young`, where an overflowing stiffness is reported.
+    young: KeyPath,
 }
 
 /// A support, checked; its node set is looked up in the mesh at build.
@@ -87,7 +89,11 @@ pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>,
                 ));
             }
         };
-        plans.push(MaterialPlan { material, regions });
+        plans.push(MaterialPlan {
+            material,
+            regions,
+            young: p.key("young"),
+        });
     }
     Ok((plans, any_weight))
 }
@@ -296,6 +302,12 @@ pub(super) fn build(
     phases: &[Phase],
 ) -> CliResult<(LinearElasticModel, Vec<SupportRt>, Vec<LoadRt>)> {
     let root = KeyPath::root();
+    // An element stiffness that overflows is the material's fault, not the supports'.
+    let young_keys: BTreeMap<u32, KeyPath> = plan
+        .materials
+        .iter()
+        .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
+        .collect();
     let materials = regions(&mesh, plan.materials)?;
     let mut supports = Vec::new();
     for s in plan.supports {
@@ -341,8 +353,17 @@ pub(super) fn build(
                 .map_err(|e| fem(&root.key("supports"), e))?;
         }
     }
-    let mut model = LinearElasticModel::new(mesh, plan.idealization, &materials, sup)
-        .map_err(|e| fem(&root.key("supports"), e))?;
+    let mut model =
+        LinearElasticModel::new(mesh, plan.idealization, &materials, sup).map_err(|e| {
+            let at = match &e {
+                FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
+                FemError::InvalidParameter {
+                    name: "thickness", ..
+                } => Some(root.key("analysis").key("thickness")),
+                _ => None,
+            };
+            fem(&at.unwrap_or_else(|| root.key("supports")), e)
+        })?;
     if let Some((gamma, k0, z)) = plan.initial_stress {
         let p = root.key("initial_stress");
         model

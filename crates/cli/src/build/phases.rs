@@ -158,8 +158,30 @@ pub(super) fn phases_of(
             ));
         }
     }
+    let total = out
+        .iter()
+        .fold(0usize, |acc, phase| acc.saturating_add(phase.steps));
+    if total > MAX_STEPS {
+        let path = match &scene.steps {
+            Some(_) => KeyPath::root().key("steps").key("count"),
+            None => KeyPath::root().key("phases"),
+        };
+        return Err(CliError::at(
+            &path,
+            format!(
+                "{total} load steps in all: more than the limit of {MAX_STEPS} (a run writes \
+                 output every `output.every` steps and would not end in a useful time); \
+                 use fewer steps"
+            ),
+        ));
+    }
     Ok(out)
 }
+
+/// The most load steps a scene may ask for, over all its phases: a step is at least one
+/// structure solve and one contact solve, so 1e6 steps is already hours; `steps = 1e12` ran
+/// without end and filled the disk with output files.
+pub(super) const MAX_STEPS: usize = 1_000_000;
 
 /// Which phases a support or load acts in (all without a list).
 pub(super) fn phase_mask(
