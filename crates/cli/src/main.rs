@@ -484,14 +484,28 @@ fn solve_local(
     if rep.rescaled {
         out::outln!("note: W and q were rescaled internally (magnitudes beyond 1e+-100)");
     }
-    out::outln!("contact      r_n             r_t             u_n (gap)       u_t         status");
-    for i in 0..problem.contact_count() {
+    let d = problem.dimension();
+    if d == 2 {
         out::outln!(
-            "{i:>7}  {:>14.6e}  {:>14.6e}  {:>14.6e}  {:>14.6e}  {:?}",
-            sol.r[2 * i],
-            sol.r[2 * i + 1],
-            sol.x[2 * i],
-            sol.x[2 * i + 1],
+            "contact      r_n             r_t             u_n (gap)       u_t         status"
+        );
+    } else {
+        out::outln!(
+            "contact      r_n             r_t1            r_t2            u_n (gap)       u_t1            u_t2        status"
+        );
+    }
+    for i in 0..problem.contact_count() {
+        let cell = |v: &[f64]| {
+            v[d * i..d * (i + 1)]
+                .iter()
+                .map(|a| format!("{a:>14.6e}"))
+                .collect::<Vec<_>>()
+                .join("  ")
+        };
+        out::outln!(
+            "{i:>7}  {}  {}  {:?}",
+            cell(&sol.r),
+            cell(&sol.x),
             sol.report.statuses[i]
         );
     }

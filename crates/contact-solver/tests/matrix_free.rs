@@ -16,7 +16,7 @@ fn matrix_free_agrees_with_gauss_seidel() {
         let dense = UzawaSolver::new(settings).solve(&p, &laws).unwrap();
         let rho0: Vec<f64> = (0..nc)
             .map(|i| {
-                let [a, b, _, d] = p.diagonal_block(i);
+                let [[a, b, _], [_, d, _], _] = p.diagonal_block(i);
                 let h = 0.5 * (a - d);
                 1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
             })

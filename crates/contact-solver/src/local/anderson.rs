@@ -219,7 +219,7 @@ impl AndersonScratch {
     /// the last judged point. `theta` is Uzawa's global factor of `ρ⁰` (not used by
     /// [`BaseMap::GaussSeidel`]); `denom_q = max_i ρ⁰_i ‖q‖`.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn solve<L: ContactLaw>(
+    pub(crate) fn solve<L: ContactLaw, const DT: usize>(
         &mut self,
         sweeps: &mut Sweeps,
         base: BaseMap,
@@ -252,12 +252,23 @@ impl AndersonScratch {
             self.g.copy_from_slice(r);
             self.xg.copy_from_slice(x);
             let dr2 = match base {
-                BaseMap::GaussSeidel => {
-                    sweeps.gauss_seidel_sweep(problem, laws, states, &mut self.g, &mut self.xg)
-                }
+                BaseMap::GaussSeidel => sweeps.gauss_seidel_sweep::<L, DT>(
+                    problem,
+                    laws,
+                    states,
+                    &mut self.g,
+                    &mut self.xg,
+                ),
                 BaseMap::Uzawa => {
-                    sweeps.set_velocity(laws, states, x);
-                    sweeps.uzawa_step(problem, laws, states, &mut self.g, &mut self.xg, theta)
+                    sweeps.set_velocity::<L, DT>(laws, states, x);
+                    sweeps.uzawa_step::<L, DT>(
+                        problem,
+                        laws,
+                        states,
+                        &mut self.g,
+                        &mut self.xg,
+                        theta,
+                    )
                 }
             };
             for ((f, g), a) in self.f.iter_mut().zip(&self.g).zip(r.iter()) {
@@ -268,11 +279,12 @@ impl AndersonScratch {
             run.change = f_norm / g_norm.max(f64::MIN_POSITIVE);
             let denom = g_norm.max(denom_q).max(f64::MIN_POSITIVE);
             let rho0 = sweeps.rho0();
-            run.residual = natural_residual(laws, states, rho0, &self.g, &self.xg) / denom;
+            run.residual = natural_residual::<L, DT>(laws, states, rho0, &self.g, &self.xg) / denom;
             if run.change <= tol && run.residual <= tol {
                 // x(g) was built incrementally: confirm on the exact x = W g + q.
                 problem.displacement_into(&self.g, &mut self.xg);
-                run.residual = natural_residual(laws, states, rho0, &self.g, &self.xg) / denom;
+                run.residual =
+                    natural_residual::<L, DT>(laws, states, rho0, &self.g, &self.xg) / denom;
             }
             history.push(run.residual);
             if run.change <= tol && run.residual <= tol {

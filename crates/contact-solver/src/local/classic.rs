@@ -15,9 +15,14 @@
 //!      until ‖Δr_n‖/‖r_n‖ ≤ tol over one sweep;
 //!   2. threshold from the new r_n:   s_i = μ̄_i r_n,i;
 //!   3. friction at fixed s (Tresca): projected SOR sweeps on the tangential components
-//!        r_t,i ← clamp(r_t,i − ω x_t,i / W_tt,i, −s_i, s_i)
+//!        2D: r_t,i ← clamp(r_t,i − ω x_t,i / W_tt,i, −s_i, s_i)
+//!        3D: r_t,i ← P_D(s_i)(r_t,i − ω x_t,i / λ_max(W_tt,i))     (both tangents at once)
 //!      until ‖Δr_t‖/‖r_t‖ ≤ tol over one sweep.
 //! ```
+//! In 3D the two tangents of a contact share the disc `‖r_t‖ ≤ s_i`, so they move together,
+//! with one step `ω/λ_max` of the contact's 2×2 tangential block: a scalar step, so that a
+//! fixed point has `x_t` along `−r_t` as Coulomb's law wants (a diagonal step `W_tt⁻¹` per
+//! component would not).
 //! After every change of one component `x` is updated with that column of `W` (read as a row,
 //! `W` is symmetric), as in the bipotential Gauss–Seidel sweep. A fixed point of the outer
 //! iteration is a Signorini–Coulomb solution: `r_n ≥ 0, x_n ≥ 0, r_n x_n = 0`,
@@ -95,7 +100,7 @@
 //! ```
 
 use super::problem::ReducedProblem;
-use super::residual::{natural_residual, norm, pick};
+use super::residual::{natural_residual, norm, pick, rho_of_block};
 use super::settings::UzawaSettings;
 use crate::error::SolverError;
 use contact_laws::{ContactLaw, LawError};
@@ -112,6 +117,8 @@ pub(crate) struct ClassicScratch {
     threshold: Vec<f64>,
     /// `1/W_kk`, one per unknown.
     inv_diag: Vec<f64>,
+    /// 3D: `1/λ_max` of each contact's 2×2 tangential block.
+    inv_lambda_t: Vec<f64>,
     /// `r` at the start of the outer iteration.
     r_prev: Vec<f64>,
 }
@@ -166,14 +173,16 @@ pub(crate) fn friction_coefficients_into<L: ContactLaw>(
     Ok(())
 }
 
-/// One projected SOR sweep on the unknowns `k = 2i + component`:
+/// One projected SOR sweep on the unknowns `k = d i + component` (`d` unknowns per contact):
 /// `r_k ← project(i, r_k − ω x_k / W_kk)`, then `x += W[:, k] Δr_k`. Returns the relative
 /// change `‖Δr_c‖/‖r_c‖` of those unknowns over the sweep.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 fn sor_sweep(
     w: &[f64],
     inv_diag: &[f64],
     omega: f64,
+    d: usize,
     component: usize,
     r: &mut [f64],
     x: &mut [f64],
@@ -181,8 +190,8 @@ fn sor_sweep(
 ) -> f64 {
     let m = r.len();
     let (mut d2, mut r2) = (0.0, 0.0);
-    for i in 0..m / 2 {
-        let k = 2 * i + component;
+    for i in 0..m / d {
+        let k = d * i + component;
         let old = r[k];
         let new = project(i, old - omega * x[k] * inv_diag[k]);
         r2 += new * new;
@@ -200,6 +209,54 @@ fn sor_sweep(
     d2.sqrt() / r2.sqrt().max(f64::MIN_POSITIVE)
 }
 
+/// One projected sweep on the tangential pairs of a 3D problem (`k = 3i + 1, 3i + 2`):
+/// `r_t,i ← P_D(s_i)(r_t,i − ω x_t,i / λ_max(W_tt,i))`, then `x += W[:, k] Δr_k`. Returns
+/// the relative change `‖Δr_t‖/‖r_t‖` over the sweep.
+fn disc_sweep(
+    w: &[f64],
+    inv_lambda_t: &[f64],
+    omega: f64,
+    threshold: &[f64],
+    r: &mut [f64],
+    x: &mut [f64],
+) -> f64 {
+    let m = r.len();
+    let (mut d2, mut r2) = (0.0, 0.0);
+    for (i, (&inv, &s)) in inv_lambda_t.iter().zip(threshold).enumerate() {
+        let k = 3 * i + 1;
+        let (old_t, old_s) = (r[k], r[k + 1]);
+        let (mut new_t, mut new_s) = if inv.is_finite() {
+            (old_t - omega * inv * x[k], old_s - omega * inv * x[k + 1])
+        } else {
+            // A tangentially supported contact (zero tangential block): an infinite step, so
+            // r_t goes to the disc's edge against x_t (or stays, when x_t = 0).
+            let n = x[k].hypot(x[k + 1]);
+            if n > 0.0 {
+                (-x[k] / n * s, -x[k + 1] / n * s)
+            } else {
+                (old_t, old_s)
+            }
+        };
+        let norm = new_t.hypot(new_s);
+        if norm > s {
+            let f = if norm > 0.0 { s / norm } else { 0.0 };
+            (new_t, new_s) = (new_t * f, new_s * f);
+        }
+        r2 += new_t * new_t + new_s * new_s;
+        let (d_t, d_s) = (new_t - old_t, new_s - old_s);
+        if d_t == 0.0 && d_s == 0.0 {
+            continue;
+        }
+        d2 += d_t * d_t + d_s * d_s;
+        (r[k], r[k + 1]) = (new_t, new_s);
+        let (row_t, row_s) = (&w[k * m..(k + 1) * m], &w[(k + 1) * m..(k + 2) * m]);
+        for ((xj, a), b) in x.iter_mut().zip(row_t).zip(row_s) {
+            *xj += a * d_t + b * d_s;
+        }
+    }
+    d2.sqrt() / r2.sqrt().max(f64::MIN_POSITIVE)
+}
+
 impl ClassicScratch {
     /// Runs the classical solver from `r` (with `x = W r + q`), pushing the natural residual of
     /// every outer iteration to `history`. `rho0` holds the base `ρ⁰_i`.
@@ -208,7 +265,7 @@ impl ClassicScratch {
     /// [`SolverError::NoFrictionCoefficient`] / [`SolverError::InvalidLaw`] if a law's
     /// `friction_coefficient` is `None` / not finite and `≥ 0`.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn solve<L: ContactLaw>(
+    pub(crate) fn solve<L: ContactLaw, const DT: usize>(
         &mut self,
         problem: &ReducedProblem,
         laws: &[L],
@@ -221,16 +278,26 @@ impl ClassicScratch {
     ) -> Result<ClassicRun, SolverError> {
         let nc = problem.contact_count();
         let m = problem.size();
+        let d = DT + 1;
         let w = problem.w();
         friction_coefficients_into(laws, states, nc, &mut self.mu_bar)?;
         let frictional = self.mu_bar.iter().any(|&mu_bar| mu_bar > 0.0);
-        if !frictional && r.iter().skip(1).step_by(2).any(|&r_t| r_t != 0.0) {
+        let tangential = |k: &usize| !k.is_multiple_of(d);
+        if !frictional && (0..m).filter(tangential).any(|k| r[k] != 0.0) {
             // Frictionless: r_t = 0 exactly (drop a warm start's r_t).
-            r.iter_mut().skip(1).step_by(2).for_each(|r_t| *r_t = 0.0);
+            (0..m).filter(tangential).for_each(|k| r[k] = 0.0);
             problem.displacement_into(r, x);
         }
         self.inv_diag.clear();
         self.inv_diag.extend((0..m).map(|k| 1.0 / w[k * m + k]));
+        self.inv_lambda_t.clear();
+        if DT == 2 {
+            self.inv_lambda_t.extend((0..nc).map(|i| {
+                let b = problem.diagonal_block(i);
+                let t = [[b[1][1], b[1][2], 0.0], [b[2][1], b[2][2], 0.0], [0.0; 3]];
+                rho_of_block(&t, 2)
+            }));
+        }
         self.threshold.clear();
         self.threshold.resize(nc, 0.0);
         self.r_prev.clear();
@@ -251,7 +318,8 @@ impl ClassicScratch {
             // 1. Signorini at fixed r_t.
             while run.iterations < max {
                 run.iterations += 1;
-                let change_n = sor_sweep(w, &self.inv_diag, omega, 0, r, x, |_, r_n| r_n.max(0.0));
+                let change_n =
+                    sor_sweep(w, &self.inv_diag, omega, d, 0, r, x, |_, r_n| r_n.max(0.0));
                 if change_n <= tol {
                     break;
                 }
@@ -262,7 +330,7 @@ impl ClassicScratch {
                     .threshold
                     .iter_mut()
                     .zip(&self.mu_bar)
-                    .zip(r.iter().step_by(2))
+                    .zip(r.iter().step_by(d))
                 {
                     *s = mu_bar * r_n;
                 }
@@ -271,9 +339,13 @@ impl ClassicScratch {
                 while run.iterations < max {
                     run.iterations += 1;
                     run.tangential_sweeps += 1;
-                    let change_t = sor_sweep(w, &self.inv_diag, omega, 1, r, x, |i, r_t| {
-                        r_t.max(-s[i]).min(s[i])
-                    });
+                    let change_t = if DT == 1 {
+                        sor_sweep(w, &self.inv_diag, omega, 2, 1, r, x, |i, r_t| {
+                            r_t.max(-s[i]).min(s[i])
+                        })
+                    } else {
+                        disc_sweep(w, &self.inv_lambda_t, omega, s, r, x)
+                    };
                     if change_t <= tol {
                         break;
                     }
@@ -288,12 +360,12 @@ impl ClassicScratch {
             let r_norm = norm(r);
             run.change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
             let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
-            run.residual = natural_residual(laws, states, rho0, r, x) / denom;
+            run.residual = natural_residual::<L, DT>(laws, states, rho0, r, x) / denom;
             let stop = |run: &ClassicRun| run.change <= tol && run.residual <= tol;
             if stop(&run) {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);
-                run.residual = natural_residual(laws, states, rho0, r, x) / denom;
+                run.residual = natural_residual::<L, DT>(laws, states, rho0, r, x) / denom;
             }
             history.push(run.residual);
             if stop(&run) {
@@ -316,16 +388,16 @@ mod tests {
         let inv_diag = [0.5, 0.5];
         let (mut r, mut x) = ([0.0, 0.0], [-2.0, 1.0]);
         // Normal: r_n = max(0, 0 − 1·(−2)/2) = 1, then x += W[:, 0]·1 = (0, 2).
-        let change = sor_sweep(&w, &inv_diag, 1.0, 0, &mut r, &mut x, |_, v| v.max(0.0));
+        let change = sor_sweep(&w, &inv_diag, 1.0, 2, 0, &mut r, &mut x, |_, v| v.max(0.0));
         assert_eq!((r, x, change), ([1.0, 0.0], [0.0, 2.0], 1.0));
         // Tangential with s = 0.4 and ω = 1.5: r_t = clamp(0 − 1.5·2/2, −0.4, 0.4) = −0.4.
-        let change = sor_sweep(&w, &inv_diag, 1.5, 1, &mut r, &mut x, |_, v| {
+        let change = sor_sweep(&w, &inv_diag, 1.5, 2, 1, &mut r, &mut x, |_, v| {
             v.clamp(-0.4, 0.4)
         });
         assert_eq!((r, change), ([1.0, -0.4], 1.0));
         assert!((x[0] + 0.4).abs() < 1e-15 && (x[1] - 1.2).abs() < 1e-15);
         // Nothing moves: zero change, x untouched.
-        let change = sor_sweep(&w, &inv_diag, 1.0, 1, &mut r, &mut x, |_, v| {
+        let change = sor_sweep(&w, &inv_diag, 1.0, 2, 1, &mut r, &mut x, |_, v| {
             v.clamp(-0.4, 0.4)
         });
         assert_eq!((r[1], change), (-0.4, 0.0));

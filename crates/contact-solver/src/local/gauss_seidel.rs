@@ -1,6 +1,6 @@
 //! The projected Gauss–Seidel sweep of the bipotential iteration (De Saxcé–Feng): contact by
-//! contact with the current `x`, which is updated right after with the two columns of `W` that
-//! the contact touches; each contact adapts its own `ρ_i` with its local step (`x_i` moves by
+//! contact with the current `x`, which is updated right after with the columns of `W` that
+//! the contact touches (two in 2D, three in 3D); each contact adapts its own `ρ_i` with its local step (`x_i` moves by
 //! `W_ii Δr_i`), see the [layer docs](crate::local#the-penalty-ρ).
 //!
 //! ```text
@@ -11,11 +11,11 @@ use super::problem::ReducedProblem;
 use super::residual::{local, pick, set_local};
 use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE};
 use super::sweep::{MAX_SHRINKS, Sweeps};
-use contact_laws::{ContactLaw, LocalVec2};
+use contact_laws::ContactLaw;
 
 impl Sweeps {
     /// One projected Gauss–Seidel sweep with per-contact adapted `ρ_i`; returns `‖Δr‖²`.
-    pub(crate) fn gauss_seidel_sweep<L: ContactLaw>(
+    pub(crate) fn gauss_seidel_sweep<L: ContactLaw, const DT: usize>(
         &mut self,
         problem: &ReducedProblem,
         laws: &[L],
@@ -28,9 +28,9 @@ impl Sweeps {
         let mut dr2 = 0.0;
         for i in 0..problem.contact_count() {
             let (law, s) = (pick(laws, i), pick(states, i));
-            let [b_nn, b_nt, b_tn, b_tt] = problem.diagonal_block(i);
-            let ri = local(r, i);
-            let xi = local(x, i);
+            let block = problem.diagonal_block(i);
+            let ri = local::<DT>(r, i);
+            let xi = local::<DT>(x, i);
             let v = law.modified_velocity(&xi, s);
             let mut shrinks = 0;
             let d = loop {
@@ -41,10 +41,15 @@ impl Sweeps {
                     break d;
                 }
                 // x_i moves by W_ii Δr_i when only r_i changes.
-                let xn = LocalVec2::planar(
-                    xi.n + b_nn * d.n + b_nt * d.t[0],
-                    xi.t[0] + b_tn * d.n + b_tt * d.t[0],
-                );
+                let mut xn = xi;
+                xn.n += block[0][0] * d.n;
+                for k in 0..DT {
+                    xn.n += block[0][k + 1] * d.t[k];
+                    xn.t[k] += block[k + 1][0] * d.n;
+                    for l in 0..DT {
+                        xn.t[k] += block[k + 1][l + 1] * d.t[l];
+                    }
+                }
                 let dv = law.modified_velocity(&xn, s) - v;
                 let ratio = rho * (dv.dot(&dv) / dd).sqrt();
                 if ratio > ADAPT_SHRINK_ABOVE && shrinks < MAX_SHRINKS {
@@ -57,16 +62,24 @@ impl Sweeps {
                 }
                 break d;
             };
-            if d.n == 0.0 && d.t[0] == 0.0 {
+            if d.n == 0.0 && d.t.iter().all(|&t| t == 0.0) {
                 continue;
             }
             dr2 += d.dot(&d);
             set_local(r, i, &(ri + d));
-            // x += W[:, 2i] Δr_n + W[:, 2i+1] Δr_t, read as rows (W is symmetric).
-            let row_n = &w[2 * i * m..(2 * i + 1) * m];
-            let row_t = &w[(2 * i + 1) * m..(2 * i + 2) * m];
-            for ((xk, a), b) in x.iter_mut().zip(row_n).zip(row_t) {
-                *xk += a * d.n + b * d.t[0];
+            // x += W[:, d i + k] Δr_k, read as rows (W is symmetric).
+            let b = (DT + 1) * i;
+            let row_n = &w[b * m..(b + 1) * m];
+            let row_t = &w[(b + 1) * m..(b + 2) * m];
+            if DT == 1 {
+                for ((xk, a), c) in x.iter_mut().zip(row_n).zip(row_t) {
+                    *xk += a * d.n + c * d.t[0];
+                }
+            } else {
+                let row_s = &w[(b + 2) * m..(b + 3) * m];
+                for (((xk, a), c), e) in x.iter_mut().zip(row_n).zip(row_t).zip(row_s) {
+                    *xk += a * d.n + c * d.t[0] + e * d.t[1];
+                }
             }
         }
         dr2

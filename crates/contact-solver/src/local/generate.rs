@@ -1,4 +1,4 @@
-//! Seeded random reduced problems, for tests, benchmarks and peer comparisons.
+//! Seeded random reduced problems (2D or 3D), for tests, benchmarks and peer comparisons.
 //!
 //! ```text
 //! W = A Aᵀ + δ I,   A_ij ~ U(−1, 1)/√m,   δ = 0.1      (SPD, condition number ≈ 40)
@@ -42,7 +42,20 @@ impl SplitMix64 {
 /// assert_eq!(p.contact_count(), 10);
 /// ```
 pub fn random_problem(n_c: usize, seed: u64) -> ReducedProblem {
-    let m = 2 * n_c;
+    random_problem_in(2, n_c, seed)
+}
+
+/// A random SPD reduced problem of dimension `dim` (2 or 3, clamped to them) with `n_c`
+/// contacts, drawn as in the [module docs](self); `dim = 2` is [`random_problem`].
+///
+/// # Examples
+/// ```
+/// let p = contact_solver::local::generate::random_problem_in(3, 10, 42);
+/// assert_eq!((p.dimension(), p.size()), (3, 30));
+/// ```
+pub fn random_problem_in(dim: usize, n_c: usize, seed: u64) -> ReducedProblem {
+    let dim = dim.clamp(2, 3);
+    let m = dim * n_c;
     let mut g = SplitMix64::new(seed);
     let s = 1.0 / (m as f64).sqrt();
     let a: Vec<f64> = (0..m * m).map(|_| s * g.uniform(-1.0, 1.0)).collect();
@@ -57,7 +70,7 @@ pub fn random_problem(n_c: usize, seed: u64) -> ReducedProblem {
     }
     let q = (0..m)
         .map(|k| {
-            if k % 2 == 0 {
+            if k % dim == 0 {
                 g.uniform(-1.0, 0.5)
             } else {
                 g.uniform(-1.0, 1.0)
@@ -65,6 +78,6 @@ pub fn random_problem(n_c: usize, seed: u64) -> ReducedProblem {
         })
         .collect();
     let mu = (0..n_c).map(|_| g.uniform(0.0, 1.0)).collect();
-    ReducedProblem::new(w, q, mu)
+    ReducedProblem::with_dimension(dim, w, q, mu)
         .unwrap_or_else(|e| unreachable!("a generated problem is valid: {e}"))
 }

@@ -1,12 +1,12 @@
-//! The JSON form of a reduced problem (feature `serde`): `{"dim": 2, "W": flat row-major or
-//! list of rows, "q": [...], "mu": [...]}` — what `shared/peers/siconos_fc.py` reads and
+//! The JSON form of a reduced problem (feature `serde`): `{"dim": 2 or 3, "W": flat row-major
+//! or list of rows, "q": [...], "mu": [...]}` — what `shared/peers/siconos_fc.py` reads and
 //! `bipo solve-local` takes.
 
 use super::problem::ReducedProblem;
 use crate::error::SolverError;
 use serde::{Deserialize, Serialize};
 
-/// The JSON form: `{"dim": 2, "W": flat row-major or list of rows, "q": [...], "mu": [...]}`.
+/// The JSON form: `{"dim": 2 or 3, "W": flat row-major or list of rows, "q": [...], "mu": [...]}`.
 #[derive(Serialize, Deserialize)]
 struct JsonProblem {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -25,14 +25,14 @@ enum JsonMatrix {
 }
 
 impl ReducedProblem {
-    /// Reads a problem from JSON `{"dim": 2, "W": [...], "q": [...], "mu": [...]}`, the format
-    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows, and
-    /// `dim` may be left out (it must be 2 when given).
+    /// Reads a problem from JSON `{"dim": 3, "W": [...], "q": [...], "mu": [...]}`, the format
+    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows; `dim`
+    /// is 2 or 3 (unknowns per contact, the normal first), and 2 when left out.
     ///
     /// # Errors
-    /// [`SolverError::Json`] for malformed JSON, [`SolverError::Format`] for ragged rows or
-    /// `dim ≠ 2`; otherwise those of
-    /// [`new`](Self::new).
+    /// [`SolverError::Json`] for malformed JSON, [`SolverError::Format`] for ragged rows or a
+    /// `dim` other than 2 or 3; otherwise those of
+    /// [`with_dimension`](Self::with_dimension).
     ///
     /// # Examples
     /// ```
@@ -43,11 +43,13 @@ impl ReducedProblem {
     /// ```
     pub fn from_json(text: &str) -> Result<Self, SolverError> {
         let j: JsonProblem = serde_json::from_str(text)?;
-        if let Some(dim) = j.dim
-            && dim != 2
-        {
+        let dim = j.dim.unwrap_or(2);
+        if !(dim == 2 || dim == 3) {
             return Err(SolverError::Format {
-                reason: format!("dim = {dim} is not supported: the reduced solver is 2D (dim = 2)"),
+                reason: format!(
+                    "dim = {dim} is not supported: 2 or 3 (unknowns per contact: a normal and 1 \
+                     or 2 tangents)"
+                ),
             });
         }
         let w = match j.w {
@@ -64,16 +66,16 @@ impl ReducedProblem {
                 rows.concat()
             }
         };
-        Self::new(w, j.q, j.mu)
+        Self::with_dimension(dim, w, j.q, j.mu)
     }
 
-    /// Writes the problem as JSON `{"dim": 2, "W": [flat row-major], "q": [...], "mu": [...]}`.
+    /// Writes the problem as JSON `{"dim": d, "W": [flat row-major], "q": [...], "mu": [...]}`.
     ///
     /// # Errors
     /// [`SolverError::Json`] if serialisation fails (it does not for a validated problem).
     pub fn to_json(&self) -> Result<String, SolverError> {
         Ok(serde_json::to_string(&JsonProblem {
-            dim: Some(2),
+            dim: Some(self.dimension()),
             w: JsonMatrix::Flat(self.w().to_vec()),
             q: self.q().to_vec(),
             mu: self.mu().to_vec(),
@@ -86,9 +88,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn from_json_rejects_dim_3_and_ragged_rows() {
-        let e = ReducedProblem::from_json(r#"{"dim":3,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
+    fn from_json_reads_dim_3_and_rejects_dim_4_and_ragged_rows() {
+        let p = ReducedProblem::from_json(
+            r#"{"dim":3,"W":[[2,0,0],[0,1,0],[0,0,1]],"q":[-1,0,0],"mu":[0.5]}"#,
+        )
+        .unwrap();
+        assert_eq!((p.dimension(), p.contact_count()), (3, 1));
+        assert_eq!(ReducedProblem::from_json(&p.to_json().unwrap()).unwrap(), p);
+        let e = ReducedProblem::from_json(r#"{"dim":4,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
         assert!(matches!(e, Err(SolverError::Format { .. })));
+        // dim 3 with 2 unknowns: q is not 3 n_c
+        let e = ReducedProblem::from_json(r#"{"dim":3,"W":[1,0,0,1],"q":[0,0],"mu":[0]}"#);
+        assert!(matches!(
+            e,
+            Err(SolverError::SizeMismatch { what: "q", .. })
+        ));
         let e = ReducedProblem::from_json(r#"{"W":[[1,0],[0]],"q":[0,0],"mu":[0]}"#);
         assert!(matches!(e, Err(SolverError::Format { .. })));
         let e = ReducedProblem::from_json("{").unwrap_err();

@@ -112,7 +112,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
     while iterations < settings.max_iterations {
         iterations += 1;
         for i in 0..nc {
-            let vi = laws[i].modified_velocity(&local(&xy, i), &states[i]);
+            let vi = laws[i].modified_velocity(&local::<1>(&xy, i), &states[i]);
             v[2 * i] = vi.n;
             v[2 * i + 1] = vi.t[0];
         }
@@ -120,7 +120,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
         let dr2 = loop {
             let mut dr2 = 0.0;
             for i in 0..nc {
-                let yi = local(&y, i);
+                let yi = local::<1>(&y, i);
                 let p = laws[i].project(&(yi + local(&v, i) * (theta * rho0[i])), &states[i]);
                 r_new[2 * i] = p.n;
                 r_new[2 * i + 1] = p.t[0];
@@ -135,7 +135,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
             applications += 1;
             let mut dv2 = 0.0;
             for i in 0..nc {
-                let vn = laws[i].modified_velocity(&local(&x_new, i), &states[i]);
+                let vn = laws[i].modified_velocity(&local::<1>(&x_new, i), &states[i]);
                 let d = (vn - local(&v, i)) * (theta * rho0[i]);
                 dv2 += d.dot(&d);
             }
@@ -160,7 +160,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
             .sum();
         let r_norm = norm(&r_new);
         let change = change2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
-        residual = natural_residual(laws, states, rho0, &r_new, &x_new)
+        residual = natural_residual::<L, 1>(laws, states, rho0, &r_new, &x_new)
             / r_norm.max(scale_q).max(f64::MIN_POSITIVE);
         history.push(residual);
         // accept r_new

@@ -19,7 +19,7 @@ pub(crate) struct PlainRun {
 /// sweeps from `(r, x)` (`x = W r + q`; for Uzawa, `sweeps.v` must hold `v(x)`), pushing the
 /// relative natural residual of every iteration to `history`; `denom_q = max_i ρ⁰_i ‖q‖`.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn run<L: ContactLaw>(
+pub(crate) fn run<L: ContactLaw, const DT: usize>(
     sweeps: &mut Sweeps,
     problem: &ReducedProblem,
     laws: &[L],
@@ -40,17 +40,17 @@ pub(crate) fn run<L: ContactLaw>(
     while run.iterations < st.max_iterations {
         run.iterations += 1;
         let dr2 = match st.algorithm {
-            Algorithm::Uzawa => sweeps.uzawa_step(problem, laws, states, r, x, theta),
-            _ => sweeps.gauss_seidel_sweep(problem, laws, states, r, x),
+            Algorithm::Uzawa => sweeps.uzawa_step::<L, DT>(problem, laws, states, r, x, theta),
+            _ => sweeps.gauss_seidel_sweep::<L, DT>(problem, laws, states, r, x),
         };
         let r_norm = norm(r);
         run.change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
         let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
-        run.residual = natural_residual(laws, states, &sweeps.rho0, r, x) / denom;
+        run.residual = natural_residual::<L, DT>(laws, states, &sweeps.rho0, r, x) / denom;
         if run.change <= st.tol && run.residual <= st.tol && st.algorithm != Algorithm::Uzawa {
             // x was updated incrementally: confirm on the exact x = W r + q.
             problem.displacement_into(r, x);
-            run.residual = natural_residual(laws, states, &sweeps.rho0, r, x) / denom;
+            run.residual = natural_residual::<L, DT>(laws, states, &sweeps.rho0, r, x) / denom;
         }
         history.push(run.residual);
         if run.change <= st.tol && run.residual <= st.tol {

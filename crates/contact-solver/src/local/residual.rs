@@ -5,8 +5,10 @@
 //! residual(r, x) = ‖r − P_K(r + ρ⁰ v(x))‖        (zero exactly on solutions, seed 5.26)
 //! ρ⁰_i = 1/λ_max(W_ii)                           (the largest non-expansive local step)
 //! ```
+//! Every per-contact helper is generic over the tangent dimension `DT` (1 in 2D, 2 in 3D):
+//! contact `i`'s unknowns are `v[(DT+1) i ..][..DT+1]`, the normal first.
 
-use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
+use contact_laws::{ContactLaw, ContactStatus, LocalVec};
 
 /// Relative size of `‖P(τ) − τ‖/‖τ‖` under which a compressed contact is reported as stick.
 pub(crate) const STATUS_TOL: f64 = 1e-8;
@@ -16,31 +18,89 @@ pub(crate) fn pick<T>(s: &[T], i: usize) -> &T {
     if s.len() == 1 { &s[0] } else { &s[i] }
 }
 
+/// Contact `i`'s part of a flat vector, normal first.
 #[inline]
-pub(crate) fn local(v: &[f64], i: usize) -> LocalVec2 {
-    LocalVec2::planar(v[2 * i], v[2 * i + 1])
+pub(crate) fn local<const DT: usize>(v: &[f64], i: usize) -> LocalVec<DT> {
+    let b = (DT + 1) * i;
+    let mut a = LocalVec::<DT>::zeros();
+    a.n = v[b];
+    for k in 0..DT {
+        a.t[k] = v[b + 1 + k];
+    }
+    a
 }
 
+/// Writes contact `i`'s part of a flat vector.
 #[inline]
-pub(crate) fn set_local(v: &mut [f64], i: usize, a: &LocalVec2) {
-    v[2 * i] = a.n;
-    v[2 * i + 1] = a.t[0];
+pub(crate) fn set_local<const DT: usize>(v: &mut [f64], i: usize, a: &LocalVec<DT>) {
+    let b = (DT + 1) * i;
+    v[b] = a.n;
+    for k in 0..DT {
+        v[b + 1 + k] = a.t[k];
+    }
+}
+
+/// The tangential part of `a` projected onto the disc of radius `g ≥ 0` (the segment
+/// `[−g, g]` in 2D).
+#[inline]
+pub(crate) fn clamp_disc<const DT: usize>(a: &LocalVec<DT>, g: f64) -> LocalVec<DT> {
+    let mut out = *a;
+    if DT == 1 {
+        out.t[0] = a.t[0].clamp(-g, g);
+        return out;
+    }
+    let norm = a.t_norm();
+    if norm > g {
+        let f = if norm > 0.0 { g / norm } else { 0.0 };
+        for k in 0..DT {
+            out.t[k] = a.t[k] * f;
+        }
+    }
+    out
 }
 
 pub(crate) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
-/// `1/λ_max` of the SPD block `[a b; b d]`.
-pub(crate) fn rho_of_block([a, b, _, d]: [f64; 4]) -> f64 {
-    let h = 0.5 * (a - d);
-    1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
+/// `1/λ_max` of the symmetric positive (semi)definite `d × d` block in the top-left corner of
+/// `b` (`d` = 2 or 3).
+pub(crate) fn rho_of_block(b: &[[f64; 3]; 3], d: usize) -> f64 {
+    if d == 2 {
+        let (a, c, e) = (b[0][0], b[0][1], b[1][1]);
+        let h = 0.5 * (a - e);
+        return 1.0 / (0.5 * (a + e) + (h * h + c * c).sqrt());
+    }
+    1.0 / lambda_max_3(b)
+}
+
+/// The largest eigenvalue of a symmetric 3×3 matrix (closed form, Smith 1961), computed on the
+/// matrix scaled by its largest entry so that no square overflows or underflows.
+fn lambda_max_3(b: &[[f64; 3]; 3]) -> f64 {
+    let s = b.iter().flatten().fold(0.0_f64, |a, v| a.max(v.abs()));
+    if s == 0.0 {
+        return 0.0;
+    }
+    let a = |i: usize, j: usize| b[i][j] / s;
+    let p1 = a(0, 1).powi(2) + a(0, 2).powi(2) + a(1, 2).powi(2);
+    let q = (a(0, 0) + a(1, 1) + a(2, 2)) / 3.0;
+    let p2 = (a(0, 0) - q).powi(2) + (a(1, 1) - q).powi(2) + (a(2, 2) - q).powi(2) + 2.0 * p1;
+    let p = (p2 / 6.0).sqrt();
+    if p == 0.0 {
+        return q * s;
+    }
+    let c = |i: usize, j: usize| (a(i, j) - if i == j { q } else { 0.0 }) / p;
+    let det = c(0, 0) * (c(1, 1) * c(2, 2) - c(1, 2) * c(2, 1))
+        - c(0, 1) * (c(1, 0) * c(2, 2) - c(1, 2) * c(2, 0))
+        + c(0, 2) * (c(1, 0) * c(2, 1) - c(1, 1) * c(2, 0));
+    let phi = (0.5 * det).clamp(-1.0, 1.0).acos() / 3.0;
+    (q + 2.0 * p * phi.cos()) * s
 }
 
 /// The status of each contact at `(r, x)`, from the projection `P(r + ρ v(x))`: separation
 /// when it is zero, stick when it leaves `τ` unchanged (to [`STATUS_TOL`]), slip otherwise.
 /// `laws` and `states` may hold one entry for every contact.
-pub(crate) fn contact_statuses<L: ContactLaw>(
+pub(crate) fn contact_statuses<L: ContactLaw, const DT: usize>(
     laws: &[L],
     states: &[L::State],
     rho: &[f64],
@@ -50,9 +110,9 @@ pub(crate) fn contact_statuses<L: ContactLaw>(
     (0..rho.len())
         .map(|i| {
             let (law, s) = (pick(laws, i), pick(states, i));
-            let tau = local(r, i) + law.modified_velocity(&local(x, i), s) * rho[i];
+            let tau = local::<DT>(r, i) + law.modified_velocity(&local::<DT>(x, i), s) * rho[i];
             let p = law.project(&tau, s);
-            if p.n == 0.0 && p.t[0] == 0.0 {
+            if p.n == 0.0 && p.t.iter().all(|&t| t == 0.0) {
                 ContactStatus::Separation
             } else if (p - tau).norm() <= STATUS_TOL * tau.norm() {
                 ContactStatus::Stick
@@ -64,7 +124,7 @@ pub(crate) fn contact_statuses<L: ContactLaw>(
 }
 
 /// `‖r − P(r + ρ⁰ v(x))‖` (absolute), the natural map of the fixed point with the base `ρ⁰`.
-pub(crate) fn natural_residual<L: ContactLaw>(
+pub(crate) fn natural_residual<L: ContactLaw, const DT: usize>(
     laws: &[L],
     states: &[L::State],
     rho0: &[f64],
@@ -74,8 +134,8 @@ pub(crate) fn natural_residual<L: ContactLaw>(
     let mut s2 = 0.0;
     for (i, &rho0) in rho0.iter().enumerate() {
         let (law, s) = (pick(laws, i), pick(states, i));
-        let ri = local(r, i);
-        let tau = ri + law.modified_velocity(&local(x, i), s) * rho0;
+        let ri = local::<DT>(r, i);
+        let tau = ri + law.modified_velocity(&local::<DT>(x, i), s) * rho0;
         let d = law.project(&tau, s) - ri;
         s2 += d.dot(&d);
     }
@@ -99,17 +159,23 @@ pub(crate) fn friction_coefficients<L: ContactLaw>(
 }
 
 /// The Signorini–Coulomb conditions checked without De Saxcé's modified velocity:
-/// `‖(r_n − max(0, r_n − ρ⁰ x_n), r_t − clamp(r_t − ρ⁰ x_t, ±μ̄ r_n⁺))‖` (absolute). Zero
+/// `‖(r_n − max(0, r_n − ρ⁰ x_n), r_t − P_D(r_t − ρ⁰ x_t))‖` (absolute), `P_D` the projection
+/// on the disc (segment in 2D) of radius `μ̄ r_n⁺`. Zero
 /// exactly at a solution, like the natural residual, but the normal test sees `x_n` itself:
 /// with a huge `μ̄` the modified velocity's `x_n + μ̄|x_t|` can absorb a penetration.
-pub(crate) fn coulomb_residual(mu: &[f64], rho0: &[f64], r: &[f64], x: &[f64]) -> f64 {
+pub(crate) fn coulomb_residual<const DT: usize>(
+    mu: &[f64],
+    rho0: &[f64],
+    r: &[f64],
+    x: &[f64],
+) -> f64 {
     let mut s2 = 0.0;
     for (i, (&mu, &rho)) in mu.iter().zip(rho0).enumerate() {
-        let (ri, xi) = (local(r, i), local(x, i));
+        let (ri, xi) = (local::<DT>(r, i), local::<DT>(x, i));
         let dn = ri.n - (ri.n - rho * xi.n).max(0.0);
         let g = mu * ri.n.max(0.0);
-        let dt = ri.t[0] - (ri.t[0] - rho * xi.t[0]).clamp(-g, g);
-        s2 += dn * dn + dt * dt;
+        let dt = ri.t - clamp_disc(&(ri - xi * rho), g).t;
+        s2 += dn * dn + dt.norm_squared();
     }
     s2.sqrt()
 }
@@ -121,7 +187,16 @@ mod tests {
     #[test]
     fn rho_of_block_works() {
         // λ_max of [2 0; 0 1] is 2; of [1 1; 1 1] is 2.
-        assert_eq!(rho_of_block([2.0, 0.0, 0.0, 1.0]), 0.5);
-        assert!((rho_of_block([1.0, 1.0, 1.0, 1.0]) - 0.5).abs() < 1e-15);
+        let b2 = |a, b, d| [[a, b, 0.0], [b, d, 0.0], [0.0; 3]];
+        assert_eq!(rho_of_block(&b2(2.0, 0.0, 1.0), 2), 0.5);
+        assert!((rho_of_block(&b2(1.0, 1.0, 1.0), 2) - 0.5).abs() < 1e-15);
+        // 3×3: diag(1, 3, 2) → 3; [[2 1 0] [1 2 1] [0 1 2]] → 2 + √2; 1e300 scale; zero.
+        let d = [[1.0, 0.0, 0.0], [0.0, 3.0, 0.0], [0.0, 0.0, 2.0]];
+        assert!((rho_of_block(&d, 3) - 1.0 / 3.0).abs() < 1e-15);
+        let t = [[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]];
+        assert!((1.0 / rho_of_block(&t, 3) - (2.0 + 2f64.sqrt())).abs() < 1e-14);
+        let big = t.map(|row| row.map(|v| v * 1e300));
+        assert!((1.0 / rho_of_block(&big, 3) / 1e300 - (2.0 + 2f64.sqrt())).abs() < 1e-14);
+        assert_eq!(lambda_max_3(&[[0.0; 3]; 3]), 0.0);
     }
 }

@@ -126,15 +126,32 @@ impl UzawaSolver {
         if let Some(sol) = self.solve_rescaled(problem, laws, states, &r)? {
             return Ok(sol);
         }
+        match problem.dimension() {
+            3 => self.solve_checked::<L, 2>(st, problem, laws, states, r, mu.as_deref()),
+            _ => self.solve_checked::<L, 1>(st, problem, laws, states, r, mu.as_deref()),
+        }
+    }
+
+    /// The rest of [`solve_with_states`](Self::solve_with_states) once the inputs are checked,
+    /// the algorithm chosen and the magnitudes in range, for tangent dimension `DT`: the open
+    /// shortcut, the algorithm, the check of its answer and the fallback.
+    fn solve_checked<L: ContactLaw, const DT: usize>(
+        &mut self,
+        st: UzawaSettings,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r: Vec<f64>,
+        mu: Option<&[f64]>,
+    ) -> Result<Solution, SolverError> {
         self.sweeps.reset(problem, st.rho_scale);
         if r.iter().all(|&v| v == 0.0)
-            && let Some(sol) =
-                self.open_solution(st.algorithm, problem, laws, states, mu.as_deref())
+            && let Some(sol) = self.open_solution::<L, DT>(st.algorithm, problem, laws, states, mu)
         {
             return Ok(sol);
         }
-        let mut sol = self.attempt(st, problem, laws, states, r.clone())?;
-        self.check(problem, &mut sol, mu.as_deref());
+        let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.clone())?;
+        self.check::<DT>(problem, &mut sol, mu);
         if !sol.report.converged
             && st.fallback
             && !st.accept_non_converged
@@ -146,8 +163,8 @@ impl UzawaSolver {
                 algorithm: Algorithm::ClassicRccm,
                 ..st
             };
-            sol = self.attempt(classic, problem, laws, states, r)?;
-            self.check(problem, &mut sol, mu.as_deref());
+            sol = self.attempt::<L, DT>(classic, problem, laws, states, r)?;
+            self.check::<DT>(problem, &mut sol, mu);
             let report = &mut sol.report;
             report.fallback_from = Some(st.algorithm);
             report.iterations += first.iterations;
@@ -171,7 +188,12 @@ impl UzawaSolver {
     /// Signorini–Coulomb conditions without the modified velocity
     /// ([`coulomb_residual`](super::residual::coulomb_residual)), relative like the natural
     /// residual, must be within [`CHECK_FACTOR`]` × tol`; else the answer is not converged.
-    fn check(&self, problem: &ReducedProblem, sol: &mut Solution, mu: Option<&[f64]>) {
+    fn check<const DT: usize>(
+        &self,
+        problem: &ReducedProblem,
+        sol: &mut Solution,
+        mu: Option<&[f64]>,
+    ) {
         let Some(mu) = mu else { return };
         if !sol.report.converged {
             return;
@@ -181,7 +203,7 @@ impl UzawaSolver {
         let denom = norm(&sol.r)
             .max(rho_max * norm(problem.q()))
             .max(f64::MIN_POSITIVE);
-        let error = coulomb_residual(mu, rho0, &sol.r, &sol.x) / denom;
+        let error = coulomb_residual::<DT>(mu, rho0, &sol.r, &sol.x) / denom;
         if error.is_nan() || error > CHECK_FACTOR * self.settings.tol {
             sol.report.converged = false;
         }
@@ -189,7 +211,7 @@ impl UzawaSolver {
 
     /// `r = 0` when it is the exact solution, with no iteration: every `q_n ≥ 0` for
     /// Coulomb-type laws (`mu`), else a natural residual of exactly 0 at `r = 0`.
-    fn open_solution<L: ContactLaw>(
+    fn open_solution<L: ContactLaw, const DT: usize>(
         &self,
         algorithm: Algorithm,
         problem: &ReducedProblem,
@@ -200,14 +222,14 @@ impl UzawaSolver {
         let (q, m) = (problem.q(), problem.size());
         let r = vec![0.0; m];
         let open = match mu {
-            Some(_) => q.iter().step_by(2).all(|&qn| qn >= 0.0),
-            None => natural_residual(laws, states, &self.sweeps.rho0, &r, q) == 0.0,
+            Some(_) => q.iter().step_by(DT + 1).all(|&qn| qn >= 0.0),
+            None => natural_residual::<L, DT>(laws, states, &self.sweeps.rho0, &r, q) == 0.0,
         };
         if !open {
             return None;
         }
         let x = q.to_vec();
-        let statuses = contact_statuses(laws, states, &self.sweeps.rho0, &r, &x);
+        let statuses = contact_statuses::<L, DT>(laws, states, &self.sweeps.rho0, &r, &x);
         let rho = &self.sweeps.rho;
         let report = UzawaReport {
             algorithm,
@@ -274,7 +296,8 @@ impl UzawaSolver {
         let (sw, sq) = (power(w_max), power(q_max));
         let w = problem.w().iter().map(|v| v * sw).collect();
         let q = problem.q().iter().map(|v| v * sq).collect();
-        let scaled = ReducedProblem::with_asymmetry_tolerance(w, q, problem.mu().to_vec(), 0.0)?;
+        let (dim, mu) = (problem.dimension(), problem.mu().to_vec());
+        let scaled = ReducedProblem::with_asymmetry_tolerance(dim, w, q, mu, 0.0)?;
         let r_scaled: Vec<f64> = r.iter().map(|v| v * sq / sw).collect();
         let start = r.iter().any(|&v| v != 0.0).then_some(r_scaled.as_slice());
         let mut sol = self.solve_with_states(&scaled, laws, states, start)?;
@@ -290,7 +313,7 @@ impl UzawaSolver {
 
     /// One run of `st.algorithm` from `r` (the sweeps' `ρ⁰` already set for `problem`), with
     /// its report; `converged` is the algorithm's own stopping rule.
-    fn attempt<L: ContactLaw>(
+    fn attempt<L: ContactLaw, const DT: usize>(
         &mut self,
         st: UzawaSettings,
         problem: &ReducedProblem,
@@ -303,7 +326,7 @@ impl UzawaSolver {
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
         if st.algorithm == Algorithm::Uzawa {
-            self.sweeps.set_velocity(laws, states, &x);
+            self.sweeps.set_velocity::<L, DT>(laws, states, &x);
         }
         let mut history = Vec::with_capacity(st.max_iterations.min(100_000));
         let denom_q = self.sweeps.rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
@@ -314,7 +337,7 @@ impl UzawaSolver {
         let (iterations, outer_iterations, tangential_sweeps, converged, residual, change) =
             match st.algorithm {
                 Algorithm::Uzawa | Algorithm::GaussSeidel => {
-                    let run = plain::run(
+                    let run = plain::run::<L, DT>(
                         &mut self.sweeps,
                         problem,
                         laws,
@@ -330,7 +353,7 @@ impl UzawaSolver {
                     (n, n, 0, c, run.residual, run.change)
                 }
                 Algorithm::ClassicRccm => {
-                    let run = self.classic.solve(
+                    let run = self.classic.solve::<L, DT>(
                         problem,
                         laws,
                         states,
@@ -350,7 +373,7 @@ impl UzawaSolver {
                     } else {
                         BaseMap::GaussSeidel
                     };
-                    let run = self.anderson.solve(
+                    let run = self.anderson.solve::<L, DT>(
                         &mut self.sweeps,
                         base,
                         problem,
@@ -368,7 +391,7 @@ impl UzawaSolver {
                 }
                 // resolved in solve_with_states
                 Algorithm::Newton | Algorithm::Auto => {
-                    let run = self.newton.solve(
+                    let run = self.newton.solve::<L, DT>(
                         &mut self.sweeps,
                         problem,
                         laws,
@@ -389,7 +412,7 @@ impl UzawaSolver {
                 *rho = theta * rho0;
             }
         }
-        let statuses = contact_statuses(laws, states, &self.sweeps.rho0, &r, &x);
+        let statuses = contact_statuses::<L, DT>(laws, states, &self.sweeps.rho0, &r, &x);
         let report = UzawaReport {
             algorithm: st.algorithm,
             iterations,

@@ -35,8 +35,10 @@ impl Sweeps {
             buf.resize(m, 0.0);
         }
         self.rho0.clear();
-        self.rho0
-            .extend((0..problem.contact_count()).map(|i| rho_of_block(problem.diagonal_block(i))));
+        let d = problem.dimension();
+        self.rho0.extend(
+            (0..problem.contact_count()).map(|i| rho_of_block(&problem.diagonal_block(i), d)),
+        );
         self.rho.clear();
         self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
     }
@@ -47,14 +49,14 @@ impl Sweeps {
     }
 
     /// `self.v = v(x)`, the precondition of [`uzawa_step`](super::uzawa).
-    pub(crate) fn set_velocity<L: ContactLaw>(
+    pub(crate) fn set_velocity<L: ContactLaw, const DT: usize>(
         &mut self,
         laws: &[L],
         states: &[L::State],
         x: &[f64],
     ) {
         for i in 0..self.rho0.len() {
-            let v = pick(laws, i).modified_velocity(&local(x, i), pick(states, i));
+            let v = pick(laws, i).modified_velocity(&local::<DT>(x, i), pick(states, i));
             set_local(&mut self.v, i, &v);
         }
     }

@@ -15,7 +15,7 @@ use contact_laws::ContactLaw;
 impl Sweeps {
     /// One Jacobi step with the globally adapted factor `theta`; returns `‖Δr‖²`.
     /// `self.v` must hold `v(x)` on entry (it holds `v` of the new `x` on return).
-    pub(crate) fn uzawa_step<L: ContactLaw>(
+    pub(crate) fn uzawa_step<L: ContactLaw, const DT: usize>(
         &mut self,
         problem: &ReducedProblem,
         laws: &[L],
@@ -32,8 +32,8 @@ impl Sweeps {
             let mut dr2 = 0.0;
             for i in 0..nc {
                 let (law, s) = (pick(laws, i), pick(states, i));
-                let ri = local(r, i);
-                let tau = ri + local(&self.v, i) * (*theta * self.rho0[i]);
+                let ri = local::<DT>(r, i);
+                let tau = ri + local::<DT>(&self.v, i) * (*theta * self.rho0[i]);
                 let rn = law.project(&tau, s);
                 let d = rn - ri;
                 dr2 += d.dot(&d);
@@ -45,9 +45,10 @@ impl Sweeps {
             problem.displacement_into(&self.r_trial, &mut self.x_trial);
             let mut dv2 = 0.0;
             for i in 0..nc {
-                let v = pick(laws, i).modified_velocity(&local(&self.x_trial, i), pick(states, i));
+                let v = pick(laws, i)
+                    .modified_velocity(&local::<DT>(&self.x_trial, i), pick(states, i));
                 set_local(&mut self.v_trial, i, &v);
-                let d = (v - local(&self.v, i)) * (*theta * self.rho0[i]);
+                let d = (v - local::<DT>(&self.v, i)) * (*theta * self.rho0[i]);
                 dv2 += d.dot(&d);
             }
             let ratio = (dv2 / dr2).sqrt();

@@ -380,7 +380,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
     let mut last_sets = sets.clone();
     let mut history = Vec::new();
     let mut solves = 0;
-    let mut residual = natural_residual(step.laws, step.states, &rho, &r, &x) / denom(&r);
+    let mut residual = natural_residual::<L, 1>(step.laws, step.states, &rho, &r, &x) / denom(&r);
     let mut g: Vec<f64> = (0..na).map(|kk| step.mu[kk] * r[2 * kk].max(0.0)).collect();
     for iteration in 0..=step.max_iterations {
         // the semi-smooth Newton guess from the current iterate
@@ -416,7 +416,7 @@ pub(crate) fn solve_primal<S: Structure + ?Sized, L: ContactLaw>(
             z[d] = cache.row_dot(pattern, d, &w);
         }
         read_back(step, &sets, &mask, &z, &w, &mut r, &mut x);
-        residual = natural_residual(step.laws, step.states, &rho, &r, &x) / denom(&r);
+        residual = natural_residual::<L, 1>(step.laws, step.states, &rho, &r, &x) / denom(&r);
         history.push(residual);
     }
     if step.accept_non_converged {
@@ -571,7 +571,7 @@ fn finish<L: ContactLaw>(
     converged: bool,
     solves: usize,
 ) -> PrimalSolution {
-    let statuses = contact_statuses(step.laws, step.states, rho, &r, &x);
+    let statuses = contact_statuses::<L, 1>(step.laws, step.states, rho, &r, &x);
     PrimalSolution {
         r,
         x,

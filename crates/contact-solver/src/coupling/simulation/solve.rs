@@ -149,7 +149,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         report.contact_iterations += mf.iterations;
         report.residual = mf.residual;
         report.converged &= mf.converged;
-        let statuses = contact_statuses(&laws, &states, &rho0, &r, &x);
+        let statuses = contact_statuses::<_, 1>(&laws, &states, &rho0, &r, &x);
         Ok(Solved {
             r: r.clone(),
             r_bar: r,
