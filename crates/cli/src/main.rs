@@ -211,8 +211,9 @@ fn main() -> ExitCode {
             let study = build::build(loaded)?;
             print_header("check", loaded, &study);
             out::outln!(
-                "ok: the scene is valid ({} steps to run)",
-                study.total_steps()
+                "ok: the scene is valid ({} steps to run, {} files to write)",
+                study.total_steps(),
+                study.output_files()
             );
             Ok(())
         }),
