@@ -179,8 +179,13 @@ fn huge_meshes_are_refused_before_allocation() {
 
 #[test]
 fn an_empty_mesh_is_refused() {
-    let e = Mesh::new(vec![[0.0, 0.0], [1.0, 0.0]], fem_core::ElementKind::Tri3, vec![], vec![])
-        .unwrap_err();
+    let e = Mesh::new(
+        vec![[0.0, 0.0], [1.0, 0.0]],
+        fem_core::ElementKind::Tri3,
+        vec![],
+        vec![],
+    )
+    .unwrap_err();
     assert_eq!(e, FemError::EmptyMesh { node_count: 2 });
     let e = Mesh::new(vec![], fem_core::ElementKind::Tri6, vec![], vec![]).unwrap_err();
     assert_eq!(e, FemError::EmptyMesh { node_count: 0 });
@@ -261,7 +266,12 @@ const NODES: &str = "11\n12\n13\n14\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
 #[test]
 fn gmsh_errors_name_the_files_own_tags() {
     let ok = msh(NODES, "1 2 21 22\n2 1 2 2\n21 11 12 14\n22 14 12 13\n");
-    assert_eq!(fem_core::gmsh::parse_msh(ok.as_bytes()).unwrap().element_count(), 2);
+    assert_eq!(
+        fem_core::gmsh::parse_msh(ok.as_bytes())
+            .unwrap()
+            .element_count(),
+        2
+    );
     let cases = [
         // a node tag never defined, in a triangle and in a line of a physical curve
         (
@@ -280,7 +290,10 @@ fn gmsh_errors_name_the_files_own_tags() {
         ),
         // headers announcing more than the blocks hold
         (
-            msh(NODES, "1 2000000000 21 22\n2 1 2 2\n21 11 12 14\n22 14 12 13\n"),
+            msh(
+                NODES,
+                "1 2000000000 21 22\n2 1 2 2\n21 11 12 14\n22 14 12 13\n",
+            ),
             "the $Elements header announces 2000000000 elements, but its blocks hold 2",
         ),
         (
@@ -290,12 +303,18 @@ fn gmsh_errors_name_the_files_own_tags() {
         ),
         // a non-finite coordinate: node tag 13, not index 2
         (
-            msh(&NODES.replace("1 1 0", "inf 1 0"), "1 2 21 22\n2 1 2 2\n21 11 12 14\n22 14 12 13\n"),
+            msh(
+                &NODES.replace("1 1 0", "inf 1 0"),
+                "1 2 21 22\n2 1 2 2\n21 11 12 14\n22 14 12 13\n",
+            ),
             "node 13 has a non-finite coordinate (inf, 1.0)",
         ),
     ];
     for (text, expected) in cases {
         let e = fem_core::gmsh::parse_msh(text.as_bytes()).unwrap_err();
-        assert!(e.to_string().contains(expected), "{e}\nexpected: {expected}");
+        assert!(
+            e.to_string().contains(expected),
+            "{e}\nexpected: {expected}"
+        );
     }
 }

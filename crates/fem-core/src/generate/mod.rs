@@ -217,9 +217,9 @@ pub fn graded_points(a: f64, b: f64, n: usize, grading: Grading) -> Result<Vec<f
         points.push(a + (b - a) * (acc / total));
     }
     points.push(b);
-    // a cell below 1e-10 of the line (a ratio beyond ~1e10) would make elements that
+    // a cell below 1e-14 of the line (round-off of its end points) makes elements that
     // `Mesh::new` calls degenerate: blame the ratio here
-    let smallest = 1e-10 * (b - a).abs();
+    let smallest = 1e-14 * (b - a).abs();
     if points
         .windows(2)
         .all(|w| (w[1] - w[0]) * (b - a).signum() > smallest)
@@ -229,7 +229,7 @@ pub fn graded_points(a: f64, b: f64, n: usize, grading: Grading) -> Result<Vec<f
         Err(FemError::InvalidParameter {
             name: "ratio",
             value: grading.ratio(),
-            expected: "a grading whose smallest cell is at least 1e-10 of the line",
+            expected: "a grading whose smallest cell is at least 1e-14 of the line",
         })
     }
 }
