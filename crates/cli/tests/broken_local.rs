@@ -127,7 +127,9 @@ fn a_byte_order_mark_is_skipped() {
 #[test]
 fn reduced_problem_new_captures_errors() {
     let ok_w = || vec![2.0, 0.0, 0.0, 2.0];
-    let cases: Vec<(&str, Vec<f64>, Vec<f64>, Vec<f64>)> = vec![
+    // (what, W, q, mu)
+    type Case = (&'static str, Vec<f64>, Vec<f64>, Vec<f64>);
+    let cases: Vec<Case> = vec![
         ("W too short", vec![1.0], vec![-1.0, 0.5], vec![0.3]),
         ("q odd", ok_w(), vec![-1.0], vec![0.3]),
         ("mu too long", ok_w(), vec![-1.0, 0.5], vec![0.3, 0.3]),
