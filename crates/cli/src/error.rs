@@ -31,6 +31,13 @@ impl KeyPath {
         Self(v)
     }
 
+    /// This path without its last segment (the root stays the root).
+    pub fn parent(&self) -> Self {
+        let mut v = self.0.clone();
+        v.pop();
+        Self(v)
+    }
+
     /// This path extended by an index.
     pub fn index(&self, i: usize) -> Self {
         let mut v = self.0.clone();
@@ -140,8 +147,56 @@ impl CliError {
             }
             _ => String::new(),
         };
-        format!("{head}{path}{}{snippet}", self.message)
+        shorten(&format!("{head}{path}{}{snippet}", self.message))
     }
+}
+
+/// The longest word (a run without spaces) an error prints whole.
+const MAX_WORD: usize = 200;
+/// The longest line an error prints whole.
+const MAX_LINE: usize = 1000;
+
+/// A message with its absurdly long parts cut: a word longer than [`MAX_WORD`] characters (a
+/// 200 kB string value echoed back, a source line quoted) keeps its first 80 and says how long
+/// it was; a line still longer than [`MAX_LINE`] is cut the same way.
+pub fn shorten(message: &str) -> String {
+    let cut = |s: &str, keep: usize| -> String {
+        let n = s.chars().count();
+        let head: String = s.chars().take(keep).collect();
+        // the closing quote and colon of a quoted value stay
+        let tail: String = s
+            .chars()
+            .rev()
+            .take(3)
+            .take_while(|c| c.is_ascii_punctuation())
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        format!("{head}…[{n} characters]{tail}")
+    };
+    message
+        .split('\n')
+        .map(|line| {
+            let line = line
+                .split(' ')
+                .map(|w| {
+                    if w.chars().count() > MAX_WORD {
+                        cut(w, 80)
+                    } else {
+                        w.to_string()
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(" ");
+            if line.chars().count() > MAX_LINE {
+                cut(&line, MAX_LINE)
+            } else {
+                line
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 impl fmt::Display for CliError {
@@ -202,6 +257,20 @@ pub type CliResult<T> = Result<T, CliError>;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn shorten_cuts_huge_words_and_lines_works() {
+        let huge = "a".repeat(200_000);
+        let s = shorten(&format!("`title` = \"{huge}\": expected a short text"));
+        assert!(s.len() < 200, "{s}");
+        assert!(
+            s.ends_with("…[200003 characters]\": expected a short text"),
+            "{s}"
+        );
+        let spaced = "ab ".repeat(100_000);
+        assert!(shorten(&spaced).chars().count() < MAX_LINE + 40);
+        assert_eq!(shorten("short\nlines"), "short\nlines");
+    }
 
     #[test]
     fn key_paths_display_like_toml_works() {

@@ -211,8 +211,9 @@ fn main() -> ExitCode {
             let study = build::build(loaded)?;
             print_header("check", loaded, &study);
             out::outln!(
-                "ok: the scene is valid ({} steps to run)",
-                study.total_steps()
+                "ok: the scene is valid ({} steps to run, {} files to write)",
+                study.total_steps(),
+                study.output_files()
             );
             Ok(())
         }),
@@ -428,8 +429,16 @@ fn solve_local(
             path.display()
         ))
     })?;
-    let problem = ReducedProblem::from_json(&text)
+    // a byte-order mark (some Windows editors write one) is not part of the JSON
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let problem = ReducedProblem::from_json(text)
         .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))?;
+    if problem.contact_count() == 0 {
+        return Err(CliError::input(format!(
+            "{}: the problem has no contact (`W`, `q` and `mu` are empty): nothing to solve",
+            path.display()
+        )));
+    }
     if !(tol.is_finite() && tol > 0.0) {
         return Err(CliError::input(format!(
             "--tol {tol}: expected a finite tolerance > 0"

@@ -187,7 +187,7 @@ pub enum FlexibilitySpec {
 }
 
 /// Algorithm names.
-#[derive(Debug, Deserialize, Clone, Copy)]
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 pub enum AlgorithmSpec {
     /// Projected Gauss–Seidel bipotential sweeps (default).
     #[serde(rename = "bipotential", alias = "gauss-seidel", alias = "gauss_seidel")]

@@ -29,11 +29,55 @@ impl Supports {
         self
     }
 
-    /// Prescribes `u = value` for `component` of every node in `nodes`.
+    /// Prescribes `u = value` for `component` of every node in `nodes`. Prescribing a dof
+    /// again with the same value is allowed; with another value it is an error (which one
+    /// should win is not for the library to guess): use [`Supports::update`] to change a
+    /// value on purpose, or [`Supports::release`] first.
+    ///
+    /// # Errors
+    /// - [`FemError::InvalidParameter`] if `value` is NaN or infinite;
+    /// - [`FemError::ConflictingPrescription`] if a dof of `nodes` already has another value
+    ///   (nothing is changed then).
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::{Component, FemError, Supports};
+    /// let mut s = Supports::new();
+    /// s.prescribe(&[0, 1], Component::Y, -0.01)?;
+    /// s.prescribe(&[1], Component::Y, -0.01)?; // the same value again: fine
+    /// let e = s.prescribe(&[1], Component::Y, 0.02).unwrap_err();
+    /// assert!(matches!(e, FemError::ConflictingPrescription { node: 1, .. }));
+    /// # Ok::<(), FemError>(())
+    /// ```
+    pub fn prescribe(
+        &mut self,
+        nodes: &[usize],
+        component: Component,
+        value: f64,
+    ) -> Result<&mut Self, FemError> {
+        let value = finite("prescribed displacement", value)?;
+        for &n in nodes {
+            match self.values.get(&(n, component)) {
+                Some(&first) if first != value => {
+                    return Err(FemError::ConflictingPrescription {
+                        node: n,
+                        component,
+                        first,
+                        second: value,
+                    });
+                }
+                _ => {}
+            }
+        }
+        self.update(nodes, component, value)
+    }
+
+    /// Sets `u = value` for `component` of every node in `nodes`, replacing any value they
+    /// had (the prescribed displacement of the next step).
     ///
     /// # Errors
     /// [`FemError::InvalidParameter`] if `value` is NaN or infinite.
-    pub fn prescribe(
+    pub fn update(
         &mut self,
         nodes: &[usize],
         component: Component,

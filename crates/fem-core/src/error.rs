@@ -11,7 +11,7 @@ use std::sync::Arc;
 #[non_exhaustive]
 pub enum FemError {
     /// A real parameter is NaN, infinite or outside its admissible range.
-    #[error("invalid parameter `{name}` = {value}: expected {expected}")]
+    #[error("invalid parameter `{name}` = {value:?}: expected {expected}")]
     InvalidParameter {
         /// Name of the parameter (`young`, `poisson`, `thickness`, …).
         name: &'static str,
@@ -21,7 +21,7 @@ pub enum FemError {
         expected: &'static str,
     },
     /// A node coordinate is NaN or infinite.
-    #[error("node {node} has a non-finite coordinate ({x}, {y})")]
+    #[error("node {node} has a non-finite coordinate ({x:?}, {y:?})")]
     NonFiniteNode {
         /// Node index.
         node: usize,
@@ -57,7 +57,7 @@ pub enum FemError {
     },
     /// A solve met a non-finite value: a load factor, a load or a prescribed value, or a
     /// displacement that overflowed.
-    #[error("{what} is not finite ({value}){}", at_node(.node))]
+    #[error("{what} is not finite ({value:?}){}", at_node(.node))]
     NonFiniteSolve {
         /// What was not finite: "load factor", "right-hand side", "displacement".
         what: &'static str,
@@ -65,6 +65,27 @@ pub enum FemError {
         node: Option<(usize, crate::Component)>,
         /// The value.
         value: f64,
+    },
+    /// A mesh without elements (nothing to assemble, nothing to solve).
+    #[error("the mesh has no element ({node_count} nodes, an empty connectivity)")]
+    EmptyMesh {
+        /// The number of nodes given.
+        node_count: usize,
+    },
+    /// Two prescriptions of one degree of freedom with different values.
+    #[error(
+        "component {component} of node {node} is prescribed twice, as {first:?} and as \
+         {second:?}: a degree of freedom takes one prescribed value"
+    )]
+    ConflictingPrescription {
+        /// The node.
+        node: usize,
+        /// Its component.
+        component: Component,
+        /// The value it had.
+        first: f64,
+        /// The other value asked for.
+        second: f64,
     },
     /// A generator asked for more than it may build: refused before anything is allocated.
     #[error("{what}: {} exceeds the limit of {limit}", requested.map_or("more than usize::MAX".to_string(), |n| n.to_string()))]
@@ -114,7 +135,7 @@ pub enum FemError {
         det_j: f64,
     },
     /// An axisymmetric mesh has a node at negative radius.
-    #[error("axisymmetric mesh: node {node} has negative radius r = {r}")]
+    #[error("axisymmetric mesh: node {node} has negative radius r = {r:?}")]
     NegativeRadius {
         /// Node index.
         node: usize,

@@ -353,8 +353,10 @@ fn build(
     let elements = data
         .elements
         .ok_or_else(|| io("no $Elements section".to_string()))?;
+    check_elements(&nodes_section, &elements, &coords).map_err(io)?;
     let mut kind = None;
     let mut triangles: Vec<&[u64]> = Vec::new();
+    let mut triangle_tags: Vec<u64> = Vec::new();
     let mut regions = Vec::new();
     let mut lines: Vec<Lower> = Vec::new();
     let mut points: Vec<Lower> = Vec::new();
@@ -379,6 +381,7 @@ fn build(
                 };
                 for e in &block.elements {
                     triangles.push(&e.nodes);
+                    triangle_tags.push(e.element_tag);
                     regions.push(region);
                 }
             }
@@ -437,7 +440,8 @@ fn build(
         }
         connectivity.extend(cell);
     }
-    let mut mesh = Mesh::new(nodes, kind, connectivity, regions)?;
+    let mut mesh = Mesh::new(nodes, kind, connectivity, regions)
+        .map_err(|e| with_tags(e, &used, &triangle_tags, origin))?;
 
     add_physical_sets(&mut mesh, &lines, &points, &index, names, &physical, origin)?;
     Ok(mesh)
@@ -516,6 +520,71 @@ fn add_physical_sets(
         mesh.add_node_set(&name, set)?;
     }
     Ok(())
+}
+
+/// Checks the `$Elements` section against the `$Nodes` one before anything is built: the
+/// counts the headers announce against what the blocks hold, each element tag used once, and
+/// every node tag of every element (triangles, lines and points) defined in `$Nodes`.
+fn check_elements(
+    nodes_section: &mshio::Nodes<u64, i32, f64>,
+    elements: &mshio::Elements<u64, i32>,
+    coords: &HashMap<u64, [f64; 2]>,
+) -> Result<(), String> {
+    if nodes_section.num_nodes != coords.len() as u64 {
+        return Err(format!(
+            "the $Nodes header announces {} nodes, but its blocks define {}",
+            nodes_section.num_nodes,
+            coords.len()
+        ));
+    }
+    let held: usize = elements
+        .element_blocks
+        .iter()
+        .map(|b| b.elements.len())
+        .sum();
+    if elements.num_elements != held as u64 {
+        return Err(format!(
+            "the $Elements header announces {} elements, but its blocks hold {held}",
+            elements.num_elements
+        ));
+    }
+    let mut seen = std::collections::HashSet::new();
+    for e in elements.element_blocks.iter().flat_map(|b| &b.elements) {
+        if !seen.insert(e.element_tag) {
+            return Err(format!("element tag {} is used twice", e.element_tag));
+        }
+        if let Some(t) = e.nodes.iter().find(|t| !coords.contains_key(t)) {
+            return Err(format!(
+                "element {} refers to node tag {t}, which $Nodes never defines",
+                e.element_tag
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// An error of [`Mesh::new`] on the nodes and triangles read from a file, told with the
+/// file's own node and element tags instead of the mesh's 0-based indices.
+fn with_tags(e: FemError, node_tags: &[u64], element_tags: &[u64], origin: &str) -> FemError {
+    let node = |i: usize| node_tags.get(i).copied().unwrap_or(i as u64);
+    let element = |i: usize| element_tags.get(i).copied().unwrap_or(i as u64);
+    let detail = match e {
+        FemError::NonFiniteNode { node: n, x, y } => {
+            format!(
+                "node {} has a non-finite coordinate ({x:?}, {y:?})",
+                node(n)
+            )
+        }
+        FemError::DegenerateElement { element: k, area } => {
+            format!("element {} is degenerate: signed area {area:e}", element(k))
+        }
+        FemError::InvertedElement { element: k, det_j } => format!(
+            "element {} is inverted: Jacobian determinant {det_j:e} at a quadrature point",
+            element(k)
+        ),
+        other => return other,
+    };
+    FemError::invalid_file(origin, detail)
 }
 
 /// Node coordinates by tag. Sparse blocks carry their tags; for contiguous tags `mshio` keeps

@@ -69,6 +69,7 @@ impl Mesh {
     ///
     /// # Errors
     /// - [`FemError::NonFiniteNode`] for a NaN or infinite coordinate;
+    /// - [`FemError::EmptyMesh`] for a connectivity without a single element;
     /// - [`FemError::BadConnectivity`], [`FemError::NodeOutOfRange`],
     ///   [`FemError::LengthMismatch`] (regions) for inconsistent arrays;
     /// - [`FemError::DegenerateElement`] (area below `1e-12` of the squared longest side) and
@@ -96,6 +97,11 @@ impl Mesh {
             });
         }
         let n_elem = connectivity.len() / npe;
+        if n_elem == 0 {
+            return Err(FemError::EmptyMesh {
+                node_count: nodes.len(),
+            });
+        }
         let regions = if regions.is_empty() {
             vec![0; n_elem]
         } else if regions.len() != n_elem {

@@ -23,9 +23,16 @@ pub(super) fn expect(path: &KeyPath, value: f64, ok: bool, expected: &str) -> Cl
     }
 }
 
-/// A finite number > 0.
+/// A finite number > 0, and not subnormal (below 2.2e-308 a positive value has lost its
+/// digits and its inverse overflows: no length, modulus, time or tolerance is that small).
 pub(super) fn positive(path: &KeyPath, v: f64) -> CliResult<f64> {
-    expect(path, v, v.is_finite() && v > 0.0, "a finite number > 0")
+    expect(path, v, v.is_finite() && v > 0.0, "a finite number > 0")?;
+    expect(
+        path,
+        v,
+        v.is_normal(),
+        "a finite number > 0 that is not subnormal (at least 2.2e-308)",
+    )
 }
 
 /// A finite number >= 0.

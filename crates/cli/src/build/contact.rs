@@ -53,6 +53,29 @@ pub(super) struct ContactPlan {
     pub(super) settings: SimulationSettings,
 }
 
+/// The most contact iterations a step may take: beyond, a step that does not converge would
+/// not end in a useful time.
+pub const MAX_ITERATIONS: usize = 10_000_000;
+/// The most adhesion iterations a step may take.
+pub const MAX_ADHESION_ITERATIONS: usize = 100_000;
+/// The most penetration-check passes a step may take.
+pub const MAX_DETECTION_PASSES: usize = 1_000;
+
+/// An iteration count in `1..=max` at `path`.
+fn count(path: &KeyPath, n: usize, max: usize) -> CliResult<usize> {
+    at_least(path, n, 1)?;
+    if n > max {
+        return Err(CliError::at(
+            path,
+            format!(
+                "`{path}` = {n}: expected an integer in 1..={max} (more would let a step that \
+                 does not converge run without end)"
+            ),
+        ));
+    }
+    Ok(n)
+}
+
 /// `[solver]`, checked, as the library's settings.
 pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     let root = KeyPath::root().key("solver");
@@ -71,20 +94,31 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
         out.solver.rho_scale = positive(&root.key("rho_scale"), r)?;
     }
     if let Some(n) = s.max_iterations {
-        out.solver.max_iterations = at_least(&root.key("max_iterations"), n, 1)?;
+        out.solver.max_iterations = count(&root.key("max_iterations"), n, MAX_ITERATIONS)?;
     }
     if let Some(w) = s.omega {
         let p = root.key("omega");
+        if s.algorithm != Some(AlgorithmSpec::RccmClassic) {
+            return Err(CliError::at(
+                &p,
+                format!("`{p}` is only read with algorithm = \"rccm-classic\" (its SOR factor)"),
+            ));
+        }
         out.solver.omega = expect(&p, w, w > 0.0 && w < 2.0, "a factor in (0, 2)")?;
     }
     if let Some(t) = s.adhesion_tol {
         out.adhesion_tol = positive(&root.key("adhesion_tol"), t)?;
     }
     if let Some(n) = s.max_adhesion_iterations {
-        out.max_adhesion_iterations = at_least(&root.key("max_adhesion_iterations"), n, 1)?;
+        out.max_adhesion_iterations = count(
+            &root.key("max_adhesion_iterations"),
+            n,
+            MAX_ADHESION_ITERATIONS,
+        )?;
     }
     if let Some(n) = s.max_detection_passes {
-        out.max_detection_passes = at_least(&root.key("max_detection_passes"), n, 1)?;
+        out.max_detection_passes =
+            count(&root.key("max_detection_passes"), n, MAX_DETECTION_PASSES)?;
     }
     if let Some(b) = s.accept_non_converged {
         out.solver.accept_non_converged = b;
@@ -180,6 +214,12 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
     let (mut adhesive, mut friction) = (0, 0);
     for (i, z) in scene.contact.iter().enumerate() {
         let p = root.key("contact").index(i);
+        if z.name.trim().is_empty() {
+            return Err(CliError::at(
+                &p.key("name"),
+                format!("`{}` is empty: a zone needs a name", p.key("name")),
+            ));
+        }
         if !names.insert(z.name.clone()) {
             return Err(CliError::at(
                 &p.key("name"),
@@ -219,6 +259,16 @@ fn target(tp: &KeyPath, t: &TargetSpec) -> CliResult<TargetPlan> {
         TargetSpec::Line { a, b } => {
             let a = finite2(&tp.key("a"), *a)?;
             let b = finite2(&tp.key("b"), *b)?;
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            if !(dx.is_finite() && dy.is_finite() && dx.hypot(dy).is_finite()) {
+                return Err(CliError::at(
+                    tp,
+                    format!(
+                        "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows (expected \
+                         end points whose distance stays finite)"
+                    ),
+                ));
+            }
             TargetPlan::Line(RigidLine::new(a, b).map_err(|e| solver_error(tp, e))?)
         }
         TargetSpec::Arc {
@@ -302,6 +352,17 @@ pub(super) fn build(
                             targets.len(),
                             z.contactor,
                             contactor.len()
+                        ),
+                    ));
+                }
+                if let Some((c, _)) = contactor.iter().zip(&targets).find(|(c, t)| c == t) {
+                    return Err(CliError::at(
+                        &tp.key("set"),
+                        format!(
+                            "`{}` = \"{set}\": node {c} of the contactor set `{}` is paired \
+                             with itself (a node cannot touch itself; pair two distinct surfaces)",
+                            tp.key("set"),
+                            z.contactor
                         ),
                     ));
                 }

@@ -3,9 +3,9 @@
 
 use super::checks::{at_least, fem, finite, finite2, grading, kind, kind_name, positive};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::spec::{Element, MeshSpec, TipCornerSpec};
-use fem_core::generate::{Layer, PileSpec, RectangleSpec, TipCorner};
-use fem_core::{Idealization, Mesh};
+use crate::spec::{Element, MeshSpec, Pair, TipCornerSpec};
+use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner};
+use fem_core::{FemError, Idealization, Mesh};
 use std::path::{Path, PathBuf};
 
 /// A mesh to build, its values checked.
@@ -38,11 +38,21 @@ pub(super) fn validate(
         MeshSpec::Pile { .. } => pile(mp, spec, idealization),
         MeshSpec::Gmsh { file, element } => {
             let path = base_dir.join(file);
-            if !path.is_file() {
+            let fp = mp.key("file");
+            let what = if file.trim().is_empty() {
+                Some("expected the name of a Gmsh .msh file")
+            } else if path.is_dir() {
+                Some("is a directory, not a Gmsh .msh file")
+            } else if !path.exists() {
+                Some("no such file")
+            } else {
+                None
+            };
+            if let Some(what) = what {
                 return Err(CliError::at(
-                    &mp.key("file"),
+                    &fp,
                     format!(
-                        "`mesh.file` = \"{file}\": no such file ({}; paths are relative to the scene file)",
+                        "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
                         path.display()
                     ),
                 ));
@@ -73,20 +83,16 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
     else {
         unreachable!("called for the rectangle generator")
     };
-    let xs = finite2(&mp.key("x"), *x)?;
-    if xs[0] >= xs[1] {
-        return Err(CliError::at(
-            &mp.key("x"),
-            format!(
-                "`{}` = [{}, {}]: expected x0 < x1",
-                mp.key("x"),
-                xs[0],
-                xs[1]
-            ),
-        ));
-    }
+    let xs = interval(&mp.key("x"), *x, "x")?;
     let mut spec = RectangleSpec::new(xs, [0.0, 1.0], at_least(&mp.key("nx"), *nx, 1)?, 1);
     spec.grading_x = grading(&mp.key("grading_x"), *grading_x)?;
+    graded(
+        &mp.key("x"),
+        &mp.key("grading_x"),
+        xs,
+        spec.nx,
+        spec.grading_x,
+    )?;
     spec.kind = kind(*element);
     match (y, layers) {
         (Some(y), None) => {
@@ -96,26 +102,23 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
                     "`y0` goes with `layers`; with `y = [y0, y1]` leave it out",
                 ));
             }
-            let ys = finite2(&mp.key("y"), *y)?;
-            if ys[0] >= ys[1] {
-                return Err(CliError::at(
-                    &mp.key("y"),
-                    format!(
-                        "`{}` = [{}, {}]: expected y0 < y1",
-                        mp.key("y"),
-                        ys[0],
-                        ys[1]
-                    ),
-                ));
-            }
+            let ys = interval(&mp.key("y"), *y, "y")?;
             let ny = ny.ok_or_else(|| CliError::at(mp, "`mesh.ny` is missing (cells along y)"))?;
             spec.y0 = ys[0];
-            spec.layers = vec![Layer {
+            let layer = Layer {
                 top: ys[1],
                 ny: at_least(&mp.key("ny"), ny, 1)?,
                 grading: grading(&mp.key("grading_y"), grading_y.unwrap_or_default())?,
                 region: region.unwrap_or(0),
-            }];
+            };
+            graded(
+                &mp.key("y"),
+                &mp.key("grading_y"),
+                ys,
+                layer.ny,
+                layer.grading,
+            )?;
+            spec.layers = vec![layer];
         }
         (None, Some(layers)) => {
             for (k, key) in [
@@ -150,13 +153,21 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
                         ),
                     ));
                 }
-                below = top;
-                spec.layers.push(Layer {
+                let layer = Layer {
                     top,
                     ny: at_least(&lp.key("ny"), l.ny, 1)?,
                     grading: grading(&lp.key("grading"), l.grading)?,
                     region: l.region,
-                });
+                };
+                graded(
+                    &lp.key("top"),
+                    &lp.key("grading"),
+                    [below, top],
+                    layer.ny,
+                    layer.grading,
+                )?;
+                below = top;
+                spec.layers.push(layer);
             }
         }
         (Some(_), Some(_)) => {
@@ -173,6 +184,50 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
         }
     }
     Ok(MeshPlan::Rectangle(spec))
+}
+
+/// `[a, b]` at `path`: two finite numbers, `a < b`, whose difference does not overflow.
+fn interval(path: &KeyPath, pair: Pair, axis: &str) -> CliResult<[f64; 2]> {
+    let [a, b] = finite2(path, pair)?;
+    if a >= b {
+        return Err(CliError::at(
+            path,
+            format!("`{path}` = [{a:?}, {b:?}]: expected {axis}0 < {axis}1"),
+        ));
+    }
+    if !(b - a).is_finite() {
+        return Err(CliError::at(
+            path,
+            format!(
+                "`{path}` = [{a:?}, {b:?}]: the length {axis}1 - {axis}0 overflows (expected \
+                 coordinates whose differences stay finite)"
+            ),
+        ));
+    }
+    Ok([a, b])
+}
+
+/// Checks the grading of `n` cells over `[a, b]` before the generator runs, so that a ratio
+/// whose smallest cell vanishes is blamed on the grading (at `grading_path`), not on a
+/// degenerate element. Lines of more than a million cells are left to the generator's limits
+/// (nothing is allocated for them here).
+fn graded(
+    path: &KeyPath,
+    grading_path: &KeyPath,
+    [a, b]: [f64; 2],
+    n: usize,
+    g: Grading,
+) -> CliResult<()> {
+    if n > 1_000_000 {
+        return Ok(());
+    }
+    match fem_core::generate::graded_points(a, b, n, g) {
+        Ok(_) => Ok(()),
+        Err(e @ FemError::InvalidParameter { name: "ratio", .. }) => {
+            Err(fem(&grading_path.key("ratio"), e))
+        }
+        Err(e) => Err(fem(path, e)),
+    }
 }
 
 /// The pile generator: the seed's pile with optional overrides (axisymmetric only).

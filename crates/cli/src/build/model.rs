@@ -48,6 +48,72 @@ pub(super) struct LoadPlan {
 /// Geostatic initial stress: (gamma, k0, z_surface), checked.
 pub(super) type InitialStressPlan = Option<(f64, f64, f64)>;
 
+/// In plane stress, the section stiffness `E·h` of every material must stay finite: a
+/// thickness whose product with a Young modulus overflows is named here, not as an element
+/// whose stiffness is not finite.
+pub(super) fn check_section(
+    materials: &[MaterialPlan],
+    idealization: Idealization,
+) -> CliResult<()> {
+    let Idealization::PlaneStress { thickness } = idealization else {
+        return Ok(());
+    };
+    for m in materials {
+        let young = m.material.young();
+        if !(young * thickness).is_finite() {
+            let p = KeyPath::root().key("analysis").key("thickness");
+            return Err(CliError::at(
+                &p,
+                format!(
+                    "`{p}` = {thickness:?}: its product with `{}` = {young:?} overflows (the \
+                     section stiffness E·h must stay below 1.8e308)",
+                    m.young
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Two supports of the same component on a common node, in a common phase, must prescribe the
+/// same thing (the same value and function, or both fixed): which one would win is not said,
+/// so a conflict is an error naming both.
+fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> CliResult<()> {
+    let same = |a: &SupportRt, b: &SupportRt| {
+        (a.value == 0.0 && b.value == 0.0) || (a.value == b.value && a.function == b.function)
+    };
+    let describe = |s: &SupportRt| match &s.function {
+        Some(f) if s.value != 0.0 => format!("{:?} · {f}(t)", s.value),
+        _ => format!("{:?}", s.value),
+    };
+    for (j, b) in supports.iter().enumerate() {
+        for (i, a) in supports[..j].iter().enumerate() {
+            let common_phase = a.phases.iter().zip(&b.phases).any(|(x, y)| *x && *y);
+            if !common_phase || same(a, b) {
+                continue;
+            }
+            let Some(c) = b.components.iter().find(|c| a.components.contains(c)) else {
+                continue;
+            };
+            if let Some(n) = b.nodes.iter().find(|n| a.nodes.contains(n)) {
+                return Err(CliError::at(
+                    &paths[j],
+                    format!(
+                        "`{}` prescribes component {c} of node {n} as {}, but `{}` already \
+                         prescribes it as {}: a degree of freedom takes one prescription \
+                         (remove one, or give them the same value and function)",
+                        paths[j],
+                        describe(b),
+                        paths[i],
+                        describe(a)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Checks `[[materials]]`: moduli, unit weights and the form of `region` / `regions`. Also
 /// says whether any material has a unit weight (for gravity loads).
 pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
@@ -310,11 +376,14 @@ pub(super) fn build(
         .collect();
     let materials = regions(&mesh, plan.materials)?;
     let mut supports = Vec::new();
+    let mut paths = Vec::new();
     for s in plan.supports {
         let mut rt = s.rt;
         rt.nodes = node_set(&s.path, &mesh, &s.set)?;
         supports.push(rt);
+        paths.push(s.path.parent());
     }
+    check_prescriptions(&supports, &paths)?;
     let mut loads = Vec::new();
     for l in plan.loads {
         let p = &l.path;

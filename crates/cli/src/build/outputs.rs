@@ -38,6 +38,16 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
     let op = root.key("output");
     let o = &study.output;
     at_least(&op.key("every"), o.every, 1)?;
+    if o.steps.is_some() && o.every != 1 {
+        let p = op.key("every");
+        return Err(CliError::at(
+            &p,
+            format!(
+                "`{p}` = {}: give `output.every` or `output.steps`, not both",
+                o.every
+            ),
+        ));
+    }
     let total = study.total_steps();
     if let Some(steps) = &o.steps {
         for (i, s) in steps.iter().enumerate() {
@@ -102,7 +112,34 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
         }
     }
     study.plots = scene.plots.clone();
-    Ok(())
+    check_file_count(study)
+}
+
+/// The most files a run may write (the VTK series dominate: one `.vtu` per written step).
+pub const MAX_OUTPUT_FILES: usize = 100_000;
+
+/// Refuses a run that would write more than [`MAX_OUTPUT_FILES`] files, at the key that
+/// chooses the written steps.
+fn check_file_count(study: &Study) -> CliResult<()> {
+    let files = study.output_files();
+    if files <= MAX_OUTPUT_FILES {
+        return Ok(());
+    }
+    let o = &study.output;
+    let op = KeyPath::root().key("output");
+    let key = if o.steps.is_some() { "steps" } else { "every" };
+    let p = op.key(key);
+    Err(CliError::at(
+        &p,
+        format!(
+            "`{p}`: the run would write {files} files ({} written steps of {} steps, each with {} VTK \
+             file(s)): more than the limit of {MAX_OUTPUT_FILES}; raise `output.every`, list \
+             `output.steps`, or set `output.vtk` / `output.mesh_vtk` = false",
+            study.written_steps(),
+            study.total_steps(),
+            usize::from(o.vtk) + usize::from(o.mesh_vtk)
+        ),
+    ))
 }
 
 /// Index of a zone by name.

@@ -131,7 +131,25 @@ pub(super) fn phases_of(
                         format!("phase name `{}` is used twice", ph.name),
                     ));
                 }
+                if ph.name.trim().is_empty() {
+                    return Err(CliError::at(
+                        &p.key("name"),
+                        format!("`{}` is empty: a phase needs a name", p.key("name")),
+                    ));
+                }
                 let d = positive(&p.key("duration"), ph.duration)?;
+                if !(t + d).is_finite() || t + d <= t {
+                    let dp = p.key("duration");
+                    return Err(CliError::at(
+                        &dp,
+                        format!(
+                            "`{dp}` = {d:?}: the phase would end at t = {:?} after starting at \
+                             t = {t:?} (the sum of the durations must stay finite, and each \
+                             phase must move the time forward)",
+                            t + d
+                        ),
+                    ));
+                }
                 out.push(Phase {
                     name: ph.name.clone(),
                     steps: at_least(&p.key("steps"), ph.steps, 1)?,
@@ -191,6 +209,13 @@ pub(super) fn phase_mask(
 ) -> CliResult<Vec<bool>> {
     match list {
         None => Ok(vec![true; phases.len()]),
+        Some(names) if names.is_empty() => Err(CliError::at(
+            path,
+            format!(
+                "`{path}` is empty: it would act in no phase (name at least one, or leave \
+                 `phases` out to act in every phase)"
+            ),
+        )),
         Some(names) => {
             let mut mask = vec![false; phases.len()];
             for (i, n) in names.iter().enumerate() {

@@ -150,4 +150,45 @@ impl Study {
     pub fn total_steps(&self) -> usize {
         self.phases.iter().map(|p| p.steps).sum()
     }
+
+    /// The steps whose contacts and VTK files are written: every `output.every`-th global
+    /// step and the last of each phase, or the listed `output.steps`. Counted without
+    /// iterating over the steps.
+    pub fn written_steps(&self) -> usize {
+        let o = &self.output;
+        if let Some(list) = &o.steps {
+            let total = self.total_steps();
+            let set: std::collections::BTreeSet<_> =
+                list.iter().filter(|s| (1..=total).contains(*s)).collect();
+            return set.len();
+        }
+        let k = o.every.max(1);
+        let mut start = 0usize;
+        let mut n = 0usize;
+        for p in &self.phases {
+            let end = start.saturating_add(p.steps);
+            n = n.saturating_add(end / k - start / k);
+            if !end.is_multiple_of(k) {
+                n = n.saturating_add(1);
+            }
+            start = end;
+        }
+        n
+    }
+
+    /// The files a run writes: one `.vtu` per written step and series (interface, mesh),
+    /// their `.pvd`, the CSV histories, the plots, `curves.csv` and `summary.json`.
+    pub fn output_files(&self) -> usize {
+        let o = &self.output;
+        let series = usize::from(o.vtk) + usize::from(o.mesh_vtk);
+        let fixed = 1 + usize::from(o.history) + usize::from(o.report) + series;
+        let plots = if self.plots.is_empty() {
+            0
+        } else {
+            self.plots.len() + 1
+        };
+        self.written_steps()
+            .saturating_mul(series)
+            .saturating_add(fixed + plots)
+    }
 }

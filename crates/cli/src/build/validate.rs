@@ -90,6 +90,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
 
     // the model
     let (materials, any_weight) = model::validate_materials(scene)?;
+    model::check_section(&materials, idealization)?;
     let supports = model::validate_supports(scene, &functions, &phases)?;
     let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
     model::validate_names(scene, &loads, &functions, &phases)?;

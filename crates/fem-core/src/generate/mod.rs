@@ -193,6 +193,13 @@ pub fn graded_points(a: f64, b: f64, n: usize, grading: Grading) -> Result<Vec<f
             expected: "an end point different from a",
         });
     }
+    if !(b - a).is_finite() {
+        return Err(FemError::InvalidParameter {
+            name: "b - a",
+            value: b - a,
+            expected: "a length that does not overflow (|b - a| <= 1.8e308)",
+        });
+    }
     if n == 0 {
         return Err(FemError::InvalidParameter {
             name: "n",
@@ -210,13 +217,19 @@ pub fn graded_points(a: f64, b: f64, n: usize, grading: Grading) -> Result<Vec<f
         points.push(a + (b - a) * (acc / total));
     }
     points.push(b);
-    if points.windows(2).all(|w| (w[1] - w[0]) * (b - a) > 0.0) {
+    // a cell below 1e-14 of the line (round-off of its end points) makes elements that
+    // `Mesh::new` calls degenerate: blame the ratio here
+    let smallest = 1e-14 * (b - a).abs();
+    if points
+        .windows(2)
+        .all(|w| (w[1] - w[0]) * (b - a).signum() > smallest)
+    {
         Ok(points)
     } else {
         Err(FemError::InvalidParameter {
             name: "ratio",
             value: grading.ratio(),
-            expected: "a grading whose smallest cell does not vanish in round-off",
+            expected: "a grading whose smallest cell is at least 1e-14 of the line",
         })
     }
 }

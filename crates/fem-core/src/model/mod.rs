@@ -263,7 +263,7 @@ impl LinearElasticModel {
         let renumber = nodes
             .iter()
             .any(|&n| self.supports.value(n, component).is_none());
-        self.supports.prescribe(nodes, component, value)?;
+        self.supports.update(nodes, component, value)?;
         if renumber {
             self.rebuild()?;
         }
