@@ -356,7 +356,10 @@ fn solve_local_reads_fclib_files_with_the_feature() {
     let out = bipo(&["solve-local".as_ref(), file.as_os_str()]);
     if cfg!(feature = "fclib") {
         let stdout = ok(&out);
-        assert!(stdout.contains("2 contacts") && stdout.contains("converged in"), "{stdout}");
+        assert!(
+            stdout.contains("2 contacts") && stdout.contains("converged in"),
+            "{stdout}"
+        );
     } else {
         assert!(!out.status.success());
         let stderr = String::from_utf8_lossy(&out.stderr);
