@@ -21,7 +21,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let sol = solve_coulomb(&p, &UzawaSettings::default().with_tol(1e-12))?;
         let path = format!("{out}/random_{nc}.hdf5");
         write_fclib(&path, &p, Some(&sol.r))?;
-        assert_eq!(read_fclib(&path)?.problem, p, "the file reads back as written");
+        assert_eq!(
+            read_fclib(&path)?.problem,
+            p,
+            "the file reads back as written"
+        );
         println!(
             "{path}: n_c = {nc}, {:?}, {} iterations, residual {:.1e}",
             sol.report.algorithm, sol.report.iterations, sol.report.residual

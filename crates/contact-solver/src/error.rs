@@ -93,7 +93,7 @@ pub enum SolverError {
         /// What is wrong, in the file's terms.
         reason: String,
     },
-    /// An FCLIB HDF5 file (feature `fclib`, [`local::fclib`](crate::local::fclib)) that cannot
+    /// An FCLIB HDF5 file (feature `fclib`, module `local::fclib`) that cannot
     /// be opened, read or written, or that does not hold a supported problem: the reason names
     /// the group or dataset (`fclib_local/W/i[4]`), the HDF5 library's error is the source when
     /// it is the cause.
