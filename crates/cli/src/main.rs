@@ -81,13 +81,15 @@ error, as is any unknown key, missing node set or region, NaN or out-of-range pa
         scene: PathBuf,
     },
     /// Solve a reduced contact problem x = W r + q with Coulomb friction, read from JSON
-    /// {"dim": 2, "W": [...], "q": [...], "mu": [...]} (the Siconos fc2d export format).
+    /// {"dim": 2, "W": [...], "q": [...], "mu": [...]} (the Siconos fc2d export format), or
+    /// from an FCLIB HDF5 file (.h5, .hdf5; bipo built with --features fclib).
     #[command(
         name = "solve-local",
         after_help = "\
 Examples:
   bipo solve-local out/hertz_reduced.json
   bipo solve-local problem.json --tol 1e-12 --json > solution.json
+  bipo solve-local problem.hdf5     (FCLIB; needs a bipo built with --features fclib)
 
 W is m x m (flat row-major or a list of rows), q has m = 2 n_c entries (normal first per
 contact), mu has n_c. Signs: r_n >= 0 is compression, x_n >= 0 an opening. W symmetric to 1e-6
@@ -96,7 +98,7 @@ stalls or whose answer fails the Signorini-Coulomb check falls back to rccm-clas
 output says so)."
     )]
     SolveLocal {
-        /// The problem file (JSON).
+        /// The problem file (JSON, or FCLIB .h5/.hdf5).
         problem: PathBuf,
         /// Tolerance of the stopping rule.
         #[arg(long, default_value_t = 1e-10)]
@@ -414,15 +416,30 @@ fn print_summary(s: &run::Summary, dir: &Path) {
     out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 
-fn solve_local(
-    path: &Path,
-    tol: f64,
-    max_iterations: usize,
-    algorithm: AlgorithmArg,
-    json: bool,
-) -> CliResult<()> {
+/// The reduced problem of `bipo solve-local`: FCLIB HDF5 for `.h5`/`.hdf5` (feature `fclib`),
+/// JSON otherwise.
+fn read_local_problem(path: &Path) -> CliResult<contact_solver::ReducedProblem> {
     use contact_solver::error::chain;
-    use contact_solver::{ReducedProblem, UzawaSettings, solve_coulomb};
+    let hdf5 = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "h5" | "hdf5"));
+    if hdf5 {
+        #[cfg(feature = "fclib")]
+        return contact_solver::local::fclib::read_fclib(path)
+            .map(|f| f.problem)
+            .map_err(|e| match e {
+                // the message names the file already
+                contact_solver::SolverError::Fclib { .. } => CliError::input(chain(&e)),
+                _ => CliError::input(format!("{}: {}", path.display(), chain(&e))),
+            });
+        #[cfg(not(feature = "fclib"))]
+        return Err(CliError::input(format!(
+            "{}: FCLIB HDF5 files need a bipo built with `--features fclib` (and the system \
+             HDF5 library, Debian: libhdf5-dev); or export the problem as JSON",
+            path.display()
+        )));
+    }
     let text = std::fs::read_to_string(path).map_err(|e| {
         CliError::input(format!(
             "{}: cannot read the problem file: {e}",
@@ -431,8 +448,20 @@ fn solve_local(
     })?;
     // a byte-order mark (some Windows editors write one) is not part of the JSON
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    let problem = ReducedProblem::from_json(text)
-        .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))?;
+    contact_solver::ReducedProblem::from_json(text)
+        .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))
+}
+
+fn solve_local(
+    path: &Path,
+    tol: f64,
+    max_iterations: usize,
+    algorithm: AlgorithmArg,
+    json: bool,
+) -> CliResult<()> {
+    use contact_solver::error::chain;
+    use contact_solver::{UzawaSettings, solve_coulomb};
+    let problem = read_local_problem(path)?;
     if problem.contact_count() == 0 {
         return Err(CliError::input(format!(
             "{}: the problem has no contact (`W`, `q` and `mu` are empty): nothing to solve",

@@ -350,6 +350,24 @@ fn solve_local_prints_the_solution() {
 }
 
 #[test]
+fn solve_local_reads_fclib_files_with_the_feature() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../contact-solver/tests/data/fclib_csc_h5py.hdf5");
+    let out = bipo(&["solve-local".as_ref(), file.as_os_str()]);
+    if cfg!(feature = "fclib") {
+        let stdout = ok(&out);
+        assert!(
+            stdout.contains("2 contacts") && stdout.contains("converged in"),
+            "{stdout}"
+        );
+    } else {
+        assert!(!out.status.success());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains("built with `--features fclib`"), "{stderr}");
+    }
+}
+
+#[test]
 fn help_has_examples_everywhere() {
     for args in [
         vec!["--help"],

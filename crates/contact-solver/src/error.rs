@@ -93,6 +93,20 @@ pub enum SolverError {
         /// What is wrong, in the file's terms.
         reason: String,
     },
+    /// An FCLIB HDF5 file (feature `fclib`, module `local::fclib`) that cannot
+    /// be opened, read or written, or that does not hold a supported problem: the reason names
+    /// the group or dataset (`fclib_local/W/i[4]`), the HDF5 library's error is the source when
+    /// it is the cause.
+    #[error("FCLIB file `{path}`: {reason}")]
+    Fclib {
+        /// The file.
+        path: String,
+        /// What is wrong, in the file's terms.
+        reason: String,
+        /// The HDF5 library's error, when it is the cause.
+        #[source]
+        source: Option<Cause>,
+    },
     /// Writing an output file or stream failed (the I/O error is the source).
     #[error("I/O error: {what}")]
     Io {

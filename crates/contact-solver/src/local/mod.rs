@@ -5,7 +5,8 @@
 //!
 //! # Files
 //! - [`problem`]: the validated problem [`ReducedProblem`]; `json` (feature `serde`) its JSON
-//!   form; [`generate`]: seeded random problems;
+//!   form; `fclib` (feature `fclib`) FCLIB's HDF5 files in and out; [`generate`]: seeded
+//!   random problems;
 //! - `settings`: [`Algorithm`], [`UzawaSettings`], [`UzawaReport`], [`Solution`];
 //!   `residual`: the natural map, norms, statuses (the toolbox every algorithm uses);
 //! - one file per algorithm: `uzawa`, `gauss_seidel` (the base sweeps, on the shared `sweep`
@@ -133,6 +134,8 @@ pub mod adhesion;
 pub mod anderson;
 pub mod classic;
 mod dense;
+#[cfg(feature = "fclib")]
+pub mod fclib;
 mod gauss_seidel;
 pub mod generate;
 #[cfg(feature = "serde")]
