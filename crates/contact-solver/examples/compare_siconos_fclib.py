@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Read an FCLIB file written by `--example fclib_export` with h5py (the layout of fclib.h,
-independently of our reader), solve it with Siconos' 2D NSGS, and compare with our reaction
+independently of our reader), solve it with Siconos' NSGS (FRICTION_2D_NSGS or, for
+spacedim 3, FRICTION_3D_NSGS), and compare with our reaction
 stored in solution/r.
 
 Usage:  /usr/bin/python3 crates/contact-solver/examples/compare_siconos_fclib.py FILE.hdf5 [--tol 1e-12]
@@ -47,15 +48,15 @@ with h5py.File(a.file, "r") as f:
     r_ours = np.array(f["solution/r"]).ravel()
     u_ours = np.array(f["solution/u"]).ravel()
 nc = len(mu)
-assert dim == 2 and W.shape == (2 * nc, 2 * nc)
+assert dim in (2, 3) and W.shape == (dim * nc, dim * nc)
 assert np.allclose(u_ours, W @ r_ours + q, rtol=0, atol=1e-12 * max(1.0, abs(q).max()))
-prob = sn.FrictionContactProblem(2, nc, W, q, mu)
-so = sn.SolverOptions(sn.SICONOS_FRICTION_2D_NSGS)
+prob = sn.FrictionContactProblem(dim, nc, W, q, mu)
+so = sn.SolverOptions(sn.SICONOS_FRICTION_2D_NSGS if dim == 2 else sn.SICONOS_FRICTION_3D_NSGS)
 so.iparam[sn.SICONOS_IPARAM_MAX_ITER] = 100000
 so.dparam[sn.SICONOS_DPARAM_TOL] = a.tol
-r = np.zeros(2 * nc); u = np.zeros(2 * nc)
-info = sn.fc2d_driver(prob, r, u, so)
+r = np.zeros(dim * nc); u = np.zeros(dim * nc)
+info = (sn.fc2d_driver if dim == 2 else sn.fc3d_driver)(prob, r, u, so)
 diff = np.abs(r - r_ours).max()
-print(f"{a.file}: n_c={nc} siconos 2D NSGS info={info} iters={so.iparam[sn.SICONOS_IPARAM_ITER_DONE]} "
+print(f"{a.file}: n_c={nc} siconos {dim}D NSGS info={info} iters={so.iparam[sn.SICONOS_IPARAM_ITER_DONE]} "
       f"|r|={np.linalg.norm(r):.6e}  max|r_siconos - r_ours|={diff:.2e}  "
       f"relative={diff / max(np.abs(r).max(), 1e-300):.2e}")

@@ -155,6 +155,9 @@ fn check_len(what: &'static str, expected: usize, found: usize) -> Result<(), So
 /// Solves one step with adhesion: condensation, reduced solve, state update, repeated to a
 /// fixed point (a single solve when no law is adhesive in its start state).
 ///
+/// Two-dimensional (per contact `(n, t)`), as the RCCM studies are; a 3D frictional problem
+/// without adhesion goes to [`ReducedProblem::new_3d`] and [`UzawaSolver`].
+///
 /// # Errors
 /// [`SolverError::SizeMismatch`] for inconsistent lengths; [`SolverError::InvalidSetting`]
 /// for a bad `dt` or tolerance; the reduced problem's validation errors;

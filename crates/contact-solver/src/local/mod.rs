@@ -15,6 +15,12 @@
 //! - `solver`: the dispatcher [`UzawaSolver`] (validates, runs the chosen algorithm, reports);
 //! - [`adhesion`]: the adhesive springs condensed on `W` and the β fixed point around a solve.
 //!
+//! # 2D and 3D
+//! A problem's [`ReducedProblem::dimension`] is 2 (per contact `(n, t)`) or 3 (`(n, t₁, t₂)`,
+//! FCLIB's order). Every algorithm is generic over the tangent dimension `DT` (1 or 2) and the
+//! dispatcher picks the instance once per solve, so the per-contact work stays on fixed-size
+//! arrays in both.
+//!
 //! Imports go one way: `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
 //! `classic` → `solver` → `adhesion`.
 //!
@@ -30,7 +36,8 @@
 //!   step), then `x = W r + q` once per iteration — the seed's algorithm, kept as the
 //!   reference;
 //! - [`Algorithm::GaussSeidel`]: contact by contact, each using the current `x`, which is
-//!   updated right after with the two columns of `W` that the contact touches (De Saxcé–Feng's
+//!   updated right after with the columns of `W` that the contact touches (two in 2D, three
+//!   in 3D) (De Saxcé–Feng's
 //!   projected Gauss–Seidel). On seeded random SPD problems
 //!   ([`generate::random_problem`], `n_c` = 10/100/300,
 //!   release build) it takes 57–60 sweeps against 79–101 for Uzawa and is 1.5–9× faster
@@ -66,7 +73,8 @@
 //!   `docs/benchmarks.md` quote.
 //!
 //! # The penalty ρ
-//! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s 2×2 diagonal block:
+//! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s diagonal block
+//! (2×2, or 3×3 in 3D, whose largest eigenvalue is computed in closed form):
 //! the largest step for which the local map `r_i ↦ r_i − ρ W_ii r_i` is non-expansive, i.e. the
 //! local step never overshoots, whatever the block's anisotropy (`1/W_nn` can exceed it when
 //! `W_tt > W_nn`). The user may scale it by [`UzawaSettings::rho_scale`]. It is then adapted

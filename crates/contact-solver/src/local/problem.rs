@@ -56,7 +56,8 @@ impl ReducedProblem {
     ///   `(W + Wᵀ)/2` and [`asymmetry`](Self::asymmetry) reports the relative asymmetry
     ///   removed (set the tolerance with
     ///   [`with_asymmetry_tolerance`](Self::with_asymmetry_tolerance));
-    /// - [`SolverError::NotPositiveDefinite`] if a 2×2 diagonal block of `W` is not SPD —
+    /// - [`SolverError::NotPositiveDefinite`] if a diagonal block of `W` (2×2; 3×3 for
+    ///   [`new_3d`](Self::new_3d)) is not SPD —
     ///   except that a block `[W_nn 0; 0 0]` with `W_nn > 0` is accepted: it is a contact whose
     ///   tangential displacement is prescribed (a supported node), so `x_t = q_t` whatever `r`;
     /// - [`SolverError::InvalidLaw`] if some `μ_i < 0`.
