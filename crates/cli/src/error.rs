@@ -128,12 +128,15 @@ impl CliError {
             head.push_str(&format!(":{line}:{col}"));
             if let Some(text) = src.lines().nth(line - 1) {
                 let gutter = format!("{line}");
+                // `col` counts characters (1-based), not bytes: a line may hold multi-byte
+                // characters before the span (a byte-order mark, found by fuzz/)
+                let chars = text.chars().count();
                 let width = (span.end.saturating_sub(span.start))
-                    .clamp(1, text.len().saturating_sub(col - 1).max(1));
+                    .clamp(1, chars.saturating_sub(col - 1).max(1));
                 snippet = format!(
                     "\n {gutter} | {text}\n {} | {}{}",
                     " ".repeat(gutter.len()),
-                    " ".repeat(text[..(col - 1).min(text.len())].chars().count()),
+                    " ".repeat((col - 1).min(chars)),
                     "^".repeat(width.min(60))
                 );
             }
@@ -276,6 +279,22 @@ mod tests {
     fn key_paths_display_like_toml_works() {
         let p = KeyPath::root().key("contact").index(1).key("law").key("mu");
         assert_eq!(p.to_string(), "contact[1].law.mu");
+    }
+
+    #[test]
+    fn render_points_under_multibyte_characters_works() {
+        // a byte-order mark and a Greek letter before the value: the caret goes under it (the
+        // old code sliced the line at a character column as if it were a byte index: a panic)
+        let src = "\u{feff}x = \"ββ\" ; 1\n";
+        let mut e = CliError::input("bad");
+        e.span = Some(src.find('1').unwrap()..src.len() - 1);
+        let text = e.render(Some(src));
+        let lines: Vec<&str> = text.lines().collect();
+        let (quoted, caret) = (lines[1], lines[2]);
+        let at = |l: &str, c: char| {
+            l.chars().count() - 1 - l.chars().rev().position(|x| x == c).unwrap()
+        };
+        assert_eq!(at(quoted, '1'), at(caret, '^'), "{text}");
     }
 
     #[test]

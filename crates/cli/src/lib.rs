@@ -8,4 +8,14 @@
 
 #![warn(missing_docs)]
 
+pub mod app;
+mod build;
+mod error;
+mod out;
+mod plot;
 pub mod presets;
+mod raw;
+mod run;
+mod scene;
+mod spec;
+mod templates;

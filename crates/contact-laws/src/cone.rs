@@ -104,7 +104,9 @@ impl CoulombCone {
     ///                         r_t = μ r_n τ_t/‖τ_t‖                   (slip, 5.32–5.34)
     /// ```
     /// The separation test comes first, so that `μ = 0` and `τ_t = 0` are exact: the slip
-    /// branch is reached only with `‖τ_t‖ > 0`, and never produces NaN for finite `τ`.
+    /// branch is reached only with `‖τ_t‖ > 0`, and never produces NaN for finite `τ`. For
+    /// `μ > 1` the slip branch is evaluated with `1/μ` (the same formula divided through by
+    /// `μ²`), so that it stays exact up to `μ = f64::MAX` (`1 + μ²` overflows beyond 1e154).
     #[inline]
     pub fn project<const DT: usize>(&self, tau: &LocalVec<DT>) -> LocalVec<DT> {
         self.project_with_status(tau).0
@@ -124,8 +126,17 @@ impl CoulombCone {
             (*tau, ContactStatus::Stick)
         } else {
             // Here ‖τ_t‖ > 0: with ‖τ_t‖ = 0 one of the two tests above holds for μ ≥ 0.
-            let r_n = (tau.n + mu * tt) / (1.0 + mu * mu);
-            let r_t = tau.t * (mu * r_n / tt);
+            let (r_n, mu_r_n) = if mu <= 1.0 {
+                let r_n = (tau.n + mu * tt) / (1.0 + mu * mu);
+                (r_n, mu * r_n)
+            } else {
+                // the same with a = 1/μ, so that μ² cannot overflow (μ up to f64::MAX):
+                // μ r_n = (a τ_n + ‖τ_t‖)/(1 + a²), r_n = a · μ r_n
+                let a = 1.0 / mu;
+                let mu_r_n = (a * tau.n + tt) / (1.0 + a * a);
+                (a * mu_r_n, mu_r_n)
+            };
+            let r_t = tau.t * (mu_r_n / tt);
             (LocalVec { n: r_n, t: r_t }, ContactStatus::Slip)
         }
     }
@@ -149,9 +160,17 @@ impl CoulombCone {
         } else if tt <= mu * tau.n {
             LocalVec::zeros()
         } else {
-            let s = (tt - mu * tau.n) / (1.0 + mu * mu);
+            // μ s and s, with a = 1/μ when μ > 1 so that μ² cannot overflow
+            let (mu_s, s) = if mu <= 1.0 {
+                let s = (tt - mu * tau.n) / (1.0 + mu * mu);
+                (mu * s, s)
+            } else {
+                let a = 1.0 / mu;
+                let mu_s = (a * tt - tau.n) / (1.0 + a * a);
+                (mu_s, a * mu_s)
+            };
             LocalVec {
-                n: -mu * s,
+                n: -mu_s,
                 t: tau.t * (s / tt),
             }
         }
@@ -207,6 +226,29 @@ mod tests {
         assert_relative_eq!(r.n, 3.0, epsilon = 1e-15);
         assert_relative_eq!(r.t[0], 1.8, epsilon = 1e-15);
         assert_relative_eq!(r.t[1], 2.4, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn project_slip_with_huge_mu_is_exact() {
+        // μ = 1e300, τ = (−1, 2): μ r_n = (τ_n/μ + ‖τ_t‖)/(1 + 1/μ²) = 2 to round-off, so
+        // r = (2e-300, 2) (1 + μ² overflows: the plain formula gave r = 0); the polar part is
+        // τ − r = (−1 − 2e-300, 0), Moreau's decomposition.
+        let cone = CoulombCone::new(1e300).unwrap();
+        let tau = LocalVec2::planar(-1.0, 2.0);
+        let (r, s) = cone.project_with_status(&tau);
+        assert_eq!(s, ContactStatus::Slip);
+        assert_relative_eq!(r.n, 2e-300, max_relative = 1e-15);
+        assert_relative_eq!(r.t[0], 2.0, max_relative = 1e-15);
+        let p = cone.project_polar(&tau);
+        assert_relative_eq!(p.n, -1.0, max_relative = 1e-15);
+        assert!(p.t[0].abs() < 1e-15);
+        // the largest finite μ
+        let r = CoulombCone::new(f64::MAX)
+            .unwrap()
+            .project(&LocalVec3::spatial(-1.0, 3.0, 4.0));
+        assert!(r.n > 0.0 && r.n.is_finite());
+        assert_relative_eq!(r.t[0], 3.0, max_relative = 1e-15);
+        assert_relative_eq!(r.t[1], 4.0, max_relative = 1e-15);
     }
 
     #[test]

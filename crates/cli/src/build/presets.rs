@@ -9,9 +9,9 @@ use super::outputs::check_outputs;
 use super::phases::{Phase, phase};
 use super::study::{Body, Library, PresetStudy, Study};
 use crate::error::{CliError, CliResult, KeyPath};
+use crate::presets::{DelaminationSpec, Installation, PulloutSpec, ShearSpec};
 use crate::scene::Scene;
 use crate::spec::{InstallationSpec, Preset, RccmOverride, RccmSpec, Site};
-use bipo::presets::{DelaminationSpec, Installation, PulloutSpec, ShearSpec};
 use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
 use contact_solver::SimulationSettings;
 

@@ -66,9 +66,9 @@ pub struct Custom {
 /// The library's scene of a preset.
 pub enum Library {
     /// Delamination or shear (one loading phase).
-    Seed(Box<bipo::presets::Scene>),
+    Seed(Box<crate::presets::Scene>),
     /// The pile pull-out (three phases).
-    Pile(Box<bipo::presets::PulloutScene>),
+    Pile(Box<crate::presets::PulloutScene>),
 }
 
 /// A seed study built by the library.

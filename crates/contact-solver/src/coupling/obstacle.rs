@@ -85,13 +85,19 @@ impl RigidLine {
     ///
     /// # Errors
     /// [`SolverError::NonFinite`] for a non-finite coordinate;
-    /// [`SolverError::InvalidGeometry`] if `a == b`.
+    /// [`SolverError::InvalidGeometry`] if `a == b` or the length overflows `f64`.
     pub fn new(a: [f64; 2], b: [f64; 2]) -> Result<Self, SolverError> {
         let a = finite_point("LINE start", a)?;
         let b = finite_point("LINE end", b)?;
         let d = [b[0] - a[0], b[1] - a[1]];
         let length = d[0].hypot(d[1]);
-        if !(length > 0.0 && length.is_finite()) {
+        if !length.is_finite() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "LINE from {a:?} to {b:?}: its length overflows (larger than {:e})",
+                f64::MAX
+            )));
+        }
+        if length == 0.0 {
             return Err(SolverError::InvalidGeometry(format!(
                 "LINE from {a:?} to {b:?} has zero length"
             )));
@@ -313,6 +319,10 @@ mod tests {
             RigidLine::new([f64::NAN, 1.0], [1.0, 1.0]),
             Err(SolverError::NonFinite { .. })
         ));
+        match RigidLine::new([-1e308, 0.0], [1e308, 0.0]) {
+            Err(SolverError::InvalidGeometry(m)) => assert!(m.contains("overflows"), "{m}"),
+            other => panic!("{other:?}"),
+        }
         assert!(RigidArc::new([0.0, 0.0], -1.0, 0.0, 1.0, ArcSide::Outside).is_err());
         assert!(RigidArc::new([0.0, 0.0], 1.0, 0.0, 7.0, ArcSide::Outside).is_err());
         assert!(RigidArc::new([0.0, 0.0], 1.0, 0.0, 0.0, ArcSide::Outside).is_err());

@@ -1,0 +1,574 @@
+//! The `bipo` command line (the binary `src/main.rs` calls [`main`]).
+
+use crate::error::{CliError, CliResult};
+use crate::{build, error, out, run, templates};
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+const ABOUT: &str = "Contact mechanics with De Saxcé's bipotential, from TOML scene files.";
+
+const EXAMPLES: &str = "\
+Examples:
+  bipo new block                      write block.toml, a commented Signorini scene
+  bipo check block.toml               validate it (mesh, model, contact recognition)
+  bipo run block.toml --out out/block run it: progress, summary, CSV, VTK, SVG
+  bipo run examples/scenes/delamination.toml
+  bipo solve-local problem.json       solve a reduced problem {dim, W, q, mu}
+
+The scene format is documented in docs/guide.md, section \"Scene files and the bipo command\".";
+
+#[derive(Parser)]
+#[command(name = "bipo", version, about = ABOUT, after_help = EXAMPLES)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene: steps every phase, writes summary.json, CSV histories, VTK series and plots.
+    #[command(after_help = "\
+Examples:
+  bipo run examples/scenes/block.toml
+  bipo run examples/scenes/hertz.toml --out /tmp/hertz
+  bipo run examples/scenes/delamination.toml --quiet
+
+Writes into the output directory (default: [output] dir, else out/<scene name>):
+  summary.json    steps, counters, stages that ran, peak values per zone and curve
+  steps.csv       one row per step (iterations, F* rebuilds, residual, wall time)
+  contacts.csv    one row per (written step, contact candidate)
+  interface.pvd   interface point clouds for ParaView (+ interface_NNNN.vtu)
+  mesh.pvd        whole mesh with u and stress, if [output] mesh_vtk = true
+  *.svg, curves.csv   the [[plots]] of the scene")]
+    Run {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Output directory (overrides the scene's `output.dir`).
+        #[arg(long, short)]
+        out: Option<PathBuf>,
+        /// No progress bar and no per-phase lines (the final summary is still printed).
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Validate a scene without solving: parse, check every value, build the mesh and the
+    /// model, and recognise the contact zones.
+    #[command(after_help = "\
+Examples:
+  bipo check examples/scenes/hertz.toml
+
+A contact zone whose contactor nodes are all outside its alert distance at the start is an
+error, as is any unknown key, missing node set or region, NaN or out-of-range parameter.")]
+    Check {
+        /// The scene file (TOML).
+        scene: PathBuf,
+    },
+    /// Solve a reduced contact problem x = W r + q with Coulomb friction, read from JSON
+    /// {"dim": 2, "W": [...], "q": [...], "mu": [...]} (the Siconos fc2d export format), or
+    /// from an FCLIB HDF5 file (.h5, .hdf5; bipo built with --features fclib).
+    #[command(
+        name = "solve-local",
+        after_help = "\
+Examples:
+  bipo solve-local out/hertz_reduced.json
+  bipo solve-local problem.json --tol 1e-12 --json > solution.json
+  bipo solve-local problem.hdf5     (FCLIB; needs a bipo built with --features fclib)
+
+W is m x m (flat row-major or a list of rows), q has m = 2 n_c entries (normal first per
+contact), mu has n_c. Signs: r_n >= 0 is compression, x_n >= 0 an opening. W symmetric to 1e-6
+(relative) is symmetrised; magnitudes beyond 1e+-100 are rescaled internally; an algorithm that
+stalls or whose answer fails the Signorini-Coulomb check falls back to rccm-classic (the
+output says so)."
+    )]
+    SolveLocal {
+        /// The problem file (JSON, or FCLIB .h5/.hdf5).
+        problem: PathBuf,
+        /// Tolerance of the stopping rule.
+        #[arg(long, default_value_t = 1e-10)]
+        tol: f64,
+        /// Maximum iterations.
+        #[arg(long, default_value_t = 10_000)]
+        max_iterations: usize,
+        /// Algorithm.
+        #[arg(long, value_enum, default_value_t = AlgorithmArg::Auto)]
+        algorithm: AlgorithmArg,
+        /// Print the solution as JSON {r, x, algorithm, fallback_from, iterations, residual,
+        /// converged, asymmetry, rescaled}.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write a commented template scene.
+    #[command(after_help = "\
+Examples:
+  bipo new block                 -> block.toml
+  bipo new hertz -o my_hertz.toml   (also writes hertz_cylinder.msh beside it)
+  bipo new delamination
+  bipo new pile                  -> pile.toml (seed ch. 6, Plancoët)")]
+    New {
+        /// What to start from.
+        #[arg(value_enum)]
+        kind: templates::Kind,
+        /// File to write (default: KIND.toml).
+        #[arg(long, short)]
+        output: Option<PathBuf>,
+        /// Overwrite an existing file.
+        #[arg(long)]
+        force: bool,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum AlgorithmArg {
+    /// Newton up to 1000 contacts, else the Anderson-accelerated Gauss–Seidel sweep (measured
+    /// rule, docs/benchmarks.md).
+    Auto,
+    /// Semi-smooth Newton on De Saxcé's projection equation.
+    Newton,
+    /// Anderson-accelerated projected Gauss–Seidel bipotential sweeps (the simulation's
+    /// default).
+    Bipotential,
+    /// Plain projected Gauss–Seidel bipotential sweeps.
+    GaussSeidel,
+    /// Jacobi (all contacts at once) bipotential sweeps.
+    Uzawa,
+    /// Anderson-accelerated Jacobi sweeps.
+    AndersonUzawa,
+    /// The classical RCCM solver (normal and tangential split).
+    RccmClassic,
+}
+
+impl AlgorithmArg {
+    fn algorithm(self) -> contact_solver::Algorithm {
+        use contact_solver::Algorithm;
+        match self {
+            Self::Auto => Algorithm::Auto,
+            Self::Newton => Algorithm::Newton,
+            Self::Bipotential => Algorithm::AndersonGaussSeidel,
+            Self::GaussSeidel => Algorithm::GaussSeidel,
+            Self::Uzawa => Algorithm::Uzawa,
+            Self::AndersonUzawa => Algorithm::AndersonUzawa,
+            Self::RccmClassic => Algorithm::ClassicRccm,
+        }
+    }
+}
+
+/// Runs `bipo` with the process arguments; the exit code is 0 on success, 2 for bad input
+/// (arguments, scene or problem file), 1 when the computation fails.
+pub fn main() -> ExitCode {
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        let at = info
+            .location()
+            .map(|l| format!(" ({}:{})", l.file(), l.line()))
+            .unwrap_or_default();
+        eprintln!("error: internal error in bipo, please report it: {msg}{at}");
+    }));
+    let cli = Cli::parse();
+    let code = match cli.command {
+        Command::Run { scene, out, quiet } => with_scene(&scene, |loaded| {
+            let study = build::build(loaded)?;
+            let out_dir = out
+                .or_else(|| study.output.dir.as_ref().map(PathBuf::from))
+                .unwrap_or_else(|| {
+                    PathBuf::from("out").join(
+                        scene
+                            .file_stem()
+                            .map(|s| s.to_string_lossy().into_owned())
+                            .unwrap_or_else(|| "scene".into()),
+                    )
+                });
+            print_header("run", loaded, &study);
+            let summary = run::run(
+                study,
+                &run::RunOptions {
+                    out_dir: out_dir.clone(),
+                    quiet,
+                    scene_file: scene.clone(),
+                },
+            )?;
+            print_summary(&summary, &out_dir);
+            Ok(())
+        }),
+        Command::Check { scene } => with_scene(&scene, |loaded| {
+            let study = build::build(loaded)?;
+            print_header("check", loaded, &study);
+            out::outln!(
+                "ok: the scene is valid ({} steps to run, {} files to write)",
+                study.total_steps(),
+                study.output_files()
+            );
+            Ok(())
+        }),
+        Command::SolveLocal {
+            problem,
+            tol,
+            max_iterations,
+            algorithm,
+            json,
+        } => finish(
+            solve_local(&problem, tol, max_iterations, algorithm, json),
+            None,
+        ),
+        Command::New {
+            kind,
+            output,
+            force,
+        } => finish(templates::write(kind, output, force), None),
+    };
+    ExitCode::from(code)
+}
+
+fn with_scene(path: &Path, f: impl FnOnce(&build::Loaded) -> CliResult<()>) -> u8 {
+    let source = match std::fs::read_to_string(path) {
+        Ok(s) => s,
+        Err(e) => {
+            return finish(
+                Err(CliError::input(format!(
+                    "cannot read the scene file: {}",
+                    contact_solver::error::chain(&e)
+                ))
+                .in_file(path)),
+                None,
+            );
+        }
+    };
+    let scene = match build::parse(&source) {
+        Ok(s) => s,
+        Err(e) => return finish(Err(e.in_file(path)), Some(&source)),
+    };
+    let loaded = build::Loaded {
+        path: path.to_path_buf(),
+        source,
+        scene,
+    };
+    let result = f(&loaded).map_err(|e| {
+        // errors about the scene's values point at the file; failures of the run do not
+        if e.path.is_some() || e.span.is_some() {
+            e.in_file(path)
+        } else {
+            e
+        }
+    });
+    finish(result, Some(&loaded.source))
+}
+
+/// What [`check_scene`] learns of a valid scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CheckedScene {
+    /// Load steps over all phases.
+    pub steps: usize,
+    /// Files a run writes.
+    pub files: usize,
+}
+
+/// Parses and validates a scene's text as `bipo check` does: values, mesh (files relative to
+/// `path`'s directory), model, contact zones; nothing is run or written. The error is the
+/// message `bipo check` prints (with line and column when it is about a key). This is the
+/// entry point of the scene fuzz target (`fuzz/`).
+///
+/// # Errors
+/// The rendered message of any refusal.
+pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
+    let render = |mut e: CliError| {
+        if e.span.is_none()
+            && let Some(p) = &e.path
+        {
+            e.span = error::locate(source, p);
+        }
+        e.in_file(path).render(Some(source))
+    };
+    let scene = build::parse(source).map_err(render)?;
+    let loaded = build::Loaded {
+        path: path.to_path_buf(),
+        source: source.to_string(),
+        scene,
+    };
+    let study = build::build(&loaded).map_err(render)?;
+    Ok(CheckedScene {
+        steps: study.total_steps(),
+        files: study.output_files(),
+    })
+}
+
+fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
+    match result {
+        Ok(()) => 0,
+        Err(mut e) => {
+            if e.span.is_none()
+                && let (Some(p), Some(src)) = (&e.path, source)
+            {
+                e.span = error::locate(src, p);
+            }
+            eprintln!("error: {}", e.render(source));
+            e.code.clamp(1, 255) as u8
+        }
+    }
+}
+
+fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
+    use fem_core::Structure;
+    let model = study.model();
+    let mesh = model.mesh();
+    out::outln!(
+        "bipo {cmd}: {} — {} ({})",
+        loaded.path.display(),
+        study.title,
+        match &study.body {
+            build::Body::Custom(_) => "scene".to_string(),
+            build::Body::Preset(p) => format!("preset {}", p.kind),
+        }
+    );
+    out::outln!(
+        "  mesh: {} nodes, {} elements, {}; {}; {} free dofs",
+        mesh.node_count(),
+        mesh.element_count(),
+        build::kind_name(mesh.kind()),
+        match model.idealization() {
+            fem_core::Idealization::PlaneStrain => "plane strain".to_string(),
+            fem_core::Idealization::PlaneStress { thickness } =>
+                format!("plane stress, thickness {thickness}"),
+            fem_core::Idealization::Axisymmetric => "axisymmetric".to_string(),
+            _ => "other idealisation".to_string(),
+        },
+        model.dof_count()
+    );
+    let alert = study.alert_distances();
+    for (z, name) in study.zone_names.iter().enumerate() {
+        let c: Vec<_> = study.candidates().iter().filter(|c| c.zone == z).collect();
+        let within = c.iter().filter(|c| c.gap0 <= alert[z]).count();
+        let min_gap = c.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
+        out::outln!(
+            "  zone `{name}` ({}): {} candidates, {within} within the alert distance {} at the start (smallest gap {min_gap:.4e})",
+            study.zone_laws[z],
+            c.len(),
+            alert[z]
+        );
+    }
+    for p in &study.phases {
+        out::outln!(
+            "  phase `{}`: {} steps, t {} → {}",
+            p.name,
+            p.steps,
+            p.t0,
+            p.t1
+        );
+    }
+}
+
+fn print_summary(s: &run::Summary, dir: &Path) {
+    let c = &s.counters;
+    let solver_steps = if c.steps != s.steps {
+        format!(" ({} solver steps)", c.steps)
+    } else {
+        String::new()
+    };
+    out::outln!(
+        "done: {} steps{solver_steps} in {:.3} s (t = {}), {} contact iterations",
+        s.steps,
+        s.wall_time_s,
+        s.time,
+        c.contact_iterations
+    );
+    let st = &s.stages;
+    let adhesion = if st.adhesive_zones == 0 {
+        " (no adhesive zone: the adhesion loop never ran)".to_string()
+    } else {
+        String::new()
+    };
+    out::outln!("  stages that ran:");
+    out::outln!(
+        "    adhesion iterations   {}{adhesion}",
+        st.adhesion_iterations
+    );
+    out::outln!(
+        "    F* rebuilds           {} ({} columns)",
+        c.flexibility_builds,
+        c.flexibility_columns
+    );
+    out::outln!(
+        "    stiffness changes     {} (refactorisations of K after the first)",
+        c.stiffness_changes
+    );
+    out::outln!("    contact iterations    {}", c.contact_iterations);
+    out::outln!("    structure solves      {}", c.structure_solves);
+    let friction = if st.friction_zones == 0 {
+        " (no zone with friction)".to_string()
+    } else {
+        String::new()
+    };
+    out::outln!(
+        "    tangential reactions  in {} of {} steps{friction}",
+        st.steps_with_tangential_reaction,
+        s.steps
+    );
+    for z in &s.zones {
+        let peak = |p: &Option<run::Peak>| {
+            p.map(|p| format!("{:.6e} at step {} (t = {})", p.value, p.step, p.time))
+                .unwrap_or_else(|| "-".into())
+        };
+        out::outln!(
+            "  zone `{}` ({}, {} candidates): max Σr_n {}, min Σr_n {}, max |Σr_t| {}{}",
+            z.name,
+            z.law,
+            z.candidates,
+            peak(&z.max_force_n),
+            peak(&z.min_force_n),
+            peak(&z.max_abs_force_t),
+            z.min_beta
+                .map(|b| format!(", min β {:.4} at step {}", b.value, b.step))
+                .unwrap_or_default()
+        );
+    }
+    for cv in &s.curves {
+        if let (Some(lo), Some(hi)) = (cv.min, cv.max) {
+            out::outln!(
+                "  {}: min {:.6e} (step {}), max {:.6e} (step {})",
+                cv.label,
+                lo.value,
+                lo.step,
+                hi.value,
+                hi.step
+            );
+        }
+    }
+    out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
+}
+
+/// The reduced problem of `bipo solve-local`: FCLIB HDF5 for `.h5`/`.hdf5` (feature `fclib`),
+/// JSON otherwise.
+fn read_local_problem(path: &Path) -> CliResult<contact_solver::ReducedProblem> {
+    use contact_solver::error::chain;
+    let hdf5 = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "h5" | "hdf5"));
+    if hdf5 {
+        #[cfg(feature = "fclib")]
+        return contact_solver::local::fclib::read_fclib(path)
+            .map(|f| f.problem)
+            .map_err(|e| match e {
+                // the message names the file already
+                contact_solver::SolverError::Fclib { .. } => CliError::input(chain(&e)),
+                _ => CliError::input(format!("{}: {}", path.display(), chain(&e))),
+            });
+        #[cfg(not(feature = "fclib"))]
+        return Err(CliError::input(format!(
+            "{}: FCLIB HDF5 files need a bipo built with `--features fclib` (and the system \
+             HDF5 library, Debian: libhdf5-dev); or export the problem as JSON",
+            path.display()
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        CliError::input(format!(
+            "{}: cannot read the problem file: {e}",
+            path.display()
+        ))
+    })?;
+    // a byte-order mark (some Windows editors write one) is not part of the JSON
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    contact_solver::ReducedProblem::from_json(text)
+        .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))
+}
+
+fn solve_local(
+    path: &Path,
+    tol: f64,
+    max_iterations: usize,
+    algorithm: AlgorithmArg,
+    json: bool,
+) -> CliResult<()> {
+    use contact_solver::error::chain;
+    use contact_solver::{UzawaSettings, solve_coulomb};
+    let problem = read_local_problem(path)?;
+    if problem.contact_count() == 0 {
+        return Err(CliError::input(format!(
+            "{}: the problem has no contact (`W`, `q` and `mu` are empty): nothing to solve",
+            path.display()
+        )));
+    }
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(CliError::input(format!(
+            "--tol {tol}: expected a finite tolerance > 0"
+        )));
+    }
+    if max_iterations == 0 {
+        return Err(CliError::input("--max-iterations 0: expected at least 1"));
+    }
+    let settings = UzawaSettings::default()
+        .with_tol(tol)
+        .with_max_iterations(max_iterations)
+        .with_algorithm(algorithm.algorithm());
+    let sol = solve_coulomb(&problem, &settings)
+        .map_err(|e| CliError::failed(format!("{}: {}", path.display(), chain(&e))))?;
+    if json {
+        let rep = &sol.report;
+        let v = serde_json::json!({
+            "r": sol.r,
+            "x": sol.x,
+            "algorithm": format!("{:?}", rep.algorithm),
+            "fallback_from": rep.fallback_from.map(|a| format!("{a:?}")),
+            "iterations": rep.iterations,
+            "residual": rep.residual,
+            "converged": rep.converged,
+            "asymmetry": rep.asymmetry,
+            "rescaled": rep.rescaled,
+        });
+        out::outln!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        return Ok(());
+    }
+    let rep = &sol.report;
+    out::outln!(
+        "{} contacts, {:?} converged in {} iterations, residual {:.3e}",
+        problem.contact_count(),
+        rep.algorithm,
+        rep.iterations,
+        rep.residual
+    );
+    if let Some(first) = rep.fallback_from {
+        out::outln!(
+            "note: {first:?} did not converge (or failed the Signorini-Coulomb check); the answer \
+             is {:?}'s",
+            rep.algorithm
+        );
+    }
+    if rep.asymmetry > 0.0 {
+        out::outln!(
+            "note: W was symmetric only to {:.1e} (relative) and was symmetrised",
+            rep.asymmetry
+        );
+    }
+    if rep.rescaled {
+        out::outln!("note: W and q were rescaled internally (magnitudes beyond 1e+-100)");
+    }
+    let d = problem.dimension();
+    if d == 2 {
+        out::outln!(
+            "contact      r_n             r_t             u_n (gap)       u_t         status"
+        );
+    } else {
+        out::outln!(
+            "contact      r_n             r_t1            r_t2            u_n (gap)       u_t1            u_t2        status"
+        );
+    }
+    for i in 0..problem.contact_count() {
+        let cell = |v: &[f64]| {
+            v[d * i..d * (i + 1)]
+                .iter()
+                .map(|a| format!("{a:>14.6e}"))
+                .collect::<Vec<_>>()
+                .join("  ")
+        };
+        out::outln!(
+            "{i:>7}  {}  {}  {:?}",
+            cell(&sol.r),
+            cell(&sol.x),
+            sol.report.statuses[i]
+        );
+    }
+    Ok(())
+}
