@@ -17,7 +17,9 @@ fn every_scene_corpus_input_is_checked_or_refused_with_a_message() {
             continue;
         };
         count += 1;
-        match bipo::app::check_scene(text, &scene_path) {
+        let checked = std::panic::catch_unwind(|| bipo::app::check_scene(text, &scene_path))
+            .unwrap_or_else(|_| panic!("{} panicked", path.display()));
+        match checked {
             Ok(_) => valid += 1,
             Err(message) => assert!(!message.trim().is_empty(), "{}", path.display()),
         }
