@@ -1,5 +1,5 @@
 //! 3D reduced problems of two other kinds (issue 14): a pile of rigid spheres (one step of
-//! Moreau–Jean nonsmooth contact dynamics; Jean 1999, Acary–Brogliato 2008 §7.2) and an elastic
+//! Moreau–Jean nonsmooth contact dynamics; Jean 1999, Acary–Brogliato 2008) and an elastic
 //! half-space under a rigid indenter (Boussinesq–Cerruti flexibility; Johnson 1985 ch. 3).
 //!
 //! Sketches and checks:
@@ -9,7 +9,7 @@
 //! - the same in a box, and jittered, shaken piles: every algorithm reaches the same velocities
 //!   `x` and generalized impulses `H r` (unique), and the same `r` where `W` is definite;
 //! - a flat circular punch (radius `a`) pressed by `δ` on a half-space, frictionless: the
-//!   total load is `P = 2 a E* δ` (Johnson eq. 3.34, Sneddon 1946); `W` is symmetric positive
+//!   total load is `P = 2 a E* δ` (Johnson 1985 ch. 3, Sneddon 1946); `W` is symmetric positive
 //!   definite (a faer Cholesky succeeds).
 
 #![allow(clippy::needless_range_loop)] // index arithmetic on flat per-contact vectors

@@ -1,7 +1,7 @@
 //! 3D reduced problems of an elastic half-space (`E`, `ν`) pressed by a rigid indenter: the
 //! flexibility `W` of a disc of surface nodes from the closed-form point-load solutions of
 //! Boussinesq (normal load) and Cerruti (tangential load), as in a boundary-element or
-//! FE-condensed contact problem (the kind FCLIB's "Cubes_H8"/"LMGC" problems come from).
+//! FE-condensed contact problem.
 //!
 //! Axes as in Johnson (1985, ch. 3): `z` points into the solid, `(x, y)` on the surface; per node
 //! the frame is `[n, t₁, t₂] = [e_z, e_x, e_y]` (`n` is the indenter's outward normal, so
@@ -9,11 +9,11 @@
 //! `d = p_i − p_j`, `ρ = ‖d‖`, the displacement at `i` per unit force at `j` is
 //!
 //! ```text
-//! normal–normal     (Boussinesq, Johnson eq. 3.19a at z = 0):  (1 − ν²) / (π E ρ)
-//! tangent–tangent   (Cerruti, Johnson §3.2 / eq. 3.86a,b at z = 0):
+//! normal–normal     (Boussinesq, Johnson §3.2, at z = 0):  (1 − ν²) / (π E ρ)
+//! tangent–tangent   (Cerruti, Johnson ch. 3, concentrated tangential force, at z = 0):
 //!                    W_xx = (1 + ν)/(π E ρ) · ((1 − ν) + ν d_x²/ρ²),   W_yy likewise,
 //!                    W_xy = (1 + ν)/(π E ρ) · ν d_x d_y / ρ²
-//! tangent–normal    (Boussinesq's radial displacement, Johnson eq. 3.19b at z = 0,
+//! tangent–normal    (Boussinesq's radial displacement, Johnson §3.2, at z = 0,
 //!                    u_r = −(1 − 2ν)(1 + ν) P / (2π E ρ), towards the load):
 //!                    W_{x_i, z_j} = −c d_x/ρ²,   c = (1 − 2ν)(1 + ν)/(2π E)
 //! normal–tangent    (Betti's reciprocity: W_{z_i, x_j} = W_{x_j, z_i}):  W_{z_i, x_j} = +c d_x/ρ²
@@ -35,8 +35,9 @@
 //! q_n = g₀(ρ) − δ,  g₀ = 0 (flat punch of radius a) or ρ²/(2 R) (sphere of radius R)
 //! q_t = −s          (the solid's displacement relative to the indenter, before the reactions)
 //! ```
-//! Check: a frictionless flat punch carries `P = 2 a E* δ`, `E* = E/(1 − ν²)` (Johnson eq. 3.34
-//! (§3.4), Sneddon 1946); `tests/multibody_3d.rs` compares the sum of `r_n` with it.
+//! Check: a frictionless flat punch carries `P = 2 a E* δ`, `E* = E/(1 − ν²)` (the rigid
+//! flat-ended punch, Johnson 1985 ch. 3; Sneddon 1946); `tests/multibody_3d.rs` compares the sum
+//! of `r_n` with it, and checks that `W` is symmetric and positive definite.
 
 use crate::error::SolverError;
 use crate::local::problem::ReducedProblem;
@@ -238,7 +239,7 @@ impl HalfSpace {
 }
 
 /// The load a rigid flat circular punch of radius `a` carries at indentation `δ`, frictionless:
-/// `P = 2 a E* δ`, `E* = E/(1 − ν²)` (Johnson 1985 eq. 3.34; Sneddon 1946).
+/// `P = 2 a E* δ`, `E* = E/(1 − ν²)` (Johnson 1985 ch. 3, the flat-ended punch; Sneddon 1946).
 ///
 /// # Examples
 /// ```

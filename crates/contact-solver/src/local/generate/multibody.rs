@@ -1,6 +1,6 @@
 //! Multibody reduced problems: rigid spheres piled in columns on a floor, inside a box, one time
 //! step of a nonsmooth contact dynamics scheme (Moreau–Jean; Jean 1999, Acary–Brogliato 2008
-//! §7.2 for the reduced form; the FCLIB collection's granular problems are of this kind).
+//! for the reduced form `W = Hᵀ M⁻¹ H`).
 //!
 //! ```text
 //! layout:   columns on an nx × ny grid of spacing s = 2R(1 + jitter); each sphere moved
