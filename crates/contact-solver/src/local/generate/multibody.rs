@@ -156,6 +156,19 @@ impl PileProblem {
 
     /// The generalized impulse `H r` (per sphere: force then moment about its centre, 6 entries).
     ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::local::generate::multibody::{SpherePile, Walls};
+    /// use contact_solver::{UzawaSettings, solve_coulomb};
+    /// // one sphere on the floor: the floor's impulse cancels the weight's, h m g
+    /// let s = SpherePile { nx: 1, ny: 1, layers: 1, walls: Walls::None, ..Default::default() };
+    /// let pile = s.generate(0)?;
+    /// let sol = solve_coulomb(&pile.problem, &UzawaSettings::default())?;
+    /// let hr = pile.generalized_impulse(&sol.r);
+    /// assert!((hr[2] - s.time_step * pile.mass * s.gravity).abs() < 1e-9);
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    ///
     /// # Panics
     /// If `r.len() != 3 n_c`.
     #[track_caller]
