@@ -5,8 +5,13 @@
 //! q_n ~ U(−1, 0.5)  (about two thirds pressed, one third open),  q_t ~ U(−1, 1),  μ ~ U(0, 1)
 //! ```
 //! The generator is SplitMix64, so a seed gives the same problem on every platform.
+//! Problems of other kinds: [`multibody`] (a pile of rigid spheres, rank-deficient Delassus
+//! operator) and [`half_space`] (Boussinesq–Cerruti flexibility under an indenter).
 
 use super::problem::ReducedProblem;
+
+pub mod half_space;
+pub mod multibody;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny seeded generator of `u64`.
 #[derive(Clone, Debug)]
