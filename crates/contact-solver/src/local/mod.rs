@@ -141,6 +141,8 @@
 pub mod adhesion;
 pub mod anderson;
 pub mod classic;
+mod csr;
+mod delassus;
 mod dense;
 #[cfg(feature = "fclib")]
 pub mod fclib;
@@ -158,6 +160,8 @@ mod solver;
 mod sweep;
 mod uzawa;
 
+pub use csr::CsrMatrix;
+pub use delassus::WView;
 #[cfg(feature = "fe")]
 pub(crate) use dense::symmetrize;
 pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
@@ -165,6 +169,6 @@ pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
 pub(crate) use residual::{contact_statuses, natural_residual};
 pub use settings::{
     ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS, Algorithm,
-    DEFAULT_OMEGA, Solution, UzawaReport, UzawaSettings,
+    DEFAULT_OMEGA, NEWTON_SPARSE_MAX_UNKNOWNS, Solution, UzawaReport, UzawaSettings,
 };
 pub use solver::{CHECK_FACTOR, RESCALE_ABOVE, UzawaSolver, solve_coulomb};
