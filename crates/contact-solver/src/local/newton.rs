@@ -42,8 +42,8 @@
 //! **Sparse `W`.** The rows of `W` are read through the storage's row operations (`O(stored
 //! entries)` per row), but the reduced system is still assembled and factorised dense: Newton
 //! on a sparse problem is allowed up to
-//! [`NEWTON_SPARSE_MAX_UNKNOWNS`](crate::local::NEWTON_SPARSE_MAX_UNKNOWNS) unknowns and is
-//! otherwise [`SolverError::NewtonSystemTooLarge`](crate::SolverError::NewtonSystemTooLarge)
+//! [`NEWTON_SPARSE_MAX_UNKNOWNS`] unknowns and is
+//! otherwise [`SolverError::NewtonSystemTooLarge`]
 //! (use the accelerated Gauss–Seidel sweep, which [`Algorithm::Auto`](crate::Algorithm::Auto)
 //! picks there). A sparse assembly with faer's sparse LU is future work.
 //!
