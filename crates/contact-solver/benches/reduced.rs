@@ -42,7 +42,12 @@ fn hertz() -> [(&'static str, ReducedProblem); 2] {
     let q = (p.q().iter().enumerate())
         .map(|(k, &a)| if k % 2 == 1 { a + 1e-4 } else { a })
         .collect();
-    let slide = ReducedProblem::new(p.w().to_vec(), q, vec![0.3; p.contact_count()]).unwrap();
+    let slide = ReducedProblem::new(
+        p.w_dense().unwrap().to_vec(),
+        q,
+        vec![0.3; p.contact_count()],
+    )
+    .unwrap();
     [("hertz_8", p), ("hertz_8_slide", slide)]
 }
 

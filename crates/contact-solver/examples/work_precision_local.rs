@@ -145,7 +145,11 @@ fn hertz_problems(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn
     let q = (p.q().iter().enumerate())
         .map(|(k, &a)| if k % 2 == 1 { a + 1e-4 } else { a })
         .collect();
-    let slide = ReducedProblem::new(p.w().to_vec(), q, vec![0.3; p.contact_count()])?;
+    let slide = ReducedProblem::new(
+        p.w_dense().unwrap().to_vec(),
+        q,
+        vec![0.3; p.contact_count()],
+    )?;
     Ok([
         (format!("hertz_{cells}"), p),
         (format!("hertz_{cells}_slide"), slide),
@@ -155,7 +159,12 @@ fn hertz_problems(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn
 fn write_raw(dir: &Path, name: &str, p: &ReducedProblem) -> Result<(), Box<dyn Error>> {
     let meta = serde_json::json!({ "n_c": p.contact_count(), "q": p.q(), "mu": p.mu() });
     std::fs::write(dir.join(format!("{name}.meta.json")), meta.to_string())?;
-    let bytes: Vec<u8> = p.w().iter().flat_map(|v| v.to_le_bytes()).collect();
+    let bytes: Vec<u8> = p
+        .w_dense()
+        .unwrap()
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
     std::fs::write(dir.join(format!("{name}.W.f64")), bytes)?;
     if p.contact_count() <= 1000 {
         std::fs::write(dir.join(format!("{name}.json")), p.to_json()?)?;

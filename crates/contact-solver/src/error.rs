@@ -32,6 +32,30 @@ pub enum SolverError {
         /// The rejected value.
         value: f64,
     },
+    /// An index of a sparse matrix given as triplets is out of range.
+    #[error("`{what}[{index}]` = {value} is out of range: indices must be below {bound}")]
+    IndexOutOfRange {
+        /// Which array (`"rows"`, `"cols"`).
+        what: &'static str,
+        /// Position of the entry in that array (the triplet's number).
+        index: usize,
+        /// The rejected index.
+        value: usize,
+        /// The bound it must stay below (`m`).
+        bound: usize,
+    },
+    /// [`Algorithm::Newton`](crate::Algorithm::Newton) on a sparse `W` assembles its reduced
+    /// system dense, which is refused beyond
+    /// [`NEWTON_SPARSE_MAX_UNKNOWNS`](crate::local::NEWTON_SPARSE_MAX_UNKNOWNS) unknowns.
+    #[error(
+        "Newton on a sparse W with {unknowns} unknowns: its reduced system is assembled dense, which is limited to {limit} unknowns (use Algorithm::AndersonGaussSeidel, O(stored entries) per sweep, or Algorithm::Auto, which picks it)"
+    )]
+    NewtonSystemTooLarge {
+        /// The problem's unknowns `m`.
+        unknowns: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The flexibility matrix `W` is not symmetric to the relative tolerance `1e-12·max|W|`.
     #[error(
         "W is not symmetric: |W[{row}][{col}] - W[{col}][{row}]| = {difference:e} exceeds {tolerance:e}"

@@ -49,7 +49,8 @@ pub mod local;
 pub use contact_laws;
 pub use error::SolverError;
 pub use local::{
-    Algorithm, ReducedProblem, Solution, UzawaReport, UzawaSettings, UzawaSolver, solve_coulomb,
+    Algorithm, CsrMatrix, ReducedProblem, Solution, UzawaReport, UzawaSettings, UzawaSolver, WView,
+    solve_coulomb,
 };
 
 #[cfg(feature = "fe")]

@@ -8,12 +8,14 @@
 //! - a file written by a third party (h5py: 64-bit integers, scalar sizes, no `nzmax`, `W` in
 //!   compressed columns; `tests/data/make_fclib_csc.py`) is read;
 //! - hostile files give a typed error naming the dataset;
-//! - a global problem of two rigid bodies is condensed to the `W = Hᵀ M⁻¹ H` computed by hand.
+//! - a global problem of two rigid bodies is condensed to the `W = Hᵀ M⁻¹ H` computed by hand;
+//! - a sparse problem (issue 14, "Storage") is written from its compressed rows and read back
+//!   sparse (fewer than m²/4 entries), equal to the original, in every form.
 
 use contact_solver::local::fclib::{
     FclibSource, SparseForm, read_fclib, write_fclib, write_fclib_as,
 };
-use contact_solver::local::generate::{random_problem, random_problem_in};
+use contact_solver::local::generate::{random_problem, random_problem_in, random_sparse_problem};
 use contact_solver::{ReducedProblem, SolverError, UzawaSettings, solve_coulomb};
 use std::path::PathBuf;
 
@@ -40,7 +42,11 @@ fn write_read_round_trip_is_bit_identical_in_every_form() {
         let path = temp(&format!("round_trip_{form:?}.hdf5"));
         write_fclib_as(&path, &p, Some(&sol.r), form).unwrap();
         let back = read_fclib(&path).unwrap();
-        assert_eq!(bits(back.problem.w()), bits(p.w()), "{form:?}");
+        assert_eq!(
+            bits(back.problem.w_dense().unwrap()),
+            bits(p.w_dense().unwrap()),
+            "{form:?}"
+        );
         assert_eq!(bits(back.problem.q()), bits(p.q()), "{form:?}");
         assert_eq!(bits(back.problem.mu()), bits(p.mu()), "{form:?}");
         let s = back.solution.expect("the solution was written");
@@ -95,7 +101,10 @@ fn write_keeps_only_the_nonzeros_and_negative_zeros() {
         .unwrap();
     assert_eq!(nz, [-2], "compressed rows by default");
     let back = read_fclib(&path).unwrap();
-    assert_eq!(bits(back.problem.w()), bits(p.w()));
+    assert_eq!(
+        bits(back.problem.w_dense().unwrap()),
+        bits(p.w_dense().unwrap())
+    );
     assert!(back.solution.is_none());
 }
 
@@ -110,7 +119,7 @@ fn reads_compressed_columns_written_by_h5py() {
         0.25, 0.0, 3.0, -0.5,
         0.0, 0.125, -0.5, 1.5,
     ];
-    assert_eq!(back.problem.w(), w);
+    assert_eq!(back.problem.w_dense().unwrap(), w);
     assert_eq!(back.problem.q(), [-1.0, 0.25, 0.5, -0.75]);
     assert_eq!(back.problem.mu(), [0.3, 0.6]);
     let s = back.solution.unwrap();
@@ -387,7 +396,27 @@ fn global_two_rigid_bodies_condense_to_the_hand_computed_w() {
         0.0, 3.75, 0.0, 5.3125,
     ];
     // every number is exact in binary and the Cholesky factor of M is diag(2, 2, 1/2, 4, 4, 1)
-    assert_eq!(back.problem.w(), expected);
+    assert_eq!(back.problem.w_dense().unwrap(), expected);
     assert_eq!(back.problem.q(), [-0.5, 0.0, 0.25, 0.0]);
     assert_eq!(back.problem.mu(), [0.5, 0.5]);
+}
+
+#[test]
+fn issue_14_sparse_problem_round_trips_sparse() {
+    // 3D, 40 contacts, ~4 blocks per block row: 5 % of m² stored, every stored entry non-zero
+    let p = random_sparse_problem(3, 40, 3, 8);
+    let sol = solve_coulomb(&p, &UzawaSettings::default()).unwrap();
+    for form in [
+        SparseForm::CompressedColumn,
+        SparseForm::CompressedRow,
+        SparseForm::Triplet,
+    ] {
+        let path = temp(&format!("sparse_{form:?}.hdf5"));
+        write_fclib_as(&path, &p, Some(&sol.r), form).unwrap();
+        let back = read_fclib(&path).unwrap();
+        assert!(back.problem.is_sparse(), "{form:?}");
+        // the same pattern, values and bits (the generator stores no explicit zero)
+        assert_eq!(back.problem, p, "{form:?}");
+        assert_eq!(back.solution.map(|s| s.r), Some(sol.r.clone()));
+    }
 }

@@ -86,7 +86,7 @@ proptest! {
     ) {
         let base = random_problem_in(dim, nc, seed);
         let (sw, sq) = (10f64.powi(a), 10f64.powi(b));
-        let w = base.w().iter().map(|v| v * sw).collect();
+        let w = base.w_dense().expect("a dense generator").iter().map(|v| v * sw).collect();
         let q = base.q().iter().map(|v| v * sq).collect();
         let mu = (0..nc)
             .map(|i| if frictionless[i] { 0.0 } else { 10f64.powf(log_mu[i]) })

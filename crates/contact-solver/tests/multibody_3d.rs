@@ -217,7 +217,7 @@ fn half_space_w_is_symmetric_positive_definite() {
             ..HalfSpace::default()
         };
         let p = hs.generate().unwrap();
-        let (w, m) = (p.problem.w(), p.problem.size());
+        let (w, m) = (p.problem.w_dense().unwrap(), p.problem.size());
         for i in 0..m {
             for j in 0..i {
                 // exactly: every pair is written from the same formula on both sides

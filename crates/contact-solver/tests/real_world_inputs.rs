@@ -82,7 +82,12 @@ fn every_gap_open_is_answered_without_iterating() {
         .enumerate()
         .map(|(k, v)| if k % 2 == 0 { v.abs() + 1e-3 } else { *v })
         .collect();
-    let p = ReducedProblem::new(base.w().to_vec(), q.clone(), base.mu().to_vec()).unwrap();
+    let p = ReducedProblem::new(
+        base.w_dense().unwrap().to_vec(),
+        q.clone(),
+        base.mu().to_vec(),
+    )
+    .unwrap();
     for algorithm in ALL {
         let s = solve_coulomb(&p, &settings(algorithm)).unwrap();
         assert!(s.r.iter().all(|&v| v == 0.0));
@@ -94,7 +99,7 @@ fn every_gap_open_is_answered_without_iterating() {
 
 fn scaled(p: &ReducedProblem, sw: f64, sq: f64) -> ReducedProblem {
     ReducedProblem::new(
-        p.w().iter().map(|v| v * sw).collect(),
+        p.w_dense().unwrap().iter().map(|v| v * sw).collect(),
         p.q().iter().map(|v| v * sq).collect(),
         p.mu().to_vec(),
     )

@@ -269,7 +269,7 @@ fn a_3d_problem_is_scale_invariant() {
     let p = random_problem_in(3, 8, 11);
     let base = solve(&p, Algorithm::Auto);
     for s in [1e-200, 1e-120, 1e120, 1e200] {
-        let w = p.w().iter().map(|v| v * s).collect();
+        let w = p.w_dense().unwrap().iter().map(|v| v * s).collect();
         let q = p.q().iter().map(|v| v * s).collect();
         let ps = ReducedProblem::new_3d(w, q, p.mu().to_vec()).unwrap();
         let sol = solve(&ps, Algorithm::Auto);

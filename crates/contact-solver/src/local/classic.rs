@@ -99,6 +99,7 @@
 //! # Ok::<(), contact_solver::SolverError>(())
 //! ```
 
+use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm, pick, rho_of_block};
 use super::settings::UzawaSettings;
@@ -179,7 +180,7 @@ pub(crate) fn friction_coefficients_into<L: ContactLaw>(
 #[inline]
 #[allow(clippy::too_many_arguments)]
 fn sor_sweep(
-    w: &[f64],
+    w: &Delassus,
     inv_diag: &[f64],
     omega: f64,
     d: usize,
@@ -202,9 +203,7 @@ fn sor_sweep(
         d2 += d * d;
         r[k] = new;
         // x += W[:, k] Δr_k, read as row k (W is symmetric).
-        for (xj, a) in x.iter_mut().zip(&w[k * m..(k + 1) * m]) {
-            *xj += a * d;
-        }
+        w.axpy_row(k, d, x);
     }
     d2.sqrt() / r2.sqrt().max(f64::MIN_POSITIVE)
 }
@@ -213,14 +212,13 @@ fn sor_sweep(
 /// `r_t,i ← P_D(s_i)(r_t,i − ω x_t,i / λ_max(W_tt,i))`, then `x += W[:, k] Δr_k`. Returns
 /// the relative change `‖Δr_t‖/‖r_t‖` over the sweep.
 fn disc_sweep(
-    w: &[f64],
+    w: &Delassus,
     inv_lambda_t: &[f64],
     omega: f64,
     threshold: &[f64],
     r: &mut [f64],
     x: &mut [f64],
 ) -> f64 {
-    let m = r.len();
     let (mut d2, mut r2) = (0.0, 0.0);
     for (i, (&inv, &s)) in inv_lambda_t.iter().zip(threshold).enumerate() {
         let k = 3 * i + 1;
@@ -249,10 +247,7 @@ fn disc_sweep(
         }
         d2 += d_t * d_t + d_s * d_s;
         (r[k], r[k + 1]) = (new_t, new_s);
-        let (row_t, row_s) = (&w[k * m..(k + 1) * m], &w[(k + 1) * m..(k + 2) * m]);
-        for ((xj, a), b) in x.iter_mut().zip(row_t).zip(row_s) {
-            *xj += a * d_t + b * d_s;
-        }
+        w.axpy_rows2(k, [d_t, d_s], x);
     }
     d2.sqrt() / r2.sqrt().max(f64::MIN_POSITIVE)
 }
@@ -279,7 +274,7 @@ impl ClassicScratch {
         let nc = problem.contact_count();
         let m = problem.size();
         let d = DT + 1;
-        let w = problem.w();
+        let w = problem.delassus();
         friction_coefficients_into(laws, states, nc, &mut self.mu_bar)?;
         let frictional = self.mu_bar.iter().any(|&mu_bar| mu_bar > 0.0);
         let tangential = |k: &usize| !k.is_multiple_of(d);
@@ -289,7 +284,8 @@ impl ClassicScratch {
             problem.displacement_into(r, x);
         }
         self.inv_diag.clear();
-        self.inv_diag.extend((0..m).map(|k| 1.0 / w[k * m + k]));
+        self.inv_diag
+            .extend((0..m).map(|k| 1.0 / problem.diagonal_block(k / d)[k % d][k % d]));
         self.inv_lambda_t.clear();
         if DT == 2 {
             self.inv_lambda_t.extend((0..nc).map(|i| {
@@ -384,7 +380,10 @@ mod tests {
     #[test]
     fn sor_sweep_works() {
         // W = [2 1; 1 2] (one contact), q = (−2, 1), r = 0 so x = q.
-        let w = [2.0, 1.0, 1.0, 2.0];
+        let w = Delassus::Dense {
+            m: 2,
+            w: vec![2.0, 1.0, 1.0, 2.0],
+        };
         let inv_diag = [0.5, 0.5];
         let (mut r, mut x) = ([0.0, 0.0], [-2.0, 1.0]);
         // Normal: r_n = max(0, 0 − 1·(−2)/2) = 1, then x += W[:, 0]·1 = (0, 2).

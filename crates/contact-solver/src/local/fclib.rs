@@ -29,6 +29,10 @@
 //! columns (CSparse's convention, which Siconos follows). Duplicates are summed. Indices are
 //! read from any integer type (h5py writes 64-bit ones), values from any number type.
 //!
+//! A local `W` with fewer than `m²/4` entries is read into the sparse storage
+//! ([`ReducedProblem::from_triplets`]), a denser one dense; a global problem is condensed
+//! dense. A sparse problem is written from its compressed rows, never densified.
+//!
 //! We write `fclib_local` with `W` in compressed rows ([`write_fclib`]) or any form
 //! ([`write_fclib_as`]), every entry that is not `+0.0` kept, integers as 32-bit C `int`s like
 //! `fclib.c`. The mixed problems (`fclib_local/V`, `R`; `fclib_global/G`, `b`) are refused.
@@ -46,6 +50,7 @@ mod sparse;
 
 pub use sparse::{MAX_DENSE_ENTRIES, SparseForm};
 
+use super::delassus::WView;
 use super::problem::ReducedProblem;
 use crate::error::SolverError;
 use h5::{H5File, join};
@@ -203,8 +208,25 @@ fn read_local(
     let v = f.group(&g, at, "vectors")?;
     let q = f.reals(&v, "fclib_local/vectors", "q", m)?;
     let mu = f.reals(&v, "fclib_local/vectors", "mu", nc)?;
-    let w = w_raw.to_dense("fclib_local/W").map_err(|r| f.error(r))?;
-    let problem = build_problem(f, spacedim, w, q, mu)?;
+    // sparse enough (fewer than m²/4 entries): straight into the sparse storage
+    let problem = if (w_raw.x.len() as f64) < (m as f64) * (m as f64) / 4.0 {
+        let entries = w_raw.entries("fclib_local/W").map_err(|r| f.error(r))?;
+        let n = entries.len();
+        let (mut rows, mut cols, mut vals) = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
+        for (r, c, v) in entries {
+            rows.push(r);
+            cols.push(c);
+            vals.push(v);
+        }
+        ReducedProblem::from_triplets(spacedim, &rows, &cols, &vals, q, mu)?
+    } else {
+        let w = w_raw.to_dense("fclib_local/W").map_err(|r| f.error(r))?;
+        build_problem(f, spacedim, w, q, mu)?
+    };
     Ok((problem, spacedim, FclibSource::Local))
 }
 
@@ -347,7 +369,10 @@ pub fn write_fclib_as(
     let g = f.create_group(&file, "", at)?;
     let spacedim = problem.dimension() as i64;
     f.write_ints(&g, at, "spacedim", &[spacedim])?;
-    let w = RawSparse::from_dense(problem.w(), m, m, form);
+    let w = match problem.w() {
+        WView::Dense(w) => RawSparse::from_dense(w, m, m, form),
+        WView::Sparse(a) => RawSparse::from_csr(a, form),
+    };
     f.write_matrix(&g, at, "W", &w)?;
     let v = f.create_group(&g, at, "vectors")?;
     f.write_reals(&v, "fclib_local/vectors", "q", problem.q())?;

@@ -23,8 +23,7 @@ impl Sweeps {
         r: &mut [f64],
         x: &mut [f64],
     ) -> f64 {
-        let m = problem.size();
-        let w = problem.w();
+        let w = problem.delassus();
         let mut dr2 = 0.0;
         for i in 0..problem.contact_count() {
             let (law, s) = (pick(laws, i), pick(states, i));
@@ -69,17 +68,10 @@ impl Sweeps {
             set_local(r, i, &(ri + d));
             // x += W[:, d i + k] Δr_k, read as rows (W is symmetric).
             let b = (DT + 1) * i;
-            let row_n = &w[b * m..(b + 1) * m];
-            let row_t = &w[(b + 1) * m..(b + 2) * m];
             if DT == 1 {
-                for ((xk, a), c) in x.iter_mut().zip(row_n).zip(row_t) {
-                    *xk += a * d.n + c * d.t[0];
-                }
+                w.axpy_rows2(b, [d.n, d.t[0]], x);
             } else {
-                let row_s = &w[(b + 2) * m..(b + 3) * m];
-                for (((xk, a), c), e) in x.iter_mut().zip(row_n).zip(row_t).zip(row_s) {
-                    *xk += a * d.n + c * d.t[0] + e * d.t[1];
-                }
+                w.axpy_rows3(b, [d.n, d.t[0], d.t[1]], x);
             }
         }
         dr2

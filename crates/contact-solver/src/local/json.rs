@@ -1,7 +1,10 @@
-//! The JSON form of a reduced problem (feature `serde`): `{"dim": 2 or 3, "W": flat row-major
-//! or list of rows, "q": [...], "mu": [...]}` — what `shared/peers/siconos_fc.py` reads and
-//! `bipo solve-local` takes.
+//! The JSON form of a reduced problem (feature `serde`): `{"dim": 2 or 3, "W": ..., "q": [...],
+//! "mu": [...]}` — what `shared/peers/siconos_fc.py` reads and `bipo solve-local` takes. `W`
+//! is a flat row-major list, a list of rows, or sparse triplets
+//! `{"m": m, "i": [...], "j": [...], "v": [...]}` (0-based, duplicates summed), read into the
+//! sparse storage ([`ReducedProblem::from_triplets`]).
 
+use super::delassus::WView;
 use super::problem::ReducedProblem;
 use crate::error::SolverError;
 use serde::{Deserialize, Serialize};
@@ -22,23 +25,39 @@ struct JsonProblem {
 enum JsonMatrix {
     Flat(Vec<f64>),
     Rows(Vec<Vec<f64>>),
+    Triplets(JsonTriplets),
+}
+
+/// A sparse `W` as triplets: `W[i[k]][j[k]] += v[k]`, `m × m`, 0-based.
+#[derive(Serialize, Deserialize)]
+struct JsonTriplets {
+    m: usize,
+    i: Vec<usize>,
+    j: Vec<usize>,
+    v: Vec<f64>,
 }
 
 impl ReducedProblem {
     /// Reads a problem from JSON `{"dim": 3, "W": [...], "q": [...], "mu": [...]}`, the format
-    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows; `dim`
-    /// is 2 or 3 (unknowns per contact, the normal first), and 2 when left out.
+    /// of `shared/peers/siconos_fc.py`: `W` is a flat row-major list or a list of rows (stored
+    /// dense), or triplets `{"m": m, "i": [...], "j": [...], "v": [...]}` (0-based, stored
+    /// sparse); `dim` is 2 or 3 (unknowns per contact, the normal first), and 2 when left out.
     ///
     /// # Errors
-    /// [`SolverError::Json`] for malformed JSON, [`SolverError::Format`] for ragged rows or a
-    /// `dim` other than 2 or 3; otherwise those of
-    /// [`with_dimension`](Self::with_dimension).
+    /// [`SolverError::Json`] for malformed JSON (a negative index included),
+    /// [`SolverError::Format`] for ragged rows, triplets whose `m` is not the length of `q`, or
+    /// a `dim` other than 2 or 3; otherwise those of
+    /// [`with_dimension`](Self::with_dimension) or [`from_triplets`](Self::from_triplets).
     ///
     /// # Examples
     /// ```
     /// use contact_solver::ReducedProblem;
     /// let p = ReducedProblem::from_json(r#"{"W": [[1, 0], [0, 1]], "q": [-1, 0], "mu": [0.5]}"#)?;
-    /// assert_eq!(p.w(), &[1.0, 0.0, 0.0, 1.0]);
+    /// assert_eq!(p.w_dense(), Some(&[1.0, 0.0, 0.0, 1.0][..]));
+    /// let s = ReducedProblem::from_json(
+    ///     r#"{"W": {"m": 2, "i": [0, 1], "j": [0, 1], "v": [1, 1]}, "q": [-1, 0], "mu": [0.5]}"#,
+    /// )?;
+    /// assert!(s.is_sparse() && s.w_sparse().unwrap().get(1, 1) == 1.0);
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn from_json(text: &str) -> Result<Self, SolverError> {
@@ -53,6 +72,18 @@ impl ReducedProblem {
             });
         }
         let w = match j.w {
+            JsonMatrix::Triplets(t) => {
+                if t.m != j.q.len() {
+                    return Err(SolverError::Format {
+                        reason: format!(
+                            "W given as triplets: m = {} must be the length of q ({})",
+                            t.m,
+                            j.q.len()
+                        ),
+                    });
+                }
+                return Self::from_triplets(dim, &t.i, &t.j, &t.v, j.q, j.mu);
+            }
             JsonMatrix::Flat(w) => w,
             JsonMatrix::Rows(rows) => {
                 let m = j.q.len();
@@ -69,14 +100,33 @@ impl ReducedProblem {
         Self::with_dimension(dim, w, j.q, j.mu)
     }
 
-    /// Writes the problem as JSON `{"dim": d, "W": [flat row-major], "q": [...], "mu": [...]}`.
+    /// Writes the problem as JSON `{"dim": d, "W": ..., "q": [...], "mu": [...]}`, `W` flat
+    /// row-major when dense, as triplets `{"m", "i", "j", "v"}` of every stored entry when
+    /// sparse (so the block pattern, explicit zeros included, survives a round trip).
     ///
     /// # Errors
     /// [`SolverError::Json`] if serialisation fails (it does not for a validated problem).
     pub fn to_json(&self) -> Result<String, SolverError> {
         Ok(serde_json::to_string(&JsonProblem {
             dim: Some(self.dimension()),
-            w: JsonMatrix::Flat(self.w().to_vec()),
+            w: match self.w() {
+                WView::Dense(w) => JsonMatrix::Flat(w.to_vec()),
+                WView::Sparse(a) => {
+                    let n = a.stored();
+                    let mut t = JsonTriplets {
+                        m: a.size(),
+                        i: Vec::with_capacity(n),
+                        j: Vec::with_capacity(n),
+                        v: Vec::with_capacity(n),
+                    };
+                    for (i, j, v) in a.triplets() {
+                        t.i.push(i);
+                        t.j.push(j);
+                        t.v.push(v);
+                    }
+                    JsonMatrix::Triplets(t)
+                }
+            },
             q: self.q().to_vec(),
             mu: self.mu().to_vec(),
         })?)
@@ -105,6 +155,26 @@ mod tests {
         ));
         let e = ReducedProblem::from_json(r#"{"W":[[1,0],[0]],"q":[0,0],"mu":[0]}"#);
         assert!(matches!(e, Err(SolverError::Format { .. })));
+        // triplets: m must be the length of q; a negative index is a parse error
+        let e = ReducedProblem::from_json(
+            r#"{"W":{"m":3,"i":[0],"j":[0],"v":[1]},"q":[0,0],"mu":[0]}"#,
+        );
+        assert!(matches!(e, Err(SolverError::Format { .. })));
+        let e = ReducedProblem::from_json(
+            r#"{"W":{"m":2,"i":[-1],"j":[0],"v":[1]},"q":[0,0],"mu":[0]}"#,
+        );
+        assert!(matches!(e, Err(SolverError::Json { .. })));
+        let e = ReducedProblem::from_json(
+            r#"{"W":{"m":2,"i":[0,2],"j":[0,1],"v":[1,1]},"q":[0,0],"mu":[0]}"#,
+        );
+        assert!(matches!(
+            e,
+            Err(SolverError::IndexOutOfRange {
+                what: "rows",
+                index: 1,
+                ..
+            })
+        ));
         let e = ReducedProblem::from_json("{").unwrap_err();
         assert!(matches!(e, SolverError::Json { .. }));
         // the parser's message once, in the chain

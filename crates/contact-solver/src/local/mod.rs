@@ -4,9 +4,11 @@
 //! `contact-solver = { version = "0.1", default-features = false }` (see the crate docs).
 //!
 //! # Files
-//! - [`problem`]: the validated problem [`ReducedProblem`]; `json` (feature `serde`) its JSON
-//!   form; `fclib` (feature `fclib`) FCLIB's HDF5 files in and out; [`generate`]: seeded
-//!   random problems;
+//! - [`problem`]: the validated problem [`ReducedProblem`]; `csr`: the sparse storage
+//!   [`CsrMatrix`]; `delassus`: the row operations every algorithm uses on either storage
+//!   (and the public view [`WView`]); `json` (feature `serde`) its JSON form; `fclib`
+//!   (feature `fclib`) FCLIB's HDF5 files in and out; [`generate`]: seeded random problems,
+//!   dense and sparse;
 //! - `settings`: [`Algorithm`], [`UzawaSettings`], [`UzawaReport`], [`Solution`];
 //!   `residual`: the natural map, norms, statuses (the toolbox every algorithm uses);
 //! - one file per algorithm: `uzawa`, `gauss_seidel` (the base sweeps, on the shared `sweep`
@@ -21,7 +23,21 @@
 //! dispatcher picks the instance once per solve, so the per-contact work stays on fixed-size
 //! arrays in both.
 //!
-//! Imports go one way: `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
+//! # Dense or sparse `W`
+//! `W` is stored dense (row-major, [`ReducedProblem::new`]) or in compressed sparse rows
+//! ([`ReducedProblem::from_triplets`], JSON triplets, sparse FCLIB files), for the Delassus
+//! matrices of multibody codes (a few `d × d` blocks per block row: 3D, 7000 contacts is
+//! 3.5 GB dense, 4 MB sparse). The sparse pattern is the block pattern, made symmetric
+//! ([`CsrMatrix`]), so the `d` rows of a contact share one column list. Every algorithm reaches
+//! `W` only through `delassus` (`dot_row`, `axpy_row`, `axpy_rows2/3`, `mul_into`,
+//! `diagonal_block`), which matches the storage once per row: the dense loops are the zipped
+//! slices they were, a sparse sweep costs `O(stored entries)`, and both storages of the same
+//! `W` give the same bits (`tests/sparse.rs`). Nothing densifies a sparse `W`; Newton's
+//! *reduced system* is assembled dense, so Newton on a sparse `W` is limited to
+//! [`NEWTON_SPARSE_MAX_UNKNOWNS`] unknowns and [`Algorithm::Auto`] picks the accelerated sweep
+//! beyond.
+//!
+//! Imports go one way: `csr` → `delassus` → `problem`; `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
 //! `classic` → `solver` → `adhesion`.
 //!
 //! # The iteration
@@ -67,7 +83,8 @@
 //!   1e8, 40 sweeps). It is the default; choose Newton for Coulomb-type problems up to about a
 //!   thousand contacts.
 //! - [`Algorithm::Auto`] applies that rule per problem: Newton when every law has a friction
-//!   coefficient and `n_c ≤` [`AUTO_NEWTON_MAX_CONTACTS`] (1000), else the accelerated
+//!   coefficient and `n_c ≤` [`AUTO_NEWTON_MAX_CONTACTS`] (1000) (and, for a sparse `W`,
+//!   `m ≤` [`NEWTON_SPARSE_MAX_UNKNOWNS`]), else the accelerated
 //!   Gauss–Seidel sweep. It is the default of `bipo solve-local`; the simulation's default
 //!   stays the accelerated sweep, whose iteration counts the seed's tables and
 //!   `docs/benchmarks.md` quote.
@@ -141,6 +158,8 @@
 pub mod adhesion;
 pub mod anderson;
 pub mod classic;
+mod csr;
+mod delassus;
 mod dense;
 #[cfg(feature = "fclib")]
 pub mod fclib;
@@ -158,6 +177,8 @@ mod solver;
 mod sweep;
 mod uzawa;
 
+pub use csr::CsrMatrix;
+pub use delassus::WView;
 #[cfg(feature = "fe")]
 pub(crate) use dense::symmetrize;
 pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
@@ -165,6 +186,6 @@ pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
 pub(crate) use residual::{contact_statuses, natural_residual};
 pub use settings::{
     ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS, Algorithm,
-    DEFAULT_OMEGA, Solution, UzawaReport, UzawaSettings,
+    DEFAULT_OMEGA, NEWTON_SPARSE_MAX_UNKNOWNS, Solution, UzawaReport, UzawaSettings,
 };
 pub use solver::{CHECK_FACTOR, RESCALE_ABOVE, UzawaSolver, solve_coulomb};

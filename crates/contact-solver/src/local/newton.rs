@@ -39,6 +39,14 @@
 //! factorised by faer's partial-pivoting LU (by a plain in-crate LU up to 32 unknowns, where
 //! faer's fixed cost dominates).
 //!
+//! **Sparse `W`.** The rows of `W` are read through the storage's row operations (`O(stored
+//! entries)` per row), but the reduced system is still assembled and factorised dense: Newton
+//! on a sparse problem is allowed up to
+//! [`NEWTON_SPARSE_MAX_UNKNOWNS`] unknowns and is
+//! otherwise [`SolverError::NewtonSystemTooLarge`]
+//! (use the accelerated Gauss–Seidel sweep, which [`Algorithm::Auto`](crate::Algorithm::Auto)
+//! picks there). A sparse assembly with faer's sparse LU is future work.
+//!
 //! **Globalisation.** Armijo backtracking on `φ = ‖F‖²`: the step `t ∈ {1, ½, ¼, …}` is
 //! accepted when `φ(r + tΔr) ≤ (1 − 2σt) φ(r)`, `σ = 10⁻⁴`; `x` moves by `t W Δr` (one
 //! product per Newton step, none per trial). If the direction is not finite (a singular
@@ -88,7 +96,7 @@
 use super::classic::friction_coefficients_into;
 use super::problem::ReducedProblem;
 use super::residual::{local, natural_residual, norm, pick, set_local};
-use super::settings::UzawaSettings;
+use super::settings::{NEWTON_SPARSE_MAX_UNKNOWNS, UzawaSettings};
 use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
@@ -294,19 +302,6 @@ fn eval<L: ContactLaw, const DT: usize>(
     s2
 }
 
-/// `out = W v`, skipping the zero entries of `v` (`W` symmetric: rows are columns).
-fn product_into(w: &[f64], v: &[f64], out: &mut [f64]) {
-    let m = v.len();
-    out.iter_mut().for_each(|a| *a = 0.0);
-    for (j, &vj) in v.iter().enumerate() {
-        if vj != 0.0 {
-            out.iter_mut()
-                .zip(&w[j * m..(j + 1) * m])
-                .for_each(|(a, b)| *a += b * vj);
-        }
-    }
-}
-
 /// The relative natural residual of the stopping rule at `(r, x)`: `√φ` when `F` uses `ρ⁰`
 /// itself, recomputed with `ρ⁰` otherwise.
 #[allow(clippy::too_many_arguments)]
@@ -373,7 +368,7 @@ impl NewtonScratch {
     /// The equations and unknowns of contact `i` (see the [module docs](self)) into
     /// `self.rows`, `self.cols`, and its known part into `self.d`.
     #[allow(clippy::needless_range_loop)] // offsets b + k into flat vectors
-    fn contact_system<const DT: usize>(&mut self, i: usize, c: &Local, w: &[f64], m: usize) {
+    fn contact_system<const DT: usize>(&mut self, i: usize, c: &Local, block: &[[f64; 3]; 3]) {
         let d = DT + 1;
         let b = d * i;
         let (rho, mu) = (self.rho[i], self.mu_bar[i]);
@@ -407,7 +402,7 @@ impl NewtonScratch {
                 for k in 0..d {
                     let mut u = [0.0; 3];
                     u[k] = 1.0;
-                    if k > 0 && w[(b + k) * m + b + k] == 0.0 {
+                    if k > 0 && block[k][k] == 0.0 {
                         // Tangentially supported contact (x_t = q_t fixed): no equation for
                         // Δr_t, which takes the fixed-point step.
                         self.d[b + k] = -f[k];
@@ -445,18 +440,18 @@ impl NewtonScratch {
     /// it is not finite.
     #[allow(clippy::needless_range_loop)] // offsets d j + k into flat vectors
     fn direction<const DT: usize>(&mut self, problem: &ReducedProblem) -> bool {
-        let (m, w, d) = (problem.size(), problem.w(), DT + 1);
+        let (w, d) = (problem.delassus(), DT + 1);
         self.rows.clear();
         self.cols.clear();
         self.d.iter_mut().for_each(|a| *a = 0.0);
         for i in 0..self.cases.len() {
             let c = self.cases[i];
-            self.contact_system::<DT>(i, &c, w, m);
+            self.contact_system::<DT>(i, &c, &problem.diagonal_block(i));
         }
         self.dr.copy_from_slice(&self.d);
         let p = self.cols.len();
         if p > 0 {
-            product_into(w, &self.d, &mut self.wd);
+            w.mul_into(&self.d, &mut self.wd);
             self.a.clear();
             self.a.resize(p * p, 0.0);
             for (jc, (&(j, z), col)) in self.cols.iter().zip(self.a.chunks_exact_mut(p)).enumerate()
@@ -466,10 +461,7 @@ impl NewtonScratch {
                 self.wcol.iter_mut().for_each(|o| *o = 0.0);
                 for (k, &zk) in z.iter().enumerate().take(d) {
                     if zk != 0.0 {
-                        let row = &w[(b + k) * m..(b + k + 1) * m];
-                        for (o, a) in self.wcol.iter_mut().zip(row) {
-                            *o += zk * a;
-                        }
+                        w.axpy_row(b + k, zk, &mut self.wcol);
                     }
                 }
                 for (ir, (c, &(i, l, diagonal, _))) in col.iter_mut().zip(&self.rows).enumerate() {
@@ -522,6 +514,12 @@ impl NewtonScratch {
         history: &mut Vec<f64>,
     ) -> Result<NewtonRun, SolverError> {
         let (nc, m) = (problem.contact_count(), problem.size());
+        if problem.is_sparse() && m > NEWTON_SPARSE_MAX_UNKNOWNS {
+            return Err(SolverError::NewtonSystemTooLarge {
+                unknowns: m,
+                limit: NEWTON_SPARSE_MAX_UNKNOWNS,
+            });
+        }
         friction_coefficients_into(laws, states, nc, &mut self.mu_bar)?;
         self.resize(m, nc);
         self.rho.clear();
@@ -544,7 +542,7 @@ impl NewtonScratch {
             let mut stepped = false;
             let warming_up = run.iterations <= WARMUP_SWEEPS;
             if !warming_up && !polishing && self.direction::<DT>(problem) {
-                product_into(problem.w(), &self.dr, &mut self.wdr);
+                problem.delassus().mul_into(&self.dr, &mut self.wdr);
                 let mut t = 1.0;
                 for _ in 0..=MAX_HALVINGS {
                     for k in 0..m {

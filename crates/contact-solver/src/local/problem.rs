@@ -11,7 +11,14 @@
 //! opening. This is also Siconos' `fc2d`/`fc3d` and FCLIB's form (`u = W r + q`, De Saxcé's
 //! `û = u + μ‖u_t‖ n`), so `ReducedProblem::to_json` (feature `serde`) writes exactly what
 //! `shared/peers/siconos_fc.py` reads.
+//!
+//! `W` is stored dense (row-major, [`ReducedProblem::new`]) or sparse (compressed rows on the
+//! block pattern of [`CsrMatrix`], [`ReducedProblem::from_triplets`]); every algorithm works on
+//! both through the crate's row operations, in `O(stored entries)` per sweep or product, and
+//! nothing densifies a sparse `W`.
 
+use super::csr::CsrMatrix;
+use super::delassus::{Delassus, WView};
 use crate::error::SolverError;
 use contact_laws::{Coulomb, CoulombCone};
 
@@ -27,8 +34,13 @@ pub const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 /// A validated reduced contact problem `x = W r + q` with friction coefficients `μ_i`, in
 /// dimension `d` = 2 or 3 (the size of a contact's block: one normal and `d − 1` tangents).
 ///
-/// Invariants (checked by [`new`](Self::new) and [`with_dimension`](Self::with_dimension)):
-/// `W` is `m × m` (dense, row-major), `q` has `m` entries, `μ` has `n_c = m/d`; every entry
+/// `W` is held dense (row-major `m × m`: [`new`](Self::new), [`new_3d`](Self::new_3d),
+/// [`with_dimension`](Self::with_dimension)) or sparse ([`CsrMatrix`]:
+/// [`from_triplets`](Self::from_triplets)); [`w`](Self::w) gives either, and the algorithms
+/// run on both in `O(stored entries)` per sweep.
+///
+/// Invariants (checked by every constructor):
+/// `W` is `m × m`, `q` has `m` entries, `μ` has `n_c = m/d`; every entry
 /// is finite; `W` is symmetric (to [`SYMMETRY_TOL`] as given, or symmetrised, see
 /// [`new`](Self::new)); every `d × d` diagonal block of `W` is positive definite; `μ_i ≥ 0`.
 /// Full positive definiteness of `W` is *not* checked (it would cost a factorisation, and
@@ -37,7 +49,7 @@ pub const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 pub struct ReducedProblem {
     /// 2 or 3: unknowns per contact.
     dim: usize,
-    w: Vec<f64>,
+    w: Delassus,
     q: Vec<f64>,
     mu: Vec<f64>,
     /// Relative asymmetry `max|W_ij − W_ji| / max|W|` removed by symmetrising (0 if none).
@@ -122,40 +134,18 @@ impl ReducedProblem {
     /// // W symmetric to 3e-7 relative: repaired by default, refused with a tolerance of 1e-9.
     /// let w = vec![2.0, 0.3, 0.3 + 6e-7, 1.0];
     /// let p = ReducedProblem::new(w.clone(), vec![-1.0, 0.5], vec![0.3])?;
-    /// assert!((p.asymmetry() - 3e-7).abs() < 1e-12 && p.w()[1] == p.w()[2]);
+    /// assert!((p.asymmetry() - 3e-7).abs() < 1e-12 && p.w_dense().unwrap()[1] == p.w_dense().unwrap()[2]);
     /// assert!(ReducedProblem::with_asymmetry_tolerance(2, w, vec![-1.0, 0.5], vec![0.3], 1e-9).is_err());
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn with_asymmetry_tolerance(
         dim: usize,
-        mut w: Vec<f64>,
+        w: Vec<f64>,
         q: Vec<f64>,
         mu: Vec<f64>,
         tolerance: f64,
     ) -> Result<Self, SolverError> {
-        if !(tolerance.is_finite() && tolerance >= 0.0) {
-            return Err(SolverError::InvalidSetting {
-                what: "asymmetry tolerance",
-                value: tolerance,
-                expected: "a finite relative tolerance >= 0",
-            });
-        }
-        if !(dim == 2 || dim == 3) {
-            return Err(SolverError::InvalidSetting {
-                what: "dim",
-                value: dim as f64,
-                expected: "2 or 3 (unknowns per contact: a normal and 1 or 2 tangents)",
-            });
-        }
-        let m = q.len();
-        if !m.is_multiple_of(dim) {
-            return Err(SolverError::SizeMismatch {
-                what: "q",
-                expected: m.next_multiple_of(dim),
-                found: m,
-            });
-        }
-        let nc = m / dim;
+        let m = check_setup(dim, tolerance, &q)?;
         if m.checked_mul(m).is_none() {
             return Err(SolverError::SizeMismatch {
                 what: "W",
@@ -170,43 +160,64 @@ impl ReducedProblem {
                 found: w.len(),
             });
         }
-        if mu.len() != nc {
-            return Err(SolverError::SizeMismatch {
-                what: "mu",
-                expected: nc,
-                found: mu.len(),
+        if let Some((index, &value)) = w.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(SolverError::NonFinite {
+                what: "W",
+                index,
+                value,
             });
         }
-        for (what, v) in [("W", &w), ("q", &q), ("mu", &mu)] {
-            if let Some((index, &value)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-                return Err(SolverError::NonFinite { what, index, value });
-            }
-        }
-        for (contact, &m_i) in mu.iter().enumerate() {
-            CoulombCone::new(m_i).map_err(|source| SolverError::InvalidLaw { contact, source })?;
-        }
-        let w_max = w.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        check_vectors(m / dim, &q, &mu)?;
+        Self::validated(dim, Delassus::Dense { m, w }, q, mu, tolerance)
+    }
+
+    /// The symmetry (symmetrised within `tolerance`) and diagonal-block checks shared by every
+    /// constructor, on `W` whose sizes and entries were checked.
+    fn validated(
+        dim: usize,
+        mut w: Delassus,
+        q: Vec<f64>,
+        mu: Vec<f64>,
+        tolerance: f64,
+    ) -> Result<Self, SolverError> {
+        let w_max = w.max_abs();
         // the worst pair, compared scale-free (w_max may be near overflow or underflow)
-        let (mut worst, mut row, mut col) = (0.0_f64, 0, 0);
-        for i in 0..m {
-            for j in (i + 1)..m {
-                let difference = (w[i * m + j] / w_max - w[j * m + i] / w_max).abs();
-                if difference > worst {
-                    (worst, row, col) = (difference, i, j);
+        let (worst, row, col, difference) = match &w {
+            Delassus::Dense { m, w } => {
+                let m = *m;
+                let (mut worst, mut row, mut col) = (0.0_f64, 0, 0);
+                for i in 0..m {
+                    for j in (i + 1)..m {
+                        let difference = (w[i * m + j] / w_max - w[j * m + i] / w_max).abs();
+                        if difference > worst {
+                            (worst, row, col) = (difference, i, j);
+                        }
+                    }
                 }
+                // (an empty W has no pair: worst stays 0, no entry is read)
+                let difference = if worst > 0.0 {
+                    (w[row * m + col] - w[col * m + row]).abs()
+                } else {
+                    0.0
+                };
+                (worst, row, col, difference)
             }
-        }
+            Delassus::Sparse(a) => a.worst_asymmetry(w_max),
+        };
         let mut asymmetry = 0.0;
         if worst > tolerance.max(SYMMETRY_TOL) {
             return Err(SolverError::NotSymmetric {
                 row,
                 col,
-                difference: (w[row * m + col] - w[col * m + row]).abs(),
+                difference,
                 tolerance: tolerance.max(SYMMETRY_TOL) * w_max,
             });
         } else if worst > SYMMETRY_TOL {
             asymmetry = worst;
-            super::dense::symmetrize(&mut w, m);
+            match &mut w {
+                Delassus::Dense { m, w } => super::dense::symmetrize(w, *m),
+                Delassus::Sparse(a) => a.symmetrize(),
+            }
         }
         let p = Self {
             dim,
@@ -215,12 +226,83 @@ impl ReducedProblem {
             mu,
             asymmetry,
         };
-        for contact in 0..nc {
+        for contact in 0..p.contact_count() {
             if !block_is_positive_definite(&p.diagonal_block(contact), dim) {
                 return Err(SolverError::NotPositiveDefinite { contact });
             }
         }
         Ok(p)
+    }
+
+    /// A problem with a sparse `W` given as triplets `W[rows[k]][cols[k]] += vals[k]`
+    /// (0-based; duplicates summed; `m = q.len()`), stored in compressed rows on the block
+    /// pattern of [`CsrMatrix`] (whole `d × d` blocks, the pattern made symmetric). Validated
+    /// as [`with_dimension`](Self::with_dimension), without forming a dense `W`.
+    ///
+    /// # Errors
+    /// - [`SolverError::InvalidSetting`] if `dim` is neither 2 nor 3;
+    /// - [`SolverError::SizeMismatch`] if `q` is not `dim · n_c` long, `μ` does not have
+    ///   `n_c` entries, or `cols`, `vals` are not as long as `rows`;
+    /// - [`SolverError::IndexOutOfRange`] for an index `≥ m` (naming the triplet);
+    /// - [`SolverError::NonFinite`] for a value (`"vals"`, naming the triplet), `q` or `μ` that
+    ///   is not finite;
+    /// - [`SolverError::NotSymmetric`], [`SolverError::NotPositiveDefinite`],
+    ///   [`SolverError::InvalidLaw`] as for [`new`](Self::new) (asymmetry up to
+    ///   [`DEFAULT_ASYMMETRY_TOL`] is symmetrised and reported by
+    ///   [`asymmetry`](Self::asymmetry)).
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{ReducedProblem, UzawaSettings, solve_coulomb};
+    /// // one 3D contact, W = I: entries (0,0), (1,1), (2,2)
+    /// let p = ReducedProblem::from_triplets(
+    ///     3, &[0, 1, 2], &[0, 1, 2], &[1.0; 3], vec![-1.0, 0.3, 0.4], vec![0.25],
+    /// )?;
+    /// assert!(p.w_sparse().is_some() && p.w_dense().is_none());
+    /// let sol = solve_coulomb(&p, &UzawaSettings::default())?;
+    /// assert!((sol.r[0] - 1.0).abs() < 1e-9 && (sol.r[1] + 0.15).abs() < 1e-9);
+    /// // a row index out of range is named
+    /// let e = ReducedProblem::from_triplets(3, &[0, 9], &[0, 1], &[1.0; 2], vec![0.0; 3], vec![0.2]);
+    /// assert!(matches!(e, Err(contact_solver::SolverError::IndexOutOfRange { index: 1, .. })));
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn from_triplets(
+        dim: usize,
+        rows: &[usize],
+        cols: &[usize],
+        vals: &[f64],
+        q: Vec<f64>,
+        mu: Vec<f64>,
+    ) -> Result<Self, SolverError> {
+        Self::from_triplets_with_tolerance(dim, rows, cols, vals, q, mu, DEFAULT_ASYMMETRY_TOL)
+    }
+
+    /// As [`from_triplets`](Self::from_triplets), repairing a relative asymmetry of `W` up to
+    /// `tolerance` (as [`with_asymmetry_tolerance`](Self::with_asymmetry_tolerance)).
+    ///
+    /// # Errors
+    /// As for [`from_triplets`](Self::from_triplets); [`SolverError::InvalidSetting`] if
+    /// `tolerance` is negative or not finite.
+    pub fn from_triplets_with_tolerance(
+        dim: usize,
+        rows: &[usize],
+        cols: &[usize],
+        vals: &[f64],
+        q: Vec<f64>,
+        mu: Vec<f64>,
+        tolerance: f64,
+    ) -> Result<Self, SolverError> {
+        let m = check_setup(dim, tolerance, &q)?;
+        check_vectors(m / dim, &q, &mu)?;
+        let w = CsrMatrix::from_triplets(dim, m, rows, cols, vals)?;
+        Self::validated(dim, Delassus::Sparse(w), q, mu, tolerance)
+    }
+
+    /// The same problem with `W` scaled by `s_w` and `q` by `s_q` (powers of two in the
+    /// dispatcher's rescaling: exact), in the same storage, validated again.
+    pub(crate) fn rescaled(&self, s_w: f64, s_q: f64) -> Result<Self, SolverError> {
+        let q = self.q.iter().map(|v| v * s_q).collect();
+        Self::validated(self.dim, self.w.scaled(s_w), q, self.mu.clone(), 0.0)
     }
 
     /// Relative asymmetry `max|W_ij − W_ji| / max|W|` of the `W` given, removed by
@@ -247,9 +329,52 @@ impl ReducedProblem {
         self.q.len()
     }
 
-    /// The flexibility matrix `W`, dense row-major `m × m`.
+    /// The flexibility matrix `W`, dense or sparse.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{ReducedProblem, WView};
+    /// let p = ReducedProblem::new(vec![2.0, 0.0, 0.0, 1.0], vec![-1.0, 0.5], vec![0.3])?;
+    /// assert!(matches!(p.w(), WView::Dense(w) if w == [2.0, 0.0, 0.0, 1.0]));
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
     #[inline]
-    pub fn w(&self) -> &[f64] {
+    pub fn w(&self) -> WView<'_> {
+        self.w.view()
+    }
+
+    /// `W` dense row-major `m × m`, or `None` when it is stored sparse.
+    #[inline]
+    pub fn w_dense(&self) -> Option<&[f64]> {
+        match &self.w {
+            Delassus::Dense { w, .. } => Some(w),
+            Delassus::Sparse(_) => None,
+        }
+    }
+
+    /// `W` in compressed sparse rows, or `None` when it is stored dense.
+    #[inline]
+    pub fn w_sparse(&self) -> Option<&CsrMatrix> {
+        match &self.w {
+            Delassus::Dense { .. } => None,
+            Delassus::Sparse(a) => Some(a),
+        }
+    }
+
+    /// Whether `W` is stored sparse.
+    #[inline]
+    pub fn is_sparse(&self) -> bool {
+        matches!(self.w, Delassus::Sparse(_))
+    }
+
+    /// Bytes held by the storage of `W`: `8 m²` dense; `12 · stored + 8 (m + 1)` sparse.
+    pub fn w_storage_bytes(&self) -> usize {
+        self.w.storage_bytes()
+    }
+
+    /// The storage, for the algorithms' row operations.
+    #[inline]
+    pub(crate) fn delassus(&self) -> &Delassus {
         &self.w
     }
 
@@ -273,15 +398,7 @@ impl ReducedProblem {
     #[inline]
     #[track_caller]
     pub fn diagonal_block(&self, i: usize) -> [[f64; 3]; 3] {
-        let (m, d) = (self.size(), self.dim);
-        let a = d * i;
-        let mut b = [[0.0; 3]; 3];
-        for (k, row) in b.iter_mut().enumerate().take(d) {
-            for (l, v) in row.iter_mut().enumerate().take(d) {
-                *v = self.w[(a + k) * m + a + l];
-            }
-        }
-        b
+        self.w.diagonal_block(i, self.dim)
     }
 
     /// One Coulomb law per contact, `Coulomb::new(μ_i)` (infallible: `μ` was validated).
@@ -301,10 +418,57 @@ impl ReducedProblem {
         let m = self.size();
         assert!(r.len() == m && x.len() == m, "r and x must have m entries");
         for (i, xi) in x.iter_mut().enumerate() {
-            let row = &self.w[i * m..(i + 1) * m];
-            *xi = self.q[i] + row.iter().zip(r).map(|(a, b)| a * b).sum::<f64>();
+            *xi = self.q[i] + self.w.dot_row(i, r);
         }
     }
+}
+
+/// Checks the asymmetry `tolerance`, `dim` (2 or 3) and that `q` has `dim · n_c` entries;
+/// returns `m`.
+fn check_setup(dim: usize, tolerance: f64, q: &[f64]) -> Result<usize, SolverError> {
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(SolverError::InvalidSetting {
+            what: "asymmetry tolerance",
+            value: tolerance,
+            expected: "a finite relative tolerance >= 0",
+        });
+    }
+    if !(dim == 2 || dim == 3) {
+        return Err(SolverError::InvalidSetting {
+            what: "dim",
+            value: dim as f64,
+            expected: "2 or 3 (unknowns per contact: a normal and 1 or 2 tangents)",
+        });
+    }
+    let m = q.len();
+    if !m.is_multiple_of(dim) {
+        return Err(SolverError::SizeMismatch {
+            what: "q",
+            expected: m.next_multiple_of(dim),
+            found: m,
+        });
+    }
+    Ok(m)
+}
+
+/// Checks that `μ` has `nc` entries, `q` and `μ` are finite and every `μ_i ≥ 0`.
+fn check_vectors(nc: usize, q: &[f64], mu: &[f64]) -> Result<(), SolverError> {
+    if mu.len() != nc {
+        return Err(SolverError::SizeMismatch {
+            what: "mu",
+            expected: nc,
+            found: mu.len(),
+        });
+    }
+    for (what, v) in [("q", q), ("mu", mu)] {
+        if let Some((index, &value)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(SolverError::NonFinite { what, index, value });
+        }
+    }
+    for (contact, &m_i) in mu.iter().enumerate() {
+        CoulombCone::new(m_i).map_err(|source| SolverError::InvalidLaw { contact, source })?;
+    }
+    Ok(())
 }
 
 /// Whether the `d × d` symmetric block `b` is positive definite, scale-free (blocks of 1e300 or

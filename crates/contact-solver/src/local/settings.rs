@@ -41,7 +41,8 @@ pub enum Algorithm {
     Newton,
     /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
     /// [`Newton`](Self::Newton) when every law has a friction coefficient and there are at
-    /// most [`AUTO_NEWTON_MAX_CONTACTS`] contacts, else
+    /// most [`AUTO_NEWTON_MAX_CONTACTS`] contacts (and, for a sparse `W`, at most
+    /// [`NEWTON_SPARSE_MAX_UNKNOWNS`] unknowns), else
     /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel); the report names the one that ran.
     Auto,
 }
@@ -51,6 +52,14 @@ pub enum Algorithm {
 /// factorisation (`n_c³`) loses to the accelerated sweep (4–5× slower at `n_c` = 5000,
 /// `docs/benchmarks.md`, "Local solver: work–precision").
 pub const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
+
+/// [`Algorithm::Newton`] on a problem with a sparse `W` assembles its reduced Newton system
+/// (at most `m` unknowns) dense, so it is allowed up to this many unknowns `m` (a 2000 × 2000
+/// dense LU is about 5 GFlop, 32 MB); beyond, it is
+/// [`SolverError::NewtonSystemTooLarge`](crate::SolverError::NewtonSystemTooLarge) and
+/// [`Algorithm::Auto`] picks the accelerated Gauss–Seidel sweep, whose cost stays
+/// `O(stored entries)` per sweep.
+pub const NEWTON_SPARSE_MAX_UNKNOWNS: usize = 2000;
 
 /// Settings of the reduced solver: `Default` and the `with_*` setters (the struct is
 /// `#[non_exhaustive]`, so new settings do not break callers).

@@ -9,7 +9,10 @@ use super::problem::ReducedProblem;
 use super::residual::{
     contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm,
 };
-use super::settings::{AUTO_NEWTON_MAX_CONTACTS, Algorithm, Solution, UzawaReport, UzawaSettings};
+use super::settings::{
+    AUTO_NEWTON_MAX_CONTACTS, Algorithm, NEWTON_SPARSE_MAX_UNKNOWNS, Solution, UzawaReport,
+    UzawaSettings,
+};
 use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
@@ -117,7 +120,9 @@ impl UzawaSolver {
         let r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
         if st.algorithm == Algorithm::Auto {
-            st.algorithm = if mu.is_some() && problem.contact_count() <= AUTO_NEWTON_MAX_CONTACTS {
+            let newton_fits = problem.contact_count() <= AUTO_NEWTON_MAX_CONTACTS
+                && (!problem.is_sparse() || problem.size() <= NEWTON_SPARSE_MAX_UNKNOWNS);
+            st.algorithm = if mu.is_some() && newton_fits {
                 Algorithm::Newton
             } else {
                 Algorithm::AndersonGaussSeidel
@@ -265,8 +270,8 @@ impl UzawaSolver {
         states: &[L::State],
         r: &[f64],
     ) -> Result<Option<Solution>, SolverError> {
-        let max_abs = |v: &[f64]| v.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        let (w_max, q_max) = (max_abs(problem.w()), max_abs(problem.q()));
+        let w_max = problem.delassus().max_abs();
+        let q_max = problem.q().iter().fold(0.0_f64, |a, x| a.max(x.abs()));
         let outside = |v: f64, bound: f64| v != 0.0 && !(1.0 / bound..=bound).contains(&v);
         // the reactions are of the order of q/W: W ~ 1e74 with q ~ 1e-83 has r ~ 1e-157,
         // whose squares in the norms are subnormal (a residual of 0 and a "converged"
@@ -301,10 +306,8 @@ impl UzawaSolver {
             }
         };
         let (sw, sq) = (power(w_max), power(q_max));
-        let w = problem.w().iter().map(|v| v * sw).collect();
-        let q = problem.q().iter().map(|v| v * sq).collect();
-        let (dim, mu) = (problem.dimension(), problem.mu().to_vec());
-        let scaled = ReducedProblem::with_asymmetry_tolerance(dim, w, q, mu, 0.0)?;
+        // in the problem's own storage: a sparse W stays sparse
+        let scaled = problem.rescaled(sw, sq)?;
         let r_scaled: Vec<f64> = r.iter().map(|v| v * sq / sw).collect();
         let start = r.iter().any(|&v| v != 0.0).then_some(r_scaled.as_slice());
         let mut sol = self.solve_with_states(&scaled, laws, states, start)?;

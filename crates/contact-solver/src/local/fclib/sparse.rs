@@ -9,6 +9,8 @@
 //! Duplicates are summed (CSparse's `cs_compress`); `fclib.h` (FCLIB 3.0) and Siconos'
 //! `fclib_interface.c` read and write the layout above.
 
+use crate::local::csr::CsrMatrix;
+
 /// Which of FCLIB's three sparse forms, as its `nz` dataset says.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SparseForm {
@@ -217,6 +219,66 @@ impl RawSparse {
         }
     }
 
+    /// `a` (sparse, `m × m`) in `form`, keeping every stored entry whose bits are not those of
+    /// `+0.0` (the entries [`from_dense`](Self::from_dense) keeps of the same `W`), without
+    /// forming a dense matrix.
+    pub fn from_csr(a: &CsrMatrix, form: SparseForm) -> Self {
+        let m = a.size();
+        let kept = |v: f64| v.to_bits() != 0;
+        let (mut p, mut i, mut x) = (Vec::new(), Vec::new(), Vec::new());
+        match form {
+            SparseForm::Triplet | SparseForm::CompressedRow => {
+                if form == SparseForm::CompressedRow {
+                    p.push(0);
+                }
+                for k in 0..m {
+                    let (cols, vals) = a.row(k);
+                    for (&c, &v) in cols.iter().zip(vals).filter(|(_, v)| kept(**v)) {
+                        if form == SparseForm::Triplet {
+                            i.push(k as i64);
+                            p.push(i64::from(c));
+                        } else {
+                            i.push(i64::from(c));
+                        }
+                        x.push(v);
+                    }
+                    if form == SparseForm::CompressedRow {
+                        p.push(x.len() as i64);
+                    }
+                }
+            }
+            SparseForm::CompressedColumn => {
+                // the transpose's rows, by a counting sort on the columns
+                let mut count = vec![0usize; m + 1];
+                for (_, c, v) in a.triplets() {
+                    if kept(v) {
+                        count[c + 1] += 1;
+                    }
+                }
+                for c in 0..m {
+                    count[c + 1] += count[c];
+                }
+                p = count.iter().map(|&c| c as i64).collect();
+                let mut next = count;
+                i = vec![0; next[m]];
+                x = vec![0.0; next[m]];
+                for (r, c, v) in a.triplets().filter(|t| kept(t.2)) {
+                    i[next[c]] = r as i64;
+                    x[next[c]] = v;
+                    next[c] += 1;
+                }
+            }
+        }
+        Self {
+            m,
+            n: m,
+            form,
+            p,
+            i,
+            x,
+        }
+    }
+
     /// FCLIB's `nz`: `-1`, `-2` or the triplet count.
     pub fn nz(&self) -> i64 {
         match self.form {
@@ -246,6 +308,30 @@ mod tests {
         1.0, 0.0, 2.0,
         0.0, -0.0, 3.0,
     ];
+
+    #[test]
+    fn from_csr_writes_what_from_dense_writes() {
+        // 2D, two contacts, coupled; one explicit zero (1, 3) inside a stored block
+        let rows = [0, 0, 1, 1, 2, 3, 2, 0];
+        let cols = [0, 1, 0, 1, 2, 3, 0, 2];
+        let vals = [2.0, 0.5, 0.5, 1.0, 3.0, 1.5, 0.25, 0.25];
+        let a = CsrMatrix::from_triplets(2, 4, &rows, &cols, &vals).unwrap();
+        let mut dense = vec![0.0; 16];
+        for (r, c, v) in a.triplets() {
+            dense[r * 4 + c] = v;
+        }
+        for form in [
+            SparseForm::CompressedColumn,
+            SparseForm::CompressedRow,
+            SparseForm::Triplet,
+        ] {
+            assert_eq!(
+                RawSparse::from_csr(&a, form),
+                RawSparse::from_dense(&dense, 4, 4, form),
+                "{form:?}"
+            );
+        }
+    }
 
     #[test]
     fn from_dense_and_back_works_in_every_form() {

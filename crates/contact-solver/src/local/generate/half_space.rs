@@ -296,7 +296,7 @@ mod tests {
         // the regularised self flexibility is larger than the point-load value at the nearest
         // neighbour (ρ = h), as a displacement field peaked under the load must be
         let p = HalfSpace::default().generate().unwrap();
-        let w = p.problem.w();
+        let w = p.problem.w_dense().unwrap();
         let m = p.problem.size();
         let nn_self = w[0];
         let h = p.spacing;

@@ -551,7 +551,7 @@ mod tests {
             ..SpherePile::default()
         };
         let (a, b) = (pile.generate(5).unwrap(), pile.generate(5).unwrap());
-        assert_eq!(a.problem.w(), b.problem.w());
+        assert_eq!(a.problem.w_dense(), b.problem.w_dense());
         assert_eq!(a.problem.q(), b.problem.q());
         for c in &a.contacts {
             assert!(c.gap > -1e-12, "no overlap: {}", c.gap);
