@@ -44,18 +44,6 @@ pub enum SolverError {
         /// The bound it must stay below (`m`).
         bound: usize,
     },
-    /// [`Algorithm::Newton`](crate::Algorithm::Newton) on a sparse `W` assembles its reduced
-    /// system dense, which is refused beyond
-    /// [`NEWTON_SPARSE_MAX_UNKNOWNS`](crate::local::NEWTON_SPARSE_MAX_UNKNOWNS) unknowns.
-    #[error(
-        "Newton on a sparse W with {unknowns} unknowns: its reduced system is assembled dense, which is limited to {limit} unknowns (use Algorithm::AndersonGaussSeidel, O(stored entries) per sweep, or Algorithm::Auto, which picks it)"
-    )]
-    NewtonSystemTooLarge {
-        /// The problem's unknowns `m`.
-        unknowns: usize,
-        /// The limit.
-        limit: usize,
-    },
     /// The flexibility matrix `W` is not symmetric to the relative tolerance `1e-12·max|W|`.
     #[error(
         "W is not symmetric: |W[{row}][{col}] - W[{col}][{row}]| = {difference:e} exceeds {tolerance:e}"

@@ -32,10 +32,9 @@
 //! `W` only through `delassus` (`dot_row`, `axpy_row`, `axpy_rows2/3`, `mul_into`,
 //! `diagonal_block`), which matches the storage once per row: the dense loops are the zipped
 //! slices they were, a sparse sweep costs `O(stored entries)`, and both storages of the same
-//! `W` give the same bits (`tests/sparse.rs`). Nothing densifies a sparse `W`; Newton's
-//! *reduced system* is assembled dense, so Newton on a sparse `W` is limited to
-//! [`NEWTON_SPARSE_MAX_UNKNOWNS`] unknowns and [`Algorithm::Auto`] picks the accelerated sweep
-//! beyond.
+//! `W` give the same bits (`tests/sparse.rs`). Nothing densifies a sparse `W`: Newton
+//! assembles its reduced system on the block pattern and factorises it with faer's sparse LU
+//! ([`newton`]).
 //!
 //! Imports go one way: `csr` → `delassus` → `problem`; `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
 //! `classic` → `solver` → `adhesion`.
@@ -82,12 +81,20 @@
 //!   Gauss–Seidel does not in 10 000 sweeps (issue 8's stress suite: a stiffness contrast of
 //!   1e8, 40 sweeps). It is the default; choose Newton for Coulomb-type problems up to about a
 //!   thousand contacts.
-//! - [`Algorithm::Auto`] applies that rule per problem: Newton when every law has a friction
-//!   coefficient and `n_c ≤` [`AUTO_NEWTON_MAX_CONTACTS`] (1000) (and, for a sparse `W`,
-//!   `m ≤` [`NEWTON_SPARSE_MAX_UNKNOWNS`]), else the accelerated
-//!   Gauss–Seidel sweep. It is the default of `bipo solve-local`; the simulation's default
-//!   stays the accelerated sweep, whose iteration counts the seed's tables and
-//!   `docs/benchmarks.md` quote.
+//! - [`Algorithm::Auto`] applies a rule per problem, re-measured on 2D and 3D problems of
+//!   every kind with `W` dense and sparse (`examples/auto_rule.rs`, `docs/benchmarks.md`
+//!   "Which algorithm, measured"): for Coulomb-type laws, Newton on a dense `W` with
+//!   `n_c ≤` [`AUTO_NEWTON_MAX_CONTACTS`] (1000) — 2–3× faster than the sweep on FE problems,
+//!   even with it on the 3D half-space and the sphere piles — and on a sparse `W` whose contact
+//!   graph fills a factorisation by at most [`AUTO_NEWTON_MAX_FILL`] (10; geometric graphs:
+//!   piles fill 3–5 and Newton is 1.3–1.9× faster) up to
+//!   [`AUTO_SPARSE_NEWTON_MAX_CONTACTS`]; else the accelerated Gauss–Seidel sweep (random
+//!   sparse couplings fill 27–87 and Newton is 3–20× slower). Random *dense* problems, which
+//!   are well conditioned (the sweep converges in about 25 iterations), are the one class where
+//!   the rule picks the slower one (Newton 3–6× slower); FE and multibody problems are what
+//!   users bring. It is the default of `bipo solve-local`; the simulation's default stays the
+//!   accelerated sweep, whose iteration counts the seed's tables and `docs/benchmarks.md`
+//!   quote.
 //!
 //! # The penalty ρ
 //! The base value is `ρ⁰_i = 1/λ_max(W_ii)`, where `W_ii` is contact `i`'s diagonal block
@@ -185,7 +192,8 @@ pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
 #[cfg(feature = "fe")]
 pub(crate) use residual::{contact_statuses, natural_residual};
 pub use settings::{
-    ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS, Algorithm,
-    DEFAULT_OMEGA, NEWTON_SPARSE_MAX_UNKNOWNS, Solution, UzawaReport, UzawaSettings,
+    ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS,
+    AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm, DEFAULT_OMEGA, Solution,
+    UzawaReport, UzawaSettings,
 };
 pub use solver::{CHECK_FACTOR, RESCALE_ABOVE, UzawaSolver, solve_coulomb};

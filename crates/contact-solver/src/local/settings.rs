@@ -35,15 +35,17 @@ pub enum Algorithm {
     /// Anderson acceleration (safeguarded) of the Uzawa step; see
     /// [`anderson`](crate::local::anderson).
     AndersonUzawa,
-    /// Semi-smooth Newton on `r − P_K(r + ρ v(W r + q)) = 0` with a dense LU of the reduced
-    /// Newton system, a line search and Gauss–Seidel fallback. Needs
+    /// Semi-smooth Newton on `r − P_K(r + ρ v(W r + q)) = 0` with an LU of the reduced
+    /// Newton system (dense, or faer's sparse LU on a sparse `W`), a line search and
+    /// Gauss–Seidel fallback. Needs
     /// [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient); see [`newton`](crate::local::newton).
     Newton,
     /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
-    /// [`Newton`](Self::Newton) when every law has a friction coefficient and there are at
-    /// most [`AUTO_NEWTON_MAX_CONTACTS`] contacts (and, for a sparse `W`, at most
-    /// [`NEWTON_SPARSE_MAX_UNKNOWNS`] unknowns), else
-    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel); the report names the one that ran.
+    /// [`Newton`](Self::Newton) when every law has a friction coefficient and, for a dense `W`,
+    /// there are at most [`AUTO_NEWTON_MAX_CONTACTS`] contacts, for a sparse `W` at most
+    /// [`AUTO_SPARSE_NEWTON_MAX_CONTACTS`] contacts whose graph fills a factorisation by at
+    /// most [`AUTO_NEWTON_MAX_FILL`]; else [`AndersonGaussSeidel`](Self::AndersonGaussSeidel).
+    /// The report names the one that ran.
     Auto,
 }
 
@@ -53,13 +55,18 @@ pub enum Algorithm {
 /// `docs/benchmarks.md`, "Local solver: work–precision").
 pub const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
 
-/// [`Algorithm::Newton`] on a problem with a sparse `W` assembles its reduced Newton system
-/// (at most `m` unknowns) dense, so it is allowed up to this many unknowns `m` (a 2000 × 2000
-/// dense LU is about 5 GFlop, 32 MB); beyond, it is
-/// [`SolverError::NewtonSystemTooLarge`](crate::SolverError::NewtonSystemTooLarge) and
-/// [`Algorithm::Auto`] picks the accelerated Gauss–Seidel sweep, whose cost stays
-/// `O(stored entries)` per sweep.
-pub const NEWTON_SPARSE_MAX_UNKNOWNS: usize = 2000;
+/// [`Algorithm::Auto`] on a sparse `W` picks Newton (faer's sparse LU) when the contact graph
+/// (a node per contact, an edge per stored block) fills its symbolic Cholesky factor by at
+/// most this ratio `nnz(L)/nnz(tril)`. Measured (`examples/auto_rule.rs`, `docs/benchmarks.md`
+/// "Which algorithm, measured"): shaken sphere piles fill 3.3 (425 contacts) and 4.7 (805),
+/// and Newton is 1.3–1.9× faster than the accelerated sweep there; random block-sparse
+/// problems fill 27 (1000 contacts), 47 (2D, 2000) and 87 (4000), and Newton is 3–20× slower.
+pub const AUTO_NEWTON_MAX_FILL: f64 = 10.0;
+
+/// [`Algorithm::Auto`] probes the fill of a sparse `W` (an AMD ordering and a symbolic
+/// factorisation of the contact graph: 0.3–1.2 ms at 425–1000 contacts, 24 ms at 4000) only up
+/// to this many contacts; beyond, it picks the accelerated sweep.
+pub const AUTO_SPARSE_NEWTON_MAX_CONTACTS: usize = 20_000;
 
 /// Settings of the reduced solver: `Default` and the `with_*` setters (the struct is
 /// `#[non_exhaustive]`, so new settings do not break callers).

@@ -3,15 +3,15 @@
 
 use super::anderson::{AndersonScratch, BaseMap};
 use super::classic::ClassicScratch;
-use super::newton::NewtonScratch;
+use super::newton::{NewtonScratch, factor_fill};
 use super::plain;
 use super::problem::ReducedProblem;
 use super::residual::{
     contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm,
 };
 use super::settings::{
-    AUTO_NEWTON_MAX_CONTACTS, Algorithm, NEWTON_SPARSE_MAX_UNKNOWNS, Solution, UzawaReport,
-    UzawaSettings,
+    AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm,
+    Solution, UzawaReport, UzawaSettings,
 };
 use super::sweep::Sweeps;
 use crate::error::SolverError;
@@ -26,6 +26,21 @@ pub const CHECK_FACTOR: f64 = 1e3;
 /// `W`, `q` or the reactions' scale `max|q|/max|W|` with magnitudes beyond
 /// `[1/RESCALE_ABOVE, RESCALE_ABOVE]` are rescaled internally (scale-invariant laws only).
 pub const RESCALE_ABOVE: f64 = 1e100;
+
+/// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
+/// [`AUTO_NEWTON_MAX_FILL`]): Newton on a dense `W` up to [`AUTO_NEWTON_MAX_CONTACTS`]
+/// contacts, on a sparse `W` up to [`AUTO_SPARSE_NEWTON_MAX_CONTACTS`] contacts whose graph
+/// fills a factorisation by at most [`AUTO_NEWTON_MAX_FILL`].
+fn newton_pays(problem: &ReducedProblem) -> bool {
+    let nc = problem.contact_count();
+    match problem.w_sparse() {
+        None => nc <= AUTO_NEWTON_MAX_CONTACTS,
+        Some(a) => {
+            nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
+                && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
+        }
+    }
+}
 
 /// The reduced-problem solver: settings plus scratch buffers reused across solves.
 ///
@@ -120,9 +135,7 @@ impl UzawaSolver {
         let r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
         if st.algorithm == Algorithm::Auto {
-            let newton_fits = problem.contact_count() <= AUTO_NEWTON_MAX_CONTACTS
-                && (!problem.is_sparse() || problem.size() <= NEWTON_SPARSE_MAX_UNKNOWNS);
-            st.algorithm = if mu.is_some() && newton_fits {
+            st.algorithm = if mu.is_some() && newton_pays(problem) {
                 Algorithm::Newton
             } else {
                 Algorithm::AndersonGaussSeidel

@@ -1,0 +1,199 @@
+//! The measurement behind [`Algorithm::Auto`]'s rule (issue 14): Newton, the accelerated
+//! Gauss–Seidel sweep (AGS) and the plain sweep (GS) on the kinds of problems users bring, in
+//! 2D and 3D, with `W` dense and sparse, timed in one run with the algorithms alternated.
+//!
+//! ```text
+//! cargo run --release -p contact-solver --example auto_rule -- [ROUNDS]
+//! ```
+//! Timing: cold start (`r = 0`), one thread (`faer::Par::Seq`), fallback off, tolerance 1e-8,
+//! at most 5 000 iterations; `ROUNDS` (default 5) rounds, each timing every algorithm once on
+//! every problem (alternated, so the machine's load falls on all alike), and the **median**
+//! per (problem, algorithm). A round stops timing an algorithm on a problem once one run
+//! took over 2 s (its count is then below `ROUNDS`).
+//!
+//! Problems: the 2D plane-strain Hertz scene (P2, `M × M` cells) frictionless and sliding
+//! (`μ = 0.3`, `q_t + 10⁻⁴`), random dense problems ([`random_problem_in`]), the 3D elastic
+//! half-space under a sliding sphere ([`half_space`]), shaken piles of rigid spheres
+//! ([`multibody`], rank-deficient `W`) stored dense and sparse, and random block-sparse
+//! problems ([`random_sparse_problem`]).
+//!
+//! [`half_space`]: contact_solver::local::generate::half_space
+//! [`multibody`]: contact_solver::local::generate::multibody
+
+#[path = "../tests/support/hertz_scene.rs"]
+mod hertz_scene;
+
+use contact_solver::local::generate::half_space::{HalfSpace, Indenter};
+use contact_solver::local::generate::multibody::SpherePile;
+use contact_solver::local::generate::{random_problem_in, random_sparse_problem};
+use contact_solver::{Algorithm, ReducedProblem, SimulationSettings, UzawaSettings, UzawaSolver};
+use fem_core::{ElementKind, Idealization};
+use hertz_scene::HertzScene;
+use std::error::Error;
+use std::time::Instant;
+
+const ALGORITHMS: [Algorithm; 4] = [
+    Algorithm::Newton,
+    Algorithm::AndersonGaussSeidel,
+    Algorithm::GaussSeidel,
+    Algorithm::Auto,
+];
+
+/// The same problem with `W` stored sparse (its non-zero entries).
+fn sparse_twin(p: &ReducedProblem) -> Result<ReducedProblem, Box<dyn Error>> {
+    let (m, w) = (p.size(), p.w_dense().ok_or("dense")?);
+    let (mut i, mut j, mut v) = (Vec::new(), Vec::new(), Vec::new());
+    for a in 0..m {
+        for b in 0..m {
+            if w[a * m + b] != 0.0 {
+                i.push(a);
+                j.push(b);
+                v.push(w[a * m + b]);
+            }
+        }
+    }
+    Ok(ReducedProblem::from_triplets(
+        p.dimension(),
+        &i,
+        &j,
+        &v,
+        p.q().to_vec(),
+        p.mu().to_vec(),
+    )?)
+}
+
+fn hertz(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn Error>> {
+    let scene = HertzScene::new(Idealization::PlaneStrain, ElementKind::Tri6, cells);
+    let mut sim = scene.simulation(
+        SimulationSettings::default().with_flexibility(contact_solver::FlexibilityMode::Dense),
+    );
+    sim.step(1.0, 1.0)?;
+    let p = sim.last_reduced_problem().ok_or("no problem")?.clone();
+    let q = (p.q().iter().enumerate())
+        .map(|(k, &a)| if k % 2 == 1 { a + 1e-4 } else { a })
+        .collect();
+    let slide = ReducedProblem::new(
+        p.w_dense().ok_or("dense")?.to_vec(),
+        q,
+        vec![0.3; p.contact_count()],
+    )?;
+    Ok([
+        (format!("2D hertz_{cells}"), p),
+        (format!("2D hertz_{cells}_slide"), slide),
+    ])
+}
+
+fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
+    let mut out = Vec::new();
+    for cells in [16, 32] {
+        out.extend(hertz(cells)?);
+    }
+    out.push(("2D random_200".into(), random_problem_in(2, 200, 5)));
+    out.push((
+        "2D sparse random_2000".into(),
+        random_sparse_problem(2, 2000, 4, 6),
+    ));
+    for (name, cells) in [("3D halfspace_12", 12), ("3D halfspace_24", 24)] {
+        let hs = HalfSpace {
+            cells_across: cells,
+            indenter: Indenter::Sphere { radius: 2.5 },
+            ..HalfSpace::default()
+        };
+        out.push((name.into(), hs.generate()?.problem));
+    }
+    out.push(("3D random_100".into(), random_problem_in(3, 100, 1)));
+    out.push(("3D random_500".into(), random_problem_in(3, 500, 3)));
+    let shaken = SpherePile {
+        jitter: 0.05,
+        threshold: 0.2,
+        initial_speed: 0.05,
+        ..SpherePile::default()
+    };
+    for (nx, layers, seed) in [(5, 5, 2), (7, 5, 3)] {
+        let p = SpherePile {
+            nx,
+            ny: nx,
+            layers,
+            ..shaken
+        }
+        .generate(seed)?
+        .problem;
+        let n = p.contact_count();
+        out.push((format!("3D pile_{nx}x{nx}x{layers} ({n}) dense"), p.clone()));
+        out.push((
+            format!("3D pile_{nx}x{nx}x{layers} ({n}) sparse"),
+            sparse_twin(&p)?,
+        ));
+    }
+    for (n, seed) in [(1000, 7), (4000, 8)] {
+        out.push((
+            format!("3D sparse random_{n}"),
+            random_sparse_problem(3, n, 4, seed),
+        ));
+    }
+    Ok(out)
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let rounds: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(5);
+    let problems = problems()?;
+    let na = ALGORITHMS.len();
+    let mut times = vec![vec![Vec::<f64>::new(); na]; problems.len()];
+    let mut info = vec![vec![(0usize, false, Algorithm::Auto); na]; problems.len()];
+    for _ in 0..rounds {
+        for (k, (_, p)) in problems.iter().enumerate() {
+            let laws = p.coulomb_laws();
+            for (a, &algorithm) in ALGORITHMS.iter().enumerate() {
+                if times[k][a].iter().any(|&t| t > 2000.0) {
+                    continue;
+                }
+                let st = UzawaSettings::default()
+                    .with_algorithm(algorithm)
+                    .with_tol(1e-8)
+                    .with_max_iterations(5_000)
+                    .with_fallback(false)
+                    .with_accept_non_converged(true);
+                let t0 = Instant::now();
+                let sol = UzawaSolver::new(st).solve(p, &laws)?;
+                times[k][a].push(1e3 * t0.elapsed().as_secs_f64());
+                info[k][a] = (
+                    sol.report.iterations,
+                    sol.report.converged,
+                    sol.report.algorithm,
+                );
+            }
+        }
+    }
+    println!("| problem | n_c | W | Newton | AGS | GS | Auto (picks) |");
+    println!("|---|---|---|---|---|---|---|");
+    for (k, (name, p)) in problems.iter().enumerate() {
+        let mut cells = Vec::new();
+        for a in 0..na {
+            let t = &mut times[k][a];
+            t.sort_by(f64::total_cmp);
+            let (it, ok, picked) = info[k][a];
+            let mark = if ok { "" } else { " not conv." };
+            let pick = if ALGORITHMS[a] == Algorithm::Auto {
+                format!(" {picked:?}")
+            } else {
+                String::new()
+            };
+            cells.push(format!(
+                "{:.3} ({it}{mark}, ×{}){pick}",
+                t[t.len() / 2],
+                t.len()
+            ));
+        }
+        println!(
+            "| {name} | {} | {} | {} |",
+            p.contact_count(),
+            if p.is_sparse() { "sparse" } else { "dense" },
+            cells.join(" | ")
+        );
+    }
+    Ok(())
+}
