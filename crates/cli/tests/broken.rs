@@ -138,7 +138,8 @@ fn a_malformed_reduced_problem_is_an_error() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(
-        stderr.contains("bad.json") && stderr.contains("invalid size of `W`"),
+        stderr.contains("bad.json")
+            && stderr.contains("W given as a flat list has 3 numbers: expected m² = 4"),
         "{stderr}"
     );
     assert!(!stderr.contains("panicked"));

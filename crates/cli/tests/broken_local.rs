@@ -1,7 +1,8 @@
 //! Bad reduced problems (issue 15): every file of `tests/broken_local/` is a problem
 //! `{"dim", "W", "q", "mu"}` with one mistake, listed in `tests/broken_local/expect.txt` with
-//! the fragment of the message `bipo solve-local` must print (`-`: the message is the
-//! library's and is only required to be an error). For each: exit code 2, the file named, the
+//! the fragment of the message `bipo solve-local` must print (`-`: only an error is required;
+//! no file uses it since the JSON reader's messages were made specific). For each: exit code
+//! 2, the file named, the
 //! fragment, no panic; and the same text through `ReducedProblem::from_json` is an `Err`, never
 //! a panic. Then bad problems built in code through `ReducedProblem::new`.
 

@@ -140,6 +140,30 @@ pub enum SolverError {
         /// Natural-map residual of every iteration.
         history: Vec<f64>,
     },
+    /// The [stall detector](crate::local::stall) stopped the iteration: its residual had not
+    /// halved over the last [`stall_window`](crate::UzawaSettings::stall_window) iterations
+    /// (nor over the second half of the run) — typically a problem with no solution (a
+    /// rank-deficient `W` with incompatible `q`), or one the algorithm cannot solve.
+    #[error(
+        "the contact iteration stalled: {algorithm}{} made no progress, stopped after {iterations} iterations at residual {residual:e} (best {best_residual:e}); the problem may have no solution",
+        fallback_note(fallback_from)
+    )]
+    Stalled {
+        /// The algorithm that stalled (the fallback's when there was one), by the name of its
+        /// [`Algorithm`](crate::Algorithm) variant ([`Algorithm::name`](crate::Algorithm::name)).
+        algorithm: &'static str,
+        /// The algorithm tried first, when the one that stalled was the fallback
+        /// ([`UzawaSettings::fallback`](crate::UzawaSettings::fallback)).
+        fallback_from: Option<&'static str>,
+        /// Iterations done (of both runs with a fallback).
+        iterations: usize,
+        /// Natural-map residual at the last iterate.
+        residual: f64,
+        /// The smallest natural-map residual of the run that stalled.
+        best_residual: f64,
+        /// Natural-map residual of every iteration (of both runs with a fallback).
+        history: Vec<f64>,
+    },
     /// A contact zone or obstacle whose geometry makes no sense (zero-length LINE, node out of
     /// range, empty node set, …).
     #[error("invalid contact geometry: {0}")]
@@ -175,6 +199,12 @@ pub enum SolverError {
         /// The largest state change of every iteration.
         history: Vec<f64>,
     },
+}
+
+/// ` (the fallback from X)`, or nothing.
+fn fallback_note(from: &Option<&'static str>) -> String {
+    from.map(|a| format!(" (the fallback after {a})"))
+        .unwrap_or_default()
 }
 
 #[cfg(feature = "serde")]

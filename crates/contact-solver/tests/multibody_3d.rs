@@ -111,7 +111,7 @@ fn resting_pile_in_a_box_external_impulse_balances_gravity() {
 }
 
 /// Every algorithm on `pile`: those that converge agree with Newton on `x` and `H r` (unique)
-/// to 1e-6 of their size; those that do not return `NotConverged` with a history.
+/// to 1e-6 of their size; those that do not return `NotConverged` or `Stalled` with a history.
 fn algorithms_agree(pile: &PileProblem) -> Vec<(Algorithm, Option<f64>)> {
     let p = &pile.problem;
     let reference = solve(p, Algorithm::Newton, 1e-10).expect("Newton converges");
@@ -137,7 +137,9 @@ fn algorithms_agree(pile: &PileProblem) -> Vec<(Algorithm, Option<f64>)> {
                 let dr = max_diff(&sol.r, &reference.r) / max_abs(&reference.r);
                 out.push((algorithm, Some(dr)));
             }
-            Err(SolverError::NotConverged { history, .. }) => {
+            Err(
+                SolverError::NotConverged { history, .. } | SolverError::Stalled { history, .. },
+            ) => {
                 assert!(!history.is_empty(), "{algorithm:?}: a history");
                 out.push((algorithm, None));
             }

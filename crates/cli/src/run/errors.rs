@@ -34,6 +34,10 @@ pub(super) fn step_error(e: SolverError, phase: &Phase, t: f64) -> CliError {
         SolverError::NotConverged { .. } => {
             " — raise [solver] max_iterations or tol, or set accept_non_converged = true"
         }
+        SolverError::Stalled { .. } => {
+            " — check the contact setup (a rigid-body mode, contacts that fight each other), or \
+             set accept_non_converged = true"
+        }
         SolverError::AdhesionNotConverged { .. } => {
             " — raise [solver] max_adhesion_iterations or adhesion_tol, or take smaller steps"
         }

@@ -53,6 +53,7 @@
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm};
 use super::settings::UzawaSettings;
+use super::stall::StallDetector;
 use super::sweep::Sweeps;
 use contact_laws::ContactLaw;
 
@@ -84,6 +85,8 @@ pub(crate) struct AndersonRun {
     pub iterations: usize,
     /// `true` when the stopping rule was met.
     pub converged: bool,
+    /// `true` when the [stall detector](super::stall) stopped the run.
+    pub stalled: bool,
     /// Relative natural residual at the last judged point.
     pub residual: f64,
     /// Relative change of the last base step.
@@ -239,6 +242,7 @@ impl AndersonScratch {
         let mut run = AndersonRun {
             iterations: 0,
             converged: false,
+            stalled: false,
             residual: f64::INFINITY,
             change: f64::INFINITY,
         };
@@ -247,6 +251,7 @@ impl AndersonScratch {
         let mut f_prev_norm = f64::INFINITY;
         // Plain steps still to do before mixing again, and the rejections so far.
         let (mut plain_left, mut rejections) = (0_usize, 0_u32);
+        let mut stall = StallDetector::new(settings.stall_window);
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             self.g.copy_from_slice(r);
@@ -291,6 +296,10 @@ impl AndersonScratch {
                 r.copy_from_slice(&self.g);
                 x.copy_from_slice(&self.xg);
                 run.converged = true;
+                break;
+            }
+            if stall.stalled(run.iterations, run.residual) {
+                run.stalled = true;
                 break;
             }
             if accelerated && f_norm > f_prev_norm {

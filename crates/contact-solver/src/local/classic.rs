@@ -103,6 +103,7 @@ use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm, pick, rho_of_block};
 use super::settings::UzawaSettings;
+use super::stall::StallDetector;
 use crate::error::SolverError;
 use contact_laws::{ContactLaw, LawError};
 
@@ -135,6 +136,11 @@ pub(crate) struct ClassicRun {
     pub tangential_sweeps: usize,
     /// `true` when the stopping rule was met.
     pub converged: bool,
+    /// `true` when the [stall detector](super::stall) stopped the run: on the natural
+    /// residual of the outer iterations (counted in outer iterations, one per history entry),
+    /// or on the change of a sub-problem's sweeps (counted in that sub-problem's sweeps: a
+    /// sub-problem with no solution never meets its own rule).
+    pub stalled: bool,
     /// Relative natural residual at the last outer iteration.
     pub residual: f64,
     /// Relative change of `r` over the last outer iteration.
@@ -306,17 +312,27 @@ impl ClassicScratch {
             outer_iterations: 0,
             tangential_sweeps: 0,
             converged: false,
+            stalled: false,
             residual: f64::INFINITY,
             change: f64::INFINITY,
         };
+        let window = settings.stall_window;
+        let mut stall = StallDetector::new(window);
         while run.iterations < max {
             self.r_prev.copy_from_slice(r);
             // 1. Signorini at fixed r_t.
+            let mut inner = StallDetector::new(window);
+            let mut sweeps = 0;
             while run.iterations < max {
                 run.iterations += 1;
+                sweeps += 1;
                 let change_n =
                     sor_sweep(w, &self.inv_diag, omega, d, 0, r, x, |_, r_n| r_n.max(0.0));
                 if change_n <= tol {
+                    break;
+                }
+                if inner.stalled(sweeps, change_n) {
+                    run.stalled = true;
                     break;
                 }
             }
@@ -332,8 +348,11 @@ impl ClassicScratch {
                 }
                 // 3. Friction at fixed threshold.
                 let s = &self.threshold;
-                while run.iterations < max {
+                let mut inner = StallDetector::new(window);
+                let mut sweeps = 0;
+                while run.iterations < max && !run.stalled {
                     run.iterations += 1;
+                    sweeps += 1;
                     run.tangential_sweeps += 1;
                     let change_t = if DT == 1 {
                         sor_sweep(w, &self.inv_diag, omega, 2, 1, r, x, |i, r_t| {
@@ -343,6 +362,10 @@ impl ClassicScratch {
                         disc_sweep(w, &self.inv_lambda_t, omega, s, r, x)
                     };
                     if change_t <= tol {
+                        break;
+                    }
+                    if inner.stalled(sweeps, change_t) {
+                        run.stalled = true;
                         break;
                     }
                 }
@@ -366,6 +389,10 @@ impl ClassicScratch {
             history.push(run.residual);
             if stop(&run) {
                 run.converged = true;
+                break;
+            }
+            run.stalled |= stall.stalled(run.outer_iterations, run.residual);
+            if run.stalled {
                 break;
             }
         }

@@ -10,7 +10,8 @@
 //!   (feature `fclib`) FCLIB's HDF5 files in and out; [`generate`]: seeded random problems,
 //!   dense and sparse;
 //! - `settings`: [`Algorithm`], [`UzawaSettings`], [`UzawaReport`], [`Solution`];
-//!   `residual`: the natural map, norms, statuses (the toolbox every algorithm uses);
+//!   `residual`: the natural map, norms, statuses, and [`stall`]: the stall detector (the
+//!   toolbox every algorithm uses);
 //! - one file per algorithm: `uzawa`, `gauss_seidel` (the base sweeps, on the shared `sweep`
 //!   state), `plain` (their stopping loop), [`anderson`], [`newton`], [`classic`], and
 //!   [`matrix_free`] (the sweep on an operator instead of a matrix);
@@ -36,7 +37,7 @@
 //! assembles its reduced system on the block pattern and factorises it with faer's sparse LU
 //! ([`newton`]).
 //!
-//! Imports go one way: `csr` → `delassus` → `problem`; `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
+//! Imports go one way: `csr` → `delassus` → `problem`; `stall` → `residual`/`settings` → the sweeps → `plain`/`anderson`/`newton`/
 //! `classic` → `solver` → `adhesion`.
 //!
 //! # The iteration
@@ -154,13 +155,22 @@
 //!   `r_t − clamp(r_t − ρ⁰ x_t, ±μ̄ r_n)`, relative like the residual) to [`CHECK_FACTOR`]
 //!   × `tol`: with a huge `μ̄` the sum `x_n + μ̄|x_t|` can absorb a penetration and the
 //!   bipotential residual reads 0 on a wrong answer (`μ = 1e100` did).
-//! - **Fallback.** When the algorithm stalls (no convergence in `max_iterations`) or fails the
-//!   check, [`UzawaSettings::fallback`] (on by default) solves again with
+//! - **Fallback.** When the algorithm does not converge (it stalls, or reaches
+//!   `max_iterations`) or fails the check, [`UzawaSettings::fallback`] (on by default) solves
+//!   again with
 //!   [`Algorithm::ClassicRccm`], which splits contact and friction and does not see
 //!   `μ̄|x_t|`: one contact that sticks with `μ` from 100 to 1e100 is solved by every
 //!   algorithm this way. [`UzawaReport::fallback_from`] names the algorithm that failed;
-//!   the error, when both fail, carries both histories. The fallback costs the first
-//!   algorithm's `max_iterations`: a stall detector that stops it earlier is future work.
+//!   the error, when both fail, carries both histories.
+//! - **Stalls** (issue 14: a positive semidefinite, rank-deficient `W` whose `q` admits no
+//!   solution, or an algorithm that cannot solve the problem). The [`stall`] detector, shared
+//!   by every algorithm loop, stops a run whose residual has not halved over the last
+//!   `max(`[`UzawaSettings::stall_window`]`, k/2)` of its `k` iterations, so the fallback starts
+//!   after a few windows instead of after `max_iterations`, and the error is
+//!   [`SolverError::Stalled`](crate::SolverError::Stalled) (the residual it stalled at, the
+//!   best one, the iterations, the history); with `accept_non_converged`,
+//!   [`UzawaReport::stalled`] says so. The default window is far above the longest plateau of
+//!   any converging run measured, so no converging run changes by one iteration.
 
 pub mod adhesion;
 pub mod anderson;
@@ -181,6 +191,7 @@ pub mod problem;
 mod residual;
 mod settings;
 mod solver;
+pub mod stall;
 mod sweep;
 mod uzawa;
 

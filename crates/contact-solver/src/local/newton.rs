@@ -96,6 +96,7 @@ use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{local, natural_residual, norm, pick, set_local};
 use super::settings::UzawaSettings;
+use super::stall::StallDetector;
 use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
@@ -169,6 +170,8 @@ pub(crate) struct NewtonRun {
     pub newton_steps: usize,
     /// `true` when the stopping rule was met.
     pub converged: bool,
+    /// `true` when the [stall detector](super::stall) stopped the run.
+    pub stalled: bool,
     /// Relative natural residual at the returned iterate.
     pub residual: f64,
     /// Relative change of the last iteration.
@@ -542,12 +545,14 @@ impl NewtonScratch {
             iterations: 0,
             newton_steps: 0,
             converged: false,
+            stalled: false,
             residual: f64::INFINITY,
             change: f64::INFINITY,
         };
         let mut phi = self.refresh::<L, DT>(laws, states, r, x);
         // Once the residual is ≤ tol, sweeps polish r until the change is ≤ tol too.
         let mut polishing = false;
+        let mut stall = StallDetector::new(settings.stall_window);
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             let mut stepped = false;
@@ -604,6 +609,10 @@ impl NewtonScratch {
             history.push(run.residual);
             if run.residual <= tol && run.change <= tol {
                 run.converged = true;
+                break;
+            }
+            if stall.stalled(run.iterations, run.residual) {
+                run.stalled = true;
                 break;
             }
             polishing = run.residual <= tol;

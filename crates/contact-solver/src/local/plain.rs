@@ -4,6 +4,7 @@
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm};
 use super::settings::{Algorithm, UzawaSettings};
+use super::stall::StallDetector;
 use super::sweep::Sweeps;
 use contact_laws::ContactLaw;
 
@@ -11,13 +12,16 @@ use contact_laws::ContactLaw;
 pub(crate) struct PlainRun {
     pub(crate) iterations: usize,
     pub(crate) converged: bool,
+    /// `true` when the [stall detector](super::stall) stopped the run.
+    pub(crate) stalled: bool,
     pub(crate) residual: f64,
     pub(crate) change: f64,
 }
 
 /// Runs Uzawa steps (`algorithm == Uzawa`, with the global factor `theta`) or Gauss–Seidel
 /// sweeps from `(r, x)` (`x = W r + q`; for Uzawa, `sweeps.v` must hold `v(x)`), pushing the
-/// relative natural residual of every iteration to `history`; `denom_q = max_i ρ⁰_i ‖q‖`.
+/// relative natural residual of every iteration to `history` (stopping early when the
+/// [stall detector](super::stall) fires); `denom_q = max_i ρ⁰_i ‖q‖`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run<L: ContactLaw, const DT: usize>(
     sweeps: &mut Sweeps,
@@ -34,9 +38,11 @@ pub(crate) fn run<L: ContactLaw, const DT: usize>(
     let mut run = PlainRun {
         iterations: 0,
         converged: false,
+        stalled: false,
         residual: f64::INFINITY,
         change: f64::INFINITY,
     };
+    let mut stall = StallDetector::new(st.stall_window);
     while run.iterations < st.max_iterations {
         run.iterations += 1;
         let dr2 = match st.algorithm {
@@ -55,6 +61,10 @@ pub(crate) fn run<L: ContactLaw, const DT: usize>(
         history.push(run.residual);
         if run.change <= st.tol && run.residual <= st.tol {
             run.converged = true;
+            break;
+        }
+        if stall.stalled(run.iterations, run.residual) {
+            run.stalled = true;
             break;
         }
     }

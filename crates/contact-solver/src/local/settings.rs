@@ -1,6 +1,7 @@
 //! Settings, report and solution of the reduced-problem solvers, shared by every algorithm
 //! (the stopping rule and the penalty ρ are described in the [layer docs](crate::local)).
 
+use super::stall::DEFAULT_STALL_WINDOW;
 use contact_laws::ContactStatus;
 
 /// Threshold ν of the self-adaptive rule: a step whose ratio exceeds it is redone with ρ/2.
@@ -47,6 +48,26 @@ pub enum Algorithm {
     /// most [`AUTO_NEWTON_MAX_FILL`]; else [`AndersonGaussSeidel`](Self::AndersonGaussSeidel).
     /// The report names the one that ran.
     Auto,
+}
+
+impl Algorithm {
+    /// The variant's name (`"AndersonGaussSeidel"`), as errors carry it.
+    ///
+    /// # Examples
+    /// ```
+    /// assert_eq!(contact_solver::Algorithm::Newton.name(), "Newton");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Uzawa => "Uzawa",
+            Self::GaussSeidel => "GaussSeidel",
+            Self::ClassicRccm => "ClassicRccm",
+            Self::AndersonGaussSeidel => "AndersonGaussSeidel",
+            Self::AndersonUzawa => "AndersonUzawa",
+            Self::Newton => "Newton",
+            Self::Auto => "Auto",
+        }
+    }
 }
 
 /// [`Algorithm::Auto`] picks Newton up to this many contacts: Newton is the fastest on every
@@ -97,13 +118,20 @@ pub struct UzawaSettings {
     /// Return `Ok` with `report.converged == false` instead of
     /// [`SolverError::NotConverged`](crate::SolverError::NotConverged).
     pub accept_non_converged: bool,
-    /// When the chosen algorithm stalls (no convergence in `max_iterations`) or its answer
+    /// When the chosen algorithm does not converge (stopped by the
+    /// [stall detector](crate::local::stall), or `max_iterations` reached) or its answer
     /// fails the independent check of the Signorini–Coulomb conditions, solve again with
     /// [`Algorithm::ClassicRccm`] from the same start (laws with a
     /// [`friction_coefficient`](contact_laws::ContactLaw::friction_coefficient) only; not
     /// with `accept_non_converged`). The report's
     /// [`fallback_from`](UzawaReport::fallback_from) says it happened. Default `true`.
     pub fallback: bool,
+    /// Window of the [stall detector](crate::local::stall): the run stops as stalled when
+    /// its residual has not halved over the last `max(stall_window, k/2)` of its `k`
+    /// iterations. `0` switches the detector off; otherwise at least
+    /// [`MIN_STALL_WINDOW`](crate::local::stall::MIN_STALL_WINDOW). Default
+    /// [`DEFAULT_STALL_WINDOW`](crate::local::stall::DEFAULT_STALL_WINDOW).
+    pub stall_window: usize,
 }
 
 impl Default for UzawaSettings {
@@ -116,6 +144,7 @@ impl Default for UzawaSettings {
             omega: DEFAULT_OMEGA,
             accept_non_converged: false,
             fallback: true,
+            stall_window: DEFAULT_STALL_WINDOW,
         }
     }
 }
@@ -140,6 +169,10 @@ pub struct UzawaReport {
     pub tangential_sweeps: usize,
     /// `true` when the stopping rule was met.
     pub converged: bool,
+    /// `true` when the last run was stopped by the [stall detector](crate::local::stall)
+    /// (its residual stopped decreasing) rather than by `max_iterations`; `converged` is then
+    /// `false`.
+    pub stalled: bool,
     /// Natural-map residual at the returned iterate (relative, see the [layer docs](crate::local)).
     pub residual: f64,
     /// Relative change `‖r_{k+1} − r_k‖/‖r_{k+1}‖` of the last iteration.
@@ -217,6 +250,13 @@ impl UzawaSettings {
     #[must_use]
     pub fn with_omega(mut self, omega: f64) -> Self {
         self.omega = omega;
+        self
+    }
+
+    /// These settings with [`stall_window`](Self::stall_window) replaced.
+    #[must_use]
+    pub fn with_stall_window(mut self, stall_window: usize) -> Self {
+        self.stall_window = stall_window;
         self
     }
 

@@ -13,6 +13,7 @@ use super::settings::{
     AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm,
     Solution, UzawaReport, UzawaSettings,
 };
+use super::stall::MIN_STALL_WINDOW;
 use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
@@ -119,11 +120,15 @@ impl UzawaSolver {
     /// # Errors
     /// [`SolverError::SizeMismatch`] if `laws`, `states` or `r_start` has the wrong length;
     /// [`SolverError::NonFinite`] if `r_start` is not finite, or `tol` or `rho_scale` is not
-    /// finite and positive; [`SolverError::InvalidSetting`] if `omega` is not in `(0, 2)`;
+    /// finite and positive; [`SolverError::InvalidSetting`] if `omega` is not in `(0, 2)` or
+    /// `stall_window` is neither 0 nor at least
+    /// [`MIN_STALL_WINDOW`](crate::local::stall::MIN_STALL_WINDOW);
     /// for [`Algorithm::ClassicRccm`], [`SolverError::NoFrictionCoefficient`] if a law's
     /// [`friction_coefficient`](ContactLaw::friction_coefficient) is `None` and
     /// [`SolverError::InvalidLaw`] if it is negative or not finite;
-    /// [`SolverError::NotConverged`] unless `accept_non_converged`.
+    /// [`SolverError::Stalled`] when the [stall detector](crate::local::stall) stopped the
+    /// (last) run, [`SolverError::NotConverged`] when it reached `max_iterations`, unless
+    /// `accept_non_converged`.
     pub fn solve_with_states<L: ContactLaw>(
         &mut self,
         problem: &ReducedProblem,
@@ -170,6 +175,8 @@ impl UzawaSolver {
         }
         let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.clone())?;
         self.check::<DT>(problem, &mut sol, mu);
+        // the smallest residual of the last run, for the stalled error
+        let mut best = best_of(&sol.report.history);
         if !sol.report.converged
             && st.fallback
             && !st.accept_non_converged
@@ -184,6 +191,7 @@ impl UzawaSolver {
             sol = self.attempt::<L, DT>(classic, problem, laws, states, r)?;
             self.check::<DT>(problem, &mut sol, mu);
             let report = &mut sol.report;
+            best = best_of(&report.history);
             report.fallback_from = Some(st.algorithm);
             report.iterations += first.iterations;
             report.outer_iterations += first.outer_iterations;
@@ -192,10 +200,21 @@ impl UzawaSolver {
             report.history = history;
         }
         if !sol.report.converged && !st.accept_non_converged {
+            let report = sol.report;
+            if report.stalled {
+                return Err(SolverError::Stalled {
+                    algorithm: report.algorithm.name(),
+                    fallback_from: report.fallback_from.map(Algorithm::name),
+                    iterations: report.iterations,
+                    residual: report.residual,
+                    best_residual: best,
+                    history: report.history,
+                });
+            }
             return Err(SolverError::NotConverged {
-                iterations: sol.report.iterations,
-                residual: sol.report.residual,
-                history: sol.report.history,
+                iterations: report.iterations,
+                residual: report.residual,
+                history: report.history,
             });
         }
         sol.report.asymmetry = problem.asymmetry();
@@ -255,6 +274,7 @@ impl UzawaSolver {
             outer_iterations: 0,
             tangential_sweeps: 0,
             converged: true,
+            stalled: false,
             residual: 0.0,
             change: 0.0,
             history: Vec::new(),
@@ -357,6 +377,7 @@ impl UzawaSolver {
         let mut theta = st.rho_scale;
         let (r_, x_, h_) = (&mut r, &mut x, &mut history);
         // (iterations, outer iterations, tangential sweeps, converged, residual, change)
+        let stalled;
         let (iterations, outer_iterations, tangential_sweeps, converged, residual, change) =
             match st.algorithm {
                 Algorithm::Uzawa | Algorithm::GaussSeidel => {
@@ -373,6 +394,7 @@ impl UzawaSolver {
                         h_,
                     );
                     let (n, c) = (run.iterations, run.converged);
+                    stalled = run.stalled;
                     (n, n, 0, c, run.residual, run.change)
                 }
                 Algorithm::ClassicRccm => {
@@ -387,6 +409,7 @@ impl UzawaSolver {
                         h_,
                     )?;
                     self.sweeps.rho.copy_from_slice(&self.sweeps.rho0);
+                    stalled = run.stalled;
                     let (n, o, t) = (run.iterations, run.outer_iterations, run.tangential_sweeps);
                     (n, o, t, run.converged, run.residual, run.change)
                 }
@@ -410,6 +433,7 @@ impl UzawaSolver {
                         h_,
                     );
                     let n = run.iterations;
+                    stalled = run.stalled;
                     (n, n, 0, run.converged, run.residual, run.change)
                 }
                 // resolved in solve_with_states
@@ -426,6 +450,7 @@ impl UzawaSolver {
                         h_,
                     )?;
                     let (n, o) = (run.iterations, run.newton_steps);
+                    stalled = run.stalled;
                     (n, o, 0, run.converged, run.residual, run.change)
                 }
             };
@@ -442,6 +467,7 @@ impl UzawaSolver {
             outer_iterations,
             tangential_sweeps,
             converged,
+            stalled,
             residual,
             change,
             history,
@@ -454,6 +480,11 @@ impl UzawaSolver {
         };
         Ok(Solution { r, x, report })
     }
+}
+
+/// The smallest entry of a residual history (`+∞` when empty; NaNs skipped).
+fn best_of(history: &[f64]) -> f64 {
+    history.iter().copied().fold(f64::INFINITY, f64::min)
 }
 
 /// Checks the sizes and the settings of a solve and returns the starting reactions (`r_start`,
@@ -495,6 +526,13 @@ fn starting_reactions(
             what: "omega",
             value: st.omega,
             expected: "expected a value in (0, 2)",
+        });
+    }
+    if st.stall_window != 0 && st.stall_window < MIN_STALL_WINDOW {
+        return Err(SolverError::InvalidSetting {
+            what: "stall_window",
+            value: st.stall_window as f64,
+            expected: "expected 0 (detector off) or a window of at least 10 iterations",
         });
     }
     let mut r = vec![0.0; m];

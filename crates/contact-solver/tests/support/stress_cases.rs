@@ -289,6 +289,11 @@ fn short_error(e: &SolverError) -> String {
             residual,
             ..
         } => format!("NotConverged {{ iterations: {iterations}, residual: {residual:.1e} }}"),
+        SolverError::Stalled {
+            iterations,
+            residual,
+            ..
+        } => format!("Stalled {{ iterations: {iterations}, residual: {residual:.1e} }}"),
         SolverError::AdhesionNotConverged {
             iterations, change, ..
         } => format!("AdhesionNotConverged {{ iterations: {iterations}, change: {change:.1e} }}"),

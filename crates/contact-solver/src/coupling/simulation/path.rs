@@ -43,7 +43,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 }
                 // Auto chose this path: fall back to one that converges more surely (the
                 // lagged friction coupling of the active set fails for large μ)
-                Err(SolverError::NotConverged { .. })
+                Err(SolverError::NotConverged { .. } | SolverError::Stalled { .. })
                     if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) =>
                 {
                     self.counters.active_set_fallbacks += 1;
