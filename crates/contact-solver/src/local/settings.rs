@@ -121,7 +121,9 @@ pub struct UzawaSettings {
     /// When the chosen algorithm does not converge (stopped by the
     /// [stall detector](crate::local::stall), or `max_iterations` reached) or its answer
     /// fails the independent check of the Signorini–Coulomb conditions, solve again with
-    /// [`Algorithm::ClassicRccm`] from the same start (laws with a
+    /// [`Algorithm::ClassicRccm`] from the same start (after [`Algorithm::Newton`], first with
+    /// [`Algorithm::AndersonGaussSeidel`], then the classical split if that fails too; laws
+    /// with a
     /// [`friction_coefficient`](contact_laws::ContactLaw::friction_coefficient) only; not
     /// with `accept_non_converged`). The report's
     /// [`fallback_from`](UzawaReport::fallback_from) says it happened. Default `true`.

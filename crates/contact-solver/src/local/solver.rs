@@ -183,21 +183,33 @@ impl UzawaSolver {
             && st.algorithm != Algorithm::ClassicRccm
             && mu.is_some()
         {
-            let first = sol.report;
-            let classic = UzawaSettings {
-                algorithm: Algorithm::ClassicRccm,
-                ..st
+            // Newton's fallback is first the accelerated sweep (it solves what Newton does,
+            // without a Jacobian), then the classical split, like every other algorithm's.
+            let chain: &[Algorithm] = if st.algorithm == Algorithm::Newton {
+                &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm]
+            } else {
+                &[Algorithm::ClassicRccm]
             };
-            sol = self.attempt::<L, DT>(classic, problem, laws, states, r)?;
-            self.check::<DT>(problem, &mut sol, mu);
-            let report = &mut sol.report;
-            best = best_of(&report.history);
-            report.fallback_from = Some(st.algorithm);
-            report.iterations += first.iterations;
-            report.outer_iterations += first.outer_iterations;
-            let mut history = first.history;
-            history.append(&mut report.history);
-            report.history = history;
+            for &next in chain {
+                if sol.report.converged {
+                    break;
+                }
+                let first = sol.report;
+                let settings = UzawaSettings {
+                    algorithm: next,
+                    ..st
+                };
+                sol = self.attempt::<L, DT>(settings, problem, laws, states, r.clone())?;
+                self.check::<DT>(problem, &mut sol, mu);
+                let report = &mut sol.report;
+                best = best_of(&report.history);
+                report.fallback_from = Some(st.algorithm);
+                report.iterations += first.iterations;
+                report.outer_iterations += first.outer_iterations;
+                let mut history = first.history;
+                history.append(&mut report.history);
+                report.history = history;
+            }
         }
         if !sol.report.converged && !st.accept_non_converged {
             let report = sol.report;
