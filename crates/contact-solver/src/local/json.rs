@@ -345,7 +345,7 @@ impl ReducedProblem {
     /// # Errors
     /// [`SolverError::Json`] for malformed JSON or JSON of the wrong shape (a value of the
     /// wrong type, a negative index, a `dim` other than 2 or 3, an unknown or missing key; the
-    /// message names the key path, see the [module docs](self)),
+    /// message names the key path),
     /// [`SolverError::Format`] for a `W` whose size does not match `q` (flat, rows, or
     /// triplets whose `m` is not the length of `q`) or triplets with lists `i`, `j`, `v` of
     /// different lengths; otherwise those of
