@@ -128,6 +128,19 @@ impl<'de> Deserialize<'de> for Problem {
     }
 }
 
+/// `visit_i64` of an unsigned target: a value `≥ 0` goes to `visit_u64`, a negative one is
+/// refused with the visitor's expectation (shared by [`Dim`] and [`Index`]).
+macro_rules! visit_signed_as_unsigned {
+    () => {
+        fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+            match u64::try_from(v) {
+                Ok(v) => self.visit_u64(v),
+                Err(_) => Err(E::invalid_value(Unexpected::Signed(v), &self)),
+            }
+        }
+    };
+}
+
 impl Visitor<'_> for Expect<Dim> {
     type Value = Dim;
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
@@ -139,12 +152,7 @@ impl Visitor<'_> for Expect<Dim> {
             _ => Err(E::invalid_value(Unexpected::Unsigned(v), &self)),
         }
     }
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Dim, E> {
-        match u64::try_from(v) {
-            Ok(v) => self.visit_u64(v),
-            Err(_) => Err(E::invalid_value(Unexpected::Signed(v), &self)),
-        }
-    }
+    visit_signed_as_unsigned!();
 }
 
 impl<'de> Deserialize<'de> for Dim {
@@ -184,13 +192,22 @@ impl<'de> Deserialize<'de> for Num {
     }
 }
 
-/// The elements of a list of numbers.
-fn numbers<'de, A: SeqAccess<'de>>(mut seq: A) -> Result<Vec<f64>, A::Error> {
+/// The elements of a list, each read as `T` and unwrapped by `f` (the capacity hint is capped:
+/// a hostile length must not allocate before the elements are there).
+fn list<'de, A: SeqAccess<'de>, T: Deserialize<'de>, U>(
+    mut seq: A,
+    f: impl Fn(T) -> U,
+) -> Result<Vec<U>, A::Error> {
     let mut out = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(1 << 16));
-    while let Some(Num(v)) = seq.next_element()? {
-        out.push(v);
+    while let Some(v) = seq.next_element()? {
+        out.push(f(v));
     }
     Ok(out)
+}
+
+/// The elements of a list of numbers.
+fn numbers<'de, A: SeqAccess<'de>>(seq: A) -> Result<Vec<f64>, A::Error> {
+    list(seq, |Num(v)| v)
 }
 
 impl<'de> Visitor<'de> for Expect<Numbers> {
@@ -219,12 +236,7 @@ impl Visitor<'_> for Expect<Index> {
             .map(Index)
             .map_err(|_| E::invalid_value(Unexpected::Unsigned(v), &self))
     }
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Index, E> {
-        match u64::try_from(v) {
-            Ok(v) => self.visit_u64(v),
-            Err(_) => Err(E::invalid_value(Unexpected::Signed(v), &self)),
-        }
-    }
+    visit_signed_as_unsigned!();
 }
 
 impl<'de> Deserialize<'de> for Index {
@@ -240,12 +252,8 @@ impl<'de> Visitor<'de> for Expect<Indices> {
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
         f.write_str(self.0)
     }
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Indices, A::Error> {
-        let mut out = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(1 << 16));
-        while let Some(Index(v)) = seq.next_element()? {
-            out.push(v);
-        }
-        Ok(Indices(out))
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Indices, A::Error> {
+        list(seq, |Index(v)| v).map(Indices)
     }
 }
 
