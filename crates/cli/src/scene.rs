@@ -163,6 +163,10 @@ pub struct SolverSpec {
     pub max_detection_passes: Option<usize>,
     /// Accept non-converged steps.
     pub accept_non_converged: Option<bool>,
+    /// Window of the stall detector (0: off).
+    pub stall_window: Option<usize>,
+    /// Fall back to another algorithm when the chosen one fails.
+    pub fallback: Option<bool>,
     /// How a step is solved: `auto` (default), `dense`, `active-set` or `matrix-free`.
     pub flexibility: Option<FlexibilitySpec>,
     /// `auto`'s largest active set solved with a dense `F*` (default 500).

@@ -150,7 +150,9 @@ pub enum SolverError {
     )]
     Stalled {
         /// The algorithm that stalled (the fallback's when there was one), by the name of its
-        /// [`Algorithm`](crate::Algorithm) variant ([`Algorithm::name`](crate::Algorithm::name)).
+        /// [`Algorithm`](crate::Algorithm) variant ([`Algorithm::name`](crate::Algorithm::name)),
+        /// or `MatrixFree` for
+        /// [`solve_matrix_free`](crate::local::matrix_free::solve_matrix_free).
         algorithm: &'static str,
         /// The algorithm tried first, when the one that stalled was the fallback
         /// ([`UzawaSettings::fallback`](crate::UzawaSettings::fallback)).

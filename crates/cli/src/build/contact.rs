@@ -9,6 +9,7 @@ use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
 use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::local::stall::MIN_STALL_WINDOW;
 use contact_solver::{
     Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
     FlexibilityMode, RigidArc, RigidLine, SimulationSettings, recognize,
@@ -122,6 +123,22 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     }
     if let Some(b) = s.accept_non_converged {
         out.solver.accept_non_converged = b;
+    }
+    if let Some(n) = s.stall_window {
+        let p = root.key("stall_window");
+        if n != 0 && !(MIN_STALL_WINDOW..=MAX_ITERATIONS).contains(&n) {
+            return Err(CliError::at(
+                &p,
+                format!(
+                    "`{p}` = {n}: expected 0 (no stall detection) or an integer in \
+                     {MIN_STALL_WINDOW}..={MAX_ITERATIONS}"
+                ),
+            ));
+        }
+        out.solver.stall_window = n;
+    }
+    if let Some(b) = s.fallback {
+        out.solver.fallback = b;
     }
     let dense_limit = s.dense_limit.unwrap_or(DEFAULT_DENSE_LIMIT);
     out.flexibility = match s.flexibility.unwrap_or(FlexibilitySpec::Auto) {

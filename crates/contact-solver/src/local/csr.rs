@@ -154,6 +154,38 @@ impl CsrMatrix {
         Ok(a)
     }
 
+    /// The principal sub-matrix on the blocks `keep` (block size `dim`; increasing, distinct),
+    /// renumbered in that order: the block pattern and the order of the stored columns stay.
+    pub(crate) fn restricted(&self, dim: usize, keep: &[usize]) -> Self {
+        let mut new_block = vec![u32::MAX; self.m / dim];
+        for (k, &b) in keep.iter().enumerate() {
+            new_block[b] = k as u32;
+        }
+        let m = dim * keep.len();
+        let (mut row_ptr, mut col, mut val) = (Vec::with_capacity(m + 1), Vec::new(), Vec::new());
+        row_ptr.push(0);
+        let d = dim as u32;
+        for &b in keep {
+            for k in 0..dim {
+                let (cols, vals) = self.row(dim * b + k);
+                for (&c, &v) in cols.iter().zip(vals) {
+                    let nb = new_block[(c / d) as usize];
+                    if nb != u32::MAX {
+                        col.push(nb * d + c % d);
+                        val.push(v);
+                    }
+                }
+                row_ptr.push(col.len());
+            }
+        }
+        Self {
+            m,
+            row_ptr,
+            col,
+            val,
+        }
+    }
+
     /// The size `m` (the matrix is `m × m`).
     #[inline]
     pub fn size(&self) -> usize {

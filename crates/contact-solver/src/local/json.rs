@@ -332,7 +332,15 @@ fn read(text: &str) -> Result<JsonIn, SolverError> {
     let wrap = |e: serde_path_to_error::Error<serde_json::Error>| {
         let path = e.path().to_string();
         let inner = e.into_inner();
-        let source = if path == "." || path.is_empty() || inner.is_syntax() || inner.is_eof() {
+        // a literal beyond f64 (`1e400`) is a syntax error to serde_json, but the user's
+        // mistake is a value: name its key
+        let out_of_range = inner.is_syntax() && inner.to_string().starts_with("number out of");
+        let trivial = path == "." || path.is_empty();
+        let source = if out_of_range && !trivial {
+            Cause::message(format!(
+                "`{path}`: {inner} (a number beyond the largest finite f64, ±1.8e308)"
+            ))
+        } else if trivial || inner.is_syntax() || inner.is_eof() {
             Cause::new(inner)
         } else {
             Cause::message(format!("`{path}`: {inner}"))

@@ -23,8 +23,10 @@
 //! `n_c = 33`, 633 for 129; Coulomb: 194 and 2790. Building `F*` costs `2 n_c` solves, so the
 //! dense path is faster whenever `F*` fits in memory; this solver is for when it does not.
 
-use super::residual::{local, natural_residual, norm};
+use super::residual::{local, natural_residual, norm, penetration};
 use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, UzawaSettings};
+use super::solver::CHECK_FACTOR;
+use super::stall::StallDetector;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
 
@@ -39,6 +41,9 @@ pub struct MatrixFreeReport {
     pub applications: usize,
     /// Whether the stopping rule was met.
     pub converged: bool,
+    /// Whether the [stall detector](crate::local::stall) stopped the iteration (with
+    /// `accept_non_converged`; otherwise a stall is [`SolverError::Stalled`]).
+    pub stalled: bool,
     /// Final natural-map residual (relative).
     pub residual: f64,
     /// Residual of every iteration.
@@ -53,12 +58,14 @@ pub struct MatrixFreeReport {
 ///
 /// `rho0` holds `ρ⁰_i` per contact (e.g. `1/λ_max` of estimated diagonal blocks); `laws` and
 /// `states` one per contact; `r` is the starting reaction on entry and the solution on return,
-/// `x` the matching `W r + q`. Uses `settings.tol`, `max_iterations`, `rho_scale` and
-/// `accept_non_converged`.
+/// `x` the matching `W r + q`. Uses `settings.tol`, `max_iterations`, `rho_scale`,
+/// `stall_window` and `accept_non_converged`.
 ///
 /// # Errors
 /// [`SolverError::SizeMismatch`] for inconsistent lengths; errors of `apply`;
-/// [`SolverError::NotConverged`] unless accepted.
+/// [`SolverError::Stalled`] when the residual stops decreasing (the
+/// [stall detector](crate::local::stall)) and [`SolverError::NotConverged`] when
+/// `max_iterations` runs out, unless `accept_non_converged`.
 ///
 /// # Examples
 /// ```
@@ -109,6 +116,13 @@ pub fn solve_matrix_free<L: ContactLaw>(
     let mut last_residual = f64::INFINITY;
     let mut iterations = 0;
     let mut converged = false;
+    let mut stalled = false;
+    let mut stall = StallDetector::new(settings.stall_window);
+    // cones `‖r_t‖ ≤ μ̄ r_n`, whose answers cannot penetrate
+    let coulomb_type = laws
+        .iter()
+        .zip(states)
+        .all(|(l, s)| l.friction_coefficient(s).is_some());
     while iterations < settings.max_iterations {
         iterations += 1;
         for i in 0..nc {
@@ -169,7 +183,24 @@ pub fn solve_matrix_free<L: ContactLaw>(
         r.copy_from_slice(&r_new);
         x.copy_from_slice(&x_new);
         if (change <= settings.tol && residual <= settings.tol) || dr2 == 0.0 {
+            // a relative residual of 0 with reactions grown without bound (no solution)
+            // leaves x_n < 0 at the scale of q: one more product gives q = x(r = 0)
+            if coulomb_type && x.iter().step_by(2).any(|&v| v < 0.0) {
+                let zero = vec![0.0; m];
+                let mut q = vec![0.0; m];
+                apply(&zero, &mut q)?;
+                applications += 1;
+                let (pen, scale) = penetration::<1>(&q, x);
+                if pen > CHECK_FACTOR * settings.tol * scale {
+                    stalled = true;
+                    break;
+                }
+            }
             converged = true;
+            break;
+        }
+        if stall.stalled(iterations, residual) {
+            stalled = true;
             break;
         }
         // momentum with adaptive restart
@@ -189,6 +220,17 @@ pub fn solve_matrix_free<L: ContactLaw>(
             xy[k] = x[k] + beta * (x[k] - x_prev[k]);
         }
     }
+    if stalled && !settings.accept_non_converged {
+        let best_residual = history.iter().copied().fold(f64::INFINITY, f64::min);
+        return Err(SolverError::Stalled {
+            algorithm: "MatrixFree",
+            fallback_from: None,
+            iterations,
+            residual,
+            best_residual,
+            history,
+        });
+    }
     if !converged && !settings.accept_non_converged {
         return Err(SolverError::NotConverged {
             iterations,
@@ -200,6 +242,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
         iterations,
         applications,
         converged,
+        stalled,
         residual,
         history,
         restarts,

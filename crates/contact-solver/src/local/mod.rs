@@ -215,4 +215,7 @@ pub use settings::{
     AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm, DEFAULT_OMEGA, Solution,
     UzawaReport, UzawaSettings,
 };
-pub use solver::{CHECK_FACTOR, RESCALE_ABOVE, UzawaSolver, solve_coulomb};
+pub use solver::{
+    CHECK_FACTOR, RESCALE_ABOVE, SKIP_OPEN_MAX_FRACTION, SKIP_OPEN_MIN_CONTACTS, UzawaSolver,
+    solve_coulomb,
+};

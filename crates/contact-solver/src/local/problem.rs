@@ -305,6 +305,39 @@ impl ReducedProblem {
         Self::validated(self.dim, self.w.scaled(s_w), q, self.mu.clone(), 0.0)
     }
 
+    /// The problem on the contacts `keep` (increasing, distinct, each `< n_c`): `W` restricted
+    /// to their rows and columns in the same storage, `q` and `μ` likewise. A principal
+    /// sub-matrix of a valid `W` is valid (symmetric, the same diagonal blocks), so nothing is
+    /// checked again.
+    pub(crate) fn restricted(&self, keep: &[usize]) -> Self {
+        let d = self.dim;
+        let rows: Vec<usize> = keep
+            .iter()
+            .flat_map(|&i| (0..d).map(move |k| d * i + k))
+            .collect();
+        let w = match &self.w {
+            Delassus::Dense { m, w } => {
+                let mut out = Vec::with_capacity(rows.len() * rows.len());
+                for &r in &rows {
+                    let row = &w[r * m..(r + 1) * m];
+                    out.extend(rows.iter().map(|&c| row[c]));
+                }
+                Delassus::Dense {
+                    m: rows.len(),
+                    w: out,
+                }
+            }
+            Delassus::Sparse(a) => Delassus::Sparse(a.restricted(d, keep)),
+        };
+        Self {
+            dim: d,
+            w,
+            q: rows.iter().map(|&r| self.q[r]).collect(),
+            mu: keep.iter().map(|&i| self.mu[i]).collect(),
+            asymmetry: 0.0,
+        }
+    }
+
     /// Relative asymmetry `max|W_ij − W_ji| / max|W|` of the `W` given, removed by
     /// symmetrising it (0 when it was symmetric to [`SYMMETRY_TOL`]).
     pub fn asymmetry(&self) -> f64 {

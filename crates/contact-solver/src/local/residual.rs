@@ -180,6 +180,21 @@ pub(crate) fn coulomb_residual<const DT: usize>(
     s2.sqrt()
 }
 
+/// The largest penetration `max_i (−x_n,i)⁺` of an answer and the scale of the
+/// displacements it is compared with, `max(‖q‖∞, ‖x − q‖∞)` (`x − q = W r`). An iteration
+/// whose reactions grow without bound (a problem with no solution) can bring the *relative*
+/// residual `‖·‖/‖r‖` to 0 while `x_n` stays negative at the scale of `q`: this catches it.
+pub(crate) fn penetration<const DT: usize>(q: &[f64], x: &[f64]) -> (f64, f64) {
+    let (mut pen, mut scale) = (0.0_f64, 0.0_f64);
+    for (k, (&x, &q)) in x.iter().zip(q).enumerate() {
+        scale = scale.max(q.abs()).max((x - q).abs());
+        if k % (DT + 1) == 0 {
+            pen = pen.max(-x);
+        }
+    }
+    (pen, scale)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

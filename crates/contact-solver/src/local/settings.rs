@@ -134,6 +134,13 @@ pub struct UzawaSettings {
     /// [`MIN_STALL_WINDOW`](crate::local::stall::MIN_STALL_WINDOW). Default
     /// [`DEFAULT_STALL_WINDOW`](crate::local::stall::DEFAULT_STALL_WINDOW).
     pub stall_window: usize,
+    /// Solve only on the contacts that may close (Coulomb-type laws): the iteration starts
+    /// on the contacts with `q_n < 0` (or a non-zero starting reaction), and a contact left
+    /// out joins when the answer would make it penetrate; the answer is exact (every contact
+    /// left out is checked at the end to be a solution with `r_i = 0`). Tried when at least
+    /// [`SKIP_OPEN_MIN_CONTACTS`](crate::local::SKIP_OPEN_MIN_CONTACTS) contacts and at most
+    /// half of them may close. Default `true`.
+    pub skip_open: bool,
 }
 
 impl Default for UzawaSettings {
@@ -147,6 +154,7 @@ impl Default for UzawaSettings {
             accept_non_converged: false,
             fallback: true,
             stall_window: DEFAULT_STALL_WINDOW,
+            skip_open: true,
         }
     }
 }
@@ -198,6 +206,10 @@ pub struct UzawaReport {
     /// Whether `W` and `q` were rescaled internally (by powers of two, exactly) because their
     /// magnitudes were outside `[1e-100, 1e100]`.
     pub rescaled: bool,
+    /// Contacts the algorithm iterated on: `n_c`, or fewer when
+    /// [`skip_open`](UzawaSettings::skip_open) left out contacts that stay open; 0 when
+    /// `r = 0` was the answer with no iteration.
+    pub solved_contacts: usize,
 }
 
 /// The solution of a reduced problem.
@@ -259,6 +271,13 @@ impl UzawaSettings {
     #[must_use]
     pub fn with_stall_window(mut self, stall_window: usize) -> Self {
         self.stall_window = stall_window;
+        self
+    }
+
+    /// These settings with [`skip_open`](Self::skip_open) replaced.
+    #[must_use]
+    pub fn with_skip_open(mut self, skip_open: bool) -> Self {
+        self.skip_open = skip_open;
         self
     }
 
