@@ -2,6 +2,7 @@
 //! once, that implements [`Structure`]. Recovery from a solution (stresses, strains, nodal
 //! stresses, reactions) is in `post.rs`.
 
+mod floating;
 mod post;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
@@ -13,6 +14,7 @@ use crate::linear_solver::SpdSolver;
 use crate::material::Material;
 use crate::mesh::{ElementKind, Mesh};
 use crate::quadrature::GAUSS_3;
+use crate::rigid_modes::RigidBodyModes;
 use crate::structure::Structure;
 use faer::MatMut;
 use nalgebra::DMatrix;
@@ -66,6 +68,14 @@ pub struct LinearElasticModel {
     version: u64,
     /// Outward normals of the boundary nodes, computed at the first request.
     normals: std::sync::OnceLock<Vec<Option<[f64; 2]>>>,
+    /// Whether the supports may leave rigid-body modes ([`LinearElasticModel::floating`]).
+    may_float: bool,
+    /// The rigid-body modes the supports leave (empty unless `may_float`).
+    modes: RigidBodyModes,
+    /// The free dofs pinned to factorise `K⁺` (one per mode).
+    pinned: Vec<usize>,
+    /// `K` with the pinned rows and columns decoupled (the matrix factorised when floating).
+    pinned_values: Vec<f64>,
 }
 
 impl core::fmt::Debug for LinearElasticModel {
@@ -100,12 +110,25 @@ impl LinearElasticModel {
     /// - [`FemError::InvalidParameter`] for a plane-stress thickness that is not finite and
     ///   positive;
     /// - [`FemError::NonFiniteStiffness`] for an element whose stiffness overflows;
-    /// - [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body mode.
+    /// - [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body mode (found from
+    ///   the mesh and the supports, naming a dof the mode moves) or the stiffness is singular
+    ///   otherwise (a node no element connects, a mechanism); a body that contact holds is
+    ///   built with [`LinearElasticModel::floating`].
     pub fn new(
         mesh: Mesh,
         idealization: Idealization,
         materials: &[(u32, Material)],
         supports: Supports,
+    ) -> Result<Self, FemError> {
+        Self::build(mesh, idealization, materials, supports, false)
+    }
+
+    fn build(
+        mesh: Mesh,
+        idealization: Idealization,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        may_float: bool,
     ) -> Result<Self, FemError> {
         if let Idealization::PlaneStress { thickness } = idealization {
             crate::error::positive("thickness", thickness)?;
@@ -143,7 +166,12 @@ impl LinearElasticModel {
             initial_stress: None,
             version: 0,
             normals: std::sync::OnceLock::new(),
+            may_float,
+            modes: RigidBodyModes::default(),
+            pinned: Vec::new(),
+            pinned_values: Vec::new(),
         };
+        model.find_modes()?;
         model.assemble_and_factor()?;
         Ok(model)
     }
@@ -177,8 +205,14 @@ impl LinearElasticModel {
             );
         }
         self.coupling = merge(coupling);
+        let values = if self.pinned.is_empty() {
+            &self.values
+        } else {
+            self.pin_values();
+            &self.pinned_values
+        };
         self.solver
-            .factor(self.pattern.view(&self.values))
+            .factor(self.pattern.view(values))
             .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
         Ok(())
@@ -288,6 +322,7 @@ impl LinearElasticModel {
         )?;
         self.solver = SpdSolver::new(self.pattern.symbolic().as_ref())?;
         self.values = vec![0.0; self.pattern.nnz()];
+        self.find_modes()?;
         self.assemble_and_factor()
     }
 
@@ -551,11 +586,19 @@ impl Structure for LinearElasticModel {
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
+        for &p in &self.pinned {
+            rhs[p] = 0.0;
+        }
         self.solver.solve_in_place(rhs);
         Ok(())
     }
 
-    fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+    fn solve_many_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+        for c in 0..rhs.ncols() {
+            for &p in &self.pinned {
+                rhs[(p, c)] = 0.0;
+            }
+        }
         self.solver.solve_many_in_place(rhs);
         Ok(())
     }
@@ -570,8 +613,16 @@ impl Structure for LinearElasticModel {
         }
         self.rhs_into(load_factor, u);
         self.check_finite("right-hand side", u)?;
-        self.solver.solve_in_place(u);
+        self.solve_in_place(u)?;
         self.check_finite("displacement", u)
+    }
+
+    fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
+        (!self.modes.is_empty()).then_some(&self.modes)
+    }
+
+    fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
+        self.mode_load_into(load_factor, out)
     }
 
     fn stiffness_version(&self) -> u64 {
