@@ -22,6 +22,13 @@
 //! `K_PS K_SS⁻¹ b_S = −R_P⁻ᵀ R_Sᵀ b_S = b_P`. The pinned dofs are picked greedily, each the
 //! row of `R` farthest from the span of the rows already picked (a pivoted Gram–Schmidt on the
 //! rows), which picks far-apart nodes.
+//!
+//! The zero-padded inverse vanishes at the pinned dofs, so a contact at a pinned node would
+//! have no flexibility. [`LinearElasticModel`](crate::LinearElasticModel) therefore applies the
+//! projected inverse `P K⁺ P`, `P = I − Q Qᵀ` (`Q` an orthonormal basis of the modes): still a
+//! symmetric generalized inverse (`K P = K`, and `P b = b` for a balanced `b`), whose answers
+//! are orthogonal to the modes and whose flexibility is positive at every node that is not
+//! rigidly tied to the pins.
 
 use crate::dirichlet::{Component, Dof, DofMap};
 use crate::error::FemError;
@@ -186,6 +193,30 @@ impl RigidBodyModes {
         }
     }
 
+    /// An orthonormal basis `Q` of the modes' span (modified Gram–Schmidt, twice), column-major
+    /// `dof_count × len()`: what [`project_out`] takes.
+    pub fn orthonormal_basis(&self) -> Vec<f64> {
+        let n = self.dof_count;
+        let mut q = self.values.clone();
+        for j in 0..self.len() {
+            for _ in 0..2 {
+                for i in 0..j {
+                    let (done, rest) = q.split_at_mut(j * n);
+                    let qi = &done[i * n..(i + 1) * n];
+                    let qj = &mut rest[..n];
+                    let d: f64 = qi.iter().zip(qj.iter()).map(|(a, b)| a * b).sum();
+                    qj.iter_mut().zip(qi).for_each(|(b, a)| *b -= d * a);
+                }
+            }
+            let col = &mut q[j * n..(j + 1) * n];
+            let norm = col.iter().map(|a| a * a).sum::<f64>().sqrt();
+            if norm > 0.0 {
+                col.iter_mut().for_each(|a| *a /= norm);
+            }
+        }
+        q
+    }
+
     /// `count` dofs to pin for a generalized inverse: per body, the rows of `R` picked by a
     /// pivoted Gram–Schmidt (each the row farthest from the span of those picked), so that
     /// `R` at the pinned dofs is invertible and well conditioned.
@@ -230,6 +261,26 @@ impl RigidBodyModes {
             }
         }
         pinned
+    }
+}
+
+/// `b ← (I − Q Qᵀ) b`: removes from `b` its part along the modes (`q` from
+/// [`RigidBodyModes::orthonormal_basis`], column-major with `b.len()` rows). Allocation-free.
+///
+/// # Panics
+/// If `q.len()` is not a multiple of `b.len()`.
+#[track_caller]
+pub fn project_out(q: &[f64], b: &mut [f64]) {
+    let n = b.len();
+    if n == 0 {
+        return;
+    }
+    assert_eq!(q.len() % n, 0, "basis length");
+    for col in q.chunks_exact(n) {
+        let d: f64 = col.iter().zip(b.iter()).map(|(a, c)| a * c).sum();
+        if d != 0.0 {
+            b.iter_mut().zip(col).for_each(|(c, a)| *c -= d * a);
+        }
     }
 }
 

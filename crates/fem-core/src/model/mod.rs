@@ -76,6 +76,8 @@ pub struct LinearElasticModel {
     pinned: Vec<usize>,
     /// `K` with the pinned rows and columns decoupled (the matrix factorised when floating).
     pinned_values: Vec<f64>,
+    /// An orthonormal basis of the modes (column-major), for the projection `P = I − Q Qᵀ`.
+    mode_basis: Vec<f64>,
 }
 
 impl core::fmt::Debug for LinearElasticModel {
@@ -170,6 +172,7 @@ impl LinearElasticModel {
             modes: RigidBodyModes::default(),
             pinned: Vec::new(),
             pinned_values: Vec::new(),
+            mode_basis: Vec::new(),
         };
         model.find_modes()?;
         model.assemble_and_factor()?;
@@ -586,20 +589,29 @@ impl Structure for LinearElasticModel {
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
-        for &p in &self.pinned {
-            rhs[p] = 0.0;
+        if self.pinned.is_empty() {
+            self.solver.solve_in_place(rhs);
+        } else {
+            // x = P K⁺ P b (crate::rigid_modes)
+            self.project(rhs, true);
+            self.solver.solve_in_place(rhs);
+            self.project(rhs, false);
         }
-        self.solver.solve_in_place(rhs);
         Ok(())
     }
 
     fn solve_many_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), FemError> {
-        for c in 0..rhs.ncols() {
-            for &p in &self.pinned {
-                rhs[(p, c)] = 0.0;
+        if self.pinned.is_empty() {
+            self.solver.solve_many_in_place(rhs);
+        } else {
+            for c in 0..rhs.ncols() {
+                self.project_column(rhs.as_mut().col_mut(c), true);
+            }
+            self.solver.solve_many_in_place(rhs.as_mut());
+            for c in 0..rhs.ncols() {
+                self.project_column(rhs.as_mut().col_mut(c), false);
             }
         }
-        self.solver.solve_many_in_place(rhs);
         Ok(())
     }
 
