@@ -97,12 +97,19 @@ fn floating_block_rests_on_its_weight_works() {
                 res.report.wall_time
             );
             // equilibrium solved to 1e-12 of the forces, plus round-off of the sum
-            assert!((rn - WEIGHT).abs() <= 1e-10 * WEIGHT, "{kind:?}: Σ r_n = {rn}");
+            assert!(
+                (rn - WEIGHT).abs() <= 1e-10 * WEIGHT,
+                "{kind:?}: Σ r_n = {rn}"
+            );
             assert!(rt.abs() <= 1e-10 * WEIGHT, "{kind:?}: Σ r_t = {rt}");
             // the block sits on the line: every bottom node closed, none penetrating
             assert!(res.contacts.iter().all(|c| c.gap.abs() < 1e-9));
             // the moment about the centre vanishes too: Σ r_n (x − 1) = 0 (symmetric load)
-            let moment: f64 = res.contacts.iter().map(|c| c.r.n * (c.position[0] - 1.0)).sum();
+            let moment: f64 = res
+                .contacts
+                .iter()
+                .map(|c| c.r.n * (c.position[0] - 1.0))
+                .sum();
             assert!(moment.abs() <= 1e-10 * WEIGHT, "moment {moment:e}");
         }
     }
@@ -112,7 +119,13 @@ fn floating_block_rests_on_its_weight_works() {
 fn floating_block_sticks_below_mu_w_works() {
     for kind in [ElementKind::Tri3, ElementKind::Tri6] {
         let push = 0.2 * WEIGHT; // T = 0.2 W < μ W = 0.6 W
-        let mut sim = block(kind, coulomb(0.3), push / 2.0, -1.0, SimulationSettings::default());
+        let mut sim = block(
+            kind,
+            coulomb(0.3),
+            push / 2.0,
+            -1.0,
+            SimulationSettings::default(),
+        );
         let res = sim.step(1.0, 1.0).expect("the block sticks");
         let (rn, rt) = sums(&res);
         eprintln!(

@@ -245,7 +245,10 @@ mod tests {
                 let mut rtx = vec![0.0; k];
                 modes.project_into(&x, &mut rtx);
                 let x_max = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                assert!(rtx.iter().all(|v| v.abs() <= 1e-12 * x_max * n as f64), "{rtx:?}");
+                assert!(
+                    rtx.iter().all(|v| v.abs() <= 1e-12 * x_max * n as f64),
+                    "{rtx:?}"
+                );
             }
         }
     }

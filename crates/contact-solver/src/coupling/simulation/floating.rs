@@ -42,6 +42,10 @@ use fem_core::{RigidMode, RigidMotion, Structure};
 /// resists.
 const NULL_TOL: f64 = 1e-9;
 
+/// The resisted directions balance to this fraction of the forces before the free ones are
+/// examined (module docs).
+const RAY_TOL: f64 = 1e-8;
+
 /// Smallest line-search step.
 const MIN_STEP: f64 = 1.0 / 1024.0;
 
@@ -145,10 +149,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                             report: &mut StepReport|
          -> Result<(AdhesiveSolution<L::State>, Vec<f64>), SolverError> {
             for (row, qi) in q.iter_mut().enumerate() {
-                *qi = q0[row]
-                    + (0..nm)
-                        .map(|j| fl.g[row * nm + j] * alpha[j])
-                        .sum::<f64>();
+                *qi = q0[row] + (0..nm).map(|j| fl.g[row * nm + j] * alpha[j]).sum::<f64>();
             }
             let step = AdhesiveStep {
                 w: &self.w,
@@ -199,37 +200,89 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             };
             let tol = self.settings.equilibrium_tol * scale;
             let merit = along(&res);
-            if merit <= tol {
+            // the free directions are examined once the resisted ones balance to this (the
+            // reduced solves' own accuracy may not reach `tol` while a force is left over)
+            let balanced = tol.max(RAY_TOL * scale);
+            if merit <= balanced {
                 // the resisted directions balance: the force left is along free directions;
                 // move rigidly that way until a contact closes (or stops slipping)
                 if norm(&free) <= tol {
                     break;
                 }
-                match lin.ray_length(&free, &sol.x, &res, &self.w, m) {
-                    Some(t) => {
-                        for (a, di) in alpha.iter_mut().zip(&free) {
-                            *a += t * di;
-                        }
-                        (sol, res) = solve_at(&alpha, &mut r_warm, report)?;
-                        continue;
-                    }
-                    None => {
+                // a piecewise-linear root search of the force along d̂ = free/‖free‖:
+                // φ(t) = d̂ · res(α + t d), stepping to the next event (a contact closes or
+                // sticks) or to the linear model's root, then Illinois within a bracket
+                let d = free;
+                let dn = norm(&d);
+                let phi = |r: &[f64]| r.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>() / dn;
+                let base = alpha.clone();
+                let (mut t_lo, mut phi_lo) = (0.0, phi(&res));
+                let mut lin = lin;
+                let mut bracket = None;
+                for _ in 0..(4 * na + 16) {
+                    let slope = (0..nm)
+                        .map(|i| d[i] * (0..nm).map(|j| lin.jac[(i, j)] * d[j]).sum::<f64>())
+                        .sum::<f64>()
+                        / (dn * dn);
+                    let t_root = if slope < 0.0 {
+                        phi_lo / -slope
+                    } else {
+                        f64::INFINITY
+                    };
+                    let t_event = lin
+                        .ray_length(&d, &sol.x, &res, &self.w, m)
+                        .unwrap_or(f64::INFINITY);
+                    let step = t_root.min(t_event);
+                    if !step.is_finite() {
                         // contacts outside the active set that this motion would close
                         let extend: Vec<usize> = (0..self.candidates.len())
                             .filter(|i| active.binary_search(i).is_err())
                             .filter(|&i| {
-                                (0..nm)
-                                    .map(|j| g_all[2 * i * nm + j] * free[j])
-                                    .sum::<f64>()
-                                    < 0.0
+                                (0..nm).map(|j| g_all[2 * i * nm + j] * d[j]).sum::<f64>() < 0.0
                             })
                             .collect();
                         if !extend.is_empty() {
                             return Ok(Solved::extend(extend));
                         }
-                        return Err(fl.unbalanced(&res, &free));
+                        return Err(fl.unbalanced(&res, &d));
+                    }
+                    let t = t_lo + step;
+                    for j in 0..nm {
+                        alpha[j] = base[j] + t * d[j];
+                    }
+                    (sol, res) = solve_at(&alpha, &mut r_warm, report)?;
+                    let phi_t = phi(&res);
+                    if phi_t.abs() <= tol {
+                        break;
+                    }
+                    if phi_t < 0.0 {
+                        bracket = Some(((t_lo, phi_lo), (t, phi_t)));
+                        break;
+                    }
+                    (t_lo, phi_lo) = (t, phi_t);
+                    lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+                }
+                if let Some(((mut ta, mut fa), (mut tb, mut fb))) = bracket {
+                    // Illinois: regula falsi that halves the kept end's value
+                    for _ in 0..100 {
+                        let t = tb - fb * (tb - ta) / (fb - fa);
+                        for j in 0..nm {
+                            alpha[j] = base[j] + t * d[j];
+                        }
+                        (sol, res) = solve_at(&alpha, &mut r_warm, report)?;
+                        let ft = phi(&res);
+                        if ft.abs() <= tol || (tb - ta).abs() <= 1e-15 * t.abs() {
+                            break;
+                        }
+                        if (ft < 0.0) == (fb < 0.0) {
+                            fa *= 0.5;
+                        } else {
+                            (ta, fa) = (tb, fb);
+                        }
+                        (tb, fb) = (t, ft);
                     }
                 }
+                continue;
             }
             // Newton step on the resisted directions, backtracking on ‖V_Sᵀ (Gᵀ r − e)‖
             let mut lambda = 1.0;
@@ -483,6 +536,8 @@ impl Linearized {
             v
         };
         let mut best: Option<(f64, usize, f64)> = None;
+        // rates below this are round-off of a direction that does not move the contact
+        let tiny = 1e-9 * norm(d);
         let mut consider = |t: f64, row: usize, rate: f64| {
             if best.is_none_or(|(b, _, _)| t < b) {
                 best = Some((t, row, rate));
@@ -491,12 +546,12 @@ impl Linearized {
         for k in 0..self.closed.len() {
             if !self.closed[k] {
                 let rate = dx(2 * k);
-                if rate < 0.0 {
+                if rate < -tiny {
                     consider(x[2 * k].max(0.0) / -rate, 2 * k, rate);
                 }
             } else if self.slipping[k] {
                 let rate = dx(2 * k + 1);
-                if rate * x[2 * k + 1] < 0.0 {
+                if rate.abs() > tiny && rate * x[2 * k + 1] < 0.0 {
                     consider(x[2 * k + 1].abs() / rate.abs(), 2 * k + 1, rate);
                 }
             }

@@ -32,7 +32,7 @@ pub struct SimulationSettings {
     /// Floating structures ([`Structure::rigid_body_modes`](fem_core::Structure::rigid_body_modes)):
     /// the equilibrium of each body along its modes is met when the out-of-balance force
     /// along every mode is at most this fraction of the forces involved (load plus the absolute
-    /// contact contributions). Default `1e-12`.
+    /// contact contributions). Default `1e-11`.
     pub equilibrium_tol: f64,
     /// Floating structures: the cap on the Newton iterations on the rigid-body amplitudes
     /// (each one reduced solve, plus line-search trials). Default 50.
@@ -122,7 +122,7 @@ impl Default for SimulationSettings {
             columns_per_solve: 64,
             skip: SkipRules::default(),
             flexibility: FlexibilityMode::default(),
-            equilibrium_tol: 1e-12,
+            equilibrium_tol: 1e-11,
             max_equilibrium_iterations: 50,
         }
     }
