@@ -66,9 +66,8 @@ fn missing_supports_are_reported_not_nan() {
     let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
     let mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![]).unwrap();
     let m = Material::new(1.0, 0.3, 0.0).unwrap();
-    let err =
-        LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
-            .unwrap_err();
+    let err = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
+        .unwrap_err();
     assert!(
         matches!(err, FemError::NotPositiveDefinite { .. }),
         "{err:?}"
@@ -95,9 +94,8 @@ fn missing_material_is_reported() {
     let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
     let mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![3]).unwrap();
     let m = Material::new(1.0, 0.3, 0.0).unwrap();
-    let err =
-        LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
-            .unwrap_err();
+    let err = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
+        .unwrap_err();
     assert_eq!(
         err,
         FemError::MissingMaterial {
@@ -138,8 +136,8 @@ fn issue_13_not_positive_definite_names_node() {
         .fix(&bottom, Component::X)
         .fix(&bottom, Component::Y);
     let dofs = DofMap::new(mesh.node_count(), &supports).unwrap();
-    let err = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
-        .unwrap_err();
+    let err =
+        LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports).unwrap_err();
     let FemError::NotPositiveDefinite {
         node,
         component,
@@ -170,8 +168,7 @@ fn issue_13_not_positive_definite_names_node() {
             let mesh = rectangle(&spec).unwrap();
             let mut supports = Supports::new();
             supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
-            match LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
-            {
+            match LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports) {
                 Ok(_) => {}
                 Err(FemError::NotPositiveDefinite { component, .. }) => {
                     assert_eq!(component, Component::X, "{kind:?} {nx}×{ny}");

@@ -203,12 +203,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             // the free directions are examined once the resisted ones balance to this (the
             // reduced solves' own accuracy may not reach `tol` while a force is left over)
             let balanced = tol.max(RAY_TOL * scale);
-            if merit <= balanced {
+            if merit <= balanced && norm(&free) > tol {
                 // the resisted directions balance: the force left is along free directions;
                 // move rigidly that way until a contact closes (or stops slipping)
-                if norm(&free) <= tol {
-                    break;
-                }
                 // a piecewise-linear root search of the force along d̂ = free/‖free‖:
                 // φ(t) = d̂ · res(α + t d), stepping to the next event (a contact closes or
                 // sticks) or to the linear model's root, then Illinois within a bracket
