@@ -123,10 +123,13 @@ impl LinearElasticModel {
         let symbolic = self.pattern.symbolic();
         let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
         for j in 0..n {
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                let i = row_idx[k];
+            let range = col_ptr[j]..col_ptr[j + 1];
+            for (&i, v) in row_idx[range.clone()]
+                .iter()
+                .zip(&mut self.pinned_values[range])
+            {
                 if i != j && (is_pinned[i] || is_pinned[j]) {
-                    self.pinned_values[k] = 0.0;
+                    *v = 0.0;
                 }
             }
         }

@@ -326,8 +326,8 @@ impl Floating {
         let nm = self.nm;
         let mut res: Vec<f64> = self.e.iter().map(|v| -v).collect();
         for (row, &ri) in r.iter().enumerate() {
-            for j in 0..nm {
-                res[j] += self.g[row * nm + j] * ri;
+            for (rj, gj) in res.iter_mut().zip(&self.g[row * nm..(row + 1) * nm]) {
+                *rj += gj * ri;
             }
         }
         res
