@@ -221,7 +221,12 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                         .map(|i| d[i] * (0..nm).map(|j| lin.jac[(i, j)] * d[j]).sum::<f64>())
                         .sum::<f64>()
                         / (dn * dn);
-                    let t_root = if slope < 0.0 {
+                    // a slope at round-off of J is no slope: the direction stays free
+                    let mut j_max = 0.0_f64;
+                    for c in lin.jac.col_iter() {
+                        j_max = c.iter().fold(j_max, |m, v| m.max(v.abs()));
+                    }
+                    let t_root = if slope < -NULL_TOL * j_max {
                         phi_lo / -slope
                     } else {
                         f64::INFINITY
