@@ -189,6 +189,27 @@ pub enum SolverError {
     #[cfg(feature = "fe")]
     #[error("structure")]
     Structure(#[from] fem_core::FemError),
+    /// Contact cannot balance the load of a floating body along one of its rigid-body modes
+    /// (the body would fly away or slide off): after the contact reactions did all they can,
+    /// the generalized force along `motion` is still `imbalance` (a force for a translation, a
+    /// moment about the mode's centre for a rotation), against the load's own `load` along it.
+    #[cfg(feature = "fe")]
+    #[error(
+        "floating body {body}: contact cannot balance the load along its {motion}: out of balance \
+         by {imbalance:e} (the load along it is {load:e}); add a support or a contact that holds it"
+    )]
+    Unbalanced {
+        /// The body (connected component of the structure, as in
+        /// [`RigidMode::body`](fem_core::RigidMode::body)).
+        body: usize,
+        /// The mode along which the load is not balanced.
+        motion: fem_core::RigidMotion,
+        /// The resultant force (translation) or moment (rotation) left unbalanced, load plus
+        /// contact reactions.
+        imbalance: f64,
+        /// The load's own force or moment along the mode.
+        load: f64,
+    },
     /// The fixed point between the contact solve and the adhesion update did not converge.
     #[error(
         "the adhesion fixed point did not converge in {iterations} iterations (last change of beta {change:e})"

@@ -217,6 +217,15 @@ pub enum FemError {
         /// Row (and column) of the matrix whose pivot failed, when known.
         row: Option<usize>,
     },
+    /// A [`Structure`](crate::Structure) relies on a default method that cannot answer for it
+    /// (e.g. a floating structure without `rigid_body_load_into`).
+    #[error("the structure must implement `Structure::{method}`: {reason}")]
+    MissingMethod {
+        /// The method.
+        method: &'static str,
+        /// Why it is needed.
+        reason: &'static str,
+    },
     /// The sparse linear algebra failed for a reason other than definiteness (allocation,
     /// index overflow).
     #[error("sparse linear algebra failed: {detail}")]

@@ -2,6 +2,7 @@
 
 use crate::error::FemError;
 use crate::idealization::Idealization;
+use crate::rigid_modes::RigidBodyModes;
 use faer::MatMut;
 use faer::sparse::SparseColMatRef;
 
@@ -15,6 +16,15 @@ use faer::sparse::SparseColMatRef;
 /// is built from [`Structure::solve_many_in_place`]. Nothing else is needed, so any FE code
 /// (or a hand-written model) can implement it; fem-core's
 /// [`LinearElasticModel`](crate::model::LinearElasticModel) is one implementation.
+///
+/// # Floating bodies
+/// A structure whose supports leave rigid-body modes (a body that only contact holds) returns
+/// them from [`Structure::rigid_body_modes`] (`R`, `K R = 0`) and the load along them from
+/// [`Structure::rigid_body_load_into`] (`Rᵀ f`). Its solves then apply a **generalized
+/// inverse** `K⁺` (symmetric, `K K⁺ b = b` for every balanced `b`, `Rᵀ b = 0`), and
+/// [`Structure::free_response_into`] returns `K⁺ f` whether `f` is balanced or not: the contact
+/// solver adds the rigid motion `R α` and makes the contact reactions balance `Rᵀ f`. A
+/// structure without modes (the default) keeps `K⁺ = K⁻¹`.
 pub trait Structure {
     /// Number of free dofs (the size of `K`).
     fn dof_count(&self) -> usize;
@@ -63,7 +73,7 @@ pub trait Structure {
     /// [`FemError::UnknownSet`] if the structure has no such set.
     fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError>;
 
-    /// Solves `K x = b` in place.
+    /// Solves `K x = b` in place (`x = K⁺ b` for a floating structure, see the trait docs).
     ///
     /// # Errors
     /// A factorisation error if `K` could not be factored.
@@ -72,7 +82,8 @@ pub trait Structure {
     /// If `rhs.len() != dof_count()`.
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError>;
 
-    /// Solves `K X = B` in place for the columns of `rhs`.
+    /// Solves `K X = B` in place for the columns of `rhs` (`X = K⁺ B` for a floating
+    /// structure).
     ///
     /// # Errors
     /// A factorisation error if `K` could not be factored.
@@ -105,5 +116,38 @@ pub trait Structure {
     /// with every dof the node is coupled to (true of any assembled FE stiffness).
     fn stiffness_matrix(&self) -> Option<SparseColMatRef<'_, usize, f64>> {
         None
+    }
+
+    /// The rigid-body modes the supports leave (the kernel of `K` over the free dofs), or
+    /// `None` (the default) when `K` is positive definite. When it returns modes, the solves
+    /// apply a generalized inverse `K⁺` (trait docs) and
+    /// [`Structure::rigid_body_load_into`] must be implemented.
+    fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
+        None
+    }
+
+    /// The generalized load along each rigid-body mode, `Rᵀ f` (`f` the right-hand side of
+    /// [`Structure::free_response_into`] at `load_factor`), written into `out` (one entry per
+    /// mode). Contact must balance it.
+    ///
+    /// # Errors
+    /// The default: nothing to do without modes; [`FemError::MissingMethod`] for a structure
+    /// that returns modes but does not implement this method (a silent zero would be a wrong
+    /// answer).
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of modes.
+    fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
+        let _ = load_factor;
+        match self.rigid_body_modes() {
+            Some(m) if !m.is_empty() => Err(FemError::MissingMethod {
+                method: "rigid_body_load_into",
+                reason: "the structure returns rigid-body modes",
+            }),
+            _ => {
+                assert!(out.is_empty(), "one entry per rigid-body mode");
+                Ok(())
+            }
+        }
     }
 }

@@ -200,6 +200,38 @@ impl HertzScene {
         ContactSimulation::new(model, vec![zone], settings).expect("valid scene")
     }
 
+    /// The force-controlled variant (issue 16): no support on the top, which carries a
+    /// uniform traction whose resultant is the total load `p_total` (per unit length in plane
+    /// strain, `P` over the whole sphere in axisymmetry); the body floats along `y` (its one
+    /// rigid-body mode, the symmetry support `u_x = 0` on `x = 0` holds the others) and
+    /// contact alone holds it ([`LinearElasticModel::floating`]).
+    pub fn force_simulation(
+        &self,
+        p_total: f64,
+        settings: SimulationSettings,
+    ) -> ContactSimulation<LinearElasticModel, Signorini> {
+        let mesh = self.mesh();
+        let left = mesh.node_set("left").unwrap().to_vec();
+        let bottom = mesh.node_set("bottom").unwrap().to_vec();
+        let mut supports = Supports::new();
+        supports.fix(&left, Component::X);
+        let material = Material::new(self.young, self.poisson, 0.0).unwrap();
+        let mut model =
+            LinearElasticModel::floating(mesh, self.idealization, &[(0, material)], supports)
+                .expect("a body held by contact");
+        // half model: P/2 over the width L (plane strain); P/(2π) per radian over r ∈ [0, L]
+        let traction = match self.idealization {
+            Idealization::Axisymmetric => p_total / (PI * self.width * self.width),
+            _ => p_total / (2.0 * self.width),
+        };
+        model
+            .add_edge_traction("top", |_| [0.0, -traction])
+            .unwrap();
+        let ground = RigidLine::new([-1.0, 0.0], [self.width + 1.0, 0.0]).unwrap();
+        let zone = ContactZone::rigid("arc", bottom, ground, Signorini, self.alert);
+        ContactSimulation::new(model, vec![zone], settings).expect("valid scene")
+    }
+
     /// Measures `P`, `a` and `p0` from a step's reactions.
     pub fn measure(
         &self,

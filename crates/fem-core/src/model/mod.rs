@@ -2,6 +2,7 @@
 //! once, that implements [`Structure`]. Recovery from a solution (stresses, strains, nodal
 //! stresses, reactions) is in `post.rs`.
 
+mod floating;
 mod post;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
@@ -13,6 +14,7 @@ use crate::linear_solver::SpdSolver;
 use crate::material::Material;
 use crate::mesh::{ElementKind, Mesh};
 use crate::quadrature::GAUSS_3;
+use crate::rigid_modes::RigidBodyModes;
 use crate::structure::Structure;
 use faer::MatMut;
 use nalgebra::DMatrix;
@@ -66,6 +68,16 @@ pub struct LinearElasticModel {
     version: u64,
     /// Outward normals of the boundary nodes, computed at the first request.
     normals: std::sync::OnceLock<Vec<Option<[f64; 2]>>>,
+    /// Whether the supports may leave rigid-body modes ([`LinearElasticModel::floating`]).
+    may_float: bool,
+    /// The rigid-body modes the supports leave (empty unless `may_float`).
+    modes: RigidBodyModes,
+    /// The free dofs pinned to factorise `K⁺` (one per mode).
+    pinned: Vec<usize>,
+    /// `K` with the pinned rows and columns decoupled (the matrix factorised when floating).
+    pinned_values: Vec<f64>,
+    /// An orthonormal basis of the modes (column-major), for the projection `P = I − Q Qᵀ`.
+    mode_basis: Vec<f64>,
 }
 
 impl core::fmt::Debug for LinearElasticModel {
@@ -100,12 +112,25 @@ impl LinearElasticModel {
     /// - [`FemError::InvalidParameter`] for a plane-stress thickness that is not finite and
     ///   positive;
     /// - [`FemError::NonFiniteStiffness`] for an element whose stiffness overflows;
-    /// - [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body mode.
+    /// - [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body mode (found from
+    ///   the mesh and the supports, naming a dof the mode moves) or the stiffness is singular
+    ///   otherwise (a node no element connects, a mechanism); a body that contact holds is
+    ///   built with [`LinearElasticModel::floating`].
     pub fn new(
         mesh: Mesh,
         idealization: Idealization,
         materials: &[(u32, Material)],
         supports: Supports,
+    ) -> Result<Self, FemError> {
+        Self::build(mesh, idealization, materials, supports, false)
+    }
+
+    fn build(
+        mesh: Mesh,
+        idealization: Idealization,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        may_float: bool,
     ) -> Result<Self, FemError> {
         if let Idealization::PlaneStress { thickness } = idealization {
             crate::error::positive("thickness", thickness)?;
@@ -143,7 +168,13 @@ impl LinearElasticModel {
             initial_stress: None,
             version: 0,
             normals: std::sync::OnceLock::new(),
+            may_float,
+            modes: RigidBodyModes::default(),
+            pinned: Vec::new(),
+            pinned_values: Vec::new(),
+            mode_basis: Vec::new(),
         };
+        model.find_modes()?;
         model.assemble_and_factor()?;
         Ok(model)
     }
@@ -177,8 +208,14 @@ impl LinearElasticModel {
             );
         }
         self.coupling = merge(coupling);
+        let values = if self.pinned.is_empty() {
+            &self.values
+        } else {
+            self.pin_values();
+            &self.pinned_values
+        };
         self.solver
-            .factor(self.pattern.view(&self.values))
+            .factor(self.pattern.view(values))
             .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
         Ok(())
@@ -288,6 +325,7 @@ impl LinearElasticModel {
         )?;
         self.solver = SpdSolver::new(self.pattern.symbolic().as_ref())?;
         self.values = vec![0.0; self.pattern.nnz()];
+        self.find_modes()?;
         self.assemble_and_factor()
     }
 
@@ -551,12 +589,29 @@ impl Structure for LinearElasticModel {
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
-        self.solver.solve_in_place(rhs);
+        if self.pinned.is_empty() {
+            self.solver.solve_in_place(rhs);
+        } else {
+            // x = P K⁺ P b (crate::rigid_modes)
+            self.project(rhs, true);
+            self.solver.solve_in_place(rhs);
+            self.project(rhs, false);
+        }
         Ok(())
     }
 
-    fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
-        self.solver.solve_many_in_place(rhs);
+    fn solve_many_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+        if self.pinned.is_empty() {
+            self.solver.solve_many_in_place(rhs);
+        } else {
+            for c in 0..rhs.ncols() {
+                self.project_column(rhs.as_mut().col_mut(c), true);
+            }
+            self.solver.solve_many_in_place(rhs.as_mut());
+            for c in 0..rhs.ncols() {
+                self.project_column(rhs.as_mut().col_mut(c), false);
+            }
+        }
         Ok(())
     }
 
@@ -570,8 +625,16 @@ impl Structure for LinearElasticModel {
         }
         self.rhs_into(load_factor, u);
         self.check_finite("right-hand side", u)?;
-        self.solver.solve_in_place(u);
+        self.solve_in_place(u)?;
         self.check_finite("displacement", u)
+    }
+
+    fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
+        (!self.modes.is_empty()).then_some(&self.modes)
+    }
+
+    fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
+        self.mode_load_into(load_factor, out)
     }
 
     fn stiffness_version(&self) -> u64 {
@@ -584,188 +647,4 @@ impl Structure for LinearElasticModel {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::Side;
-
-    /// Unit square, two P1 triangles; right side loaded by a uniform traction.
-    fn square_model(idealization: Idealization) -> LinearElasticModel {
-        let nodes = vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]];
-        let mut mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2, 0, 2, 3], vec![]).unwrap();
-        mesh.add_edge_set(
-            "right",
-            vec![Side {
-                element: 0,
-                side: 1,
-            }],
-        )
-        .unwrap();
-        let mut supports = Supports::new();
-        supports.fix(&[0, 3], Component::X).fix(&[0], Component::Y);
-        let m = Material::new(100.0, 0.25, 0.0).unwrap();
-        LinearElasticModel::new(mesh, idealization, &[(0, m)], supports).unwrap()
-    }
-
-    #[test]
-    fn prescribed_displacement_reports_imposed_values_only() {
-        let mut m = square_model(Idealization::PlaneStrain);
-        m.set_prescribed(&[3], Component::Y, 0.25).unwrap();
-        assert_eq!(m.prescribed_displacement(3), [0.0, 0.25]); // x fixed at 0, y imposed
-        assert_eq!(m.prescribed_displacement(2), [0.0, 0.0]); // free node
-        let u = m.solve(1.0).unwrap();
-        assert_eq!(u[3][1], 0.25);
-    }
-
-    #[test]
-    fn uniaxial_tension_works() {
-        let mut model = square_model(Idealization::PlaneStress { thickness: 1.0 });
-        model.add_edge_traction("right", |_| [2.0, 0.0]).unwrap();
-        let u = model.solve(1.0).unwrap();
-        // ε_xx = σ/E = 0.02 over a length 1; ε_yy = −ν ε_xx.
-        assert!((u[1][0] - 0.02).abs() < 1e-12 && (u[2][0] - 0.02).abs() < 1e-12);
-        assert!((u[3][1] + 0.005).abs() < 1e-12);
-        for pts in model.stresses(&u).unwrap() {
-            for (_, s) in pts {
-                assert!((s[0] - 2.0).abs() < 1e-12 && s[1].abs() < 1e-12 && s[2].abs() < 1e-12);
-            }
-        }
-        // Strains: ε_xx = 0.02, ε_yy = −0.005, ε_zz = −ν/(1−ν)(ε_xx + ε_yy) = −0.005.
-        for pts in model.strains(&u).unwrap() {
-            for (_, e) in pts {
-                assert!((e[0] - 0.02).abs() < 1e-12 && (e[1] + 0.005).abs() < 1e-12);
-                assert!(e[2].abs() < 1e-12 && (e[3] + 0.005).abs() < 1e-12);
-            }
-        }
-        // Reactions balance the applied load: Σ R_x = −2 (length 1 × traction 2).
-        let r = model.reactions(&u, 1.0).unwrap();
-        let rx: f64 = r
-            .iter()
-            .filter(|((_, c), _)| *c == Component::X)
-            .map(|(_, v)| v)
-            .sum();
-        assert!((rx + 2.0).abs() < 1e-12, "Σ R_x = {rx}");
-    }
-
-    #[test]
-    fn missing_supports_are_reported_not_nan() {
-        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![]).unwrap();
-        let m = Material::new(1.0, 0.3, 0.0).unwrap();
-        let err =
-            LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
-                .unwrap_err();
-        assert!(
-            matches!(err, FemError::NotPositiveDefinite { .. }),
-            "{err:?}"
-        );
-    }
-
-    #[test]
-    fn changing_a_prescribed_value_does_not_refactor() {
-        let mut model = square_model(Idealization::PlaneStrain);
-        assert_eq!(model.factorizations(), 1);
-        model.set_prescribed(&[1, 2], Component::X, 0.01).unwrap(); // new constraint
-        assert_eq!(model.factorizations(), 2);
-        let v = model.stiffness_version();
-        model.set_prescribed(&[1, 2], Component::X, 0.02).unwrap(); // value only
-        assert_eq!(model.factorizations(), 2);
-        assert_eq!(model.stiffness_version(), v);
-        let u = model.solve(0.0).unwrap();
-        assert!((u[1][0] - 0.02).abs() < 1e-15);
-        assert!((u[3][0]).abs() < 1e-15);
-    }
-
-    #[test]
-    fn missing_material_is_reported() {
-        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let mesh = Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2], vec![3]).unwrap();
-        let m = Material::new(1.0, 0.3, 0.0).unwrap();
-        let err =
-            LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
-                .unwrap_err();
-        assert_eq!(
-            err,
-            FemError::MissingMaterial {
-                region: 3,
-                element: 0
-            }
-        );
-    }
-
-    /// Issue 13: a stiffness that is not positive definite names a node and a component of
-    /// the model, not faer's pivot in its permuted order.
-    #[test]
-    fn issue_13_not_positive_definite_names_node() {
-        use crate::generate::{RectangleSpec, rectangle};
-        let m = Material::new(210e9, 0.3, 0.0).unwrap();
-
-        // A supported 3 × 2 rectangle plus one node (inserted as node 5) that no element
-        // connects. Its two rows and columns of K are zero but for the structural diagonal
-        // (0). Every leading block of P K Pᵀ without its dofs is a principal submatrix of the
-        // supported rectangle's stiffness (SPD), and the first block that holds one of its
-        // dofs has the pivot 0 − 0 = 0 exactly: the factorisation must stop at node 5,
-        // whichever of its components the ordering puts first.
-        let rect = rectangle(&RectangleSpec::new([0.0, 3.0], [0.0, 2.0], 3, 2)).unwrap();
-        let extra = 5;
-        let shift = |n: usize| if n >= extra { n + 1 } else { n };
-        let mut nodes = rect.nodes().to_vec();
-        nodes.insert(extra, [10.0, 10.0]);
-        let connectivity = rect.connectivity().iter().map(|&n| shift(n)).collect();
-        let mesh = Mesh::new(nodes, ElementKind::Tri3, connectivity, vec![]).unwrap();
-        let bottom: Vec<usize> = rect
-            .node_set("bottom")
-            .unwrap()
-            .iter()
-            .map(|&n| shift(n))
-            .collect();
-        let mut supports = Supports::new();
-        supports
-            .fix(&bottom, Component::X)
-            .fix(&bottom, Component::Y);
-        let dofs = DofMap::new(mesh.node_count(), &supports).unwrap();
-        let err = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
-            .unwrap_err();
-        let FemError::NotPositiveDefinite {
-            node,
-            component,
-            row,
-        } = err
-        else {
-            panic!("expected NotPositiveDefinite, got {err:?}");
-        };
-        assert_eq!(node, extra);
-        assert_eq!(dofs.free_dofs(node)[component as usize], Some(row));
-        assert!(
-            err.to_string()
-                .contains(&format!("node {extra}, component {component}"))
-        );
-
-        // Rectangles fixed in y only along the bottom: the one rigid-body mode is the
-        // translation along x, u = (1, 0) at every node. Its leading block first becomes
-        // singular at the last x dof eliminated, so a failure must name an x dof. (Round-off
-        // can instead leave that pivot tiny and positive, and the factorisation succeeds: so
-        // only the meshes that fail are checked, and at least one must.)
-        let mut failures = 0;
-        for kind in [ElementKind::Tri3, ElementKind::Tri6] {
-            for (nx, ny) in [(1, 1), (2, 3), (4, 4), (10, 7)] {
-                let spec = RectangleSpec {
-                    kind,
-                    ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], nx, ny)
-                };
-                let mesh = rectangle(&spec).unwrap();
-                let mut supports = Supports::new();
-                supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
-                match LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)
-                {
-                    Ok(_) => {}
-                    Err(FemError::NotPositiveDefinite { component, .. }) => {
-                        assert_eq!(component, Component::X, "{kind:?} {nx}×{ny}");
-                        failures += 1;
-                    }
-                    Err(e) => panic!("{kind:?} {nx}×{ny}: {e:?}"),
-                }
-            }
-        }
-        assert!(failures > 0);
-    }
-}
+mod tests;

@@ -44,6 +44,24 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.structure
             .free_response_into(load_factor, &mut u_free)?;
         self.counters.structure_solves += 1;
+        // a floating structure: u_free = K⁺ f plus the rigid motion of the last step, and the
+        // load along the modes that contact must balance
+        let count = self.structure.rigid_body_modes().map_or(0, |m| m.len());
+        if self.alpha.len() != count {
+            self.alpha = vec![0.0; count];
+        }
+        self.mode_load.resize(count, 0.0);
+        if let Some(modes) = self.structure.rigid_body_modes() {
+            self.structure
+                .rigid_body_load_into(load_factor, &mut self.mode_load)?;
+            for (j, &a) in self.alpha.iter().enumerate() {
+                if a != 0.0 {
+                    for (u, r) in u_free.iter_mut().zip(modes.column(j)) {
+                        *u += a * r;
+                    }
+                }
+            }
+        }
         let free = self.local_jumps_of(&u_free);
         Ok((u_free, free))
     }

@@ -32,6 +32,14 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         for (a, b) in u.iter_mut().zip(u_free) {
             *a += b;
         }
+        // a floating structure's rigid motion of the step, R Δα
+        if let Some(modes) = self.structure.rigid_body_modes() {
+            for (j, &a) in solved.alpha.iter().enumerate() {
+                for (u, r) in u.iter_mut().zip(modes.column(j)) {
+                    *u += a * r;
+                }
+            }
+        }
         let mut jumps = self.local_jumps_of(&u);
         // active contacts: the reduced solution's own jumps. Recomputing them from `u` adds
         // the rounding of `u` (an ulp of the load) times the stiffness contrast, which is
@@ -92,6 +100,11 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 ContactStatus::Slip => InterfaceStatus::Slip,
             };
         }
+        for (a, d) in self.alpha.iter_mut().zip(&solved.alpha) {
+            *a += d;
+        }
+        self.counters.equilibrium_iterations += report.equilibrium_iterations;
+        self.counters.equilibrium_solves += report.equilibrium_solves;
         self.jumps = jumps;
         self.u = u;
         self.time = time;

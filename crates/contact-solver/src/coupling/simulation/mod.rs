@@ -26,6 +26,7 @@
 mod detection;
 mod equilibrium;
 mod flexibility;
+mod floating;
 mod path;
 mod report;
 mod settings;
@@ -93,6 +94,10 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     last_problem: Option<ReducedProblem>,
     last_version: u64,
     primal: PrimalCache,
+    /// Floating structures: the accepted rigid-body amplitudes `α` (one per mode).
+    alpha: Vec<f64>,
+    /// Floating structures: the load along every mode at this step's load factor, `Rᵀ f`.
+    mode_load: Vec<f64>,
 }
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
@@ -167,6 +172,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             counters: Counters::default(),
             last_problem: None,
             primal: PrimalCache::default(),
+            alpha: Vec::new(),
+            mode_load: Vec::new(),
         };
         sim.jumps = sim.local_jumps_of(&sim.u);
         Ok(sim)
@@ -245,10 +252,18 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         &self.w_active
     }
 
+    /// Floating structures ([`Structure::rigid_body_modes`]): the amplitudes `α` of the
+    /// rigid-body modes in the displacement `u = K⁺(f + Hᵀ r) + R α` at the end of the last
+    /// step, one per mode (empty for a supported structure).
+    pub fn rigid_body_amplitudes(&self) -> &[f64] {
+        &self.alpha
+    }
+
     /// Resets the displacement and the tangential reference to zero while keeping the law
     /// states (e.g. after an installation phase whose displacements are discarded).
     pub fn reset_displacements(&mut self) {
         self.u.fill(0.0);
+        self.alpha.fill(0.0);
         self.jumps = self.local_jumps_of(&self.u);
         self.r_bar.iter_mut().for_each(|r| *r = [0.0; 2]);
     }
@@ -280,6 +295,13 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             report.detection_passes += 1;
             // 2–3. the path and its operator, then the local solve (with the adhesion loop)
             let solved = self.solve_pass(&active, &free, dt, version, &mut report)?;
+            if !solved.extend.is_empty() {
+                // a rigid motion of a floating body closes candidates outside the set
+                active.extend(solved.extend);
+                active.sort_unstable();
+                active.dedup();
+                continue;
+            }
             // 4. equilibrium, then the penetration check and the report
             let (u, jumps) = self.equilibrium(&u_free, &solved)?;
             let penetrating = self.penetrating(&jumps);

@@ -74,6 +74,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             self.w_version = Some(version);
             report.flexibility_rebuilt = true;
         }
+        if self.floats() {
+            return self.solve_floating(free, dt, report);
+        }
         self.solve_active(free, dt, report)
     }
 
@@ -83,6 +86,20 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             let law = &self.zones[self.candidates[i].zone].law;
             law.has_adhesion() && law.adhesion_active(&self.states[i])
         });
+        if self.floats() {
+            // the rigid-body amplitudes are solved for on a dense F* only
+            return match self.settings.flexibility {
+                FlexibilityMode::Dense | FlexibilityMode::Auto { .. } => Ok(Path::Dense),
+                FlexibilityMode::MatrixFree | FlexibilityMode::ActiveSet => {
+                    Err(SolverError::Unsupported(format!(
+                        "the structure floats (it has rigid-body modes): \
+                         SimulationSettings::flexibility = {:?} does not solve for them; use \
+                         FlexibilityMode::Dense or Auto",
+                        self.settings.flexibility
+                    )))
+                }
+            };
+        }
         match self.settings.flexibility {
             FlexibilityMode::Dense => Ok(Path::Dense),
             FlexibilityMode::Auto { dense_limit } => {
@@ -109,6 +126,13 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 .map(Path::ActiveSet)
                 .map_err(SolverError::Unsupported),
         }
+    }
+
+    /// Whether the structure has rigid-body modes (a floating body).
+    pub(super) fn floats(&self) -> bool {
+        self.structure
+            .rigid_body_modes()
+            .is_some_and(|m| !m.is_empty())
     }
 
     /// The local frames of the primal active-set path, or why it does not apply.

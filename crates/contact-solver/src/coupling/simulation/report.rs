@@ -86,6 +86,10 @@ pub struct StepReport {
     pub matrix_free: bool,
     /// Whether the step was solved by the primal active-set iteration (no `F*`).
     pub active_set: bool,
+    /// Floating structures: Newton iterations on the rigid-body amplitudes (0 otherwise).
+    pub equilibrium_iterations: usize,
+    /// Floating structures: reduced solves of those iterations, line-search trials included.
+    pub equilibrium_solves: usize,
     /// Natural-map residual of the last reduced solve.
     pub residual: f64,
     /// Whether every solve of the step met its tolerance (always `true` unless the settings
@@ -127,6 +131,10 @@ pub struct Counters {
     /// Steps where `Auto`'s active-set iteration did not converge and the step was solved
     /// again with a dense `F*` (up to 8000 contacts) or matrix-free.
     pub active_set_fallbacks: usize,
+    /// Floating structures: Newton iterations on the rigid-body amplitudes.
+    pub equilibrium_iterations: usize,
+    /// Floating structures: reduced solves of those iterations.
+    pub equilibrium_solves: usize,
 }
 
 /// The result of one step.
@@ -153,6 +161,8 @@ impl StepReport {
             flexibility_rebuilt: false,
             matrix_free: false,
             active_set: false,
+            equilibrium_iterations: 0,
+            equilibrium_solves: 0,
             residual: 0.0,
             converged: true,
             wall_time: Duration::ZERO,

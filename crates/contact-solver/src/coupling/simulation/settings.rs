@@ -29,6 +29,14 @@ pub struct SimulationSettings {
     pub skip: SkipRules,
     /// Dense `F*` or the matrix-free iteration ([`crate::local::matrix_free`]).
     pub flexibility: FlexibilityMode,
+    /// Floating structures ([`Structure::rigid_body_modes`](fem_core::Structure::rigid_body_modes)):
+    /// the equilibrium of each body along its modes is met when the out-of-balance force
+    /// along every mode is at most this fraction of the forces involved (load plus the absolute
+    /// contact contributions). Default `1e-11`.
+    pub equilibrium_tol: f64,
+    /// Floating structures: the cap on the Newton iterations on the rigid-body amplitudes
+    /// (each one reduced solve, plus line-search trials). Default 50.
+    pub max_equilibrium_iterations: usize,
 }
 
 /// How the reduced problem is held.
@@ -114,6 +122,8 @@ impl Default for SimulationSettings {
             columns_per_solve: 64,
             skip: SkipRules::default(),
             flexibility: FlexibilityMode::default(),
+            equilibrium_tol: 1e-11,
+            max_equilibrium_iterations: 50,
         }
     }
 }
@@ -158,6 +168,21 @@ impl SimulationSettings {
     #[must_use]
     pub fn with_columns_per_solve(mut self, columns_per_solve: usize) -> Self {
         self.columns_per_solve = columns_per_solve;
+        self
+    }
+
+    /// These settings with [`equilibrium_tol`](Self::equilibrium_tol) replaced.
+    #[must_use]
+    pub fn with_equilibrium_tol(mut self, equilibrium_tol: f64) -> Self {
+        self.equilibrium_tol = equilibrium_tol;
+        self
+    }
+
+    /// These settings with [`max_equilibrium_iterations`](Self::max_equilibrium_iterations)
+    /// replaced.
+    #[must_use]
+    pub fn with_max_equilibrium_iterations(mut self, max_equilibrium_iterations: usize) -> Self {
+        self.max_equilibrium_iterations = max_equilibrium_iterations;
         self
     }
 

@@ -22,6 +22,26 @@ pub(super) struct Solved<T> {
     pub(super) x: Vec<f64>,
     pub(super) statuses: Vec<ContactStatus>,
     pub(super) states: Vec<T>,
+    /// Floating structures: the change `Δα` of the rigid-body amplitudes (empty otherwise).
+    pub(super) alpha: Vec<f64>,
+    /// Candidates to add to the active set before solving again (a rigid motion closes them);
+    /// when not empty the rest is meaningless.
+    pub(super) extend: Vec<usize>,
+}
+
+impl<T> Solved<T> {
+    /// A pass that asks for `candidates` to be added to the active set.
+    pub(super) fn extend(candidates: Vec<usize>) -> Self {
+        Self {
+            r: Vec::new(),
+            r_bar: Vec::new(),
+            x: Vec::new(),
+            statuses: Vec::new(),
+            states: Vec::new(),
+            alpha: Vec::new(),
+            extend: candidates,
+        }
+    }
 }
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
@@ -83,6 +103,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             x: sol.x,
             statuses: sol.statuses,
             states,
+            alpha: Vec::new(),
+            extend: Vec::new(),
         })
     }
 
@@ -156,6 +178,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             x,
             statuses,
             states,
+            alpha: Vec::new(),
+            extend: Vec::new(),
         })
     }
 
@@ -212,6 +236,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             x: sol.x,
             statuses: sol.report.statuses,
             states: sol.states,
+            alpha: Vec::new(),
+            extend: Vec::new(),
         })
     }
 }

@@ -1,0 +1,574 @@
+//! Stage 3 for a floating structure: the reduced problem with the rigid-body amplitudes `α` as
+//! extra unknowns and the equilibrium of every body along its modes as their equation.
+//!
+//! With `R` the structure's modes ([`Structure::rigid_body_modes`]), `K⁺` its generalized
+//! inverse and `f` the load, the displacement is `u = K⁺(f + Hᵀ r) + R α` and
+//!
+//! ```text
+//! x = F r + G α + q,   G = H R,   F = H K⁺ Hᵀ,   q from u_free = K⁺ f
+//! Gᵀ r = e,            e = −Rᵀ f          (the reactions balance the load along every mode)
+//! ```
+//! (the floating-subdomain form of FETI, Farhat & Roux 1991). Modes are few (at most 3 per
+//! body), so the equation `Gᵀ r(α) = e` is solved by a semismooth Newton method on `α`, where
+//! `r(α)` is the ordinary reduced problem with `q + G α`, solved by [`UzawaSolver`] and warm
+//! started. Its Jacobian comes from the contacts' statuses: with `E` the directions the
+//! closed contacts' reactions may take (stick: `e_n`, `e_t`; slip: `e_n + (r_t/r_n) e_t`;
+//! frictionless: `e_n`) and `P` the gaps they hold (stick: `x_n = x_t = 0`; slip or
+//! frictionless: `x_n = 0`),
+//!
+//! ```text
+//! dr/dα = −E (Pᵀ F E)⁻¹ Pᵀ G,    J = Gᵀ dr/dα
+//! ```
+//! The step solves `J d = −(Gᵀ r − e)` on the directions `J` resists (a pseudo-inverse by
+//! SVD), with a backtracking line search on `‖Gᵀ r − e‖`. Along a direction that no closed
+//! contact resists (`J d = 0`: the body is free to move that way), the body moves rigidly
+//! until the first open contact closes, and a little further (the penetration a lone contact
+//! needs to carry the out-of-balance force). If no contact closes that way (or the closed
+//! ones slip), contact cannot hold the body: [`SolverError::Unbalanced`] names the mode and
+//! the force left over. No penalty: the answer meets `Gᵀ r = e` to
+//! [`SimulationSettings::equilibrium_tol`](super::SimulationSettings::equilibrium_tol).
+
+use super::ContactSimulation;
+use super::report::StepReport;
+use super::solve::Solved;
+use crate::error::SolverError;
+use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
+use contact_laws::{ContactLaw, ContactStatus};
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+use fem_core::{RigidMode, RigidMotion, Structure};
+
+/// Singular values of `J` below this fraction of the largest count as directions no contact
+/// resists.
+const NULL_TOL: f64 = 1e-9;
+
+/// The resisted directions balance to this fraction of the forces before the free ones are
+/// examined (module docs).
+const RAY_TOL: f64 = 1e-8;
+
+/// Smallest line-search step.
+const MIN_STEP: f64 = 1.0 / 1024.0;
+
+/// What the floating solve needs beyond the ordinary step.
+struct Floating {
+    /// Number of modes.
+    nm: usize,
+    /// `G` on the active rows, row-major `m × nm` (zero on decoupled tangential rows).
+    g: Vec<f64>,
+    /// `e = −Rᵀ f`.
+    e: Vec<f64>,
+    /// The modes' meaning.
+    modes: Vec<RigidMode>,
+}
+
+impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+    /// `G = H R` on every candidate row (row-major, `2 n_candidates × n_modes`).
+    pub(super) fn mode_rows(&self) -> Vec<f64> {
+        let Some(modes) = self.structure.rigid_body_modes() else {
+            return Vec::new();
+        };
+        let nm = modes.len();
+        let mut g = vec![0.0; self.h_rows.len() * nm];
+        for (row, h) in self.h_rows.iter().enumerate() {
+            for j in 0..nm {
+                let col = modes.column(j);
+                g[row * nm + j] = h.iter().map(|&(dof, a)| a * col[dof]).sum();
+            }
+        }
+        g
+    }
+
+    /// The reduced solve of a floating structure on the cached active set (module docs).
+    /// Returns the solution with `alpha` set, or the candidates to add (`extend`) when a rigid
+    /// motion would close a contact outside the active set.
+    pub(super) fn solve_floating(
+        &mut self,
+        free: &[[f64; 2]],
+        dt: f64,
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let active = self.w_active.clone();
+        let na = active.len();
+        let m = 2 * na;
+        let g_all = self.mode_rows();
+        let (nm, modes) = match self.structure.rigid_body_modes() {
+            Some(r) => (r.len(), r.modes().to_vec()),
+            None => (0, Vec::new()),
+        };
+        let tangent: Vec<bool> = active.iter().map(|&i| self.tangent_needed(i)).collect();
+        let mut g = vec![0.0; m * nm];
+        for (k, &i) in active.iter().enumerate() {
+            for d in 0..2 {
+                if d == 1 && !tangent[k] {
+                    continue;
+                }
+                let row = 2 * k + d;
+                g[row * nm..(row + 1) * nm]
+                    .copy_from_slice(&g_all[(2 * i + d) * nm..(2 * i + d + 1) * nm]);
+            }
+        }
+        let fl = Floating {
+            nm,
+            g,
+            e: self.mode_load.iter().map(|v| -v).collect(),
+            modes,
+        };
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        if let Some(k) = (0..na).find(|&k| laws[k].adhesion_active(&self.states[active[k]])) {
+            return Err(SolverError::Unsupported(format!(
+                "zone `{}`: adhesive laws on a floating structure (rigid-body modes) are not \
+                 supported yet; support the body or use a law without adhesion",
+                self.zones[self.candidates[active[k]].zone].name
+            )));
+        }
+        let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+        let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+        let mut q0 = vec![0.0; m];
+        for (k, &i) in active.iter().enumerate() {
+            q0[2 * k] = free[i][0];
+            if tangent[k] {
+                q0[2 * k + 1] = free[i][1] - self.jumps[i][1];
+            }
+        }
+        let options = AdhesionOptions {
+            tol: self.settings.adhesion_tol,
+            max_iterations: self.settings.max_adhesion_iterations,
+            accept_non_converged: self.settings.solver.accept_non_converged,
+            always_iterate: false,
+            anderson_window: self.settings.adhesion_anderson_window,
+        };
+        let mut r_warm: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let mut q = q0.clone();
+        // one reduced solve at α, warm started from the last reactions
+        let mut solve_at = |alpha: &[f64],
+                            r_warm: &mut Vec<f64>,
+                            report: &mut StepReport|
+         -> Result<(AdhesiveSolution<L::State>, Vec<f64>), SolverError> {
+            for (row, qi) in q.iter_mut().enumerate() {
+                *qi = q0[row] + (0..nm).map(|j| fl.g[row * nm + j] * alpha[j]).sum::<f64>();
+            }
+            let step = AdhesiveStep {
+                w: &self.w,
+                q: &q,
+                laws: &laws,
+                start_states: &start_states,
+                u_start: &u_start,
+                areas: &areas,
+                dt,
+            };
+            let sol = solve_adhesive(&mut self.solver, &step, Some(r_warm), &options)?;
+            report.contact_iterations += sol.contact_iterations;
+            report.equilibrium_solves += 1;
+            r_warm.copy_from_slice(&sol.r_bar);
+            let res = fl.residual(&sol.r);
+            Ok((sol, res))
+        };
+        let mut alpha = vec![0.0; nm];
+        let (mut sol, mut res) = solve_at(&alpha, &mut r_warm, report)?;
+        let mut iterations = 0;
+        let mut history = Vec::new();
+        loop {
+            let scale = fl.scale(&sol.r);
+            let worst = res.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            history.push(if scale > 0.0 { worst / scale } else { 0.0 });
+            if worst <= self.settings.equilibrium_tol * scale || scale == 0.0 {
+                break;
+            }
+            if iterations >= self.settings.max_equilibrium_iterations {
+                if self.settings.solver.accept_non_converged {
+                    report.converged = false;
+                    break;
+                }
+                return Err(SolverError::NotConverged {
+                    iterations,
+                    residual: worst / scale,
+                    history,
+                });
+            }
+            iterations += 1;
+            let lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+            let (newton, vs, free) = lin.directions(&res);
+            let along = |r: &[f64]| -> f64 {
+                (0..vs.ncols())
+                    .map(|c| (0..nm).map(|i| vs[(i, c)] * r[i]).sum::<f64>().powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            };
+            let tol = self.settings.equilibrium_tol * scale;
+            let merit = along(&res);
+            // the free directions are examined once the resisted ones balance to this (the
+            // reduced solves' own accuracy may not reach `tol` while a force is left over)
+            let balanced = tol.max(RAY_TOL * scale);
+            if merit <= balanced && norm(&free) > tol {
+                // the resisted directions balance: the force left is along free directions;
+                // move rigidly that way until a contact closes (or stops slipping)
+                // a piecewise-linear root search of the force along d̂ = free/‖free‖:
+                // φ(t) = d̂ · res(α + t d), stepping to the next event (a contact closes or
+                // sticks) or to the linear model's root, then Illinois within a bracket
+                let d = free;
+                let dn = norm(&d);
+                let phi = |r: &[f64]| r.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>() / dn;
+                let base = alpha.clone();
+                let (mut t_lo, mut phi_lo) = (0.0, phi(&res));
+                let mut lin = lin;
+                let mut bracket = None;
+                for _ in 0..(4 * na + 16) {
+                    let slope = (0..nm)
+                        .map(|i| d[i] * (0..nm).map(|j| lin.jac[(i, j)] * d[j]).sum::<f64>())
+                        .sum::<f64>()
+                        / (dn * dn);
+                    // a slope at round-off of J is no slope: the direction stays free
+                    let mut j_max = 0.0_f64;
+                    for c in lin.jac.col_iter() {
+                        j_max = c.iter().fold(j_max, |m, v| m.max(v.abs()));
+                    }
+                    let t_root = if slope < -NULL_TOL * j_max {
+                        phi_lo / -slope
+                    } else {
+                        f64::INFINITY
+                    };
+                    let t_event = lin
+                        .ray_length(&d, &sol.x, &res, &self.w, m)
+                        .unwrap_or(f64::INFINITY);
+                    let step = t_root.min(t_event);
+                    if !step.is_finite() {
+                        // contacts outside the active set that this motion would close
+                        let extend: Vec<usize> = (0..self.candidates.len())
+                            .filter(|i| active.binary_search(i).is_err())
+                            .filter(|&i| {
+                                (0..nm).map(|j| g_all[2 * i * nm + j] * d[j]).sum::<f64>() < 0.0
+                            })
+                            .collect();
+                        if !extend.is_empty() {
+                            return Ok(Solved::extend(extend));
+                        }
+                        return Err(fl.unbalanced(&res, &d));
+                    }
+                    let t = t_lo + step;
+                    for j in 0..nm {
+                        alpha[j] = base[j] + t * d[j];
+                    }
+                    (sol, res) = solve_at(&alpha, &mut r_warm, report)?;
+                    let phi_t = phi(&res);
+                    if phi_t.abs() <= tol {
+                        break;
+                    }
+                    if phi_t < 0.0 {
+                        bracket = Some(((t_lo, phi_lo), (t, phi_t)));
+                        break;
+                    }
+                    (t_lo, phi_lo) = (t, phi_t);
+                    lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+                }
+                if let Some(((mut ta, mut fa), (mut tb, mut fb))) = bracket {
+                    // Illinois: regula falsi that halves the kept end's value
+                    for _ in 0..100 {
+                        let t = tb - fb * (tb - ta) / (fb - fa);
+                        for j in 0..nm {
+                            alpha[j] = base[j] + t * d[j];
+                        }
+                        (sol, res) = solve_at(&alpha, &mut r_warm, report)?;
+                        let ft = phi(&res);
+                        if ft.abs() <= tol || (tb - ta).abs() <= 1e-15 * t.abs() {
+                            break;
+                        }
+                        if (ft < 0.0) == (fb < 0.0) {
+                            fa *= 0.5;
+                        } else {
+                            (ta, fa) = (tb, fb);
+                        }
+                        (tb, fb) = (t, ft);
+                    }
+                }
+                continue;
+            }
+            // Newton step on the resisted directions, backtracking on ‖V_Sᵀ (Gᵀ r − e)‖
+            let mut lambda = 1.0;
+            loop {
+                let trial: Vec<f64> = alpha
+                    .iter()
+                    .zip(&newton)
+                    .map(|(a, d)| a + lambda * d)
+                    .collect();
+                let mut warm = r_warm.clone();
+                let (s, r) = solve_at(&trial, &mut warm, report)?;
+                if along(&r) <= (1.0 - 1e-4 * lambda) * merit || lambda <= MIN_STEP {
+                    alpha = trial;
+                    r_warm = warm;
+                    (sol, res) = (s, r);
+                    break;
+                }
+                lambda *= 0.5;
+            }
+        }
+        report.equilibrium_iterations += iterations;
+        report.residual = sol.report.residual;
+        report.converged &= sol.converged;
+        self.last_problem = Some(sol.condensed);
+        Ok(Solved {
+            r: sol.r,
+            r_bar: sol.r_bar,
+            x: sol.x,
+            statuses: sol.report.statuses,
+            states: sol.states,
+            alpha,
+            extend: Vec::new(),
+        })
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|a| a * a).sum::<f64>().sqrt()
+}
+
+impl Floating {
+    /// `Gᵀ r − e`: the out-of-balance generalized force along every mode.
+    fn residual(&self, r: &[f64]) -> Vec<f64> {
+        let nm = self.nm;
+        let mut res: Vec<f64> = self.e.iter().map(|v| -v).collect();
+        for (row, &ri) in r.iter().enumerate() {
+            for (rj, gj) in res.iter_mut().zip(&self.g[row * nm..(row + 1) * nm]) {
+                *rj += gj * ri;
+            }
+        }
+        res
+    }
+
+    /// The size of the forces involved: `max_j (|e_j| + Σ |G_ij r_i|)`.
+    fn scale(&self, r: &[f64]) -> f64 {
+        let nm = self.nm;
+        (0..nm)
+            .map(|j| {
+                self.e[j].abs()
+                    + r.iter()
+                        .enumerate()
+                        .map(|(row, ri)| (self.g[row * nm + j] * ri).abs())
+                        .sum::<f64>()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The error for an out-of-balance force `res` along the free direction `d`: the mode
+    /// that `d` moves most.
+    fn unbalanced(&self, res: &[f64], d: &[f64]) -> SolverError {
+        let j = (0..self.nm)
+            .max_by(|&a, &b| d[a].abs().total_cmp(&d[b].abs()))
+            .unwrap_or(0);
+        let mode = self.modes[j];
+        // the generalized force along a rotation mode scaled by 1/ρ is a moment / ρ
+        let to_physical = match mode.motion {
+            RigidMotion::Rotation { radius, .. } => radius,
+            _ => 1.0,
+        };
+        SolverError::Unbalanced {
+            body: mode.body,
+            motion: mode.motion,
+            imbalance: res[j] * to_physical,
+            load: -self.e[j] * to_physical,
+        }
+    }
+}
+
+/// The reduced problem linearised at a solution, on its closed contacts (module docs).
+struct Linearized {
+    nm: usize,
+    /// The reaction directions `E`: per column, up to two `(row, coefficient)`.
+    e_cols: Vec<[(usize, f64); 2]>,
+    /// The rows `P` of the held gaps.
+    p_rows: Vec<usize>,
+    /// `Z = (Pᵀ F E)⁻¹ Pᵀ G` (`p × nm`).
+    z: Mat<f64>,
+    /// `J = −Gᵀ E Z`.
+    jac: Mat<f64>,
+    /// Closed contacts.
+    closed: Vec<bool>,
+    /// Closed contacts that slip (with a tangential unknown).
+    slipping: Vec<bool>,
+    /// `G` row-major.
+    g: Vec<f64>,
+}
+
+impl Linearized {
+    fn new<T>(
+        w: &[f64],
+        m: usize,
+        fl: &Floating,
+        sol: &AdhesiveSolution<T>,
+        tangent: &[bool],
+    ) -> Result<Self, SolverError> {
+        let na = m / 2;
+        let nm = fl.nm;
+        let mut e_cols = Vec::with_capacity(m);
+        let mut p_rows = Vec::with_capacity(m);
+        let mut closed = vec![false; na];
+        let mut slipping = vec![false; na];
+        for k in 0..na {
+            let (rn, rt) = (sol.r[2 * k], sol.r[2 * k + 1]);
+            let status = sol.report.statuses[k];
+            if status == ContactStatus::Separation && rn <= 0.0 {
+                continue;
+            }
+            closed[k] = true;
+            let (n, t) = (2 * k, 2 * k + 1);
+            if !tangent[k] {
+                e_cols.push([(n, 1.0), (t, 0.0)]);
+                p_rows.push(n);
+            } else if status == ContactStatus::Slip {
+                slipping[k] = true;
+                let ratio = if rn > 0.0 { rt / rn } else { 0.0 };
+                e_cols.push([(n, 1.0), (t, ratio)]);
+                p_rows.push(n);
+            } else {
+                e_cols.push([(n, 1.0), (t, 0.0)]);
+                e_cols.push([(t, 1.0), (n, 0.0)]);
+                p_rows.push(n);
+                p_rows.push(t);
+            }
+        }
+        let p = p_rows.len();
+        let fe = |row: usize, c: usize| -> f64 {
+            e_cols[c]
+                .iter()
+                .map(|&(col, a)| if a == 0.0 { 0.0 } else { w[row * m + col] * a })
+                .sum()
+        };
+        let a = Mat::<f64>::from_fn(p, p, |i, c| fe(p_rows[i], c));
+        let b = Mat::<f64>::from_fn(p, nm, |i, j| fl.g[p_rows[i] * nm + j]);
+        let z = if p == 0 {
+            Mat::zeros(0, nm)
+        } else {
+            a.partial_piv_lu().solve(&b)
+        };
+        if z.col_iter().any(|c| c.iter().any(|v| !v.is_finite())) {
+            return Err(SolverError::Unsupported(
+                "floating structure: the closed contacts' flexibility is singular, the rigid \
+                 motion cannot be linearised"
+                    .into(),
+            ));
+        }
+        // J = −(Gᵀ E) Z
+        let mut jac = Mat::<f64>::zeros(nm, nm);
+        for (c, col) in e_cols.iter().enumerate() {
+            for i in 0..nm {
+                let ge: f64 = col.iter().map(|&(row, a)| fl.g[row * nm + i] * a).sum();
+                if ge != 0.0 {
+                    for j in 0..nm {
+                        jac[(i, j)] -= ge * z[(c, j)];
+                    }
+                }
+            }
+        }
+        Ok(Self {
+            nm,
+            e_cols,
+            p_rows,
+            z,
+            jac,
+            closed,
+            slipping,
+            g: fl.g.clone(),
+        })
+    }
+
+    /// The split of the amplitudes into the directions the closed contacts resist (`V_S`,
+    /// right singular vectors of `J` with a non-zero singular value) and the free ones (`V_N`).
+    /// Returns the Newton step on the resisted ones, `d = V_S (V_Sᵀ J V_S)⁻¹ (−V_Sᵀ res)`
+    /// (each resisted direction balanced, whatever is left along the free ones), the projector
+    /// `V_S` (`nm × s`, for the line search's merit `‖V_Sᵀ res‖`) and the free part of the
+    /// force, `V_N V_Nᵀ res`.
+    fn directions(&self, res: &[f64]) -> (Vec<f64>, Mat<f64>, Vec<f64>) {
+        let nm = self.nm;
+        let Ok(svd) = self.jac.svd() else {
+            return (vec![0.0; nm], Mat::zeros(nm, 0), res.to_vec());
+        };
+        let (s, v) = (svd.S().column_vector(), svd.V());
+        let top = if nm > 0 { s[0] } else { 0.0 };
+        let stiff: Vec<usize> = (0..nm)
+            .filter(|&c| top > 0.0 && s[c] > NULL_TOL * top)
+            .collect();
+        let vs = Mat::<f64>::from_fn(nm, stiff.len(), |i, c| v[(i, stiff[c])]);
+        let mut free = res.to_vec();
+        for c in 0..vs.ncols() {
+            let d: f64 = (0..nm).map(|i| vs[(i, c)] * res[i]).sum();
+            for i in 0..nm {
+                free[i] -= d * vs[(i, c)];
+            }
+        }
+        let mut newton = vec![0.0; nm];
+        if vs.ncols() > 0 {
+            let reduced = vs.transpose() * &self.jac * &vs;
+            let rhs = Mat::<f64>::from_fn(vs.ncols(), 1, |c, _| {
+                -(0..nm).map(|i| vs[(i, c)] * res[i]).sum::<f64>()
+            });
+            let y = reduced.partial_piv_lu().solve(&rhs);
+            if (0..vs.ncols()).all(|c| y[(c, 0)].is_finite()) {
+                for c in 0..vs.ncols() {
+                    for i in 0..nm {
+                        newton[i] += vs[(i, c)] * y[(c, 0)];
+                    }
+                }
+            }
+        }
+        (newton, vs, free)
+    }
+
+    /// How far to move along the free direction `d` before a contact changes what it resists:
+    /// an open contact closes (its gap reaches 0) or a slipping one sticks (its slip increment
+    /// returns to 0), plus the gap or slip a lone contact needs to carry the force; `None` if
+    /// none does.
+    fn ray_length(&self, d: &[f64], x: &[f64], res: &[f64], w: &[f64], m: usize) -> Option<f64> {
+        let nm = self.nm;
+        // dx = G d − F E Z d
+        let zd: Vec<f64> = (0..self.p_rows.len())
+            .map(|c| (0..nm).map(|j| self.z[(c, j)] * d[j]).sum())
+            .collect();
+        let dx = |row: usize| -> f64 {
+            let mut v: f64 = (0..nm).map(|j| self.g[row * nm + j] * d[j]).sum();
+            for (c, col) in self.e_cols.iter().enumerate() {
+                for &(r, a) in col {
+                    if a != 0.0 {
+                        v -= w[row * m + r] * a * zd[c];
+                    }
+                }
+            }
+            v
+        };
+        let mut best: Option<(f64, usize, f64)> = None;
+        // rates below this are round-off of a direction that does not move the contact
+        let tiny = 1e-9 * norm(d);
+        let mut consider = |t: f64, row: usize, rate: f64| {
+            if best.is_none_or(|(b, _, _)| t < b) {
+                best = Some((t, row, rate));
+            }
+        };
+        for k in 0..self.closed.len() {
+            if !self.closed[k] {
+                let rate = dx(2 * k);
+                if rate < -tiny {
+                    consider(x[2 * k].max(0.0) / -rate, 2 * k, rate);
+                }
+            } else if self.slipping[k] {
+                let rate = dx(2 * k + 1);
+                if rate.abs() > tiny && rate * x[2 * k + 1] < 0.0 {
+                    consider(x[2 * k + 1].abs() / rate.abs(), 2 * k + 1, rate);
+                }
+            }
+        }
+        let (t, row, rate) = best?;
+        // the force along d̂ and the gap (or slip) one contact needs to carry it:
+        // extra = W_rr f / (|G_r d̂| |dx_r/dt|)
+        let dn = norm(d);
+        let force = res.iter().zip(d).map(|(a, b)| a * b).sum::<f64>().abs() / dn;
+        let lever = ((0..nm).map(|j| self.g[row * nm + j] * d[j]).sum::<f64>() / dn).abs();
+        let extra = if lever > 0.0 {
+            w[row * m + row] * force / (lever * rate.abs())
+        } else {
+            0.0
+        };
+        Some(t + extra)
+    }
+}
