@@ -117,4 +117,29 @@ fn small_or_mostly_closed_problems_are_solved_whole() {
         .solve(&p, &p.coulomb_laws())
         .unwrap();
     assert_eq!(sol.report.solved_contacts, p.contact_count());
+    // a sparse W is solved whole (an open contact costs next to nothing there), same answer
+    let p = coupled_pairs(SKIP_OPEN_MIN_CONTACTS);
+    let (m, w) = (p.size(), p.w_dense().unwrap());
+    let (mut i, mut j, mut v) = (Vec::new(), Vec::new(), Vec::new());
+    for a in 0..m {
+        for b in 0..m {
+            if w[a * m + b] != 0.0 {
+                i.push(a);
+                j.push(b);
+                v.push(w[a * m + b]);
+            }
+        }
+    }
+    let sparse =
+        ReducedProblem::from_triplets(2, &i, &j, &v, p.q().to_vec(), p.mu().to_vec()).unwrap();
+    let st = UzawaSettings::default();
+    let whole = UzawaSolver::new(st)
+        .solve(&sparse, &sparse.coulomb_laws())
+        .unwrap();
+    assert_eq!(whole.report.solved_contacts, sparse.contact_count());
+    let dense = UzawaSolver::new(st).solve(&p, &p.coulomb_laws()).unwrap();
+    assert!(dense.report.solved_contacts < p.contact_count());
+    for (a, b) in whole.r.iter().zip(&dense.r) {
+        assert!((a - b).abs() < 1e-8, "{a} {b}");
+    }
 }
