@@ -23,14 +23,14 @@
 use super::super::problem::ReducedProblem;
 use super::super::residual::{contact_statuses, local, pick};
 use super::super::settings::{Solution, UzawaSettings};
-use super::{UzawaSolver, newton_pays};
-use crate::Algorithm;
+use super::UzawaSolver;
 use crate::error::SolverError;
 use contact_laws::{ContactLaw, Coulomb};
 
 /// The restriction is tried on a dense `W` only: on a sparse one an open contact already
-/// costs next to nothing (its column is touched only when its reaction changes), and on
-/// sphere piles the joining rounds cost more than they save (measured: 0.1–0.35× with it).
+/// costs next to nothing (its column is touched only when its reaction changes). The
+/// algorithm is the one chosen for the whole problem (`Auto` choosing again for the smaller
+/// one picked Newton on sphere piles, 10× slower there).
 ///
 /// Below this many contacts the restriction is not tried (it costs a copy of `W_AA` and one
 /// product per round, and the sweeps of a small problem are cheap).
@@ -84,15 +84,6 @@ impl UzawaSolver {
         for _ in 0..MAX_ROUNDS {
             let idx: Vec<usize> = (0..nc).filter(|&i| keep[i]).collect();
             let sub = problem.restricted(&idx);
-            // `Auto` chooses again for the smaller problem
-            let mut sub_settings = sub_settings;
-            if self.settings.algorithm == Algorithm::Auto {
-                sub_settings.algorithm = if newton_pays(&sub) {
-                    Algorithm::Newton
-                } else {
-                    Algorithm::AndersonGaussSeidel
-                };
-            }
             let laws_sub: Vec<Coulomb> = idx
                 .iter()
                 .map(|&i| {
