@@ -7,9 +7,17 @@ use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, UzawaSolver};
 
 /// Pairs of contacts whose normals are coupled by `±0.5` (`W_nn = [[1, c], [c, 1]]`, tangents
 /// 1, uncoupled): the first of each pair pressed (`q_n = −1`), the second open by 0.2. With
-/// `c = −0.5` pressing the first closes the second (`x_n = 0.2 − 0.5 r₁`): it must join, and
-/// the pair's answer is `r_n = W⁻¹(−q) = (1.2, 0.4)`; with `c = +0.5` it stays open and the
+/// `c = −0.5` pressing the first closes the second (`x_n = 0.2 − 0.5 r₁`), and the pair's answer is `r_n = W⁻¹(−q) = (1.2, 0.4)`; with `c = +0.5` it stays open and the
 /// first carries `r_n = 1`.
+const ALL: [Algorithm; 6] = [
+    Algorithm::Auto,
+    Algorithm::AndersonGaussSeidel,
+    Algorithm::GaussSeidel,
+    Algorithm::Newton,
+    Algorithm::ClassicRccm,
+    Algorithm::Uzawa,
+];
+
 fn coupled_pairs(pairs: usize) -> ReducedProblem {
     let nc = 2 * pairs;
     let m = 2 * nc;
@@ -29,22 +37,41 @@ fn coupled_pairs(pairs: usize) -> ReducedProblem {
     ReducedProblem::new(w, q, vec![0.3; nc]).unwrap()
 }
 
+/// Pairs whose first contact, pressed and pushed sideways (`q = (−1, 0.8)`, `μ = 0.3`: it
+/// slips, `r_t = −0.3 r_n`), closes the second (`q_n = 0.1`) through a normal–tangential
+/// coupling `W[b_n, a_t] = 0.5` (even pairs; odd pairs uncoupled): `x_n,b = 0.1 + 0.5 r_t,a`.
+/// The prediction of `skip_open` sees only normal–normal couplings, so the second contacts are
+/// left out, found penetrating at the answer, and join.
+fn tangentially_coupled_pairs(pairs: usize) -> ReducedProblem {
+    let nc = 2 * pairs;
+    let m = 2 * nc;
+    let mut w = vec![0.0; m * m];
+    let mut q = vec![0.0; m];
+    for p in 0..pairs {
+        let (a, b) = (2 * (2 * p), 2 * (2 * p + 1));
+        for k in [a, a + 1, b, b + 1] {
+            w[k * m + k] = 1.0;
+        }
+        if p % 2 == 0 {
+            w[b * m + a + 1] = 0.5;
+            w[(a + 1) * m + b] = 0.5;
+        }
+        q[a] = -1.0;
+        q[a + 1] = 0.8;
+        q[b] = 0.1;
+    }
+    ReducedProblem::new(w, q, vec![0.3; nc]).unwrap()
+}
+
 #[test]
 fn contacts_pressed_shut_join_and_open_ones_stay_out() {
-    let pairs = SKIP_OPEN_MIN_CONTACTS; // 2 × the threshold: the restriction is tried
+    // normal couplings that close gaps: predicted, the whole problem is solved
+    let pairs = SKIP_OPEN_MIN_CONTACTS; // 2 × the threshold: the restriction is considered
     let p = coupled_pairs(pairs);
-    for algorithm in [
-        Algorithm::Auto,
-        Algorithm::AndersonGaussSeidel,
-        Algorithm::GaussSeidel,
-        Algorithm::Newton,
-        Algorithm::ClassicRccm,
-        Algorithm::Uzawa,
-    ] {
+    for algorithm in ALL {
         let st = UzawaSettings::default().with_algorithm(algorithm);
         let sol = UzawaSolver::new(st).solve(&p, &p.coulomb_laws()).unwrap();
-        // half the pairs join their second contact: 3/4 of the contacts solved
-        assert_eq!(sol.report.solved_contacts, 3 * pairs / 2, "{algorithm:?}");
+        assert_eq!(sol.report.solved_contacts, 2 * pairs, "{algorithm:?}");
         for pair in 0..pairs {
             let (a, b) = (2 * (2 * pair), 2 * (2 * pair + 1));
             let expect = if pair % 2 == 0 {
@@ -59,14 +86,37 @@ fn contacts_pressed_shut_join_and_open_ones_stay_out() {
                 sol.r[a],
                 sol.r[b]
             );
-            assert_eq!(sol.r[a + 1], 0.0);
+        }
+    }
+    // a coupling the prediction does not see: the contacts join after the first answer
+    let p = tangentially_coupled_pairs(pairs);
+    for algorithm in ALL {
+        let st = UzawaSettings::default().with_algorithm(algorithm);
+        let on = UzawaSolver::new(st).solve(&p, &p.coulomb_laws()).unwrap();
+        let off = UzawaSolver::new(st.with_skip_open(false))
+            .solve(&p, &p.coulomb_laws())
+            .unwrap();
+        // the pressed half, plus the second contacts of the coupled pairs
+        assert_eq!(on.report.solved_contacts, 3 * pairs / 2, "{algorithm:?}");
+        for (k, (a, b)) in on.r.iter().zip(&off.r).enumerate() {
+            assert!(
+                (a - b).abs() < 1e-8,
+                "{algorithm:?} r[{k}]: {a} against {b}"
+            );
+        }
+        for pair in 0..pairs {
+            let b = 2 * (2 * pair + 1);
             if pair % 2 == 1 {
-                assert_eq!(sol.r[b], 0.0, "open contacts are exactly 0");
-                assert!((sol.x[b] - 0.7).abs() < 1e-8);
+                assert_eq!(on.r[b], 0.0, "open contacts are exactly 0");
+                assert!((on.x[b] - 0.1).abs() < 1e-12);
+            } else {
+                assert!(
+                    on.r[b] > 0.0 && on.x[b].abs() < 1e-8,
+                    "{algorithm:?} pair {pair}"
+                );
             }
         }
-        assert_eq!(sol.report.statuses.len(), 2 * pairs);
-        assert!(sol.x.len() == p.size() && sol.x.iter().all(|v| v.is_finite()));
+        assert_eq!(on.report.statuses.len(), 2 * pairs);
     }
 }
 
@@ -118,7 +168,7 @@ fn small_or_mostly_closed_problems_are_solved_whole() {
         .unwrap();
     assert_eq!(sol.report.solved_contacts, p.contact_count());
     // a sparse W is solved whole (an open contact costs next to nothing there), same answer
-    let p = coupled_pairs(SKIP_OPEN_MIN_CONTACTS);
+    let p = tangentially_coupled_pairs(SKIP_OPEN_MIN_CONTACTS);
     let (m, w) = (p.size(), p.w_dense().unwrap());
     let (mut i, mut j, mut v) = (Vec::new(), Vec::new(), Vec::new());
     for a in 0..m {

@@ -69,6 +69,31 @@ impl UzawaSolver {
         {
             return Ok(None);
         }
+        // a cheap prediction of who would join: each pressed contact alone,
+        // `r_j ≈ −q_n,j / W_jj`, and only the couplings that close a gap (`W_ij < 0`: rigid
+        // bodies pushed into others). Where some would, the rounds of joining cost more than
+        // the smaller problem saves (measured on sphere piles: 0.56–0.70×): solve whole.
+        if let Some(w) = problem.w_dense() {
+            let m = problem.size();
+            let pressed: Vec<(usize, f64)> = (0..nc)
+                .filter(|&j| keep[j] && q[d * j] < 0.0)
+                .map(|j| (d * j, -q[d * j] / w[d * j * m + d * j]))
+                .collect();
+            for i in 0..nc {
+                if keep[i] {
+                    continue;
+                }
+                let row = &w[d * i * m..(d * i + 1) * m];
+                let predicted: f64 = q[d * i]
+                    + pressed
+                        .iter()
+                        .map(|&(col, r)| row[col].min(0.0) * r)
+                        .sum::<f64>();
+                if predicted < 0.0 {
+                    return Ok(None);
+                }
+            }
+        }
         // ρ⁰ of the whole problem (the check below and the statuses use it)
         self.sweeps.reset(problem, st.rho_scale);
         let rho0 = self.sweeps.rho0.clone();
