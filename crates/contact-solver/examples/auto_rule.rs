@@ -22,6 +22,8 @@
 
 #[path = "../tests/support/hertz_scene.rs"]
 mod hertz_scene;
+#[path = "../tests/support/twins.rs"]
+mod twins;
 
 use contact_solver::local::generate::half_space::{HalfSpace, Indenter};
 use contact_solver::local::generate::multibody::SpherePile;
@@ -31,6 +33,7 @@ use fem_core::{ElementKind, Idealization};
 use hertz_scene::HertzScene;
 use std::error::Error;
 use std::time::Instant;
+use twins::sparse_twin;
 
 const ALGORITHMS: [Algorithm; 4] = [
     Algorithm::Newton,
@@ -38,29 +41,6 @@ const ALGORITHMS: [Algorithm; 4] = [
     Algorithm::GaussSeidel,
     Algorithm::Auto,
 ];
-
-/// The same problem with `W` stored sparse (its non-zero entries).
-fn sparse_twin(p: &ReducedProblem) -> Result<ReducedProblem, Box<dyn Error>> {
-    let (m, w) = (p.size(), p.w_dense().ok_or("dense")?);
-    let (mut i, mut j, mut v) = (Vec::new(), Vec::new(), Vec::new());
-    for a in 0..m {
-        for b in 0..m {
-            if w[a * m + b] != 0.0 {
-                i.push(a);
-                j.push(b);
-                v.push(w[a * m + b]);
-            }
-        }
-    }
-    Ok(ReducedProblem::from_triplets(
-        p.dimension(),
-        &i,
-        &j,
-        &v,
-        p.q().to_vec(),
-        p.mu().to_vec(),
-    )?)
-}
 
 fn hertz(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn Error>> {
     let scene = HertzScene::new(Idealization::PlaneStrain, ElementKind::Tri6, cells);

@@ -12,34 +12,14 @@
 //! and sparse (where the restriction is not tried: both columns then time the same solve). Every answer is
 //! checked to agree with the unrestricted one (max |Δr| / max |r|).
 
+#[path = "../tests/support/twins.rs"]
+mod twins;
 use contact_solver::local::generate::half_space::{HalfSpace, Indenter};
 use contact_solver::local::generate::multibody::SpherePile;
 use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, UzawaSolver};
 use std::error::Error;
 use std::time::Instant;
-
-/// The same problem with `W` stored sparse (its non-zero entries).
-fn sparse_twin(p: &ReducedProblem) -> Result<ReducedProblem, Box<dyn Error>> {
-    let (m, w) = (p.size(), p.w_dense().ok_or("dense")?);
-    let (mut i, mut j, mut v) = (Vec::new(), Vec::new(), Vec::new());
-    for a in 0..m {
-        for b in 0..m {
-            if w[a * m + b] != 0.0 {
-                i.push(a);
-                j.push(b);
-                v.push(w[a * m + b]);
-            }
-        }
-    }
-    Ok(ReducedProblem::from_triplets(
-        p.dimension(),
-        &i,
-        &j,
-        &v,
-        p.q().to_vec(),
-        p.mu().to_vec(),
-    )?)
-}
+use twins::sparse_twin;
 
 fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
     let mut out = Vec::new();

@@ -1,6 +1,9 @@
 //! Contacts that stay open leave the iteration (`UzawaSettings::skip_open`, issue 14): the
 //! answer must be the whole problem's, whether contacts left out stay open or must join.
 
+#[path = "support/twins.rs"]
+mod twins;
+
 use contact_solver::local::SKIP_OPEN_MIN_CONTACTS;
 use contact_solver::local::generate::half_space::{HalfSpace, Indenter};
 use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, UzawaSolver};
@@ -169,19 +172,7 @@ fn small_or_mostly_closed_problems_are_solved_whole() {
     assert_eq!(sol.report.solved_contacts, p.contact_count());
     // a sparse W is solved whole (an open contact costs next to nothing there), same answer
     let p = tangentially_coupled_pairs(SKIP_OPEN_MIN_CONTACTS);
-    let (m, w) = (p.size(), p.w_dense().unwrap());
-    let (mut i, mut j, mut v) = (Vec::new(), Vec::new(), Vec::new());
-    for a in 0..m {
-        for b in 0..m {
-            if w[a * m + b] != 0.0 {
-                i.push(a);
-                j.push(b);
-                v.push(w[a * m + b]);
-            }
-        }
-    }
-    let sparse =
-        ReducedProblem::from_triplets(2, &i, &j, &v, p.q().to_vec(), p.mu().to_vec()).unwrap();
+    let sparse = twins::sparse_twin(&p).unwrap();
     let st = UzawaSettings::default();
     let whole = UzawaSolver::new(st)
         .solve(&sparse, &sparse.coulomb_laws())

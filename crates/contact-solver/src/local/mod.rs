@@ -209,7 +209,7 @@ pub use delassus::WView;
 pub(crate) use dense::symmetrize;
 pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
 #[cfg(feature = "fe")]
-pub(crate) use residual::{contact_statuses, natural_residual};
+pub(crate) use residual::{contact_statuses, natural_residual, norm};
 pub use settings::{
     ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS,
     AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm, DEFAULT_OMEGA, Solution,

@@ -33,6 +33,7 @@ use super::report::StepReport;
 use super::solve::Solved;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
+use crate::local::norm;
 use contact_laws::{ContactLaw, ContactStatus};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -308,21 +309,10 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         report.equilibrium_iterations += iterations;
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
-        self.last_problem = Some(sol.condensed);
-        Ok(Solved {
-            r: sol.r,
-            r_bar: sol.r_bar,
-            x: sol.x,
-            statuses: sol.report.statuses,
-            states: sol.states,
-            alpha,
-            extend: Vec::new(),
-        })
+        let (solved, condensed) = Solved::from_adhesive(sol, alpha);
+        self.last_problem = Some(condensed);
+        Ok(solved)
     }
-}
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
 impl Floating {

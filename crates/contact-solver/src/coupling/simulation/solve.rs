@@ -8,7 +8,8 @@ use super::ContactSimulation;
 use super::report::StepReport;
 use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
 use crate::error::SolverError;
-use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+use crate::local::ReducedProblem;
+use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
 use crate::local::contact_statuses;
 use crate::local::matrix_free::solve_matrix_free;
 use contact_laws::{ContactLaw, ContactStatus};
@@ -41,6 +42,23 @@ impl<T> Solved<T> {
             alpha: Vec::new(),
             extend: candidates,
         }
+    }
+
+    /// The pass's answer from the adhesive solve, and the condensed problem it solved.
+    pub(super) fn from_adhesive(
+        sol: AdhesiveSolution<T>,
+        alpha: Vec<f64>,
+    ) -> (Self, ReducedProblem) {
+        let solved = Self {
+            r: sol.r,
+            r_bar: sol.r_bar,
+            x: sol.x,
+            statuses: sol.report.statuses,
+            states: sol.states,
+            alpha,
+            extend: Vec::new(),
+        };
+        (solved, sol.condensed)
     }
 }
 
@@ -229,15 +247,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         report.adhesion_iterations += sol.adhesion_iterations;
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
-        self.last_problem = Some(sol.condensed);
-        Ok(Solved {
-            r: sol.r,
-            r_bar: sol.r_bar,
-            x: sol.x,
-            statuses: sol.report.statuses,
-            states: sol.states,
-            alpha: Vec::new(),
-            extend: Vec::new(),
-        })
+        let (solved, condensed) = Solved::from_adhesive(sol, Vec::new());
+        self.last_problem = Some(condensed);
+        Ok(solved)
     }
 }

@@ -94,8 +94,8 @@ impl UzawaSolver {
                 }
             }
         }
-        // ρ⁰ of the whole problem (the check below and the statuses use it)
-        self.sweeps.reset(problem, st.rho_scale);
+        // ρ⁰ of the whole problem (`solve_checked` reset the sweeps for it; the check below
+        // and the statuses use it)
         let rho0 = self.sweeps.rho0.clone();
         let sub_settings = UzawaSettings {
             skip_open: false,
