@@ -9,10 +9,12 @@ pub use crate::component::Component;
 use crate::error::{FemError, finite};
 use std::collections::BTreeMap;
 
-/// The set of constrained dofs with their prescribed values (`0` for a fixed dof).
+/// The set of constrained dofs with their prescribed values (`0` for a fixed dof), and the
+/// ties: sets of nodes that share one displacement component.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Supports {
     values: BTreeMap<(usize, Component), f64>,
+    ties: Vec<(Component, Vec<usize>)>,
 }
 
 impl Supports {
@@ -98,6 +100,67 @@ impl Supports {
         self
     }
 
+    /// Ties `component` of every node in `nodes` to one shared displacement: a rigid cap (a
+    /// "pilot node" in Abaqus or code_aster terms) that translates without rotating when
+    /// both components of a set are tied. The set has one dof per tied component, so a force
+    /// given at any one of its nodes ([`LinearElasticModel::add_nodal_force`]) is the cap's
+    /// resultant, and prescribing the component on every node of the set controls the cap by
+    /// displacement. A set that is otherwise free may float
+    /// ([`LinearElasticModel::floating`]): its rigid-body modes are those that keep the tied
+    /// components equal.
+    ///
+    /// [`LinearElasticModel::add_nodal_force`]: crate::LinearElasticModel::add_nodal_force
+    /// [`LinearElasticModel::floating`]: crate::LinearElasticModel::floating
+    ///
+    /// # Errors
+    /// [`FemError::InvalidTie`] for an empty set, or a node already tied along `component`
+    /// (nothing is changed then).
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::{Component, DofMap, FemError, Supports};
+    /// let mut s = Supports::new();
+    /// s.tie(&[0, 2], Component::Y)?;
+    /// let map = DofMap::new(3, &s)?;
+    /// assert_eq!(map.free_count(), 5); // six components, two of them shared
+    /// assert_eq!(map.free_dofs(0)[1], map.free_dofs(2)[1]);
+    /// assert!(s.tie(&[1, 2], Component::Y).is_err()); // node 2 is tied along y already
+    /// # Ok::<(), FemError>(())
+    /// ```
+    pub fn tie(&mut self, nodes: &[usize], component: Component) -> Result<&mut Self, FemError> {
+        if nodes.is_empty() {
+            return Err(FemError::InvalidTie {
+                component,
+                node: None,
+                reason: "the set is empty",
+            });
+        }
+        for (k, &n) in nodes.iter().enumerate() {
+            let again = nodes[..k].contains(&n);
+            if again || self.tied(n, component) {
+                return Err(FemError::InvalidTie {
+                    component,
+                    node: Some(n),
+                    reason: "the node is tied along this component already",
+                });
+            }
+        }
+        self.ties.push((component, nodes.to_vec()));
+        Ok(self)
+    }
+
+    /// Whether `node` belongs to a tie along `component`.
+    pub fn tied(&self, node: usize, component: Component) -> bool {
+        self.ties
+            .iter()
+            .any(|(c, nodes)| *c == component && nodes.contains(&node))
+    }
+
+    /// The ties, in the order given: `(component, nodes)`.
+    pub fn ties(&self) -> &[(Component, Vec<usize>)] {
+        &self.ties
+    }
+
     /// The prescribed value of a dof, `None` if it is free.
     pub fn value(&self, node: usize, component: Component) -> Option<f64> {
         self.values.get(&(node, component)).copied()
@@ -137,11 +200,14 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    /// Numbers the dofs of `node_count` nodes with the constraints of `supports`.
+    /// Numbers the dofs of `node_count` nodes with the constraints of `supports`. The nodes
+    /// of a free tie ([`Supports::tie`]) share the free dof numbered at the first of them in
+    /// node order; a tie whose component is prescribed is prescribed node by node.
     ///
     /// # Errors
-    /// [`FemError::UnknownNode`] if a support names a node
-    /// that does not exist.
+    /// [`FemError::UnknownNode`] if a support or a tie names a node that does not exist;
+    /// [`FemError::InvalidTie`] for a tie whose component is prescribed at some of its nodes
+    /// and free at others, or prescribed to different values.
     pub fn new(node_count: usize, supports: &Supports) -> Result<Self, FemError> {
         if let Some(((node, _), _)) = supports.iter().find(|((n, _), _)| *n >= node_count) {
             return Err(FemError::UnknownNode {
@@ -150,17 +216,66 @@ impl DofMap {
                 node_count,
             });
         }
+        // the tie group of every (node, component), for the free ties only
+        let mut group = vec![[usize::MAX; 2]; node_count];
+        for (g, (component, nodes)) in supports.ties().iter().enumerate() {
+            if let Some(&node) = nodes.iter().find(|&&n| n >= node_count) {
+                return Err(FemError::UnknownNode {
+                    what: "a tie",
+                    node,
+                    node_count,
+                });
+            }
+            let values: Vec<Option<f64>> = nodes
+                .iter()
+                .map(|&n| supports.value(n, *component))
+                .collect();
+            match (
+                values.iter().position(Option::is_some),
+                values.iter().position(Option::is_none),
+            ) {
+                (Some(_), Some(free)) => {
+                    return Err(FemError::InvalidTie {
+                        component: *component,
+                        node: Some(nodes[free]),
+                        reason: "the tied component is prescribed at other nodes of the set: \
+                                 prescribe it on the whole set or on none",
+                    });
+                }
+                (Some(first), None) => {
+                    if let Some(k) = values.iter().position(|v| *v != values[first]) {
+                        return Err(FemError::InvalidTie {
+                            component: *component,
+                            node: Some(nodes[k]),
+                            reason: "the tied component is prescribed to different values \
+                                     within the set",
+                        });
+                    }
+                }
+                _ => {
+                    for &n in nodes {
+                        group[n][*component as usize] = g;
+                    }
+                }
+            }
+        }
+        let mut shared = vec![usize::MAX; supports.ties().len()];
         let mut dofs = Vec::with_capacity(node_count);
         let mut free_count = 0;
         let mut prescribed = Vec::with_capacity(supports.len());
-        for node in 0..node_count {
+        for (node, groups) in group.iter().enumerate() {
             let mut d = [Dof::Free(0); 2];
             for (c, comp) in [Component::X, Component::Y].into_iter().enumerate() {
                 d[c] = if supports.value(node, comp).is_some() {
                     prescribed.push((node, comp));
                     Dof::Prescribed(prescribed.len() - 1)
+                } else if groups[c] != usize::MAX && shared[groups[c]] != usize::MAX {
+                    Dof::Free(shared[groups[c]])
                 } else {
                     free_count += 1;
+                    if groups[c] != usize::MAX {
+                        shared[groups[c]] = free_count - 1;
+                    }
                     Dof::Free(free_count - 1)
                 };
             }
@@ -214,8 +329,8 @@ impl DofMap {
         &self.prescribed
     }
 
-    /// The node and component of free dof `dof` (a row of the reduced system), `None` if
-    /// `dof >= free_count()`. A linear search: meant for error reports, not for loops.
+    /// The node and component of free dof `dof` (a row of the reduced system; the first node
+    /// of a tie), `None` if `dof >= free_count()`. A linear search: meant for error reports, not for loops.
     pub fn free_dof_owner(&self, dof: usize) -> Option<(usize, Component)> {
         self.dofs.iter().enumerate().find_map(|(node, d)| {
             [Component::X, Component::Y]

@@ -171,6 +171,16 @@ pub enum FemError {
         element: usize,
     },
     /// A mesh entity that this crate does not support (e.g. a quadrilateral in a `.msh`).
+    /// A tie ([`Supports::tie`](crate::Supports::tie)) that cannot be built.
+    #[error("tie along {component}{}: {reason}", .node.map_or(String::new(), |n| format!(" at node {n}")))]
+    InvalidTie {
+        /// The tied component.
+        component: Component,
+        /// The node that shows the problem, if one does.
+        node: Option<usize>,
+        /// What is wrong.
+        reason: &'static str,
+    },
     #[error("unsupported mesh entity: {what}")]
     Unsupported {
         /// Description of the entity.

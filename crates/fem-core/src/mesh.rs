@@ -196,6 +196,86 @@ impl Mesh {
         Ok(())
     }
 
+    /// Joins meshes into one with several bodies (e.g. two cylinders in contact): nodes,
+    /// elements and regions in the order given, each part's node and edge sets renamed
+    /// `"{prefix}{name}"` with the part's prefix. The parts stay unconnected (no node is
+    /// merged); contact zones or ties join them.
+    ///
+    /// # Errors
+    /// [`FemError::Unsupported`] for an empty list, parts of different element kinds, or two
+    /// sets that end up with the same name.
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::Mesh;
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    /// let low = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+    /// let up = rectangle(&RectangleSpec::new([0.0, 1.0], [1.0, 2.0], 2, 2))?;
+    /// let both = Mesh::join(&[("low.", &low), ("up.", &up)])?;
+    /// assert_eq!(both.node_count(), 18);
+    /// assert_eq!(both.node_set("up.bottom")?[0], 9); // the second part's nodes come after
+    /// # Ok::<(), fem_core::FemError>(())
+    /// ```
+    pub fn join(parts: &[(&str, &Mesh)]) -> Result<Self, FemError> {
+        let Some((_, first)) = parts.first() else {
+            return Err(FemError::Unsupported {
+                what: "joining an empty list of meshes".into(),
+            });
+        };
+        let kind = first.kind;
+        let mut out = Self {
+            nodes: Vec::new(),
+            kind,
+            connectivity: Vec::new(),
+            regions: Vec::new(),
+            node_sets: BTreeMap::new(),
+            edge_sets: BTreeMap::new(),
+        };
+        for (prefix, part) in parts {
+            if part.kind != kind {
+                return Err(FemError::Unsupported {
+                    what: format!(
+                        "joining meshes of different element kinds ({:?} and {:?}, part `{prefix}`)",
+                        kind, part.kind
+                    ),
+                });
+            }
+            let (node_off, elem_off) = (out.nodes.len(), out.element_count());
+            out.nodes.extend_from_slice(&part.nodes);
+            out.connectivity
+                .extend(part.connectivity.iter().map(|n| n + node_off));
+            out.regions.extend_from_slice(&part.regions);
+            let clash = |name: &str| FemError::Unsupported {
+                what: format!(
+                    "joining meshes: two sets are named `{name}`; give the parts other prefixes"
+                ),
+            };
+            for (name, nodes) in &part.node_sets {
+                let name = format!("{prefix}{name}");
+                if out.node_sets.contains_key(&name) {
+                    return Err(clash(&name));
+                }
+                out.node_sets
+                    .insert(name, nodes.iter().map(|n| n + node_off).collect());
+            }
+            for (name, sides) in &part.edge_sets {
+                let name = format!("{prefix}{name}");
+                if out.edge_sets.contains_key(&name) {
+                    return Err(clash(&name));
+                }
+                let sides = sides
+                    .iter()
+                    .map(|s| Side {
+                        element: s.element + elem_off,
+                        side: s.side,
+                    })
+                    .collect();
+                out.edge_sets.insert(name, sides);
+            }
+        }
+        Ok(out)
+    }
+
     /// The element family.
     #[inline]
     pub fn kind(&self) -> ElementKind {

@@ -5,8 +5,10 @@
 //! spanned by rigid-body motions. In the plane they are the two translations and the rotation
 //! `(−y, x)`; in axisymmetry only the axial translation (a radial translation strains the hoop
 //! direction). Each connected component of the mesh (nodes joined by elements) is a body of its
-//! own. The modes a body keeps are those its prescribed dofs do not see: with `C` the matrix of
-//! the body's candidate modes at its prescribed dofs (`p × k`, `k ≤ 3`), they are `null(C)`.
+//! own. The modes a body keeps are those its prescribed dofs do not see and that move the nodes
+//! of a tie ([`Supports::tie`](crate::Supports::tie)) alike: with `C` the matrix of the body's
+//! candidate modes at its prescribed dofs, and of their differences between tied nodes
+//! (`p × k`, `k ≤ 3`), they are `null(C)`.
 //!
 //! ```text
 //! plane:        R_body = [ t_x  t_y  ω ],  t_x = (1, 0),  t_y = (0, 1),
@@ -347,8 +349,29 @@ pub(crate) fn mesh_modes(
         body_of[i] = b;
         bodies[b].push(i);
     }
-    let nodes = mesh.nodes();
+    // ties: a free dof shared by several (node, component) must move them alike
     let ndof = dofs.free_count();
+    let mut first_owner = vec![(usize::MAX, 0usize); ndof];
+    let mut tie_pairs: Vec<Vec<[(usize, usize); 2]>> = vec![Vec::new(); bodies.len()];
+    for node in 0..n {
+        for (c, d) in dofs.free_dofs(node).into_iter().enumerate() {
+            let Some(i) = d else { continue };
+            let (first, fc) = first_owner[i];
+            if first == usize::MAX {
+                first_owner[i] = (node, c);
+            } else if body_of[first] != body_of[node] {
+                return Err(FemError::InvalidTie {
+                    component: [Component::X, Component::Y][c],
+                    node: Some(node),
+                    reason: "the tie joins two bodies (parts of the mesh no element connects): \
+                             tie nodes of one body only",
+                });
+            } else {
+                tie_pairs[body_of[node]].push([(first, fc), (node, c)]);
+            }
+        }
+    }
+    let nodes = mesh.nodes();
     let mut values = Vec::new();
     let mut modes = Vec::new();
     for (body, members) in bodies.iter().enumerate() {
@@ -386,6 +409,18 @@ pub(crate) fn mesh_modes(
                         for b in 0..k {
                             ctc[(a, b)] += row[a] * row[b];
                         }
+                    }
+                }
+            }
+        }
+        for &[(a, ca), (b, cb)] in &tie_pairs[body] {
+            let (ra, rb) = (base(a, ca), base(b, cb));
+            let row: Vec<f64> = (0..3).map(|m| rb[m] - ra[m]).collect();
+            if row.iter().any(|v| *v != 0.0) {
+                rows += 1;
+                for a in 0..k {
+                    for b in 0..k {
+                        ctc[(a, b)] += row[a] * row[b];
                     }
                 }
             }
@@ -473,6 +508,10 @@ fn canonical(null: &[Vec<f64>], plane: bool) -> Vec<[f64; 3]> {
         }
         _ => {
             let (a, b) = (&null[0], &null[1]);
+            if a[2].abs() <= tiny && b[2].abs() <= tiny {
+                // no rotation in the span (a tie holds it): both translations
+                return vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+            }
             // the translation in the span: θ eliminated
             let t: Vec<f64> = (0..3).map(|i| b[2] * a[i] - a[2] * b[i]).collect();
             let dir = unit_direction(t[0], t[1]);
@@ -532,5 +571,47 @@ mod tests {
         };
         let corner = mesh.nodes()[0];
         assert!((centre[0] - corner[0]).abs() < 1e-12, "{centre:?}");
+    }
+
+    #[test]
+    fn rigid_modes_with_ties_works() {
+        // a free block whose top nodes share u_y: the rotation would move them apart, so the
+        // two translations remain; tying u_x of the top (one height) keeps all three
+        let mesh = rectangle(&RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 4, 2)).unwrap();
+        let top = mesh.node_set("top").unwrap().to_vec();
+        let mut s = Supports::new();
+        s.tie(&top, Component::Y).unwrap();
+        let dofs = DofMap::new(mesh.node_count(), &s).unwrap();
+        let modes = mesh_modes(&mesh, Idealization::PlaneStrain, &dofs).unwrap();
+        assert_eq!(modes.len(), 2, "{:?}", modes.modes());
+        assert!(
+            modes
+                .modes()
+                .iter()
+                .all(|m| matches!(m.motion, RigidMotion::Translation { .. }))
+        );
+        let mut s = Supports::new();
+        s.tie(&top, Component::X).unwrap();
+        let dofs = DofMap::new(mesh.node_count(), &s).unwrap();
+        assert_eq!(
+            mesh_modes(&mesh, Idealization::PlaneStrain, &dofs)
+                .unwrap()
+                .len(),
+            3
+        );
+    }
+
+    #[test]
+    fn a_tie_across_two_bodies_is_refused() {
+        let a = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 1, 1)).unwrap();
+        let b = rectangle(&RectangleSpec::new([2.0, 3.0], [0.0, 1.0], 1, 1)).unwrap();
+        let mesh = Mesh::join(&[("a.", &a), ("b.", &b)]).unwrap();
+        let mut s = Supports::new();
+        s.tie(&[0, a.node_count()], Component::Y).unwrap();
+        let dofs = DofMap::new(mesh.node_count(), &s).unwrap();
+        assert!(matches!(
+            mesh_modes(&mesh, Idealization::PlaneStrain, &dofs),
+            Err(FemError::InvalidTie { .. })
+        ));
     }
 }

@@ -500,7 +500,8 @@ impl LinearElasticModel {
         for node in 0..self.mesh.node_count() {
             for (c, d) in self.dofs.free_dofs(node).into_iter().enumerate() {
                 if let Some(i) = d {
-                    rhs[i] =
+                    // += : the nodes of a tie share one dof, which takes their sum
+                    rhs[i] +=
                         load_factor * self.load[2 * node + c] + self.initial_force[2 * node + c];
                 }
             }

@@ -180,3 +180,85 @@ fn issue_13_not_positive_definite_names_node() {
     }
     assert!(failures > 0);
 }
+
+/// A rigid cap (the top of a block tied along `y`) pressed by one resultant force: the
+/// uniaxial stress field is exact for P1, so the cap's displacement is `−P H / (E w)` to
+/// round-off (plane stress, the sides free, the bottom on rollers).
+#[test]
+fn tied_cap_under_a_resultant_force_works() {
+    let mesh = crate::generate::rectangle(&crate::generate::RectangleSpec::new(
+        [0.0, 2.0],
+        [0.0, 1.0],
+        4,
+        3,
+    ))
+    .unwrap();
+    let top = mesh.node_set("top").unwrap().to_vec();
+    let bottom = mesh.node_set("bottom").unwrap().to_vec();
+    let mut supports = Supports::new();
+    supports
+        .fix(&bottom, Component::Y)
+        .fix(&bottom[..1], Component::X)
+        .tie(&top, Component::Y)
+        .unwrap();
+    let e = 100.0;
+    let mut model = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStress { thickness: 1.0 },
+        &[(0, Material::new(e, 0.3, 0.0).unwrap())],
+        supports,
+    )
+    .unwrap();
+    assert_eq!(model.dof_count(), 2 * 20 - 5 - 1 - (top.len() - 1));
+    let p = 3.0;
+    // the resultant on any one node of the cap
+    model.add_nodal_force(top[2], [0.0, -p]).unwrap();
+    let u = model.solve(1.0).unwrap();
+    let expected = -p * 1.0 / (e * 2.0);
+    for &n in &top {
+        assert!(
+            (u[n][1] - expected).abs() < 1e-13,
+            "{} vs {expected}",
+            u[n][1]
+        );
+    }
+    let reactions = model.reactions(&u, 1.0).unwrap();
+    let total: f64 = reactions
+        .iter()
+        .filter(|((_, c), _)| *c == Component::Y)
+        .map(|(_, r)| r)
+        .sum();
+    assert!((total - p).abs() < 1e-12, "{total}");
+}
+
+#[test]
+fn ties_that_contradict_the_supports_are_refused() {
+    let mesh = crate::generate::rectangle(&crate::generate::RectangleSpec::new(
+        [0.0, 1.0],
+        [0.0, 1.0],
+        2,
+        2,
+    ))
+    .unwrap();
+    let top = mesh.node_set("top").unwrap().to_vec();
+    let bottom = mesh.node_set("bottom").unwrap().to_vec();
+    let m = [(0, Material::new(1.0, 0.3, 0.0).unwrap())];
+    // prescribed at one node of the cap, free at the others
+    let mut s = Supports::new();
+    s.fix(&bottom, Component::X).fix(&bottom, Component::Y);
+    s.tie(&top, Component::Y).unwrap();
+    s.prescribe(&top[..1], Component::Y, -0.1).unwrap();
+    let e = LinearElasticModel::new(mesh.clone(), Idealization::PlaneStrain, &m, s).unwrap_err();
+    assert!(
+        matches!(e, FemError::InvalidTie { node: Some(_), .. }),
+        "{e}"
+    );
+    // the whole cap prescribed: a displacement-controlled cap
+    let mut s = Supports::new();
+    s.fix(&bottom, Component::X).fix(&bottom, Component::Y);
+    s.tie(&top, Component::Y).unwrap();
+    s.prescribe(&top, Component::Y, -0.1).unwrap();
+    let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &m, s).unwrap();
+    let u = model.solve(1.0).unwrap();
+    assert!(top.iter().all(|&n| u[n][1] == -0.1));
+}
