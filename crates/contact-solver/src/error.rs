@@ -174,6 +174,14 @@ pub enum SolverError {
     /// `FlexibilityMode::ActiveSet` on a node-to-segment zone); the message says why.
     #[error("unsupported for this step: {0}")]
     Unsupported(String),
+    /// A zone named by the caller does not exist.
+    #[error("no contact zone is named `{name}` (the zones are: {known})")]
+    UnknownZone {
+        /// The name asked for.
+        name: String,
+        /// The zones' names, comma-separated.
+        known: String,
+    },
     /// An invalid setting (tolerance, alert distance, time step, …).
     #[error("invalid setting `{what}` = {value}: {expected}")]
     InvalidSetting {

@@ -170,7 +170,6 @@ pub enum FemError {
         /// First element of that region.
         element: usize,
     },
-    /// A mesh entity that this crate does not support (e.g. a quadrilateral in a `.msh`).
     /// A tie ([`Supports::tie`](crate::Supports::tie)) that cannot be built.
     #[error("tie along {component}{}: {reason}", .node.map_or(String::new(), |n| format!(" at node {n}")))]
     InvalidTie {
@@ -181,6 +180,8 @@ pub enum FemError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// A mesh entity or operation that this crate does not support (e.g. a quadrilateral in
+    /// a `.msh`, joining meshes of different element kinds).
     #[error("unsupported mesh entity: {what}")]
     Unsupported {
         /// Description of the entity.

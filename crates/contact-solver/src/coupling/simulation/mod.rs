@@ -194,6 +194,56 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         &self.zones
     }
 
+    /// Replaces the law of the zone named `zone` from the next step on: laws and parameters
+    /// by phase (press without friction, then shear with it; another `μ`; other RCCM
+    /// parameters). Every candidate's state (`β`) and its accepted jump (the gap and the
+    /// tangential reference of the slip) carry over unchanged: the next step starts from the
+    /// last accepted one, under the new law. The cached `F*` is rebuilt at the next step,
+    /// since whether a contact's tangential unknown takes part depends on the law.
+    ///
+    /// # Errors
+    /// [`SolverError::UnknownZone`] if no zone has that name (nothing changes then).
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{ContactSimulation, ContactZone, SimulationSettings};
+    /// use contact_solver::coupling::obstacle::RigidLine;
+    /// use contact_laws::{Coulomb, Signorini, StandardLaw};
+    /// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    ///
+    /// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+    /// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+    /// let mut supports = Supports::new();
+    /// supports.prescribe(&top, Component::Y, -0.01)?.fix(&top, Component::X);
+    /// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+    ///     &[(0, Material::new(100.0, 0.3, 0.0)?)], supports)?;
+    /// let ground = RigidLine::new([-1.0, 0.0], [2.0, 0.0])?;
+    /// let zone = ContactZone::rigid("base", bottom, ground, StandardLaw::from(Signorini), 0.1);
+    /// let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default())?;
+    /// sim.step(1.0, 1.0)?; // pressed without friction
+    /// sim.set_law("base", Coulomb::new(0.3)?.into())?; // then with friction
+    /// assert!(sim.set_law("basis", Signorini.into()).is_err()); // names the zones it has
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_law(&mut self, zone: &str, law: L) -> Result<(), SolverError> {
+        let Some(z) = self.zones.iter_mut().find(|z| z.name == zone) else {
+            return Err(SolverError::UnknownZone {
+                name: zone.to_string(),
+                known: self
+                    .zones
+                    .iter()
+                    .map(|z| format!("`{}`", z.name))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        };
+        z.law = law;
+        self.w_version = None;
+        self.primal = PrimalCache::default();
+        Ok(())
+    }
+
     /// The candidates found by recognition.
     pub fn candidates(&self) -> &[Candidate] {
         &self.candidates
