@@ -38,6 +38,9 @@ pub struct Scene {
     /// Supports (prescribed displacements).
     #[serde(default)]
     pub supports: Vec<SupportSpec>,
+    /// Ties: node sets that share one displacement component (rigid caps, pilot nodes).
+    #[serde(default)]
+    pub ties: Vec<TieSpec>,
     /// Loads.
     #[serde(default)]
     pub loads: Vec<RawLoad>,
@@ -123,6 +126,16 @@ pub struct SupportSpec {
     pub function: Option<String>,
     /// Phases in which the support acts (default: all).
     pub phases: Option<Vec<String>>,
+}
+
+/// A tie: the nodes of a set share one displacement component (`fem_core::Supports::tie`).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct TieSpec {
+    /// Node set.
+    pub set: String,
+    /// Component(s).
+    pub component: ComponentSpec,
 }
 
 /// A contact zone.
@@ -230,6 +243,9 @@ pub struct PhaseSpec {
     /// Reset displacements (keeping law states) at the end of the phase.
     #[serde(default)]
     pub reset_displacements: bool,
+    /// Laws from this phase on, by zone name (the states carry over).
+    #[serde(default)]
+    pub laws: BTreeMap<String, crate::raw::RawLaw>,
 }
 
 /// Outputs.

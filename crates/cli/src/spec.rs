@@ -206,6 +206,19 @@ pub enum LoadSpec {
         /// Phases (default: all).
         phases: Option<Vec<String>>,
     },
+    /// One force on a node set tied along its non-zero components (a rigid cap's resultant).
+    Resultant {
+        /// A name.
+        name: Option<String>,
+        /// Node set.
+        set: String,
+        /// `[F_x, F_y]` on the whole set.
+        value: Pair,
+        /// Time function.
+        function: Option<String>,
+        /// Phases (default: all).
+        phases: Option<Vec<String>>,
+    },
     /// A uniform body force (force per volume) over the whole mesh.
     BodyForce {
         /// A name.

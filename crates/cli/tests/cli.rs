@@ -236,7 +236,13 @@ fn hertz_scene_on_a_gmsh_p2_mesh_matches_the_contact_width() {
 
 #[test]
 fn shear_and_pile_scenes_check() {
-    for scene in ["shear.toml", "pile.toml", "hertz.toml", "delamination.toml"] {
+    for scene in [
+        "shear.toml",
+        "pile.toml",
+        "hertz.toml",
+        "delamination.toml",
+        "block_force.toml",
+    ] {
         let stdout = ok(&bipo(&["check".as_ref(), scenes().join(scene).as_os_str()]));
         assert!(
             stdout.contains("ok: the scene is valid"),
@@ -415,6 +421,54 @@ fn phases_release_supports_and_scale_loads() {
             >= 2
     );
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// `examples/scenes/block_force.toml` (issue 16): a block with no support, held by contact,
+/// loaded by resultant forces on a tied cap, pressed frictionless then sheared with Coulomb
+/// friction from the phase's `laws`. Statics: `Σ r_n = P = 1` at every step and
+/// `Σ r_t = −Q` (0, −0.1, −0.2); tolerance 1e-8: the solver stops at 1e-10 relative and the
+/// floating equilibrium at 1e-11 of the forces.
+#[test]
+fn floating_block_scene_with_caps_and_laws_by_phase_balances() {
+    let out = tmp("block_force");
+    ok(&bipo(&[
+        "run".as_ref(),
+        scenes().join("block_force.toml").as_os_str(),
+        "-q".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]));
+    let curves = csv(&out.join("curves.csv"));
+    assert_eq!(curves.len(), 3);
+    for (k, q) in [0.0, 0.1, 0.2].into_iter().enumerate() {
+        let n = curves[k]["sum r_n (= P)"].parse::<f64>().unwrap();
+        let t = curves[k]["sum r_t (= -Q)"].parse::<f64>().unwrap();
+        assert!((n - 1.0).abs() < 1e-8, "step {}: Σ r_n = {n}", k + 1);
+        assert!((t + q).abs() < 1e-8, "step {}: Σ r_t = {t}", k + 1);
+    }
+    // a push above μ P is an error that names the motion, not a NaN
+    let text = std::fs::read_to_string(scenes().join("block_force.toml"))
+        .unwrap()
+        .replace("value = [0.2, 0.0]", "value = [0.4, 0.0]");
+    let dir = tmp("block_force_slide");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("slide.toml");
+    std::fs::write(&scene, text).unwrap();
+    let res = bipo(&[
+        "run".as_ref(),
+        scene.as_os_str(),
+        "-q".as_ref(),
+        "--out".as_ref(),
+        dir.join("out").as_os_str(),
+    ]);
+    let err = String::from_utf8_lossy(&res.stderr);
+    assert!(!res.status.success());
+    assert!(
+        err.contains("cannot balance the load along its translation x"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// `[solver] flexibility = "active-set"` solves the block without `F*` and gives the dense

@@ -3,7 +3,8 @@
 //! alert distance at the start), and the simulation made.
 
 use super::checks::{
-    at_least, expect, finite, finite2, law_error, node_set, non_negative, positive, solver_error,
+    at_least, expect, finite, finite2, law_error, list_names, node_set, non_negative, positive,
+    solver_error,
 };
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
@@ -52,6 +53,8 @@ pub(super) struct ContactPlan {
     pub(super) friction: usize,
     /// `[solver]`.
     pub(super) settings: SimulationSettings,
+    /// Per phase (in order), the laws it sets: `(zone, law)`.
+    pub(super) phase_laws: Vec<Vec<(String, StandardLaw)>>,
 }
 
 /// The most contact iterations a step may take: beyond, a step that does not converge would
@@ -262,11 +265,38 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
             target,
         });
     }
+    // [[phases]] laws: every zone named exists; adhesion counts as for the zones
+    let mut phase_laws = Vec::new();
+    for (i, ph) in scene.phases.iter().enumerate() {
+        let mut laws = Vec::new();
+        for (zone, raw) in &ph.laws {
+            let p = root.key("phases").index(i).key("laws").key(zone);
+            if !names.contains(zone) {
+                return Err(CliError::at(
+                    &p,
+                    format!(
+                        "`{p}`: no [[contact]] zone is named `{zone}` (zones: {})",
+                        list_names(names.iter().map(String::as_str))
+                    ),
+                ));
+            }
+            let (l, _) = law(&p, &raw.resolve(&p)?)?;
+            if l.has_adhesion() {
+                adhesive += 1;
+            }
+            if l.has_friction() {
+                friction += 1;
+            }
+            laws.push((zone.clone(), l));
+        }
+        phase_laws.push(laws);
+    }
     Ok(ContactPlan {
         zones,
         adhesive,
         friction,
         settings,
+        phase_laws,
     })
 }
 

@@ -106,6 +106,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
             supports,
             loads,
             functions,
+            phase_laws: contact.phase_laws,
         })),
         phases,
         output: scene.output.clone(),

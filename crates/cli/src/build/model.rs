@@ -32,6 +32,7 @@ pub(super) struct SupportPlan {
 enum LoadPlanKind {
     Traction(String, [f64; 2]),
     Nodal(String, [f64; 2]),
+    Resultant(String, [f64; 2]),
     Body([f64; 2]),
     Gravity,
 }
@@ -194,10 +195,12 @@ pub(super) fn validate_supports(
             },
         });
     }
-    if supports.is_empty() {
+    let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
+    if supports.is_empty() && !floating {
         return Err(CliError::at(
             &root,
-            "the scene has no [[supports]]: a body without supports has rigid-body modes",
+            "the scene has no [[supports]]: a body without supports has rigid-body modes \
+             (set `floating = true` in [analysis] if contact alone holds it)",
         ));
     }
     Ok(supports)
@@ -238,6 +241,18 @@ pub(super) fn validate_loads(
             } => (
                 name,
                 LoadPlanKind::Nodal(set.clone(), finite2(&p.key("value"), *value)?),
+                function,
+                phases,
+            ),
+            LoadSpec::Resultant {
+                name,
+                set,
+                value,
+                function,
+                phases,
+            } => (
+                name,
+                LoadPlanKind::Resultant(set.clone(), finite2(&p.key("value"), *value)?),
                 function,
                 phases,
             ),
@@ -357,6 +372,31 @@ pub(super) struct ModelPlan {
     pub(super) loads: Vec<LoadPlan>,
     /// Initial stress.
     pub(super) initial_stress: InitialStressPlan,
+    /// `[[ties]]`: (key path of the set, set, components).
+    pub(super) ties: Vec<(KeyPath, String, Vec<Component>)>,
+    /// `[analysis] floating`.
+    pub(super) floating: bool,
+}
+
+/// Checks `[[ties]]` (the sets are looked up in the mesh at build).
+pub(super) fn validate_ties(scene: &Scene) -> Vec<(KeyPath, String, Vec<Component>)> {
+    scene
+        .ties
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let components = match t.component {
+                ComponentSpec::X => vec![Component::X],
+                ComponentSpec::Y => vec![Component::Y],
+                ComponentSpec::Both => vec![Component::X, Component::Y],
+            };
+            (
+                KeyPath::root().key("ties").index(i).key("set"),
+                t.set.clone(),
+                components,
+            )
+        })
+        .collect()
 }
 
 /// The materials on the mesh's regions (every region exactly one), the supports' and loads'
@@ -384,6 +424,15 @@ pub(super) fn build(
         paths.push(s.path.parent());
     }
     check_prescriptions(&supports, &paths)?;
+    let mut sup = Supports::new();
+    let mut tied = BTreeSet::new();
+    for (path, set, components) in &plan.ties {
+        let nodes = node_set(path, &mesh, set)?;
+        for &c in components {
+            sup.tie(&nodes, c).map_err(|e| fem(path, e))?;
+            tied.extend(nodes.iter().map(|&n| (n, c)));
+        }
+    }
     let mut loads = Vec::new();
     for l in plan.loads {
         let p = &l.path;
@@ -404,6 +453,24 @@ pub(super) fn build(
             LoadPlanKind::Nodal(set, value) => {
                 LoadKind::Nodal(node_set(&p.key("set"), &mesh, &set)?, value)
             }
+            LoadPlanKind::Resultant(set, value) => {
+                let nodes = node_set(&p.key("set"), &mesh, &set)?;
+                for (c, comp) in [Component::X, Component::Y].into_iter().enumerate() {
+                    if value[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
+                        return Err(CliError::at(
+                            &p.key("set"),
+                            format!(
+                                "`{}` = \"{set}\": a resultant force along {comp} needs the set \
+                                 tied along {comp} (a [[ties]] entry with set = \"{set}\"), so \
+                                 that it has one point of application; for a force on each node \
+                                 use type = \"nodal_force\"",
+                                p.key("set")
+                            ),
+                        ));
+                    }
+                }
+                LoadKind::Resultant(nodes[0], value)
+            }
             LoadPlanKind::Body(value) => LoadKind::Body(value),
             LoadPlanKind::Gravity => LoadKind::Gravity,
         };
@@ -414,7 +481,6 @@ pub(super) fn build(
             phases: l.phases,
         });
     }
-    let mut sup = Supports::new();
     for s in supports.iter().filter(|s| s.phases[0]) {
         let f = function_value(&phases[0], &s.name, &s.function, functions, 0.0);
         for &c in &s.components {
@@ -422,17 +488,22 @@ pub(super) fn build(
                 .map_err(|e| fem(&root.key("supports"), e))?;
         }
     }
-    let mut model =
-        LinearElasticModel::new(mesh, plan.idealization, &materials, sup).map_err(|e| {
-            let at = match &e {
-                FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
-                FemError::InvalidParameter {
-                    name: "thickness", ..
-                } => Some(root.key("analysis").key("thickness")),
-                _ => None,
-            };
-            fem(&at.unwrap_or_else(|| root.key("supports")), e)
-        })?;
+    let build = if plan.floating {
+        LinearElasticModel::floating
+    } else {
+        LinearElasticModel::new
+    };
+    let mut model = build(mesh, plan.idealization, &materials, sup).map_err(|e| {
+        let at = match &e {
+            FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
+            FemError::InvalidParameter {
+                name: "thickness", ..
+            } => Some(root.key("analysis").key("thickness")),
+            FemError::InvalidTie { .. } => Some(root.key("ties")),
+            _ => None,
+        };
+        fem(&at.unwrap_or_else(|| root.key("supports")), e)
+    })?;
     if let Some((gamma, k0, z)) = plan.initial_stress {
         let p = root.key("initial_stress");
         model

@@ -37,6 +37,7 @@ fn preset_only(scene: &Scene) -> CliResult<()> {
         ("initial_stress", scene.initial_stress.is_some()),
         ("functions", !scene.functions.is_empty()),
         ("supports", !scene.supports.is_empty()),
+        ("ties", !scene.ties.is_empty()),
         ("loads", !scene.loads.is_empty()),
         ("contact", !scene.contact.is_empty()),
         ("steps", scene.steps.is_some()),

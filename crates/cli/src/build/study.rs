@@ -32,6 +32,8 @@ pub enum LoadKind {
     Traction(String, [f64; 2]),
     /// Force on each node.
     Nodal(Vec<usize>, [f64; 2]),
+    /// One force on a tied set, applied at this node of it.
+    Resultant(usize, [f64; 2]),
     /// Body force.
     Body([f64; 2]),
     /// Self-weight.
@@ -61,6 +63,8 @@ pub struct Custom {
     pub loads: Vec<LoadRt>,
     /// Time functions.
     pub functions: BTreeMap<String, TimeFunction>,
+    /// Per phase, the laws it sets on zones at its start: `(zone, law)`.
+    pub phase_laws: Vec<Vec<(String, StandardLaw)>>,
 }
 
 /// The library's scene of a preset.

@@ -95,6 +95,8 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
     model::validate_names(scene, &loads, &functions, &phases)?;
     let initial_stress = model::validate_initial_stress(scene)?;
+    let ties = model::validate_ties(scene);
+    let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
 
     // contact (the solver settings with it)
     let contact = contact::validate(scene)?;
@@ -108,6 +110,8 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
             supports,
             loads,
             initial_stress,
+            ties,
+            floating,
         },
         contact,
     })))

@@ -40,9 +40,16 @@ pub struct RawAnalysis {
     #[serde(rename = "type")]
     kind: AnalysisKind,
     thickness: Option<f64>,
+    floating: Option<bool>,
 }
 
 impl RawAnalysis {
+    /// `floating = true`: bodies that contact alone holds (rigid-body modes left by the
+    /// supports are solved for with the contact, `LinearElasticModel::floating`).
+    pub fn floating(&self) -> bool {
+        self.floating.unwrap_or(false)
+    }
+
     /// The analysis.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<Analysis> {
         let present = [("thickness", self.thickness.is_some())];
@@ -116,6 +123,8 @@ pub enum LoadKindSpec {
     BodyForce,
     /// Gravity.
     Gravity,
+    /// A resultant force on a tied node set.
+    Resultant,
 }
 
 /// `[[loads]]`.
@@ -155,6 +164,13 @@ impl RawLoad {
             LoadKindSpec::NodalForce => LoadSpec::NodalForce {
                 set: need(p, &self.set, "set", "a nodal force (a node set)")?,
                 value: need(p, &self.value, "value", "a nodal force")?,
+                name,
+                function,
+                phases,
+            },
+            LoadKindSpec::Resultant => LoadSpec::Resultant {
+                set: need(p, &self.set, "set", "a resultant force (a tied node set)")?,
+                value: need(p, &self.value, "value", "a resultant force")?,
                 name,
                 function,
                 phases,

@@ -60,10 +60,19 @@ impl Driver for CustomDriver<'_> {
     }
 
     fn begin_phase(&mut self, phases: &[Phase], p: usize) -> CliResult<()> {
+        let c = &mut *self.c;
+        // the laws this phase sets (the interface states carry over)
+        for (zone, law) in c.phase_laws.get(p).into_iter().flatten() {
+            c.sim.set_law(zone, *law).map_err(|e| {
+                CliError::failed(format!(
+                    "phase `{}`: setting the law of zone `{zone}`: {e}",
+                    phases[p].name
+                ))
+            })?;
+        }
         if p == 0 {
             return Ok(());
         }
-        let c = &mut *self.c;
         let model = c.sim.structure_mut();
         let mut changed = false;
         for s in c
@@ -147,6 +156,9 @@ impl Driver for CustomDriver<'_> {
                     LoadKind::Nodal(nodes, v) => nodes
                         .iter()
                         .try_for_each(|&n| model.add_nodal_force(n, [v[0] * f, v[1] * f])),
+                    LoadKind::Resultant(node, v) => {
+                        model.add_nodal_force(*node, [v[0] * f, v[1] * f])
+                    }
                     LoadKind::Body(v) => {
                         let v = [v[0] * f, v[1] * f];
                         model.add_body_force(|_| v)

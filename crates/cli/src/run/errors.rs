@@ -38,6 +38,10 @@ pub(super) fn step_error(e: SolverError, phase: &Phase, t: f64) -> CliError {
             " — check the contact setup (a rigid-body mode, contacts that fight each other), or \
              set accept_non_converged = true"
         }
+        SolverError::Unbalanced { .. } => {
+            " — the body floats ([analysis] floating = true) and its contacts cannot hold it \
+             along that motion: add a support or a contact, or lower the load"
+        }
         SolverError::AdhesionNotConverged { .. } => {
             " — raise [solver] max_adhesion_iterations or adhesion_tol, or take smaller steps"
         }
