@@ -413,6 +413,8 @@ pub enum Preset {
         installation: Option<InstallationSpec>,
         /// Final head displacement (m).
         head_displacement: Option<f64>,
+        /// Force control: the final jack force (kN, full ring, upwards).
+        head_force: Option<f64>,
         /// Pull-out increments.
         steps: Option<usize>,
         /// Alert distance (m).

@@ -231,6 +231,7 @@ fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
         k0,
         installation,
         head_displacement,
+        head_force,
         steps,
         alert_distance,
         interface,
@@ -286,6 +287,16 @@ fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
     }
     if let Some(v) = head_displacement {
         spec.head_displacement = finite(&p.key("head_displacement"), *v)?;
+    }
+    if let Some(v) = head_force {
+        if head_displacement.is_some() {
+            return Err(CliError::at(
+                &p.key("head_force"),
+                "give either `head_displacement` (the head's u_z prescribed) or `head_force` \
+                 (a jack force on the head, the pile held by the soil alone), not both",
+            ));
+        }
+        spec.head_force = Some(finite(&p.key("head_force"), *v)?);
     }
     if let Some(v) = steps {
         spec.steps = at_least(&p.key("steps"), *v, 1)?;

@@ -68,6 +68,7 @@ pub struct RawPreset {
     k0: Option<f64>,
     installation: Option<RawInstallation>,
     head_displacement: Option<f64>,
+    head_force: Option<f64>,
     alert_distance: Option<f64>,
     mesh: Option<PileMeshOverride>,
 }
@@ -100,6 +101,7 @@ impl RawPreset {
             ("k0", self.k0.is_some()),
             ("installation", self.installation.is_some()),
             ("head_displacement", self.head_displacement.is_some()),
+            ("head_force", self.head_force.is_some()),
             ("alert_distance", self.alert_distance.is_some()),
             ("mesh", self.mesh.is_some()),
         ];
@@ -168,6 +170,7 @@ impl RawPreset {
                         "k0",
                         "installation",
                         "head_displacement",
+                        "head_force",
                         "steps",
                         "alert_distance",
                         "interface",
@@ -214,6 +217,7 @@ impl RawPreset {
                     k0: self.k0,
                     installation,
                     head_displacement: self.head_displacement,
+                    head_force: self.head_force,
                     steps: self.steps,
                     alert_distance: self.alert_distance,
                     interface: self.interface,

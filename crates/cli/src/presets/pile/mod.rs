@@ -160,6 +160,13 @@ pub struct PulloutSpec {
     pub installation: Installation,
     /// Final head displacement `v₀` (0.015 m Plancoët, 0.006 m Cran).
     pub head_displacement: f64,
+    /// Force control (issue 16): `Some(Q)` makes the pile head a rigid cap (its nodes tied
+    /// along `z`) that no support holds, loaded by the upward jack force `Q` (kN, full ring)
+    /// ramped over the pull-out increments; the pile then floats, held by the interface (the
+    /// adhesive shaft, the tip, the corner) through all three phases. `None` (the default,
+    /// the seed's test): the head's `u_z` is prescribed, `0` in phases 1–2, then up to
+    /// [`Self::head_displacement`].
+    pub head_force: Option<f64>,
     /// Pull-out increments (50).
     pub steps: usize,
     /// Simulation steps per increment (1: the seed's 50 increments; more only for
@@ -225,6 +232,7 @@ impl PulloutSpec {
             k0: 0.43,
             installation: Installation::NormalForceRatio(2.0),
             head_displacement,
+            head_force: None,
             steps: 50,
             substeps: 1,
             beta_coupling: BetaCoupling::FixedPoint,
@@ -321,8 +329,14 @@ impl PulloutSpec {
         supports
             .fix(mesh.node_set("axis")?, Component::X)
             .fix(mesh.node_set("outer")?, Component::X)
-            .fix(mesh.node_set("base")?, Component::Y)
-            .fix(&head, Component::Y);
+            .fix(mesh.node_set("base")?, Component::Y);
+        let mut held = supports.clone();
+        held.fix(&head, Component::Y);
+        if self.head_force.is_some() {
+            supports.tie(&head, Component::Y)?;
+        } else {
+            supports = held.clone();
+        }
         let materials = [
             (
                 SOIL,
@@ -334,10 +348,14 @@ impl PulloutSpec {
             ),
         ];
 
-        let unit_forces = unit_installation_forces(&mesh, &materials, &supports, &shaft_soil)?;
+        // the installation's calibration with the head held (a unit solve of the bonded soil)
+        let unit_forces = unit_installation_forces(&mesh, &materials, &held, &shaft_soil)?;
 
-        let mut model =
-            LinearElasticModel::new(mesh, Idealization::Axisymmetric, &materials, supports)?;
+        let mut model = if self.head_force.is_some() {
+            LinearElasticModel::floating(mesh, Idealization::Axisymmetric, &materials, supports)?
+        } else {
+            LinearElasticModel::new(mesh, Idealization::Axisymmetric, &materials, supports)?
+        };
         model.add_self_weight()?;
         model.set_initial_stress(self.initial_stress())?;
 
@@ -441,6 +459,7 @@ impl PulloutSpec {
             installation_displacement: delta,
             tol,
             phase: Phase::Start,
+            applied_force: 0.0,
         })
     }
 
@@ -461,6 +480,11 @@ impl PulloutSpec {
         }
         if !(self.k0.is_finite() && self.k0 >= 0.0) {
             return bad("k0", self.k0, "a finite K0 >= 0");
+        }
+        if let Some(q) = self.head_force
+            && !q.is_finite()
+        {
+            return bad("head_force", q, "a finite force (kN, full ring, upwards)");
         }
         if !self.head_displacement.is_finite() {
             return bad(

@@ -93,6 +93,8 @@ pub struct PulloutScene {
     /// Tolerance of the contact solver (checked after each step).
     pub(super) tol: f64,
     pub(super) phase: Phase,
+    /// Force control: the jack force applied so far (kN, full ring).
+    pub(super) applied_force: f64,
 }
 
 impl PulloutScene {
@@ -131,6 +133,9 @@ impl PulloutScene {
     /// As for [`ContactSimulation::step`]; [`SolverError::InvalidSetting`] unless phase 2 ran.
     pub fn pull(&mut self, k: usize) -> Result<PulloutStep, SolverError> {
         self.expect(Phase::Installed, "pull")?;
+        if let Some(q) = self.spec.head_force {
+            return self.pull_by_force(k, q);
+        }
         let (steps, substeps) = (self.spec.steps as f64, self.spec.substeps);
         let v = self.spec.head_displacement * k as f64 / steps;
         let mut result = None;
@@ -144,6 +149,32 @@ impl PulloutScene {
             result = Some(self.checked_step(2.0 + f)?);
         }
         let result = result.expect("at least one substep (checked by build)");
+        Ok(PulloutStep {
+            increment: k,
+            head_displacement: v,
+            head_load: self.head_load(&result)?,
+            result,
+        })
+    }
+
+    /// Phase 3 under force control ([`PulloutSpec::head_force`]): the jack force `Q k / steps`
+    /// on the head's tied `u_z`, reached in [`PulloutSpec::substeps`] equal steps; the head
+    /// displacement is the cap's.
+    fn pull_by_force(&mut self, k: usize, q: f64) -> Result<PulloutStep, SolverError> {
+        let (steps, substeps) = (self.spec.steps as f64, self.spec.substeps);
+        let mut result = None;
+        for j in 1..=substeps {
+            let f = (k - 1) as f64 + j as f64 / substeps as f64;
+            // the loads are cumulative: add this substep's share, per radian
+            let share = q / (steps * substeps as f64) / (2.0 * PI);
+            self.simulation
+                .structure_mut()
+                .add_nodal_force(self.head[0], [0.0, share])?;
+            result = Some(self.checked_step(2.0 + f)?);
+            self.applied_force = q * f / steps;
+        }
+        let result = result.expect("at least one substep (checked by build)");
+        let v = self.simulation.nodal_displacements()[self.head[0]][1];
         Ok(PulloutStep {
             increment: k,
             head_displacement: v,
@@ -215,6 +246,11 @@ impl PulloutScene {
     /// # Errors
     /// [`SolverError::Structure`] if the displacements do not match the model.
     pub fn head_load(&self, result: &StepResult) -> Result<f64, SolverError> {
+        if let Some(q) = self.spec.head_force {
+            // force control: the jack force applied so far (the cap's load along z)
+            let _ = (q, result);
+            return Ok(self.applied_force);
+        }
         let model = self.simulation.structure();
         let u = self.simulation.nodal_displacements();
         let reactions = model.reactions(&u, 1.0)?;

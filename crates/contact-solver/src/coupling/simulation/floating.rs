@@ -50,6 +50,13 @@ const RAY_TOL: f64 = 1e-8;
 /// Smallest line-search step.
 const MIN_STEP: f64 = 1.0 / 1024.0;
 
+/// Iterations without halving the equilibrium residual after which a floating solve that
+/// runs out of iterations reports the load as unbalanced rather than not converged.
+const STAGNATION: usize = 10;
+
+/// Relative step of the finite-difference Jacobian with adhesive springs (about `√ε`).
+const FD_STEP: f64 = 1.5e-8;
+
 /// What the floating solve needs beyond the ordinary step.
 struct Floating {
     /// Number of modes.
@@ -118,13 +125,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             .iter()
             .map(|&i| self.zones[self.candidates[i].zone].law.clone())
             .collect();
-        if let Some(k) = (0..na).find(|&k| laws[k].adhesion_active(&self.states[active[k]])) {
-            return Err(SolverError::Unsupported(format!(
-                "zone `{}`: adhesive laws on a floating structure (rigid-body modes) are not \
-                 supported yet; support the body or use a law without adhesion",
-                self.zones[self.candidates[active[k]].zone].name
-            )));
-        }
+        // adhesive springs resist the rigid motions too, which the statuses do not see: the
+        // Jacobian is then taken by finite differences (one extra reduced solve per mode)
+        let adhesive = (0..na).any(|k| laws[k].adhesion_active(&self.states[active[k]]));
         let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
         let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
         let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
@@ -184,6 +187,16 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                     report.converged = false;
                     break;
                 }
+                // no progress over the last iterations: the contacts cannot carry the load
+                // (adhesive springs past their peak soften: no equilibrium exists)
+                let n = history.len();
+                if n > STAGNATION
+                    && history[n - STAGNATION..]
+                        .iter()
+                        .all(|&h| h >= 0.5 * history[n - 1 - STAGNATION])
+                {
+                    return Err(fl.unbalanced(&res, &res));
+                }
                 return Err(SolverError::NotConverged {
                     iterations,
                     residual: worst / scale,
@@ -191,7 +204,25 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 });
             }
             iterations += 1;
-            let lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+            let mut lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+            if adhesive {
+                // forward differences, step √ε of the amplitudes' scale
+                let size = alpha
+                    .iter()
+                    .chain(&q0)
+                    .fold(0.0_f64, |a, v| a.max(v.abs()))
+                    .max(f64::MIN_POSITIVE);
+                let h = FD_STEP * size;
+                for j in 0..nm {
+                    let mut shifted = alpha.clone();
+                    shifted[j] += h;
+                    let mut warm = r_warm.clone();
+                    let (_, r_h) = solve_at(&shifted, &mut warm, report)?;
+                    for i in 0..nm {
+                        lin.jac[(i, j)] = (r_h[i] - res[i]) / h;
+                    }
+                }
+            }
             let (newton, vs, free) = lin.directions(&res);
             let along = |r: &[f64]| -> f64 {
                 (0..vs.ncols())
