@@ -242,6 +242,7 @@ fn shear_and_pile_scenes_check() {
         "hertz.toml",
         "delamination.toml",
         "block_force.toml",
+        "pile_force.toml",
     ] {
         let stdout = ok(&bipo(&["check".as_ref(), scenes().join(scene).as_os_str()]));
         assert!(
