@@ -34,10 +34,9 @@
 //! ```
 #![allow(dead_code)] // each user takes what it needs
 
+use super::hertz_scene::{GAUSS4, edge_shapes, project_on_edge};
 use contact_laws::StandardLaw;
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, StepResult};
-use faer::Mat;
-use faer::linalg::solvers::Solve;
 use fem_core::generate::{Grading, RectangleSpec, graded_points, rectangle};
 use fem_core::{
     Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports,
@@ -450,57 +449,10 @@ pub struct Measured {
     pub traction: Vec<(f64, f64)>,
 }
 
-/// The L2 projection `M v = f` of nodal forces `force` (indexed by node) on the edge set
-/// `set`, `M_ij = ∫ N_i N_j dx` in the abscissa (as `hertz_scene::project_pressure_at_origin`):
-/// `(x, v)` at every node of the edge, in `x` order.
+/// The L2 projection of nodal forces on the edge set `set` (`hertz_scene::project_on_edge`,
+/// plane): `(x, v)` at every node of the edge, in `x` order.
 pub fn project(mesh: &Mesh, set: &str, force: &[f64]) -> Vec<(f64, f64)> {
-    let sides = mesh.edge_set(set).unwrap();
-    let mut nodes: Vec<usize> = sides.iter().flat_map(|&s| mesh.side_nodes(s)).collect();
-    nodes.sort_unstable();
-    nodes.dedup();
-    let index = |n: usize| nodes.binary_search(&n).unwrap();
-    let m = nodes.len();
-    let mut mass = Mat::<f64>::zeros(m, m);
-    let g = [
-        0.069_431_844_202_973_71,
-        0.330_009_478_207_571_9,
-        0.669_990_521_792_428_1,
-        0.930_568_155_797_026_3,
-    ];
-    let gw = [
-        0.173_927_422_568_726_9,
-        0.326_072_577_431_273_1,
-        0.326_072_577_431_273_1,
-        0.173_927_422_568_726_9,
-    ];
-    for &side in sides {
-        let local: Vec<usize> = mesh.side_nodes(side).collect();
-        let (xa, xb) = (mesh.nodes()[local[0]][0], mesh.nodes()[local[1]][0]);
-        for (&s, &w) in g.iter().zip(&gw) {
-            let shape: Vec<f64> = if local.len() == 3 {
-                vec![
-                    (1.0 - s) * (1.0 - 2.0 * s),
-                    s * (2.0 * s - 1.0),
-                    4.0 * s * (1.0 - s),
-                ]
-            } else {
-                vec![1.0 - s, s]
-            };
-            let weight = w * (xb - xa).abs();
-            for (i, &ni) in local.iter().enumerate() {
-                for (j, &nj) in local.iter().enumerate() {
-                    mass[(index(ni), index(nj))] += weight * shape[i] * shape[j];
-                }
-            }
-        }
-    }
-    let rhs = Mat::<f64>::from_fn(m, 1, |i, _| force[nodes[i]]);
-    let v = mass.partial_piv_lu().solve(&rhs);
-    let mut out: Vec<(f64, f64)> = (0..m)
-        .map(|i| (mesh.nodes()[nodes[i]][0], v[(i, 0)]))
-        .collect();
-    out.sort_by(|a, b| a.0.total_cmp(&b.0));
-    out
+    project_on_edge(mesh, set, force, false)
 }
 
 /// For every node of the edge set `set`: `(node, x, ∫ g N_i dx, ∫ N_i dx)` with the edge's
@@ -510,34 +462,14 @@ pub fn project(mesh: &Mesh, set: &str, force: &[f64]) -> Vec<(f64, f64)> {
 pub fn consistent(mesh: &Mesh, set: &str, g: impl Fn(f64) -> f64) -> Vec<(usize, f64, f64, f64)> {
     let sides = mesh.edge_set(set).unwrap();
     let mut acc: std::collections::BTreeMap<usize, (f64, f64)> = std::collections::BTreeMap::new();
-    let gp = [
-        0.069_431_844_202_973_71,
-        0.330_009_478_207_571_9,
-        0.669_990_521_792_428_1,
-        0.930_568_155_797_026_3,
-    ];
-    let gw = [
-        0.173_927_422_568_726_9,
-        0.326_072_577_431_273_1,
-        0.326_072_577_431_273_1,
-        0.173_927_422_568_726_9,
-    ];
     let sub = 8;
     for &side in sides {
         let local: Vec<usize> = mesh.side_nodes(side).collect();
         let (xa, xb) = (mesh.nodes()[local[0]][0], mesh.nodes()[local[1]][0]);
         for k in 0..sub {
-            for (&t, &w) in gp.iter().zip(&gw) {
+            for (t, w) in GAUSS4 {
                 let s = (k as f64 + t) / sub as f64;
-                let shape: Vec<f64> = if local.len() == 3 {
-                    vec![
-                        (1.0 - s) * (1.0 - 2.0 * s),
-                        s * (2.0 * s - 1.0),
-                        4.0 * s * (1.0 - s),
-                    ]
-                } else {
-                    vec![1.0 - s, s]
-                };
+                let shape = edge_shapes(local.len(), s);
                 let x = xa + s * (xb - xa);
                 let weight = w * (xb - xa).abs() / sub as f64;
                 let gx = g(x);

@@ -301,44 +301,51 @@ impl Measured {
     }
 }
 
-/// The L2 projection `M p = f` of the nodal forces `force` (indexed by node) on the bottom
-/// edge, `M_ij = ∫ N_i N_j w dx` with `w = x` per radian in axisymmetry, read at `x = 0`.
-/// Shape functions are taken in the abscissa `x` (the sides' nodes keep their grid abscissae,
-/// so `x` is linear along each side and `ds/dx = 1 + O(x²/R²)` is dropped).
-pub fn project_pressure_at_origin(mesh: &Mesh, force: &[f64], axisymmetric: bool) -> f64 {
-    let sides = mesh.edge_set("bottom").unwrap();
+/// 4-point Gauss–Legendre on `[0, 1]`, `(point, weight)`: exact to degree 7.
+pub const GAUSS4: [(f64, f64); 4] = [
+    (0.069_431_844_202_973_71, 0.173_927_422_568_726_9),
+    (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
+    (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
+    (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
+];
+
+/// The shape functions of a side with `nodes` nodes (`[a, b]` or `[a, b, mid]`) at `s ∈ [0, 1]`.
+pub fn edge_shapes(nodes: usize, s: f64) -> Vec<f64> {
+    if nodes == 3 {
+        vec![
+            (1.0 - s) * (1.0 - 2.0 * s),
+            s * (2.0 * s - 1.0),
+            4.0 * s * (1.0 - s),
+        ]
+    } else {
+        vec![1.0 - s, s]
+    }
+}
+
+/// The L2 projection `M v = f` of nodal forces `force` (indexed by node) on the edge set
+/// `set`, `M_ij = ∫ N_i N_j w dx` with `w = x` per radian in axisymmetry: `(x, v)` at every
+/// node of the edge, in `x` order. Shape functions are taken in the abscissa `x` (the sides'
+/// nodes keep their grid abscissae, so `x` is linear along each side and `ds/dx = 1 + O(x²/R²)`
+/// is dropped).
+pub fn project_on_edge(
+    mesh: &Mesh,
+    set: &str,
+    force: &[f64],
+    axisymmetric: bool,
+) -> Vec<(f64, f64)> {
+    let sides = mesh.edge_set(set).unwrap();
     let mut nodes: Vec<usize> = sides.iter().flat_map(|&s| mesh.side_nodes(s)).collect();
     nodes.sort_unstable();
     nodes.dedup();
     let index = |n: usize| nodes.binary_search(&n).unwrap();
     let m = nodes.len();
     let mut mass = Mat::<f64>::zeros(m, m);
-    // Gauss–Legendre, 4 points on [0, 1]: exact to degree 7 (N_i N_j x is degree 5 for P2)
-    let g = [
-        0.069_431_844_202_973_71,
-        0.330_009_478_207_571_9,
-        0.669_990_521_792_428_1,
-        0.930_568_155_797_026_3,
-    ];
-    let gw = [
-        0.173_927_422_568_726_9,
-        0.326_072_577_431_273_1,
-        0.326_072_577_431_273_1,
-        0.173_927_422_568_726_9,
-    ];
     for &side in sides {
         let local: Vec<usize> = mesh.side_nodes(side).collect(); // [a, b] or [a, b, mid]
         let (xa, xb) = (mesh.nodes()[local[0]][0], mesh.nodes()[local[1]][0]);
-        for (&s, &w) in g.iter().zip(&gw) {
-            let shape: Vec<f64> = if local.len() == 3 {
-                vec![
-                    (1.0 - s) * (1.0 - 2.0 * s),
-                    s * (2.0 * s - 1.0),
-                    4.0 * s * (1.0 - s),
-                ]
-            } else {
-                vec![1.0 - s, s]
-            };
+        // N_i N_j x is degree 5 for P2: GAUSS4 is exact
+        for (s, w) in GAUSS4 {
+            let shape = edge_shapes(local.len(), s);
             let x = xa + s * (xb - xa);
             let weight = w * (xb - xa).abs() * if axisymmetric { x } else { 1.0 };
             for (i, &ni) in local.iter().enumerate() {
@@ -349,9 +356,15 @@ pub fn project_pressure_at_origin(mesh: &Mesh, force: &[f64], axisymmetric: bool
         }
     }
     let rhs = Mat::<f64>::from_fn(m, 1, |i, _| force[nodes[i]]);
-    let p = mass.partial_piv_lu().solve(&rhs);
-    let origin = (0..m)
-        .min_by(|&i, &j| mesh.nodes()[nodes[i]][0].total_cmp(&mesh.nodes()[nodes[j]][0]))
-        .unwrap();
-    p[(origin, 0)]
+    let v = mass.partial_piv_lu().solve(&rhs);
+    let mut out: Vec<(f64, f64)> = (0..m)
+        .map(|i| (mesh.nodes()[nodes[i]][0], v[(i, 0)]))
+        .collect();
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out
+}
+
+/// [`project_on_edge`] on the bottom edge, read at its leftmost node (`x = 0`).
+pub fn project_pressure_at_origin(mesh: &Mesh, force: &[f64], axisymmetric: bool) -> f64 {
+    project_on_edge(mesh, "bottom", force, axisymmetric)[0].1
 }
