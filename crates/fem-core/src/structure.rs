@@ -39,7 +39,8 @@ pub trait Structure {
     fn node_position(&self, node: usize) -> [f64; 2];
 
     /// The free-dof indices of a node's two components; `None` for a component eliminated by
-    /// a support.
+    /// a support. Several nodes may share a dof (the nodes of a tie, `Supports::tie`); the
+    /// contact solver sums what they contribute.
     ///
     /// # Panics
     /// If `node >= node_count()`.
