@@ -6,8 +6,8 @@
 //! - `seed_5_6_2_shear`: seed 5.6.2 (`ShearSpec::default()`), build and every step;
 //! - `pile_plancoet`: seed chapter 6 at Plancoët (`PulloutSpec::plancoet()`: geostatic,
 //!   installation, 50 pull-out increments with the implicit β fixed point), build and run;
-//! - `hertz_p2_8`: the plane-strain Hertz scene of `crates/contact-solver/tests/hertz.rs` (P2,
-//!   8 × 8 fine cells), build and one step.
+//! - `hertz_p2_8`: the plane-strain Hertz scene of
+//!   `crates/contact-solver/tests/integration/hertz.rs` (P2, 8 × 8 fine cells), build and one step.
 //!
 //! Run: `cargo bench -p bipotential --bench scenes` (figures in `docs/benchmarks.md`). Ten
 //! samples each: the scenes take 0.05–5 s, so criterion's default hundred would take minutes.

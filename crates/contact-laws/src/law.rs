@@ -26,7 +26,7 @@ use crate::local::LocalVec;
 /// tangential work and the adhesion loop. `project` must be the orthogonal projection onto a
 /// closed convex set `K` and `modified_velocity(du)` must lie in the normal cone `N_K(r)`
 /// exactly when `(du, r)` obeys your law; `bipotential` is then `≥ −du·r` with equality on
-/// those pairs. See `docs/guide.md` and the test `tests/user_law.rs` (a Tresca law).
+/// those pairs. See `docs/guide.md` and the test `tests/integration/user_law.rs` (a Tresca law).
 pub trait ContactLaw {
     /// Per-contact internal state: `()` for Signorini and Coulomb, `RccmState` (β) for RCCM.
     type State: Copy + Default + core::fmt::Debug + PartialEq;

@@ -1,5 +1,5 @@
-//! Solves the plane-strain Hertz scene of `tests/hertz.rs` (P2, fine zone of 8 × 8 cells,
-//! `a ≈ 1`) and writes its reduced problem and our reactions for the Siconos peer check.
+//! Solves the plane-strain Hertz scene of `tests/integration/hertz.rs` (P2, fine zone of 8 × 8
+//! cells, `a ≈ 1`) and writes its reduced problem and our reactions for the Siconos peer check.
 //!
 //! ```text
 //! cargo run --release -p contact-solver --example hertz_export -- [OUT.json]

@@ -1,4 +1,4 @@
-//! Runs the numerical-stability stress suite of `tests/stress.rs` and prints its table
+//! Runs the numerical-stability stress suite of `tests/integration/stress.rs` and prints its table
 //! (markdown) for `docs/validation.md`: per case the steps, the solver sweeps summed over the
 //! steps, the adhesion fixed-point iterations, the largest final residual of its steps, the
 //! outcome and what the checks measured.

@@ -156,7 +156,7 @@ impl<W: Write> HistoryWriter<W> {
     /// [`SolverError::Io`] if the writer fails.
     ///
     /// # Examples
-    /// See [`HistoryWriter`] and `tests/output.rs` (a whole simulation).
+    /// See [`HistoryWriter`] and `tests/integration/output.rs` (a whole simulation).
     /// ```
     /// # use contact_solver::coupling::output::HistoryWriter;
     /// # fn log(sim_step: &contact_solver::StepResult) -> Result<(), contact_solver::SolverError> {

@@ -32,7 +32,7 @@
 //! sweeps; without back-off the accelerated iteration cycled accept–reject and stalled at a
 //! residual of 3e-4): the iteration then degrades to the plain map, with rare probes (on that
 //! case 25 000 to 54 000 base steps depending on the starting state, never more than about the
-//! plain sweep's; `tests/local_algorithms.rs`, `issue_8_tipping_block_*`).
+//! plain sweep's; `tests/integration/local_algorithms.rs`, `issue_8_tipping_block_*`).
 //!
 //! **Stopping rule.** Each iteration is judged like a plain sweep: the change is that of
 //! the base step, `‖g_k − r_k‖/‖g_k‖`, and the natural residual (with `ρ⁰`) is taken at

@@ -17,11 +17,12 @@
 //! exactly on 16 sampled contacts, so the residual's scaling differs slightly from the dense
 //! solvers').
 //!
-//! **Cost.** Measured on a P2 block pressed and pushed on a LINE (`tests/matrix_free.rs` setup),
-//! the products per step grow about linearly with `n_c` (the Delassus operator of a 2D elastic
-//! body has a condition number growing with `n_c`): Signorini, tol 1e-8: 114 products for
-//! `n_c = 33`, 633 for 129; Coulomb: 194 and 2790. Building `F*` costs `2 n_c` solves, so the
-//! dense path is faster whenever `F*` fits in memory; this solver is for when it does not.
+//! **Cost.** Measured on a P2 block pressed and pushed on a LINE
+//! (`tests/integration/matrix_free.rs` setup), the products per step grow about linearly with `n_c`
+//! (the Delassus operator of a 2D elastic body has a condition number growing with `n_c`):
+//! Signorini, tol 1e-8: 114 products for `n_c = 33`, 633 for 129; Coulomb: 194 and 2790. Building
+//! `F*` costs `2 n_c` solves, so the dense path is faster whenever `F*` fits in memory; this solver
+//! is for when it does not.
 
 use super::residual::{local, natural_residual, norm, penetration};
 use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, UzawaSettings};

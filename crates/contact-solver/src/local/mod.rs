@@ -33,7 +33,7 @@
 //! `W` only through `delassus` (`dot_row`, `axpy_row`, `axpy_rows2/3`, `mul_into`,
 //! `diagonal_block`), which matches the storage once per row: the dense loops are the zipped
 //! slices they were, a sparse sweep costs `O(stored entries)`, and both storages of the same
-//! `W` give the same bits (`tests/sparse.rs`). Nothing densifies a sparse `W`: Newton
+//! `W` give the same bits (`tests/integration/sparse.rs`). Nothing densifies a sparse `W`: Newton
 //! assembles its reduced system on the block pattern and factorises it with faer's sparse LU
 //! ([`newton`]).
 //!
@@ -136,7 +136,7 @@
 //!
 //! # Problems as other codes export them
 //! Before and after the chosen algorithm, the dispatcher ([`UzawaSolver`]) handles what a
-//! problem from another code may bring (`tests/real_world_inputs.rs`):
+//! problem from another code may bring (`tests/integration/real_world_inputs.rs`):
 //! - **Round-off asymmetry.** [`ReducedProblem::new`] symmetrises `W` when
 //!   `max|W_ij − W_ji| / max|W|` is between [`SYMMETRY_TOL`] (1e-12) and
 //!   [`DEFAULT_ASYMMETRY_TOL`] (1e-6, or [`ReducedProblem::with_asymmetry_tolerance`]) and

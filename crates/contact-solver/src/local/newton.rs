@@ -24,8 +24,8 @@
 //! ```
 //! (`ŝ = 0` at 0 picks one element of the generalized Jacobian at the kink `x_t = 0`.) The slip
 //! case in 3D is the derivative of `P(τ) = γ (1, μ̄ ŝ_τ)`: `â âᵀ` from `γ`, `κ e eᵀ` from the
-//! turning of `ŝ_τ` (`∂ŝ/∂τ_t = (I − ŝŝᵀ)/‖τ_t‖`); `tests/reduced_3d.rs` checks it against
-//! finite differences of the law's own projection along random directions.
+//! turning of `ŝ_τ` (`∂ŝ/∂τ_t = (I − ŝŝᵀ)/‖τ_t‖`); `tests/integration/reduced_3d.rs` checks it
+//! against finite differences of the law's own projection along random directions.
 //!
 //! The Newton system `J Δr = −F` is reduced before it is factorised, per contact in the
 //! eigenvectors `u` of the symmetric `D_P` (eigenvalue `λ`):
@@ -43,7 +43,7 @@
 //! unknowns (`O(stored entries)` per unknown) in faer's compressed columns and factorised by
 //! faer's sparse LU with partial pivoting ([`sparse`](self#sparse-w)); nothing is densified, so
 //! Newton runs on a sparse problem of any size (a 2000-contact 3D problem in
-//! `tests/sparse.rs`).
+//! `tests/integration/sparse.rs`).
 //!
 //! **Globalisation.** Armijo backtracking on `φ = ‖F‖²`: the step `t ∈ {1, ½, ¼, …}` is
 //! accepted when `φ(r + tΔr) ≤ (1 − 2σt) φ(r)`, `σ = 10⁻⁴`; `x` moves by `t W Δr` (one

@@ -29,7 +29,7 @@ pub use skip_open::{SKIP_OPEN_MAX_FRACTION, SKIP_OPEN_MIN_CONTACTS};
 /// to `max(‖q‖∞, ‖W r‖∞)`, or the run counts as stalled: an iteration whose reactions grow
 /// without bound (no solution) brings the relative residual to 0 while `x_n` stays at the
 /// scale of `q` (measured over the test suite: converged answers reach at most 74 × tol, the
-/// unsolvable problem of `tests/stall.rs` 1e10 × tol).
+/// unsolvable problem of `tests/integration/stall.rs` 1e10 × tol).
 pub const CHECK_FACTOR: f64 = 1e3;
 
 /// `W`, `q` or the reactions' scale `max|q|/max|W|` with magnitudes beyond
@@ -342,7 +342,7 @@ impl UzawaSolver {
         let outside = |v: f64, bound: f64| v != 0.0 && !(1.0 / bound..=bound).contains(&v);
         // the reactions are of the order of q/W: W ~ 1e74 with q ~ 1e-83 has r ~ 1e-157,
         // whose squares in the norms are subnormal (a residual of 0 and a "converged"
-        // answer wrong by 1e-6 relative, found by tests/finiteness.rs)
+        // answer wrong by 1e-6 relative, found by tests/integration/finiteness.rs)
         let ratio = if w_max > 0.0 { q_max / w_max } else { 0.0 };
         if !outside(w_max, RESCALE_ABOVE)
             && !outside(q_max, RESCALE_ABOVE)

@@ -35,7 +35,7 @@ pub const MIN_STALL_WINDOW: usize = 10;
 /// longest plateau of any converging run is 4754 iterations (at iteration 52 468, where the
 /// `k/2` term covers it); the classical sub-problems need at most 12. 5000 is twice the worst
 /// case. On a problem with no solution (residual `~ 1/k`) the detector then fires after about
-/// 15 000 iterations (`tests/stall.rs`), so it saves nothing under the default
+/// 15 000 iterations (`tests/integration/stall.rs`), so it saves nothing under the default
 /// `max_iterations` (10 000) but most of a larger one (hard problems are given 100 000).
 pub const DEFAULT_STALL_WINDOW: usize = 5000;
 

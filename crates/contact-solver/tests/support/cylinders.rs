@@ -1,4 +1,4 @@
-//! Two elastic cylinders in contact (plane strain), shared by `tests/two_cylinders.rs`: an
+//! Two elastic cylinders in contact (plane strain), shared by `tests/integration/two_cylinders.rs`: an
 //! upper body whose bottom is an arc of radius `R₁`, pressed by a resultant force on its flat
 //! top, onto a lower body whose top is an arc of radius `R₂` and whose flat bottom is fixed.
 //!

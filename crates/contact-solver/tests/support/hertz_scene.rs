@@ -1,6 +1,6 @@
-//! The Hertz scene shared by `tests/hertz.rs` and `examples/hertz_export.rs`: an elastic body
-//! whose bottom is a circular arc of radius `R` (a cylinder in plane strain, a sphere in
-//! axisymmetry), pressed by a prescribed displacement `−δ` of its flat top onto the rigid LINE
+//! The Hertz scene shared by `tests/integration/hertz.rs` and `examples/hertz_export.rs`: an
+//! elastic body whose bottom is a circular arc of radius `R` (a cylinder in plane strain, a sphere
+//! in axisymmetry), pressed by a prescribed displacement `−δ` of its flat top onto the rigid LINE
 //! `y = 0`, frictionless (`Signorini`).
 //!
 //! ```text

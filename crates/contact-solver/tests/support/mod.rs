@@ -1,3 +1,10 @@
+//! Helpers shared by the integration tests (`tests/integration/`); examples and benches include
+//! single files of them with `#[path]`. The FE scenes need the `fe` feature.
+
+#[cfg(feature = "fe")]
 pub mod cylinders;
+#[cfg(feature = "fe")]
 pub mod hertz_scene;
+#[cfg(feature = "fe")]
 pub mod stress_cases;
+pub mod twins;

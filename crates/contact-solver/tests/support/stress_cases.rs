@@ -1,6 +1,6 @@
 //! The cases of the numerical-stability stress suite (issue 8, "Numerical stability under
-//! stress"), shared by `tests/stress.rs` (which asserts them) and `examples/stress_table.rs`
-//! (which prints the table of `docs/validation.md`).
+//! stress"), shared by `tests/integration/stress.rs` (which asserts them) and
+//! `examples/stress_table.rs` (which prints the table of `docs/validation.md`).
 //!
 //! Every case builds a small scene, steps it, and returns a [`Record`]: steps, solver sweeps,
 //! adhesion iterations, the largest final residual of its steps and an [`Outcome`]. A case is
@@ -333,20 +333,25 @@ pub fn all_cases() -> Vec<Case> {
 /// The tolerance every case asks of the solver (the default).
 pub const TOL: f64 = 1e-10;
 
-/// Whether the cases force the primal active-set path (`tests/stress_active_set.rs`).
-static ACTIVE_SET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+thread_local! {
+    /// Whether the cases run on this thread force the primal active-set path
+    /// (`tests/integration/stress_active_set.rs`). Per thread, not per process: the stress
+    /// tests with the default path (`stress.rs`) run in the same test binary, each test on a
+    /// thread of its own.
+    static ACTIVE_SET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
 
-/// Makes every case of this test binary solve its steps with
-/// `FlexibilityMode::ActiveSet` instead of the default (a dense `F*` at these sizes).
+/// Makes every case run afterwards on the calling thread (a test's own thread) solve its steps
+/// with `FlexibilityMode::ActiveSet` instead of the default (a dense `F*` at these sizes).
 #[allow(dead_code)]
 pub fn force_active_set() {
-    ACTIVE_SET.store(true, std::sync::atomic::Ordering::Relaxed);
+    ACTIVE_SET.with(|a| a.set(true));
 }
 
 fn settings() -> SimulationSettings {
     let mut s = SimulationSettings::default();
     s.solver.tol = TOL;
-    if ACTIVE_SET.load(std::sync::atomic::Ordering::Relaxed) {
+    if ACTIVE_SET.with(|a| a.get()) {
         s.flexibility = contact_solver::FlexibilityMode::ActiveSet;
     }
     s
@@ -1692,7 +1697,7 @@ pub fn poisson_cases() -> Vec<Case> {
                 );
                 // Hertz with E* = E/(1 − ν²) holds for every ν; at ν = 0.3 the m = 8 errors are
                 // −0.5 % (a) and −1.1 % / −2.7 % (p0, plane strain / axisymmetric), see
-                // tests/hertz.rs. Locking would stiffen the body and shrink a.
+                // tests/integration/hertz.rs. Locking would stiffen the body and shrink a.
                 ensure!(m.a_error().abs() <= 2e-2, "a {:.5} vs Hertz {:.5}", m.a_fe, m.a_hertz);
                 ensure!(m.p0_error().abs() <= 4e-2, "p0 {:.5} vs Hertz {:.5}", m.p0_fe, m.p0_hertz);
                 Ok(format!(

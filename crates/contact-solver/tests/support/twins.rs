@@ -1,5 +1,5 @@
-//! The same reduced problem with `W` stored sparse, shared by tests and examples (included
-//! with `#[path]`).
+//! The same reduced problem with `W` stored sparse, shared by the tests (`crate::support`) and
+//! examples (included with `#[path]`).
 
 use contact_solver::{ReducedProblem, SolverError};
 

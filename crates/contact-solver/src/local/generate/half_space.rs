@@ -36,8 +36,8 @@
 //! q_t = −s          (the solid's displacement relative to the indenter, before the reactions)
 //! ```
 //! Check: a frictionless flat punch carries `P = 2 a E* δ`, `E* = E/(1 − ν²)` (the rigid
-//! flat-ended punch, Johnson 1985 ch. 3; Sneddon 1946); `tests/multibody_3d.rs` compares the sum
-//! of `r_n` with it, and checks that `W` is symmetric and positive definite.
+//! flat-ended punch, Johnson 1985 ch. 3; Sneddon 1946); `tests/integration/multibody_3d.rs`
+//! compares the sum of `r_n` with it, and checks that `W` is symmetric and positive definite.
 
 use crate::error::SolverError;
 use crate::local::problem::ReducedProblem;

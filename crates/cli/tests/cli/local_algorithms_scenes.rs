@@ -6,8 +6,8 @@
 //! Reference: the projected Gauss–Seidel run of the same scene (the default until issue 8's
 //! measurements). Every algorithm stops on the same rule at tol 1e-10 and the adhesion fixed
 //! point at 1e-8, so per step the states β and the reactions agree to the adhesion tolerance.
-//! Fast variants (fewer steps) as in `tests/seed_studies.rs`; run with `--nocapture` for the
-//! contact iterations and wall time of each algorithm.
+//! Fast variants (fewer steps) as in `tests/cli/seed_studies.rs`; run with `--nocapture` for
+//! the contact iterations and wall time of each algorithm.
 
 use bipo::presets::{DelaminationSpec, Scene, ShearSpec};
 use contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};

@@ -36,11 +36,9 @@
 
 #![cfg(feature = "fe")]
 
-mod support;
-
+use crate::support::cylinders::{Body, Cylinders, Pairing};
 use contact_laws::{Coulomb, Signorini, StandardLaw};
 use contact_solver::SimulationSettings;
-use support::cylinders::{Body, Cylinders, Pairing};
 
 fn hertz(pairing: Pairing, kind: fem_core::ElementKind, upper_cells: usize, lower_cells: usize) {
     let upper = Body {
@@ -177,7 +175,7 @@ fn cattaneo_mindlin_works() {
         let sign = m.q_total.signum(); // the friction on the upper body opposes Q
         let mesh = sim.structure().mesh();
         let (mut err, mut err_all) = (0.0_f64, 0.0_f64);
-        for (node, x, q_i, w_i) in support::cylinders::consistent(mesh, "up.bottom", |x| {
+        for (node, x, q_i, w_i) in crate::support::cylinders::consistent(mesh, "up.bottom", |x| {
             mindlin(x, a, p0, mu, c_exact * a)
         }) {
             if x.abs() >= a {

@@ -24,9 +24,7 @@
 
 #![cfg(feature = "fe")]
 
-mod support;
-
-use support::stress_cases::{
+use crate::support::stress_cases::{
     Case, alpha_cases, contrast_cases, friction_cases, geometry_cases, load_step_cases,
     poisson_cases, rccm_c_cases, rho_cases,
 };

@@ -50,7 +50,7 @@ use fem_core::{
 use std::f64::consts::FRAC_PI_2;
 use std::sync::Arc;
 
-mod common;
+use crate::common;
 
 /// `nx × ny` undistorted cells on the unit square mapped by `map` (see [`common::grid`]).
 fn mapped_grid(kind: ElementKind, n: [usize; 2], map: impl Fn([f64; 2]) -> [f64; 2]) -> Mesh {

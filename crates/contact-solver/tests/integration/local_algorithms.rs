@@ -27,8 +27,7 @@
 
 #![cfg(feature = "fe")]
 
-mod support;
-
+use crate::support::hertz_scene::HertzScene;
 use contact_solver::contact_laws::{
     BetaScheme, ContactLaw, ContactStatus, Coulomb, LawError, LocalVec, Rccm, RccmParams, RccmState,
 };
@@ -40,7 +39,6 @@ use contact_solver::{
 use contact_solver::{ContactSimulation, ContactZone, RigidLine};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
-use support::hertz_scene::HertzScene;
 
 const NEW: [Algorithm; 3] = [
     Algorithm::AndersonGaussSeidel,

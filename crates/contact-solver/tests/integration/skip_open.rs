@@ -1,8 +1,7 @@
 //! Contacts that stay open leave the iteration (`UzawaSettings::skip_open`, issue 14): the
 //! answer must be the whole problem's, whether contacts left out stay open or must join.
 
-#[path = "support/twins.rs"]
-mod twins;
+use crate::support::twins;
 
 use contact_solver::local::SKIP_OPEN_MIN_CONTACTS;
 use contact_solver::local::generate::half_space::{HalfSpace, Indenter};

@@ -1,8 +1,8 @@
 //! Output of the interface (`contact_solver::coupling::output`): CSV histories read back bit-exactly and
 //! `.vtu` files read back with vtkio.
 //!
-//! Scene (as `tests/signorini_block.rs`): a 2 × 1 P1 block, plane strain, E = 200, ν = 0.3,
-//! 8 × 4 cells, bottom 0.001 above a rigid LINE y = 0 (alert distance 0.5, so every bottom
+//! Scene (as `tests/integration/signorini_block.rs`): a 2 × 1 P1 block, plane strain, E = 200, ν =
+//! 0.3, 8 × 4 cells, bottom 0.001 above a rigid LINE y = 0 (alert distance 0.5, so every bottom
 //! node is a candidate in the reduced problem), left side fixed in x, top pushed down by
 //! 0.0005 (step 1: still open) then 0.011 (step 2: pressed).
 

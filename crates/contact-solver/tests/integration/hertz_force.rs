@@ -1,7 +1,7 @@
 //! Force-controlled Hertz contact (issue 16): the elastic cylinder (plane strain) and sphere
-//! (axisymmetric) of `tests/hertz.rs`, pressed on the rigid flat by a **force** `P` (a uniform
-//! traction on the flat top, no support there) instead of a prescribed displacement. The body
-//! floats along `y` (the symmetry support `u_x = 0` on the axis holds the other modes) and
+//! (axisymmetric) of `tests/integration/hertz.rs`, pressed on the rigid flat by a **force** `P` (a
+//! uniform traction on the flat top, no support there) instead of a prescribed displacement. The
+//! body floats along `y` (the symmetry support `u_x = 0` on the axis holds the other modes) and
 //! contact alone holds it: the rigid-body amplitude is solved for exactly with the body's
 //! equilibrium `Σ r_n = P` (`LinearElasticModel::floating`, `contact_solver`'s floating stage).
 //!
@@ -16,8 +16,8 @@
 //!              ╰──___________─╯ arc y = R − √(R² − x²), contactor nodes
 //!   ═══════════════════════════ rigid LINE y = 0 (Signorini)
 //! ```
-//! Mesh and measurements as `tests/hertz.rs` (`tests/support/hertz_scene.rs`): P2, uniform
-//! fine zone `[0, 1.5]²` of `16 × 16` cells (`h = a/11`), geometric growth 1.5 beyond.
+//! Mesh and measurements as `tests/integration/hertz.rs` (`tests/support/hertz_scene.rs`): P2,
+//! uniform fine zone `[0, 1.5]²` of `16 × 16` cells (`h = a/11`), geometric growth 1.5 beyond.
 //!
 //! What is asserted, and why:
 //! - `P` reproduced by the reactions to `1e-10` relative: the body's equilibrium is solved
@@ -29,11 +29,9 @@
 
 #![cfg(feature = "fe")]
 
-mod support;
-
+use crate::support::hertz_scene::HertzScene;
 use contact_solver::SimulationSettings;
 use fem_core::{ElementKind, Idealization};
-use support::hertz_scene::HertzScene;
 
 fn check(idealization: Idealization, p_total: f64) {
     let scene = HertzScene::new(idealization, ElementKind::Tri6, 16);

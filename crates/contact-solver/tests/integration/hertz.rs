@@ -40,13 +40,11 @@
 
 #![cfg(feature = "fe")]
 
-mod support;
-
+use crate::support::hertz_scene::{HertzScene, Measured};
 use contact_laws::Signorini;
 use contact_solver::{ContactSimulation, SimulationSettings, StepResult};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel};
 use std::time::Instant;
-use support::hertz_scene::{HertzScene, Measured};
 
 /// Builds, steps and measures the scene on P2 with `m × m` fine cells.
 fn run(

@@ -159,8 +159,8 @@ fn frictionless_skips_the_friction_sub_problem() {
 
 #[test]
 fn sweep_counts_are_printed() {
-    // `cargo test -p contact-solver --test classic -- --nocapture sweep_counts` prints the
-    // figures quoted in the docs of `contact_solver::local::classic`, and checks them.
+    // `cargo test -p contact-solver --test integration -- --nocapture classic::sweep_counts`
+    // prints the figures quoted in the docs of `contact_solver::local::classic`, and checks them.
     println!("n_c seed | GS sweeps | classic sweeps (tangential) outer");
     // (n_c, seed, classic sweeps quoted in the docs of `contact_solver::local::classic`)
     for (nc, seed, quoted) in [
@@ -192,7 +192,7 @@ fn sweep_counts_are_printed() {
     }
 }
 
-const F: f64 = 2.5e-3; // a flexibility in mm/N, as in tests/single_contact.rs
+const F: f64 = 2.5e-3; // a flexibility in mm/N, as in tests/integration/single_contact.rs
 
 fn single(q: [f64; 2], mu: f64) -> Solution {
     let p = ReducedProblem::new(vec![F, 0.0, 0.0, F], q.to_vec(), vec![mu]).unwrap();
@@ -212,7 +212,7 @@ fn single_contact_signorini_works() {
 #[test]
 fn single_contact_stick_works() {
     let s = single([-1.0, 0.5], 0.8);
-    // 1e-9 relative: ten times the solver's tolerance (as in tests/single_contact.rs).
+    // 1e-9 relative: ten times the solver's tolerance (as in tests/integration/single_contact.rs).
     assert_relative_eq!(s.r[0], 1.0 / F, max_relative = 1e-9);
     assert_relative_eq!(s.r[1], -0.5 / F, max_relative = 1e-9);
     assert_eq!(s.report.statuses, vec![ContactStatus::Stick]);
@@ -246,7 +246,8 @@ fn single_contact_separation_works() {
 }
 
 /// Tresca friction (threshold `s` independent of `r_n`): not a Coulomb-type law, so
-/// `friction_coefficient` keeps its default `None` (see contact-laws' tests/user_law.rs).
+/// `friction_coefficient` keeps its default `None` (see contact-laws'
+/// tests/integration/user_law.rs).
 #[derive(Clone, Copy, Debug)]
 struct Tresca {
     s: f64,

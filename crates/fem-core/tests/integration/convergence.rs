@@ -119,7 +119,7 @@ fn manufactured_body_force_is_minus_div_sigma_works() {
     }
 }
 
-mod common;
+use crate::common;
 
 /// `n × n` cells on the unit square with alternating diagonals (node set "boundary").
 fn unit_square(kind: ElementKind, n: usize) -> Mesh {

@@ -4,8 +4,7 @@
 
 #![cfg(feature = "fe")]
 
-mod support;
-
+use crate::support::hertz_scene::HertzScene;
 use contact_laws::{BetaScheme, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::{
     ContactSimulation, ContactZone, FlexibilityMode, RigidLine, SimulationSettings, SolverError,
@@ -15,7 +14,6 @@ use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{
     Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports,
 };
-use support::hertz_scene::HertzScene;
 
 fn block(kind: ElementKind, nx: usize, ny: usize) -> (Mesh, Vec<usize>, Vec<usize>) {
     let mut spec = RectangleSpec::new([0.0, 2.0], [0.0, 1.0], nx, ny);
@@ -249,8 +247,8 @@ fn two_bodies_are_out_of_scope_with_a_reason() {
 }
 
 /// μ = 10 with lift-off: the active set's lagged friction coupling does not converge (see
-/// `tests/stress_active_set.rs`). Forced, that is `NotConverged` with its history; under `Auto`
-/// the step falls back to the dense path and gives the dense answer.
+/// `tests/integration/stress_active_set.rs`). Forced, that is `NotConverged` with its history;
+/// under `Auto` the step falls back to the dense path and gives the dense answer.
 #[test]
 fn auto_falls_back_when_the_active_set_does_not_converge() {
     let run = |mode: FlexibilityMode| -> Result<(Vec<StepResult>, contact_solver::Counters), SolverError> {

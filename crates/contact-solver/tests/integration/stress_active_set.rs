@@ -1,18 +1,16 @@
-//! The stress cases of `tests/stress.rs` that are in the primal active-set path's scope (rigid
-//! obstacles, no adhesion), solved with `FlexibilityMode::ActiveSet` forced: the same
+//! The stress cases of `tests/integration/stress.rs` that are in the primal active-set path's scope
+//! (rigid obstacles, no adhesion), solved with `FlexibilityMode::ActiveSet` forced: the same
 //! tolerance (`1e-10`) and the same physics checks must pass (μ from 0 to 10, load steps from
 //! 1e-9 to the whole load, ν = 0.499 with P2, nodes on the obstacle, beyond the alert distance
 //! and on an ARC's endpoint). Two cases are outside its scope and must end in a typed error:
 //! μ = 10 with lift-off (`NotConverged`) and a node against two walls (`Unsupported`). The
 //! dense-path groups with node pairs, segments or RCCM glue are
 //! out of its scope (`SolverError::Unsupported` / `InvalidSetting`, tested in
-//! `tests/active_set.rs`).
+//! `tests/integration/active_set.rs`).
 
 #![cfg(feature = "fe")]
 
-mod support;
-
-use support::stress_cases::{
+use crate::support::stress_cases::{
     Case, Record, force_active_set, friction_cases, geometry_cases, load_step_cases, poisson_cases,
 };
 

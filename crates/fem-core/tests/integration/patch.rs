@@ -24,7 +24,7 @@ use fem_core::{
     Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Stress, Supports,
 };
 
-mod common;
+use crate::common;
 
 /// `nx × ny` cells on `[x0, x1] × [y0, y1]` (see [`common::grid`]).
 fn grid(

@@ -1,0 +1,12 @@
+//! The integration tests of `bipo` (the CLI and its presets), one test binary (each module was a
+//! test file of its own; one binary links once). Each module keeps its name, its tests and its
+//! doc; the scene files stay in `tests/broken/`, `tests/broken_local/` and `tests/scenes/`.
+
+mod broken;
+mod broken_local;
+mod cli;
+mod delamination;
+mod fuzz_corpus;
+mod local_algorithms_scenes;
+mod pile;
+mod seed_studies;

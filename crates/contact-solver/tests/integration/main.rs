@@ -1,0 +1,43 @@
+//! The integration tests of `contact-solver`, one test binary (each module was a test file of
+//! its own: one binary instead of 29 saves the link and, at `opt-level = 3` for this package
+//! in debug builds, most of the compile time of `cargo test`). Each module keeps its name, its
+//! tests and its doc; files that need the FE coupling carry `#![cfg(feature = "fe")]` (or
+//! `serde`) as before. `tests/fclib.rs` stays a binary of its own (feature `fclib`).
+//!
+//! The shared helpers stay in `tests/support/` (examples and benches include them with
+//! `#[path]`) and are reached as `crate::support`.
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod active_set;
+mod block_on_foundation;
+mod classic;
+mod coulomb_block;
+mod finiteness;
+mod floating_block;
+mod floating_glued;
+mod floating_two_bodies;
+mod fuzz_corpus;
+mod hertz;
+mod hertz_force;
+mod invalid_input;
+mod local_algorithms;
+mod matrix_free;
+mod multibody_3d;
+mod output;
+mod random_spd;
+mod rccm_opening;
+mod real_world_inputs;
+mod reduced_3d;
+mod rigid_targets;
+mod signorini_block;
+mod single_contact;
+mod skip_open;
+mod skip_rules;
+mod sparse;
+mod stall;
+mod stress;
+mod stress_active_set;
+mod two_bodies;
+mod two_cylinders;

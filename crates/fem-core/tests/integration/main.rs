@@ -1,0 +1,15 @@
+//! The integration tests of `fem-core`, one test binary (each module was a test file of its own:
+//! one binary instead of 7 saves the links and, at `opt-level = 3` for this package in debug
+//! builds, compile time of `cargo test`). Each module keeps its name, its tests and its doc; the
+//! shared mesh helpers stay in `tests/common/` and are reached as `crate::common`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod convergence;
+mod exact_solutions;
+mod fuzz_corpus;
+mod hostile_input;
+mod mesh_io;
+mod patch;
+mod structure_paths;
