@@ -135,9 +135,16 @@ impl Supports {
                 reason: "the set is empty",
             });
         }
-        for (k, &n) in nodes.iter().enumerate() {
-            let again = nodes[..k].contains(&n);
-            if again || self.tied(n, component) {
+        // the nodes already tied along `component`, then those of this set as they come: one
+        // pass, so that a cap of many nodes is not checked in quadratic time
+        let mut seen: std::collections::BTreeSet<usize> = self
+            .ties
+            .iter()
+            .filter(|(c, _)| *c == component)
+            .flat_map(|(_, ns)| ns.iter().copied())
+            .collect();
+        for &n in nodes {
+            if !seen.insert(n) {
                 return Err(FemError::InvalidTie {
                     component,
                     node: Some(n),

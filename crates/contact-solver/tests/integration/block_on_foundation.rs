@@ -26,6 +26,7 @@
 
 #![cfg(feature = "fe")]
 
+use crate::support::hertz_scene::with_region;
 use contact_laws::{Coulomb, StandardLaw};
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, SolverError, StepResult};
 use fem_core::generate::{RectangleSpec, rectangle};
@@ -76,26 +77,6 @@ fn scene(push: f64) -> ContactSimulation<LinearElasticModel, StandardLaw> {
     let law: StandardLaw = Coulomb::new(MU).unwrap().into();
     let zone = ContactZone::node_to_segment("base", contactor, surface, law, 0.01);
     ContactSimulation::new(model, vec![zone], SimulationSettings::default()).unwrap()
-}
-
-/// `mesh` with every element in `region`.
-fn with_region(mesh: &Mesh, region: u32) -> Mesh {
-    let mut out = Mesh::new(
-        mesh.nodes().to_vec(),
-        mesh.kind(),
-        mesh.connectivity().to_vec(),
-        vec![region; mesh.element_count()],
-    )
-    .unwrap();
-    for name in mesh.node_set_names() {
-        out.add_node_set(name, mesh.node_set(name).unwrap().to_vec())
-            .unwrap();
-    }
-    for name in mesh.edge_set_names() {
-        out.add_edge_set(name, mesh.edge_set(name).unwrap().to_vec())
-            .unwrap();
-    }
-    out
 }
 
 /// `(Σ f_x, Σ f_y)` of the reactions on the block, in the global frame.

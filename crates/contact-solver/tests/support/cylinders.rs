@@ -34,10 +34,9 @@
 //! ```
 #![allow(dead_code)] // each user takes what it needs
 
-use super::hertz_scene::{GAUSS4, edge_shapes, project_on_edge};
+use super::hertz_scene::{GAUSS4, arc_mesh, edge_shapes, graded_lines, project_on_edge};
 use contact_laws::StandardLaw;
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, StepResult};
-use fem_core::generate::{Grading, RectangleSpec, graded_points, rectangle};
 use fem_core::{
     Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports,
 };
@@ -124,31 +123,14 @@ impl Cylinders {
         (a, 2.0 * p / (std::f64::consts::PI * a))
     }
 
-    /// Grid lines over `[0, end]`: the fine zone, then geometric growth (as
-    /// `HertzScene::grid_lines`).
+    /// Grid lines over `[0, end]`: the fine zone, then geometric growth
+    /// (`hertz_scene::graded_lines`).
     fn lines(&self, cells: usize, end: f64) -> Vec<f64> {
-        let (b, m) = (self.fine_extent, cells);
-        let h = b / m as f64;
-        let mut lines: Vec<f64> = (0..=m).map(|i| b * i as f64 / m as f64).collect();
-        let (g, rest) = (self.growth, end - b);
-        let k = ((1.0 + rest * (g - 1.0) / (h * g)).ln() / g.ln())
-            .ceil()
-            .max(1.0) as usize;
-        let outer = graded_points(
-            b,
-            end,
-            k,
-            Grading::Geometric {
-                ratio: g.powi(k as i32 - 1),
-            },
-        )
-        .unwrap();
-        lines.extend_from_slice(&outer[1..]);
-        lines
+        graded_lines(self.fine_extent, cells, self.growth, end)
     }
 
-    /// One body: `up` maps `[0, H]` onto the body above its arc, else `[−H, 0]` below.
-    fn body_mesh(&self, body: &Body, up: bool) -> Mesh {
+    /// One body above its arc (`hertz_scene::arc_mesh`), over `[−L, L]` or `[0, L]`.
+    fn body_mesh(&self, body: &Body) -> Mesh {
         let half = self.lines(body.fine_cells, self.width);
         let xs: Vec<f64> = if self.half {
             half
@@ -159,50 +141,8 @@ impl Cylinders {
                 .chain(half[1..].iter().copied())
                 .collect()
         };
-        let vertical = self.lines(body.fine_cells, self.height);
-        let ys: Vec<f64> = if up {
-            vertical
-        } else {
-            vertical.iter().rev().map(|y| -y).collect()
-        };
-        let (nx, ny) = (xs.len() - 1, ys.len() - 1);
-        let mut spec = RectangleSpec::new([0.0, nx as f64], [0.0, ny as f64], nx, ny);
-        spec.kind = self.kind;
-        let grid = rectangle(&spec).unwrap();
-        let along = |lines: &[f64], s: f64| {
-            let i = (s.floor() as usize).min(lines.len() - 2);
-            lines[i] + (s - i as f64) * (lines[i + 1] - lines[i])
-        };
-        let (r, h) = (body.radius, self.height);
-        let nodes = grid
-            .nodes()
-            .iter()
-            .map(|&[s, t]| {
-                let (x, y) = (along(&xs, s), along(&ys, t));
-                let rise = r - (r * r - x * x).sqrt();
-                if up {
-                    [x, y + rise * (1.0 - y / h)]
-                } else {
-                    [x, y - rise * (1.0 + y / h)]
-                }
-            })
-            .collect();
-        let mut mesh = Mesh::new(
-            nodes,
-            grid.kind(),
-            grid.connectivity().to_vec(),
-            grid.regions().iter().map(|_| u32::from(!up)).collect(),
-        )
-        .unwrap();
-        for name in grid.node_set_names() {
-            mesh.add_node_set(name, grid.node_set(name).unwrap().to_vec())
-                .unwrap();
-        }
-        for name in grid.edge_set_names() {
-            mesh.add_edge_set(name, grid.edge_set(name).unwrap().to_vec())
-                .unwrap();
-        }
-        mesh
+        let ys = self.lines(body.fine_cells, self.height);
+        arc_mesh(self.kind, &xs, &ys, body.radius, self.height)
     }
 
     /// The mirror image `y → −y` of `mesh` (elements reordered to stay counter-clockwise,
@@ -251,8 +191,8 @@ impl Cylinders {
     /// The joined mesh: the upper body (region 0, sets `up.*`) then the lower (region 1,
     /// sets `low.*`), the lower one built as the upper is and mirrored.
     pub fn mesh(&self) -> Mesh {
-        let up = self.body_mesh(&self.upper, true);
-        let low = Self::mirrored(&self.body_mesh(&self.lower, true), 1);
+        let up = self.body_mesh(&self.upper);
+        let low = Self::mirrored(&self.body_mesh(&self.lower), 1);
         Mesh::join(&[("up.", &up), ("low.", &low)]).unwrap()
     }
 

@@ -100,22 +100,9 @@ impl HertzScene {
         }
     }
 
-    /// Grid lines from 0 to `end`: `fine_cells` uniform cells over `[0, b]`, then cells growing
-    /// geometrically by about `growth` (a [`Grading::Geometric`] subdivision of `[b, end]`
-    /// whose first cell is close to `growth · h`).
+    /// [`graded_lines`] from 0 to `end` with this scene's fine zone and growth.
     pub fn grid_lines(&self, end: f64) -> Vec<f64> {
-        let (b, m) = (self.fine_extent, self.fine_cells);
-        let h = b / m as f64;
-        let mut lines: Vec<f64> = (0..=m).map(|i| b * i as f64 / m as f64).collect();
-        let (g, rest) = (self.growth, end - b);
-        // smallest k with Σ_{i=1..k} h gⁱ ≥ rest
-        let k = ((1.0 + rest * (g - 1.0) / (h * g)).ln() / g.ln())
-            .ceil()
-            .max(1.0) as usize;
-        let ratio = g.powi(k as i32 - 1);
-        let outer = graded_points(b, end, k, Grading::Geometric { ratio }).unwrap();
-        lines.extend_from_slice(&outer[1..]);
-        lines
+        graded_lines(self.fine_extent, self.fine_cells, self.growth, end)
     }
 
     /// `E* = E/(1 − ν²)` (rigid flat).
@@ -138,46 +125,11 @@ impl HertzScene {
         }
     }
 
-    /// The mesh: a rectangle of unit cells whose grid lines are moved to
-    /// [`Self::grid_lines`] (piecewise linear, so P2 mid-side nodes stay at the middle of
-    /// each cell), then mapped onto the capped body; it keeps the rectangle's node and edge
-    /// sets.
+    /// The mesh: [`arc_mesh`] on [`Self::grid_lines`] up to `L` and `H`.
     pub fn mesh(&self) -> Mesh {
         let xs = self.grid_lines(self.width);
         let ys = self.grid_lines(self.height);
-        let (nx, ny) = (xs.len() - 1, ys.len() - 1);
-        let mut spec = RectangleSpec::new([0.0, nx as f64], [0.0, ny as f64], nx, ny);
-        spec.kind = self.kind;
-        let grid = rectangle(&spec).expect("valid rectangle spec");
-        let along = |lines: &[f64], s: f64| {
-            let i = (s.floor() as usize).min(lines.len() - 2);
-            lines[i] + (s - i as f64) * (lines[i + 1] - lines[i])
-        };
-        let (r, h) = (self.radius, self.height);
-        let nodes = grid
-            .nodes()
-            .iter()
-            .map(|&[s, t]| {
-                let (x, y) = (along(&xs, s), along(&ys, t));
-                [x, y + (r - (r * r - x * x).sqrt()) * (1.0 - y / h)]
-            })
-            .collect();
-        let mut mesh = Mesh::new(
-            nodes,
-            grid.kind(),
-            grid.connectivity().to_vec(),
-            grid.regions().to_vec(),
-        )
-        .expect("the map keeps every element positive");
-        for name in grid.node_set_names() {
-            mesh.add_node_set(name, grid.node_set(name).unwrap().to_vec())
-                .unwrap();
-        }
-        for name in grid.edge_set_names() {
-            mesh.add_edge_set(name, grid.edge_set(name).unwrap().to_vec())
-                .unwrap();
-        }
-        mesh
+        arc_mesh(self.kind, &xs, &ys, self.radius, self.height)
     }
 
     /// The simulation, not yet stepped.
@@ -299,6 +251,81 @@ impl Measured {
     pub fn p0_error(&self) -> f64 {
         (self.p0_fe - self.p0_hertz) / self.p0_hertz
     }
+}
+
+/// Grid lines from 0 to `end`: `fine_cells` uniform cells over `[0, b]` (`b = fine_extent`),
+/// then cells growing geometrically by about `growth` (a [`Grading::Geometric`] subdivision
+/// of `[b, end]` whose first cell is close to `growth · h`).
+pub fn graded_lines(fine_extent: f64, fine_cells: usize, growth: f64, end: f64) -> Vec<f64> {
+    let (b, m) = (fine_extent, fine_cells);
+    let h = b / m as f64;
+    let mut lines: Vec<f64> = (0..=m).map(|i| b * i as f64 / m as f64).collect();
+    let (g, rest) = (growth, end - b);
+    // smallest k with Σ_{i=1..k} h gⁱ ≥ rest
+    let k = ((1.0 + rest * (g - 1.0) / (h * g)).ln() / g.ln())
+        .ceil()
+        .max(1.0) as usize;
+    let ratio = g.powi(k as i32 - 1);
+    let outer = graded_points(b, end, k, Grading::Geometric { ratio }).unwrap();
+    lines.extend_from_slice(&outer[1..]);
+    lines
+}
+
+/// A body whose bottom is an arc of radius `radius`: a rectangle of unit cells whose grid
+/// lines are moved to `xs` and `ys` (piecewise linear, so P2 mid-side nodes stay at the middle
+/// of each cell), then mapped by `y' = y + (R − √(R² − x²))(1 − y/H)` (`H = height`, the top
+/// stays flat); region 0, the rectangle's node and edge sets.
+pub fn arc_mesh(kind: ElementKind, xs: &[f64], ys: &[f64], radius: f64, height: f64) -> Mesh {
+    let (nx, ny) = (xs.len() - 1, ys.len() - 1);
+    let mut spec = RectangleSpec::new([0.0, nx as f64], [0.0, ny as f64], nx, ny);
+    spec.kind = kind;
+    let grid = rectangle(&spec).expect("valid rectangle spec");
+    let along = |lines: &[f64], s: f64| {
+        let i = (s.floor() as usize).min(lines.len() - 2);
+        lines[i] + (s - i as f64) * (lines[i + 1] - lines[i])
+    };
+    let (r, h) = (radius, height);
+    let nodes = grid
+        .nodes()
+        .iter()
+        .map(|&[s, t]| {
+            let (x, y) = (along(xs, s), along(ys, t));
+            [x, y + (r - (r * r - x * x).sqrt()) * (1.0 - y / h)]
+        })
+        .collect();
+    let mesh = Mesh::new(
+        nodes,
+        grid.kind(),
+        grid.connectivity().to_vec(),
+        grid.regions().to_vec(),
+    )
+    .expect("the map keeps every element positive");
+    with_sets_of(mesh, &grid)
+}
+
+/// `mesh` with every element in `region` (nodes, elements and sets kept).
+pub fn with_region(mesh: &Mesh, region: u32) -> Mesh {
+    let out = Mesh::new(
+        mesh.nodes().to_vec(),
+        mesh.kind(),
+        mesh.connectivity().to_vec(),
+        vec![region; mesh.element_count()],
+    )
+    .unwrap();
+    with_sets_of(out, mesh)
+}
+
+/// `mesh` with the node and edge sets of `from` (same numbering).
+fn with_sets_of(mut mesh: Mesh, from: &Mesh) -> Mesh {
+    for name in from.node_set_names() {
+        mesh.add_node_set(name, from.node_set(name).unwrap().to_vec())
+            .unwrap();
+    }
+    for name in from.edge_set_names() {
+        mesh.add_edge_set(name, from.edge_set(name).unwrap().to_vec())
+            .unwrap();
+    }
+    mesh
 }
 
 /// 4-point Gauss–Legendre on `[0, 1]`, `(point, weight)`: exact to degree 7.
