@@ -21,13 +21,13 @@ impl Pattern {
     ///
     /// # Errors
     /// [`FemError::LinearAlgebra`] if faer rejects the structure (index overflow).
-    pub fn new<'a>(
-        dofs: &DofMap,
+    pub fn new<'a, const D: usize>(
+        dofs: &DofMap<D>,
         elements: impl Iterator<Item = &'a [usize]>,
     ) -> Result<Self, FemError> {
         let n = dofs.free_count();
         let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
-        let mut local = Vec::with_capacity(16);
+        let mut local = Vec::with_capacity(32);
         for cell in elements {
             local.clear();
             local.extend(cell.iter().flat_map(|&node| dofs.free_dofs(node)).flatten());
@@ -116,16 +116,16 @@ impl PrescribedCoupling {
 }
 
 /// Scatters an element matrix into the reduced values and the prescribed couplings.
-pub(crate) fn scatter(
+pub(crate) fn scatter<const D: usize>(
     pattern: &Pattern,
-    dofs: &DofMap,
+    dofs: &DofMap<D>,
     cell: &[usize],
     k_e: &DMatrix<f64>,
     values: &mut [f64],
     coupling: &mut Vec<(usize, Dof, f64)>,
 ) {
-    let nd = 2 * cell.len();
-    let dof = |a: usize| dofs.dofs(cell[a / 2])[a % 2];
+    let nd = D * cell.len();
+    let dof = |a: usize| dofs.dofs(cell[a / D])[a % D];
     for a in 0..nd {
         match dof(a) {
             Dof::Free(i) => {

@@ -198,15 +198,26 @@ pub enum Dof {
     Prescribed(usize),
 }
 
-/// The numbering of the free and prescribed dofs of every node, in node order.
+/// The numbering of the free and prescribed dofs of every node, in node order: `D = 2`
+/// components per node (the default) or `D = 3`.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct DofMap {
-    dofs: Vec<[Dof; 2]>,
+pub struct DofMap<const D: usize = 2> {
+    dofs: Vec<[Dof; D]>,
     free_count: usize,
     prescribed: Vec<(usize, Component)>,
 }
 
 impl DofMap {
+    /// Numbers the dofs of a 2D model: [`DofMap::numbered`] with `D = 2`.
+    ///
+    /// # Errors
+    /// As [`DofMap::numbered`].
+    pub fn new(node_count: usize, supports: &Supports) -> Result<Self, FemError> {
+        Self::numbered(node_count, supports)
+    }
+}
+
+impl<const D: usize> DofMap<D> {
     /// Numbers the dofs of `node_count` nodes with the constraints of `supports`. The nodes
     /// of a free tie ([`Supports::tie`]) share the free dof numbered at the first of them in
     /// node order; a tie whose component is prescribed is prescribed node by node.
@@ -214,8 +225,9 @@ impl DofMap {
     /// # Errors
     /// [`FemError::UnknownNode`] if a support or a tie names a node that does not exist;
     /// [`FemError::InvalidTie`] for a tie whose component is prescribed at some of its nodes
-    /// and free at others, or prescribed to different values.
-    pub fn new(node_count: usize, supports: &Supports) -> Result<Self, FemError> {
+    /// and free at others, or prescribed to different values;
+    /// [`FemError::InvalidComponent`] for a support or tie along `Z` in 2D.
+    pub fn numbered(node_count: usize, supports: &Supports) -> Result<Self, FemError> {
         if let Some(((node, _), _)) = supports.iter().find(|((n, _), _)| *n >= node_count) {
             return Err(FemError::UnknownNode {
                 what: "a support",
@@ -223,8 +235,25 @@ impl DofMap {
                 node_count,
             });
         }
+        let outside = |c: Component| c as usize >= D;
+        if let Some(((node, component), _)) = supports.iter().find(|((_, c), _)| outside(*c)) {
+            return Err(FemError::InvalidComponent {
+                what: "a support",
+                node: Some(node),
+                component,
+                dimension: D,
+            });
+        }
+        if let Some((component, nodes)) = supports.ties().iter().find(|(c, _)| outside(*c)) {
+            return Err(FemError::InvalidComponent {
+                what: "a tie",
+                node: nodes.first().copied(),
+                component: *component,
+                dimension: D,
+            });
+        }
         // the tie group of every (node, component), for the free ties only
-        let mut group = vec![[usize::MAX; 2]; node_count];
+        let mut group = vec![[usize::MAX; D]; node_count];
         for (g, (component, nodes)) in supports.ties().iter().enumerate() {
             if let Some(&node) = nodes.iter().find(|&&n| n >= node_count) {
                 return Err(FemError::UnknownNode {
@@ -271,8 +300,8 @@ impl DofMap {
         let mut free_count = 0;
         let mut prescribed = Vec::with_capacity(supports.len());
         for (node, groups) in group.iter().enumerate() {
-            let mut d = [Dof::Free(0); 2];
-            for (c, comp) in [Component::X, Component::Y].into_iter().enumerate() {
+            let mut d = [Dof::Free(0); D];
+            for (c, comp) in Component::all::<D>().into_iter().enumerate() {
                 d[c] = if supports.value(node, comp).is_some() {
                     prescribed.push((node, comp));
                     Dof::Prescribed(prescribed.len() - 1)
@@ -307,13 +336,13 @@ impl DofMap {
         self.dofs.len()
     }
 
-    /// The two dofs of `node`.
+    /// The `D` dofs of `node`.
     ///
     /// # Panics
     /// If `node >= node_count()`.
     #[inline]
     #[track_caller]
-    pub fn dofs(&self, node: usize) -> [Dof; 2] {
+    pub fn dofs(&self, node: usize) -> [Dof; D] {
         self.dofs[node]
     }
 
@@ -323,7 +352,7 @@ impl DofMap {
     /// If `node >= node_count()`.
     #[inline]
     #[track_caller]
-    pub fn free_dofs(&self, node: usize) -> [Option<usize>; 2] {
+    pub fn free_dofs(&self, node: usize) -> [Option<usize>; D] {
         self.dofs[node].map(|d| match d {
             Dof::Free(i) => Some(i),
             Dof::Prescribed(_) => None,
@@ -340,7 +369,7 @@ impl DofMap {
     /// of a tie), `None` if `dof >= free_count()`. A linear search: meant for error reports, not for loops.
     pub fn free_dof_owner(&self, dof: usize) -> Option<(usize, Component)> {
         self.dofs.iter().enumerate().find_map(|(node, d)| {
-            [Component::X, Component::Y]
+            Component::all::<D>()
                 .into_iter()
                 .zip(d)
                 .find_map(|(c, d)| (*d == Dof::Free(dof)).then_some((node, c)))

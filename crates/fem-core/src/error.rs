@@ -154,6 +154,34 @@ pub enum FemError {
         /// Number of elements of the mesh.
         element_count: usize,
     },
+    /// A node coordinate of a 3D mesh is NaN or infinite.
+    #[error("node {node} has a non-finite coordinate {coords:?}")]
+    NonFiniteNode3 {
+        /// Node index.
+        node: usize,
+        /// Its coordinates `(x, y, z)`.
+        coords: [f64; 3],
+    },
+    /// A tetrahedron has zero (or nearly zero) volume.
+    #[error("element {element} is degenerate: signed volume {volume:e}")]
+    DegenerateSolid {
+        /// Element index.
+        element: usize,
+        /// Its signed volume (corner nodes).
+        volume: f64,
+    },
+    /// A displacement component that the model's dimension does not have (`Z` in 2D).
+    #[error("{what}{} is along {component}, but the model is {dimension}D", .node.map_or(String::new(), |n| format!(" at node {n}")))]
+    InvalidComponent {
+        /// What named it ("a support", "a tie", "a load").
+        what: &'static str,
+        /// The node, if one is concerned.
+        node: Option<usize>,
+        /// The component.
+        component: Component,
+        /// The model's dimension.
+        dimension: usize,
+    },
     /// A named node set or edge set is not in the mesh.
     #[error("the mesh has no {kind} set named `{name}`")]
     UnknownSet {

@@ -44,6 +44,7 @@ pub mod dirichlet;
 pub mod linear_solver;
 pub mod model;
 pub mod rigid_modes;
+pub mod solid;
 pub mod structure;
 pub use dirichlet::{Component, DofMap, Supports};
 pub use linear_solver::SpdSolver;

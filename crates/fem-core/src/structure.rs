@@ -6,7 +6,10 @@ use crate::rigid_modes::RigidBodyModes;
 use faer::MatMut;
 use faer::sparse::SparseColMatRef;
 
-/// A linear(ised) structure seen from the contact solver.
+/// A linear(ised) structure seen from the contact solver, in dimension `D`: 2 (the default:
+/// plane strain, plane stress or axisymmetry, e.g. [`LinearElasticModel`](crate::LinearElasticModel))
+/// or 3 (e.g. [`SolidModel`](crate::solid::SolidModel)). Positions, dofs and displacements of a
+/// node have `D` components.
 ///
 /// The solver works on the **free dofs** only (prescribed dofs are eliminated). Contact forces
 /// enter as external nodal forces on the contact nodes' free dofs: with `H` the map from free
@@ -25,36 +28,38 @@ use faer::sparse::SparseColMatRef;
 /// [`Structure::free_response_into`] returns `K⁺ f` whether `f` is balanced or not: the contact
 /// solver adds the rigid motion `R α` and makes the contact reactions balance `Rᵀ f`. A
 /// structure without modes (the default) keeps `K⁺ = K⁻¹`.
-pub trait Structure {
+pub trait Structure<const D: usize = 2> {
     /// Number of free dofs (the size of `K`).
     fn dof_count(&self) -> usize;
 
     /// Number of nodes.
     fn node_count(&self) -> usize;
 
-    /// Coordinates of a node in the reference configuration: `(x, y)` or `(r, z)`.
+    /// Coordinates of a node in the reference configuration: `(x, y)` or `(r, z)` in 2D,
+    /// `(x, y, z)` in 3D.
     ///
     /// # Panics
     /// If `node >= node_count()`.
-    fn node_position(&self, node: usize) -> [f64; 2];
+    fn node_position(&self, node: usize) -> [f64; D];
 
-    /// The free-dof indices of a node's two components; `None` for a component eliminated by
+    /// The free-dof indices of a node's `D` components; `None` for a component eliminated by
     /// a support. Several nodes may share a dof (the nodes of a tie, `Supports::tie`); the
     /// contact solver sums what they contribute.
     ///
     /// # Panics
     /// If `node >= node_count()`.
-    fn node_dofs(&self, node: usize) -> [Option<usize>; 2];
+    fn node_dofs(&self, node: usize) -> [Option<usize>; D];
 
-    /// The imposed displacement `[u_x, u_y]` of `node`'s prescribed components, `0` for its
+    /// The imposed displacement (`[u_x, u_y]` or `[u_x, u_y, u_z]`) of `node`'s prescribed components, `0` for its
     /// free components (whose values come from a solution vector). The contact solver adds it
     /// to the gap of contact nodes that are partly supported (e.g. on an axis of symmetry).
     ///
     /// # Panics
     /// If `node >= node_count()`.
-    fn prescribed_displacement(&self, node: usize) -> [f64; 2];
+    fn prescribed_displacement(&self, node: usize) -> [f64; D];
 
-    /// The 2D idealisation (plane strain, plane stress or axisymmetry).
+    /// The 2D idealisation (plane strain, plane stress or axisymmetry). A 3D structure has
+    /// none and returns [`Idealization::PlaneStrain`], the unit weight.
     fn idealization(&self) -> Idealization;
 
     /// The unit outward normal of the body's boundary at `node`, or `None` for a node inside
@@ -63,7 +68,7 @@ pub trait Structure {
     ///
     /// # Panics
     /// If `node >= node_count()`.
-    fn outward_normal(&self, node: usize) -> Option<[f64; 2]> {
+    fn outward_normal(&self, node: usize) -> Option<[f64; D]> {
         let _ = node;
         None
     }

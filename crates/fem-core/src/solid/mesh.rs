@@ -1,0 +1,437 @@
+//! Meshes of 4-node (P1) and 10-node (P2) tetrahedra, with regions, node sets and face sets.
+
+use crate::error::FemError;
+use std::collections::BTreeMap;
+
+/// The element family of a 3D mesh.
+///
+/// Node order: corners `0, 1, 2, 3` with `(x₁ − x₀, x₂ − x₀, x₃ − x₀)` a right-handed
+/// triad (positive volume), then for P2 the mid-edge nodes `4` (edge 0–1), `5` (1–2),
+/// `6` (2–0), `7` (0–3), `8` (1–3), `9` (2–3): VTK's order. Gmsh numbers the last two the other
+/// way round; [`crate::gmsh`] swaps them on reading.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SolidKind {
+    /// Linear 4-node tetrahedron.
+    Tet4,
+    /// Quadratic 10-node isoparametric tetrahedron.
+    Tet10,
+}
+
+/// The edges of a tetrahedron, in the order of the P2 mid-edge nodes `4..10`.
+pub const TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
+
+impl SolidKind {
+    /// Nodes per element: 4 or 10.
+    #[inline]
+    pub fn node_count(self) -> usize {
+        match self {
+            SolidKind::Tet4 => 4,
+            SolidKind::Tet10 => 10,
+        }
+    }
+
+    /// The local nodes of face `face ∈ {0, 1, 2, 3}` (face `k` is opposite corner `3 − k`…
+    /// see the table), corners counter-clockwise seen from outside, then for P2 the mid-edge
+    /// nodes of edges (0–1, 1–2, 2–0) of the face: the node order of a 3- or 6-node triangle.
+    ///
+    /// ```text
+    /// face 0: 0 2 1 (opposite corner 3)    face 2: 1 2 3 (opposite corner 0)
+    /// face 1: 0 1 3 (opposite corner 2)    face 3: 0 3 2 (opposite corner 1)
+    /// ```
+    ///
+    /// # Panics
+    /// If `face > 3`.
+    #[inline]
+    #[track_caller]
+    pub fn face_nodes(self, face: usize) -> &'static [usize] {
+        const P1: [[usize; 3]; 4] = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        const P2: [[usize; 6]; 4] = [
+            [0, 2, 1, 6, 5, 4],
+            [0, 1, 3, 4, 8, 7],
+            [1, 2, 3, 5, 9, 8],
+            [0, 3, 2, 7, 9, 6],
+        ];
+        match self {
+            SolidKind::Tet4 => &P1[face],
+            SolidKind::Tet10 => &P2[face],
+        }
+    }
+}
+
+/// A face of a tetrahedron: element index and local face `0..4` (see
+/// [`SolidKind::face_nodes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Face {
+    /// Element index.
+    pub element: usize,
+    /// Local face index in `0..4`.
+    pub face: u8,
+}
+
+/// A tetrahedral mesh: node coordinates `(x, y, z)`, connectivity, region ids, named node sets
+/// and named face sets (Gmsh's physical volumes and surfaces).
+///
+/// Built with [`SolidMesh::new`], which checks indices, finiteness and orientation (corner
+/// volume > 0), so every `SolidMesh` is valid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolidMesh {
+    nodes: Vec<[f64; 3]>,
+    kind: SolidKind,
+    connectivity: Vec<usize>,
+    regions: Vec<u32>,
+    node_sets: BTreeMap<String, Vec<usize>>,
+    face_sets: BTreeMap<String, Vec<Face>>,
+}
+
+/// `(b − a) · ((c − a) × (d − a)) / 6`.
+#[inline]
+pub(crate) fn signed_volume(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+    let u = sub(b, a);
+    let v = sub(c, a);
+    let w = sub(d, a);
+    dot(u, cross(v, w)) / 6.0
+}
+
+#[inline]
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+impl SolidMesh {
+    /// Builds and validates a mesh. `connectivity` is flat, `kind.node_count()` entries per
+    /// element; `regions` has one id per element (empty means all in region 0).
+    ///
+    /// # Errors
+    /// - [`FemError::NonFiniteNode3`] for a NaN or infinite coordinate;
+    /// - [`FemError::EmptyMesh`] for a connectivity without a single element;
+    /// - [`FemError::BadConnectivity`], [`FemError::NodeOutOfRange`],
+    ///   [`FemError::LengthMismatch`] (regions) for inconsistent arrays;
+    /// - [`FemError::DegenerateSolid`] (corner volume below `1e-12` of the cubed longest edge)
+    ///   and [`FemError::InvertedElement`] (a left-handed corner triad) with the element index.
+    pub fn new(
+        nodes: Vec<[f64; 3]>,
+        kind: SolidKind,
+        connectivity: Vec<usize>,
+        regions: Vec<u32>,
+    ) -> Result<Self, FemError> {
+        for (node, p) in nodes.iter().enumerate() {
+            if !p.iter().all(|v| v.is_finite()) {
+                return Err(FemError::NonFiniteNode3 { node, coords: *p });
+            }
+        }
+        let npe = kind.node_count();
+        if !connectivity.len().is_multiple_of(npe) {
+            return Err(FemError::BadConnectivity {
+                len: connectivity.len(),
+                nodes_per_element: npe,
+            });
+        }
+        let n_elem = connectivity.len() / npe;
+        if n_elem == 0 {
+            return Err(FemError::EmptyMesh {
+                node_count: nodes.len(),
+            });
+        }
+        let regions = if regions.is_empty() {
+            vec![0; n_elem]
+        } else if regions.len() != n_elem {
+            return Err(FemError::LengthMismatch {
+                what: "regions",
+                expected: n_elem,
+                got: regions.len(),
+            });
+        } else {
+            regions
+        };
+        for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
+            if let Some(&node) = cell.iter().find(|&&n| n >= nodes.len()) {
+                return Err(FemError::NodeOutOfRange {
+                    element,
+                    node,
+                    node_count: nodes.len(),
+                });
+            }
+            let c = [
+                nodes[cell[0]],
+                nodes[cell[1]],
+                nodes[cell[2]],
+                nodes[cell[3]],
+            ];
+            let volume = signed_volume(c[0], c[1], c[2], c[3]);
+            let l2 = TET_EDGES
+                .iter()
+                .map(|&[i, j]| {
+                    let d = sub(c[i], c[j]);
+                    dot(d, d)
+                })
+                .fold(0.0, f64::max);
+            if !(volume.is_finite() && l2.is_finite()) {
+                let value = c
+                    .iter()
+                    .flat_map(|p| p.iter())
+                    .fold(0.0_f64, |m, v| m.max(v.abs()));
+                return Err(FemError::InvalidParameter {
+                    name: "node coordinates",
+                    value,
+                    expected: "magnitudes whose products stay finite (below about 1e100)",
+                });
+            }
+            if volume.abs() <= 1e-12 * l2 * l2.sqrt() || l2 == 0.0 {
+                return Err(FemError::DegenerateSolid { element, volume });
+            }
+            if volume < 0.0 {
+                return Err(FemError::InvertedElement {
+                    element,
+                    det_j: 6.0 * volume,
+                });
+            }
+        }
+        Ok(Self {
+            nodes,
+            kind,
+            connectivity,
+            regions,
+            node_sets: BTreeMap::new(),
+            face_sets: BTreeMap::new(),
+        })
+    }
+
+    /// Adds (or replaces) a named node set (sorted, without repeats).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownNode`] for an unknown node.
+    pub fn add_node_set(&mut self, name: &str, mut nodes: Vec<usize>) -> Result<(), FemError> {
+        if let Some(&node) = nodes.iter().find(|&&n| n >= self.nodes.len()) {
+            return Err(FemError::UnknownNode {
+                what: "a node set",
+                node,
+                node_count: self.nodes.len(),
+            });
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        self.node_sets.insert(name.to_string(), nodes);
+        Ok(())
+    }
+
+    /// Adds (or replaces) a named face set, and the node set of the same name (every node of
+    /// its faces) unless one exists already.
+    ///
+    /// # Errors
+    /// [`FemError::InvalidSide`] for a face whose element or local index (`0..4`) is out of
+    /// range.
+    pub fn add_face_set(&mut self, name: &str, faces: Vec<Face>) -> Result<(), FemError> {
+        if let Some(f) = faces
+            .iter()
+            .find(|f| f.element >= self.element_count() || f.face > 3)
+        {
+            return Err(FemError::InvalidSide {
+                element: f.element,
+                side: f.face,
+                element_count: self.element_count(),
+            });
+        }
+        if !self.node_sets.contains_key(name) {
+            let mut nodes: Vec<usize> = faces.iter().flat_map(|f| self.face_node_ids(*f)).collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            self.node_sets.insert(name.to_string(), nodes);
+        }
+        self.face_sets.insert(name.to_string(), faces);
+        Ok(())
+    }
+
+    /// The global nodes of a face, in [`SolidKind::face_nodes`] order.
+    ///
+    /// # Panics
+    /// If the face does not exist.
+    #[track_caller]
+    pub fn face_node_ids(&self, face: Face) -> impl Iterator<Item = usize> + '_ {
+        let cell = self.element(face.element);
+        self.kind
+            .face_nodes(face.face as usize)
+            .iter()
+            .map(move |&l| cell[l])
+    }
+
+    /// Node coordinates.
+    #[inline]
+    pub fn nodes(&self) -> &[[f64; 3]] {
+        &self.nodes
+    }
+
+    /// Number of nodes.
+    #[inline]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Number of elements.
+    #[inline]
+    pub fn element_count(&self) -> usize {
+        self.connectivity.len() / self.kind.node_count()
+    }
+
+    /// The element family.
+    #[inline]
+    pub fn kind(&self) -> SolidKind {
+        self.kind
+    }
+
+    /// The nodes of element `e`.
+    ///
+    /// # Panics
+    /// If `e >= element_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn element(&self, e: usize) -> &[usize] {
+        let npe = self.kind.node_count();
+        &self.connectivity[e * npe..(e + 1) * npe]
+    }
+
+    /// The flat connectivity.
+    #[inline]
+    pub fn connectivity(&self) -> &[usize] {
+        &self.connectivity
+    }
+
+    /// Region id of every element.
+    #[inline]
+    pub fn regions(&self) -> &[u32] {
+        &self.regions
+    }
+
+    /// A named node set.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is none of that name.
+    pub fn node_set(&self, name: &str) -> Result<&[usize], FemError> {
+        self.node_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| FemError::UnknownSet {
+                kind: "node",
+                name: name.to_string(),
+            })
+    }
+
+    /// A named face set.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is none of that name.
+    pub fn face_set(&self, name: &str) -> Result<&[Face], FemError> {
+        self.face_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| FemError::UnknownSet {
+                kind: "face",
+                name: name.to_string(),
+            })
+    }
+
+    /// All node sets, by name.
+    #[inline]
+    pub fn node_sets(&self) -> &BTreeMap<String, Vec<usize>> {
+        &self.node_sets
+    }
+
+    /// All face sets, by name.
+    #[inline]
+    pub fn face_sets(&self) -> &BTreeMap<String, Vec<Face>> {
+        &self.face_sets
+    }
+
+    /// The faces that belong to one element only (the boundary), in element order.
+    pub fn boundary_faces(&self) -> Vec<Face> {
+        let mut seen: std::collections::HashMap<[usize; 3], (Face, u32)> =
+            std::collections::HashMap::with_capacity(2 * self.element_count());
+        for element in 0..self.element_count() {
+            let cell = self.element(element);
+            for face in 0..4u8 {
+                let l = SolidKind::Tet4.face_nodes(face as usize);
+                let mut key = [cell[l[0]], cell[l[1]], cell[l[2]]];
+                key.sort_unstable();
+                seen.entry(key)
+                    .and_modify(|e| e.1 += 1)
+                    .or_insert((Face { element, face }, 1));
+            }
+        }
+        let mut out: Vec<Face> = seen
+            .into_values()
+            .filter(|(_, n)| *n == 1)
+            .map(|(f, _)| f)
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// The same mesh with P2 (10-node) tetrahedra: a mid-edge node is added on every edge at
+    /// `midpoint(a, b)`, where `a, b` are the edge's end nodes. A P2 mesh is returned as is.
+    /// Node and face sets carry over (a face set's node set gains its faces' new nodes).
+    ///
+    /// `midpoint` places curved edges on the geometry (e.g. on a sphere); `None` puts the node
+    /// at the middle of the straight edge.
+    ///
+    /// # Errors
+    /// As [`SolidMesh::new`] (an inverted curved element shows up when assembled).
+    pub fn to_tet10(
+        &self,
+        midpoint: Option<&dyn Fn([f64; 3], [f64; 3]) -> [f64; 3]>,
+    ) -> Result<Self, FemError> {
+        if self.kind == SolidKind::Tet10 {
+            return Ok(self.clone());
+        }
+        let mut nodes = self.nodes.clone();
+        let mut index: std::collections::HashMap<(usize, usize), usize> =
+            std::collections::HashMap::new();
+        let mut connectivity = Vec::with_capacity(10 * self.element_count());
+        for e in 0..self.element_count() {
+            let cell = self.element(e);
+            connectivity.extend_from_slice(cell);
+            for [i, j] in TET_EDGES {
+                let (a, b) = (cell[i].min(cell[j]), cell[i].max(cell[j]));
+                let id = *index.entry((a, b)).or_insert_with(|| {
+                    let (pa, pb) = (self.nodes[a], self.nodes[b]);
+                    nodes.push(match midpoint {
+                        Some(f) => f(pa, pb),
+                        None => [
+                            0.5 * (pa[0] + pb[0]),
+                            0.5 * (pa[1] + pb[1]),
+                            0.5 * (pa[2] + pb[2]),
+                        ],
+                    });
+                    nodes.len() - 1
+                });
+                connectivity.push(id);
+            }
+        }
+        let mut out = Self::new(nodes, SolidKind::Tet10, connectivity, self.regions.clone())?;
+        for (name, set) in &self.node_sets {
+            let mut set = set.clone();
+            if let Some(faces) = self.face_sets.get(name) {
+                for f in faces {
+                    set.extend(out.face_node_ids(*f));
+                }
+            }
+            out.add_node_set(name, set)?;
+        }
+        for (name, faces) in &self.face_sets {
+            out.add_face_set(name, faces.clone())?;
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,20 @@
+//! 3D linear elasticity on tetrahedral meshes: the mesh ([`SolidMesh`]), the P1 and P2
+//! tetrahedra ([`Tet4`], [`Tet10`]), their quadrature, structured generators
+//! ([`generate`]), and the model [`SolidModel`], which implements
+//! [`Structure<3>`](crate::Structure).
+//!
+//! The pieces follow the 2D ones: the sparsity pattern and the fill-reducing ordering are
+//! computed once per dof numbering ([`crate::assembly::Pattern`], [`crate::SpdSolver`]), the
+//! values are refilled and refactored in place, and supports are the same [`crate::Supports`]
+//! with [`crate::Component::Z`].
+
+pub mod element;
+pub mod generate;
+pub mod mesh;
+mod model;
+mod modes;
+pub mod quadrature;
+
+pub use element::{SolidElement, Stress3, Tet4, Tet10};
+pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES};
+pub use model::{SolidModel, StressField3, StressPoint3, geostatic_3d};
