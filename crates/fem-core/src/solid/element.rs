@@ -208,6 +208,18 @@ struct Iso {
 }
 
 impl Iso {
+    /// The stiffness rule: `rule` for a straight-sided element; for a curved P2 element
+    /// (a mid-edge node off its edge's midpoint) a degree-3 rule, the lowest that integrates
+    /// `∇N detJ` exactly, so that curved meshes pass the patch test.
+    fn rule_for(&self, coords: &[[f64; 3]]) -> &'static [TetPoint] {
+        if self.nodes == 4 || !is_curved(coords) {
+            self.rule
+        } else {
+            static CURVED: OnceLock<Vec<TetPoint>> = OnceLock::new();
+            CURVED.get_or_init(|| conical_rule(3))
+        }
+    }
+
     fn check(&self, coords: &[[f64; 3]]) {
         assert_eq!(coords.len(), self.nodes, "one coordinate per element node");
     }
@@ -227,7 +239,7 @@ impl Iso {
             k_e.fill(0.0);
         }
         let (lambda, mu) = lame(material);
-        for &q in self.rule {
+        for &q in self.rule_for(coords) {
             let p = point(self.nodes, element, coords, q)?;
             // K_ab[i][j] = w (λ g_a[i] g_b[j] + μ g_a[j] g_b[i] + μ δ_ij g_a·g_b)
             for a in 0..self.nodes {
@@ -317,13 +329,27 @@ impl Iso {
     }
 }
 
+/// Whether a 10-node element has a mid-edge node off the midpoint of its edge (by more than
+/// `1e-12` of the edge's length).
+fn is_curved(coords: &[[f64; 3]]) -> bool {
+    super::mesh::TET_EDGES
+        .iter()
+        .enumerate()
+        .any(|(k, &[i, j])| {
+            let (a, b, m) = (coords[i], coords[j], coords[4 + k]);
+            let d = super::mesh::sub(b, a);
+            let off: [f64; 3] = core::array::from_fn(|c| m[c] - 0.5 * (a[c] + b[c]));
+            super::mesh::dot(off, off) > 1e-24 * super::mesh::dot(d, d)
+        })
+}
+
 /// The strain (tensor shears) at a point from the element displacements.
 fn strain(p: &Point, nodes: usize, u_e: &[f64]) -> Stress3 {
     let mut du = [[0.0; 3]; 3]; // du[i][j] = ∂u_i/∂x_j
-    for a in 0..nodes {
-        for i in 0..3 {
-            for j in 0..3 {
-                du[i][j] += u_e[3 * a + i] * p.grad[a][j];
+    for (a, g) in p.grad.iter().enumerate().take(nodes) {
+        for (i, row) in du.iter_mut().enumerate() {
+            for (d, gj) in row.iter_mut().zip(g) {
+                *d += u_e[3 * a + i] * gj;
             }
         }
     }

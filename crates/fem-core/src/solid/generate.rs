@@ -24,10 +24,11 @@ fn check_lines(name: &'static str, v: &[f64]) -> Result<(), FemError> {
             expected: "at least two grid lines",
         });
     }
-    if let Some(w) = v
-        .windows(2)
-        .find(|w| !(w[1] > w[0]) || !w[0].is_finite() || !w[1].is_finite())
-    {
+    if let Some(w) = v.windows(2).find(|w| {
+        w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)
+            || !w[0].is_finite()
+            || !w[1].is_finite()
+    }) {
         return Err(FemError::InvalidParameter {
             name,
             value: w[1],
@@ -173,9 +174,9 @@ pub fn sphere_shell_octant(
     // lattice point (i, j): barycentric (i/n, j/n, 1 − (i + j)/n) on e_x, e_y, e_z
     let mut lattice = Vec::new();
     let mut lid = vec![vec![usize::MAX; n_t + 1]; n_t + 1];
-    for i in 0..=n_t {
-        for j in 0..=n_t - i {
-            lid[i][j] = lattice.len();
+    for (i, row) in lid.iter_mut().enumerate() {
+        for (j, id) in row.iter_mut().enumerate().take(n_t - i + 1) {
+            *id = lattice.len();
             let (a, b) = (i as f64 / n_t as f64, j as f64 / n_t as f64);
             lattice.push([a, b, 1.0 - a - b]);
         }
@@ -221,7 +222,8 @@ pub fn sphere_shell_octant(
             .all(|n| test(mesh.nodes()[n]))
     };
     let radius = |p: [f64; 3]| dot(p, p).sqrt();
-    let sets: [(&str, Box<dyn Fn([f64; 3]) -> bool>); 5] = [
+    type OnSurface = Box<dyn Fn([f64; 3]) -> bool>;
+    let sets: [(&str, OnSurface); 5] = [
         ("inner", Box::new(move |p| (radius(p) - inner).abs() <= tol)),
         ("outer", Box::new(move |p| (radius(p) - outer).abs() <= tol)),
         ("x0", Box::new(move |p: [f64; 3]| p[0].abs() <= tol)),

@@ -58,6 +58,9 @@ impl SolidKind {
     }
 }
 
+/// Where the mid-edge node of an edge `(a, b)` goes ([`SolidMesh::to_tet10`]).
+pub type MidpointFn<'a> = dyn Fn([f64; 3], [f64; 3]) -> [f64; 3] + 'a;
+
 /// A face of a tetrahedron: element index and local face `0..4` (see
 /// [`SolidKind::face_nodes`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -388,10 +391,7 @@ impl SolidMesh {
     ///
     /// # Errors
     /// As [`SolidMesh::new`] (an inverted curved element shows up when assembled).
-    pub fn to_tet10(
-        &self,
-        midpoint: Option<&dyn Fn([f64; 3], [f64; 3]) -> [f64; 3]>,
-    ) -> Result<Self, FemError> {
+    pub fn to_tet10(&self, midpoint: Option<&MidpointFn<'_>>) -> Result<Self, FemError> {
         if self.kind == SolidKind::Tet10 {
             return Ok(self.clone());
         }

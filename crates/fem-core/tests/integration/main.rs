@@ -12,4 +12,5 @@ mod fuzz_corpus;
 mod hostile_input;
 mod mesh_io;
 mod patch;
+mod solid;
 mod structure_paths;
