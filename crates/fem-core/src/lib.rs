@@ -43,6 +43,7 @@ pub mod assembly;
 pub mod dirichlet;
 pub mod linear_solver;
 pub mod model;
+pub mod ordering;
 pub mod rigid_modes;
 pub mod solid;
 pub mod structure;

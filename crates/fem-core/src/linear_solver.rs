@@ -45,6 +45,46 @@ impl SpdSolver {
         Ok(Self::with_symbolic(symbolic))
     }
 
+    /// Symbolic analysis of the pattern (lower triangle) with a given elimination order
+    /// (`order[k]` the row/column eliminated `k`-th, e.g. from
+    /// [`crate::ordering::nested_dissection`]) instead of faer's AMD.
+    ///
+    /// # Errors
+    /// [`FemError::LengthMismatch`] if `order` is not a permutation of the pattern's
+    /// dimension; [`FemError::LinearAlgebra`] if faer fails.
+    pub fn with_order(
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        order: &[usize],
+    ) -> Result<Self, FemError> {
+        let n = pattern.ncols();
+        let mut inverse = vec![usize::MAX; n];
+        for (k, &v) in order.iter().enumerate() {
+            if v >= n || inverse[v] != usize::MAX {
+                return Err(FemError::LengthMismatch {
+                    what: "elimination order (a permutation of the dofs)",
+                    expected: n,
+                    got: order.len(),
+                });
+            }
+            inverse[v] = k;
+        }
+        if order.len() != n {
+            return Err(FemError::LengthMismatch {
+                what: "elimination order (a permutation of the dofs)",
+                expected: n,
+                got: order.len(),
+            });
+        }
+        let perm = faer::perm::PermRef::new_checked(order, &inverse, n);
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
+            Default::default(),
+        )?;
+        Ok(Self::with_symbolic(symbolic))
+    }
+
     fn with_symbolic(symbolic: SymbolicCholesky<usize>) -> Self {
         Self {
             dim: symbolic.nrows(),
@@ -130,6 +170,13 @@ impl SpdSolver {
     #[inline]
     pub fn dim(&self) -> usize {
         self.dim
+    }
+
+    /// Stored entries of the Cholesky factor `L` (the fill of faer's AMD ordering), known from
+    /// the symbolic analysis.
+    #[inline]
+    pub fn factor_nnz(&self) -> usize {
+        self.symbolic.len_val()
     }
 
     /// How many numeric factorisations this solver has done.

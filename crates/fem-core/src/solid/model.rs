@@ -9,6 +9,7 @@ use crate::error::{FemError, finite};
 use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
+use crate::ordering::{FillOrdering, nested_dissection};
 use crate::quadrature::TRI_6;
 use crate::structure::Structure;
 use faer::MatMut;
@@ -61,6 +62,7 @@ pub struct SolidModel {
     /// Internal forces of the initial stress per node component.
     initial_force: Vec<f64>,
     version: u64,
+    ordering: FillOrdering,
 }
 
 impl core::fmt::Debug for SolidModel {
@@ -92,6 +94,20 @@ impl SolidModel {
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<Self, FemError> {
+        Self::with_ordering(mesh, materials, supports, FillOrdering::default())
+    }
+
+    /// As [`SolidModel::new`], with the fill-reducing ordering of the factorisation chosen
+    /// (the default, nested dissection, leaves less fill on 3D meshes: `docs/benchmarks.md`).
+    ///
+    /// # Errors
+    /// As [`SolidModel::new`].
+    pub fn with_ordering(
+        mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        ordering: FillOrdering,
+    ) -> Result<Self, FemError> {
         let materials: BTreeMap<u32, Material> = materials.iter().copied().collect();
         for (element, region) in mesh.regions().iter().enumerate() {
             if !materials.contains_key(region) {
@@ -104,7 +120,7 @@ impl SolidModel {
         let dofs = DofMap::<3>::numbered(mesh.node_count(), &supports)?;
         super::modes::refuse_rigid_modes(&mesh, &supports, &dofs)?;
         let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
-        let solver = SpdSolver::new(pattern.symbolic().as_ref())?;
+        let solver = solver_for(&mesh, &dofs, &pattern, ordering)?;
         let n3 = 3 * mesh.node_count();
         let mut model = Self {
             values: vec![0.0; pattern.nnz()],
@@ -118,6 +134,7 @@ impl SolidModel {
             load: vec![0.0; n3],
             initial_force: vec![0.0; n3],
             version: 0,
+            ordering,
         };
         model.assemble_and_factor()?;
         Ok(model)
@@ -171,6 +188,15 @@ impl SolidModel {
         Ok(())
     }
 
+    /// Reassembles and refactors `K` with the same pattern and ordering (what a change of
+    /// material costs; the benchmarks time it).
+    ///
+    /// # Errors
+    /// As [`SolidModel::new`].
+    pub fn refactor(&mut self) -> Result<(), FemError> {
+        self.assemble_and_factor()
+    }
+
     /// The mesh.
     #[inline]
     pub fn mesh(&self) -> &SolidMesh {
@@ -199,6 +225,12 @@ impl SolidModel {
     #[inline]
     pub fn nnz(&self) -> usize {
         self.pattern.nnz()
+    }
+
+    /// Stored entries of the Cholesky factor of `K` (its fill with faer's AMD ordering).
+    #[inline]
+    pub fn factor_nnz(&self) -> usize {
+        self.solver.factor_nnz()
     }
 
     /// The reduced stiffness (lower triangle, CSC).
@@ -246,7 +278,7 @@ impl SolidModel {
                 &self.dofs,
                 (0..mesh.element_count()).map(|e| mesh.element(e)),
             )?;
-            self.solver = SpdSolver::new(self.pattern.symbolic().as_ref())?;
+            self.solver = solver_for(&self.mesh, &self.dofs, &self.pattern, self.ordering)?;
             self.values = vec![0.0; self.pattern.nnz()];
             self.assemble_and_factor()?;
         }
@@ -558,6 +590,34 @@ impl SolidModel {
     #[track_caller]
     pub fn material(&self, e: usize) -> &Material {
         &self.materials[&self.mesh.regions()[e]]
+    }
+}
+
+/// The symbolic factorisation of `pattern` with `ordering` (nested dissection on the position
+/// of each free dof's first node).
+fn solver_for(
+    mesh: &SolidMesh,
+    dofs: &DofMap<3>,
+    pattern: &Pattern,
+    ordering: FillOrdering,
+) -> Result<SpdSolver, FemError> {
+    match ordering {
+        FillOrdering::Amd => SpdSolver::new(pattern.symbolic().as_ref()),
+        FillOrdering::NestedDissection => {
+            let mut coords = vec![[f64::NAN; 3]; dofs.free_count()];
+            for node in (0..mesh.node_count()).rev() {
+                for d in dofs.free_dofs(node).into_iter().flatten() {
+                    coords[d] = mesh.nodes()[node];
+                }
+            }
+            // a dof no node owns cannot happen (numbered from the nodes); keep it finite
+            coords
+                .iter_mut()
+                .filter(|c| c[0].is_nan())
+                .for_each(|c| *c = [0.0; 3]);
+            let order = nested_dissection(pattern.symbolic().as_ref(), &coords);
+            SpdSolver::with_order(pattern.symbolic().as_ref(), &order)
+        }
     }
 }
 
