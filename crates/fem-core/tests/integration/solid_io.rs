@@ -18,7 +18,23 @@
 //! diagonals of faces z = 0, z = 1, y = 0, x = 1) and the interior nodes 25–27. Gmsh's
 //! 10-node tetrahedra put node 8 on edge 2–3 and node 9 on edge 1–3 (e.g. element 7:
 //! `1 2 4 5 | 9 21 12 17 25 23`, node 25 = (0, 0.5, 0.5) on edge 4–5): the reader swaps them.
-//! The other fixtures are these files edited by hand (each test says how).
+//! The other fixtures are these files edited by hand (each test says how). To regenerate:
+//! `gmsh cube.geo -3 -format msh41 -o p1.msh` (and `-order 2 -o p2.msh`), with `cube.geo`:
+//!
+//! ```text
+//! Point(1) = {0,0,0,1}; Point(2) = {1,0,0,1}; Point(3) = {1,1,0,1}; Point(4) = {0,1,0,1};
+//! Point(5) = {0,0,1,1}; Point(6) = {1,0,1,1}; Point(7) = {1,1,1,1}; Point(8) = {0,1,1,1};
+//! Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,4}; Line(4)={4,1};
+//! Line(5)={5,6}; Line(6)={6,7}; Line(7)={7,8}; Line(8)={8,5};
+//! Line(9)={1,5}; Line(10)={2,6}; Line(11)={3,7}; Line(12)={4,8};
+//! Curve Loop(1)={1,2,3,4}; Plane Surface(1)={1};    Curve Loop(2)={5,6,7,8}; Plane Surface(2)={2};
+//! Curve Loop(3)={1,10,-5,-9}; Plane Surface(3)={3}; Curve Loop(4)={2,11,-6,-10}; Plane Surface(4)={4};
+//! Curve Loop(5)={3,12,-7,-11}; Plane Surface(5)={5}; Curve Loop(6)={4,9,-8,-12}; Plane Surface(6)={6};
+//! Transfinite Curve{:} = 2; Transfinite Surface{:};
+//! Surface Loop(1)={1,2,3,4,5,6}; Volume(1)={1}; Transfinite Volume{1};
+//! Physical Volume("solid", 7) = {1}; Physical Surface("bottom", 1) = {1};
+//! Physical Surface(2) = {2}; Physical Curve("edge", 3) = {9}; Physical Point(4) = {7};
+//! ```
 
 use fem_core::FemError;
 use fem_core::solid::generate::{box_mesh, lines};
