@@ -19,7 +19,8 @@
 //!   `point_<tag>`. A curve group and a point group of the same name share one node set.
 //!
 //! Lines and points outside physical groups are ignored. Any other element type (quadrangles,
-//! tetrahedra, higher orders, …) is [`FemError::Unsupported`].
+//! tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
+//! read by [`crate::solid::gmsh`].
 
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh, Side};
@@ -70,6 +71,20 @@ pub fn parse_msh(bytes: &[u8]) -> Result<Mesh, FemError> {
 }
 
 fn parse(bytes: &[u8], origin: &str) -> Result<Mesh, FemError> {
+    let (file, names) = parse_file(bytes, origin)?;
+    build(file, &names, origin)
+}
+
+/// The physical names (by `(dimension, tag)`) of a `.msh` file.
+pub(crate) type Names = HashMap<(i32, i32), String>;
+
+/// Parses a `.msh` 4.1 file with `mshio`, behind the checks that guard it (header, node
+/// tags, a panic inside the parser), and reads its `$PhysicalNames`. Shared with the 3D
+/// reader, [`crate::solid::gmsh`].
+pub(crate) fn parse_file(
+    bytes: &[u8],
+    origin: &str,
+) -> Result<(MshFile<u64, i32, f64>, Names), FemError> {
     let io = |detail: String| FemError::invalid_file(origin, detail);
     check_header(bytes).map_err(|e| match e {
         HeaderError::Version(v) => FemError::Unsupported {
@@ -87,7 +102,7 @@ fn parse(bytes: &[u8], origin: &str) -> Result<Mesh, FemError> {
     let parsed = std::panic::catch_unwind(|| mshio::parse_msh_bytes(bytes))
         .map_err(|_| io("the MSH parser failed on malformed data".to_string()))?;
     let file = parsed.map_err(|e| parser_error(&e, bytes, origin))?;
-    build(file, &names, origin)
+    Ok((file, names))
 }
 
 enum HeaderError {
@@ -305,14 +320,55 @@ fn gmsh_type_name(t: ElementType) -> String {
     }
 }
 
-fn unsupported_type(t: ElementType, dim: i32, tag: i32) -> FemError {
+/// An element type the reader does not take; `read` says what it does take.
+pub(crate) fn unsupported_type(t: ElementType, dim: i32, tag: i32, read: &str) -> FemError {
     FemError::Unsupported {
         what: format!(
-            "Gmsh element type {} ({}) on entity ({dim}, {tag}): only triangles (types 2, 9), \
-             lines (1, 8) and points (15) are read",
+            "Gmsh element type {} ({}) on entity ({dim}, {tag}): only {read} are read",
             t as i32,
             gmsh_type_name(t)
         ),
+    }
+}
+
+/// Physical tags by entity `(dimension, tag)`, for points, curves, surfaces and volumes.
+pub(crate) fn physical_tags(data: &mshio::MshData<u64, i32, f64>) -> HashMap<(i32, i32), Vec<i32>> {
+    let mut physical = HashMap::new();
+    if let Some(entities) = &data.entities {
+        for p in &entities.points {
+            physical.insert((0, p.tag), p.physical_tags.clone());
+        }
+        for c in &entities.curves {
+            physical.insert((1, c.tag), c.physical_tags.clone());
+        }
+        for s in &entities.surfaces {
+            physical.insert((2, s.tag), s.physical_tags.clone());
+        }
+        for v in &entities.volumes {
+            physical.insert((3, v.tag), v.physical_tags.clone());
+        }
+    }
+    physical
+}
+
+/// The region of the elements of entity `(dim, tag)`: its first physical tag, or 0.
+///
+/// # Errors
+/// [`FemError::Unsupported`] for a negative physical tag.
+pub(crate) fn region_of(
+    physical: &HashMap<(i32, i32), Vec<i32>>,
+    dim: i32,
+    tag: i32,
+    origin: &str,
+) -> Result<u32, FemError> {
+    let entity = ["point", "curve", "surface", "volume"]
+        .get(dim as usize)
+        .unwrap_or(&"entity");
+    match physical.get(&(dim, tag)).and_then(|p| p.first()) {
+        None => Ok(0),
+        Some(&p) => u32::try_from(p).map_err(|_| FemError::Unsupported {
+            what: format!("negative physical tag {p} on {entity} {tag} in {origin}"),
+        }),
     }
 }
 
@@ -330,19 +386,7 @@ fn build(
     let io = |detail: String| FemError::invalid_file(origin, detail);
     let data = file.data;
 
-    // Physical tags by entity (dimension, tag).
-    let mut physical: HashMap<(i32, i32), Vec<i32>> = HashMap::new();
-    if let Some(entities) = &data.entities {
-        for p in &entities.points {
-            physical.insert((0, p.tag), p.physical_tags.clone());
-        }
-        for c in &entities.curves {
-            physical.insert((1, c.tag), c.physical_tags.clone());
-        }
-        for s in &entities.surfaces {
-            physical.insert((2, s.tag), s.physical_tags.clone());
-        }
-    }
+    let physical = physical_tags(&data);
     let tags_of = |dim: i32, tag: i32| physical.get(&(dim, tag)).map_or(&[][..], Vec::as_slice);
 
     let nodes_section = data
@@ -374,12 +418,7 @@ fn build(
                         what: format!("mixed 3-node and 6-node triangles in {origin}"),
                     });
                 }
-                let region = match tags_of(dim, tag).first() {
-                    None => 0,
-                    Some(&p) => u32::try_from(p).map_err(|_| FemError::Unsupported {
-                        what: format!("negative physical tag {p} on surface {tag} in {origin}"),
-                    })?,
-                };
+                let region = region_of(&physical, dim, tag, origin)?;
                 for e in &block.elements {
                     triangles.push(&e.nodes);
                     triangle_tags.push(e.element_tag);
@@ -399,7 +438,15 @@ fn build(
                     nodes: e.nodes.clone(),
                 }));
             }
-            _ => return Err(unsupported_type(t, dim, tag)),
+            _ => {
+                return Err(unsupported_type(
+                    t,
+                    dim,
+                    tag,
+                    "triangles (types 2, 9), lines (1, 8) and points (15) \
+                     (volume meshes: `solid::gmsh`)",
+                ));
+            }
         }
     }
     let Some(kind) = kind else {
@@ -421,7 +468,7 @@ fn build(
         .map(|t| {
             coords
                 .get(t)
-                .copied()
+                .map(|&[x, y, _]| [x, y])
                 .ok_or_else(|| io(format!("an element refers to node tag {t}, never defined")))
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -525,11 +572,11 @@ fn add_physical_sets(
 
 /// Checks the `$Elements` section against the `$Nodes` one before anything is built: the
 /// counts the headers announce against what the blocks hold, each element tag used once, and
-/// every node tag of every element (triangles, lines and points) defined in `$Nodes`.
-fn check_elements(
+/// every node tag of every element defined in `$Nodes`.
+pub(crate) fn check_elements(
     nodes_section: &mshio::Nodes<u64, i32, f64>,
     elements: &mshio::Elements<u64, i32>,
-    coords: &HashMap<u64, [f64; 2]>,
+    coords: &HashMap<u64, [f64; 3]>,
 ) -> Result<(), String> {
     if nodes_section.num_nodes != coords.len() as u64 {
         return Err(format!(
@@ -564,9 +611,15 @@ fn check_elements(
     Ok(())
 }
 
-/// An error of [`Mesh::new`] on the nodes and triangles read from a file, told with the
-/// file's own node and element tags instead of the mesh's 0-based indices.
-fn with_tags(e: FemError, node_tags: &[u64], element_tags: &[u64], origin: &str) -> FemError {
+/// An error of [`Mesh::new`] (or [`crate::solid::SolidMesh::new`]) on the nodes and elements
+/// read from a file, told with the file's own node and element tags instead of the mesh's
+/// 0-based indices.
+pub(crate) fn with_tags(
+    e: FemError,
+    node_tags: &[u64],
+    element_tags: &[u64],
+    origin: &str,
+) -> FemError {
     let node = |i: usize| node_tags.get(i).copied().unwrap_or(i as u64);
     let element = |i: usize| element_tags.get(i).copied().unwrap_or(i as u64);
     let detail = match e {
@@ -576,8 +629,14 @@ fn with_tags(e: FemError, node_tags: &[u64], element_tags: &[u64], origin: &str)
                 node(n)
             )
         }
+        FemError::NonFiniteNode3 { node: n, coords } => {
+            format!("node {} has a non-finite coordinate {coords:?}", node(n))
+        }
         FemError::DegenerateElement { element: k, area } => {
             format!("element {} is degenerate: signed area {area:e}", element(k))
+        }
+        FemError::DegenerateSolid { element: k, volume } => {
+            format!("element {} is degenerate: volume {volume:e}", element(k))
         }
         FemError::InvertedElement { element: k, det_j } => format!(
             "element {} is inverted: Jacobian determinant {det_j:e} at a quadrature point",
@@ -588,17 +647,17 @@ fn with_tags(e: FemError, node_tags: &[u64], element_tags: &[u64], origin: &str)
     FemError::invalid_file(origin, detail)
 }
 
-/// Node coordinates by tag. Sparse blocks carry their tags; for contiguous tags `mshio` keeps
+/// Node coordinates `(x, y, z)` by tag. Sparse blocks carry their tags; for contiguous tags `mshio` keeps
 /// none, and they run from the minimum tag in file order (as Gmsh writes them).
 ///
 /// # Errors
 /// A tag defined twice, in two blocks or within one (where `mshio`'s map of tags would keep
 /// only one of them).
-fn node_coordinates(
+pub(crate) fn node_coordinates(
     nodes_section: &mshio::Nodes<u64, i32, f64>,
     io: &dyn Fn(String) -> FemError,
-) -> Result<HashMap<u64, [f64; 2]>, FemError> {
-    let mut coords: HashMap<u64, [f64; 2]> = HashMap::new();
+) -> Result<HashMap<u64, [f64; 3]>, FemError> {
+    let mut coords: HashMap<u64, [f64; 3]> = HashMap::new();
     let mut next_tag = nodes_section.min_node_tag;
     for block in &nodes_section.node_blocks {
         let tagged: Vec<(u64, usize)> = match &block.node_tags {
@@ -621,7 +680,7 @@ fn node_coordinates(
         next_tag += block.nodes.len() as u64;
         for (tag, i) in tagged {
             let n = &block.nodes[i];
-            if coords.insert(tag, [n.x, n.y]).is_some() {
+            if coords.insert(tag, [n.x, n.y, n.z]).is_some() {
                 return Err(io(format!("node tag {tag} is defined twice")));
             }
         }

@@ -1,13 +1,19 @@
 //! Writing meshes and fields for ParaView: VTK XML unstructured grids (`.vtu`) through the
 //! [`vtkio`] crate, and `.pvd` collections for time series.
 //!
-//! Points are written in 3D with `z = 0` (so `(r, z)` in axisymmetry appears as `(x, y)`).
-//! P1 triangles are `VTK_TRIANGLE` (5), P2 triangles `VTK_QUADRATIC_TRIANGLE` (22), whose node
-//! order is ours. Every array is `Float64`, base64-encoded inline; the element regions are
-//! always written as the cell array `region` (`UInt32`).
+//! 2D meshes ([`write_vtu`]): points are written in 3D with `z = 0` (so `(r, z)` in
+//! axisymmetry appears as `(x, y)`). P1 triangles are `VTK_TRIANGLE` (5), P2 triangles
+//! `VTK_QUADRATIC_TRIANGLE` (22), whose node order is ours.
+//!
+//! 3D meshes ([`write_vtu_3d`]): P1 tetrahedra are `VTK_TETRA` (10), P2 tetrahedra
+//! `VTK_QUADRATIC_TETRA` (24), whose node order is ours too (see [`SolidKind`]).
+//!
+//! Every array is `Float64`, base64-encoded inline; the element regions are always written as
+//! the cell array `region` (`UInt32`).
 
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh};
+use crate::solid::{SolidKind, SolidMesh};
 use std::io::Write;
 use std::path::Path;
 use vtkio::model::{
@@ -53,6 +59,42 @@ impl Field<'_> {
     }
 }
 
+/// Values of one field on a 3D mesh ([`write_vtu_3d`]), one entry per node (point data) or
+/// per element (cell data).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Field3<'a> {
+    /// A scalar.
+    Scalar(&'a [f64]),
+    /// A vector `(x, y, z)`, e.g. a displacement.
+    Vector(&'a [[f64; 3]]),
+    /// A symmetric tensor `(xx, yy, zz, xy, yz, zx)` — the order of
+    /// [`Stress3`](crate::solid::Stress3) — written as a full 3×3 tensor (9 components).
+    SymTensor(&'a [[f64; 6]]),
+}
+
+impl Field3<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Field3::Scalar(v) => v.len(),
+            Field3::Vector(v) => v.len(),
+            Field3::SymTensor(v) => v.len(),
+        }
+    }
+
+    fn attribute(&self, name: &str) -> Attribute {
+        match *self {
+            Field3::Scalar(v) => Attribute::scalars(name, 1).with_data(v.to_vec()),
+            Field3::Vector(v) => Attribute::vectors(name)
+                .with_data(v.iter().flatten().copied().collect::<Vec<f64>>()),
+            Field3::SymTensor(v) => Attribute::tensors(name).with_data(
+                v.iter()
+                    .flat_map(|&[xx, yy, zz, xy, yz, zx]| [xx, xy, zx, xy, yy, yz, zx, yz, zz])
+                    .collect::<Vec<f64>>(),
+            ),
+        }
+    }
+}
+
 /// Writes `mesh` with nodal fields `point_data` and element fields `cell_data` as a VTK XML
 /// unstructured grid (give `path` the extension `.vtu` for ParaView). Non-finite values are
 /// written as they are.
@@ -77,7 +119,39 @@ pub fn write_vtu(
     point_data: &[(&str, Field<'_>)],
     cell_data: &[(&str, Field<'_>)],
 ) -> Result<(), FemError> {
-    let vtk = model(mesh, point_data, cell_data)?;
+    write_model(path, model(mesh, point_data, cell_data)?)
+}
+
+/// Writes the 3D `mesh` with nodal fields `point_data` (e.g. the displacement as a
+/// [`Field3::Vector`]) and element fields `cell_data` (e.g. a stress as a
+/// [`Field3::SymTensor`]) as a VTK XML unstructured grid, like [`write_vtu`] in 2D.
+///
+/// # Errors
+/// - [`FemError::LengthMismatch`] if a point field does not have one entry per node or a cell
+///   field one entry per element;
+/// - [`FemError::Io`] if the file cannot be written.
+///
+/// # Examples
+/// ```
+/// use fem_core::solid::{SolidKind, generate::{box_mesh, lines}};
+/// use fem_core::vtk::{write_vtu_3d, Field3};
+/// let l = lines(0.0, 1.0, 1);
+/// let mesh = box_mesh(&l, &l, &l, SolidKind::Tet10)?;
+/// let u: Vec<[f64; 3]> = mesh.nodes().iter().map(|p| [0.1 * p[2], 0.0, 0.0]).collect();
+/// let path = std::env::temp_dir().join("fem_core_vtk_doc_3d.vtu");
+/// write_vtu_3d(&path, &mesh, &[("u", Field3::Vector(&u))], &[])?;
+/// # Ok::<(), fem_core::FemError>(())
+/// ```
+pub fn write_vtu_3d(
+    path: &Path,
+    mesh: &SolidMesh,
+    point_data: &[(&str, Field3<'_>)],
+    cell_data: &[(&str, Field3<'_>)],
+) -> Result<(), FemError> {
+    write_model(path, model_3d(mesh, point_data, cell_data)?)
+}
+
+fn write_model(path: &Path, vtk: Vtk) -> Result<(), FemError> {
     let origin = path.display().to_string();
     let file = std::fs::File::create(path)
         .map_err(|e| FemError::io(origin.clone(), "cannot create the file", e))?;
@@ -89,58 +163,111 @@ pub fn write_vtu(
         .map_err(|e| FemError::io(origin, "cannot write the file", e))
 }
 
+/// Checks that every point field has one entry per node and every cell field one per element.
+fn check_lengths(
+    point_lengths: &[usize],
+    cell_lengths: &[usize],
+    node_count: usize,
+    element_count: usize,
+) -> Result<(), FemError> {
+    for (lengths, expected, what) in [
+        (
+            point_lengths,
+            node_count,
+            "point field (one value per node)",
+        ),
+        (
+            cell_lengths,
+            element_count,
+            "cell field (one value per element)",
+        ),
+    ] {
+        if let Some(&got) = lengths.iter().find(|&&n| n != expected) {
+            return Err(FemError::LengthMismatch {
+                what,
+                expected,
+                got,
+            });
+        }
+    }
+    Ok(())
+}
+
 fn model(
     mesh: &Mesh,
     point_data: &[(&str, Field<'_>)],
     cell_data: &[(&str, Field<'_>)],
 ) -> Result<Vtk, FemError> {
-    for (fields, expected, what) in [
-        (
-            point_data,
-            mesh.node_count(),
-            "point field (one value per node)",
-        ),
-        (
-            cell_data,
-            mesh.element_count(),
-            "cell field (one value per element)",
-        ),
-    ] {
-        if let Some((_, f)) = fields.iter().find(|(_, f)| f.len() != expected) {
-            return Err(FemError::LengthMismatch {
-                what,
-                expected,
-                got: f.len(),
-            });
-        }
-    }
+    check_lengths(
+        &point_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
+        &cell_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
+        mesh.node_count(),
+        mesh.element_count(),
+    )?;
     let points: Vec<f64> = mesh
         .nodes()
         .iter()
         .flat_map(|&[x, y]| [x, y, 0.0])
         .collect();
-    let npe = mesh.kind().node_count();
     let cell_type = match mesh.kind() {
         ElementKind::Tri3 => CellType::Triangle,
         ElementKind::Tri6 => CellType::QuadraticTriangle,
     };
-    let cells = Cells {
-        cell_verts: VertexNumbers::XML {
-            connectivity: mesh.connectivity().iter().map(|&n| n as u64).collect(),
-            offsets: (1..=mesh.element_count())
-                .map(|e| (e * npe) as u64)
-                .collect(),
-        },
-        types: vec![cell_type; mesh.element_count()],
+    let mut data = Attributes::new();
+    data.point = point_data.iter().map(|(n, f)| f.attribute(n)).collect();
+    data.cell = cell_data.iter().map(|(n, f)| f.attribute(n)).collect();
+    let cells = (mesh.connectivity(), mesh.kind().node_count(), cell_type);
+    Ok(grid(points, cells, mesh.regions(), data))
+}
+
+fn model_3d(
+    mesh: &SolidMesh,
+    point_data: &[(&str, Field3<'_>)],
+    cell_data: &[(&str, Field3<'_>)],
+) -> Result<Vtk, FemError> {
+    check_lengths(
+        &point_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
+        &cell_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
+        mesh.node_count(),
+        mesh.element_count(),
+    )?;
+    let points: Vec<f64> = mesh.nodes().iter().flatten().copied().collect();
+    let cell_type = match mesh.kind() {
+        SolidKind::Tet4 => CellType::Tetra,
+        SolidKind::Tet10 => CellType::QuadraticTetra,
     };
     let mut data = Attributes::new();
     data.point = point_data.iter().map(|(n, f)| f.attribute(n)).collect();
     data.cell = cell_data.iter().map(|(n, f)| f.attribute(n)).collect();
-    if !cell_data.iter().any(|(n, _)| *n == "region") {
+    let cells = (mesh.connectivity(), mesh.kind().node_count(), cell_type);
+    Ok(grid(points, cells, mesh.regions(), data))
+}
+
+/// One unstructured-grid piece: flat points `(x, y, z)`, cells (flat connectivity, nodes per
+/// cell, type), the regions (as the cell array `region` unless `data` has one) and `data`.
+fn grid(
+    points: Vec<f64>,
+    (connectivity, npe, cell_type): (&[usize], usize, CellType),
+    regions: &[u32],
+    mut data: Attributes,
+) -> Vtk {
+    let element_count = connectivity.len() / npe;
+    let cells = Cells {
+        cell_verts: VertexNumbers::XML {
+            connectivity: connectivity.iter().map(|&n| n as u64).collect(),
+            offsets: (1..=element_count).map(|e| (e * npe) as u64).collect(),
+        },
+        types: vec![cell_type; element_count],
+    };
+    let has_region = data.cell.iter().any(|a| match a {
+        Attribute::DataArray(d) => d.name == "region",
+        Attribute::Field { name, .. } => name == "region",
+    });
+    if !has_region {
         data.cell
-            .push(Attribute::scalars("region", 1).with_data(mesh.regions().to_vec()));
+            .push(Attribute::scalars("region", 1).with_data(regions.to_vec()));
     }
-    Ok(Vtk {
+    Vtk {
         version: Version::new_xml(1, 0),
         title: String::new(),
         byte_order: ByteOrder::LittleEndian,
@@ -150,7 +277,7 @@ fn model(
             cells,
             data,
         }),
-    })
+    }
 }
 
 /// Writes a ParaView collection (`.pvd`) of time steps: each entry is a time and the path of

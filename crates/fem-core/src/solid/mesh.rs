@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 /// Node order: corners `0, 1, 2, 3` with `(x₁ − x₀, x₂ − x₀, x₃ − x₀)` a right-handed
 /// triad (positive volume), then for P2 the mid-edge nodes `4` (edge 0–1), `5` (1–2),
 /// `6` (2–0), `7` (0–3), `8` (1–3), `9` (2–3): VTK's order. Gmsh numbers the last two the other
-/// way round; [`crate::gmsh`] swaps them on reading.
+/// way round; [`crate::solid::gmsh`] swaps them on reading.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SolidKind {
     /// Linear 4-node tetrahedron.

@@ -1,6 +1,7 @@
 //! 3D linear elasticity on tetrahedral meshes: the mesh ([`SolidMesh`]), the P1 and P2
 //! tetrahedra ([`Tet4`], [`Tet10`]), their quadrature, structured generators
-//! ([`generate`]), and the model [`SolidModel`], which implements
+//! ([`generate`]), a Gmsh `.msh` 4.1 reader ([`gmsh`]; VTK output is
+//! [`crate::vtk::write_vtu_3d`]), and the model [`SolidModel`], which implements
 //! [`Structure<3>`](crate::Structure).
 //!
 //! The pieces follow the 2D ones: the sparsity pattern and the fill-reducing ordering are
@@ -10,6 +11,7 @@
 
 pub mod element;
 pub mod generate;
+pub mod gmsh;
 pub mod mesh;
 mod model;
 mod modes;

@@ -1,5 +1,5 @@
 //! Replays the Gmsh fuzz corpus (`fuzz/corpus/gmsh`, grown by `fuzz/run.sh`; the crashes it
-//! found are in it) through `parse_msh` on the stable toolchain: every input must give a mesh
+//! found are in it) through `parse_msh` and `solid::gmsh::parse_msh_3d` on the stable toolchain: every input must give a mesh
 //! or a `FemError`. A panic fails the test; there is no tolerance.
 
 use std::path::Path;
@@ -14,6 +14,9 @@ fn every_gmsh_corpus_input_gives_a_mesh_or_an_error() {
         // an Err is the expected answer to most of the corpus; only a panic is a failure
         std::panic::catch_unwind(|| fem_core::gmsh::parse_msh(&bytes).map(|_| ()))
             .unwrap_or_else(|_| panic!("{} panicked", path.display()))
+            .ok();
+        std::panic::catch_unwind(|| fem_core::solid::gmsh::parse_msh_3d(&bytes).map(|_| ()))
+            .unwrap_or_else(|_| panic!("{} panicked in the 3D reader", path.display()))
             .ok();
         count += 1;
     }

@@ -13,4 +13,5 @@ mod hostile_input;
 mod mesh_io;
 mod patch;
 mod solid;
+mod solid_io;
 mod structure_paths;

@@ -1,0 +1,420 @@
+//! Reading 3D tetrahedral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
+//!
+//! The 3D counterpart of [`crate::gmsh`], whose checks around the [`mshio`] parser it shares;
+//! this module turns the file into a [`SolidMesh`]:
+//!
+//! - **Nodes.** Only the nodes used by tetrahedra are kept, numbered `0..n` in increasing Gmsh
+//!   tag order.
+//! - **Tetrahedra.** 4-node (Gmsh type 4) or 10-node (type 11) tetrahedra, one kind per file.
+//!   Gmsh numbers the last two mid-edge nodes of the 10-node tetrahedron the other way round
+//!   from [`SolidKind`] (Gmsh's node 8 is on edge 2–3, node 9 on edge 1–3: checked on files
+//!   written by Gmsh 4.8.4), so they are swapped. Left-handed tetrahedra are reordered
+//!   (corners 2 ↔ 3 and the mid-edge nodes with them), so either orientation is accepted. The
+//!   region of a tetrahedron is the first physical tag of its volume entity, or 0 if it has
+//!   none (the names of physical volumes are not kept).
+//! - **Physical surfaces** (dimension 2) become a face set and a node set of the same name.
+//!   Each triangle (type 2 or 9) is matched to a tetrahedron face by its three corners; where
+//!   two tetrahedra share that face (an interior surface), the one the triangle's normal
+//!   (right-hand rule on its corners) points out of is taken. A 6-node triangle on a P2 mesh
+//!   must have the face's mid-edge nodes. The node set holds all the nodes of those faces.
+//! - **Physical curves** (dimension 1, lines of type 1 or 8) and **physical points**
+//!   (dimension 0, type 15) become node sets holding their nodes.
+//! - **Names** come from `$PhysicalNames`; an unnamed group is called `surface_<tag>`,
+//!   `curve_<tag>` or `point_<tag>`. Groups of different dimensions with one name share one
+//!   node set.
+//!
+//! Triangles, lines and points outside physical groups are ignored. Any other element type
+//! (hexahedra, prisms, quadrangles, higher orders, …) is [`FemError::Unsupported`].
+
+use super::mesh::{Face, SolidKind, SolidMesh, signed_volume};
+use crate::error::FemError;
+use crate::gmsh::{
+    Names, check_elements, node_coordinates, parse_file, physical_tags, region_of,
+    unsupported_type, with_tags,
+};
+use mshio::{ElementType, MshFile};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::path::Path;
+
+/// What the reader takes, for the error on any other element type.
+const READ: &str = "tetrahedra (types 4, 11), triangles (2, 9), lines (1, 8) and points (15)";
+
+/// `ours[k] = gmsh[FROM_GMSH_TET10[k]]`: Gmsh's mid-edge nodes 8 (edge 2–3) and 9 (edge 1–3)
+/// are our 9 and 8.
+const FROM_GMSH_TET10: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8];
+
+/// `right[k] = left[MIRROR[k]]`: corners 2 ↔ 3, so the mid-edge nodes of edges 1–2 ↔ 1–3
+/// (5 ↔ 8) and 2–0 ↔ 0–3 (6 ↔ 7); those of 0–1 (4) and 2–3 (9) stay.
+const MIRROR: [usize; 10] = [0, 1, 3, 2, 4, 8, 7, 6, 5, 9];
+
+/// Reads a Gmsh `.msh` 4.1 file holding a tetrahedral mesh (see the [module docs](self)).
+///
+/// # Errors
+/// - [`FemError::Io`] if the file cannot be read or is not valid MSH 4.1 (with the line of
+///   the first error where it is known);
+/// - [`FemError::Unsupported`] for another format version, an element type other than
+///   tetrahedra, triangles, lines and points, mixed 4-node and 10-node tetrahedra, a triangle
+///   of a physical surface that is not a tetrahedron face, a node of a physical curve or point
+///   that no tetrahedron uses, or a negative physical tag;
+/// - the errors of [`SolidMesh::new`] (e.g. a flat tetrahedron), told with the file's tags.
+///
+/// # Examples
+/// ```no_run
+/// let mesh = fem_core::solid::gmsh::read_msh_3d(std::path::Path::new("block.msh"))?;
+/// println!("{} tetrahedra", mesh.element_count());
+/// # Ok::<(), fem_core::FemError>(())
+/// ```
+pub fn read_msh_3d(path: &Path) -> Result<SolidMesh, FemError> {
+    let origin = path.display().to_string();
+    let bytes =
+        std::fs::read(path).map_err(|e| FemError::io(origin.clone(), "cannot read the file", e))?;
+    parse(&bytes, &origin)
+}
+
+/// Parses the bytes of a Gmsh `.msh` 4.1 file holding a tetrahedral mesh (see
+/// [`read_msh_3d`]). Errors about the data name the file as `<msh>`.
+///
+/// # Errors
+/// As [`read_msh_3d`].
+///
+/// # Examples
+/// ```
+/// let msh = "$MeshFormat\n4.1 0 8\n$EndMeshFormat
+/// $Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes
+/// $Elements\n1 1 1 1\n3 1 4 1\n1 1 3 2 4\n$EndElements\n";
+/// let mesh = fem_core::solid::gmsh::parse_msh_3d(msh.as_bytes())?;
+/// assert_eq!(mesh.element_count(), 1);
+/// // the left-handed tetrahedron (1, 3, 2, 4) is read as (1, 3, 4, 2)
+/// assert_eq!(mesh.element(0), &[0, 2, 3, 1]);
+/// # Ok::<(), fem_core::FemError>(())
+/// ```
+pub fn parse_msh_3d(bytes: &[u8]) -> Result<SolidMesh, FemError> {
+    parse(bytes, "<msh>")
+}
+
+fn parse(bytes: &[u8], origin: &str) -> Result<SolidMesh, FemError> {
+    let (file, names) = parse_file(bytes, origin)?;
+    build(file, &names, origin)
+}
+
+/// The shapes of the elements of physical groups.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Shape {
+    Triangle,
+    Line,
+    Point,
+}
+
+impl Shape {
+    /// The prefix of an unnamed group's name.
+    fn prefix(self) -> &'static str {
+        match self {
+            Shape::Triangle => "surface",
+            Shape::Line => "curve",
+            Shape::Point => "point",
+        }
+    }
+}
+
+/// A triangle, line or point element of a physical group.
+struct Lower {
+    shape: Shape,
+    /// The entity `(dimension, tag)`.
+    entity: (i32, i32),
+    element_tag: u64,
+    nodes: Vec<u64>,
+}
+
+fn build(file: MshFile<u64, i32, f64>, names: &Names, origin: &str) -> Result<SolidMesh, FemError> {
+    let io = |detail: String| FemError::invalid_file(origin, detail);
+    let data = file.data;
+    let physical = physical_tags(&data);
+    let nodes_section = data
+        .nodes
+        .ok_or_else(|| io("no $Nodes section".to_string()))?;
+    let coords = node_coordinates(&nodes_section, &io)?;
+    let elements = data
+        .elements
+        .ok_or_else(|| io("no $Elements section".to_string()))?;
+    check_elements(&nodes_section, &elements, &coords).map_err(io)?;
+
+    // Tetrahedra (with their region) and the triangles, lines and points of physical groups.
+    let mut kind = None;
+    let mut tets: Vec<&[u64]> = Vec::new();
+    let mut tet_tags: Vec<u64> = Vec::new();
+    let mut regions = Vec::new();
+    let mut lower: Vec<Lower> = Vec::new();
+    for block in &elements.element_blocks {
+        let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
+        let shape = match t {
+            ElementType::Tet4 | ElementType::Tet10 => {
+                let this = match t {
+                    ElementType::Tet4 => SolidKind::Tet4,
+                    _ => SolidKind::Tet10,
+                };
+                if *kind.get_or_insert(this) != this {
+                    return Err(FemError::Unsupported {
+                        what: format!(
+                            "mixed 4-node and 10-node tetrahedra in {origin} (volume {tag} \
+                             holds {}-node ones): one kind per file",
+                            this.node_count()
+                        ),
+                    });
+                }
+                let region = region_of(&physical, dim, tag, origin)?;
+                for e in &block.elements {
+                    if e.nodes.len() != this.node_count() {
+                        return Err(io(format!(
+                            "element {} has {} nodes, not {}",
+                            e.element_tag,
+                            e.nodes.len(),
+                            this.node_count()
+                        )));
+                    }
+                    tets.push(&e.nodes);
+                    tet_tags.push(e.element_tag);
+                    regions.push(region);
+                }
+                continue;
+            }
+            ElementType::Tri3 | ElementType::Tri6 => Shape::Triangle,
+            ElementType::Lin2 | ElementType::Lin3 => Shape::Line,
+            ElementType::Pnt => Shape::Point,
+            _ => return Err(unsupported_type(t, dim, tag, READ)),
+        };
+        if physical.get(&(dim, tag)).is_none_or(Vec::is_empty) {
+            continue;
+        }
+        lower.extend(block.elements.iter().map(|e| Lower {
+            shape,
+            entity: (dim, tag),
+            element_tag: e.element_tag,
+            nodes: e.nodes.clone(),
+        }));
+    }
+    let Some(kind) = kind else {
+        return Err(FemError::Unsupported {
+            what: format!(
+                "{origin} holds no tetrahedra (Gmsh types 4 or 11); note that once physical \
+                 groups exist Gmsh saves only their elements (add a physical volume)"
+            ),
+        });
+    };
+
+    // Keep the nodes of tetrahedra, in tag order.
+    let mut used: Vec<u64> = tets.iter().flat_map(|t| t.iter().copied()).collect();
+    used.sort_unstable();
+    used.dedup();
+    let index: HashMap<u64, usize> = used.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+    // (every tag is defined: `check_elements` has seen to it)
+    let nodes: Vec<[f64; 3]> = used.iter().map(|t| coords[t]).collect();
+
+    // Connectivity in our node order, right-handed.
+    let npe = kind.node_count();
+    let mut connectivity = Vec::with_capacity(npe * tets.len());
+    for t in &tets {
+        let cell: Vec<usize> = match kind {
+            SolidKind::Tet4 => t.iter().map(|tag| index[tag]).collect(),
+            SolidKind::Tet10 => FROM_GMSH_TET10.iter().map(|&k| index[&t[k]]).collect(),
+        };
+        let volume = signed_volume(
+            nodes[cell[0]],
+            nodes[cell[1]],
+            nodes[cell[2]],
+            nodes[cell[3]],
+        );
+        if volume < 0.0 {
+            connectivity.extend(MIRROR[..npe].iter().map(|&k| cell[k]));
+        } else {
+            connectivity.extend(cell);
+        }
+    }
+    let mut mesh = SolidMesh::new(nodes, kind, connectivity, regions)
+        .map_err(|e| with_tags(e, &used, &tet_tags, origin))?;
+    add_physical_sets(&mut mesh, &lower, &index, names, &physical, origin)?;
+    Ok(mesh)
+}
+
+/// The physical surfaces, curves and points as face and node sets of `mesh`.
+fn add_physical_sets(
+    mesh: &mut SolidMesh,
+    lower: &[Lower],
+    index: &HashMap<u64, usize>,
+    names: &Names,
+    physical: &HashMap<(i32, i32), Vec<i32>>,
+    origin: &str,
+) -> Result<(), FemError> {
+    // The faces of every tetrahedron, by their sorted corners (two for an interior face).
+    let mut faces: HashMap<[usize; 3], Vec<Face>> = HashMap::new();
+    if lower.iter().any(|l| l.shape == Shape::Triangle) {
+        faces.reserve(4 * mesh.element_count());
+        for element in 0..mesh.element_count() {
+            for face in 0..4u8 {
+                let f = Face { element, face };
+                faces.entry(sorted_corners(mesh, f)).or_default().push(f);
+            }
+        }
+    }
+    let mut face_sets: BTreeMap<String, BTreeSet<Face>> = BTreeMap::new();
+    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for l in lower {
+        let (dim, entity) = l.entity;
+        let groups: Vec<String> = physical[&l.entity]
+            .iter()
+            .map(|&p| {
+                names
+                    .get(&(dim, p))
+                    .cloned()
+                    .unwrap_or_else(|| format!("{}_{p}", l.shape.prefix()))
+            })
+            .collect();
+        if l.shape == Shape::Triangle {
+            let face =
+                match_face(mesh, &faces, index, &l.nodes).ok_or_else(|| FemError::Unsupported {
+                    what: format!(
+                        "triangle {} (nodes {:?}) of physical surface {} (entity {entity}) in \
+                         {origin} is not a face of a tetrahedron",
+                        l.element_tag,
+                        l.nodes,
+                        groups.join(", ")
+                    ),
+                })?;
+            for name in groups {
+                face_sets.entry(name).or_default().insert(face);
+            }
+            continue;
+        }
+        let ids = l
+            .nodes
+            .iter()
+            .map(|t| index.get(t).copied().ok_or(*t))
+            .collect::<Result<Vec<usize>, u64>>()
+            .map_err(|t| FemError::Unsupported {
+                what: format!(
+                    "node {t} of physical {} {} (element {}) in {origin} is not a node of a \
+                     tetrahedron",
+                    l.shape.prefix(),
+                    groups.join(", "),
+                    l.element_tag
+                ),
+            })?;
+        for name in groups {
+            node_sets.entry(name).or_default().extend(&ids);
+        }
+    }
+    for (name, set) in face_sets {
+        mesh.add_face_set(&name, set.into_iter().collect())?;
+    }
+    for (name, mut set) in node_sets {
+        if let Ok(of_faces) = mesh.node_set(&name) {
+            set.extend_from_slice(of_faces);
+        }
+        mesh.add_node_set(&name, set)?;
+    }
+    Ok(())
+}
+
+/// The corner nodes of a face, sorted.
+fn sorted_corners(mesh: &SolidMesh, face: Face) -> [usize; 3] {
+    let mut it = mesh.face_node_ids(face);
+    let mut key = [0; 3];
+    for k in &mut key {
+        *k = it.next().unwrap_or(usize::MAX);
+    }
+    key.sort_unstable();
+    key
+}
+
+/// The tetrahedron face of a triangle element (node tags), if there is one.
+fn match_face(
+    mesh: &SolidMesh,
+    faces: &HashMap<[usize; 3], Vec<Face>>,
+    index: &HashMap<u64, usize>,
+    nodes: &[u64],
+) -> Option<Face> {
+    let mut corners = [0; 3];
+    for (c, tag) in corners.iter_mut().zip(nodes) {
+        *c = *index.get(tag)?;
+    }
+    let mut key = corners;
+    key.sort_unstable();
+    let candidates = faces.get(&key)?;
+    // An interior face: the tetrahedron whose face turns like the triangle.
+    let face = candidates
+        .iter()
+        .copied()
+        .find(|&f| {
+            let ids: Vec<usize> = mesh.face_node_ids(f).take(3).collect();
+            let i = ids.iter().position(|&n| n == corners[0]).unwrap_or(0);
+            ids[(i + 1) % 3] == corners[1]
+        })
+        .unwrap_or(candidates[0]);
+    if nodes.len() == 6 && mesh.kind() == SolidKind::Tet10 {
+        // each mid-side node of the triangle must be the face's on the same edge
+        let ids: Vec<usize> = mesh.face_node_ids(face).collect();
+        let edge = |a: usize, b: usize| (a.min(b), a.max(b));
+        let face_mids: HashMap<(usize, usize), usize> = (0..3)
+            .map(|k| (edge(ids[k], ids[(k + 1) % 3]), ids[3 + k]))
+            .collect();
+        for k in 0..3 {
+            let mid = *index.get(&nodes[3 + k])?;
+            if face_mids.get(&edge(corners[k], corners[(k + 1) % 3])) != Some(&mid) {
+                return None;
+            }
+        }
+    }
+    Some(face)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solid::TET_EDGES;
+
+    /// The edge (as a sorted pair of corners) that each node `4..10` of a P2 numbering sits on.
+    fn edge_of(k: usize) -> [usize; 2] {
+        TET_EDGES[k - 4]
+    }
+
+    #[test]
+    fn mirror_works() {
+        // Applying MIRROR to a left-handed numbering: the new node k must sit on the edge of
+        // the new corners, i.e. new mid k on edge (a, b) is old mid on edge (MIRROR[a], MIRROR[b]).
+        for (k, &from) in MIRROR.iter().enumerate().skip(4) {
+            let [a, b] = edge_of(k);
+            let mut old = [MIRROR[a], MIRROR[b]];
+            old.sort_unstable();
+            let mut at = edge_of(from);
+            at.sort_unstable();
+            assert_eq!(old, at, "node {k}");
+        }
+        for k in 0..10 {
+            assert_eq!(MIRROR[MIRROR[k]], k, "MIRROR is an involution");
+        }
+    }
+
+    #[test]
+    fn from_gmsh_tet10_works() {
+        // Gmsh's 10-node tetrahedron (`MSH_TET_10`, Gmsh reference manual, node ordering):
+        // 4: 0–1, 5: 1–2, 6: 2–0, 7: 3–0, 8: 3–2, 9: 3–1.
+        let gmsh_edges = [[0, 1], [1, 2], [2, 0], [3, 0], [3, 2], [3, 1]];
+        for k in 4..10 {
+            let mut ours = edge_of(k);
+            let mut theirs = gmsh_edges[FROM_GMSH_TET10[k] - 4];
+            ours.sort_unstable();
+            theirs.sort_unstable();
+            assert_eq!(ours, theirs, "node {k}");
+        }
+    }
+
+    #[test]
+    fn parse_msh_3d_rejects_a_file_without_tetrahedra() {
+        let msh = "$MeshFormat\n4.1 0 8\n$EndMeshFormat
+$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes
+$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n";
+        assert!(matches!(
+            parse_msh_3d(msh.as_bytes()),
+            Err(FemError::Unsupported { what }) if what.contains("no tetrahedra")
+        ));
+    }
+}
