@@ -18,4 +18,5 @@ pub mod obstacle;
 pub mod output;
 pub mod primal;
 pub mod simulation;
+pub mod solid;
 pub mod zone;

@@ -35,6 +35,7 @@ mod signorini_block;
 mod single_contact;
 mod skip_open;
 mod skip_rules;
+mod solid_contact;
 mod sparse;
 mod stall;
 mod stress;

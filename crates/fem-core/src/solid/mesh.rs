@@ -358,6 +358,48 @@ impl SolidMesh {
         &self.face_sets
     }
 
+    /// The consistent nodal areas of a face set, `A_i = ∫ N_i dA` over its faces (a degree-4
+    /// rule per face, curved P2 faces included): the weights that turn a uniform pressure into
+    /// the nodal forces the elements feel. Returns the set's nodes (sorted, as its node set)
+    /// and their areas. On P2 faces the corner nodes get `0` and the mid-edge nodes a third of
+    /// each face (the P2 triangle's `∫ N_i`), so pressures read as `r_n / A_i` are exact for a
+    /// uniform pressure, and a corner node carries no force of it.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is no such face set.
+    pub fn nodal_areas(&self, face_set: &str) -> Result<(Vec<usize>, Vec<f64>), FemError> {
+        let faces = self.face_set(face_set)?;
+        let mut area: BTreeMap<usize, f64> = BTreeMap::new();
+        for &face in faces {
+            let nodes: Vec<usize> = self.face_node_ids(face).collect();
+            for &n in &nodes {
+                area.entry(n).or_insert(0.0);
+            }
+            for &(xi, w) in &crate::quadrature::TRI_6 {
+                let (n, dn) = tri_shape(nodes.len(), xi);
+                let mut d = [[0.0; 3]; 2];
+                for (i, &node) in nodes.iter().enumerate() {
+                    for (a, x) in self.nodes[node].iter().enumerate() {
+                        d[0][a] += dn[i][0] * x;
+                        d[1][a] += dn[i][1] * x;
+                    }
+                }
+                let c = cross(d[0], d[1]);
+                let jac = dot(c, c).sqrt();
+                for (i, node) in nodes.iter().enumerate() {
+                    *area.get_mut(node).expect("inserted above") += n[i] * w * jac;
+                }
+            }
+        }
+        // a flat P2 face gives its corners ∫ N_i = 0 up to round-off, a curved one a tiny
+        // value of either sign: below 1e-9 of the largest area it is 0
+        let largest = area.values().fold(0.0_f64, |m, a| m.max(*a));
+        Ok(area
+            .into_iter()
+            .map(|(n, a)| (n, if a > 1e-9 * largest { a } else { 0.0 }))
+            .unzip())
+    }
+
     /// The faces that belong to one element only (the boundary), in element order.
     pub fn boundary_faces(&self) -> Vec<Face> {
         let mut seen: std::collections::HashMap<[usize; 3], (Face, u32)> =
@@ -434,4 +476,27 @@ impl SolidMesh {
         }
         Ok(out)
     }
+}
+
+/// Shape values and reference derivatives of a 3- or 6-node triangle at `(ξ, η)`.
+pub(crate) fn tri_shape(nodes: usize, xi: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
+    let l = [1.0 - xi[0] - xi[1], xi[0], xi[1]];
+    let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+    if nodes == 3 {
+        return (l.to_vec(), dl.to_vec());
+    }
+    let mut n = Vec::with_capacity(6);
+    let mut dn = Vec::with_capacity(6);
+    for i in 0..3 {
+        n.push(l[i] * (2.0 * l[i] - 1.0));
+        dn.push(dl[i].map(|d| (4.0 * l[i] - 1.0) * d));
+    }
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        n.push(4.0 * l[i] * l[j]);
+        dn.push([
+            4.0 * (dl[i][0] * l[j] + l[i] * dl[j][0]),
+            4.0 * (dl[i][1] * l[j] + l[i] * dl[j][1]),
+        ]);
+    }
+    (n, dn)
 }

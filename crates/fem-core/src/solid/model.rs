@@ -325,7 +325,7 @@ impl SolidModel {
             let nodes: Vec<usize> = self.mesh.face_node_ids(face).collect();
             let xs: Vec<[f64; 3]> = nodes.iter().map(|&n| self.mesh.nodes()[n]).collect();
             for &(xi, w) in &TRI_6 {
-                let (n, dn) = tri_shape(nodes.len(), xi);
+                let (n, dn) = super::mesh::tri_shape(nodes.len(), xi);
                 let mut x = [0.0; 3];
                 let mut d = [[0.0; 3]; 2];
                 for i in 0..nodes.len() {
@@ -619,29 +619,6 @@ fn solver_for(
             SpdSolver::with_order(pattern.symbolic().as_ref(), &order)
         }
     }
-}
-
-/// Shape values and reference derivatives of a 3- or 6-node triangle at `(ξ, η)`.
-fn tri_shape(nodes: usize, xi: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
-    let l = [1.0 - xi[0] - xi[1], xi[0], xi[1]];
-    let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
-    if nodes == 3 {
-        return (l.to_vec(), dl.to_vec());
-    }
-    let mut n = Vec::with_capacity(6);
-    let mut dn = Vec::with_capacity(6);
-    for i in 0..3 {
-        n.push(l[i] * (2.0 * l[i] - 1.0));
-        dn.push(dl[i].map(|d| (4.0 * l[i] - 1.0) * d));
-    }
-    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-        n.push(4.0 * l[i] * l[j]);
-        dn.push([
-            4.0 * (dl[i][0] * l[j] + l[i] * dl[j][0]),
-            4.0 * (dl[i][1] * l[j] + l[i] * dl[j][1]),
-        ]);
-    }
-    (n, dn)
 }
 
 impl Structure<3> for SolidModel {

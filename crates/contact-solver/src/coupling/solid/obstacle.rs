@@ -1,0 +1,302 @@
+//! Rigid obstacles in 3D: [`RigidPlane`], [`RigidSphere`], [`RigidCylinder`], and the
+//! [`Obstacle3`] trait for your own.
+//!
+//! An obstacle answers the closest point of its surface to a point `p`, with the unit normal
+//! `n` towards the contactor's side and the signed gap `g = (p − point)·n` (positive outside the
+//! obstacle). The contact frame's tangents come from the normal by one fixed rule,
+//! [`tangent_frame`]: `t₁` is the first of `e_x`, `e_y` not within 25° of `n`, made orthogonal
+//! to `n`, and `t₂ = n × t₁`, so `(n, t₁, t₂)` is right-handed; on a plane of normal `e_z`,
+//! `t₁ = e_x` and `t₂ = e_y`.
+
+use crate::error::SolverError;
+use std::fmt::Debug;
+
+/// The closest point of a 3D obstacle to a query point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObstaclePoint3 {
+    /// The closest point on the obstacle's surface.
+    pub point: [f64; 3],
+    /// Unit normal at `point`, towards the contactor's side.
+    pub normal: [f64; 3],
+    /// Signed gap `(p − point)·normal`: positive when `p` is outside the obstacle.
+    pub gap: f64,
+}
+
+/// A rigid obstacle in 3D: the closest point of its surface to a point.
+///
+/// Implement it for your own shape: return a unit normal and a gap consistent with it, and
+/// `None` for points that have no projection on the surface (they are not contact
+/// candidates).
+///
+/// # Examples
+/// ```
+/// use contact_solver::coupling::solid::{Obstacle3, RigidPlane};
+/// let floor = RigidPlane::new([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])?;
+/// let p = floor.project([2.0, 1.0, 0.5]).unwrap();
+/// assert_eq!((p.point, p.gap), ([2.0, 1.0, 0.0], 0.5));
+/// # Ok::<(), contact_solver::SolverError>(())
+/// ```
+pub trait Obstacle3: Debug + Send + Sync {
+    /// The closest point to `p`, or `None` if `p` has no projection on the surface.
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3>;
+}
+
+#[inline]
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The tangents `(t₁, t₂)` of the contact frame of unit normal `n` (module docs).
+pub fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    // cos 25° ≈ 0.906: e_x unless n is within 25° of it
+    let e = if n[0].abs() < 0.906 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let d = dot(e, n);
+    let t = [e[0] - d * n[0], e[1] - d * n[1], e[2] - d * n[2]];
+    let len = dot(t, t).sqrt();
+    let t1 = t.map(|v| v / len);
+    (t1, cross(n, t1))
+}
+
+fn finite3(what: &'static str, p: [f64; 3]) -> Result<[f64; 3], SolverError> {
+    for (index, &value) in p.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(SolverError::NonFinite { what, index, value });
+        }
+    }
+    Ok(p)
+}
+
+fn unit(what: &'static str, v: [f64; 3]) -> Result<[f64; 3], SolverError> {
+    let v = finite3(what, v)?;
+    let len = dot(v, v).sqrt();
+    if !(len > 0.0 && len.is_finite()) {
+        return Err(SolverError::InvalidGeometry(format!(
+            "{what} must be a nonzero vector, got {v:?}"
+        )));
+    }
+    Ok(v.map(|x| x / len))
+}
+
+fn radius(what: &'static str, r: f64) -> Result<f64, SolverError> {
+    if r > 0.0 && r.is_finite() {
+        Ok(r)
+    } else {
+        Err(SolverError::InvalidSetting {
+            what,
+            value: r,
+            expected: "a finite radius > 0",
+        })
+    }
+}
+
+/// An infinite rigid plane through `point`; the contactor lies on the side `normal` points to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidPlane {
+    point: [f64; 3],
+    normal: [f64; 3],
+}
+
+impl RigidPlane {
+    /// The plane through `point` with the contactor on the side of `normal` (normalised here).
+    ///
+    /// # Errors
+    /// [`SolverError::NonFinite`] for a non-finite coordinate;
+    /// [`SolverError::InvalidGeometry`] for a zero normal.
+    pub fn new(point: [f64; 3], normal: [f64; 3]) -> Result<Self, SolverError> {
+        Ok(Self {
+            point: finite3("plane point", point)?,
+            normal: unit("plane normal", normal)?,
+        })
+    }
+}
+
+impl Obstacle3 for RigidPlane {
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3> {
+        let gap = dot(
+            [
+                p[0] - self.point[0],
+                p[1] - self.point[1],
+                p[2] - self.point[2],
+            ],
+            self.normal,
+        );
+        Some(ObstaclePoint3 {
+            point: core::array::from_fn(|a| p[a] - gap * self.normal[a]),
+            normal: self.normal,
+            gap,
+        })
+    }
+}
+
+/// Which side of a curved rigid surface the contactor is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side3 {
+    /// The contactor is outside (a rigid ball or rod pressed into a body).
+    Outside,
+    /// The contactor is inside (a body in a spherical or cylindrical cavity).
+    Inside,
+}
+
+/// A rigid sphere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidSphere {
+    center: [f64; 3],
+    radius: f64,
+    side: Side3,
+}
+
+impl RigidSphere {
+    /// A sphere of `radius` about `center`, with the contactor on `side`.
+    ///
+    /// # Errors
+    /// [`SolverError::NonFinite`]; [`SolverError::InvalidSetting`] for a radius that is not
+    /// finite and positive.
+    pub fn new(center: [f64; 3], radius_: f64, side: Side3) -> Result<Self, SolverError> {
+        Ok(Self {
+            center: finite3("sphere center", center)?,
+            radius: radius("sphere radius", radius_)?,
+            side,
+        })
+    }
+}
+
+impl Obstacle3 for RigidSphere {
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3> {
+        let d = [
+            p[0] - self.center[0],
+            p[1] - self.center[1],
+            p[2] - self.center[2],
+        ];
+        let len = dot(d, d).sqrt();
+        if len == 0.0 {
+            return None; // the centre: every direction is as close
+        }
+        let out = d.map(|v| v / len);
+        let (normal, gap) = match self.side {
+            Side3::Outside => (out, len - self.radius),
+            Side3::Inside => (out.map(|v| -v), self.radius - len),
+        };
+        Some(ObstaclePoint3 {
+            point: core::array::from_fn(|a| self.center[a] + self.radius * out[a]),
+            normal,
+            gap,
+        })
+    }
+}
+
+/// An infinite rigid circular cylinder.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidCylinder {
+    point: [f64; 3],
+    axis: [f64; 3],
+    radius: f64,
+    side: Side3,
+}
+
+impl RigidCylinder {
+    /// The cylinder of `radius` about the line through `point` along `axis`, with the
+    /// contactor on `side`.
+    ///
+    /// # Errors
+    /// [`SolverError::NonFinite`]; [`SolverError::InvalidGeometry`] for a zero axis;
+    /// [`SolverError::InvalidSetting`] for a bad radius.
+    pub fn new(
+        point: [f64; 3],
+        axis: [f64; 3],
+        radius_: f64,
+        side: Side3,
+    ) -> Result<Self, SolverError> {
+        Ok(Self {
+            point: finite3("cylinder point", point)?,
+            axis: unit("cylinder axis", axis)?,
+            radius: radius("cylinder radius", radius_)?,
+            side,
+        })
+    }
+}
+
+impl Obstacle3 for RigidCylinder {
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3> {
+        let d = [
+            p[0] - self.point[0],
+            p[1] - self.point[1],
+            p[2] - self.point[2],
+        ];
+        let along = dot(d, self.axis);
+        let radial: [f64; 3] = core::array::from_fn(|a| d[a] - along * self.axis[a]);
+        let len = dot(radial, radial).sqrt();
+        if len == 0.0 {
+            return None; // on the axis
+        }
+        let out = radial.map(|v| v / len);
+        let (normal, gap) = match self.side {
+            Side3::Outside => (out, len - self.radius),
+            Side3::Inside => (out.map(|v| -v), self.radius - len),
+        };
+        Some(ObstaclePoint3 {
+            point: core::array::from_fn(|a| {
+                self.point[a] + along * self.axis[a] + self.radius * out[a]
+            }),
+            normal,
+            gap,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tangent_frame_is_orthonormal_and_right_handed_works() {
+        for n in [
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.6, 0.0, 0.8],
+            [-0.48, 0.6, 0.64],
+        ] {
+            let (t1, t2) = tangent_frame(n);
+            assert!(dot(t1, n).abs() < 1e-15 && dot(t2, n).abs() < 1e-15);
+            assert!((dot(t1, t1) - 1.0).abs() < 1e-15 && (dot(t2, t2) - 1.0).abs() < 1e-15);
+            let c = cross(t1, t2);
+            assert!((dot(c, n) - 1.0).abs() < 1e-14, "(n, t1, t2) right-handed");
+        }
+        assert_eq!(
+            tangent_frame([0.0, 0.0, 1.0]),
+            ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0])
+        );
+    }
+
+    #[test]
+    fn obstacles_project_works() {
+        let s = RigidSphere::new([0.0, 0.0, 2.0], 1.0, Side3::Outside).unwrap();
+        let p = s.project([0.0, 0.0, 0.5]).unwrap();
+        assert_eq!(p.point, [0.0, 0.0, 1.0]);
+        assert_eq!(p.normal, [0.0, 0.0, -1.0]);
+        assert!((p.gap - 0.5).abs() < 1e-15);
+        let c = RigidCylinder::new([0.0; 3], [0.0, 0.0, 2.0], 1.0, Side3::Inside).unwrap();
+        let p = c.project([0.5, 0.0, 7.0]).unwrap();
+        assert_eq!(p.point, [1.0, 0.0, 7.0]);
+        assert_eq!(p.normal, [-1.0, 0.0, 0.0]);
+        assert!((p.gap - 0.5).abs() < 1e-15);
+        assert!(RigidPlane::new([0.0; 3], [0.0; 3]).is_err());
+        assert!(RigidSphere::new([0.0; 3], -1.0, Side3::Outside).is_err());
+        assert!(
+            RigidCylinder::new([f64::NAN, 0.0, 0.0], [0.0, 0.0, 1.0], 1.0, Side3::Outside).is_err()
+        );
+    }
+}

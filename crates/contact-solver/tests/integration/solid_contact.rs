@@ -1,0 +1,227 @@
+//! 3D contact on tetrahedral bodies against rigid obstacles, against exact answers.
+//!
+//! - **Signorini patch** (the 3D version of the contact patch test: T. A. Laursen,
+//!   *Computational Contact and Impact Mechanics*, Springer 2002, §5.3; N. El-Abbasi,
+//!   K.-J. Bathe, Comput. Struct. 79, 2001): a block on a frictionless rigid plane, its top
+//!   pushed down by `δ`, rollers on two sides. The state is uniaxial, `σ_zz = −E δ / H`, so the
+//!   contact pressure is uniform and exact for P1 and P2; P2 corner nodes carry no force of it.
+//! - **Sliding block** (Coulomb's law in 3D): a block pressed on a plane with friction `μ`, then
+//!   its top moved tangentially along `(cos θ, sin θ)` far enough that every contact slides.
+//!   Every closed contact must have `|r_t| = μ r_n`, its tangential reaction opposite to the
+//!   load direction and its slip along it.
+//! - **Rigid sphere on an elastic block** (Hertz, K. L. Johnson, *Contact Mechanics*, §4.2): a
+//!   quarter model, coarse; the contact radius and the force inside it against Hertz for the
+//!   measured total force, with a tolerance that states the mesh size.
+
+#![cfg(feature = "fe")]
+
+use contact_laws::{Coulomb, Signorini};
+use contact_solver::coupling::solid::{
+    ContactZone3, RigidPlane, RigidSphere, Side3, SolidContactSimulation, SolidSettings,
+};
+use fem_core::solid::generate::{box_mesh, lines};
+use fem_core::solid::{SolidKind, SolidModel};
+use fem_core::{Component, Material, Supports};
+
+#[test]
+fn signorini_patch_3d_works() {
+    let (e, nu, h, delta) = (1000.0, 0.3, 1.0, 1e-3);
+    let m = Material::new(e, nu, 0.0).unwrap();
+    for kind in [SolidKind::Tet4, SolidKind::Tet10] {
+        let mesh = box_mesh(
+            &lines(0.0, 2.0, 3),
+            &lines(0.0, 1.5, 2),
+            &lines(0.0, h, 2),
+            kind,
+        )
+        .unwrap();
+        let mut s = Supports::new();
+        s.fix(mesh.node_set("x0").unwrap(), Component::X)
+            .fix(mesh.node_set("y0").unwrap(), Component::Y)
+            .prescribe(mesh.node_set("z1").unwrap(), Component::Z, -delta)
+            .unwrap();
+        let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+        let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
+        let plane = RigidPlane::new([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
+        let zone = ContactZone3::rigid("base", nodes, plane, Signorini, 0.1).with_areas(areas);
+        let mut sim =
+            SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+        let res = sim.step(1.0, 1.0).unwrap();
+        let p = e * delta / h;
+        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        // the solver's tolerance (1e-10 relative) on a force of p · 3
+        assert!(
+            (total - p * 3.0).abs() < 1e-8 * p * 3.0,
+            "{kind:?}: {total}"
+        );
+        for c in &res.contacts {
+            if c.candidate.area > 0.0 {
+                assert!(
+                    (c.pressure() - p).abs() < 1e-7 * p,
+                    "{kind:?}: {}",
+                    c.pressure()
+                );
+            } else {
+                assert!(c.r[0].abs() < 1e-9 * p, "a P2 corner carries no force");
+            }
+            // closed to the solver's tolerance (P2 corners touch with no force: 1.5e-10 δ seen)
+            assert!(
+                c.gap.abs() < 1e-9 * delta,
+                "closed: gap {:e} r {:?}",
+                c.gap,
+                c.r
+            );
+            assert!(c.r[1] == 0.0 && c.r[2] == 0.0, "frictionless");
+        }
+        // the displacement of the contact nodes' plane: the lateral expansion ν δ / H x
+        let corner = sim.candidates().iter().find(|c| c.node != 0).unwrap().node;
+        let x = sim.structure().mesh().nodes()[corner];
+        let u = sim.nodal_displacement(corner);
+        assert!((u[0] - nu * delta / h * x[0]).abs() < 1e-10);
+    }
+}
+
+#[test]
+fn sliding_block_follows_the_load_direction_works() {
+    let (e, nu, mu) = (1000.0, 0.25, 0.3);
+    let m = Material::new(e, nu, 0.0).unwrap();
+    let theta: f64 = 0.6;
+    let dir = [theta.cos(), theta.sin()];
+    let mesh = box_mesh(
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 0.5, 2),
+        SolidKind::Tet10,
+    )
+    .unwrap();
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    let mut s = Supports::new();
+    s.prescribe(&top, Component::Z, -1e-3)
+        .unwrap()
+        .fix(&top, Component::X)
+        .fix(&top, Component::Y);
+    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+    let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
+    let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let zone =
+        ContactZone3::rigid("base", nodes, plane, Coulomb::new(mu).unwrap(), 0.1).with_areas(areas);
+    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    sim.step(1.0, 1.0).unwrap();
+    // shear the top far beyond the stick limit
+    let d = 0.05;
+    sim.structure_mut()
+        .set_prescribed(&top, Component::X, d * dir[0])
+        .unwrap();
+    sim.structure_mut()
+        .set_prescribed(&top, Component::Y, d * dir[1])
+        .unwrap();
+    let res = sim.step(1.0, 1.0).unwrap();
+    let (mut fx, mut fy, mut fn_, mut rt_sum) = (0.0, 0.0, 0.0, 0.0);
+    let mut closed = 0;
+    for c in &res.contacts {
+        let f = c.force();
+        fx += f[0];
+        fy += f[1];
+        fn_ += c.r[0];
+        rt_sum += c.r[1].hypot(c.r[2]);
+        if c.r[0] > 1e-9 {
+            closed += 1;
+            let rt = c.r[1].hypot(c.r[2]);
+            // on the cone's surface, to the solver's tolerance
+            assert!(
+                (rt - mu * c.r[0]).abs() < 1e-6 * c.r[0],
+                "{rt} vs {}",
+                mu * c.r[0]
+            );
+            // the reaction opposes the node's own slip (the law, to the solver's tolerance),
+            // and the slip follows the load's direction (to 1e-4: the Kuhn mesh is not
+            // isotropic, so the elastic field has a small transverse part)
+            let s = c.slip[0].hypot(c.slip[1]);
+            assert!(s > 0.0);
+            let opposed = (c.r[1] * c.slip[0] + c.r[2] * c.slip[1]) / (rt * s);
+            assert!((opposed + 1.0).abs() < 1e-6, "{opposed}");
+            let cos = (c.slip[0] * dir[0] + c.slip[1] * dir[1]) / s;
+            assert!((cos - 1.0).abs() < 1e-4, "slip direction {cos}");
+        }
+    }
+    assert!(closed > 4);
+    // every contact on the cone: Σ |r_t| = μ Σ r_n to the solver's tolerance
+    assert!(
+        (rt_sum - mu * fn_).abs() < 1e-6 * fn_,
+        "{rt_sum} vs {}",
+        mu * fn_
+    );
+    // the resultant opposes the load's direction; its magnitude is below Σ |r_t| only by the
+    // spread of the nodes' slip directions (a few 1e-3 rad: 5e-6 relative measured)
+    let ft = fx.hypot(fy);
+    assert!((ft / rt_sum - 1.0).abs() < 1e-4, "{ft} vs {rt_sum}");
+    assert!(((fx * dir[0] + fy * dir[1]) / ft + 1.0).abs() < 1e-4);
+}
+
+#[test]
+fn rigid_sphere_on_block_hertz_coarse_works() {
+    // Quarter model of a rigid ball (R = 10) pressed into a block [0, 4]² × [−4, 0], graded
+    // towards the contact; E* = E / (1 − ν²).
+    let (e, nu, radius) = (1000.0, 0.3, 10.0);
+    let m = Material::new(e, nu, 0.0).unwrap();
+    let graded = |l: f64, n_fine: usize, fine: f64, n_coarse: usize| -> Vec<f64> {
+        let mut v = lines(0.0, fine, n_fine);
+        let r = (l / fine).powf(1.0 / n_coarse as f64);
+        for k in 1..=n_coarse {
+            v.push(fine * r.powi(k as i32));
+        }
+        v
+    };
+    let xy = graded(4.0, 6, 0.9, 4);
+    let mut z: Vec<f64> = graded(4.0, 4, 0.6, 4).iter().map(|v| -v).collect();
+    z.reverse();
+    let mesh = box_mesh(&xy, &xy, &z, SolidKind::Tet10).unwrap();
+    let mut s = Supports::new();
+    s.fix(mesh.node_set("x0").unwrap(), Component::X)
+        .fix(mesh.node_set("y0").unwrap(), Component::Y)
+        .prescribe(mesh.node_set("z0").unwrap(), Component::Z, 0.04)
+        .unwrap();
+    let (nodes, areas) = mesh.nodal_areas("z1").unwrap();
+    let positions: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.nodes()[n]).collect();
+    let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
+    let ball = RigidSphere::new([0.0, 0.0, radius], radius, Side3::Outside).unwrap();
+    let zone = ContactZone3::rigid("top", nodes, ball, Signorini, 0.5).with_areas(areas);
+    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let res = sim.step(1.0, 1.0).unwrap();
+    // the quarter carries a quarter of the force
+    let p_total: f64 = 4.0 * res.contacts.iter().map(|c| c.r[0]).sum::<f64>();
+    let e_star = e / (1.0 - nu * nu);
+    let a_hertz = (3.0 * p_total * radius / (4.0 * e_star)).cbrt();
+    // the contact radius: the farthest node that carries force, and the nearest one that does not
+    let mut inside = 0.0_f64;
+    let mut outside = f64::INFINITY;
+    for (c, x) in res.contacts.iter().zip(&positions) {
+        let r = x[0].hypot(x[1]);
+        if c.r[0] > 1e-9 * p_total {
+            inside = inside.max(r);
+        } else if c.candidate.area > 0.0 && c.gap > 0.0 {
+            outside = outside.min(r);
+        }
+    }
+    eprintln!(
+        "3D Hertz (coarse P2): P = {p_total:.4}, a_Hertz = {a_hertz:.4}, contact edge between {inside:.4} and {outside:.4}"
+    );
+    // the farthest closed node against Hertz's a: within 5 % on this mesh (measured −2.0 %;
+    // the node spacing near the edge is 0.15, 23 % of a, and the block is only 6a wide)
+    assert!(
+        (inside / a_hertz - 1.0).abs() < 0.05,
+        "{inside} {a_hertz} {outside}"
+    );
+    // the force inside r < a/2 against Hertz's P (1 − (3/4)^{3/2}), within 10 % on this mesh
+    let half: f64 = 4.0
+        * res
+            .contacts
+            .iter()
+            .zip(&positions)
+            .filter(|(_, x)| x[0].hypot(x[1]) < 0.5 * a_hertz)
+            .map(|(c, _)| c.r[0])
+            .sum::<f64>();
+    let want = p_total * (1.0 - 0.75_f64.powf(1.5));
+    eprintln!("force inside a/2: {half:.4} against Hertz {want:.4}");
+    assert!((half / want - 1.0).abs() < 0.10, "{half} {want}");
+}
