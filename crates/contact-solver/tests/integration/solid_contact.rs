@@ -225,3 +225,98 @@ fn rigid_sphere_on_block_hertz_coarse_works() {
     eprintln!("force inside a/2: {half:.4} against Hertz {want:.4}");
     assert!((half / want - 1.0).abs() < 0.10, "{half} {want}");
 }
+
+#[test]
+fn solid_contact_captures_errors() {
+    use contact_laws::{BetaScheme, Rccm, RccmParams};
+    use contact_solver::SolverError;
+    let m = Material::new(100.0, 0.3, 0.0).unwrap();
+    let mesh = box_mesh(
+        &lines(0.0, 1.0, 1),
+        &lines(0.0, 1.0, 1),
+        &lines(0.0, 1.0, 1),
+        SolidKind::Tet4,
+    )
+    .unwrap();
+    let bottom = mesh.node_set("z0").unwrap().to_vec();
+    let mut s = Supports::new();
+    for c in [Component::X, Component::Y, Component::Z] {
+        s.fix(mesh.node_set("z1").unwrap(), c);
+    }
+    let model = || SolidModel::new(mesh.clone(), &[(0, m)], s.clone()).unwrap();
+    let floor = || RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let run = |zone: ContactZone3<Signorini>| {
+        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).err()
+    };
+    // an unknown node, a negative alert distance, areas of the wrong length or NaN
+    assert!(matches!(
+        run(ContactZone3::rigid("z", vec![99], floor(), Signorini, 0.1)),
+        Some(SolverError::InvalidGeometry(msg)) if msg.contains("node 99")
+    ));
+    assert!(matches!(
+        run(ContactZone3::rigid(
+            "z",
+            bottom.clone(),
+            floor(),
+            Signorini,
+            -1.0
+        )),
+        Some(SolverError::InvalidSetting {
+            what: "alert distance",
+            ..
+        })
+    ));
+    assert!(
+        run(
+            ContactZone3::rigid("z", bottom.clone(), floor(), Signorini, 0.1).with_areas(vec![1.0])
+        )
+        .is_some()
+    );
+    assert!(
+        run(
+            ContactZone3::rigid("z", bottom.clone(), floor(), Signorini, 0.1)
+                .with_areas(vec![f64::NAN; bottom.len()])
+        )
+        .is_some()
+    );
+    // a node whose motion along the normal is prescribed cannot be a contactor
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    assert!(matches!(
+        run(ContactZone3::rigid("held", top, floor(), Signorini, 0.1)),
+        Some(SolverError::InvalidGeometry(msg)) if msg.contains("held")
+    ));
+    // no candidate: every node on a sphere's centre has no projection
+    let ball = RigidSphere::new([0.0, 0.0, 0.0], 1.0, Side3::Outside).unwrap();
+    assert!(matches!(
+        run(ContactZone3::rigid("c", vec![0], ball, Signorini, 0.1)),
+        Some(SolverError::InvalidGeometry(msg)) if msg.contains("no candidate")
+    ));
+    // adhesive laws are not in 3D yet
+    let rccm = Rccm::new(RccmParams {
+        c_n: 1.0,
+        c_t: 1.0,
+        w: 0.01,
+        alpha: 0.0,
+        mu: 0.3,
+        m: 1,
+        beta_0: 1.0,
+        scheme: BetaScheme::ImplicitEuler,
+    })
+    .unwrap();
+    let zone = ContactZone3::rigid("glue", bottom.clone(), floor(), rccm, 0.1);
+    assert!(matches!(
+        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).err(),
+        Some(SolverError::Unsupported(msg)) if msg.contains("glue")
+    ));
+    // bad settings and a bad step length
+    let zone = ContactZone3::rigid("z", bottom, floor(), Signorini, 0.1);
+    let bad = SolidSettings {
+        penetration_tol: f64::NAN,
+        ..SolidSettings::default()
+    };
+    assert!(SolidContactSimulation::new(model(), vec![zone.clone()], bad).is_err());
+    let mut sim =
+        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).unwrap();
+    assert!(sim.step(1.0, -1.0).is_err());
+    assert!(sim.step(f64::NAN, 1.0).is_err());
+}

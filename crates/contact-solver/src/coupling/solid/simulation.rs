@@ -96,6 +96,31 @@ pub struct SolidStepResult {
 }
 
 /// A quasi-static 3D contact simulation (module docs).
+///
+/// # Examples
+/// A P2 block pressed on a rigid floor with friction: the force is uniform and no contact
+/// slips.
+/// ```
+/// use contact_laws::Coulomb;
+/// use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation, SolidSettings};
+/// use fem_core::solid::{SolidKind, SolidModel, generate::{box_mesh, lines}};
+/// use fem_core::{Component, Material, Supports};
+///
+/// let mesh = box_mesh(&lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2), &lines(0.0, 0.5, 1), SolidKind::Tet10)?;
+/// let top = mesh.node_set("z1")?.to_vec();
+/// let mut s = Supports::new();
+/// s.prescribe(&top, Component::Z, -1e-3)?.fix(&top, Component::X).fix(&top, Component::Y);
+/// let (nodes, areas) = mesh.nodal_areas("z0")?;
+/// let model = SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.0, 0.0)?)], s)?;
+/// let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0])?;
+/// let zone = ContactZone3::rigid("base", nodes, floor, Coulomb::new(0.3)?, 0.1).with_areas(areas);
+/// let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default())?;
+/// let res = sim.step(1.0, 1.0)?;
+/// let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+/// assert!((total - 2.0).abs() < 1e-8); // σ = E δ / H = 2 on a unit area (ν = 0)
+/// assert!(res.contacts.iter().all(|c| c.slip[0].abs() < 1e-12 && c.slip[1].abs() < 1e-12));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     structure: S,
     zones: Vec<ContactZone3<L>>,
