@@ -22,77 +22,55 @@ use std::f64::consts::PI;
 
 const KINDS: [SolidKind; 2] = [SolidKind::Tet4, SolidKind::Tet10];
 
-/// Moves every node off the boundary of the box by a deterministic pseudo-random amount (up
-/// to `amp` of the spacing `h`): the corners of the P1 mesh, then, for P2, the interior
-/// mid-edge nodes by a fifth of that off their edges' midpoints (curved, still valid, P2 edges).
-fn distorted(mesh: &SolidMesh, amp: f64, h: f64) -> SolidMesh {
-    let mut seed = 12345u64;
-    let mut rnd = move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
-    let mut shake = |mesh: &SolidMesh, amp: f64, from: usize| {
-        let boundary: std::collections::BTreeSet<usize> = all_boundary(mesh).into_iter().collect();
-        let mut nodes = mesh.nodes().to_vec();
-        for (n, p) in nodes.iter_mut().enumerate().skip(from) {
-            if !boundary.contains(&n) {
-                for v in p.iter_mut() {
-                    *v += amp * h * rnd();
-                }
+/// A deterministic pseudo-random number in `[−1, 1)`.
+fn rnd(seed: &mut u64) -> f64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+}
+
+/// Moves the nodes from index `from` on that are off the box's boundary by up to `amp · h`.
+fn shaken(mesh: &SolidMesh, amp: f64, h: f64, from: usize, seed: &mut u64) -> SolidMesh {
+    let boundary: std::collections::BTreeSet<usize> = all_boundary(mesh).into_iter().collect();
+    let mut nodes = mesh.nodes().to_vec();
+    for (n, p) in nodes.iter_mut().enumerate().skip(from) {
+        if !boundary.contains(&n) {
+            for v in p.iter_mut() {
+                *v += amp * h * rnd(seed);
             }
         }
-        let mut out = SolidMesh::new(
-            nodes,
-            mesh.kind(),
-            mesh.connectivity().to_vec(),
-            mesh.regions().to_vec(),
-        )
-        .unwrap();
-        for (name, faces) in mesh.face_sets() {
-            out.add_face_set(name, faces.clone()).unwrap();
-        }
-        out
-    };
+    }
+    let mut out = SolidMesh::new(
+        nodes,
+        mesh.kind(),
+        mesh.connectivity().to_vec(),
+        mesh.regions().to_vec(),
+    )
+    .unwrap();
+    for (name, faces) in mesh.face_sets() {
+        out.add_face_set(name, faces.clone()).unwrap();
+    }
+    out
+}
+
+/// A P1 box mesh distorted: its interior corners moved by up to `amp · h`; for P2, raised with
+/// straight edges, then its interior mid-edge nodes moved by a fifth of that off their edges'
+/// midpoints (curved, still valid, P2 edges).
+fn distorted_kind(mesh: &SolidMesh, kind: SolidKind, amp: f64, h: f64) -> SolidMesh {
     assert_eq!(
         mesh.kind(),
         SolidKind::Tet4,
         "distort the P1 mesh, then raise it"
     );
-    shake(mesh, amp, 0)
-}
-
-fn distorted_kind(mesh: &SolidMesh, kind: SolidKind, amp: f64, h: f64) -> SolidMesh {
-    let p1 = distorted(mesh, amp, h);
+    let mut seed = 12345u64;
+    let p1 = shaken(mesh, amp, h, 0, &mut seed);
     match kind {
         SolidKind::Tet4 => p1,
         SolidKind::Tet10 => {
-            let p2 = p1.to_tet10(None).unwrap();
             // the mid-edge nodes come after the corners
-            let corners = p1.node_count();
-            let boundary: std::collections::BTreeSet<usize> =
-                all_boundary(&p2).into_iter().collect();
-            let mut nodes = p2.nodes().to_vec();
-            let mut seed = 777u64;
-            for (n, p) in nodes.iter_mut().enumerate().skip(corners) {
-                if !boundary.contains(&n) {
-                    for v in p.iter_mut() {
-                        seed = seed
-                            .wrapping_mul(6364136223846793005)
-                            .wrapping_add(1442695040888963407);
-                        *v += 0.2
-                            * amp
-                            * h
-                            * (((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0);
-                    }
-                }
-            }
-            let mut out = SolidMesh::new(nodes, kind, p2.connectivity().to_vec(), vec![]).unwrap();
-            for (name, faces) in p2.face_sets() {
-                out.add_face_set(name, faces.clone()).unwrap();
-            }
-            out
+            let p2 = p1.to_tet10(None).unwrap();
+            shaken(&p2, 0.2 * amp, h, p1.node_count(), &mut seed)
         }
     }
 }
