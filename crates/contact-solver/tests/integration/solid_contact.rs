@@ -320,3 +320,143 @@ fn solid_contact_captures_errors() {
     assert!(sim.step(1.0, -1.0).is_err());
     assert!(sim.step(f64::NAN, 1.0).is_err());
 }
+
+/// A user's own 3D FE code, seen only through `Structure<3>`: a dense stiffness (copied from a
+/// `SolidModel`'s public matrix) factored with faer's dense Cholesky, the same loads.
+struct DenseSolid {
+    positions: Vec<[f64; 3]>,
+    dofs: Vec<[Option<usize>; 3]>,
+    prescribed: Vec<[f64; 3]>,
+    chol: faer::linalg::solvers::Llt<f64>,
+    rhs: Vec<f64>,
+}
+
+impl fem_core::Structure<3> for DenseSolid {
+    fn dof_count(&self) -> usize {
+        self.rhs.len()
+    }
+    fn node_count(&self) -> usize {
+        self.positions.len()
+    }
+    fn node_position(&self, node: usize) -> [f64; 3] {
+        self.positions[node]
+    }
+    fn node_dofs(&self, node: usize) -> [Option<usize>; 3] {
+        self.dofs[node]
+    }
+    fn prescribed_displacement(&self, node: usize) -> [f64; 3] {
+        self.prescribed[node]
+    }
+    fn idealization(&self) -> fem_core::Idealization {
+        fem_core::Idealization::PlaneStrain
+    }
+    fn boundary_nodes(&self, name: &str) -> Result<&[usize], fem_core::FemError> {
+        Err(fem_core::FemError::UnknownSet {
+            kind: "node",
+            name: name.to_string(),
+        })
+    }
+    fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), fem_core::FemError> {
+        let n = rhs.len();
+        self.solve_many_in_place(faer::MatMut::from_column_major_slice_mut(rhs, n, 1))
+    }
+    fn solve_many_in_place(&self, rhs: faer::MatMut<'_, f64>) -> Result<(), fem_core::FemError> {
+        use faer::linalg::solvers::SolveCore;
+        self.chol.solve_in_place_with_conj(faer::Conj::No, rhs);
+        Ok(())
+    }
+    fn free_response_into(
+        &self,
+        load_factor: f64,
+        u: &mut [f64],
+    ) -> Result<(), fem_core::FemError> {
+        assert_eq!(
+            load_factor, 1.0,
+            "this test's structure has its loads at factor 1"
+        );
+        u.copy_from_slice(&self.rhs);
+        self.solve_in_place(u)
+    }
+    fn stiffness_version(&self) -> u64 {
+        1
+    }
+}
+
+#[test]
+fn user_structure_3d_gives_the_same_contact_works() {
+    // The pressed-and-sheared block of `sliding_block_follows_the_load_direction_works`, in
+    // one step with friction (stick and slip both present), through SolidModel and through a
+    // dense user structure: the contact solver sees only `Structure<3>`.
+    use fem_core::Structure;
+    let m = Material::new(1000.0, 0.25, 0.0).unwrap();
+    let mesh = box_mesh(
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 0.5, 1),
+        SolidKind::Tet10,
+    )
+    .unwrap();
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    let mut s = Supports::new();
+    s.prescribe(&top, Component::Z, -1e-3)
+        .unwrap()
+        .prescribe(&top, Component::X, 4e-4)
+        .unwrap()
+        .fix(&top, Component::Y);
+    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+    let model = SolidModel::new(mesh.clone(), &[(0, m)], s).unwrap();
+    let n = model.dof_count();
+    let mut k = faer::Mat::<f64>::zeros(n, n);
+    let kl = model.stiffness();
+    for j in 0..n {
+        for (i, v) in kl.row_idx_of_col(j).zip(kl.val_of_col(j)) {
+            k[(i, j)] = *v;
+            k[(j, i)] = *v;
+        }
+    }
+    let mut rhs = vec![0.0; n];
+    model.rhs_into(1.0, &mut rhs);
+    let user = DenseSolid {
+        positions: mesh.nodes().to_vec(),
+        dofs: (0..mesh.node_count()).map(|i| model.node_dofs(i)).collect(),
+        prescribed: (0..mesh.node_count())
+            .map(|i| model.prescribed_displacement(i))
+            .collect(),
+        chol: k.llt(faer::Side::Lower).unwrap(),
+        rhs,
+    };
+    let plane = || RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let law = Coulomb::new(0.2).unwrap();
+    let zone =
+        || ContactZone3::rigid("base", nodes.clone(), plane(), law, 0.1).with_areas(areas.clone());
+    let a = SolidContactSimulation::new(model, vec![zone()], SolidSettings::default())
+        .unwrap()
+        .step(1.0, 1.0)
+        .unwrap();
+    let b = SolidContactSimulation::new(user, vec![zone()], SolidSettings::default())
+        .unwrap()
+        .step(1.0, 1.0)
+        .unwrap();
+    let scale = a.contacts.iter().map(|c| c.r[0]).fold(0.0, f64::max);
+    let (mut stick, mut slip) = (0, 0);
+    for (x, y) in a.contacts.iter().zip(&b.contacts) {
+        for d in 0..3 {
+            // two factorisations, one solver tolerance (1e-10): 1e-8 of the largest reaction
+            assert!(
+                (x.r[d] - y.r[d]).abs() < 1e-8 * scale,
+                "{:?} vs {:?}",
+                x.r,
+                y.r
+            );
+        }
+        if x.r[0] > 1e-9 * scale {
+            if x.slip[0].hypot(x.slip[1]) > 1e-9 {
+                slip += 1
+            } else {
+                stick += 1
+            }
+        }
+    }
+    eprintln!("user Structure<3>: {stick} stick, {slip} slip; reactions agree");
+    assert!(stick + slip > 4);
+}
