@@ -113,6 +113,15 @@ impl PrescribedCoupling {
     pub fn entries(&self) -> &[(usize, Dof, f64)] {
         &self.entries
     }
+
+    /// `rhs −= K_fp ū` for the prescribed values `ū`.
+    pub(crate) fn subtract_into(&self, prescribed: &[f64], rhs: &mut [f64]) {
+        for &(p, dof, k) in &self.entries {
+            if let Dof::Free(i) = dof {
+                rhs[i] -= k * prescribed[p];
+            }
+        }
+    }
 }
 
 /// Scatters an element matrix into the reduced values and the prescribed couplings.

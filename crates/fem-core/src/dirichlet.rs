@@ -365,6 +365,40 @@ impl<const D: usize> DofMap<D> {
         &self.prescribed
     }
 
+    /// The prescribed value of every prescribed dof, in [`DofMap::prescribed`] order.
+    pub(crate) fn prescribed_values(&self, supports: &Supports) -> Vec<f64> {
+        self.prescribed
+            .iter()
+            .map(|&(n, c)| supports.value(n, c).unwrap_or(0.0))
+            .collect()
+    }
+
+    /// `rhs = factor · load + initial` on the free dofs, from per-node-component vectors
+    /// (`D` entries per node; the nodes of a tie add into their shared dof).
+    pub(crate) fn gather_into(&self, factor: f64, load: &[f64], initial: &[f64], rhs: &mut [f64]) {
+        rhs.fill(0.0);
+        for (node, d) in self.dofs.iter().enumerate() {
+            for (c, d) in d.iter().enumerate() {
+                if let Dof::Free(i) = d {
+                    rhs[*i] += factor * load[D * node + c] + initial[D * node + c];
+                }
+            }
+        }
+    }
+
+    /// Nodal values from the free-dof values `u_free` and the prescribed ones.
+    pub(crate) fn expand(&self, u_free: &[f64], prescribed: &[f64]) -> Vec<[f64; D]> {
+        self.dofs
+            .iter()
+            .map(|d| {
+                d.map(|d| match d {
+                    Dof::Free(i) => u_free[i],
+                    Dof::Prescribed(p) => prescribed[p],
+                })
+            })
+            .collect()
+    }
+
     /// The node and component of free dof `dof` (a row of the reduced system; the first node
     /// of a tie), `None` if `dof >= free_count()`. A linear search: meant for error reports, not for loops.
     pub fn free_dof_owner(&self, dof: usize) -> Option<(usize, Component)> {

@@ -137,37 +137,8 @@ impl SolidMesh {
             }
         }
         let npe = kind.node_count();
-        if !connectivity.len().is_multiple_of(npe) {
-            return Err(FemError::BadConnectivity {
-                len: connectivity.len(),
-                nodes_per_element: npe,
-            });
-        }
-        let n_elem = connectivity.len() / npe;
-        if n_elem == 0 {
-            return Err(FemError::EmptyMesh {
-                node_count: nodes.len(),
-            });
-        }
-        let regions = if regions.is_empty() {
-            vec![0; n_elem]
-        } else if regions.len() != n_elem {
-            return Err(FemError::LengthMismatch {
-                what: "regions",
-                expected: n_elem,
-                got: regions.len(),
-            });
-        } else {
-            regions
-        };
+        let regions = crate::mesh::checked_cells(nodes.len(), npe, &connectivity, regions)?;
         for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
-            if let Some(&node) = cell.iter().find(|&&n| n >= nodes.len()) {
-                return Err(FemError::NodeOutOfRange {
-                    element,
-                    node,
-                    node_count: nodes.len(),
-                });
-            }
             let c = [
                 nodes[cell[0]],
                 nodes[cell[1]],
@@ -217,16 +188,8 @@ impl SolidMesh {
     ///
     /// # Errors
     /// [`FemError::UnknownNode`] for an unknown node.
-    pub fn add_node_set(&mut self, name: &str, mut nodes: Vec<usize>) -> Result<(), FemError> {
-        if let Some(&node) = nodes.iter().find(|&&n| n >= self.nodes.len()) {
-            return Err(FemError::UnknownNode {
-                what: "a node set",
-                node,
-                node_count: self.nodes.len(),
-            });
-        }
-        nodes.sort_unstable();
-        nodes.dedup();
+    pub fn add_node_set(&mut self, name: &str, nodes: Vec<usize>) -> Result<(), FemError> {
+        let nodes = crate::mesh::checked_node_set(self.nodes.len(), nodes)?;
         self.node_sets.insert(name.to_string(), nodes);
         Ok(())
     }

@@ -443,29 +443,11 @@ impl SolidModel {
     #[track_caller]
     pub fn rhs_into(&self, load_factor: f64, rhs: &mut [f64]) {
         assert_eq!(rhs.len(), self.dofs.free_count(), "rhs length");
-        rhs.fill(0.0);
-        for node in 0..self.mesh.node_count() {
-            for (c, d) in self.dofs.free_dofs(node).into_iter().enumerate() {
-                if let Some(i) = d {
-                    rhs[i] +=
-                        load_factor * self.load[3 * node + c] + self.initial_force[3 * node + c];
-                }
-            }
-        }
-        let prescribed = self.prescribed_values();
-        for &(p, dof, k) in self.coupling.entries() {
-            if let Dof::Free(i) = dof {
-                rhs[i] -= k * prescribed[p];
-            }
-        }
-    }
-
-    fn prescribed_values(&self) -> Vec<f64> {
+        // += : the nodes of a tie share one dof, which takes their sum
         self.dofs
-            .prescribed()
-            .iter()
-            .map(|&(n, c)| self.supports.value(n, c).unwrap_or(0.0))
-            .collect()
+            .gather_into(load_factor, &self.load, &self.initial_force, rhs);
+        self.coupling
+            .subtract_into(&self.dofs.prescribed_values(&self.supports), rhs);
     }
 
     /// Nodal displacements `[u_x, u_y, u_z]` from the free-dof solution and the prescribed
@@ -476,15 +458,8 @@ impl SolidModel {
     #[track_caller]
     pub fn nodal_displacements(&self, u_free: &[f64]) -> Vec<[f64; 3]> {
         assert_eq!(u_free.len(), self.dofs.free_count(), "solution length");
-        let prescribed = self.prescribed_values();
-        (0..self.mesh.node_count())
-            .map(|n| {
-                self.dofs.dofs(n).map(|d| match d {
-                    Dof::Free(i) => u_free[i],
-                    Dof::Prescribed(p) => prescribed[p],
-                })
-            })
-            .collect()
+        self.dofs
+            .expand(u_free, &self.dofs.prescribed_values(&self.supports))
     }
 
     /// Solves the free response at `load_factor` and returns the nodal displacements.
