@@ -14,6 +14,7 @@
 //!    penetration check (back to 2 if an inactive candidate penetrates), the accepted state and
 //!    the [`StepResult`](simulation::StepResult); [`output`] writes it.
 
+mod flexibility;
 pub mod obstacle;
 pub mod output;
 pub mod primal;

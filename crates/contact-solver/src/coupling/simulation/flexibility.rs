@@ -3,6 +3,7 @@
 //! matrix-free path from a few exact diagonal blocks.
 
 use super::ContactSimulation;
+use crate::coupling::flexibility::flexibility_into;
 use crate::error::SolverError;
 use crate::local::symmetrize;
 use contact_laws::ContactLaw;
@@ -16,37 +17,21 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// `F* = H K⁻¹ Hᵀ` on `active`, in chunks of right-hand sides.
     pub(super) fn build_flexibility(&mut self, active: &[usize]) -> Result<(), SolverError> {
         let m = 2 * active.len();
-        let ndof = self.structure.dof_count();
         self.w.clear();
         self.w.resize(m * m, 0.0);
         // local rows of W (index into 0..m) whose columns are solved for
         let solved: Vec<usize> = (0..m)
             .filter(|&j| j % 2 == 0 || self.tangent_needed(active[j / 2]))
             .collect();
-        let chunk = self.settings.columns_per_solve.min(solved.len().max(1));
-        let mut x = Mat::<f64>::zeros(ndof, chunk);
         let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
-        for block in solved.chunks(chunk) {
-            let nc = block.len();
-            x.fill(0.0);
-            for (c, &j) in block.iter().enumerate() {
-                for &(dof, a) in &self.h_rows[rows[j]] {
-                    x[(dof, c)] += a;
-                }
-            }
-            self.structure
-                .solve_many_in_place(x.as_mut().subcols_mut(0, nc))?;
-            for &i in &solved {
-                let row = &self.h_rows[rows[i]];
-                for (c, &j) in block.iter().enumerate() {
-                    let mut s = 0.0;
-                    for &(dof, a) in row {
-                        s += a * x[(dof, c)];
-                    }
-                    self.w[i * m + j] = s;
-                }
-            }
-        }
+        flexibility_into(
+            &self.structure,
+            &self.h_rows,
+            &rows,
+            &solved,
+            self.settings.columns_per_solve,
+            &mut self.w,
+        )?;
         symmetrize(&mut self.w, m);
         // decoupled tangential unknowns of frictionless contacts: W_tt = W_nn, nothing else
         for (k, &i) in active.iter().enumerate() {
@@ -68,8 +53,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let na = active.len();
         let ns = na.min(RHO_SAMPLES);
         let samples: Vec<usize> = (0..ns).map(|k| (2 * k + 1) * na / (2 * ns)).collect();
-        let ndof = self.structure.dof_count();
-        let mut x = Mat::<f64>::zeros(ndof, 2 * ns);
+        let mut x = Mat::<f64>::zeros(self.structure.dof_count(), 2 * ns);
         for (c, &k) in samples.iter().enumerate() {
             let i = active[k];
             for d in 0..2 {

@@ -15,10 +15,10 @@
 //! pairs and node-to-face zones, the matrix-free and active-set paths.
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
+use crate::coupling::flexibility::flexibility_into;
 use crate::error::SolverError;
 use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver, symmetrize};
 use contact_laws::{ContactLaw, LocalVec};
-use faer::Mat;
 use fem_core::Structure;
 
 /// Settings of a [`SolidContactSimulation`].
@@ -344,35 +344,23 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// `F* = H K⁻¹ Hᵀ` on `active` (frictionless contacts: their tangential block decoupled).
     fn build_flexibility(&mut self, active: &[usize]) -> Result<(), SolverError> {
         let m = 3 * active.len();
-        let ndof = self.structure.dof_count();
         self.w.clear();
         self.w.resize(m * m, 0.0);
         let solved: Vec<usize> = (0..m)
             .filter(|&j| j % 3 == 0 || self.tangent_needed(active[j / 3]))
             .collect();
-        let chunk = self.settings.columns_per_solve.min(solved.len().max(1));
-        let mut x = Mat::<f64>::zeros(ndof, chunk);
         let rows: Vec<usize> = active
             .iter()
             .flat_map(|&i| [3 * i, 3 * i + 1, 3 * i + 2])
             .collect();
-        for block in solved.chunks(chunk) {
-            let nc = block.len();
-            x.fill(0.0);
-            for (c, &j) in block.iter().enumerate() {
-                for &(dof, a) in &self.h_rows[rows[j]] {
-                    x[(dof, c)] += a;
-                }
-            }
-            self.structure
-                .solve_many_in_place(x.as_mut().subcols_mut(0, nc))?;
-            for &i in &solved {
-                let row = &self.h_rows[rows[i]];
-                for (c, &j) in block.iter().enumerate() {
-                    self.w[i * m + j] = row.iter().map(|&(dof, a)| a * x[(dof, c)]).sum();
-                }
-            }
-        }
+        flexibility_into(
+            &self.structure,
+            &self.h_rows,
+            &rows,
+            &solved,
+            self.settings.columns_per_solve,
+            &mut self.w,
+        )?;
         symmetrize(&mut self.w, m);
         for (k, &i) in active.iter().enumerate() {
             if !self.tangent_needed(i) {
