@@ -399,6 +399,64 @@ impl Mesh {
     }
 }
 
+/// Checks a flat connectivity of `npe` nodes per element against `node_count` nodes and returns
+/// the region of every element (`regions` empty: all in region 0).
+pub(crate) fn checked_cells(
+    node_count: usize,
+    npe: usize,
+    connectivity: &[usize],
+    regions: Vec<u32>,
+) -> Result<Vec<u32>, FemError> {
+    if !connectivity.len().is_multiple_of(npe) {
+        return Err(FemError::BadConnectivity {
+            len: connectivity.len(),
+            nodes_per_element: npe,
+        });
+    }
+    let n_elem = connectivity.len() / npe;
+    if n_elem == 0 {
+        return Err(FemError::EmptyMesh { node_count });
+    }
+    let regions = if regions.is_empty() {
+        vec![0; n_elem]
+    } else if regions.len() != n_elem {
+        return Err(FemError::LengthMismatch {
+            what: "regions",
+            expected: n_elem,
+            got: regions.len(),
+        });
+    } else {
+        regions
+    };
+    for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
+        if let Some(&node) = cell.iter().find(|&&n| n >= node_count) {
+            return Err(FemError::NodeOutOfRange {
+                element,
+                node,
+                node_count,
+            });
+        }
+    }
+    Ok(regions)
+}
+
+/// A node set checked against `node_count` nodes, sorted, without repeats.
+pub(crate) fn checked_node_set(
+    node_count: usize,
+    mut nodes: Vec<usize>,
+) -> Result<Vec<usize>, FemError> {
+    if let Some(&node) = nodes.iter().find(|&&n| n >= node_count) {
+        return Err(FemError::UnknownNode {
+            what: "a node set",
+            node,
+            node_count,
+        });
+    }
+    nodes.sort_unstable();
+    nodes.dedup();
+    Ok(nodes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -483,62 +541,4 @@ mod tests {
             Err(FemError::NonFiniteNode { node: 2, .. })
         ));
     }
-}
-
-/// Checks a flat connectivity of `npe` nodes per element against `node_count` nodes and returns
-/// the region of every element (`regions` empty: all in region 0).
-pub(crate) fn checked_cells(
-    node_count: usize,
-    npe: usize,
-    connectivity: &[usize],
-    regions: Vec<u32>,
-) -> Result<Vec<u32>, FemError> {
-    if !connectivity.len().is_multiple_of(npe) {
-        return Err(FemError::BadConnectivity {
-            len: connectivity.len(),
-            nodes_per_element: npe,
-        });
-    }
-    let n_elem = connectivity.len() / npe;
-    if n_elem == 0 {
-        return Err(FemError::EmptyMesh { node_count });
-    }
-    let regions = if regions.is_empty() {
-        vec![0; n_elem]
-    } else if regions.len() != n_elem {
-        return Err(FemError::LengthMismatch {
-            what: "regions",
-            expected: n_elem,
-            got: regions.len(),
-        });
-    } else {
-        regions
-    };
-    for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
-        if let Some(&node) = cell.iter().find(|&&n| n >= node_count) {
-            return Err(FemError::NodeOutOfRange {
-                element,
-                node,
-                node_count,
-            });
-        }
-    }
-    Ok(regions)
-}
-
-/// A node set checked against `node_count` nodes, sorted, without repeats.
-pub(crate) fn checked_node_set(
-    node_count: usize,
-    mut nodes: Vec<usize>,
-) -> Result<Vec<usize>, FemError> {
-    if let Some(&node) = nodes.iter().find(|&&n| n >= node_count) {
-        return Err(FemError::UnknownNode {
-            what: "a node set",
-            node,
-            node_count,
-        });
-    }
-    nodes.sort_unstable();
-    nodes.dedup();
-    Ok(nodes)
 }
