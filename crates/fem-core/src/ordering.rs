@@ -113,14 +113,12 @@ pub fn nested_dissection(
             .unwrap_or(0);
         // cut at the median value: every vertex at that coordinate goes to the same side, so
         // a cut through a plane of nodes takes that plane as its separator
-        let half = set.len() / 2;
-        set.select_nth_unstable_by(half, |&u, &v| coords[u][axis].total_cmp(&coords[v][axis]));
-        let m = coords[set[half]][axis];
-        let mut half = set.iter().filter(|&&v| coords[v][axis] < m).count();
-        if half == 0 {
-            half = set.iter().filter(|&&v| coords[v][axis] <= m).count();
-        }
         set.sort_unstable_by(|&u, &v| coords[u][axis].total_cmp(&coords[v][axis]).then(u.cmp(&v)));
+        let m = coords[set[set.len() / 2]][axis];
+        let mut half = set.partition_point(|&v| coords[v][axis] < m);
+        if half == 0 {
+            half = set.partition_point(|&v| coords[v][axis] <= m);
+        }
         let (left, right) = set.split_at(half);
         for &v in left {
             side[v] = 1;

@@ -195,7 +195,8 @@ pub(crate) fn hooke(lambda: f64, mu: f64, e: Stress3) -> Stress3 {
     ]
 }
 
-fn load_rule() -> &'static [TetPoint] {
+/// The 64-point conical rule (degree 5) for loads and error norms, built once.
+pub(crate) fn load_rule() -> &'static [TetPoint] {
     static RULE: OnceLock<Vec<TetPoint>> = OnceLock::new();
     RULE.get_or_init(|| conical_rule(4))
 }

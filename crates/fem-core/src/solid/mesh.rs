@@ -61,6 +61,18 @@ impl SolidKind {
 /// Where the mid-edge node of an edge `(a, b)` goes ([`SolidMesh::to_tet10`]).
 pub type MidpointFn<'a> = dyn Fn([f64; 3], [f64; 3]) -> [f64; 3] + 'a;
 
+/// A quadrature point of a face ([`SolidMesh::face_points`]).
+pub(crate) struct FacePoint {
+    /// Position.
+    pub(crate) x: [f64; 3],
+    /// Unit normal, outward of the element (corners counter-clockwise seen from outside).
+    pub(crate) normal: [f64; 3],
+    /// Rule weight × surface Jacobian.
+    pub(crate) weight: f64,
+    /// The face nodes' shape values (the first 3 or 6).
+    pub(crate) n: [f64; 6],
+}
+
 /// A face of a tetrahedron: element index and local face `0..4` (see
 /// [`SolidKind::face_nodes`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -321,6 +333,45 @@ impl SolidMesh {
         &self.face_sets
     }
 
+    /// Calls `f(nodes, point)` at each point of a degree-4 rule on `face` (a 3- or 6-node
+    /// triangle, curved P2 faces included), with the face's nodes in
+    /// [`SolidKind::face_nodes`] order; stops at the first error.
+    pub(crate) fn face_points(
+        &self,
+        face: Face,
+        mut f: impl FnMut(&[usize], &FacePoint) -> Result<(), FemError>,
+    ) -> Result<(), FemError> {
+        let mut nodes = [0usize; 6];
+        let mut count = 0;
+        for (slot, node) in nodes.iter_mut().zip(self.face_node_ids(face)) {
+            *slot = node;
+            count += 1;
+        }
+        let nodes = &nodes[..count];
+        for &(xi, w) in &crate::quadrature::TRI_6 {
+            let (n, dn) = tri_shape(count, xi);
+            let mut x = [0.0; 3];
+            let mut d = [[0.0; 3]; 2];
+            for (i, &node) in nodes.iter().enumerate() {
+                for (a, c) in self.nodes[node].iter().enumerate() {
+                    x[a] += n[i] * c;
+                    d[0][a] += dn[i][0] * c;
+                    d[1][a] += dn[i][1] * c;
+                }
+            }
+            let c = cross(d[0], d[1]);
+            let jac = dot(c, c).sqrt();
+            let point = FacePoint {
+                x,
+                normal: c.map(|v| v / jac),
+                weight: w * jac,
+                n,
+            };
+            f(nodes, &point)?;
+        }
+        Ok(())
+    }
+
     /// The consistent nodal areas of a face set, `A_i = ∫ N_i dA` over its faces (a degree-4
     /// rule per face, curved P2 faces included): the weights that turn a uniform pressure into
     /// the nodal forces the elements feel. Returns the set's nodes (sorted, as its node set)
@@ -334,25 +385,12 @@ impl SolidMesh {
         let faces = self.face_set(face_set)?;
         let mut area: BTreeMap<usize, f64> = BTreeMap::new();
         for &face in faces {
-            let nodes: Vec<usize> = self.face_node_ids(face).collect();
-            for &n in &nodes {
-                area.entry(n).or_insert(0.0);
-            }
-            for &(xi, w) in &crate::quadrature::TRI_6 {
-                let (n, dn) = tri_shape(nodes.len(), xi);
-                let mut d = [[0.0; 3]; 2];
-                for (i, &node) in nodes.iter().enumerate() {
-                    for (a, x) in self.nodes[node].iter().enumerate() {
-                        d[0][a] += dn[i][0] * x;
-                        d[1][a] += dn[i][1] * x;
-                    }
-                }
-                let c = cross(d[0], d[1]);
-                let jac = dot(c, c).sqrt();
+            self.face_points(face, |nodes, p| {
                 for (i, node) in nodes.iter().enumerate() {
-                    *area.get_mut(node).expect("inserted above") += n[i] * w * jac;
+                    *area.entry(*node).or_insert(0.0) += p.n[i] * p.weight;
                 }
-            }
+                Ok(())
+            })?;
         }
         // a flat P2 face gives its corners ∫ N_i = 0 up to round-off, a curved one a tiny
         // value of either sign: below 1e-9 of the largest area it is 0
@@ -441,25 +479,27 @@ impl SolidMesh {
     }
 }
 
-/// Shape values and reference derivatives of a 3- or 6-node triangle at `(ξ, η)`.
-pub(crate) fn tri_shape(nodes: usize, xi: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
+/// Shape values and reference derivatives of a 3- or 6-node triangle at `(ξ, η)` (the first
+/// `nodes` entries are set).
+fn tri_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 6], [[f64; 2]; 6]) {
     let l = [1.0 - xi[0] - xi[1], xi[0], xi[1]];
     let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+    let (mut n, mut dn) = ([0.0; 6], [[0.0; 2]; 6]);
     if nodes == 3 {
-        return (l.to_vec(), dl.to_vec());
+        n[..3].copy_from_slice(&l);
+        dn[..3].copy_from_slice(&dl);
+        return (n, dn);
     }
-    let mut n = Vec::with_capacity(6);
-    let mut dn = Vec::with_capacity(6);
     for i in 0..3 {
-        n.push(l[i] * (2.0 * l[i] - 1.0));
-        dn.push(dl[i].map(|d| (4.0 * l[i] - 1.0) * d));
+        n[i] = l[i] * (2.0 * l[i] - 1.0);
+        dn[i] = dl[i].map(|d| (4.0 * l[i] - 1.0) * d);
     }
-    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-        n.push(4.0 * l[i] * l[j]);
-        dn.push([
+    for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+        n[3 + k] = 4.0 * l[i] * l[j];
+        dn[3 + k] = [
             4.0 * (dl[i][0] * l[j] + l[i] * dl[j][0]),
             4.0 * (dl[i][1] * l[j] + l[i] * dl[j][1]),
-        ]);
+        ];
     }
     (n, dn)
 }

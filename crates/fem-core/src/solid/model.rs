@@ -10,7 +10,6 @@ use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
 use crate::ordering::{FillOrdering, nested_dissection};
-use crate::quadrature::TRI_6;
 use crate::structure::Structure;
 use faer::MatMut;
 use nalgebra::DMatrix;
@@ -227,7 +226,7 @@ impl SolidModel {
         self.pattern.nnz()
     }
 
-    /// Stored entries of the Cholesky factor of `K` (its fill with faer's AMD ordering).
+    /// Stored entries of the Cholesky factor of `K` (its fill with the model's ordering).
     #[inline]
     pub fn factor_nnz(&self) -> usize {
         self.solver.factor_nnz()
@@ -319,35 +318,21 @@ impl SolidModel {
         face_set: &str,
         traction: impl Fn([f64; 3], [f64; 3]) -> [f64; 3],
     ) -> Result<(), FemError> {
-        let faces = self.mesh.face_set(face_set)?.to_vec();
+        let faces = self.mesh.face_set(face_set)?;
         let mut load = self.load.clone();
-        for face in faces {
-            let nodes: Vec<usize> = self.mesh.face_node_ids(face).collect();
-            let xs: Vec<[f64; 3]> = nodes.iter().map(|&n| self.mesh.nodes()[n]).collect();
-            for &(xi, w) in &TRI_6 {
-                let (n, dn) = super::mesh::tri_shape(nodes.len(), xi);
-                let mut x = [0.0; 3];
-                let mut d = [[0.0; 3]; 2];
-                for i in 0..nodes.len() {
-                    for a in 0..3 {
-                        x[a] += n[i] * xs[i][a];
-                        d[0][a] += dn[i][0] * xs[i][a];
-                        d[1][a] += dn[i][1] * xs[i][a];
-                    }
-                }
-                let nv = super::mesh::cross(d[0], d[1]);
-                let area = super::mesh::dot(nv, nv).sqrt();
-                let normal = nv.map(|v| v / area);
-                let t = traction(x, normal);
+        for &face in faces {
+            self.mesh.face_points(face, |nodes, p| {
+                let t = traction(p.x, p.normal);
                 for v in t {
                     finite("traction", v)?;
                 }
-                for i in 0..nodes.len() {
-                    for a in 0..3 {
-                        load[3 * nodes[i] + a] += n[i] * t[a] * w * area;
+                for (i, node) in nodes.iter().enumerate() {
+                    for (a, ta) in t.iter().enumerate() {
+                        load[3 * node + a] += p.n[i] * ta * p.weight;
                     }
                 }
-            }
+                Ok(())
+            })?;
         }
         self.load = load;
         Ok(())
@@ -523,7 +508,6 @@ impl SolidModel {
                 got: displacements.len(),
             });
         }
-        let rule = super::quadrature::conical_rule(4);
         let npe = self.mesh.kind().node_count();
         let (mut l2, mut energy) = (0.0, 0.0);
         let mut coords = Vec::with_capacity(10);
@@ -535,7 +519,7 @@ impl SolidModel {
             u_e.clear();
             u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
             let (lambda, mu) = super::element::lame(self.material(e));
-            for &q in &rule {
+            for &q in super::element::load_rule() {
                 let (x, u, eps, w) = super::element::field_at(npe, e, &coords, &u_e, q)?;
                 let (ue, g) = exact(x);
                 let de: Stress3 = [
