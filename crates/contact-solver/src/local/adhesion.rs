@@ -60,14 +60,15 @@ use super::problem::ReducedProblem;
 use super::settings::UzawaReport;
 use super::solver::UzawaSolver;
 use crate::error::SolverError;
-use contact_laws::{ContactLaw, LocalVec2};
+use contact_laws::{ContactLaw, LocalVec2, LocalVec3};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef, Side};
 
-/// One step of a reduced problem with adhesive laws.
+/// One step of a reduced problem with adhesive laws, in 2D (`D = 2`, per contact `(n, t)`,
+/// the default) or 3D (`D = 3`, per contact `(n, t₁, t₂)`).
 #[derive(Clone, Copy, Debug)]
-pub struct AdhesiveStep<'a, L: ContactLaw> {
-    /// `W`, dense row-major `m × m` (`m = 2 n_c`, normal first per contact).
+pub struct AdhesiveStep<'a, L: ContactLaw, const D: usize = 2> {
+    /// `W`, dense row-major `m × m` (`m = D n_c`, normal first per contact).
     pub w: &'a [f64],
     /// `q`: the free gap and the free tangential displacement of the step.
     pub q: &'a [f64],
@@ -75,8 +76,8 @@ pub struct AdhesiveStep<'a, L: ContactLaw> {
     pub laws: &'a [L],
     /// States at the start of the step.
     pub start_states: &'a [L::State],
-    /// Jumps `(u_n, u_t)` at the start of the step.
-    pub u_start: &'a [[f64; 2]],
+    /// Jumps `(u_n, u_t)` (2D) or `(u_n, u_t1, u_t2)` (3D) at the start of the step.
+    pub u_start: &'a [[f64; D]],
     /// Tributary area of each contact (turns the per-area spring stiffness into a nodal one).
     pub areas: &'a [f64],
     /// Time step (the viscous β update needs it).
@@ -155,22 +156,28 @@ fn check_len(what: &'static str, expected: usize, found: usize) -> Result<(), So
 /// Solves one step with adhesion: condensation, reduced solve, state update, repeated to a
 /// fixed point (a single solve when no law is adhesive in its start state).
 ///
-/// Two-dimensional (per contact `(n, t)`), as the RCCM studies are; a 3D frictional problem
-/// without adhesion goes to [`ReducedProblem::new_3d`] and [`UzawaSolver`].
+/// In 2D (`D = 2`, the seed's RCCM studies) or 3D (`D = 3`): the adhesive springs act on the
+/// normal jump and, with one stiffness `k_t`, on both tangential components (the law is
+/// isotropic in the tangent plane).
 ///
 /// # Errors
 /// [`SolverError::SizeMismatch`] for inconsistent lengths; [`SolverError::InvalidSetting`]
 /// for a bad `dt` or tolerance; the reduced problem's validation errors;
 /// [`SolverError::NotConverged`] and [`SolverError::AdhesionNotConverged`] unless accepted.
-pub fn solve_adhesive<L: ContactLaw>(
+pub fn solve_adhesive<L: ContactLaw, const D: usize>(
     solver: &mut UzawaSolver,
-    step: &AdhesiveStep<'_, L>,
+    step: &AdhesiveStep<'_, L, D>,
     r_bar_start: Option<&[f64]>,
     options: &AdhesionOptions,
 ) -> Result<AdhesiveSolution<L::State>, SolverError> {
+    if D != 2 && D != 3 {
+        return Err(SolverError::Unsupported(format!(
+            "an adhesive step in dimension {D} (2 or 3)"
+        )));
+    }
     let m = step.q.len();
-    let na = m / 2;
-    check_len("q", 2 * na, m)?;
+    let na = m / D;
+    check_len("q", D * na, m)?;
     check_len("W", m * m, step.w.len())?;
     check_len("laws", na, step.laws.len())?;
     check_len("start_states", na, step.start_states.len())?;
@@ -208,7 +215,12 @@ pub fn solve_adhesive<L: ContactLaw>(
             });
         }
     }
-    let offset: Vec<f64> = step.u_start.iter().flat_map(|u| [0.0, u[1]]).collect();
+    // the springs act on the total tangential displacement: offset by its value at the start
+    let offset: Vec<f64> = step
+        .u_start
+        .iter()
+        .flat_map(|u| (0..D).map(move |d| if d == 0 { 0.0 } else { u[d] }))
+        .collect();
     let mut states = step.start_states.to_vec();
     let mut r_bar = match r_bar_start {
         Some(r) => {
@@ -244,18 +256,19 @@ pub fn solve_adhesive<L: ContactLaw>(
             .zip(&states)
             .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
             .collect();
-        let problem = ReducedProblem::new(w_eff, q_eff, mu)?;
+        let problem = ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?;
         let sol = solver.solve_with_states(&problem, step.laws, &states, Some(&r_bar))?;
         contact_iterations += sol.report.iterations;
         converged &= sol.report.converged;
         r_bar.copy_from_slice(&sol.r);
-        let jumps: Vec<[f64; 2]> = (0..na)
-            .map(|k| [sol.x[2 * k], sol.x[2 * k + 1] + offset[2 * k + 1]])
-            .collect();
+        // the jumps: x plus the offset; the total reaction r = r̄ − k (jump)
+        let jumps: Vec<f64> = sol.x.iter().zip(&offset).map(|(x, o)| x + o).collect();
         let mut r = vec![0.0; m];
-        for (k, (&[kn, kt], jump)) in stiff.iter().zip(&jumps).enumerate() {
-            r[2 * k] = sol.r[2 * k] - kn * jump[0];
-            r[2 * k + 1] = sol.r[2 * k + 1] - kt * jump[1];
+        for (k, &[kn, kt]) in stiff.iter().enumerate() {
+            for d in 0..D {
+                let i = D * k + d;
+                r[i] = sol.r[i] - if d == 0 { kn } else { kt } * jumps[i];
+            }
         }
         let finish = |states: Vec<L::State>, converged: bool| AdhesiveSolution {
             r,
@@ -276,16 +289,22 @@ pub fn solve_adhesive<L: ContactLaw>(
         let update = |u: &[f64]| -> Vec<L::State> {
             (0..na)
                 .map(|k| {
-                    let u0 = LocalVec2::planar(step.u_start[k][0], step.u_start[k][1]);
+                    let mut u1: [f64; D] = core::array::from_fn(|d| u[D * k + d]);
                     // an opening cannot be negative: clamp a mixed normal jump
-                    let u1 = LocalVec2::planar(u[2 * k].max(0.0), u[2 * k + 1]);
-                    step.laws[k].update_state(&step.start_states[k], &u0, &u1, step.dt)
+                    u1[0] = u1[0].max(0.0);
+                    update_state(
+                        &step.laws[k],
+                        &step.start_states[k],
+                        &step.u_start[k],
+                        &u1,
+                        step.dt,
+                    )
                 })
                 .collect()
         };
         // the fixed-point residual: the states the solve's own jumps imply, against the
         // states the solve used
-        let g: Vec<f64> = jumps.iter().flat_map(|j| *j).collect();
+        let g = jumps;
         let implied = update(&g);
         let change = step
             .laws
@@ -309,6 +328,25 @@ pub fn solve_adhesive<L: ContactLaw>(
             s.adhesion_iterations = adhesion_iterations;
             return Ok(s);
         }
+    }
+}
+
+/// The law's state update from the jumps `u0` (start of the step) and `u1`, in 2D or 3D.
+fn update_state<L: ContactLaw, const D: usize>(
+    law: &L,
+    start: &L::State,
+    u0: &[f64; D],
+    u1: &[f64; D],
+    dt: f64,
+) -> L::State {
+    if D == 3 {
+        let a = LocalVec3::spatial(u0[0], u0[1], u0[2]);
+        let b = LocalVec3::spatial(u1[0], u1[1], u1[2]);
+        law.update_state(start, &a, &b, dt)
+    } else {
+        let a = LocalVec2::planar(u0[0], u0[1]);
+        let b = LocalVec2::planar(u1[0], u1[1]);
+        law.update_state(start, &a, &b, dt)
     }
 }
 
@@ -420,6 +458,13 @@ impl Anderson {
 /// Exact condensation (public so that an FE code with its own coupling can reuse it) of the adhesive springs `r_adh = −B (x + o)`:
 /// `W̃ = W − W S G⁻¹ S W`, `q̃ = z − W S G⁻¹ S z`, `z = q − W B o`, `G = I + S W S`, `S = √B`,
 /// restricted to the dofs with a spring. Returns `(W, q)` unchanged without springs.
+///
+/// `stiff[k] = [k_n, k_t]` per contact; the dimension per contact is `m / stiff.len()`
+/// (2 or 3: `k_t` acts on every tangential component).
+///
+/// # Errors
+/// [`SolverError::SizeMismatch`] when `m` is not 2 or 3 times `stiff.len()`;
+/// [`SolverError::NotPositiveDefinite`] when `I + S W S` is not (an indefinite `W`).
 pub fn condense(
     w: &[f64],
     q: &[f64],
@@ -427,10 +472,21 @@ pub fn condense(
     stiff: &[[f64; 2]],
     m: usize,
 ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+    let dim = if stiff.is_empty() { 2 } else { m / stiff.len() };
+    if !(stiff.is_empty() || (dim * stiff.len() == m && (dim == 2 || dim == 3))) {
+        return Err(SolverError::SizeMismatch {
+            what: "stiff (2 or 3 unknowns per contact)",
+            expected: m / 2,
+            found: stiff.len(),
+        });
+    }
+    check_len("W", m * m, w.len())?;
+    check_len("q", m, q.len())?;
+    check_len("offset", m, offset.len())?;
     let springs: Vec<(usize, f64)> = stiff
         .iter()
         .enumerate()
-        .flat_map(|(k, s)| [(2 * k, s[0]), (2 * k + 1, s[1])])
+        .flat_map(|(k, s)| (0..dim).map(move |d| (dim * k + d, if d == 0 { s[0] } else { s[1] })))
         .filter(|&(_, b)| b > 0.0)
         .collect();
     if springs.is_empty() {

@@ -36,6 +36,7 @@ mod single_contact;
 mod skip_open;
 mod skip_rules;
 mod solid_contact;
+mod solid_interfaces;
 mod sparse;
 mod stall;
 mod stress;

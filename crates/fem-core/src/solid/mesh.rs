@@ -349,7 +349,7 @@ impl SolidMesh {
         }
         let nodes = &nodes[..count];
         for &(xi, w) in &crate::quadrature::TRI_6 {
-            let (n, dn) = tri_shape(count, xi);
+            let (n, dn) = triangle_shape(count, xi);
             let mut x = [0.0; 3];
             let mut d = [[0.0; 3]; 2];
             for (i, &node) in nodes.iter().enumerate() {
@@ -479,9 +479,17 @@ impl SolidMesh {
     }
 }
 
-/// Shape values and reference derivatives of a 3- or 6-node triangle at `(ξ, η)` (the first
-/// `nodes` entries are set).
-fn tri_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 6], [[f64; 2]; 6]) {
+/// Shape values and reference derivatives `(∂/∂ξ, ∂/∂η)` of a 3- or 6-node triangle at
+/// `(ξ, η)`, in the node order of [`SolidKind::face_nodes`] (corners, then the mid-edge nodes
+/// of edges 0–1, 1–2, 2–0); the first `nodes` entries are set (`nodes` is 3 for the linear
+/// triangle, anything else means 6).
+///
+/// ```
+/// use fem_core::solid::triangle_shape;
+/// let (n, _) = triangle_shape(6, [0.5, 0.0]); // the mid-edge node of edge 0–1
+/// assert!((n[3] - 1.0).abs() < 1e-15 && n.iter().sum::<f64>() - 1.0 < 1e-15);
+/// ```
+pub fn triangle_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 6], [[f64; 2]; 6]) {
     let l = [1.0 - xi[0] - xi[1], xi[0], xi[1]];
     let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
     let (mut n, mut dn) = ([0.0; 6], [[0.0; 2]; 6]);

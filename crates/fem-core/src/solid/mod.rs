@@ -18,5 +18,5 @@ mod modes;
 pub mod quadrature;
 
 pub use element::{SolidElement, Stress3, Tet4, Tet10};
-pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES};
+pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES, triangle_shape};
 pub use model::{SolidModel, StressField3, StressPoint3, geostatic_3d};

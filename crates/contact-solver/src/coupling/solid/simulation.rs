@@ -1,22 +1,25 @@
 //! [`SolidContactSimulation`]: quasi-static contact of a 3D [`Structure<3>`] with rigid
-//! obstacles, condensed on the contact unknowns (`F* = H K⁻¹ Hᵀ`, dense) and solved with the
-//! local layer in 3D, one load step at a time.
+//! obstacles and between bodies (node pairs, node-to-face), condensed on the contact unknowns
+//! (`F* = H K⁻¹ Hᵀ`, dense) and solved with the local layer in 3D, one load step at a time.
 //!
-//! A step: the free response `u_free`; the active set (gap under `u_free` within the zone's
-//! alert distance, or in contact at the end of the last step); `F*` on it (rebuilt when the
-//! active set or the stiffness changes); the reduced problem `x = F* r + q` with
-//! `q = (g₀ + n·u_free, t₁·u_free − u_t1,start, t₂·u_free − u_t2,start)` per contact, solved
-//! by [`UzawaSolver`] (the same algorithms as in 2D, `Auto` by default); then
-//! `u = u_free + K⁻¹ Hᵀ r` and the penetration check of the inactive candidates (added and
-//! solved again if one penetrates).
+//! A step: the free response `u_free`; the active set (relative gap under `u_free` within the
+//! zone's alert distance, in contact at the end of the last step, or adhesive, β > 0); `F*` on
+//! it (rebuilt when the active set or the stiffness changes); the reduced problem
+//! `x = F* r + q` with `q = (g₀ + n·u_rel, t₁·u_rel − u_t1,start, t₂·u_rel − u_t2,start)` per
+//! contact (`u_rel` under `u_free`), solved by [`UzawaSolver`] (the same algorithms as in 2D,
+//! `Auto` by default) or, when a law is adhesive, by the adhesion fixed point
+//! [`solve_adhesive`] in 3D (the RCCM springs `β² C` on the normal and both tangential jumps,
+//! condensed exactly); then `u = u_free + K⁻¹ Hᵀ r` and the penetration check of the inactive
+//! candidates (added and solved again if one penetrates).
 //!
 //! What 3D does not have yet, refused with [`SolverError::Unsupported`] rather than answered
-//! wrongly: adhesive laws (their springs are not condensed in 3D), floating structures, node
-//! pairs and node-to-face zones, the matrix-free and active-set paths.
+//! wrongly: floating structures; the matrix-free and active-set paths (every 3D step uses the
+//! dense `F*`).
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
 use crate::coupling::flexibility::flexibility_into;
 use crate::error::SolverError;
+use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
 use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver, symmetrize};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
@@ -33,6 +36,8 @@ pub struct SolidSettings {
     pub max_passes: usize,
     /// A penetration below this fraction of the contact nodes' extent is not one.
     pub penetration_tol: f64,
+    /// The adhesion fixed point (tolerance on β, cap, Anderson window), for adhesive laws.
+    pub adhesion: AdhesionOptions,
 }
 
 impl Default for SolidSettings {
@@ -42,6 +47,7 @@ impl Default for SolidSettings {
             columns_per_solve: 96,
             max_passes: 20,
             penetration_tol: 1e-9,
+            adhesion: AdhesionOptions::default(),
         }
     }
 }
@@ -52,8 +58,12 @@ pub struct SolidContactRecord {
     /// The candidate (zone, node, frame, area).
     pub candidate: Candidate3,
     /// Reaction `(r_n, r_t1, r_t2)` on the contactor node, in the frame: `r_n ≥ 0` is
-    /// compression. The force on the node is `r_n n + r_t1 t₁ + r_t2 t₂`.
+    /// compression. The force on the node is `r_n n + r_t1 t₁ + r_t2 t₂` (its target nodes
+    /// carry the opposite, split by their weights). With adhesion this is the total reaction,
+    /// the law's `r̄` plus the springs' `−β² C (u_n, u_t)` times the area.
     pub r: [f64; 3],
+    /// The adhesion intensity `β` at the end of the step (0 for laws without adhesion).
+    pub beta: f64,
     /// Gap at the end of the step.
     pub gap: f64,
     /// Tangential displacement increment of the step `(Δu_t1, Δu_t2)` (the slip of a sliding
@@ -85,8 +95,10 @@ impl SolidContactRecord {
 pub struct SolidStepResult {
     /// Every candidate, in recognition order.
     pub contacts: Vec<SolidContactRecord>,
-    /// Local-solver iterations summed over the passes.
+    /// Local-solver iterations summed over the passes (and the adhesion iterations).
     pub contact_iterations: usize,
+    /// Adhesion fixed-point iterations summed over the passes (0 without adhesion).
+    pub adhesion_iterations: usize,
     /// Active-set passes.
     pub passes: usize,
     /// The local solver's last residual.
@@ -131,8 +143,10 @@ pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     states: Vec<L::State>,
     /// Accepted local displacement `(x_n, u_t1, u_t2)` at the end of the last step.
     jumps: Vec<[f64; 3]>,
-    /// Last reactions (warm start and "was in contact").
+    /// Last total reactions ("was in contact").
     r_last: Vec<[f64; 3]>,
+    /// Last reactions of the laws, `r̄` (warm start).
+    r_bar_last: Vec<[f64; 3]>,
     w_active: Vec<usize>,
     w: Vec<f64>,
     w_version: Option<u64>,
@@ -146,9 +160,9 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// Recognises the candidates of `zones` on `structure` and starts at time 0.
     ///
     /// # Errors
-    /// As [`recognize_3d`]; [`SolverError::Unsupported`] for a floating structure or an
-    /// adhesive law; [`SolverError::InvalidSetting`] for zero `columns_per_solve` or
-    /// `max_passes`, or a `penetration_tol` that is not finite and positive.
+    /// As [`recognize_3d`]; [`SolverError::Unsupported`] for a floating structure;
+    /// [`SolverError::InvalidSetting`] for zero `columns_per_solve` or `max_passes`, a
+    /// `penetration_tol` that is not finite and positive, or an adhesive zone without areas.
     pub fn new(
         structure: S,
         zones: Vec<ContactZone3<L>>,
@@ -173,25 +187,21 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 "a floating 3D structure (rigid-body modes): hold it with supports".into(),
             ));
         }
-        if let Some(z) = zones.iter().find(|z| z.law.has_adhesion()) {
-            return Err(SolverError::Unsupported(format!(
-                "zone `{}`: adhesive laws are not supported in 3D yet",
+        if let Some(z) = zones
+            .iter()
+            .find(|z| z.law.has_adhesion() && z.areas.is_none())
+        {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{}`: an adhesive law needs the contactor nodes' tributary areas (its \
+                 springs are a stiffness per unit area): give them with `with_areas`",
                 z.name
             )));
         }
         let candidates = recognize_3d(&structure, &zones)?;
-        let mut h_rows = Vec::with_capacity(3 * candidates.len());
-        for c in &candidates {
-            let dofs = structure.node_dofs(c.node);
-            for dir in c.frame() {
-                h_rows.push(
-                    (0..3)
-                        .filter_map(|a| dofs[a].map(|d| (d, dir[a])))
-                        .filter(|&(_, v)| v != 0.0)
-                        .collect(),
-                );
-            }
-        }
+        let h_rows = candidates
+            .iter()
+            .flat_map(|c| c.frame().map(|dir| c.h_row(&structure, dir)))
+            .collect();
         let states = candidates
             .iter()
             .map(|c| zones[c.zone].law.initial_state())
@@ -216,6 +226,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             states,
             jumps: candidates.iter().map(|c| [c.gap0, 0.0, 0.0]).collect(),
             r_last: vec![[0.0; 3]; n],
+            r_bar_last: vec![[0.0; 3]; n],
             candidates,
             w_active: Vec::new(),
             w: Vec::new(),
@@ -286,18 +297,22 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             .collect();
         let mut active: Vec<usize> = (0..self.candidates.len())
             .filter(|&i| {
-                free[i][0] <= self.zones[self.candidates[i].zone].alert || self.r_last[i][0] > 0.0
+                let law = &self.zones[self.candidates[i].zone].law;
+                free[i][0] <= self.zones[self.candidates[i].zone].alert
+                    || self.r_last[i][0] > 0.0
+                    || (law.has_adhesion() && law.adhesion_active(&self.states[i]))
             })
             .collect();
         let tol = self.settings.penetration_tol * self.scale;
-        let (mut iterations, mut residual) = (0, 0.0);
+        let mut counts = Counts::default();
         for pass in 1..=self.settings.max_passes {
-            let (r, u) = if active.is_empty() {
-                (Vec::new(), u_free.clone())
+            let (sol, u) = if active.is_empty() {
+                (None, u_free.clone())
             } else {
-                let sol = self.solve_active(&active, &free)?;
-                iterations += sol.report.iterations;
-                residual = sol.report.residual;
+                let sol = self.solve_active(&active, &free, dt)?;
+                counts.iterations += sol.iterations;
+                counts.adhesion_iterations += sol.adhesion_iterations;
+                counts.residual = sol.residual;
                 let mut rhs = vec![0.0; ndof];
                 for (k, &i) in active.iter().enumerate() {
                     for d in 0..3 {
@@ -308,7 +323,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 }
                 self.structure.solve_in_place(&mut rhs)?;
                 let u: Vec<f64> = u_free.iter().zip(&rhs).map(|(a, b)| a + b).collect();
-                (sol.r, u)
+                (Some(sol), u)
             };
             let mut in_active = vec![false; self.candidates.len()];
             active.iter().for_each(|&i| in_active[i] = true);
@@ -316,14 +331,15 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 .filter(|&i| !in_active[i] && self.local(i, &u)[0] < -tol)
                 .collect();
             if penetrating.is_empty() {
-                return Ok(self.accept(&active, &r, u, dt, iterations, pass, residual));
+                counts.passes = pass;
+                return Ok(self.accept(&active, sol, u, dt, &counts));
             }
             active.extend(penetrating);
             active.sort_unstable();
         }
         Err(SolverError::NotConverged {
             iterations: self.settings.max_passes,
-            residual,
+            residual: counts.residual,
             history: Vec::new(),
         })
     }
@@ -331,14 +347,15 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// `(x_n, u_t1, u_t2)` of candidate `i` for a free-dof displacement `u`.
     fn local(&self, i: usize, u: &[f64]) -> [f64; 3] {
         let c = &self.candidates[i];
-        let v = node_displacement(&self.structure, u, c.node);
+        let v = c.relative(|node| node_displacement(&self.structure, u, node));
         let [n, t1, t2] = c.frame();
         let d = super::obstacle::dot;
         [c.gap0 + d(n, v), d(t1, v), d(t2, v)]
     }
 
     fn tangent_needed(&self, i: usize) -> bool {
-        self.zones[self.candidates[i].zone].law.has_friction()
+        let law = &self.zones[self.candidates[i].zone].law;
+        law.has_friction() || law.has_adhesion()
     }
 
     /// `F* = H K⁻¹ Hᵀ` on `active` (frictionless contacts: their tangential block decoupled).
@@ -379,7 +396,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         &mut self,
         active: &[usize],
         free: &[[f64; 3]],
-    ) -> Result<crate::local::Solution, SolverError> {
+        dt: f64,
+    ) -> Result<Solved<L::State>, SolverError> {
         if self.w_active != active || self.w_version != Some(self.structure.stiffness_version()) {
             self.build_flexibility(active)?;
         }
@@ -388,11 +406,6 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             .map(|&i| self.zones[self.candidates[i].zone].law.clone())
             .collect();
         let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let mu: Vec<f64> = laws
-            .iter()
-            .zip(&states)
-            .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
-            .collect();
         let mut q = vec![0.0; 3 * active.len()];
         for (k, &i) in active.iter().enumerate() {
             q[3 * k] = free[i][0];
@@ -401,58 +414,126 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 q[3 * k + 2] = free[i][2] - self.jumps[i][2];
             }
         }
-        let warm: Vec<f64> = active.iter().flat_map(|&i| self.r_last[i]).collect();
+        let warm: Vec<f64> = active.iter().flat_map(|&i| self.r_bar_last[i]).collect();
+        if laws.iter().any(|l| l.has_adhesion()) {
+            let u_start: Vec<[f64; 3]> = active.iter().map(|&i| self.jumps[i]).collect();
+            let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+            let step = AdhesiveStep {
+                w: &self.w,
+                q: &q,
+                laws: &laws,
+                start_states: &states,
+                u_start: &u_start,
+                areas: &areas,
+                dt,
+            };
+            let options = AdhesionOptions {
+                accept_non_converged: self.settings.adhesion.accept_non_converged
+                    || self.settings.solver.accept_non_converged,
+                ..self.settings.adhesion
+            };
+            let sol = solve_adhesive(&mut self.solver, &step, Some(&warm), &options)?;
+            return Ok(Solved {
+                r: sol.r,
+                r_bar: sol.r_bar,
+                states: Some(sol.states),
+                iterations: sol.contact_iterations,
+                adhesion_iterations: sol.adhesion_iterations,
+                residual: sol.report.residual,
+            });
+        }
+        let mu: Vec<f64> = laws
+            .iter()
+            .zip(&states)
+            .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
+            .collect();
         let problem = ReducedProblem::with_dimension(3, self.w.clone(), q, mu)?;
         let start = warm.iter().any(|v| *v != 0.0).then_some(warm.as_slice());
-        self.solver
-            .solve_with_states(&problem, &laws, &states, start)
+        let sol = self
+            .solver
+            .solve_with_states(&problem, &laws, &states, start)?;
+        Ok(Solved {
+            r_bar: sol.r.clone(),
+            r: sol.r,
+            states: None,
+            iterations: sol.report.iterations,
+            adhesion_iterations: 0,
+            residual: sol.report.residual,
+        })
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn accept(
         &mut self,
         active: &[usize],
-        r: &[f64],
+        sol: Option<Solved<L::State>>,
         u: Vec<f64>,
         dt: f64,
-        contact_iterations: usize,
-        passes: usize,
-        residual: f64,
+        counts: &Counts,
     ) -> SolidStepResult {
-        let mut reaction = vec![[0.0; 3]; self.candidates.len()];
-        let mut in_active = vec![false; self.candidates.len()];
-        for (k, &i) in active.iter().enumerate() {
-            reaction[i] = [r[3 * k], r[3 * k + 1], r[3 * k + 2]];
-            in_active[i] = true;
+        let n = self.candidates.len();
+        let (mut reaction, mut law_reaction) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
+        let mut solved_state: Vec<Option<L::State>> = vec![None; n];
+        let mut in_active = vec![false; n];
+        if let Some(sol) = &sol {
+            for (k, &i) in active.iter().enumerate() {
+                reaction[i] = core::array::from_fn(|d| sol.r[3 * k + d]);
+                law_reaction[i] = core::array::from_fn(|d| sol.r_bar[3 * k + d]);
+                solved_state[i] = sol.states.as_ref().map(|s| s[k]);
+                in_active[i] = true;
+            }
         }
-        let mut contacts = Vec::with_capacity(self.candidates.len());
-        for i in 0..self.candidates.len() {
+        let mut contacts = Vec::with_capacity(n);
+        for i in 0..n {
             let x = self.local(i, &u);
             let start = self.jumps[i];
             let law = &self.zones[self.candidates[i].zone].law;
-            let u_start = LocalVec::<2>::spatial(start[0], start[1], start[2]);
-            let u_now = LocalVec::<2>::spatial(x[0], x[1], x[2]);
-            self.states[i] = law.update_state(&self.states[i], &u_start, &u_now, dt);
+            self.states[i] = solved_state[i].unwrap_or_else(|| {
+                let u_start = LocalVec::<2>::spatial(start[0], start[1], start[2]);
+                let u_now = LocalVec::<2>::spatial(x[0], x[1], x[2]);
+                law.update_state(&self.states[i], &u_start, &u_now, dt)
+            });
             contacts.push(SolidContactRecord {
                 candidate: self.candidates[i],
                 r: reaction[i],
+                beta: law.adhesion_intensity(&self.states[i]),
                 gap: x[0],
                 slip: [x[1] - start[1], x[2] - start[2]],
                 active: in_active[i],
             });
             self.jumps[i] = x;
             self.r_last[i] = reaction[i];
+            self.r_bar_last[i] = law_reaction[i];
         }
         self.u = u;
         self.time += dt;
         SolidStepResult {
             contacts,
-            contact_iterations,
-            passes,
-            residual,
+            contact_iterations: counts.iterations,
+            adhesion_iterations: counts.adhesion_iterations,
+            passes: counts.passes,
+            residual: counts.residual,
             active: active.len(),
         }
     }
+}
+
+/// A reduced solve's answer: total and law reactions, the states of an adhesive solve.
+struct Solved<S> {
+    r: Vec<f64>,
+    r_bar: Vec<f64>,
+    states: Option<Vec<S>>,
+    iterations: usize,
+    adhesion_iterations: usize,
+    residual: f64,
+}
+
+/// Iterations and passes of a step.
+#[derive(Default)]
+struct Counts {
+    iterations: usize,
+    adhesion_iterations: usize,
+    passes: usize,
+    residual: f64,
 }
 
 /// The displacement of `node` from free-dof values `u` (prescribed components added).

@@ -1,0 +1,390 @@
+//! 3D interfaces between bodies (node pairs, node-to-face) and RCCM adhesion in 3D, against
+//! exact answers.
+//!
+//! - **Two-block patch** (the contact patch test between bodies: T. A. Laursen,
+//!   *Computational Contact and Impact Mechanics*, Springer 2002, §5.3): a block on a block,
+//!   rollers on the sides `x = 0` and `y = 0`, the base held, the top pushed down by `δ`. The
+//!   state is uniaxial, `σ_zz = −E δ / H` over the total height, and it lies in the discrete
+//!   space of P1 and P2 elements on either side of any interface grid: the force on every
+//!   contactor node is `σ ∫ N_i dA` to round-off, for matching grids (node pairs) and for a
+//!   top grid that does not match the bottom one (node-to-face, flat and P2).
+//! - **Sliding blocks** (Coulomb's law between bodies): the top block pressed and moved along
+//!   x, far enough that the whole interface slides: `|r_t| = μ r_n` at every contact and the
+//!   tangential reaction opposes the slip.
+//! - **A glued block pulled off** (RCCM, α = 0, seed 3.30 and 4.31 with this crate's signs): a
+//!   block glued to a rigid plane, or to a second block by node pairs, its top pulled up by `δ`.
+//!   The opening `u` is uniform and solves `E (δ − u) / H = β² C u` with
+//!   `β = min(β_prev, w / (C u²))` (the interface's energy release): a scalar equation solved
+//!   here by bisection. Checked: the opening, β, and the total force, to the fixed point's
+//!   tolerance.
+
+#![cfg(feature = "fe")]
+
+use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini};
+use contact_solver::coupling::solid::{
+    ContactZone3, PairNormals3, RigidPlane, SolidContactSimulation, SolidSettings, TriSurface,
+};
+use fem_core::solid::generate::{box_mesh, lines};
+use fem_core::solid::{Face, SolidKind, SolidMesh, SolidModel};
+use fem_core::{Component, Material, Supports};
+
+/// Two boxes, `[0,1]² × [0,1]` (region 0, sets `a.*`) under `[0,1]² × [1,2]` (region 1, sets
+/// `b.*`), `na` and `nb` cells per side in x and y: separate nodes on the interface.
+fn two_blocks(kind: SolidKind, na: usize, nb: usize) -> SolidMesh {
+    let a = box_mesh(
+        &lines(0.0, 1.0, na),
+        &lines(0.0, 1.0, na),
+        &lines(0.0, 1.0, 1),
+        kind,
+    )
+    .unwrap();
+    let b = box_mesh(
+        &lines(0.0, 1.0, nb),
+        &lines(0.0, 1.0, nb),
+        &lines(1.0, 2.0, 1),
+        kind,
+    )
+    .unwrap();
+    let (node_offset, element_offset) = (a.node_count(), a.element_count());
+    let mut nodes = a.nodes().to_vec();
+    nodes.extend_from_slice(b.nodes());
+    let mut connectivity = a.connectivity().to_vec();
+    connectivity.extend(b.connectivity().iter().map(|n| n + node_offset));
+    let mut regions = vec![0; a.element_count()];
+    regions.extend(vec![1; b.element_count()]);
+    let mut mesh = SolidMesh::new(nodes, kind, connectivity, regions).unwrap();
+    for (prefix, m, no, eo) in [("a", &a, 0, 0), ("b", &b, node_offset, element_offset)] {
+        for (name, set) in m.node_sets() {
+            let set = set.iter().map(|n| n + no).collect();
+            mesh.add_node_set(&format!("{prefix}.{name}"), set).unwrap();
+        }
+        for (name, faces) in m.face_sets() {
+            let faces = faces
+                .iter()
+                .map(|f| Face {
+                    element: f.element + eo,
+                    face: f.face,
+                })
+                .collect();
+            mesh.add_face_set(&format!("{prefix}.{name}"), faces)
+                .unwrap();
+        }
+    }
+    mesh
+}
+
+/// Rollers on `x = 0` and `y = 0` of both blocks, the base held along z, the top moved by
+/// `top` (the components given).
+fn supports(mesh: &SolidMesh, top: &[(Component, f64)]) -> Supports {
+    let mut s = Supports::new();
+    for p in ["a", "b"] {
+        s.fix(mesh.node_set(&format!("{p}.x0")).unwrap(), Component::X)
+            .fix(mesh.node_set(&format!("{p}.y0")).unwrap(), Component::Y);
+    }
+    s.fix(mesh.node_set("a.z0").unwrap(), Component::Z);
+    for &(c, v) in top {
+        s.prescribe(mesh.node_set("b.z1").unwrap(), c, v).unwrap();
+    }
+    s
+}
+
+/// The bottom block's node at the position of each of `nodes`.
+fn matching(mesh: &SolidMesh, nodes: &[usize], among: &[usize]) -> Vec<usize> {
+    nodes
+        .iter()
+        .map(|&n| {
+            let x = mesh.nodes()[n];
+            *among
+                .iter()
+                .find(|&&m| {
+                    let y = mesh.nodes()[m];
+                    (0..3).all(|a| (x[a] - y[a]).abs() < 1e-12)
+                })
+                .expect("matching grids")
+        })
+        .collect()
+}
+
+#[test]
+fn two_block_patch_is_exact_for_pairs_and_faces() {
+    let (e, nu, delta) = (1000.0, 0.3, 1e-3);
+    let m = Material::new(e, nu, 0.0).unwrap();
+    let sigma = e * delta / 2.0;
+    for kind in [SolidKind::Tet4, SolidKind::Tet10] {
+        for label in ["pairs", "pairs, surface normals", "faces"] {
+            // matching grids: node-to-face must give the pairs' answer
+            let mesh = two_blocks(kind, 2, 2);
+            let (nodes, areas) = mesh.nodal_areas("b.z0").unwrap();
+            let law = Signorini;
+            let targets = matching(&mesh, &nodes, mesh.node_set("a.z1").unwrap());
+            let zone = match label {
+                "pairs" => {
+                    let n = PairNormals3::Fixed([0.0, 0.0, 1.0]);
+                    ContactZone3::node_pairs("i", nodes, targets, n, law, 0.1)
+                }
+                "pairs, surface normals" => {
+                    let n =
+                        PairNormals3::Surface(TriSurface::from_face_set(&mesh, "a.z1").unwrap());
+                    ContactZone3::node_pairs("i", nodes, targets, n, law, 0.1)
+                }
+                _ => {
+                    let surface = TriSurface::from_face_set(&mesh, "a.z1").unwrap();
+                    ContactZone3::node_to_face("i", nodes, surface, law, 0.1)
+                }
+            }
+            .with_areas(areas);
+            let s = supports(&mesh, &[(Component::Z, -delta)]);
+            let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
+            let mut sim =
+                SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+            let res = sim.step(1.0, 1.0).unwrap();
+            check_uniform(&res.contacts, sigma, &format!("{kind:?} {label}"));
+            // the interface's displacement: uniform strain δ / 2 over the height
+            let node = sim.structure().mesh().node_set("b.z0").unwrap()[0];
+            let uz = sim.nodal_displacement(node)[2];
+            assert!((uz + delta / 2.0).abs() < 1e-9, "{kind:?} {label}: {uz}");
+        }
+    }
+}
+
+fn check_uniform(
+    contacts: &[contact_solver::coupling::solid::SolidContactRecord],
+    sigma: f64,
+    label: &str,
+) {
+    let total: f64 = contacts.iter().map(|c| c.r[0]).sum();
+    // the solver's tolerance (1e-10 relative) on a unit area
+    assert!(
+        (total - sigma).abs() < 1e-8 * sigma,
+        "{label}: {total} vs {sigma}"
+    );
+    for c in contacts {
+        let want = sigma * c.candidate.area;
+        assert!(
+            (c.r[0] - want).abs() < 1e-7 * sigma,
+            "{label}: node {} r_n {} vs {want}",
+            c.candidate.node,
+            c.r[0]
+        );
+        assert!(c.gap.abs() < 1e-12, "{label}: gap {}", c.gap);
+        assert!((c.candidate.normal[2] - 1.0).abs() < 1e-12);
+    }
+}
+
+/// A top grid that does not match the bottom one (3 × 3 on 2 × 2 cells). On a target that
+/// moves rigidly (every bottom node prescribed: up by `d`, and the lateral expansion of the
+/// uniaxial state) the state is uniform and exact: this checks the projection, the weights
+/// `N_k` and the frame. On a deformable bottom block, one-pass node-to-face does not pass the
+/// patch test (T. A. Laursen, op. cit., §5.3: the contactor's forces, spread on the target by
+/// the weights, are not the target's consistent loads): the total force is within 1 % of the
+/// uniform answer, and the interface carries no tension.
+#[test]
+fn non_matching_faces_are_exact_on_a_moving_target() {
+    let (e, nu, delta, d) = (1000.0, 0.3, 1e-3, 2e-4);
+    let m = Material::new(e, nu, 0.0).unwrap();
+    for kind in [SolidKind::Tet4, SolidKind::Tet10] {
+        let mesh = two_blocks(kind, 2, 3);
+        let (nodes, areas) = mesh.nodal_areas("b.z0").unwrap();
+        let surface = TriSurface::from_face_set(&mesh, "a.z1").unwrap();
+        let zone =
+            ContactZone3::node_to_face("i", nodes, surface, Signorini, 0.1).with_areas(areas);
+        // the top block: rollers, its top down by δ; the bottom block: prescribed
+        let mut s = Supports::new();
+        s.fix(mesh.node_set("b.x0").unwrap(), Component::X)
+            .fix(mesh.node_set("b.y0").unwrap(), Component::Y)
+            .prescribe(mesh.node_set("b.z1").unwrap(), Component::Z, -delta)
+            .unwrap();
+        let strain = (delta + d) * nu; // lateral strain of the uniaxial state, height 1
+        let mut bottom: Vec<usize> = (0..mesh.element_count())
+            .filter(|&el| mesh.regions()[el] == 0)
+            .flat_map(|el| mesh.element(el).to_vec())
+            .collect();
+        bottom.sort_unstable();
+        bottom.dedup();
+        for &n in &bottom {
+            let x = mesh.nodes()[n];
+            s.prescribe(&[n], Component::X, strain * x[0])
+                .unwrap()
+                .prescribe(&[n], Component::Y, strain * x[1])
+                .unwrap()
+                .prescribe(&[n], Component::Z, d)
+                .unwrap();
+        }
+        let model = SolidModel::new(mesh.clone(), &[(0, m), (1, m)], s).unwrap();
+        let mut sim =
+            SolidContactSimulation::new(model, vec![zone.clone()], SolidSettings::default())
+                .unwrap();
+        let res = sim.step(1.0, 1.0).unwrap();
+        check_uniform(
+            &res.contacts,
+            e * (delta + d),
+            &format!("{kind:?} moving target"),
+        );
+        // the same interface on a deformable bottom block
+        let s = supports(&mesh, &[(Component::Z, -delta)]);
+        let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
+        let mut sim =
+            SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+        let res = sim.step(1.0, 1.0).unwrap();
+        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        let sigma = e * delta / 2.0;
+        eprintln!("{kind:?} deformable target: total {total} vs uniform {sigma}");
+        assert!((total / sigma - 1.0).abs() < 0.01, "{kind:?}: {total}");
+        assert!(res.contacts.iter().all(|c| c.r[0] >= -1e-12));
+    }
+}
+
+#[test]
+fn sliding_blocks_obey_coulomb_between_bodies() {
+    let (e, mu) = (1000.0, 0.3);
+    let m = Material::new(e, 0.0, 0.0).unwrap();
+    let mesh = two_blocks(SolidKind::Tet10, 2, 3);
+    let (nodes, areas) = mesh.nodal_areas("b.z0").unwrap();
+    let surface = TriSurface::from_face_set(&mesh, "a.z1").unwrap();
+    let law = Coulomb::new(mu).unwrap();
+    let zone = ContactZone3::node_to_face("i", nodes, surface, law, 0.1).with_areas(areas);
+    // the top pressed, then moved along x by 10 × the press: the whole interface slides
+    let mut s = Supports::new();
+    for c in [Component::X, Component::Y, Component::Z] {
+        s.fix(mesh.node_set("a.z0").unwrap(), c);
+    }
+    s.prescribe(mesh.node_set("b.z1").unwrap(), Component::Z, -1e-3)
+        .unwrap()
+        .prescribe(mesh.node_set("b.z1").unwrap(), Component::X, 1e-2)
+        .unwrap()
+        .fix(mesh.node_set("b.z1").unwrap(), Component::Y);
+    let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
+    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let res = sim.step(1.0, 1.0).unwrap();
+    let (mut fn_, mut fx) = (0.0, 0.0);
+    for c in res.contacts.iter().filter(|c| c.r[0] > 1e-9) {
+        let rt = c.r[1].hypot(c.r[2]);
+        assert!(
+            (rt - mu * c.r[0]).abs() < 1e-6 * c.r[0].max(1e-3),
+            "node {}: |r_t| {rt} vs μ r_n {}",
+            c.candidate.node,
+            mu * c.r[0]
+        );
+        // the force on the top block opposes its motion (+x)
+        let f = c.force();
+        assert!(f[0] < 0.0, "node {}: {f:?}", c.candidate.node);
+        fn_ += f[2];
+        fx += f[0];
+    }
+    assert!(fn_ > 0.0 && ((-fx) / fn_ - mu).abs() < 1e-6, "{fx} {fn_}");
+}
+
+fn rccm(c: f64, w: f64) -> Rccm {
+    Rccm::new(RccmParams {
+        c_n: c,
+        c_t: c,
+        w,
+        alpha: 0.0,
+        mu: 0.3,
+        m: 1,
+        beta_0: 1.0,
+        scheme: BetaScheme::ImplicitEuler,
+    })
+    .unwrap()
+}
+
+/// The opening and β of a glued bar of height `h` pulled by `delta` (module docs), from the
+/// previous β.
+fn pulled(e: f64, h: f64, c: f64, w: f64, delta: f64, beta_prev: f64) -> (f64, f64) {
+    let beta = |u: f64| {
+        let energy = c * u * u;
+        if energy * beta_prev <= w {
+            beta_prev
+        } else {
+            (w / energy).min(beta_prev)
+        }
+    };
+    let f = |u: f64| e * (delta - u) / h - beta(u).powi(2) * c * u;
+    let (mut lo, mut hi) = (0.0, delta);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let u = 0.5 * (lo + hi);
+    (u, beta(u))
+}
+
+#[test]
+fn glued_block_pulled_off_follows_rccm() {
+    // the first steps are elastic, then β falls; E / H > 3 C keeps the softening stable (one
+    // equilibrium per δ: `E (δ − u) / H − w² / (C u³)` decreases past the onset u₀ = √(w/C))
+    let (e, c, w) = (1000.0, 100.0, 1e-4);
+    let m = Material::new(e, 0.0, 0.0).unwrap();
+    for (label, kind) in [
+        ("rigid", SolidKind::Tet10),
+        ("pairs", SolidKind::Tet10),
+        ("rigid", SolidKind::Tet4),
+    ] {
+        let mesh = two_blocks(kind, 2, 2);
+        let (nodes, areas) = mesh.nodal_areas("b.z0").unwrap();
+        let law = rccm(c, w);
+        let (zone, h, s) = if label == "rigid" {
+            // the top block alone, glued to a rigid plane at z = 1; the bottom block is held
+            let plane = RigidPlane::new([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]).unwrap();
+            let zone = ContactZone3::rigid("glue", nodes, plane, law, 0.1).with_areas(areas);
+            let mut s = Supports::new();
+            for cmp in [Component::X, Component::Y, Component::Z] {
+                s.fix(mesh.node_set("a.z0").unwrap(), cmp)
+                    .fix(mesh.node_set("a.z1").unwrap(), cmp);
+            }
+            s.fix(mesh.node_set("b.x0").unwrap(), Component::X)
+                .fix(mesh.node_set("b.y0").unwrap(), Component::Y);
+            s.prescribe(mesh.node_set("b.z1").unwrap(), Component::Z, 0.0)
+                .unwrap();
+            (zone, 1.0, s)
+        } else {
+            let targets = matching(&mesh, &nodes, mesh.node_set("a.z1").unwrap());
+            let n = PairNormals3::Fixed([0.0, 0.0, 1.0]);
+            let zone =
+                ContactZone3::node_pairs("glue", nodes, targets, n, law, 0.1).with_areas(areas);
+            (zone, 2.0, supports(&mesh, &[(Component::Z, 0.0)]))
+        };
+        let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
+        let mut sim =
+            SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+        let top = sim.structure().mesh().node_set("b.z1").unwrap().to_vec();
+        let mut beta_prev = 1.0;
+        let mut damaged = false;
+        for k in 1..=8 {
+            let delta = 2e-4 * f64::from(k);
+            sim.structure_mut()
+                .set_prescribed(&top, Component::Z, delta)
+                .unwrap();
+            let res = sim.step(1.0, 1.0).unwrap();
+            let (u, beta) = pulled(e, h, c, w, delta, beta_prev);
+            beta_prev = beta;
+            damaged |= beta < 0.999;
+            let total: f64 = res.contacts.iter().map(|r| r.r[0]).sum();
+            let want = -beta * beta * c * u; // tension on a unit area
+            assert!(
+                (total - want).abs() < 1e-6 * want.abs(),
+                "{label} {kind:?} step {k}: force {total} vs {want}"
+            );
+            for r in &res.contacts {
+                assert!(
+                    (r.gap - u).abs() < 1e-6 * u,
+                    "{label} step {k}: u {} vs {u}",
+                    r.gap
+                );
+                if r.candidate.area > 0.0 {
+                    assert!(
+                        (r.beta - beta).abs() < 1e-6,
+                        "{label} step {k}: β {}",
+                        r.beta
+                    );
+                }
+            }
+        }
+        assert!(damaged, "{label}: the load must reach the damage range");
+        assert!(rccm(c, w).has_adhesion());
+    }
+}
