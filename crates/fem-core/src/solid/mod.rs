@@ -16,7 +16,9 @@ pub mod mesh;
 mod model;
 mod modes;
 pub mod quadrature;
+pub mod revolve;
 
 pub use element::{SolidElement, Stress3, Tet4, Tet10};
 pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES, triangle_shape};
 pub use model::{SolidModel, StressField3, StressPoint3, geostatic_3d};
+pub use revolve::{Revolved, revolve};

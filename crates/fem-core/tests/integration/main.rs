@@ -12,6 +12,7 @@ mod fuzz_corpus;
 mod hostile_input;
 mod mesh_io;
 mod patch;
+mod revolve;
 mod solid;
 mod solid_io;
 mod structure_paths;
