@@ -21,6 +21,7 @@ mod floating_two_bodies;
 mod fuzz_corpus;
 mod hertz;
 mod hertz_force;
+mod hertz_revolved;
 mod invalid_input;
 mod local_algorithms;
 mod matrix_free;

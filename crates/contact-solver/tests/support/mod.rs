@@ -4,6 +4,8 @@
 #[cfg(feature = "fe")]
 pub mod cylinders;
 #[cfg(feature = "fe")]
+pub mod hertz_revolved;
+#[cfg(feature = "fe")]
 pub mod hertz_scene;
 #[cfg(feature = "fe")]
 pub mod stress_cases;
