@@ -114,6 +114,46 @@ impl PrescribedCoupling {
         &self.entries
     }
 
+    /// The support reactions `R = K u − f` at the prescribed dofs of `dofs`, from the nodal
+    /// `displacements`, the reference load and the initial-stress forces (per node component,
+    /// `D` per node) at `load_factor`: `((node, component), reaction)`.
+    pub(crate) fn reactions<const D: usize>(
+        &self,
+        dofs: &crate::dirichlet::DofMap<D>,
+        displacements: &[[f64; D]],
+        load: &[f64],
+        initial_force: &[f64],
+        load_factor: f64,
+    ) -> Vec<((usize, crate::dirichlet::Component), f64)> {
+        let prescribed = dofs.prescribed();
+        let mut r: Vec<f64> = prescribed
+            .iter()
+            .map(|&(n, c)| {
+                let g = D * n + c as usize;
+                -(load_factor * load[g] + initial_force[g])
+            })
+            .collect();
+        let mut free_value = vec![0.0; dofs.free_count()];
+        for (n, u) in displacements.iter().enumerate() {
+            for (c, d) in dofs.free_dofs(n).into_iter().enumerate() {
+                if let Some(i) = d {
+                    free_value[i] = u[c];
+                }
+            }
+        }
+        for &(p, dof, k) in &self.entries {
+            let u = match dof {
+                Dof::Free(i) => free_value[i],
+                Dof::Prescribed(q) => {
+                    let (n, c) = prescribed[q];
+                    displacements[n][c as usize]
+                }
+            };
+            r[p] += k * u;
+        }
+        prescribed.iter().copied().zip(r).collect()
+    }
+
     /// `rhs −= K_fp ū` for the prescribed values `ū`.
     pub(crate) fn subtract_into(&self, prescribed: &[f64], rhs: &mut [f64]) {
         for &(p, dof, k) in &self.entries {

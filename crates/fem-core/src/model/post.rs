@@ -2,7 +2,6 @@
 //! stresses and support reactions.
 
 use super::{LinearElasticModel, Reaction, StressPoint, element_of};
-use crate::dirichlet::Dof;
 use crate::element::Stress;
 use crate::error::FemError;
 use crate::idealization::Idealization;
@@ -144,32 +143,12 @@ impl LinearElasticModel {
                 got: displacements.len(),
             });
         }
-        let prescribed = self.dofs.prescribed();
-        let mut r: Vec<f64> = prescribed
-            .iter()
-            .map(|&(n, c)| {
-                let g = 2 * n + c as usize;
-                -(load_factor * self.load[g] + self.initial_force[g])
-            })
-            .collect();
-        let mut free_value = vec![0.0; self.dofs.free_count()];
-        for (n, u) in displacements.iter().enumerate() {
-            for (c, d) in self.dofs.free_dofs(n).into_iter().enumerate() {
-                if let Some(i) = d {
-                    free_value[i] = u[c];
-                }
-            }
-        }
-        for &(p, dof, k) in self.coupling.entries() {
-            let u = match dof {
-                Dof::Free(i) => free_value[i],
-                Dof::Prescribed(q) => {
-                    let (n, c) = prescribed[q];
-                    displacements[n][c as usize]
-                }
-            };
-            r[p] += k * u;
-        }
-        Ok(prescribed.iter().copied().zip(r).collect())
+        Ok(self.coupling.reactions(
+            &self.dofs,
+            displacements,
+            &self.load,
+            &self.initial_force,
+            load_factor,
+        ))
     }
 }

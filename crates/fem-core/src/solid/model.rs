@@ -447,6 +447,33 @@ impl SolidModel {
             .expand(u_free, &self.dofs.prescribed_values(&self.supports))
     }
 
+    /// Support reactions `R = K u − f` at every prescribed dof, for the displacements
+    /// `displacements` (from [`SolidModel::solve`] or a contact simulation) at `load_factor`:
+    /// `((node, component), reaction)`.
+    ///
+    /// # Errors
+    /// [`FemError::LengthMismatch`] if `displacements` does not have one entry per node.
+    pub fn reactions(
+        &self,
+        displacements: &[[f64; 3]],
+        load_factor: f64,
+    ) -> Result<Vec<crate::Reaction>, FemError> {
+        if displacements.len() != self.mesh.node_count() {
+            return Err(FemError::LengthMismatch {
+                what: "nodal displacements",
+                expected: self.mesh.node_count(),
+                got: displacements.len(),
+            });
+        }
+        Ok(self.coupling.reactions(
+            &self.dofs,
+            displacements,
+            &self.load,
+            &self.initial_force,
+            load_factor,
+        ))
+    }
+
     /// Solves the free response at `load_factor` and returns the nodal displacements.
     ///
     /// # Errors

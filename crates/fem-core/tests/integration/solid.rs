@@ -504,3 +504,43 @@ fn solid_model_captures_errors() {
     assert_eq!(st.node_position(7), mesh.nodes()[7]);
     assert_eq!(st.node_dofs(0), [None, None, None]);
 }
+
+/// The support reactions balance the loads: a P2 block under self-weight, held at its base,
+/// pulled up by a face traction on its top. `Σ R_z = γ V − t A` to round-off (global
+/// equilibrium of the assembled system), and the reactions are zero along free directions.
+#[test]
+fn solid_reactions_balance_the_loads() {
+    let (gamma, t) = (20.0, 3.0);
+    let mesh = box_mesh(
+        &lines(0.0, 2.0, 2),
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.5, 3),
+        SolidKind::Tet10,
+    )
+    .unwrap();
+    let mut s = Supports::new();
+    for c in [Component::X, Component::Y, Component::Z] {
+        s.fix(mesh.node_set("z0").unwrap(), c);
+    }
+    let mut model =
+        SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.25, gamma).unwrap())], s).unwrap();
+    model.add_self_weight().unwrap();
+    model.add_face_traction("z1", |_, _| [0.0, 0.0, t]).unwrap();
+    let u = model.solve(1.0).unwrap();
+    let reactions = model.reactions(&u, 1.0).unwrap();
+    let sum = |c: Component| -> f64 {
+        reactions
+            .iter()
+            .filter(|((_, k), _)| *k == c)
+            .map(|(_, r)| r)
+            .sum()
+    };
+    let (weight, pull) = (gamma * 2.0 * 1.0 * 1.5, t * 2.0);
+    assert!(
+        (sum(Component::Z) - (weight - pull)).abs() < 1e-9 * weight,
+        "{}",
+        sum(Component::Z)
+    );
+    assert!(sum(Component::X).abs() < 1e-9 * weight && sum(Component::Y).abs() < 1e-9 * weight);
+    assert!(model.reactions(&u[1..], 1.0).is_err());
+}
