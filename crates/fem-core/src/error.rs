@@ -198,6 +198,12 @@ pub enum FemError {
         /// First element of that region.
         element: usize,
     },
+    /// A region id that no element of the mesh has.
+    #[error("no element of the mesh is in region {region}")]
+    UnknownRegion {
+        /// Region id.
+        region: u32,
+    },
     /// A tie ([`Supports::tie`](crate::Supports::tie)) that cannot be built.
     #[error("tie along {component}{}: {reason}", .node.map_or(String::new(), |n| format!(" at node {n}")))]
     InvalidTie {

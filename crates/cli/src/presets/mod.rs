@@ -11,5 +11,6 @@ pub mod seed;
 
 pub use pile::{
     BetaCoupling, Installation, PulloutRun, PulloutScene, PulloutSpec, PulloutStep, ShaftPoint,
+    SolidPulloutScene, SolidPulloutStep,
 };
 pub use seed::{DelaminationSpec, Scene, ShearSpec};

@@ -9,4 +9,5 @@ mod delamination;
 mod fuzz_corpus;
 mod local_algorithms_scenes;
 mod pile;
+mod pile_3d;
 mod seed_studies;

@@ -392,6 +392,41 @@ impl SolidModel {
         Ok(())
     }
 
+    /// Sets one initial stress field per region (replacing any previous one); elements of
+    /// regions not listed start unstressed. For fields that jump across a curved interface
+    /// between regions (a pile in soil), where a position test would misclassify the
+    /// quadrature points of curved P2 elements near the interface.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownRegion`] for a region no element has; as
+    /// [`SolidModel::set_initial_stress`].
+    pub fn set_initial_stress_by_region(
+        &mut self,
+        fields: &[(u32, StressField3)],
+    ) -> Result<(), FemError> {
+        for (region, _) in fields {
+            if !self.mesh.regions().contains(region) {
+                return Err(FemError::UnknownRegion { region: *region });
+            }
+        }
+        let regions = self.mesh.regions();
+        let force = self.element_forces(|element, e, coords, f_e| {
+            match fields.iter().find(|(r, _)| *r == regions[e]) {
+                Some((_, sigma_0)) => element.initial_stress_force_into(e, coords, &**sigma_0, f_e),
+                None => Ok(()),
+            }
+        })?;
+        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
+            return Err(FemError::InvalidParameter {
+                name: "initial stress",
+                value,
+                expected: "a finite stress field",
+            });
+        }
+        self.initial_force = force;
+        Ok(())
+    }
+
     /// Removes every reference load (nodal forces, tractions, body forces).
     pub fn clear_loads(&mut self) {
         self.load.fill(0.0);

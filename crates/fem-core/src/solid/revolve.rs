@@ -3,10 +3,12 @@
 //! the same meridian grid (Hertz, the pile), node by node.
 //!
 //! Each triangle swept through one angular sector is a prism, split into three tetrahedra by
-//! the global order of the triangle's corners (corners `a < b < c` by index, `'` the next
-//! layer): `(a, b, c, a')`, `(b, c, a', b')`, `(c, a', b', c')`. The diagonal of each quad face
-//! then depends only on its edge's two corners, so neighbouring prisms share it and the mesh is
-//! conforming. A corner on the axis (`r = 0`) is one node for every layer: the tetrahedra that
+//! a global order of the triangle's corners (corners `a < b < c`, `'` the next layer):
+//! `(a, b, c, a')`, `(b, c, a', b')`, `(c, a', b', c')`. The diagonal of each quad face then
+//! depends only on its edge's two corners, so neighbouring prisms share it and the mesh is
+//! conforming. The order is by position (`z`, then `r`, then the index): two bodies whose
+//! meridian meshes have coincident nodes on an interface (node pairs) get the same diagonals
+//! there, so their interface faces match node for node. A corner on the axis (`r = 0`) is one node for every layer: the tetrahedra that
 //! collapse are dropped (the prism becomes a pyramid of two tetrahedra, or one tetrahedron).
 //!
 //! P2: the corners are revolved, and every mid-edge node is placed at the cylindrical midpoint
@@ -102,7 +104,7 @@ pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemE
     let mut source = Vec::new();
     for e in 0..mesh.element_count() {
         let mut c = [mesh.element(e)[0], mesh.element(e)[1], mesh.element(e)[2]];
-        c.sort_unstable();
+        c.sort_unstable_by(|&p, &q| order(nodes2, p, q));
         let [a, b, cc] = c;
         for k in 0..sectors {
             let (l, u) = (k, k + 1);
@@ -140,7 +142,11 @@ pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemE
         let mut faces = Vec::new();
         for side in mesh.edge_set(name)? {
             let s: Vec<usize> = mesh.side_nodes(*side).collect();
-            let (i, j) = (s[0].min(s[1]), s[0].max(s[1]));
+            let (i, j) = if order(nodes2, s[0], s[1]).is_lt() {
+                (s[0], s[1])
+            } else {
+                (s[1], s[0])
+            };
             for k in 0..sectors {
                 // the quad (i, j, j', i') split along j – i'
                 for tri in [
@@ -273,7 +279,11 @@ fn node_layers(
             if !layers[m].is_empty() {
                 continue;
             }
-            let (i, j) = (a.min(b), a.max(b));
+            let (i, j) = if order(mesh.nodes(), a, b).is_lt() {
+                (a, b)
+            } else {
+                (b, a)
+            };
             for k in 0..sectors {
                 layers[m].extend(edge(at[i][k], at[j][k]));
                 layers[m].extend(edge(at[j][k], at[i][k + 1]));
@@ -282,6 +292,14 @@ fn node_layers(
         }
     }
     layers
+}
+
+/// The corner order of the prism split: by `z`, then `r`, then index.
+fn order(nodes: &[[f64; 2]], p: usize, q: usize) -> std::cmp::Ordering {
+    let (a, b) = (nodes[p], nodes[q]);
+    a[1].total_cmp(&b[1])
+        .then(a[0].total_cmp(&b[0]))
+        .then(p.cmp(&q))
 }
 
 /// The midpoint in cylindrical coordinates (mean `r`, `θ`, `z`); an end on the axis takes the

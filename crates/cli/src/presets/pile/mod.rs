@@ -94,9 +94,11 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 mod scene;
+mod solid;
 
 use scene::Phase;
 pub use scene::{PulloutRun, PulloutScene, PulloutStep, ShaftPoint};
+pub use solid::{SolidPulloutScene, SolidPulloutStep};
 
 /// How the installation (phase 2) is modelled: the imposed radial displacement `δ` of the soil's
 /// interface nodes, uniform along the shaft (seed §6.3, third method).

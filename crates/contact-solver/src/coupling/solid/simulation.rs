@@ -364,7 +364,10 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         self.w.clear();
         self.w.resize(m * m, 0.0);
         let solved: Vec<usize> = (0..m)
-            .filter(|&j| j % 3 == 0 || self.tangent_needed(active[j / 3]))
+            .filter(|&j| {
+                let i = active[j / 3];
+                j % 3 == 0 || (self.tangent_needed(i) && !self.h_rows[3 * i + j % 3].is_empty())
+            })
             .collect();
         let rows: Vec<usize> = active
             .iter()
@@ -379,10 +382,13 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             &mut self.w,
         )?;
         symmetrize(&mut self.w, m);
+        // a tangential direction the contact cannot move along (frictionless, or held on both
+        // sides, e.g. across a symmetry plane) is decoupled: its row of `F*` is zero, and the
+        // normal's flexibility on its diagonal keeps the problem definite with `r_t = 0` there
         for (k, &i) in active.iter().enumerate() {
-            if !self.tangent_needed(i) {
-                let wnn = self.w[3 * k * m + 3 * k];
-                for d in 1..3 {
+            let wnn = self.w[3 * k * m + 3 * k];
+            for d in 1..3 {
+                if !self.tangent_needed(i) || self.h_rows[3 * i + d].is_empty() {
                     self.w[(3 * k + d) * m + 3 * k + d] = wnn;
                 }
             }

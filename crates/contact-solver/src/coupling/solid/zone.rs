@@ -162,7 +162,9 @@ impl Candidate3 {
     }
 
     /// The entries `(dof, coefficient)` of this candidate's `H` row along `dir`, on the
-    /// structure's free dofs: `dir·u_contactor − Σ w_k dir·u_target,k`.
+    /// structure's free dofs: `dir·u_contactor − Σ w_k dir·u_target,k`. Coefficients below
+    /// `1e-14` are round-off (a unit direction's component `cos 90°`, a shape value at a
+    /// vertex) and dropped, so a direction held on both sides has an empty row.
     pub(crate) fn h_row<S: Structure<3> + ?Sized>(
         &self,
         s: &S,
@@ -173,7 +175,7 @@ impl Candidate3 {
             for (c, d) in s.node_dofs(node).into_iter().enumerate() {
                 if let Some(i) = d {
                     let a = w * dir[c];
-                    if a != 0.0 {
+                    if a.abs() > 1e-14 {
                         out.push((i, a));
                     }
                 }
