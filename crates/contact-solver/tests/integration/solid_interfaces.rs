@@ -388,3 +388,105 @@ fn glued_block_pulled_off_follows_rccm() {
         assert!(rccm(c, w).has_adhesion());
     }
 }
+
+#[test]
+fn interface_zones_refuse_bad_input() {
+    use contact_solver::SolverError;
+    let mesh = two_blocks(SolidKind::Tet4, 1, 1);
+    let m = Material::new(100.0, 0.3, 0.0).unwrap();
+    let model = || {
+        SolidModel::new(
+            mesh.clone(),
+            &[(0, m), (1, m)],
+            supports(&mesh, &[(Component::Z, 0.0)]),
+        )
+        .unwrap()
+    };
+    let nodes = mesh.node_set("b.z0").unwrap().to_vec();
+    let targets = matching(&mesh, &nodes, mesh.node_set("a.z1").unwrap());
+    let run = |zone: ContactZone3<Signorini>| {
+        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).err()
+    };
+    let geometry = |e: Option<SolverError>, what: &str| {
+        assert!(
+            matches!(&e, Some(SolverError::InvalidGeometry(m)) if m.contains(what)),
+            "{what}: {e:?}"
+        );
+    };
+    let up = PairNormals3::Fixed([0.0, 0.0, 1.0]);
+    // pair lists of different lengths, an unknown target, a zero normal, normals per pair
+    // of the wrong length, a node paired with itself
+    geometry(
+        run(ContactZone3::node_pairs(
+            "p",
+            nodes.clone(),
+            targets[1..].to_vec(),
+            up.clone(),
+            Signorini,
+            0.1,
+        )),
+        "target nodes",
+    );
+    let mut far = targets.clone();
+    far[0] = 10_000;
+    geometry(
+        run(ContactZone3::node_pairs(
+            "p",
+            nodes.clone(),
+            far,
+            up.clone(),
+            Signorini,
+            0.1,
+        )),
+        "10000",
+    );
+    geometry(
+        run(ContactZone3::node_pairs(
+            "p",
+            nodes.clone(),
+            targets.clone(),
+            PairNormals3::Fixed([0.0; 3]),
+            Signorini,
+            0.1,
+        )),
+        "unit normal",
+    );
+    geometry(
+        run(ContactZone3::node_pairs(
+            "p",
+            nodes.clone(),
+            targets.clone(),
+            PairNormals3::PerPair(vec![[0.0, 0.0, 1.0]]),
+            Signorini,
+            0.1,
+        )),
+        "normals",
+    );
+    geometry(
+        run(ContactZone3::node_pairs(
+            "p",
+            nodes.clone(),
+            nodes.clone(),
+            up,
+            Signorini,
+            0.1,
+        )),
+        "cannot move",
+    );
+    // surfaces: a wrong face size, a repeated node, an unknown node, an unknown face set
+    assert!(TriSurface::new(4, vec![0, 1, 2, 3]).is_err());
+    assert!(TriSurface::new(3, vec![0, 1]).is_err());
+    assert!(TriSurface::new(3, vec![0, 1, 1]).is_err());
+    assert!(TriSurface::from_face_set(&mesh, "nope").is_err());
+    let bad = TriSurface::new(3, vec![0, 1, 99_999]).unwrap();
+    geometry(
+        run(ContactZone3::node_to_face(
+            "f",
+            nodes.clone(),
+            bad,
+            Signorini,
+            0.1,
+        )),
+        "99999",
+    );
+}

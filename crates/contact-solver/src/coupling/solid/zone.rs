@@ -185,7 +185,17 @@ impl Candidate3 {
         for &(node, w) in self.targets.iter().flatten() {
             push(node, -w);
         }
-        out
+        // one entry per dof (a node on both sides cancels)
+        out.sort_unstable_by_key(|e| e.0);
+        let mut merged: Vec<(usize, f64)> = Vec::with_capacity(out.len());
+        for (dof, a) in out {
+            match merged.last_mut() {
+                Some(last) if last.0 == dof => last.1 += a,
+                _ => merged.push((dof, a)),
+            }
+        }
+        merged.retain(|e| e.1.abs() > 1e-14);
+        merged
     }
 
     /// The relative displacement `u_rel` from a nodal displacement lookup.
