@@ -105,8 +105,12 @@ pub enum ComponentSpec {
     X,
     /// `u_y` (or `u_z`).
     Y,
-    /// Both.
+    /// Both `x` and `y` (2D).
     Both,
+    /// `u_z` (3D).
+    Z,
+    /// `x`, `y` and `z` (3D).
+    All,
 }
 
 /// A support: prescribed displacement on a node set.

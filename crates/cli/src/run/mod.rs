@@ -12,9 +12,11 @@ mod errors;
 mod plots;
 mod progress;
 mod recorder;
+mod solid;
 mod summary;
 mod vtk;
 
+pub use solid::{SolidSummary, run_solid};
 pub use summary::{Peak, Summary};
 
 use crate::build::{Body, Phase, Study};

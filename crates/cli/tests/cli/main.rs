@@ -10,3 +10,4 @@ mod fuzz_corpus;
 mod local_algorithms_scenes;
 mod pile;
 mod seed_studies;
+mod solid;
