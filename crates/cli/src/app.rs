@@ -103,7 +103,8 @@ Examples:
   bipo new block                 -> block.toml
   bipo new hertz -o my_hertz.toml   (also writes hertz_cylinder.msh beside it)
   bipo new delamination
-  bipo new pile                  -> pile.toml (seed ch. 6, Plancoët)")]
+  bipo new pile                  -> pile.toml (seed ch. 6, Plancoët)
+  bipo new sphere_3d             -> sphere_3d.toml (3D: a rigid sphere on a block)")]
     New {
         /// What to start from.
         #[arg(value_enum)]

@@ -172,3 +172,53 @@ pub enum MeshSpec3 {
         element: Option<Element>,
     },
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Deserialize)]
+    struct T {
+        c: Option<Coords>,
+        v: Option<LoadValue>,
+    }
+
+    fn parse(s: &str) -> Result<T, String> {
+        toml::from_str(s).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn coords_take_two_or_three_numbers_works() {
+        assert_eq!(parse("c = [1, 2]").unwrap().c, Some(Coords(vec![1.0, 2.0])));
+        assert_eq!(
+            parse("c = [1.0, 2.0, 3.5]").unwrap().c,
+            Some(Coords(vec![1.0, 2.0, 3.5]))
+        );
+    }
+
+    #[test]
+    fn coords_rejects_other_lengths() {
+        let e = parse("c = [1.0]").unwrap_err();
+        assert!(e.contains("invalid length 1"), "{e}");
+        let e = parse("c = [1.0, 2.0, 3.0, 4.0]").unwrap_err();
+        assert!(e.contains("three [x, y, z]"), "{e}");
+    }
+
+    #[test]
+    fn load_values_are_numbers_or_vectors_works() {
+        assert_eq!(parse("v = 2").unwrap().v, Some(LoadValue::Scalar(2.0)));
+        assert_eq!(parse("v = -1.5").unwrap().v, Some(LoadValue::Scalar(-1.5)));
+        assert_eq!(
+            parse("v = [0, 0, -1]").unwrap().v,
+            Some(LoadValue::Vector(Coords(vec![0.0, 0.0, -1.0])))
+        );
+    }
+
+    #[test]
+    fn load_values_rejects_text_and_bad_lengths() {
+        let e = parse("v = \"up\"").unwrap_err();
+        assert!(e.contains("a number (a pressure) or a vector"), "{e}");
+        let e = parse("v = [1.0]").unwrap_err();
+        assert!(e.contains("invalid length 1"), "{e}");
+    }
+}

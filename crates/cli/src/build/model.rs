@@ -585,3 +585,36 @@ pub(super) fn regions(
     }
     Ok(materials)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn components_by_dimension_works() {
+        let p = KeyPath::root().key("supports").index(0).key("component");
+        assert_eq!(
+            components(&p, ComponentSpec::Both, 2).unwrap(),
+            [Component::X, Component::Y]
+        );
+        assert_eq!(
+            components(&p, ComponentSpec::All, 3).unwrap(),
+            [Component::X, Component::Y, Component::Z]
+        );
+        assert_eq!(components(&p, ComponentSpec::Z, 3).unwrap(), [Component::Z]);
+        assert_eq!(components(&p, ComponentSpec::X, 3).unwrap(), [Component::X]);
+    }
+
+    #[test]
+    fn components_rejects_the_other_dimension() {
+        let p = KeyPath::root().key("supports").index(0).key("component");
+        for (c, dim) in [
+            (ComponentSpec::Both, 3),
+            (ComponentSpec::Z, 2),
+            (ComponentSpec::All, 2),
+        ] {
+            let e = components(&p, c, dim).unwrap_err();
+            assert_eq!(e.path.as_ref().unwrap(), &p, "{c:?} in {dim}D");
+        }
+    }
+}

@@ -166,3 +166,72 @@ impl RawLoad {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn target(s: &str) -> RawTarget {
+        toml::from_str(s).unwrap()
+    }
+
+    #[test]
+    fn triple_rejects_two_numbers() {
+        let p = KeyPath::root().key("v");
+        assert_eq!(
+            triple(&p, &Coords(vec![1.0, 2.0, 3.0])).unwrap(),
+            [1.0, 2.0, 3.0]
+        );
+        let e = triple(&p, &Coords(vec![1.0, 2.0])).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "v");
+        assert!(
+            e.message.contains("expected three numbers"),
+            "{}",
+            e.message
+        );
+    }
+
+    #[test]
+    fn targets_resolve_in_3d_works() {
+        let p = KeyPath::root().key("target");
+        let t = target("type = \"sphere\"\ncenter = [0, 0, 1]\nradius = 2.0");
+        match t.resolve_3d(&p).unwrap() {
+            TargetSpec3::Sphere { radius, side, .. } => {
+                assert_eq!(radius, 2.0);
+                assert!(matches!(side, ArcSideSpec::Outside));
+            }
+            other => panic!("{other:?}"),
+        }
+        let t = target(
+            "type = \"cylinder\"\npoint = [0, 0, 1]\naxis = [1, 0, 0]\nradius = 1.0\nside = \"inside\"",
+        );
+        assert!(matches!(
+            t.resolve_3d(&p).unwrap(),
+            TargetSpec3::Cylinder {
+                side: ArcSideSpec::Inside,
+                ..
+            }
+        ));
+    }
+
+    #[test]
+    fn targets_rejects_the_other_dimension() {
+        let p = KeyPath::root().key("target");
+        let e = target("type = \"line\"\na = [0, 0]\nb = [1, 0]")
+            .resolve_3d(&p)
+            .unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "target.type");
+        let e = target("type = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]")
+            .resolve(&p)
+            .unwrap_err();
+        assert!(
+            e.message.contains("is a target of a 3D scene"),
+            "{}",
+            e.message
+        );
+        let e = target("type = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nradius = 1.0")
+            .resolve_3d(&p)
+            .unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "target.radius");
+    }
+}

@@ -309,3 +309,39 @@ fn check_candidates(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn direction_rejects_zero_and_overflow() {
+        let p = KeyPath::root().key("normal");
+        assert_eq!(
+            direction(&p, &Coords(vec![0.0, 0.0, 2.0])).unwrap(),
+            [0.0, 0.0, 2.0]
+        );
+        for v in [[0.0; 3], [1e200, 1e200, 0.0]] {
+            let e = direction(&p, &Coords(v.to_vec())).unwrap_err();
+            assert!(e.message.contains("expected a direction"), "{}", e.message);
+        }
+        let e = direction(&p, &Coords(vec![f64::NAN, 0.0, 1.0])).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "normal[0]");
+    }
+
+    #[test]
+    fn settings_3d_rejects_2d_only_keys() {
+        let s = SolverSpec {
+            dense_limit: Some(10),
+            ..SolverSpec::default()
+        };
+        let e = settings_3d(&s).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
+        let s = SolverSpec {
+            max_detection_passes: Some(7),
+            flexibility: Some(FlexibilitySpec::Dense),
+            ..SolverSpec::default()
+        };
+        assert_eq!(settings_3d(&s).unwrap().max_passes, 7);
+    }
+}
