@@ -13,6 +13,8 @@
 //!   by a traction, a suction (negative pressure) and a body force, one phase each, Coulomb
 //!   friction: the contact force of a bar, `q A − g E A / H` and `(b H² / 2E − g) E A / H`,
 //!   exact in P2.
+//! - A resultant (tests/solid/tied.toml): the same block, its top tied along z and pulled by one
+//!   force F = 1: `F − g E A / H` = 0.8.
 //! - A cylinder (tests/solid/patch_cylinder.toml): the patch on a cylinder of radius 1e6.
 //! - Hostile 3D inputs: tests/broken/solid_*.toml (tests/cli/broken.rs).
 //!
@@ -191,6 +193,16 @@ fn solid_loads_reach_the_contact_works() {
     }
     // no VTK asked (vtk = false, mesh_vtk = false)
     assert!(!out.join("mesh.pvd").exists());
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn solid_resultant_on_a_tied_set_works() {
+    let out = tmp("tied");
+    run(&dir("tests/solid/tied.toml"), &out);
+    let steps = csv(&out.join("steps.csv"));
+    // a bar under one force on a rigid cap: exact up to the solver tolerance 1e-12
+    assert_close(num(&steps[0], "force_n"), 0.8, 1e-8);
     let _ = std::fs::remove_dir_all(&out);
 }
 
