@@ -25,7 +25,7 @@ pub struct Scene {
     pub preset: Option<RawPreset>,
     /// The mesh.
     pub mesh: Option<RawMesh>,
-    /// The 2D idealisation.
+    /// The 2D idealisation, or `type = "3d"` for a solid of tetrahedra.
     pub analysis: Option<RawAnalysis>,
     /// Materials per region.
     #[serde(default)]

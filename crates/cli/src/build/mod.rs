@@ -10,7 +10,8 @@
 //!    the alert distance, contactor nodes of the plots) are made there, still with key paths.
 //!
 //! [`checks`] holds the value checks and error conversions, [`phases`] the time functions and
-//! phases, [`study`] what a build gives.
+//! phases, [`study`] what a build gives. A 3D scene (`[analysis] type = "3d"`) takes the same
+//! two passes in [`solid`], which reuses the checks that do not depend on the dimension.
 
 mod checks;
 mod contact;

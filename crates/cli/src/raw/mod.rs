@@ -7,7 +7,8 @@
 //! structs keep the line, the column and the key path of every value.
 //!
 //! [`keys`] holds the two checks of keys; `[mesh]` and `[preset]`, the two largest tables, have
-//! a file each.
+//! a file each; [`solid`] resolves `[[loads]]` and `target` of a 3D scene (the typed values of
+//! [`crate::spec3`]; `[mesh]`'s 3D form is in [`mesh`]).
 
 mod keys;
 mod mesh;
