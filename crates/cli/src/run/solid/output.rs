@@ -56,6 +56,15 @@ pub(super) struct SolidRecorder {
     pub(super) files: Vec<String>,
 }
 
+/// A text field of a CSV row, quoted when it holds a comma, a quote or a line break (RFC 4180).
+fn field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
 fn line(w: &mut BufWriter<File>, dir: &Path, name: &str, text: &str) -> CliResult<()> {
     writeln!(w, "{text}").map_err(|e| io(&dir.join(name), e))
 }
@@ -73,7 +82,7 @@ impl SolidRecorder {
                  wall_time_s,force_n,force_x,force_y,force_z",
             );
             for z in &study.zone_names {
-                head.push_str(&format!(",force_n:{z}"));
+                head.push_str(&format!(",{}", field(&format!("force_n:{z}"))));
             }
             line(&mut w, dir, "steps.csv", &head)?;
             files.push("steps.csv".to_string());
@@ -156,7 +165,7 @@ impl SolidRecorder {
         if let Some(w) = &mut self.steps {
             let mut text = format!(
                 "{step},{},{t},1,{},{},{},{:e},{:e},{total_n:e},{:e},{:e},{:e}",
-                row.phase,
+                field(row.phase),
                 res.active,
                 res.contact_iterations,
                 res.passes,
@@ -198,7 +207,7 @@ impl SolidRecorder {
                 let f = c.force();
                 let text = format!(
                     "{step},{t},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-                    self.zones[cand.zone].name,
+                    field(&self.zones[cand.zone].name),
                     cand.node,
                     x[0],
                     x[1],
@@ -293,5 +302,17 @@ impl SolidRecorder {
             self.files.push("mesh.pvd".into());
         }
         Ok((self.files, self.zones))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn field_quotes_commas_and_quotes_works() {
+        assert_eq!(field("floor"), "floor");
+        assert_eq!(field("a,b"), "\"a,b\"");
+        assert_eq!(field("say \"hi\""), "\"say \"\"hi\"\"\"");
     }
 }
