@@ -103,7 +103,8 @@ Examples:
   bipo new block                 -> block.toml
   bipo new hertz -o my_hertz.toml   (also writes hertz_cylinder.msh beside it)
   bipo new delamination
-  bipo new pile                  -> pile.toml (seed ch. 6, Plancoët)")]
+  bipo new pile                  -> pile.toml (seed ch. 6, Plancoët)
+  bipo new sphere_3d             -> sphere_3d.toml (3D: a rigid sphere on a block)")]
     New {
         /// What to start from.
         #[arg(value_enum)]
@@ -171,9 +172,13 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let code = match cli.command {
         Command::Run { scene, out, quiet } => with_scene(&scene, |loaded| {
-            let study = build::build(loaded)?;
+            let built = build::build(loaded)?;
+            let dir = match &built {
+                build::Built::Plane(s) => &s.output.dir,
+                build::Built::Solid(s) => &s.output.dir,
+            };
             let out_dir = out
-                .or_else(|| study.output.dir.as_ref().map(PathBuf::from))
+                .or_else(|| dir.as_ref().map(PathBuf::from))
                 .unwrap_or_else(|| {
                     PathBuf::from("out").join(
                         scene
@@ -182,26 +187,37 @@ pub fn main() -> ExitCode {
                             .unwrap_or_else(|| "scene".into()),
                     )
                 });
-            print_header("run", loaded, &study);
-            let summary = run::run(
-                study,
-                &run::RunOptions {
-                    out_dir: out_dir.clone(),
-                    quiet,
-                    scene_file: scene.clone(),
-                },
-            )?;
-            print_summary(&summary, &out_dir);
+            let opts = run::RunOptions {
+                out_dir: out_dir.clone(),
+                quiet,
+                scene_file: scene.clone(),
+            };
+            match built {
+                build::Built::Plane(study) => {
+                    print_header("run", loaded, &study);
+                    let summary = run::run(*study, &opts)?;
+                    print_summary(&summary, &out_dir);
+                }
+                build::Built::Solid(study) => {
+                    print_solid_header("run", loaded, &study);
+                    let summary = run::run_solid(*study, &opts)?;
+                    print_solid_summary(&summary, &out_dir);
+                }
+            }
             Ok(())
         }),
         Command::Check { scene } => with_scene(&scene, |loaded| {
-            let study = build::build(loaded)?;
-            print_header("check", loaded, &study);
-            out::outln!(
-                "ok: the scene is valid ({} steps to run, {} files to write)",
-                study.total_steps(),
-                study.output_files()
-            );
+            let (steps, files) = match build::build(loaded)? {
+                build::Built::Plane(study) => {
+                    print_header("check", loaded, &study);
+                    (study.total_steps(), study.output_files())
+                }
+                build::Built::Solid(study) => {
+                    print_solid_header("check", loaded, &study);
+                    (study.total_steps(), study.output_files())
+                }
+            };
+            out::outln!("ok: the scene is valid ({steps} steps to run, {files} files to write)");
             Ok(())
         }),
         Command::SolveLocal {
@@ -288,10 +304,15 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
         source: source.to_string(),
         scene,
     };
-    let study = build::build(&loaded).map_err(render)?;
-    Ok(CheckedScene {
-        steps: study.total_steps(),
-        files: study.output_files(),
+    Ok(match build::build(&loaded).map_err(render)? {
+        build::Built::Plane(study) => CheckedScene {
+            steps: study.total_steps(),
+            files: study.output_files(),
+        },
+        build::Built::Solid(study) => CheckedScene {
+            steps: study.total_steps(),
+            files: study.output_files(),
+        },
     })
 }
 
@@ -358,6 +379,79 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
             p.t1
         );
     }
+}
+
+fn print_solid_header(cmd: &str, loaded: &build::Loaded, study: &build::SolidStudy) {
+    use fem_core::Structure;
+    let model = study.sim.structure();
+    let mesh = model.mesh();
+    out::outln!(
+        "bipo {cmd}: {} — {} (3D scene)",
+        loaded.path.display(),
+        study.title
+    );
+    out::outln!(
+        "  mesh: {} nodes, {} elements, {}; {} free dofs",
+        mesh.node_count(),
+        mesh.element_count(),
+        build::solid_kind_name(mesh.kind()),
+        model.dof_count()
+    );
+    for (z, zone) in study.sim.zones().iter().enumerate() {
+        let c: Vec<_> = study
+            .sim
+            .candidates()
+            .iter()
+            .filter(|c| c.zone == z)
+            .collect();
+        let within = c.iter().filter(|c| c.gap0 <= zone.alert).count();
+        let min_gap = c.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
+        out::outln!(
+            "  zone `{}` ({}): {} candidates, {within} within the alert distance {} at the start (smallest gap {min_gap:.4e})",
+            zone.name,
+            study.zone_laws[z],
+            c.len(),
+            zone.alert
+        );
+    }
+    for p in &study.phases {
+        out::outln!(
+            "  phase `{}`: {} steps, t {} → {}",
+            p.name,
+            p.steps,
+            p.t0,
+            p.t1
+        );
+    }
+}
+
+fn print_solid_summary(s: &run::SolidSummary, dir: &Path) {
+    out::outln!(
+        "done: {} steps in {:.3} s (t = {}), {} contact iterations, {} active-set passes, {} refactorisations of K",
+        s.steps,
+        s.wall_time_s,
+        s.time,
+        s.contact_iterations,
+        s.passes,
+        s.factorizations
+    );
+    for z in &s.zones {
+        out::outln!(
+            "  zone `{}` ({}, {} candidates): final Σr_n {:.6e} ({} active), force [{:.6e}, {:.6e}, {:.6e}], max Σr_n {}",
+            z.name,
+            z.law,
+            z.candidates,
+            z.final_force_n,
+            z.final_active,
+            z.final_force[0],
+            z.final_force[1],
+            z.final_force[2],
+            z.max_force_n
+                .map(|p| format!("{:.6e} at step {} (t = {})", p.value, p.step, p.time))
+                .unwrap_or_else(|| "-".into())
+        );
+    }
+    out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 
 fn print_summary(s: &run::Summary, dir: &Path) {

@@ -18,4 +18,5 @@ mod raw;
 mod run;
 mod scene;
 mod spec;
+mod spec3;
 mod templates;

@@ -25,7 +25,7 @@ pub struct Scene {
     pub preset: Option<RawPreset>,
     /// The mesh.
     pub mesh: Option<RawMesh>,
-    /// The 2D idealisation.
+    /// The 2D idealisation, or `type = "3d"` for a solid of tetrahedra.
     pub analysis: Option<RawAnalysis>,
     /// Materials per region.
     #[serde(default)]
@@ -105,8 +105,12 @@ pub enum ComponentSpec {
     X,
     /// `u_y` (or `u_z`).
     Y,
-    /// Both.
+    /// Both `x` and `y` (2D).
     Both,
+    /// `u_z` (3D).
+    Z,
+    /// `x`, `y` and `z` (3D).
+    All,
 }
 
 /// A support: prescribed displacement on a node set.

@@ -161,6 +161,8 @@ pub enum Analysis {
     },
     /// Axisymmetric `(r, z)`, per radian.
     Axisymmetric {},
+    /// A 3D solid (tetrahedra).
+    Solid {},
 }
 
 /// Initial stress.

@@ -17,6 +17,9 @@ pub enum Kind {
     Shear,
     /// Seed chapter 6: pull-out of the Plancoët pile (library preset, three phases).
     Pile,
+    /// 3D: a rigid sphere pressed into a P2 block (Hertz, quarter model).
+    #[value(name = "sphere_3d")]
+    Sphere3d,
 }
 
 const BLOCK: &str = include_str!("../../../examples/scenes/block.toml");
@@ -25,6 +28,7 @@ const HERTZ_MSH: &str = include_str!("../../../examples/scenes/hertz_cylinder.ms
 const DELAMINATION: &str = include_str!("../../../examples/scenes/delamination.toml");
 const SHEAR: &str = include_str!("../../../examples/scenes/shear.toml");
 const PILE: &str = include_str!("../../../examples/scenes/pile.toml");
+const SPHERE_3D: &str = include_str!("../../../examples/scenes/sphere_3d.toml");
 
 impl Kind {
     fn name(self) -> &'static str {
@@ -34,6 +38,7 @@ impl Kind {
             Kind::Delamination => "delamination",
             Kind::Shear => "shear",
             Kind::Pile => "pile",
+            Kind::Sphere3d => "sphere_3d",
         }
     }
 
@@ -45,6 +50,7 @@ impl Kind {
             Kind::Delamination => DELAMINATION,
             Kind::Shear => SHEAR,
             Kind::Pile => PILE,
+            Kind::Sphere3d => SPHERE_3D,
         }
     }
 

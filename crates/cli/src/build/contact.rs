@@ -204,7 +204,7 @@ pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams>
 }
 
 /// The law of a zone, checked, and its name for reports.
-fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'static str)> {
+pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'static str)> {
     Ok(match l {
         LawSpec::Signorini {} => (Signorini.into(), "signorini"),
         LawSpec::Coulomb { mu } => (

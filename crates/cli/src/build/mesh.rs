@@ -36,34 +36,38 @@ pub(super) fn validate(
     match spec {
         MeshSpec::Rectangle { .. } => rectangle(mp, spec),
         MeshSpec::Pile { .. } => pile(mp, spec, idealization),
-        MeshSpec::Gmsh { file, element } => {
-            let path = base_dir.join(file);
-            let fp = mp.key("file");
-            let what = if file.trim().is_empty() {
-                Some("expected the name of a Gmsh .msh file")
-            } else if path.is_dir() {
-                Some("is a directory, not a Gmsh .msh file")
-            } else if !path.exists() {
-                Some("no such file")
-            } else {
-                None
-            };
-            if let Some(what) = what {
-                return Err(CliError::at(
-                    &fp,
-                    format!(
-                        "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
-                        path.display()
-                    ),
-                ));
-            }
-            Ok(MeshPlan::Gmsh {
-                file: file.clone(),
-                path,
-                element: *element,
-            })
-        }
+        MeshSpec::Gmsh { file, element } => Ok(MeshPlan::Gmsh {
+            file: file.clone(),
+            path: gmsh_file(mp, file, base_dir)?,
+            element: *element,
+        }),
     }
+}
+
+/// The path of the Gmsh file `file` of `[mesh]` (at `mp`), which must exist (`base_dir` is the
+/// scene file's folder).
+pub(super) fn gmsh_file(mp: &KeyPath, file: &str, base_dir: &Path) -> CliResult<PathBuf> {
+    let path = base_dir.join(file);
+    let fp = mp.key("file");
+    let what = if file.trim().is_empty() {
+        Some("expected the name of a Gmsh .msh file")
+    } else if path.is_dir() {
+        Some("is a directory, not a Gmsh .msh file")
+    } else if !path.exists() {
+        Some("no such file")
+    } else {
+        None
+    };
+    if let Some(what) = what {
+        return Err(CliError::at(
+            &fp,
+            format!(
+                "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
+                path.display()
+            ),
+        ));
+    }
+    Ok(path)
 }
 
 /// The rectangle generator: one layer (`y`, `ny`, …) or `y0` and `layers`.
@@ -187,7 +191,7 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
 }
 
 /// `[a, b]` at `path`: two finite numbers, `a < b`, whose difference does not overflow.
-fn interval(path: &KeyPath, pair: Pair, axis: &str) -> CliResult<[f64; 2]> {
+pub(super) fn interval(path: &KeyPath, pair: Pair, axis: &str) -> CliResult<[f64; 2]> {
     let [a, b] = finite2(path, pair)?;
     if a >= b {
         return Err(CliError::at(

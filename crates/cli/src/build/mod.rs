@@ -10,7 +10,8 @@
 //!    the alert distance, contactor nodes of the plots) are made there, still with key paths.
 //!
 //! [`checks`] holds the value checks and error conversions, [`phases`] the time functions and
-//! phases, [`study`] what a build gives.
+//! phases, [`study`] what a build gives. A 3D scene (`[analysis] type = "3d"`) takes the same
+//! two passes in [`solid`], which reuses the checks that do not depend on the dimension.
 
 mod checks;
 mod contact;
@@ -19,11 +20,13 @@ mod model;
 mod outputs;
 mod phases;
 mod presets;
+mod solid;
 mod study;
 mod validate;
 
 pub use checks::kind_name;
 pub use phases::{Phase, function_value};
+pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
 pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study};
 
 use crate::error::{CliError, CliResult, KeyPath};
@@ -69,12 +72,25 @@ pub fn parse(source: &str) -> CliResult<Scene> {
     })
 }
 
+/// A built scene: 2D (a scene described key by key or a preset) or 3D.
+pub enum Built {
+    /// A 2D study.
+    Plane(Box<Study>),
+    /// A 3D study (`[analysis] type = "3d"`).
+    Solid(Box<SolidStudy>),
+}
+
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
-pub fn build(loaded: &Loaded) -> CliResult<Study> {
-    match validate::validate(&loaded.scene, &loaded.path)? {
-        Validated::Preset(plan) => presets::build(&loaded.scene, *plan),
-        Validated::Custom(plan) => build_custom(loaded, *plan),
+pub fn build(loaded: &Loaded) -> CliResult<Built> {
+    let scene = &loaded.scene;
+    if scene.preset.is_none() && scene.analysis.as_ref().is_some_and(|a| a.is_solid()) {
+        return Ok(Built::Solid(Box::new(solid::build(loaded)?)));
     }
+    let study = match validate::validate(scene, &loaded.path)? {
+        Validated::Preset(plan) => presets::build(scene, *plan)?,
+        Validated::Custom(plan) => build_custom(loaded, *plan)?,
+    };
+    Ok(Built::Plane(Box::new(study)))
 }
 
 /// Builds a scene described key by key from its validated form.

@@ -15,17 +15,17 @@ use std::collections::{BTreeMap, BTreeSet};
 
 /// A material, checked, and the regions it is given to (with their key paths).
 pub(super) struct MaterialPlan {
-    material: Material,
-    regions: Vec<(KeyPath, u32)>,
+    pub(super) material: Material,
+    pub(super) regions: Vec<(KeyPath, u32)>,
     /// `materials[i].young`, where an overflowing stiffness is reported.
-    young: KeyPath,
+    pub(super) young: KeyPath,
 }
 
 /// A support, checked; its node set is looked up in the mesh at build.
 pub(super) struct SupportPlan {
-    path: KeyPath,
-    set: String,
-    rt: SupportRt,
+    pub(super) path: KeyPath,
+    pub(super) set: String,
+    pub(super) rt: SupportRt,
 }
 
 /// What a load is, checked; its set is looked up in the mesh at build.
@@ -40,7 +40,7 @@ enum LoadPlanKind {
 /// A load, checked.
 pub(super) struct LoadPlan {
     path: KeyPath,
-    name: Option<String>,
+    pub(super) name: Option<String>,
     kind: LoadPlanKind,
     function: Option<String>,
     phases: Vec<bool>,
@@ -79,7 +79,7 @@ pub(super) fn check_section(
 /// Two supports of the same component on a common node, in a common phase, must prescribe the
 /// same thing (the same value and function, or both fixed): which one would win is not said,
 /// so a conflict is an error naming both.
-fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> CliResult<()> {
+pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> CliResult<()> {
     let same = |a: &SupportRt, b: &SupportRt| {
         (a.value == 0.0 && b.value == 0.0) || (a.value == b.value && a.function == b.function)
     };
@@ -170,6 +170,7 @@ pub(super) fn validate_supports(
     scene: &Scene,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
+    dim: usize,
 ) -> CliResult<Vec<SupportPlan>> {
     let root = KeyPath::root();
     let mut supports = Vec::new();
@@ -177,11 +178,7 @@ pub(super) fn validate_supports(
         let p = root.key("supports").index(i);
         let value = finite(&p.key("value"), s.value)?;
         check_function(&p.key("function"), &s.function, functions)?;
-        let components = match s.component {
-            ComponentSpec::X => vec![Component::X],
-            ComponentSpec::Y => vec![Component::Y],
-            ComponentSpec::Both => vec![Component::X, Component::Y],
-        };
+        let components = components(&p.key("component"), s.component, dim)?;
         supports.push(SupportPlan {
             path: p.key("set"),
             set: s.set.clone(),
@@ -293,7 +290,7 @@ pub(super) fn validate_loads(
 /// name them.
 pub(super) fn validate_names(
     scene: &Scene,
-    loads: &[LoadPlan],
+    load_names: &[Option<String>],
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
 ) -> CliResult<()> {
@@ -309,8 +306,8 @@ pub(super) fn validate_names(
             ));
         }
     }
-    for l in loads {
-        if let Some(n) = &l.name
+    for name in load_names {
+        if let Some(n) = name
             && !named.insert(n.clone())
         {
             return Err(CliError::at(
@@ -378,25 +375,59 @@ pub(super) struct ModelPlan {
     pub(super) floating: bool,
 }
 
+/// `[[ties]]`: (key path of the set, set, components).
+pub(super) type Ties = Vec<(KeyPath, String, Vec<Component>)>;
+
 /// Checks `[[ties]]` (the sets are looked up in the mesh at build).
-pub(super) fn validate_ties(scene: &Scene) -> Vec<(KeyPath, String, Vec<Component>)> {
+pub(super) fn validate_ties(scene: &Scene, dim: usize) -> CliResult<Ties> {
     scene
         .ties
         .iter()
         .enumerate()
         .map(|(i, t)| {
-            let components = match t.component {
-                ComponentSpec::X => vec![Component::X],
-                ComponentSpec::Y => vec![Component::Y],
-                ComponentSpec::Both => vec![Component::X, Component::Y],
-            };
-            (
-                KeyPath::root().key("ties").index(i).key("set"),
+            let p = KeyPath::root().key("ties").index(i);
+            Ok((
+                p.key("set"),
                 t.set.clone(),
-                components,
-            )
+                components(&p.key("component"), t.component, dim)?,
+            ))
         })
         .collect()
+}
+
+/// The components a support or tie names, in a scene of dimension `dim` (2 or 3).
+pub(super) fn components(
+    path: &KeyPath,
+    c: ComponentSpec,
+    dim: usize,
+) -> CliResult<Vec<Component>> {
+    Ok(match (c, dim) {
+        (ComponentSpec::X, _) => vec![Component::X],
+        (ComponentSpec::Y, _) => vec![Component::Y],
+        (ComponentSpec::Both, 2) => vec![Component::X, Component::Y],
+        (ComponentSpec::Z | ComponentSpec::All, 3) => match c {
+            ComponentSpec::Z => vec![Component::Z],
+            _ => vec![Component::X, Component::Y, Component::Z],
+        },
+        (ComponentSpec::Both, _) => {
+            return Err(CliError::at(
+                path,
+                format!(
+                    "`{path}` = \"both\" is x and y of a 2D scene; a 3D scene takes \"x\", \
+                     \"y\", \"z\" or \"all\""
+                ),
+            ));
+        }
+        (ComponentSpec::Z | ComponentSpec::All, _) => {
+            return Err(CliError::at(
+                path,
+                format!(
+                    "`{path}`: components \"z\" and \"all\" are for a 3D scene ([analysis] \
+                     type = \"3d\"); a 2D scene takes \"x\", \"y\" or \"both\""
+                ),
+            ));
+        }
+    })
 }
 
 /// The materials on the mesh's regions (every region exactly one), the supports' and loads'
@@ -414,7 +445,7 @@ pub(super) fn build(
         .iter()
         .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
         .collect();
-    let materials = regions(&mesh, plan.materials)?;
+    let materials = regions(mesh.regions(), plan.materials)?;
     let mut supports = Vec::new();
     let mut paths = Vec::new();
     for s in plan.supports {
@@ -515,8 +546,11 @@ pub(super) fn build(
 
 /// Each material on its regions: every region must exist in the mesh, have one material only,
 /// and every region of the mesh must have one.
-fn regions(mesh: &Mesh, plans: Vec<MaterialPlan>) -> CliResult<Vec<(u32, Material)>> {
-    let mesh_regions: BTreeSet<u32> = mesh.regions().iter().copied().collect();
+pub(super) fn regions(
+    element_regions: &[u32],
+    plans: Vec<MaterialPlan>,
+) -> CliResult<Vec<(u32, Material)>> {
+    let mesh_regions: BTreeSet<u32> = element_regions.iter().copied().collect();
     let mut materials: Vec<(u32, Material)> = Vec::new();
     for m in plans {
         for (rp, r) in m.regions {
@@ -550,4 +584,37 @@ fn regions(mesh: &Mesh, plans: Vec<MaterialPlan>) -> CliResult<Vec<(u32, Materia
         ));
     }
     Ok(materials)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn components_by_dimension_works() {
+        let p = KeyPath::root().key("supports").index(0).key("component");
+        assert_eq!(
+            components(&p, ComponentSpec::Both, 2).unwrap(),
+            [Component::X, Component::Y]
+        );
+        assert_eq!(
+            components(&p, ComponentSpec::All, 3).unwrap(),
+            [Component::X, Component::Y, Component::Z]
+        );
+        assert_eq!(components(&p, ComponentSpec::Z, 3).unwrap(), [Component::Z]);
+        assert_eq!(components(&p, ComponentSpec::X, 3).unwrap(), [Component::X]);
+    }
+
+    #[test]
+    fn components_rejects_the_other_dimension() {
+        let p = KeyPath::root().key("supports").index(0).key("component");
+        for (c, dim) in [
+            (ComponentSpec::Both, 3),
+            (ComponentSpec::Z, 2),
+            (ComponentSpec::All, 2),
+        ] {
+            let e = components(&p, c, dim).unwrap_err();
+            assert_eq!(e.path.as_ref().unwrap(), &p, "{c:?} in {dim}D");
+        }
+    }
 }

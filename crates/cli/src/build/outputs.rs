@@ -4,7 +4,7 @@
 use super::checks::{at_least, list_names, node_set};
 use super::study::{Body, Study};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::scene::{CurveSpec, Scene};
+use crate::scene::{CurveSpec, OutputSpec, Scene};
 use fem_core::Component;
 use std::collections::BTreeSet;
 
@@ -35,50 +35,14 @@ pub const QUANTITIES: &[(&str, &str)] = &[
 /// Checks `[output]` and the plots of `scene` against `study`, and keeps the plots.
 pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
     let root = KeyPath::root();
-    let op = root.key("output");
-    let o = &study.output;
-    at_least(&op.key("every"), o.every, 1)?;
-    if o.steps.is_some() && o.every != 1 {
-        let p = op.key("every");
-        return Err(CliError::at(
-            &p,
-            format!(
-                "`{p}` = {}: give `output.every` or `output.steps`, not both",
-                o.every
-            ),
-        ));
-    }
-    let total = study.total_steps();
-    if let Some(steps) = &o.steps {
-        for (i, s) in steps.iter().enumerate() {
-            if *s < 1 || *s > total {
-                let p = op.key("steps").index(i);
-                return Err(CliError::at(
-                    &p,
-                    format!("`{p}` = {s}: expected a step in 1..={total}"),
-                ));
-            }
-        }
-    }
-    if let Some(zs) = &o.zones {
-        for (i, z) in zs.iter().enumerate() {
-            zone_index(&op.key("zones").index(i), &study.zone_names, z)?;
-        }
-    }
     let node_count = study.model().mesh().node_count();
-    if let Some(ns) = &o.nodes {
-        for (i, n) in ns.iter().enumerate() {
-            if !study.candidates().iter().any(|c| c.node == *n) {
-                let p = op.key("nodes").index(i);
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}` = {n}: not a contactor node of any zone (the mesh has {node_count} nodes)"
-                    ),
-                ));
-            }
-        }
-    }
+    check_output_table(
+        &study.output,
+        study.total_steps(),
+        &study.zone_names,
+        &|n| study.candidates().iter().any(|c| c.node == n),
+        node_count,
+    )?;
     let mut files = BTreeSet::new();
     for (i, plot) in scene.plots.iter().enumerate() {
         let pp = root.key("plots").index(i);
@@ -113,6 +77,59 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
     }
     study.plots = scene.plots.clone();
     check_file_count(study)
+}
+
+/// Checks `[output]` (`every`, `steps`, `zones`, `nodes`) for a run of `total` steps with
+/// these zones; `is_contactor(n)` says whether node `n` is a contactor of some zone.
+pub(super) fn check_output_table(
+    o: &OutputSpec,
+    total: usize,
+    zone_names: &[String],
+    is_contactor: &dyn Fn(usize) -> bool,
+    node_count: usize,
+) -> CliResult<()> {
+    let op = KeyPath::root().key("output");
+    at_least(&op.key("every"), o.every, 1)?;
+    if o.steps.is_some() && o.every != 1 {
+        let p = op.key("every");
+        return Err(CliError::at(
+            &p,
+            format!(
+                "`{p}` = {}: give `output.every` or `output.steps`, not both",
+                o.every
+            ),
+        ));
+    }
+    if let Some(steps) = &o.steps {
+        for (i, s) in steps.iter().enumerate() {
+            if *s < 1 || *s > total {
+                let p = op.key("steps").index(i);
+                return Err(CliError::at(
+                    &p,
+                    format!("`{p}` = {s}: expected a step in 1..={total}"),
+                ));
+            }
+        }
+    }
+    if let Some(zs) = &o.zones {
+        for (i, z) in zs.iter().enumerate() {
+            zone_index(&op.key("zones").index(i), zone_names, z)?;
+        }
+    }
+    if let Some(ns) = &o.nodes {
+        for (i, n) in ns.iter().enumerate() {
+            if !is_contactor(*n) {
+                let p = op.key("nodes").index(i);
+                return Err(CliError::at(
+                    &p,
+                    format!(
+                        "`{p}` = {n}: not a contactor node of any zone (the mesh has {node_count} nodes)"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The most files a run may write (the VTK series dominate: one `.vtu` per written step).

@@ -159,25 +159,7 @@ impl Study {
     /// step and the last of each phase, or the listed `output.steps`. Counted without
     /// iterating over the steps.
     pub fn written_steps(&self) -> usize {
-        let o = &self.output;
-        if let Some(list) = &o.steps {
-            let total = self.total_steps();
-            let set: std::collections::BTreeSet<_> =
-                list.iter().filter(|s| (1..=total).contains(*s)).collect();
-            return set.len();
-        }
-        let k = o.every.max(1);
-        let mut start = 0usize;
-        let mut n = 0usize;
-        for p in &self.phases {
-            let end = start.saturating_add(p.steps);
-            n = n.saturating_add(end / k - start / k);
-            if !end.is_multiple_of(k) {
-                n = n.saturating_add(1);
-            }
-            start = end;
-        }
-        n
+        written_steps(&self.output, &self.phases)
     }
 
     /// The files a run writes: one `.vtu` per written step and series (interface, mesh),
@@ -195,4 +177,26 @@ impl Study {
             .saturating_mul(series)
             .saturating_add(fixed + plots)
     }
+}
+
+/// The steps whose contacts and VTK files are written (see [`Study::written_steps`]).
+pub fn written_steps(o: &OutputSpec, phases: &[Phase]) -> usize {
+    if let Some(list) = &o.steps {
+        let total: usize = phases.iter().map(|p| p.steps).sum();
+        let set: std::collections::BTreeSet<_> =
+            list.iter().filter(|s| (1..=total).contains(*s)).collect();
+        return set.len();
+    }
+    let k = o.every.max(1);
+    let mut start = 0usize;
+    let mut n = 0usize;
+    for p in phases {
+        let end = start.saturating_add(p.steps);
+        n = n.saturating_add(end / k - start / k);
+        if !end.is_multiple_of(k) {
+            n = n.saturating_add(1);
+        }
+        start = end;
+    }
+    n
 }

@@ -85,17 +85,24 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
             thickness: positive(&root.key("analysis").key("thickness"), thickness)?,
         },
         Analysis::Axisymmetric {} => Idealization::Axisymmetric,
+        Analysis::Solid {} => {
+            return Err(CliError::at(
+                &root.key("analysis"),
+                "a 3D scene is built by the 3D builder (internal routing error)",
+            ));
+        }
     };
     let mesh = mesh::validate(&mp, mesh_spec, idealization, &base_dir)?;
 
     // the model
     let (materials, any_weight) = model::validate_materials(scene)?;
     model::check_section(&materials, idealization)?;
-    let supports = model::validate_supports(scene, &functions, &phases)?;
+    let supports = model::validate_supports(scene, &functions, &phases, 2)?;
     let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
-    model::validate_names(scene, &loads, &functions, &phases)?;
+    let load_names: Vec<Option<String>> = loads.iter().map(|l| l.name.clone()).collect();
+    model::validate_names(scene, &load_names, &functions, &phases)?;
     let initial_stress = model::validate_initial_stress(scene)?;
-    let ties = model::validate_ties(scene);
+    let ties = model::validate_ties(scene, 2)?;
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
 
     // contact (the solver settings with it)

@@ -1,8 +1,9 @@
 //! `[mesh]` as read (one flat table for the three generators) and its gradings.
 
 use super::keys::{need, only};
-use crate::error::{CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::*;
+use crate::spec3::{BoxSpec, MeshSpec3};
 use serde::Deserialize;
 
 /// Grading kinds.
@@ -74,6 +75,8 @@ pub enum Generator {
     Pile,
     /// `gmsh`.
     Gmsh,
+    /// `box` (3D).
+    Box,
 }
 
 /// `[mesh]`.
@@ -92,6 +95,10 @@ pub struct RawMesh {
     region: Option<u32>,
     y0: Option<f64>,
     layers: Option<Vec<RawLayer>>,
+    // box
+    z: Option<Pair>,
+    nz: Option<usize>,
+    grading_z: Option<RawGrading>,
     // pile
     diameter: Option<f64>,
     length: Option<f64>,
@@ -139,11 +146,23 @@ const PILE_KEYS: &[&str] = &[
     "tip_corner",
 ];
 const GMSH_KEYS: &[&str] = &["element", "file"];
+const BOX_KEYS: &[&str] = &[
+    "element",
+    "x",
+    "nx",
+    "grading_x",
+    "y",
+    "ny",
+    "grading_y",
+    "z",
+    "nz",
+    "grading_z",
+];
 
 impl RawMesh {
-    /// The mesh spec.
-    pub fn resolve(&self, p: &KeyPath) -> CliResult<MeshSpec> {
-        let present = [
+    /// The keys present, by name.
+    fn present(&self) -> [(&'static str, bool); 27] {
+        [
             ("element", self.element.is_some()),
             ("x", self.x.is_some()),
             ("nx", self.nx.is_some()),
@@ -168,7 +187,15 @@ impl RawMesh {
             ("grading_below_tip", self.grading_below_tip.is_some()),
             ("tip_corner", self.tip_corner.is_some()),
             ("file", self.file.is_some()),
-        ];
+            ("z", self.z.is_some()),
+            ("nz", self.nz.is_some()),
+            ("grading_z", self.grading_z.is_some()),
+        ]
+    }
+
+    /// The mesh spec of a 2D scene.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<MeshSpec> {
+        let present = self.present();
         Ok(match self.generator {
             Generator::Rectangle => {
                 only(p, "the rectangle generator", &present, RECTANGLE_KEYS)?;
@@ -234,6 +261,70 @@ impl RawMesh {
                     file: need(p, &self.file, "file", "a gmsh mesh")?,
                     element: self.element,
                 }
+            }
+            Generator::Box => {
+                let gp = p.key("generator");
+                return Err(CliError::at(
+                    &gp,
+                    format!(
+                        "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
+                         (a 2D scene takes rectangle, pile or gmsh)"
+                    ),
+                ));
+            }
+        })
+    }
+
+    /// The mesh spec of a 3D scene.
+    pub fn resolve_3d(&self, p: &KeyPath) -> CliResult<MeshSpec3> {
+        let present = self.present();
+        Ok(match self.generator {
+            Generator::Box => {
+                let what = "the box generator";
+                only(p, what, &present, BOX_KEYS)?;
+                let g = |key: &str, v: &Option<RawGrading>| -> CliResult<GradingSpec> {
+                    Ok(grading(&p.key(key), v)?.unwrap_or_default())
+                };
+                MeshSpec3::Box(BoxSpec {
+                    element: need(p, &self.element, "element", what)?,
+                    ranges: [
+                        need(p, &self.x, "x", what)?,
+                        need(p, &self.y, "y", what)?,
+                        need(p, &self.z, "z", what)?,
+                    ],
+                    cells: [
+                        need(p, &self.nx, "nx", what)?,
+                        need(p, &self.ny, "ny", what)?,
+                        need(p, &self.nz, "nz", what)?,
+                    ],
+                    gradings: [
+                        g("grading_x", &self.grading_x)?,
+                        g("grading_y", &self.grading_y)?,
+                        g("grading_z", &self.grading_z)?,
+                    ],
+                })
+            }
+            Generator::Gmsh => {
+                only(p, "a gmsh mesh", &present, GMSH_KEYS)?;
+                MeshSpec3::Gmsh {
+                    file: need(p, &self.file, "file", "a gmsh mesh")?,
+                    element: self.element,
+                }
+            }
+            Generator::Rectangle | Generator::Pile => {
+                let gp = p.key("generator");
+                return Err(CliError::at(
+                    &gp,
+                    format!(
+                        "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
+                         \"3d\") takes generator = \"box\" or \"gmsh\"",
+                        if self.generator == Generator::Pile {
+                            "pile"
+                        } else {
+                            "rectangle"
+                        }
+                    ),
+                ));
             }
         })
     }

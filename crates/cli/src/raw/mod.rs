@@ -7,17 +7,21 @@
 //! structs keep the line, the column and the key path of every value.
 //!
 //! [`keys`] holds the two checks of keys; `[mesh]` and `[preset]`, the two largest tables, have
-//! a file each.
+//! a file each; [`solid`] resolves `[[loads]]` and `target` of a 3D scene (the typed values of
+//! [`crate::spec3`]; `[mesh]`'s 3D form is in [`mesh`]).
 
 mod keys;
 mod mesh;
 mod preset;
+mod solid;
 
 pub use mesh::RawMesh;
 pub use preset::RawPreset;
+pub use solid::triple;
 
-use crate::error::{CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::*;
+use crate::spec3::{Coords, LoadValue};
 use keys::{need, only};
 use serde::Deserialize;
 
@@ -31,6 +35,9 @@ pub enum AnalysisKind {
     PlaneStress,
     /// Axisymmetric.
     Axisymmetric,
+    /// A 3D solid of tetrahedra (`type = "3d"`, or `"solid"`).
+    #[serde(rename = "3d", alias = "solid")]
+    Solid,
 }
 
 /// `[analysis]`.
@@ -44,6 +51,11 @@ pub struct RawAnalysis {
 }
 
 impl RawAnalysis {
+    /// Whether the scene is 3D (`type = "3d"`).
+    pub fn is_solid(&self) -> bool {
+        self.kind == AnalysisKind::Solid
+    }
+
     /// `floating = true`: bodies that contact alone holds (rigid-body modes left by the
     /// supports are solved for with the contact, `LinearElasticModel::floating`).
     pub fn floating(&self) -> bool {
@@ -69,6 +81,20 @@ impl RawAnalysis {
             AnalysisKind::Axisymmetric => {
                 only(p, "an axisymmetric analysis (per radian)", &present, &[])?;
                 Analysis::Axisymmetric {}
+            }
+            AnalysisKind::Solid => {
+                only(p, "a 3D analysis", &present, &[])?;
+                if self.floating == Some(true) {
+                    let f = p.key("floating");
+                    return Err(CliError::at(
+                        &f,
+                        format!(
+                            "`{f}` = true: floating bodies are not supported in 3D yet (hold \
+                             the body with supports)"
+                        ),
+                    ));
+                }
+                Analysis::Solid {}
             }
         })
     }
@@ -125,6 +151,8 @@ pub enum LoadKindSpec {
     Gravity,
     /// A resultant force on a tied node set.
     Resultant,
+    /// A pressure on a face set (3D).
+    Pressure,
 }
 
 /// `[[loads]]`.
@@ -135,13 +163,40 @@ pub struct RawLoad {
     kind: LoadKindSpec,
     name: Option<String>,
     set: Option<String>,
-    value: Option<Pair>,
+    value: Option<LoadValue>,
     function: Option<String>,
     phases: Option<Vec<String>>,
 }
 
+/// Two or three numbers as a 2D scene's `[a, b]`, with the error a 2D scene gives for three.
+fn pair_of(p: &KeyPath, c: &Coords) -> CliResult<Pair> {
+    match c.0[..] {
+        [a, b] => Ok(Pair([a, b])),
+        _ => Err(CliError::at(
+            p,
+            format!(
+                "`{p}`: invalid length {}, expected two numbers [a, b] (three numbers [x, y, z] \
+                 are for a 3D scene: [analysis] type = \"3d\")",
+                c.0.len()
+            ),
+        )),
+    }
+}
+
+/// A 2D load's `value`: a vector `[a, b]`.
+fn load_pair(p: &KeyPath, v: &Option<LoadValue>, what: &str) -> CliResult<Pair> {
+    let vp = p.key("value");
+    match need(p, v, "value", what)? {
+        LoadValue::Vector(c) => pair_of(&vp, &c),
+        LoadValue::Scalar(x) => Err(CliError::at(
+            &vp,
+            format!("`{vp}` = {x:?}: {what} takes two numbers [a, b]"),
+        )),
+    }
+}
+
 impl RawLoad {
-    /// The load.
+    /// The load of a 2D scene.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<LoadSpec> {
         let present = [
             ("set", self.set.is_some()),
@@ -156,21 +211,21 @@ impl RawLoad {
         Ok(match self.kind {
             LoadKindSpec::Traction => LoadSpec::Traction {
                 set: need(p, &self.set, "set", "a traction (an edge set)")?,
-                value: need(p, &self.value, "value", "a traction")?,
+                value: load_pair(p, &self.value, "a traction")?,
                 name,
                 function,
                 phases,
             },
             LoadKindSpec::NodalForce => LoadSpec::NodalForce {
                 set: need(p, &self.set, "set", "a nodal force (a node set)")?,
-                value: need(p, &self.value, "value", "a nodal force")?,
+                value: load_pair(p, &self.value, "a nodal force")?,
                 name,
                 function,
                 phases,
             },
             LoadKindSpec::Resultant => LoadSpec::Resultant {
                 set: need(p, &self.set, "set", "a resultant force (a tied node set)")?,
-                value: need(p, &self.value, "value", "a resultant force")?,
+                value: load_pair(p, &self.value, "a resultant force")?,
                 name,
                 function,
                 phases,
@@ -178,7 +233,7 @@ impl RawLoad {
             LoadKindSpec::BodyForce => {
                 only(p, "a body force", &present, &["value", "function"])?;
                 LoadSpec::BodyForce {
-                    value: need(p, &self.value, "value", "a body force")?,
+                    value: load_pair(p, &self.value, "a body force")?,
                     name,
                     function,
                     phases,
@@ -192,6 +247,16 @@ impl RawLoad {
                     &[],
                 )?;
                 LoadSpec::Gravity { name, phases }
+            }
+            LoadKindSpec::Pressure => {
+                let tp = p.key("type");
+                return Err(CliError::at(
+                    &tp,
+                    format!(
+                        "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
+                         \"3d\"); in 2D give a traction [t_x, t_y] on an edge set"
+                    ),
+                ));
             }
         })
     }
@@ -211,6 +276,27 @@ pub enum TargetKind {
     NodePairs,
     /// Node-to-segment.
     Segments,
+    /// A rigid plane (3D).
+    Plane,
+    /// A rigid sphere (3D).
+    Sphere,
+    /// A rigid cylinder (3D).
+    Cylinder,
+}
+
+impl TargetKind {
+    /// The name in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            TargetKind::Line => "line",
+            TargetKind::Arc => "arc",
+            TargetKind::NodePairs => "node_pairs",
+            TargetKind::Segments => "segments",
+            TargetKind::Plane => "plane",
+            TargetKind::Sphere => "sphere",
+            TargetKind::Cylinder => "cylinder",
+        }
+    }
 }
 
 /// `target = {...}`.
@@ -221,17 +307,19 @@ pub struct RawTarget {
     kind: TargetKind,
     a: Option<Pair>,
     b: Option<Pair>,
-    center: Option<Pair>,
+    center: Option<Coords>,
     radius: Option<f64>,
     start_angle: Option<f64>,
     sweep: Option<f64>,
     side: Option<ArcSideSpec>,
     set: Option<String>,
-    normal: Option<Pair>,
+    normal: Option<Coords>,
+    point: Option<Coords>,
+    axis: Option<Coords>,
 }
 
 impl RawTarget {
-    /// The target.
+    /// The target of a 2D scene.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<TargetSpec> {
         let present = [
             ("a", self.a.is_some()),
@@ -243,6 +331,8 @@ impl RawTarget {
             ("side", self.side.is_some()),
             ("set", self.set.is_some()),
             ("normal", self.normal.is_some()),
+            ("point", self.point.is_some()),
+            ("axis", self.axis.is_some()),
         ];
         Ok(match self.kind {
             TargetKind::Line => {
@@ -261,7 +351,7 @@ impl RawTarget {
                     &["center", "radius", "start_angle", "sweep", "side"],
                 )?;
                 TargetSpec::Arc {
-                    center: need(p, &self.center, "center", what)?,
+                    center: pair_of(&p.key("center"), &need(p, &self.center, "center", what)?)?,
                     radius: need(p, &self.radius, "radius", what)?,
                     start_angle: self.start_angle.unwrap_or(0.0),
                     sweep: self.sweep,
@@ -272,7 +362,11 @@ impl RawTarget {
                 only(p, "a node_pairs target", &present, &["set", "normal"])?;
                 TargetSpec::NodePairs {
                     set: need(p, &self.set, "set", "a node_pairs target")?,
-                    normal: self.normal,
+                    normal: self
+                        .normal
+                        .as_ref()
+                        .map(|n| pair_of(&p.key("normal"), n))
+                        .transpose()?,
                 }
             }
             TargetKind::Segments => {
@@ -280,6 +374,17 @@ impl RawTarget {
                 TargetSpec::Segments {
                     set: need(p, &self.set, "set", "a segments target")?,
                 }
+            }
+            TargetKind::Plane | TargetKind::Sphere | TargetKind::Cylinder => {
+                let tp = p.key("type");
+                return Err(CliError::at(
+                    &tp,
+                    format!(
+                        "`{tp}` = \"{}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
+                         a 2D scene takes line, arc, node_pairs or segments",
+                        self.kind.name()
+                    ),
+                ));
             }
         })
     }

@@ -4,7 +4,8 @@
 //! One file per output: [`csv`] (`contacts.csv`, `steps.csv`), [`vtk`] (the interface and mesh
 //! series), [`plots`] (`curves.csv` and the SVGs), [`summary`] (`summary.json`) and
 //! [`progress`] (the bar and the phase lines); the [`recorder`] hands each step to them, and a
-//! [`driver`] steps the study (a scene described key by key or a library preset).
+//! [`driver`] steps the study (a scene described key by key or a library preset). A 3D study
+//! runs through [`solid`] (its own driver and outputs; the bar and the error hints are shared).
 
 mod csv;
 mod driver;
@@ -12,9 +13,11 @@ mod errors;
 mod plots;
 mod progress;
 mod recorder;
+mod solid;
 mod summary;
 mod vtk;
 
+pub use solid::{SolidSummary, run_solid};
 pub use summary::{Peak, Summary};
 
 use crate::build::{Body, Phase, Study};

@@ -54,6 +54,11 @@ impl Progress {
             s.stiffness_changes,
             s.wall_time_s
         );
+        self.line(&line);
+    }
+
+    /// A line above the bar (nothing when quiet).
+    pub(super) fn line(&self, line: &str) {
         if !self.quiet {
             self.bar.suspend(|| crate::out::outln!("{line}"));
         }

@@ -301,7 +301,14 @@ fn pile_preset_runs_its_three_phases() {
 #[test]
 fn new_writes_templates_that_check() {
     let dir = tmp("new");
-    for kind in ["block", "hertz", "delamination", "shear", "pile"] {
+    for kind in [
+        "block",
+        "hertz",
+        "delamination",
+        "shear",
+        "pile",
+        "sphere_3d",
+    ] {
         let file = dir.join(format!("{kind}.toml"));
         let stdout = ok(&bipo(&[
             "new".as_ref(),

@@ -11,3 +11,4 @@ mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;
 mod seed_studies;
+mod solid;

@@ -1,0 +1,347 @@
+//! Contact in a 3D scene: `[solver]` as the 3D simulation's settings, the zones' laws and rigid
+//! targets (plane, sphere, cylinder) checked, then the zones built on the mesh's sets with
+//! their tributary areas ([`zones`], the one place where a zone is made, so that node pairs and
+//! node-to-face zones plug in there), their candidates checked, and the simulation made.
+
+use super::super::checks::{finite, non_negative, positive, solver_error};
+use super::super::contact::{law, settings};
+use super::mesh::node_set;
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::raw::triple;
+use crate::scene::{FlexibilitySpec, Scene, SolverSpec};
+use crate::spec::ArcSideSpec;
+use crate::spec3::{Coords, TargetSpec3};
+use contact_laws::{ContactLaw, StandardLaw};
+use contact_solver::SolverError;
+use contact_solver::coupling::solid::{
+    Candidate3, ContactZone3, RigidCylinder, RigidPlane, RigidSphere, Side3,
+    SolidContactSimulation, SolidSettings,
+};
+use contact_solver::error::chain;
+use fem_core::solid::{SolidMesh, SolidModel};
+use std::collections::BTreeSet;
+
+/// A rigid target, built.
+enum Obstacle {
+    Plane(RigidPlane),
+    Sphere(RigidSphere),
+    Cylinder(RigidCylinder),
+}
+
+/// A 3D contact zone, checked; its contactor set is looked up in the mesh at build.
+pub(super) struct ZonePlan3 {
+    path: KeyPath,
+    name: String,
+    contactor: String,
+    law: StandardLaw,
+    alert: f64,
+    target: Obstacle,
+}
+
+/// The zones of a 3D scene, checked, with their law names, and the settings.
+pub(super) struct ContactPlan3 {
+    /// Zones, in the scene's order.
+    pub(super) zones: Vec<ZonePlan3>,
+    /// Law name of each zone.
+    pub(super) laws: Vec<String>,
+    /// `[solver]`.
+    pub(super) settings: SolidSettings,
+}
+
+/// `[solver]` for the 3D simulation: the local solver's keys as in 2D; `max_detection_passes`
+/// bounds the active-set passes; the keys of what 3D does not have (adhesion, other
+/// flexibility paths) are refused.
+fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
+    let root = KeyPath::root().key("solver");
+    let refuse = |key: &str, why: &str| -> CliResult<()> {
+        let p = root.key(key);
+        Err(CliError::at(
+            &p,
+            format!("`{p}` is not read in a 3D scene: {why}"),
+        ))
+    };
+    if s.adhesion_tol.is_some() {
+        refuse("adhesion_tol", "adhesive laws are not supported in 3D yet")?;
+    }
+    if s.max_adhesion_iterations.is_some() {
+        refuse(
+            "max_adhesion_iterations",
+            "adhesive laws are not supported in 3D yet",
+        )?;
+    }
+    if s.dense_limit.is_some() {
+        refuse("dense_limit", "3D steps always use a dense F*")?;
+    }
+    if let Some(f) = s.flexibility
+        && f != FlexibilitySpec::Dense
+    {
+        refuse(
+            "flexibility",
+            "3D steps always use a dense F* (flexibility = \"dense\"); the active-set and \
+             matrix-free paths are 2D only for now",
+        )?;
+    }
+    let plane = settings(s)?;
+    let mut out = SolidSettings {
+        solver: plane.solver,
+        ..SolidSettings::default()
+    };
+    if s.max_detection_passes.is_some() {
+        out.max_passes = plane.max_detection_passes;
+    }
+    Ok(out)
+}
+
+/// Three finite numbers at `p`.
+fn point(p: &KeyPath, c: &Coords) -> CliResult<[f64; 3]> {
+    let v = triple(p, c)?;
+    for (k, x) in v.iter().enumerate() {
+        finite(&p.index(k), *x)?;
+    }
+    Ok(v)
+}
+
+/// A direction at `p`: three finite numbers, not all zero, whose length does not overflow.
+fn direction(p: &KeyPath, c: &Coords) -> CliResult<[f64; 3]> {
+    let v = point(p, c)?;
+    let len = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(len > 0.0 && len.is_finite()) {
+        return Err(CliError::at(
+            p,
+            format!(
+                "`{p}` = {v:?}: expected a direction (not [0, 0, 0], and of a length that stays \
+                 finite)"
+            ),
+        ));
+    }
+    Ok(v)
+}
+
+fn side(s: ArcSideSpec) -> Side3 {
+    match s {
+        ArcSideSpec::Outside => Side3::Outside,
+        ArcSideSpec::Inside => Side3::Inside,
+    }
+}
+
+/// The rigid target at `tp`, checked and built.
+fn target(tp: &KeyPath, t: &TargetSpec3) -> CliResult<Obstacle> {
+    let err = |e: SolverError| solver_error(tp, e);
+    Ok(match t {
+        TargetSpec3::Plane { point: x, normal } => Obstacle::Plane(
+            RigidPlane::new(
+                point(&tp.key("point"), x)?,
+                direction(&tp.key("normal"), normal)?,
+            )
+            .map_err(err)?,
+        ),
+        TargetSpec3::Sphere {
+            center,
+            radius,
+            side: s,
+        } => Obstacle::Sphere(
+            RigidSphere::new(
+                point(&tp.key("center"), center)?,
+                positive(&tp.key("radius"), *radius)?,
+                side(*s),
+            )
+            .map_err(err)?,
+        ),
+        TargetSpec3::Cylinder {
+            point: x,
+            axis,
+            radius,
+            side: s,
+        } => Obstacle::Cylinder(
+            RigidCylinder::new(
+                point(&tp.key("point"), x)?,
+                direction(&tp.key("axis"), axis)?,
+                positive(&tp.key("radius"), *radius)?,
+                side(*s),
+            )
+            .map_err(err)?,
+        ),
+    })
+}
+
+/// Checks `[[contact]]` of a 3D scene (names, alert distances, laws, targets) and `[solver]`.
+pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
+    let root = KeyPath::root();
+    if scene.contact.is_empty() {
+        return Err(CliError::at(
+            &root,
+            "the scene has no [[contact]] zone (bipo solves contact problems)",
+        ));
+    }
+    let settings = settings_3d(&scene.solver)?;
+    let mut zones = Vec::new();
+    let mut laws = Vec::new();
+    let mut names = BTreeSet::new();
+    for (i, z) in scene.contact.iter().enumerate() {
+        let p = root.key("contact").index(i);
+        if z.name.trim().is_empty() {
+            return Err(CliError::at(
+                &p.key("name"),
+                format!("`{}` is empty: a zone needs a name", p.key("name")),
+            ));
+        }
+        if !names.insert(z.name.clone()) {
+            return Err(CliError::at(
+                &p.key("name"),
+                format!("zone name `{}` is used twice", z.name),
+            ));
+        }
+        let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
+        let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
+        let target = target(&p.key("target"), &z.target.resolve_3d(&p.key("target"))?)?;
+        laws.push(law_name.to_string());
+        zones.push(ZonePlan3 {
+            path: p,
+            name: z.name.clone(),
+            contactor: z.contactor.clone(),
+            law: l,
+            alert,
+            target,
+        });
+    }
+    Ok(ContactPlan3 {
+        zones,
+        laws,
+        settings,
+    })
+}
+
+/// The contact zones on the mesh: each contactor set's nodes, with the consistent nodal areas
+/// of its faces when it is a face set (a physical surface; the reports' pressures are then
+/// `r_n / A_i`), against its rigid target.
+pub(super) fn zones(
+    mesh: &SolidMesh,
+    plans: &[ZonePlan3],
+) -> CliResult<Vec<ContactZone3<StandardLaw>>> {
+    let mut out = Vec::with_capacity(plans.len());
+    for z in plans {
+        let cp = z.path.key("contactor");
+        let (nodes, areas) = match mesh.nodal_areas(&z.contactor) {
+            Ok((nodes, areas)) => (nodes, Some(areas)),
+            Err(_) => (node_set(&cp, mesh, &z.contactor)?, None),
+        };
+        let (name, l, alert) = (z.name.as_str(), z.law, z.alert);
+        let zone = match &z.target {
+            Obstacle::Plane(o) => ContactZone3::rigid(name, nodes, *o, l, alert),
+            Obstacle::Sphere(o) => ContactZone3::rigid(name, nodes, *o, l, alert),
+            Obstacle::Cylinder(o) => ContactZone3::rigid(name, nodes, *o, l, alert),
+        };
+        out.push(match areas {
+            Some(a) => zone.with_areas(a),
+            None => zone,
+        });
+    }
+    Ok(out)
+}
+
+/// The simulation of `model` with the zones of `plans`: zones built ([`zones`]), candidates
+/// recognised and checked (each zone has one, none deeper in its target than the alert
+/// distance, one within it). A library refusal (an adhesive law in 3D) is told at the zone's
+/// `law`.
+pub(super) fn build(
+    model: SolidModel,
+    plans: &[ZonePlan3],
+    settings: SolidSettings,
+) -> CliResult<SolidContactSimulation<SolidModel, StandardLaw>> {
+    let zones = zones(model.mesh(), plans)?;
+    let adhesive = plans.iter().position(|z| z.law.has_adhesion());
+    let nodes: Vec<[f64; 3]> = model.mesh().nodes().to_vec();
+    let sim =
+        SolidContactSimulation::new(model, zones, settings).map_err(|e| match (&e, adhesive) {
+            (SolverError::Unsupported(_), Some(i)) => {
+                let p = plans[i].path.key("law").key("type");
+                CliError::at(&p, format!("`{p}`: {}", chain(&e)))
+            }
+            _ => solver_error(&KeyPath::root().key("contact"), e),
+        })?;
+    check_candidates(sim.candidates(), plans, &nodes)?;
+    Ok(sim)
+}
+
+/// Every zone must have a candidate, none deeper inside its target than the alert distance,
+/// and one within the alert distance.
+fn check_candidates(
+    candidates: &[Candidate3],
+    plans: &[ZonePlan3],
+    nodes: &[[f64; 3]],
+) -> CliResult<()> {
+    for (z, zone) in plans.iter().enumerate() {
+        let p = &zone.path;
+        let mut mine = candidates.iter().filter(|c| c.zone == z);
+        let Some(first) = mine.next() else {
+            return Err(CliError::at(
+                &p.key("target"),
+                format!(
+                    "zone `{}`: none of the nodes of `{}` projects onto the target",
+                    zone.name, zone.contactor
+                ),
+            ));
+        };
+        let closest = mine.fold(first, |a, c| if c.gap0 < a.gap0 { c } else { a });
+        let x = nodes[closest.node];
+        if closest.gap0 < -zone.alert {
+            return Err(CliError::at(
+                &p.key("target"),
+                format!(
+                    "zone `{}`: contactor node {} at ({}, {}, {}) starts inside the target by {}, \
+                     more than the alert distance {}: does the plane's normal (or the side) \
+                     point towards the contactor?",
+                    zone.name, closest.node, x[0], x[1], x[2], -closest.gap0, zone.alert
+                ),
+            ));
+        }
+        if closest.gap0 > zone.alert {
+            return Err(CliError::at(
+                &p.key("alert_distance"),
+                format!(
+                    "zone `{}`: every contactor node is outside the alert distance {} at the \
+                     start (the closest, node {} at ({}, {}, {}), has a gap of {}); move the \
+                     target closer or raise `alert_distance`",
+                    zone.name, zone.alert, closest.node, x[0], x[1], x[2], closest.gap0
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn direction_rejects_zero_and_overflow() {
+        let p = KeyPath::root().key("normal");
+        assert_eq!(
+            direction(&p, &Coords(vec![0.0, 0.0, 2.0])).unwrap(),
+            [0.0, 0.0, 2.0]
+        );
+        for v in [[0.0; 3], [1e200, 1e200, 0.0]] {
+            let e = direction(&p, &Coords(v.to_vec())).unwrap_err();
+            assert!(e.message.contains("expected a direction"), "{}", e.message);
+        }
+        let e = direction(&p, &Coords(vec![f64::NAN, 0.0, 1.0])).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "normal[0]");
+    }
+
+    #[test]
+    fn settings_3d_rejects_2d_only_keys() {
+        let s = SolverSpec {
+            dense_limit: Some(10),
+            ..SolverSpec::default()
+        };
+        let e = settings_3d(&s).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
+        let s = SolverSpec {
+            max_detection_passes: Some(7),
+            flexibility: Some(FlexibilitySpec::Dense),
+            ..SolverSpec::default()
+        };
+        assert_eq!(settings_3d(&s).unwrap().max_passes, 7);
+    }
+}

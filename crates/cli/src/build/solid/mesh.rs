@@ -1,0 +1,140 @@
+//! The mesh of a 3D scene: the box generator (graded grid lines along x, y and z, Kuhn's six
+//! tetrahedra per cell) or a Gmsh 4.1 volume file (physical volumes as regions, physical
+//! surfaces as face and node sets).
+
+use super::super::checks::{at_least, fem, grading};
+use super::super::mesh::{gmsh_file, interval};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::spec::Element;
+use crate::spec3::MeshSpec3;
+use fem_core::FemError;
+use fem_core::generate::graded_points;
+use fem_core::solid::generate::box_mesh;
+use fem_core::solid::{SolidKind, SolidMesh};
+use std::path::{Path, PathBuf};
+
+/// The most cells of a box (six tetrahedra each): 2e5 cells are 1.2e6 tetrahedra, beyond what a
+/// scene run on a workstation solves in a useful time with a dense contact flexibility.
+pub const MAX_BOX_CELLS: usize = 200_000;
+
+/// A 3D mesh to build, its values checked.
+pub(super) enum MeshPlan3 {
+    /// The grid lines of a box and its element.
+    Box([Vec<f64>; 3], SolidKind),
+    /// A Gmsh file and the element it must hold.
+    Gmsh {
+        /// As written in the scene.
+        file: String,
+        /// Its path.
+        path: PathBuf,
+        /// `mesh.element`, if given.
+        element: Option<Element>,
+    },
+}
+
+/// The tetrahedron of a scene's element name.
+pub(super) fn solid_kind(e: Element) -> SolidKind {
+    match e {
+        Element::P1 => SolidKind::Tet4,
+        Element::P2 => SolidKind::Tet10,
+    }
+}
+
+/// Name of a tetrahedron kind for messages.
+pub fn solid_kind_name(k: SolidKind) -> &'static str {
+    match k {
+        SolidKind::Tet4 => "P1 (4-node tetrahedra)",
+        SolidKind::Tet10 => "P2 (10-node tetrahedra)",
+    }
+}
+
+/// Checks `[mesh]` (at `mp`) of a 3D scene.
+pub(super) fn validate(mp: &KeyPath, spec: &MeshSpec3, base_dir: &Path) -> CliResult<MeshPlan3> {
+    match spec {
+        MeshSpec3::Box(b) => {
+            let mut lines: [Vec<f64>; 3] = Default::default();
+            let mut cells = 1usize;
+            for (a, axis) in ["x", "y", "z"].into_iter().enumerate() {
+                let range = interval(&mp.key(axis), b.ranges[a], axis)?;
+                let np = mp.key(&format!("n{axis}"));
+                let n = at_least(&np, b.cells[a], 1)?;
+                cells = cells.saturating_mul(n);
+                if cells > MAX_BOX_CELLS {
+                    return Err(CliError::at(
+                        &np,
+                        format!(
+                            "`{np}` = {n}: the box would have more than {MAX_BOX_CELLS} cells \
+                             (nx·ny·nz, six tetrahedra each); use fewer cells or a graded grid"
+                        ),
+                    ));
+                }
+                let gp = mp.key(&format!("grading_{axis}"));
+                let g = grading(&gp, b.gradings[a])?;
+                lines[a] = graded_points(range[0], range[1], n, g).map_err(|e| match e {
+                    FemError::InvalidParameter { name: "ratio", .. } => fem(&gp.key("ratio"), e),
+                    e => fem(&mp.key(axis), e),
+                })?;
+            }
+            Ok(MeshPlan3::Box(lines, solid_kind(b.element)))
+        }
+        MeshSpec3::Gmsh { file, element } => Ok(MeshPlan3::Gmsh {
+            file: file.clone(),
+            path: gmsh_file(mp, file, base_dir)?,
+            element: *element,
+        }),
+    }
+}
+
+/// Generates or reads the mesh of `plan`.
+pub(super) fn build(mp: &KeyPath, plan: MeshPlan3) -> CliResult<SolidMesh> {
+    match plan {
+        MeshPlan3::Box([xs, ys, zs], kind) => box_mesh(&xs, &ys, &zs, kind).map_err(|e| fem(mp, e)),
+        MeshPlan3::Gmsh {
+            file,
+            path,
+            element,
+        } => {
+            let mesh =
+                fem_core::solid::gmsh::read_msh_3d(&path).map_err(|e| fem(&mp.key("file"), e))?;
+            if let Some(e) = element
+                && solid_kind(e) != mesh.kind()
+            {
+                return Err(CliError::at(
+                    &mp.key("element"),
+                    format!(
+                        "`mesh.element` = \"{e:?}\" but `{file}` holds {}",
+                        solid_kind_name(mesh.kind())
+                    ),
+                ));
+            }
+            Ok(mesh)
+        }
+    }
+}
+
+/// The nodes of a node set of a 3D mesh, or an error naming the sets there are.
+pub(super) fn node_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResult<Vec<usize>> {
+    mesh.node_set(name).map(<[usize]>::to_vec).map_err(|_| {
+        CliError::at(
+            path,
+            format!(
+                "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
+                super::super::checks::list_names(mesh.node_sets().keys().map(String::as_str))
+            ),
+        )
+    })
+}
+
+/// Checks that a face set exists (tractions, pressures), or names the face sets there are.
+pub(super) fn face_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResult<()> {
+    mesh.face_set(name).map(|_| ()).map_err(|_| {
+        CliError::at(
+            path,
+            format!(
+                "`{path}` = \"{name}\": the mesh has no face set of that name (face sets, the \
+                 physical surfaces: {})",
+                super::super::checks::list_names(mesh.face_sets().keys().map(String::as_str))
+            ),
+        )
+    })
+}

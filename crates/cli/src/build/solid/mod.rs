@@ -1,0 +1,212 @@
+//! A 3D scene (`[analysis] type = "3d"`): validated and built into a [`SolidStudy`], a
+//! [`SolidContactSimulation`] of a [`SolidModel`] with its supports, loads, time functions and
+//! phases.
+//!
+//! The passes are those of the 2D scene ([`super::validate`], then the build): what does not
+//! depend on the dimension is the 2D code (time functions, phases, materials, supports' values
+//! and names, the law of a zone, `[solver]`'s local keys, `[output]`); [`mesh`], [`model`] and
+//! [`contact`] hold what 3D reads differently: the box generator and Gmsh volume files, loads
+//! with three components and pressures on face sets, rigid planes, spheres and cylinders.
+//! What 3D does not have yet (supports added or released between phases, laws changed per
+//! phase, displacement resets, plots, floating bodies, adhesion) is refused with its key path.
+
+mod contact;
+mod mesh;
+mod model;
+
+pub use mesh::solid_kind_name;
+pub use model::{LoadKind3, LoadRt3};
+
+use super::Loaded;
+use super::model::validate_ties;
+use super::model::{
+    validate_initial_stress, validate_materials, validate_names, validate_supports,
+};
+use super::outputs::{MAX_OUTPUT_FILES, check_output_table};
+use super::phases::{Phase, TimeFunction, phases_of, time_function};
+use super::study::{SupportRt, written_steps};
+use crate::error::{CliError, CliResult, KeyPath};
+use crate::scene::{OutputSpec, Scene, Units};
+use contact_laws::StandardLaw;
+use contact_solver::coupling::solid::SolidContactSimulation;
+use fem_core::solid::SolidModel;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// A 3D scene ready to run.
+pub struct SolidStudy {
+    /// Title.
+    pub title: String,
+    /// Units.
+    pub units: Units,
+    /// The simulation.
+    pub sim: SolidContactSimulation<SolidModel, StandardLaw>,
+    /// Supports (each acts in every phase).
+    pub supports: Vec<SupportRt>,
+    /// Loads.
+    pub loads: Vec<LoadRt3>,
+    /// Time functions.
+    pub functions: BTreeMap<String, TimeFunction>,
+    /// Phases.
+    pub phases: Vec<Phase>,
+    /// Outputs.
+    pub output: OutputSpec,
+    /// Zone names.
+    pub zone_names: Vec<String>,
+    /// Zone law names.
+    pub zone_laws: Vec<String>,
+}
+
+impl SolidStudy {
+    /// Total steps.
+    pub fn total_steps(&self) -> usize {
+        self.phases.iter().map(|p| p.steps).sum()
+    }
+
+    /// The steps whose contacts and VTK files are written.
+    pub fn written_steps(&self) -> usize {
+        written_steps(&self.output, &self.phases)
+    }
+
+    /// Whether the body's `.vtu` series is written (`output.vtk` or `output.mesh_vtk`).
+    pub fn writes_vtk(&self) -> bool {
+        self.output.vtk || self.output.mesh_vtk
+    }
+
+    /// The files a run writes: `summary.json`, the CSV histories, one `.vtu` per written step
+    /// and the `.pvd`.
+    pub fn output_files(&self) -> usize {
+        let o = &self.output;
+        let fixed = 1 + usize::from(o.history) + usize::from(o.report);
+        if self.writes_vtk() {
+            self.written_steps().saturating_add(fixed + 1)
+        } else {
+            fixed
+        }
+    }
+}
+
+/// Refuses, with its key path, what a 3D scene cannot do yet.
+fn refuse_unsupported(scene: &Scene) -> CliResult<()> {
+    let root = KeyPath::root();
+    if !scene.plots.is_empty() {
+        return Err(CliError::at(
+            &root.key("plots"),
+            "[[plots]] are not available in a 3D scene yet (steps.csv and contacts.csv hold \
+             the histories)",
+        ));
+    }
+    for (i, ph) in scene.phases.iter().enumerate() {
+        let p = root.key("phases").index(i);
+        if ph.reset_displacements {
+            let rp = p.key("reset_displacements");
+            return Err(CliError::at(
+                &rp,
+                format!("`{rp}`: resetting displacements is not available in 3D yet"),
+            ));
+        }
+        if let Some(zone) = ph.laws.keys().next() {
+            let lp = p.key("laws").key(zone);
+            return Err(CliError::at(
+                &lp,
+                format!("`{lp}`: changing a zone's law between phases is not available in 3D yet"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Validates and builds a 3D scene.
+pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
+    let scene = &loaded.scene;
+    let root = KeyPath::root();
+    let base_dir = loaded
+        .path
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let mut functions = BTreeMap::new();
+    for (name, pts) in &scene.functions {
+        functions.insert(
+            name.clone(),
+            time_function(&root.key("functions").key(name), pts)?,
+        );
+    }
+    let phases = phases_of(scene, None)?;
+    let mp = root.key("mesh");
+    let mesh_raw = scene.mesh.as_ref().ok_or_else(|| {
+        CliError::at(
+            &root,
+            "the 3D scene has no [mesh] (give `generator = \"box\"` or `\"gmsh\"`)",
+        )
+    })?;
+    let mesh_plan = mesh::validate(&mp, &mesh_raw.resolve_3d(&mp)?, &base_dir)?;
+    if let Some(a) = &scene.analysis {
+        a.resolve(&root.key("analysis"))?;
+    }
+    let (materials, any_weight) = validate_materials(scene)?;
+    let supports = validate_supports(scene, &functions, &phases, 3)?;
+    let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
+    let names: Vec<Option<String>> = loads.iter().map(model::LoadPlan3::name).collect();
+    validate_names(scene, &names, &functions, &phases)?;
+    let initial_stress = validate_initial_stress(scene)?;
+    let ties = validate_ties(scene, 3)?;
+    let contact = contact::validate(scene)?;
+    refuse_unsupported(scene)?;
+
+    let mesh = mesh::build(&mp, mesh_plan)?;
+    let plan = model::ModelPlan3 {
+        materials,
+        supports,
+        loads,
+        ties,
+        initial_stress,
+    };
+    let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
+    let sim = contact::build(model, &contact.zones, contact.settings)?;
+    let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
+    let study = SolidStudy {
+        title: scene.title.clone().unwrap_or_else(|| {
+            loaded
+                .path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        }),
+        units: scene.units.clone().unwrap_or_default(),
+        sim,
+        supports,
+        loads,
+        functions,
+        phases,
+        output: scene.output.clone(),
+        zone_names,
+        zone_laws: contact.laws,
+    };
+    let candidates = study.sim.candidates();
+    check_output_table(
+        &study.output,
+        study.total_steps(),
+        &study.zone_names,
+        &|n| candidates.iter().any(|c| c.node == n),
+        study.sim.structure().mesh().node_count(),
+    )?;
+    let files = study.output_files();
+    if files > MAX_OUTPUT_FILES {
+        let key = if study.output.steps.is_some() {
+            "steps"
+        } else {
+            "every"
+        };
+        let p = root.key("output").key(key);
+        return Err(CliError::at(
+            &p,
+            format!(
+                "`{p}`: the run would write {files} files: more than the limit of \
+                 {MAX_OUTPUT_FILES}; raise `output.every`, list `output.steps`, or set \
+                 `output.vtk` and `output.mesh_vtk` = false"
+            ),
+        ));
+    }
+    Ok(study)
+}

@@ -1,0 +1,263 @@
+//! `bipo run` of a 3D scene: each phase's steps (supports set to their values at the step's
+//! time, loads scaled by their functions), each step recorded ([`output`]), and `summary.json`.
+
+mod output;
+
+pub use output::SolidZoneSummary;
+
+use super::RunOptions;
+use super::errors::{fem_failed, io, step_error};
+use super::progress::Progress;
+use super::summary::{BTreeUnits, MeshFacts};
+use crate::build::{LoadKind3, Phase, SolidStudy, function_value};
+use crate::error::{CliError, CliResult};
+use fem_core::Structure;
+use output::{SolidRecorder, StepRow};
+use serde::Serialize;
+use std::time::Instant;
+
+/// One phase of a 3D run.
+#[derive(Clone, Debug, Serialize)]
+pub struct SolidPhaseSummary {
+    /// Name.
+    pub name: String,
+    /// Steps.
+    pub steps: usize,
+    /// Start time.
+    pub t_start: f64,
+    /// End time.
+    pub t_end: f64,
+    /// Contact iterations.
+    pub contact_iterations: usize,
+    /// Active-set passes.
+    pub passes: usize,
+    /// Wall time.
+    pub wall_time_s: f64,
+}
+
+/// `summary.json` of a 3D run.
+#[derive(Clone, Debug, Serialize)]
+pub struct SolidSummary {
+    /// `bipo` version.
+    pub bipo_version: &'static str,
+    /// Scene file.
+    pub scene: String,
+    /// Title.
+    pub title: String,
+    /// Always 3.
+    pub dimension: usize,
+    /// Units note.
+    pub units: BTreeUnits,
+    /// `completed` or `failed`.
+    pub status: String,
+    /// The error when failed.
+    pub error: Option<String>,
+    /// Steps done.
+    pub steps: usize,
+    /// Final time.
+    pub time: f64,
+    /// Wall time of the run.
+    pub wall_time_s: f64,
+    /// Mesh facts.
+    pub mesh: MeshFacts,
+    /// Contact iterations over the run.
+    pub contact_iterations: usize,
+    /// Active-set passes over the run.
+    pub passes: usize,
+    /// Refactorisations of K over the run.
+    pub factorizations: usize,
+    /// Phases.
+    pub phases: Vec<SolidPhaseSummary>,
+    /// Zones.
+    pub zones: Vec<SolidZoneSummary>,
+    /// Files written (relative to the output directory).
+    pub files: Vec<String>,
+}
+
+/// Sets the supports' values and the loads of phase `p` at time `t` (the loads are rebuilt only
+/// when a factor changed since `last`).
+fn apply(study: &mut SolidStudy, p: usize, t: f64, last: &mut Option<Vec<f64>>) -> CliResult<()> {
+    let phase = &study.phases[p];
+    let model = study.sim.structure_mut();
+    for s in &study.supports {
+        let v = s.value * function_value(phase, &s.name, &s.function, &study.functions, t);
+        for &c in &s.components {
+            model
+                .set_prescribed(&s.nodes, c, v)
+                .map_err(|e| fem_failed("prescribed displacement", e))?;
+        }
+    }
+    let factors: Vec<f64> = study
+        .loads
+        .iter()
+        .map(|l| {
+            if l.phases[p] {
+                function_value(phase, &l.name, &l.function, &study.functions, t)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    if last.as_ref() == Some(&factors) {
+        return Ok(());
+    }
+    model.clear_loads();
+    for (l, &f) in study.loads.iter().zip(&factors) {
+        if !l.phases[p] {
+            continue;
+        }
+        let scaled = |v: &[f64; 3]| v.map(|x| x * f);
+        match &l.kind {
+            LoadKind3::Traction(set, v) => {
+                let v = scaled(v);
+                model.add_face_traction(set, |_, _| v)
+            }
+            LoadKind3::Pressure(set, p) => {
+                let p = p * f;
+                model.add_face_traction(set, |_, n| n.map(|c| -p * c))
+            }
+            LoadKind3::Nodal(nodes, v) => nodes
+                .iter()
+                .try_for_each(|&n| model.add_nodal_force(n, scaled(v))),
+            LoadKind3::Resultant(node, v) => model.add_nodal_force(*node, scaled(v)),
+            LoadKind3::Body(v) => {
+                let v = scaled(v);
+                model.add_body_force(|_| v)
+            }
+            LoadKind3::Gravity => model.add_self_weight(),
+        }
+        .map_err(|e| fem_failed("load", e))?;
+    }
+    *last = Some(factors);
+    Ok(())
+}
+
+/// Whether global step `global` (the last of its phase when `last`) is written.
+fn written(study: &SolidStudy, global: usize, last: bool) -> bool {
+    match &study.output.steps {
+        Some(list) => list.contains(&global),
+        None => global.is_multiple_of(study.output.every.max(1)) || last,
+    }
+}
+
+/// Steps every phase, recording each step; returns the phases done and the error that stopped
+/// the run, if any.
+fn drive(
+    study: &mut SolidStudy,
+    rec: &mut SolidRecorder,
+    progress: &Progress,
+    time: &mut f64,
+    global: &mut usize,
+) -> (Vec<SolidPhaseSummary>, Option<CliError>) {
+    let mut out = Vec::new();
+    let mut last_loads = None;
+    for p in 0..study.phases.len() {
+        let phase: Phase = study.phases[p].clone();
+        progress.begin_phase(&phase.name);
+        let t_phase = Instant::now();
+        let (mut iterations, mut passes) = (0, 0);
+        for k in 1..=phase.steps {
+            let t = phase.time(k);
+            let t_step = Instant::now();
+            let res = apply(study, p, t, &mut last_loads).and_then(|()| {
+                study
+                    .sim
+                    .step(1.0, (t - *time).max(0.0))
+                    .map_err(|e| step_error(e, &phase, t))
+            });
+            let res = match res {
+                Ok(r) => r,
+                Err(mut e) => {
+                    e.message = format!("step {} ({})", *global + 1, e.message);
+                    return (out, Some(e));
+                }
+            };
+            *global += 1;
+            *time = t;
+            iterations += res.contact_iterations;
+            passes += res.passes;
+            let row = StepRow {
+                step: *global,
+                phase: &phase.name,
+                time: t,
+                wall_time_s: t_step.elapsed().as_secs_f64(),
+            };
+            let write = written(study, *global, k == phase.steps);
+            if let Err(e) = rec.record(&study.sim, &res, &row, write) {
+                return (out, Some(e));
+            }
+            progress.step(t, res.contact_iterations);
+        }
+        let s = SolidPhaseSummary {
+            name: phase.name.clone(),
+            steps: phase.steps,
+            t_start: phase.t0,
+            t_end: phase.t1,
+            contact_iterations: iterations,
+            passes,
+            wall_time_s: t_phase.elapsed().as_secs_f64(),
+        };
+        progress.line(&format!(
+            "phase `{}`: {} steps, t {} → {}: {} contact iterations, {} active-set passes, \
+             {:.3} s",
+            s.name, s.steps, s.t_start, s.t_end, s.contact_iterations, s.passes, s.wall_time_s
+        ));
+        out.push(s);
+    }
+    (out, None)
+}
+
+/// Runs a 3D study; returns the summary (also written to `summary.json`).
+pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSummary> {
+    let mut rec = SolidRecorder::new(&opts.out_dir, &study)?;
+    let start = Instant::now();
+    let factorizations_0 = study.sim.structure().factorizations();
+    let progress = Progress::new(study.total_steps(), opts.quiet);
+    let (mut time, mut steps) = (0.0, 0);
+    let (phases, error) = drive(&mut study, &mut rec, &progress, &mut time, &mut steps);
+    progress.finish();
+    let (mut files, zones) = rec.finish()?;
+    files.insert(0, "summary.json".into());
+    let model = study.sim.structure();
+    let summary = SolidSummary {
+        bipo_version: env!("CARGO_PKG_VERSION"),
+        scene: opts.scene_file.display().to_string(),
+        title: study.title.clone(),
+        dimension: 3,
+        units: BTreeUnits {
+            length: study.units.length.clone(),
+            force: study.units.force.clone(),
+            time: study.units.time.clone(),
+            stress: study.units.stress.clone(),
+        },
+        status: if error.is_some() {
+            "failed"
+        } else {
+            "completed"
+        }
+        .into(),
+        error: error.as_ref().map(|e| e.message.clone()),
+        steps,
+        time,
+        wall_time_s: start.elapsed().as_secs_f64(),
+        mesh: MeshFacts {
+            nodes: model.mesh().node_count(),
+            elements: model.mesh().element_count(),
+            free_dofs: model.dof_count(),
+            candidates: study.sim.candidates().len(),
+        },
+        contact_iterations: phases.iter().map(|p| p.contact_iterations).sum(),
+        passes: phases.iter().map(|p| p.passes).sum(),
+        factorizations: model.factorizations() - factorizations_0,
+        phases,
+        zones,
+        files,
+    };
+    let path = opts.out_dir.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| io(&path, e))?;
+    std::fs::write(&path, text + "\n").map_err(|e| io(&path, e))?;
+    match error {
+        Some(e) => Err(e),
+        None => Ok(summary),
+    }
+}

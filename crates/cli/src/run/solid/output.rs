@@ -1,0 +1,318 @@
+//! The outputs of a 3D run: `steps.csv` (one row per step: time, active contacts, iterations,
+//! the total contact force and each zone's Σ r_n), `contacts.csv` (one row per contact and
+//! written step), the body's `mesh_NNNN.vtu` series with `mesh.pvd` (displacement, contact force
+//! and pressure at the nodes, the element-mean stress), and the zones' tally for the summary.
+
+use super::super::errors::{create, fem_failed, io};
+use super::super::summary::{Peak, keep};
+use crate::error::CliResult;
+use contact_laws::StandardLaw;
+use contact_solver::coupling::solid::{
+    SolidContactRecord, SolidContactSimulation, SolidStepResult,
+};
+use fem_core::solid::SolidModel;
+use fem_core::vtk::{Field3, write_pvd, write_vtu_3d};
+use serde::Serialize;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// Per-zone results of a 3D run.
+#[derive(Clone, Debug, Serialize)]
+pub struct SolidZoneSummary {
+    /// Name.
+    pub name: String,
+    /// Law.
+    pub law: String,
+    /// Candidates.
+    pub candidates: usize,
+    /// Largest Σ r_n.
+    pub max_force_n: Option<Peak>,
+    /// Σ r_n at the end.
+    pub final_force_n: f64,
+    /// Σ of the contact forces (global frame) at the end.
+    pub final_force: [f64; 3],
+    /// Active contacts at the end.
+    pub final_active: usize,
+}
+
+/// One step's row of `steps.csv`.
+pub(super) struct StepRow<'a> {
+    pub(super) step: usize,
+    pub(super) phase: &'a str,
+    pub(super) time: f64,
+    pub(super) wall_time_s: f64,
+}
+
+/// The writers of a 3D run.
+pub(super) struct SolidRecorder {
+    dir: PathBuf,
+    steps: Option<BufWriter<File>>,
+    contacts: Option<BufWriter<File>>,
+    vtk: Option<Vec<(f64, String)>>,
+    zones_filter: Option<Vec<usize>>,
+    nodes_filter: Option<Vec<usize>>,
+    pub(super) zones: Vec<SolidZoneSummary>,
+    pub(super) files: Vec<String>,
+}
+
+/// A text field of a CSV row, quoted when it holds a comma, a quote or a line break (RFC 4180).
+fn field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+fn line(w: &mut BufWriter<File>, dir: &Path, name: &str, text: &str) -> CliResult<()> {
+    writeln!(w, "{text}").map_err(|e| io(&dir.join(name), e))
+}
+
+impl SolidRecorder {
+    /// Creates `dir` and the CSV files asked for.
+    pub(super) fn new(dir: &Path, study: &crate::build::SolidStudy) -> CliResult<Self> {
+        std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+        let o = &study.output;
+        let mut files = Vec::new();
+        let steps = if o.report {
+            let mut w = create(dir, "steps.csv")?;
+            let mut head = String::from(
+                "step,phase,time,load_factor,active_contacts,contact_iterations,passes,residual,\
+                 wall_time_s,force_n,force_x,force_y,force_z",
+            );
+            for z in &study.zone_names {
+                head.push_str(&format!(",{}", field(&format!("force_n:{z}"))));
+            }
+            line(&mut w, dir, "steps.csv", &head)?;
+            files.push("steps.csv".to_string());
+            Some(w)
+        } else {
+            None
+        };
+        let contacts = if o.history {
+            let mut w = create(dir, "contacts.csv")?;
+            line(
+                &mut w,
+                dir,
+                "contacts.csv",
+                "step,time,zone,node,x,y,z,active,gap,r_n,r_t1,r_t2,area,pressure,slip_t1,\
+                 slip_t2,f_x,f_y,f_z",
+            )?;
+            files.push("contacts.csv".to_string());
+            Some(w)
+        } else {
+            None
+        };
+        let candidates = study.sim.candidates();
+        let zones = study
+            .zone_names
+            .iter()
+            .enumerate()
+            .map(|(z, name)| SolidZoneSummary {
+                name: name.clone(),
+                law: study.zone_laws[z].clone(),
+                candidates: candidates.iter().filter(|c| c.zone == z).count(),
+                max_force_n: None,
+                final_force_n: 0.0,
+                final_force: [0.0; 3],
+                final_active: 0,
+            })
+            .collect();
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            steps,
+            contacts,
+            vtk: study.writes_vtk().then(Vec::new),
+            zones_filter: o.zones.as_ref().map(|zs| {
+                zs.iter()
+                    .filter_map(|z| study.zone_names.iter().position(|n| n == z))
+                    .collect()
+            }),
+            nodes_filter: o.nodes.clone(),
+            zones,
+            files,
+        })
+    }
+
+    /// Records a step (its contacts and VTK file when `write`).
+    pub(super) fn record(
+        &mut self,
+        sim: &SolidContactSimulation<SolidModel, StandardLaw>,
+        res: &SolidStepResult,
+        row: &StepRow<'_>,
+        write: bool,
+    ) -> CliResult<()> {
+        let (t, step) = (row.time, row.step);
+        let mut total_n = 0.0;
+        let mut total = [0.0; 3];
+        for (z, zs) in self.zones.iter_mut().enumerate() {
+            let mine = res.contacts.iter().filter(|c| c.candidate.zone == z);
+            let (mut f_n, mut f, mut active) = (0.0, [0.0; 3], 0);
+            for c in mine {
+                f_n += c.r[0];
+                let g = c.force();
+                (0..3).for_each(|a| f[a] += g[a]);
+                active += usize::from(c.active);
+            }
+            keep(&mut zs.max_force_n, f_n, step, t, true);
+            zs.final_force_n = f_n;
+            zs.final_force = f;
+            zs.final_active = active;
+            total_n += f_n;
+            (0..3).for_each(|a| total[a] += f[a]);
+        }
+        if let Some(w) = &mut self.steps {
+            let mut text = format!(
+                "{step},{},{t},1,{},{},{},{:e},{:e},{total_n:e},{:e},{:e},{:e}",
+                field(row.phase),
+                res.active,
+                res.contact_iterations,
+                res.passes,
+                res.residual,
+                row.wall_time_s,
+                total[0],
+                total[1],
+                total[2]
+            );
+            for z in &self.zones {
+                text.push_str(&format!(",{:e}", z.final_force_n));
+            }
+            line(w, &self.dir, "steps.csv", &text)?;
+        }
+        if !write {
+            return Ok(());
+        }
+        let selected: Vec<&SolidContactRecord> = res
+            .contacts
+            .iter()
+            .filter(|c| {
+                self.zones_filter
+                    .as_ref()
+                    .is_none_or(|z| z.contains(&c.candidate.zone))
+            })
+            .collect();
+        if let Some(w) = &mut self.contacts {
+            let model = sim.structure();
+            for c in &selected {
+                let cand = &c.candidate;
+                if self
+                    .nodes_filter
+                    .as_ref()
+                    .is_some_and(|n| !n.contains(&cand.node))
+                {
+                    continue;
+                }
+                let x = model.mesh().nodes()[cand.node];
+                let f = c.force();
+                let text = format!(
+                    "{step},{t},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                    field(&self.zones[cand.zone].name),
+                    cand.node,
+                    x[0],
+                    x[1],
+                    x[2],
+                    u8::from(c.active),
+                    c.gap,
+                    c.r[0],
+                    c.r[1],
+                    c.r[2],
+                    cand.area,
+                    c.pressure(),
+                    c.slip[0],
+                    c.slip[1],
+                    f[0],
+                    f[1],
+                    f[2]
+                );
+                line(w, &self.dir, "contacts.csv", &text)?;
+            }
+        }
+        if self.vtk.is_some() {
+            self.write_vtk(sim, &selected, t)?;
+        }
+        Ok(())
+    }
+
+    /// One `mesh_NNNN.vtu` and the `.pvd` listing the series so far.
+    fn write_vtk(
+        &mut self,
+        sim: &SolidContactSimulation<SolidModel, StandardLaw>,
+        selected: &[&SolidContactRecord],
+        t: f64,
+    ) -> CliResult<()> {
+        let model = sim.structure();
+        let mesh = model.mesh();
+        let u: Vec<[f64; 3]> = (0..mesh.node_count())
+            .map(|n| sim.nodal_displacement(n))
+            .collect();
+        let mut force = vec![[0.0; 3]; mesh.node_count()];
+        let mut pressure = vec![0.0; mesh.node_count()];
+        for c in selected {
+            let n = c.candidate.node;
+            let f = c.force();
+            (0..3).for_each(|a| force[n][a] += f[a]);
+            pressure[n] += c.pressure();
+        }
+        let stress: Vec<[f64; 6]> = model
+            .stresses(&u)
+            .map_err(|e| fem_failed("stresses", e))?
+            .iter()
+            .map(|points| {
+                let mut mean = [0.0; 6];
+                for (_, s) in points {
+                    (0..6).for_each(|k| mean[k] += s[k] / points.len() as f64);
+                }
+                mean
+            })
+            .collect();
+        let Some(entries) = self.vtk.as_mut() else {
+            return Ok(());
+        };
+        let name = format!("mesh_{:04}.vtu", entries.len());
+        let path = self.dir.join(&name);
+        write_vtu_3d(
+            &path,
+            mesh,
+            &[
+                ("u", Field3::Vector(&u)),
+                ("contact_force", Field3::Vector(&force)),
+                ("contact_pressure", Field3::Scalar(&pressure)),
+            ],
+            &[("stress", Field3::SymTensor(&stress))],
+        )
+        .map_err(|e| io(&path, e))?;
+        entries.push((t, name));
+        let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
+        let pvd = self.dir.join("mesh.pvd");
+        write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
+    }
+
+    /// Flushes the CSV files; returns the files written (but `summary.json`).
+    pub(super) fn finish(mut self) -> CliResult<(Vec<String>, Vec<SolidZoneSummary>)> {
+        for (w, name) in [
+            (&mut self.steps, "steps.csv"),
+            (&mut self.contacts, "contacts.csv"),
+        ] {
+            if let Some(w) = w {
+                w.flush().map_err(|e| io(&self.dir.join(name), e))?;
+            }
+        }
+        if self.vtk.as_ref().is_some_and(|e| !e.is_empty()) {
+            self.files.push("mesh.pvd".into());
+        }
+        Ok((self.files, self.zones))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn field_quotes_commas_and_quotes_works() {
+        assert_eq!(field("floor"), "floor");
+        assert_eq!(field("a,b"), "\"a,b\"");
+        assert_eq!(field("say \"hi\""), "\"say \"\"hi\"\"\"");
+    }
+}
