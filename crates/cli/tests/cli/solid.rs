@@ -232,3 +232,59 @@ fn solid_check_counts_steps_and_files_works() {
         "{stdout}"
     );
 }
+
+/// A block glued by RCCM (tests/solid/glued.toml): at every step the total force is
+/// `−β² C u` with `u` and `β` from the closed form (bisection on
+/// `E (δ − u)/H = β² C u`, `β = min(β_prev, w/(C u²))`), to 1e-6 (the adhesion tolerance
+/// 1e-10 on β and the solver's 1e-12); β falls below 1 after 1.1e-3, every contact with an
+/// area reports the same β.
+#[test]
+fn solid_glued_block_follows_rccm_works() {
+    let out = tmp("glued");
+    run(&dir("tests/solid/glued.toml"), &out);
+    let steps = csv(&out.join("steps.csv"));
+    let contacts = csv(&out.join("contacts.csv"));
+    assert_eq!(steps.len(), 8);
+    let (e, c, w) = (1000.0, 100.0, 1e-4);
+    let mut beta_prev = 1.0_f64;
+    for (k, row) in steps.iter().enumerate() {
+        let delta = 2e-4 * (k + 1) as f64;
+        let beta_of = |u: f64| {
+            let energy = c * u * u;
+            if energy * beta_prev <= w {
+                beta_prev
+            } else {
+                (w / energy).min(beta_prev)
+            }
+        };
+        let (mut lo, mut hi) = (0.0, delta);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if e * (delta - mid) - beta_of(mid).powi(2) * c * mid > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let u = 0.5 * (lo + hi);
+        let beta = beta_of(u);
+        beta_prev = beta;
+        assert_close(num(row, "force_n"), -beta * beta * c * u, 1e-6);
+        let step = (k + 1).to_string();
+        for r in contacts
+            .iter()
+            .filter(|r| r["step"] == step && num(r, "area") > 0.0)
+        {
+            assert!(
+                (num(r, "beta") - beta).abs() < 1e-6,
+                "step {step}: β {}",
+                r["beta"]
+            );
+        }
+    }
+    assert!(
+        beta_prev < 0.9,
+        "the pull must reach the damage range: β {beta_prev}"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -11,13 +11,12 @@ use crate::raw::triple;
 use crate::scene::{FlexibilitySpec, Scene, SolverSpec};
 use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
-use contact_laws::{ContactLaw, StandardLaw};
+use contact_laws::StandardLaw;
 use contact_solver::SolverError;
 use contact_solver::coupling::solid::{
     Candidate3, ContactZone3, RigidCylinder, RigidPlane, RigidSphere, Side3,
     SolidContactSimulation, SolidSettings,
 };
-use contact_solver::error::chain;
 use fem_core::solid::{SolidMesh, SolidModel};
 use std::collections::BTreeSet;
 
@@ -48,9 +47,9 @@ pub(super) struct ContactPlan3 {
     pub(super) settings: SolidSettings,
 }
 
-/// `[solver]` for the 3D simulation: the local solver's keys as in 2D; `max_detection_passes`
-/// bounds the active-set passes; the keys of what 3D does not have (adhesion, other
-/// flexibility paths) are refused.
+/// `[solver]` for the 3D simulation: the local solver's and the adhesion loop's keys as in 2D;
+/// `max_detection_passes` bounds the active-set passes; the keys of what 3D does not have
+/// (other flexibility paths) are refused.
 fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
     let root = KeyPath::root().key("solver");
     let refuse = |key: &str, why: &str| -> CliResult<()> {
@@ -60,15 +59,6 @@ fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
             format!("`{p}` is not read in a 3D scene: {why}"),
         ))
     };
-    if s.adhesion_tol.is_some() {
-        refuse("adhesion_tol", "adhesive laws are not supported in 3D yet")?;
-    }
-    if s.max_adhesion_iterations.is_some() {
-        refuse(
-            "max_adhesion_iterations",
-            "adhesive laws are not supported in 3D yet",
-        )?;
-    }
     if s.dense_limit.is_some() {
         refuse("dense_limit", "3D steps always use a dense F*")?;
     }
@@ -89,6 +79,11 @@ fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
     if s.max_detection_passes.is_some() {
         out.max_passes = plane.max_detection_passes;
     }
+    // the adhesion fixed point: the 2D keys, read and checked by `settings`
+    out.adhesion.tol = plane.adhesion_tol;
+    out.adhesion.max_iterations = plane.max_adhesion_iterations;
+    out.adhesion.anderson_window = plane.adhesion_anderson_window;
+    out.adhesion.accept_non_converged = plane.solver.accept_non_converged;
     Ok(out)
 }
 
@@ -241,24 +236,16 @@ pub(super) fn zones(
 
 /// The simulation of `model` with the zones of `plans`: zones built ([`zones`]), candidates
 /// recognised and checked (each zone has one, none deeper in its target than the alert
-/// distance, one within it). A library refusal (an adhesive law in 3D) is told at the zone's
-/// `law`.
+/// distance, one within it). A library refusal is told at the `contact` key.
 pub(super) fn build(
     model: SolidModel,
     plans: &[ZonePlan3],
     settings: SolidSettings,
 ) -> CliResult<SolidContactSimulation<SolidModel, StandardLaw>> {
     let zones = zones(model.mesh(), plans)?;
-    let adhesive = plans.iter().position(|z| z.law.has_adhesion());
     let nodes: Vec<[f64; 3]> = model.mesh().nodes().to_vec();
-    let sim =
-        SolidContactSimulation::new(model, zones, settings).map_err(|e| match (&e, adhesive) {
-            (SolverError::Unsupported(_), Some(i)) => {
-                let p = plans[i].path.key("law").key("type");
-                CliError::at(&p, format!("`{p}`: {}", chain(&e)))
-            }
-            _ => solver_error(&KeyPath::root().key("contact"), e),
-        })?;
+    let sim = SolidContactSimulation::new(model, zones, settings)
+        .map_err(|e| solver_error(&KeyPath::root().key("contact"), e))?;
     check_candidates(sim.candidates(), plans, &nodes)?;
     Ok(sim)
 }

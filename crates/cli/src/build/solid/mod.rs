@@ -8,7 +8,7 @@
 //! [`contact`] hold what 3D reads differently: the box generator and Gmsh volume files, loads
 //! with three components and pressures on face sets, rigid planes, spheres and cylinders.
 //! What 3D does not have yet (supports added or released between phases, laws changed per
-//! phase, displacement resets, plots, floating bodies, adhesion) is refused with its key path.
+//! phase, displacement resets, plots, floating bodies) is refused with its key path.
 
 mod contact;
 mod mesh;

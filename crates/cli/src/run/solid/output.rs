@@ -97,7 +97,7 @@ impl SolidRecorder {
                 dir,
                 "contacts.csv",
                 "step,time,zone,node,x,y,z,active,gap,r_n,r_t1,r_t2,area,pressure,slip_t1,\
-                 slip_t2,f_x,f_y,f_z",
+                 slip_t2,f_x,f_y,f_z,beta",
             )?;
             files.push("contacts.csv".to_string());
             Some(w)
@@ -206,7 +206,7 @@ impl SolidRecorder {
                 let x = model.mesh().nodes()[cand.node];
                 let f = c.force();
                 let text = format!(
-                    "{step},{t},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                    "{step},{t},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
                     field(&self.zones[cand.zone].name),
                     cand.node,
                     x[0],
@@ -223,7 +223,8 @@ impl SolidRecorder {
                     c.slip[1],
                     f[0],
                     f[1],
-                    f[2]
+                    f[2],
+                    c.beta
                 );
                 line(w, &self.dir, "contacts.csv", &text)?;
             }
