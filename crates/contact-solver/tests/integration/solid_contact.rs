@@ -115,7 +115,7 @@ fn sliding_block_follows_the_load_direction_works() {
     sim.structure_mut()
         .set_prescribed(&top, Component::Y, d * dir[1])
         .unwrap();
-    let res = sim.step(1.0, 1.0).unwrap();
+    let res = sim.step(2.0, 1.0).unwrap();
     let (mut fx, mut fy, mut fn_, mut rt_sum) = (0.0, 0.0, 0.0, 0.0);
     let mut closed = 0;
     for c in &res.contacts {
@@ -317,7 +317,9 @@ fn solid_contact_captures_errors() {
     assert!(SolidContactSimulation::new(model(), vec![zone.clone()], bad).is_err());
     let mut sim =
         SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).unwrap();
-    assert!(sim.step(1.0, -1.0).is_err());
+    sim.step(1.0, 1.0).unwrap();
+    assert!(sim.step(0.5, 1.0).is_err()); // time goes backwards
+    assert!(sim.step(2.0, f64::INFINITY).is_err());
     assert!(sim.step(f64::NAN, 1.0).is_err());
 }
 

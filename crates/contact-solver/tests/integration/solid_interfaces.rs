@@ -359,7 +359,7 @@ fn glued_block_pulled_off_follows_rccm() {
             sim.structure_mut()
                 .set_prescribed(&top, Component::Z, delta)
                 .unwrap();
-            let res = sim.step(1.0, 1.0).unwrap();
+            let res = sim.step(f64::from(k), 1.0).unwrap();
             let (u, beta) = pulled(e, h, c, w, delta, beta_prev);
             beta_prev = beta;
             damaged |= beta < 0.999;

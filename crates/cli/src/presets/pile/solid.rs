@@ -347,7 +347,7 @@ impl SolidPulloutScene {
         for &(node, f) in &self.installation_forces {
             self.simulation.structure_mut().add_nodal_force(node, f)?;
         }
-        let res = self.simulation.step(1.0, 1.0)?;
+        let res = self.simulation.step(2.0, 1.0)?;
         self.phase = Phase::Installed;
         Ok(res)
     }
@@ -363,7 +363,7 @@ impl SolidPulloutScene {
         self.simulation
             .structure_mut()
             .set_prescribed(&self.head, Component::Z, v)?;
-        let result = self.simulation.step(1.0, 1.0)?;
+        let result = self.simulation.step(2.0 + k as f64, 1.0)?;
         Ok(SolidPulloutStep {
             increment: k,
             head_displacement: v,

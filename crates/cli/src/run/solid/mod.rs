@@ -160,9 +160,10 @@ fn drive(
             let t = phase.time(k);
             let t_step = Instant::now();
             let res = apply(study, p, t, &mut last_loads).and_then(|()| {
+                let at = t.max(study.sim.time());
                 study
                     .sim
-                    .step(1.0, (t - *time).max(0.0))
+                    .step(at, 1.0)
                     .map_err(|e| step_error(e, &phase, t))
             });
             let res = match res {

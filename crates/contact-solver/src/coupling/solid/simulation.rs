@@ -152,6 +152,7 @@ pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     w_version: Option<u64>,
     u: Vec<f64>,
     time: f64,
+    steps: usize,
     solver: UzawaSolver,
     scale: f64,
 }
@@ -232,6 +233,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             w: Vec::new(),
             w_version: None,
             time: 0.0,
+            steps: 0,
             solver: UzawaSolver::new(settings.solver),
             scale,
         })
@@ -250,6 +252,16 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// The zones.
     pub fn zones(&self) -> &[ContactZone3<L>] {
         &self.zones
+    }
+
+    /// The time at the end of the last step (0 before the first).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps solved so far.
+    pub fn steps(&self) -> usize {
+        self.steps
     }
 
     /// The free-dof displacement at the end of the last step.
@@ -273,21 +285,32 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         &mut self.structure
     }
 
-    /// One load step to `load_factor`, of length `dt ≥ 0` (for the laws' state updates).
+    /// One load step ending at `time` (`≥` the current time; the step's length is what the
+    /// laws' state updates see) with the structure's loads scaled by `load_factor` (and its
+    /// current prescribed values): the order of [`ContactSimulation::step`](crate::ContactSimulation::step).
     ///
     /// # Errors
     /// Errors of the structure's solves; the local solver's errors
     /// ([`SolverError::NotConverged`] …); [`SolverError::NotConverged`] if the active set
-    /// still grows after `max_passes` passes; [`SolverError::InvalidSetting`] for a negative
-    /// or non-finite `dt`.
-    pub fn step(&mut self, load_factor: f64, dt: f64) -> Result<SolidStepResult, SolverError> {
-        if !(dt >= 0.0 && dt.is_finite()) {
+    /// still grows after `max_passes` passes; [`SolverError::InvalidSetting`] for a `time`
+    /// that is not finite or goes backwards, or a non-finite `load_factor`. On error the
+    /// simulation keeps the state of the previous step.
+    pub fn step(&mut self, time: f64, load_factor: f64) -> Result<SolidStepResult, SolverError> {
+        if !(time.is_finite() && time >= self.time) {
             return Err(SolverError::InvalidSetting {
-                what: "dt",
-                value: dt,
-                expected: "a finite step length >= 0",
+                what: "time",
+                value: time,
+                expected: "a finite time >= the current time",
             });
         }
+        if !load_factor.is_finite() {
+            return Err(SolverError::InvalidSetting {
+                what: "load_factor",
+                value: load_factor,
+                expected: "a finite load factor",
+            });
+        }
+        let dt = time - self.time;
         let ndof = self.structure.dof_count();
         let mut u_free = vec![0.0; ndof];
         self.structure
@@ -512,6 +535,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         }
         self.u = u;
         self.time += dt;
+        self.steps += 1;
         SolidStepResult {
             contacts,
             contact_iterations: counts.iterations,
