@@ -157,6 +157,19 @@ pub enum TargetSpec3 {
         /// The contactor's side (default outside).
         side: ArcSideSpec,
     },
+    /// Node pairs: each contactor node with the node of `set` at its position.
+    NodePairs {
+        /// The target node set (a face set when `normal` is absent).
+        set: String,
+        /// A fixed normal for every pair, from the target to the contactor; absent: the
+        /// target body's outward normal from the faces of `set`.
+        normal: Option<Coords>,
+    },
+    /// Node-to-face: the faces of another body's face set.
+    Faces {
+        /// The target face set.
+        set: String,
+    },
 }
 
 /// The mesh of a 3D scene.

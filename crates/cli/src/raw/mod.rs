@@ -282,6 +282,8 @@ pub enum TargetKind {
     Sphere,
     /// A rigid cylinder (3D).
     Cylinder,
+    /// Node-to-face: another body's faces (3D).
+    Faces,
 }
 
 impl TargetKind {
@@ -295,6 +297,7 @@ impl TargetKind {
             TargetKind::Plane => "plane",
             TargetKind::Sphere => "sphere",
             TargetKind::Cylinder => "cylinder",
+            TargetKind::Faces => "faces",
         }
     }
 }
@@ -375,7 +378,7 @@ impl RawTarget {
                     set: need(p, &self.set, "set", "a segments target")?,
                 }
             }
-            TargetKind::Plane | TargetKind::Sphere | TargetKind::Cylinder => {
+            TargetKind::Plane | TargetKind::Sphere | TargetKind::Cylinder | TargetKind::Faces => {
                 let tp = p.key("type");
                 return Err(CliError::at(
                     &tp,

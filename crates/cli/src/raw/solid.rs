@@ -140,14 +140,28 @@ impl RawTarget {
                     side,
                 }
             }
-            TargetKind::Line | TargetKind::Arc | TargetKind::NodePairs | TargetKind::Segments => {
+            TargetKind::NodePairs => {
+                let what = "a node_pairs target";
+                only(p, what, &present, &["set", "normal"])?;
+                TargetSpec3::NodePairs {
+                    set: need(p, &self.set, "set", what)?,
+                    normal: self.normal.clone(),
+                }
+            }
+            TargetKind::Faces => {
+                let what = "a faces target";
+                only(p, what, &present, &["set"])?;
+                TargetSpec3::Faces {
+                    set: need(p, &self.set, "set", what)?,
+                }
+            }
+            TargetKind::Line | TargetKind::Arc | TargetKind::Segments => {
                 let tp = p.key("type");
                 return Err(CliError::at(
                     &tp,
                     format!(
                         "`{tp}` = \"{}\" is a target of a 2D scene; a 3D scene takes plane, \
-                         sphere or cylinder (node pairs and node-to-face zones are not \
-                         available in 3D yet)",
+                         sphere, cylinder, node_pairs or faces",
                         self.kind.name()
                     ),
                 ));

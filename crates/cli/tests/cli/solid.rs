@@ -288,3 +288,28 @@ fn solid_glued_block_follows_rccm_works() {
     );
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// Two P2 blocks from Gmsh (tests/solid/blocks.msh), the upper pressed on the lower through
+/// node pairs (normals from the lower block's faces) and through node-to-face: the uniaxial
+/// stress `E δ / 2 = 0.5` over the two heights is exact on matching grids, so `Σ r_n = 0.5`
+/// and every contact node with an area carries `0.5 A_i`, to the solver's tolerance.
+#[test]
+fn solid_two_blocks_pairs_and_faces_works() {
+    for kind in ["pairs", "faces"] {
+        let out = tmp(&format!("blocks_{kind}"));
+        run(&dir(&format!("tests/solid/blocks_{kind}.toml")), &out);
+        let steps = csv(&out.join("steps.csv"));
+        assert_close(num(&steps[1], "force_n"), 0.5, 1e-8);
+        assert_close(num(&steps[0], "force_n"), 0.25, 1e-8);
+        let contacts = csv(&out.join("contacts.csv"));
+        let mut with_area = 0;
+        for r in contacts.iter().filter(|r| r["step"] == "2") {
+            if num(r, "area") > 0.0 {
+                with_area += 1;
+                assert_close(num(r, "pressure"), 0.5, 1e-7);
+            }
+        }
+        assert!(with_area >= 8, "{kind}: {with_area} nodes with an area");
+        let _ = std::fs::remove_dir_all(&out);
+    }
+}

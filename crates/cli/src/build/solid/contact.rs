@@ -14,17 +14,25 @@ use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
 use contact_solver::SolverError;
 use contact_solver::coupling::solid::{
-    Candidate3, ContactZone3, RigidCylinder, RigidPlane, RigidSphere, Side3,
-    SolidContactSimulation, SolidSettings,
+    Candidate3, ContactZone3, PairNormals3, RigidCylinder, RigidPlane, RigidSphere, Side3,
+    SolidContactSimulation, SolidSettings, TriSurface,
 };
 use fem_core::solid::{SolidMesh, SolidModel};
 use std::collections::BTreeSet;
 
-/// A rigid target, built.
+/// A target, checked: rigid (built), or another body's nodes or faces (looked up in the mesh
+/// at build).
 enum Obstacle {
     Plane(RigidPlane),
     Sphere(RigidSphere),
     Cylinder(RigidCylinder),
+    /// Node pairs by position with the nodes of a set; a fixed normal, or the set's faces'.
+    NodePairs {
+        set: String,
+        normal: Option<[f64; 3]>,
+    },
+    /// Node-to-face on a face set.
+    Faces(String),
 }
 
 /// A 3D contact zone, checked; its contactor set is looked up in the mesh at build.
@@ -156,6 +164,14 @@ fn target(tp: &KeyPath, t: &TargetSpec3) -> CliResult<Obstacle> {
             )
             .map_err(err)?,
         ),
+        TargetSpec3::NodePairs { set, normal } => Obstacle::NodePairs {
+            set: set.clone(),
+            normal: normal
+                .as_ref()
+                .map(|n| direction(&tp.key("normal"), n))
+                .transpose()?,
+        },
+        TargetSpec3::Faces { set } => Obstacle::Faces(set.clone()),
     })
 }
 
@@ -208,7 +224,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
 
 /// The contact zones on the mesh: each contactor set's nodes, with the consistent nodal areas
 /// of its faces when it is a face set (a physical surface; the reports' pressures are then
-/// `r_n / A_i`), against its rigid target.
+/// `r_n / A_i`), against its target (rigid, node pairs by position, or faces).
 pub(super) fn zones(
     mesh: &SolidMesh,
     plans: &[ZonePlan3],
@@ -221,10 +237,35 @@ pub(super) fn zones(
             Err(_) => (node_set(&cp, mesh, &z.contactor)?, None),
         };
         let (name, l, alert) = (z.name.as_str(), z.law, z.alert);
+        let tp = z.path.key("target");
+        let surface = |set: &str| {
+            TriSurface::from_face_set(mesh, set).map_err(|_| {
+                let sp = tp.key("set");
+                CliError::at(
+                    &sp,
+                    format!(
+                        "`{sp}` = \"{set}\" is not a face set of the mesh (a physical surface, \
+                         or a side of the box): a faces target, and node pairs without a \
+                         `normal`, need the target body's faces"
+                    ),
+                )
+            })
+        };
         let zone = match &z.target {
             Obstacle::Plane(o) => ContactZone3::rigid(name, nodes, *o, l, alert),
             Obstacle::Sphere(o) => ContactZone3::rigid(name, nodes, *o, l, alert),
             Obstacle::Cylinder(o) => ContactZone3::rigid(name, nodes, *o, l, alert),
+            Obstacle::NodePairs { set, normal } => {
+                let targets = pair_by_position(mesh, &tp.key("set"), set, &z.contactor, &nodes)?;
+                let normals = match normal {
+                    Some(n) => PairNormals3::Fixed(*n),
+                    None => PairNormals3::Surface(surface(set)?),
+                };
+                ContactZone3::node_pairs(name, nodes, targets, normals, l, alert)
+            }
+            Obstacle::Faces(set) => {
+                ContactZone3::node_to_face(name, nodes, surface(set)?, l, alert)
+            }
         };
         out.push(match areas {
             Some(a) => zone.with_areas(a),
@@ -232,6 +273,57 @@ pub(super) fn zones(
         });
     }
     Ok(out)
+}
+
+/// For each contactor node, the node of `set` at the same position (to 1e-9 of the mesh's
+/// extent): node pairs join two bodies whose meshes match on the interface, each with its own
+/// nodes there.
+fn pair_by_position(
+    mesh: &SolidMesh,
+    sp: &KeyPath,
+    set: &str,
+    contactor_set: &str,
+    contactor: &[usize],
+) -> CliResult<Vec<usize>> {
+    let targets = node_set(sp, mesh, set)?;
+    let nodes = mesh.nodes();
+    let extent = nodes
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let tol = 1e-9 * extent.max(f64::MIN_POSITIVE);
+    let key = |p: [f64; 3]| p.map(|v| (v / tol.max(1e-300) / 16.0).round() as i64);
+    let mut by_position: std::collections::HashMap<[i64; 3], Vec<usize>> =
+        std::collections::HashMap::new();
+    for &t in &targets {
+        by_position.entry(key(nodes[t])).or_default().push(t);
+    }
+    contactor
+        .iter()
+        .map(|&c| {
+            let x = nodes[c];
+            let k = key(x);
+            let near = (-1..=1)
+                .flat_map(|i| (-1..=1).flat_map(move |j| (-1..=1).map(move |l| [i, j, l])))
+                .filter_map(|d| by_position.get(&[k[0] + d[0], k[1] + d[1], k[2] + d[2]]))
+                .flatten()
+                .copied()
+                .filter(|&t| t != c && (0..3).all(|a| (nodes[t][a] - x[a]).abs() <= tol))
+                .min();
+            near.ok_or_else(|| {
+                CliError::at(
+                    sp,
+                    format!(
+                        "node {c} of the contactor set `{contactor_set}` at ({}, {}, {}) has no \
+                         node of `{sp}` = \"{set}\" at its position: node pairs need matching \
+                         meshes, each body with its own nodes on the interface (use a faces \
+                         target otherwise)",
+                        x[0], x[1], x[2]
+                    ),
+                )
+            })
+        })
+        .collect()
 }
 
 /// The simulation of `model` with the zones of `plans`: zones built ([`zones`]), candidates
