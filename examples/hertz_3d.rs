@@ -3,13 +3,15 @@
 //! The same problem as `tools/peers/getfem_hertz3d.py` (GetFEM), grid for grid.
 //!
 //! Run: `cargo run --release --example hertz_3d -- 0 1` (refinement levels: each halves every
-//! cell of the graded base grid).
+//! cell of the graded base grid); `--matrix-free` or `--dense` chooses the reduced problem's
+//! path (default: the settings' `Auto`).
 //!
 //! Block `[0, 4]² × [−4, 0]`, grid lines fine (0.15) up to 0.9 in x, y and 0.6 in depth, then
 //! geometric to 4; ball R = 10 centred at (0, 0, R); E = 1000, ν = 0.3; bottom pushed up by
 //! d = 0.04; symmetry on x = 0 and y = 0; frictionless.
 
 use bipotential::contact_laws::Signorini;
+use bipotential::contact_solver::FlexibilityMode;
 use bipotential::contact_solver::coupling::solid::{
     ContactZone3, RigidSphere, Side3, SolidContactSimulation, SolidSettings,
 };
@@ -43,8 +45,16 @@ fn refine(v: &[f64], times: usize) -> Vec<f64> {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let levels: Vec<usize> = std::env::args()
-        .skip(1)
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut settings = SolidSettings::default();
+    if args.iter().any(|a| a == "--matrix-free") {
+        settings.flexibility = FlexibilityMode::MatrixFree;
+    } else if args.iter().any(|a| a == "--dense") {
+        settings.flexibility = FlexibilityMode::Dense;
+    }
+    let levels: Vec<usize> = args
+        .iter()
+        .filter(|a| !a.starts_with("--"))
         .map(|a| a.parse())
         .collect::<Result<_, _>>()?;
     let levels = if levels.is_empty() {
@@ -77,7 +87,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         let dofs = model.dof_count();
         let ball = RigidSphere::new([0.0, 0.0, radius], radius, Side3::Outside)?;
         let zone = ContactZone3::rigid("top", nodes, ball, Signorini, 0.0).with_areas(areas);
-        let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default())?;
+        let mut sim = SolidContactSimulation::new(model, vec![zone], settings)?;
         let t_build = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let res = sim.step(1.0, 1.0)?;
@@ -103,11 +113,16 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .sum::<f64>();
         let hertz_half = p * (1.0 - 0.75_f64.powf(1.5));
         println!(
-            "| {level} | {dofs} | {} | {p:.4} | {inside:.4} ({:+.2} %) | {outside:.4} | {a_h:.4} | {:.4} | {t_build:.2} | {t_step:.2} | {} |",
+            "| {level} | {dofs} | {} | {p:.4} | {inside:.4} ({:+.2} %) | {outside:.4} | {a_h:.4} | {:.4} | {t_build:.2} | {t_step:.2} | {}{} |",
             res.active,
             100.0 * (inside / a_h - 1.0),
             half / hertz_half,
-            res.contact_iterations
+            res.contact_iterations,
+            if res.matrix_free {
+                " (matrix-free)"
+            } else {
+                ""
+            }
         );
     }
     Ok(())

@@ -86,6 +86,55 @@ pub struct MatrixFreeReport {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn solve_matrix_free<L: ContactLaw>(
+    apply: impl FnMut(&[f64], &mut [f64]) -> Result<(), SolverError>,
+    laws: &[L],
+    states: &[L::State],
+    rho0: &[f64],
+    settings: &UzawaSettings,
+    r: &mut [f64],
+    x: &mut [f64],
+) -> Result<MatrixFreeReport, SolverError> {
+    solve::<L, 1>(apply, laws, states, rho0, settings, r, x)
+}
+
+/// [`solve_matrix_free`] in 3D: `r` and `x` have three components per contact, the normal
+/// first, then the two tangential ones (`m = 3 n_c`).
+///
+/// # Errors
+/// As [`solve_matrix_free`].
+///
+/// # Examples
+/// ```
+/// use contact_laws::Coulomb;
+/// use contact_solver::local::matrix_free::solve_matrix_free_3d;
+/// use contact_solver::UzawaSettings;
+/// // one contact, W = 2 I, pressed (q_n = −1) and pushed along t₁ (q_t1 = 0.5), μ = 0.2: slip
+/// let apply = |r: &[f64], x: &mut [f64]| {
+///     x[0] = 2.0 * r[0] - 1.0;
+///     x[1] = 2.0 * r[1] + 0.5;
+///     x[2] = 2.0 * r[2];
+///     Ok(())
+/// };
+/// let (mut r, mut x) = (vec![0.0; 3], vec![0.0; 3]);
+/// let law = [Coulomb::new(0.2)?];
+/// solve_matrix_free_3d(apply, &law, &[()], &[0.5], &UzawaSettings::default(), &mut r, &mut x)?;
+/// assert!((r[0] - 0.5).abs() < 1e-9 && (r[1] + 0.1).abs() < 1e-9 && r[2].abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn solve_matrix_free_3d<L: ContactLaw>(
+    apply: impl FnMut(&[f64], &mut [f64]) -> Result<(), SolverError>,
+    laws: &[L],
+    states: &[L::State],
+    rho0: &[f64],
+    settings: &UzawaSettings,
+    r: &mut [f64],
+    x: &mut [f64],
+) -> Result<MatrixFreeReport, SolverError> {
+    solve::<L, 2>(apply, laws, states, rho0, settings, r, x)
+}
+
+/// The iteration with `DT` tangential components per contact.
+fn solve<L: ContactLaw, const DT: usize>(
     mut apply: impl FnMut(&[f64], &mut [f64]) -> Result<(), SolverError>,
     laws: &[L],
     states: &[L::State],
@@ -94,9 +143,10 @@ pub fn solve_matrix_free<L: ContactLaw>(
     r: &mut [f64],
     x: &mut [f64],
 ) -> Result<MatrixFreeReport, SolverError> {
-    check_sizes(laws.len(), states.len(), rho0, r.len(), x.len())?;
+    let dim = DT + 1;
+    check_sizes(dim, laws.len(), states.len(), rho0, r.len(), x.len())?;
     let nc = rho0.len();
-    let m = 2 * nc;
+    let m = dim * nc;
     let mut applications = 1;
     apply(r, x)?;
     // q = x − W r is not needed: the residual scale uses ‖x(0)‖ through the first product
@@ -127,18 +177,18 @@ pub fn solve_matrix_free<L: ContactLaw>(
     while iterations < settings.max_iterations {
         iterations += 1;
         for i in 0..nc {
-            let vi = laws[i].modified_velocity(&local::<1>(&xy, i), &states[i]);
-            v[2 * i] = vi.n;
-            v[2 * i + 1] = vi.t[0];
+            let vi = laws[i].modified_velocity(&local::<DT>(&xy, i), &states[i]);
+            v[dim * i] = vi.n;
+            v[dim * i + 1..dim * (i + 1)].copy_from_slice(vi.t.as_slice());
         }
         let mut shrinks = 0;
         let dr2 = loop {
             let mut dr2 = 0.0;
             for i in 0..nc {
-                let yi = local::<1>(&y, i);
+                let yi = local::<DT>(&y, i);
                 let p = laws[i].project(&(yi + local(&v, i) * (theta * rho0[i])), &states[i]);
-                r_new[2 * i] = p.n;
-                r_new[2 * i + 1] = p.t[0];
+                r_new[dim * i] = p.n;
+                r_new[dim * i + 1..dim * (i + 1)].copy_from_slice(p.t.as_slice());
                 let d = p - yi;
                 dr2 += d.dot(&d);
             }
@@ -150,7 +200,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
             applications += 1;
             let mut dv2 = 0.0;
             for i in 0..nc {
-                let vn = laws[i].modified_velocity(&local::<1>(&x_new, i), &states[i]);
+                let vn = laws[i].modified_velocity(&local::<DT>(&x_new, i), &states[i]);
                 let d = (vn - local(&v, i)) * (theta * rho0[i]);
                 dv2 += d.dot(&d);
             }
@@ -175,7 +225,7 @@ pub fn solve_matrix_free<L: ContactLaw>(
             .sum();
         let r_norm = norm(&r_new);
         let change = change2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
-        residual = natural_residual::<L, 1>(laws, states, rho0, &r_new, &x_new)
+        residual = natural_residual::<L, DT>(laws, states, rho0, &r_new, &x_new)
             / r_norm.max(scale_q).max(f64::MIN_POSITIVE);
         history.push(residual);
         // accept r_new
@@ -186,12 +236,12 @@ pub fn solve_matrix_free<L: ContactLaw>(
         if (change <= settings.tol && residual <= settings.tol) || dr2 == 0.0 {
             // a relative residual of 0 with reactions grown without bound (no solution)
             // leaves x_n < 0 at the scale of q: one more product gives q = x(r = 0)
-            if coulomb_type && x.iter().step_by(2).any(|&v| v < 0.0) {
+            if coulomb_type && x.iter().step_by(dim).any(|&v| v < 0.0) {
                 let zero = vec![0.0; m];
                 let mut q = vec![0.0; m];
                 apply(&zero, &mut q)?;
                 applications += 1;
-                let (pen, scale) = penetration::<1>(&q, x);
+                let (pen, scale) = penetration::<DT>(&q, x);
                 if pen > CHECK_FACTOR * settings.tol * scale {
                     stalled = true;
                     break;
@@ -251,9 +301,10 @@ pub fn solve_matrix_free<L: ContactLaw>(
     })
 }
 
-/// The sizes of a matrix-free solve (`n_c` laws and states, `2 n_c` reactions and jumps) and
-/// its base penalties (finite, positive).
+/// The sizes of a matrix-free solve (`n_c` laws and states, `dim n_c` reactions and jumps)
+/// and its base penalties (finite, positive).
 fn check_sizes(
+    dim: usize,
     n_laws: usize,
     n_states: usize,
     rho0: &[f64],
@@ -261,7 +312,7 @@ fn check_sizes(
     n_x: usize,
 ) -> Result<(), SolverError> {
     let nc = rho0.len();
-    let m = 2 * nc;
+    let m = dim * nc;
     for (what, len, expected) in [
         ("laws", n_laws, nc),
         ("states", n_states, nc),

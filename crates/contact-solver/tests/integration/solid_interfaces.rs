@@ -490,3 +490,68 @@ fn interface_zones_refuse_bad_input() {
         "99999",
     );
 }
+
+/// The matrix-free path (no `F*`) gives the dense path's reactions: the sliding blocks of
+/// `sliding_blocks_obey_coulomb_between_bodies` (node-to-face, Coulomb; 37 contacts, both
+/// tangents used) and the two-block patch with node pairs (Signorini: the tangents decoupled).
+/// Both solvers stop at the relative tolerance 1e-10: reactions agree to 1e-6 of the largest.
+#[test]
+fn matrix_free_3d_matches_dense() {
+    use contact_solver::coupling::simulation::FlexibilityMode;
+    let m = Material::new(1000.0, 0.3, 0.0).unwrap();
+    let run = |mode: FlexibilityMode, friction: bool| {
+        let mesh = two_blocks(SolidKind::Tet10, 2, if friction { 3 } else { 2 });
+        let (nodes, areas) = mesh.nodal_areas("b.z0").unwrap();
+        let s = if friction {
+            let mut s = Supports::new();
+            for c in [Component::X, Component::Y, Component::Z] {
+                s.fix(mesh.node_set("a.z0").unwrap(), c);
+            }
+            s.prescribe(mesh.node_set("b.z1").unwrap(), Component::Z, -1e-3)
+                .unwrap()
+                .prescribe(mesh.node_set("b.z1").unwrap(), Component::X, 2e-4)
+                .unwrap()
+                .fix(mesh.node_set("b.z1").unwrap(), Component::Y);
+            s
+        } else {
+            supports(&mesh, &[(Component::Z, -1e-3)])
+        };
+        let zone: ContactZone3<contact_laws::StandardLaw> = if friction {
+            let surface = TriSurface::from_face_set(&mesh, "a.z1").unwrap();
+            let law = contact_laws::StandardLaw::Coulomb(Coulomb::new(0.3).unwrap());
+            ContactZone3::node_to_face("i", nodes, surface, law, 0.1).with_areas(areas)
+        } else {
+            let targets = matching(&mesh, &nodes, mesh.node_set("a.z1").unwrap());
+            let n = PairNormals3::Fixed([0.0, 0.0, 1.0]);
+            let law = contact_laws::StandardLaw::Signorini(Signorini);
+            ContactZone3::node_pairs("i", nodes, targets, n, law, 0.1).with_areas(areas)
+        };
+        let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
+        let settings = SolidSettings {
+            flexibility: mode,
+            ..SolidSettings::default()
+        };
+        let mut sim = SolidContactSimulation::new(model, vec![zone], settings).unwrap();
+        let res = sim.step(1.0, 1.0).unwrap();
+        assert_eq!(res.matrix_free, mode == FlexibilityMode::MatrixFree);
+        res.contacts.iter().map(|c| c.r).collect::<Vec<_>>()
+    };
+    for friction in [false, true] {
+        let dense = run(FlexibilityMode::Dense, friction);
+        let free = run(FlexibilityMode::MatrixFree, friction);
+        let largest = dense.iter().flatten().fold(0.0_f64, |a, b| a.max(b.abs()));
+        let worst = dense
+            .iter()
+            .flatten()
+            .zip(free.iter().flatten())
+            .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()));
+        eprintln!(
+            "friction {friction}: matrix-free against dense {:.1e}",
+            worst / largest
+        );
+        assert!(
+            worst < 1e-6 * largest,
+            "friction {friction}: {worst} of {largest}"
+        );
+    }
+}

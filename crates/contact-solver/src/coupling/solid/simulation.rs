@@ -18,8 +18,10 @@
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
 use crate::coupling::flexibility::flexibility_into;
+use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+use crate::local::matrix_free::solve_matrix_free_3d;
 use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver, symmetrize};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
@@ -38,7 +40,18 @@ pub struct SolidSettings {
     pub penetration_tol: f64,
     /// The adhesion fixed point (tolerance on β, cap, Anderson window), for adhesive laws.
     pub adhesion: AdhesionOptions,
+    /// How the reduced problem is held: `Dense` (`F*` built with `3 n_c` solves), `MatrixFree`
+    /// (one solve per iteration, no `F*`; adhesive steps still build `F*`, whose exact
+    /// condensation of the springs needs it), or `Auto { dense_limit }`: dense up to that many
+    /// active contacts, matrix-free beyond (the default, [`DEFAULT_DENSE_LIMIT_3D`]).
+    /// `ActiveSet` is 2D only and refused.
+    pub flexibility: FlexibilityMode,
 }
+
+/// Default `Auto` limit of 3D steps: a dense `F*` of 3000 contacts holds 81e6 values (648 MB)
+/// and is faster to build than the matrix-free iterations are to converge
+/// (`docs/benchmarks.md`, "3D: dense against matrix-free").
+pub const DEFAULT_DENSE_LIMIT_3D: usize = 3000;
 
 impl Default for SolidSettings {
     fn default() -> Self {
@@ -48,6 +61,9 @@ impl Default for SolidSettings {
             max_passes: 20,
             penetration_tol: 1e-9,
             adhesion: AdhesionOptions::default(),
+            flexibility: FlexibilityMode::Auto {
+                dense_limit: DEFAULT_DENSE_LIMIT_3D,
+            },
         }
     }
 }
@@ -105,6 +121,8 @@ pub struct SolidStepResult {
     pub residual: f64,
     /// Number of active contacts.
     pub active: usize,
+    /// Whether the last pass was solved matrix-free (no `F*`).
+    pub matrix_free: bool,
 }
 
 /// A quasi-static 3D contact simulation (module docs).
@@ -182,6 +200,13 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 value: settings.penetration_tol,
                 expected: "a finite tolerance > 0",
             });
+        }
+        if settings.flexibility == FlexibilityMode::ActiveSet {
+            return Err(SolverError::Unsupported(
+                "the primal active set (FlexibilityMode::ActiveSet) in 3D: use Dense, \
+                 MatrixFree or Auto"
+                    .into(),
+            ));
         }
         if structure.rigid_body_modes().is_some_and(|m| !m.is_empty()) {
             return Err(SolverError::Unsupported(
@@ -336,6 +361,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 counts.iterations += sol.iterations;
                 counts.adhesion_iterations += sol.adhesion_iterations;
                 counts.residual = sol.residual;
+                counts.matrix_free = sol.matrix_free;
                 let mut rhs = vec![0.0; ndof];
                 for (k, &i) in active.iter().enumerate() {
                     for d in 0..3 {
@@ -427,6 +453,18 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         free: &[[f64; 3]],
         dt: f64,
     ) -> Result<Solved<L::State>, SolverError> {
+        let adhesive = active
+            .iter()
+            .any(|&i| self.zones[self.candidates[i].zone].law.has_adhesion());
+        let matrix_free = !adhesive
+            && match self.settings.flexibility {
+                FlexibilityMode::MatrixFree => true,
+                FlexibilityMode::Auto { dense_limit } => active.len() > dense_limit,
+                _ => false,
+            };
+        if matrix_free {
+            return self.solve_matrix_free(active, free);
+        }
         if self.w_active != active || self.w_version != Some(self.structure.stiffness_version()) {
             self.build_flexibility(active)?;
         }
@@ -469,6 +507,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 iterations: sol.contact_iterations,
                 adhesion_iterations: sol.adhesion_iterations,
                 residual: sol.report.residual,
+                matrix_free: false,
             });
         }
         let mu: Vec<f64> = laws
@@ -488,7 +527,144 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             iterations: sol.report.iterations,
             adhesion_iterations: 0,
             residual: sol.report.residual,
+            matrix_free: false,
         })
+    }
+
+    /// The reduced problem on `active` without `F*`: each product `x = H K⁻¹ Hᵀ r + q` is one
+    /// structure solve ([`solve_matrix_free_3d`]). A direction the contact cannot use
+    /// (frictionless tangents, or held on both sides) answers `x = r / ρ⁰`, which the law's
+    /// projection drives to `r = 0` there (the dense path's decoupling).
+    fn solve_matrix_free(
+        &mut self,
+        active: &[usize],
+        free: &[[f64; 3]],
+    ) -> Result<Solved<L::State>, SolverError> {
+        let na = active.len();
+        let laws: Vec<L> = active
+            .iter()
+            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .collect();
+        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let rho0 = self.estimate_rho0(active)?;
+        // rows of H that carry the contact's response; the others are decoupled
+        let used: Vec<bool> = active
+            .iter()
+            .flat_map(|&i| {
+                let t = self.tangent_needed(i);
+                (0..3).map(move |d| (i, d, t))
+            })
+            .map(|(i, d, t)| (d == 0 || t) && !self.h_rows[3 * i + d].is_empty())
+            .collect();
+        let rows: Vec<usize> = active
+            .iter()
+            .flat_map(|&i| [3 * i, 3 * i + 1, 3 * i + 2])
+            .collect();
+        let mut q = vec![0.0; 3 * na];
+        for (k, &i) in active.iter().enumerate() {
+            q[3 * k] = free[i][0];
+            for d in 1..3 {
+                if used[3 * k + d] {
+                    q[3 * k + d] = free[i][d] - self.jumps[i][d];
+                }
+            }
+        }
+        let mut r: Vec<f64> = active.iter().flat_map(|&i| self.r_bar_last[i]).collect();
+        let mut x = vec![0.0; 3 * na];
+        let (structure, h_rows) = (&self.structure, &self.h_rows);
+        let mut scratch = vec![0.0; structure.dof_count()];
+        let apply = |r: &[f64], x: &mut [f64]| -> Result<(), SolverError> {
+            scratch.fill(0.0);
+            for (j, &row) in rows.iter().enumerate() {
+                if used[j] && r[j] != 0.0 {
+                    for &(dof, a) in &h_rows[row] {
+                        scratch[dof] += a * r[j];
+                    }
+                }
+            }
+            structure.solve_in_place(&mut scratch)?;
+            for (j, &row) in rows.iter().enumerate() {
+                x[j] = q[j]
+                    + if used[j] {
+                        h_rows[row]
+                            .iter()
+                            .map(|&(dof, a)| a * scratch[dof])
+                            .sum::<f64>()
+                    } else {
+                        r[j] / rho0[j / 3]
+                    };
+            }
+            Ok(())
+        };
+        let report = solve_matrix_free_3d(
+            apply,
+            &laws,
+            &states,
+            &rho0,
+            &self.settings.solver,
+            &mut r,
+            &mut x,
+        )?;
+        Ok(Solved {
+            r_bar: r.clone(),
+            r,
+            states: None,
+            iterations: report.iterations,
+            adhesion_iterations: 0,
+            residual: report.residual,
+            matrix_free: true,
+        })
+    }
+
+    /// `ρ⁰` per active contact for the matrix-free iteration: `1 / λ̄` of the 3 × 3 diagonal
+    /// block of `F*` (`λ̄` its Gershgorin bound), computed exactly on up to 16 contacts spread
+    /// over the active set and given to the others from the nearest sample.
+    fn estimate_rho0(&self, active: &[usize]) -> Result<Vec<f64>, SolverError> {
+        const SAMPLES: usize = 16;
+        let na = active.len();
+        let ns = na.min(SAMPLES);
+        let samples: Vec<usize> = (0..ns).map(|k| (2 * k + 1) * na / (2 * ns)).collect();
+        let mut x = faer::Mat::<f64>::zeros(self.structure.dof_count(), 3 * ns);
+        for (c, &k) in samples.iter().enumerate() {
+            let i = active[k];
+            for d in 0..3 {
+                for &(dof, a) in &self.h_rows[3 * i + d] {
+                    x[(dof, 3 * c + d)] += a;
+                }
+            }
+        }
+        self.structure.solve_many_in_place(x.as_mut())?;
+        let rho: Vec<f64> = samples
+            .iter()
+            .enumerate()
+            .map(|(c, &k)| {
+                let i = active[k];
+                let w = |row: usize, col: usize| -> f64 {
+                    self.h_rows[3 * i + row]
+                        .iter()
+                        .map(|&(dof, a)| a * x[(dof, 3 * c + col)])
+                        .sum()
+                };
+                let bound = (0..3)
+                    .map(|a| (0..3).map(|b| w(a, b).abs()).sum::<f64>())
+                    .fold(0.0_f64, f64::max);
+                if bound > 0.0 && bound.is_finite() {
+                    1.0 / bound
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        Ok((0..na)
+            .map(|k| {
+                let nearest = samples
+                    .iter()
+                    .enumerate()
+                    .min_by_key(|(_, s)| s.abs_diff(k))
+                    .map_or(0, |(c, _)| c);
+                rho[nearest]
+            })
+            .collect())
     }
 
     fn accept(
@@ -543,6 +719,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             passes: counts.passes,
             residual: counts.residual,
             active: active.len(),
+            matrix_free: counts.matrix_free,
         }
     }
 }
@@ -555,6 +732,7 @@ struct Solved<S> {
     iterations: usize,
     adhesion_iterations: usize,
     residual: f64,
+    matrix_free: bool,
 }
 
 /// Iterations and passes of a step.
@@ -564,6 +742,7 @@ struct Counts {
     adhesion_iterations: usize,
     passes: usize,
     residual: f64,
+    matrix_free: bool,
 }
 
 /// The displacement of `node` from free-dof values `u` (prescribed components added).
