@@ -234,18 +234,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
     let (mut adhesive, mut friction) = (0, 0);
     for (i, z) in scene.contact.iter().enumerate() {
         let p = root.key("contact").index(i);
-        if z.name.trim().is_empty() {
-            return Err(CliError::at(
-                &p.key("name"),
-                format!("`{}` is empty: a zone needs a name", p.key("name")),
-            ));
-        }
-        if !names.insert(z.name.clone()) {
-            return Err(CliError::at(
-                &p.key("name"),
-                format!("zone name `{}` is used twice", z.name),
-            ));
-        }
+        zone_name(&p, &z.name, &mut names)?;
         let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
         let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
         if l.has_adhesion() {
@@ -493,6 +482,23 @@ fn check_candidates(
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// A zone's name at `p`: not empty, not used by an earlier zone (`names` collects them).
+pub(super) fn zone_name(p: &KeyPath, name: &str, names: &mut BTreeSet<String>) -> CliResult<()> {
+    if name.trim().is_empty() {
+        return Err(CliError::at(
+            &p.key("name"),
+            format!("`{}` is empty: a zone needs a name", p.key("name")),
+        ));
+    }
+    if !names.insert(name.to_string()) {
+        return Err(CliError::at(
+            &p.key("name"),
+            format!("zone name `{name}` is used twice"),
+        ));
     }
     Ok(())
 }

@@ -440,11 +440,7 @@ pub(super) fn build(
 ) -> CliResult<(LinearElasticModel, Vec<SupportRt>, Vec<LoadRt>)> {
     let root = KeyPath::root();
     // An element stiffness that overflows is the material's fault, not the supports'.
-    let young_keys: BTreeMap<u32, KeyPath> = plan
-        .materials
-        .iter()
-        .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
-        .collect();
+    let young_keys = young_keys(&plan.materials);
     let materials = regions(mesh.regions(), plan.materials)?;
     let mut supports = Vec::new();
     let mut paths = Vec::new();
@@ -617,4 +613,13 @@ mod tests {
             assert_eq!(e.path.as_ref().unwrap(), &p, "{c:?} in {dim}D");
         }
     }
+}
+
+/// The key path of each region's Young's modulus (an element stiffness that overflows is the
+/// material's fault, not the supports').
+pub(super) fn young_keys(materials: &[MaterialPlan]) -> BTreeMap<u32, KeyPath> {
+    materials
+        .iter()
+        .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
+        .collect()
 }

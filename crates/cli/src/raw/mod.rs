@@ -322,9 +322,9 @@ pub struct RawTarget {
 }
 
 impl RawTarget {
-    /// The target of a 2D scene.
-    pub fn resolve(&self, p: &KeyPath) -> CliResult<TargetSpec> {
-        let present = [
+    /// Which keys the table has (for the checks of which keys a type takes).
+    fn present(&self) -> [(&'static str, bool); 11] {
+        [
             ("a", self.a.is_some()),
             ("b", self.b.is_some()),
             ("center", self.center.is_some()),
@@ -336,7 +336,12 @@ impl RawTarget {
             ("normal", self.normal.is_some()),
             ("point", self.point.is_some()),
             ("axis", self.axis.is_some()),
-        ];
+        ]
+    }
+
+    /// The target of a 2D scene.
+    pub fn resolve(&self, p: &KeyPath) -> CliResult<TargetSpec> {
+        let present = self.present();
         Ok(match self.kind {
             TargetKind::Line => {
                 only(p, "a LINE target", &present, &["a", "b"])?;

@@ -98,19 +98,7 @@ impl RawLoad {
 impl RawTarget {
     /// The target of a 3D scene.
     pub fn resolve_3d(&self, p: &KeyPath) -> CliResult<TargetSpec3> {
-        let present = [
-            ("a", self.a.is_some()),
-            ("b", self.b.is_some()),
-            ("center", self.center.is_some()),
-            ("radius", self.radius.is_some()),
-            ("start_angle", self.start_angle.is_some()),
-            ("sweep", self.sweep.is_some()),
-            ("side", self.side.is_some()),
-            ("set", self.set.is_some()),
-            ("normal", self.normal.is_some()),
-            ("point", self.point.is_some()),
-            ("axis", self.axis.is_some()),
-        ];
+        let present = self.present();
         let side = self.side.unwrap_or(ArcSideSpec::Outside);
         Ok(match self.kind {
             TargetKind::Plane => {

@@ -4,7 +4,7 @@
 //! node-to-face zones plug in there), their candidates checked, and the simulation made.
 
 use super::super::checks::{finite, non_negative, positive, solver_error};
-use super::super::contact::{law, settings};
+use super::super::contact::{law, settings, zone_name};
 use super::mesh::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::triple;
@@ -190,18 +190,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
     let mut names = BTreeSet::new();
     for (i, z) in scene.contact.iter().enumerate() {
         let p = root.key("contact").index(i);
-        if z.name.trim().is_empty() {
-            return Err(CliError::at(
-                &p.key("name"),
-                format!("`{}` is empty: a zone needs a name", p.key("name")),
-            ));
-        }
-        if !names.insert(z.name.clone()) {
-            return Err(CliError::at(
-                &p.key("name"),
-                format!("zone name `{}` is used twice", z.name),
-            ));
-        }
+        zone_name(&p, &z.name, &mut names)?;
         let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
         let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
         let target = target(&p.key("target"), &z.target.resolve_3d(&p.key("target"))?)?;

@@ -5,7 +5,7 @@
 
 use super::super::checks::{fem, finite};
 use super::super::model::{
-    InitialStressPlan, MaterialPlan, SupportPlan, Ties, check_prescriptions, regions,
+    InitialStressPlan, MaterialPlan, SupportPlan, Ties, check_prescriptions, regions, young_keys,
 };
 use super::super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::super::study::SupportRt;
@@ -141,11 +141,7 @@ pub(super) fn build(
     phases: &[Phase],
 ) -> CliResult<(SolidModel, Vec<SupportRt>, Vec<LoadRt3>)> {
     let root = KeyPath::root();
-    let young_keys: BTreeMap<u32, KeyPath> = plan
-        .materials
-        .iter()
-        .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
-        .collect();
+    let young_keys = young_keys(&plan.materials);
     let materials = regions(mesh.regions(), plan.materials)?;
     let mut supports = Vec::new();
     let mut paths = Vec::new();

@@ -385,16 +385,7 @@ impl PulloutSpec {
         let mut tip_areas = consistent_weights(&tip_line, kind, |r| r)?;
         tip_areas.pop();
 
-        let shaft_law = Rccm::new(self.interface)?;
-        let corner_law = Rccm::new(RccmParams {
-            beta_0: 0.0,
-            ..self.interface
-        })?;
-        let tip_law = Rccm::new(RccmParams {
-            mu: 0.0,
-            beta_0: 0.0,
-            ..self.interface
-        })?;
+        let (shaft_law, corner_law, tip_law) = self.zone_laws()?;
         let inward = Some([-1.0, 0.0]);
         let zones = vec![
             ContactZone::node_pairs(
@@ -463,6 +454,22 @@ impl PulloutSpec {
             phase: Phase::Start,
             applied_force: 0.0,
         })
+    }
+
+    /// The laws of the three zones (module docs): the shaft's RCCM interface, the tip
+    /// corner's plain Coulomb friction (no adhesion), the tip's frictionless contact.
+    fn zone_laws(&self) -> Result<(Rccm, Rccm, Rccm), SolverError> {
+        let shaft = Rccm::new(self.interface)?;
+        let corner = Rccm::new(RccmParams {
+            beta_0: 0.0,
+            ..self.interface
+        })?;
+        let tip = Rccm::new(RccmParams {
+            mu: 0.0,
+            beta_0: 0.0,
+            ..self.interface
+        })?;
+        Ok((shaft, corner, tip))
     }
 
     fn check(&self) -> Result<(), SolverError> {

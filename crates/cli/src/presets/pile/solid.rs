@@ -22,7 +22,7 @@
 //!   forces on the head's prescribed `u_z` taken out as in 2D.
 
 use super::{Installation, PulloutSpec, detach_tip};
-use contact_laws::{Rccm, RccmParams};
+use contact_laws::Rccm;
 use contact_solver::SolverError;
 use contact_solver::coupling::solid::{
     ContactZone3, PairNormals3, SolidContactSimulation, SolidSettings, SolidStepResult,
@@ -249,16 +249,7 @@ impl PulloutSpec {
             )
             .with_areas(a)
         };
-        let shaft_law = Rccm::new(self.interface)?;
-        let corner_law = Rccm::new(RccmParams {
-            beta_0: 0.0,
-            ..self.interface
-        })?;
-        let tip_law = Rccm::new(RccmParams {
-            mu: 0.0,
-            beta_0: 0.0,
-            ..self.interface
-        })?;
+        let (shaft_law, corner_law, tip_law) = self.zone_laws()?;
         let shaft = radial_zone("shaft", &shaft_pile[1..], &shaft_soil[1..], shaft_law);
         let corner = radial_zone("tip_corner", &shaft_pile[..1], &shaft_soil[..1], corner_law);
         let (c, t, _) = pairs(&tip_pile, &tip_soil);

@@ -3,11 +3,12 @@
 //! matrix-free path from a few exact diagonal blocks.
 
 use super::ContactSimulation;
-use crate::coupling::flexibility::flexibility_into;
+use crate::coupling::flexibility::{
+    flexibility_into, from_nearest_sample, sampled_diagonal_blocks,
+};
 use crate::error::SolverError;
 use crate::local::symmetrize;
 use contact_laws::ContactLaw;
-use faer::Mat;
 use fem_core::Structure;
 
 /// Contacts whose diagonal block of `F*` is computed exactly to set `ρ⁰` in matrix-free steps.
@@ -50,45 +51,17 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// [`RHO_SAMPLES`] contacts spread over the active list and carried to the others from the
     /// nearest sample in that order (interfaces are listed in order along them).
     pub(super) fn estimate_rho0(&mut self, active: &[usize]) -> Result<Vec<f64>, SolverError> {
-        let na = active.len();
-        let ns = na.min(RHO_SAMPLES);
-        let samples: Vec<usize> = (0..ns).map(|k| (2 * k + 1) * na / (2 * ns)).collect();
-        let mut x = Mat::<f64>::zeros(self.structure.dof_count(), 2 * ns);
-        for (c, &k) in samples.iter().enumerate() {
-            let i = active[k];
-            for d in 0..2 {
-                for &(dof, a) in &self.h_rows[2 * i + d] {
-                    x[(dof, 2 * c + d)] += a;
-                }
-            }
-        }
-        self.structure.solve_many_in_place(x.as_mut())?;
-        self.counters.flexibility_columns += 2 * ns;
-        let rho: Vec<f64> = samples
+        let (samples, blocks) =
+            sampled_diagonal_blocks(&self.structure, &self.h_rows, active, 2, RHO_SAMPLES)?;
+        self.counters.flexibility_columns += 2 * samples.len();
+        let rho: Vec<f64> = blocks
             .iter()
-            .enumerate()
-            .map(|(c, &k)| {
-                let i = active[k];
-                let w = |row: usize, col: usize| -> f64 {
-                    self.h_rows[2 * i + row]
-                        .iter()
-                        .map(|&(dof, a)| a * x[(dof, 2 * c + col)])
-                        .sum()
-                };
-                let (a, b, d) = (w(0, 0), 0.5 * (w(0, 1) + w(1, 0)), w(1, 1));
+            .map(|w| {
+                let (a, b, d) = (w[0], 0.5 * (w[1] + w[2]), w[3]);
                 let h = 0.5 * (a - d);
                 1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
             })
             .collect();
-        Ok((0..na)
-            .map(|k| {
-                let nearest = samples
-                    .iter()
-                    .enumerate()
-                    .min_by_key(|(_, s)| s.abs_diff(k))
-                    .map_or(0, |(c, _)| c);
-                rho[nearest]
-            })
-            .collect())
+        Ok(from_nearest_sample(&samples, &rho, active.len()))
     }
 }

@@ -17,7 +17,9 @@
 //! dense `F*`).
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
-use crate::coupling::flexibility::flexibility_into;
+use crate::coupling::flexibility::{
+    flexibility_into, from_nearest_sample, sampled_diagonal_blocks,
+};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
@@ -620,33 +622,13 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// block of `F*` (`λ̄` its Gershgorin bound), computed exactly on up to 16 contacts spread
     /// over the active set and given to the others from the nearest sample.
     fn estimate_rho0(&self, active: &[usize]) -> Result<Vec<f64>, SolverError> {
-        const SAMPLES: usize = 16;
-        let na = active.len();
-        let ns = na.min(SAMPLES);
-        let samples: Vec<usize> = (0..ns).map(|k| (2 * k + 1) * na / (2 * ns)).collect();
-        let mut x = faer::Mat::<f64>::zeros(self.structure.dof_count(), 3 * ns);
-        for (c, &k) in samples.iter().enumerate() {
-            let i = active[k];
-            for d in 0..3 {
-                for &(dof, a) in &self.h_rows[3 * i + d] {
-                    x[(dof, 3 * c + d)] += a;
-                }
-            }
-        }
-        self.structure.solve_many_in_place(x.as_mut())?;
-        let rho: Vec<f64> = samples
+        let (samples, blocks) =
+            sampled_diagonal_blocks(&self.structure, &self.h_rows, active, 3, 16)?;
+        let rho: Vec<f64> = blocks
             .iter()
-            .enumerate()
-            .map(|(c, &k)| {
-                let i = active[k];
-                let w = |row: usize, col: usize| -> f64 {
-                    self.h_rows[3 * i + row]
-                        .iter()
-                        .map(|&(dof, a)| a * x[(dof, 3 * c + col)])
-                        .sum()
-                };
+            .map(|w| {
                 let bound = (0..3)
-                    .map(|a| (0..3).map(|b| w(a, b).abs()).sum::<f64>())
+                    .map(|a| (0..3).map(|b| w[3 * a + b].abs()).sum::<f64>())
                     .fold(0.0_f64, f64::max);
                 if bound > 0.0 && bound.is_finite() {
                     1.0 / bound
@@ -655,16 +637,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 }
             })
             .collect();
-        Ok((0..na)
-            .map(|k| {
-                let nearest = samples
-                    .iter()
-                    .enumerate()
-                    .min_by_key(|(_, s)| s.abs_diff(k))
-                    .map_or(0, |(c, _)| c);
-                rho[nearest]
-            })
-            .collect())
+        Ok(from_nearest_sample(&samples, &rho, active.len()))
     }
 
     fn accept(
