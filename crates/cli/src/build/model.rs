@@ -582,6 +582,15 @@ pub(super) fn regions(
     Ok(materials)
 }
 
+/// The key path of each region's Young's modulus (an element stiffness that overflows is the
+/// material's fault, not the supports').
+pub(super) fn young_keys(materials: &[MaterialPlan]) -> BTreeMap<u32, KeyPath> {
+    materials
+        .iter()
+        .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -613,13 +622,4 @@ mod tests {
             assert_eq!(e.path.as_ref().unwrap(), &p, "{c:?} in {dim}D");
         }
     }
-}
-
-/// The key path of each region's Young's modulus (an element stiffness that overflows is the
-/// material's fault, not the supports').
-pub(super) fn young_keys(materials: &[MaterialPlan]) -> BTreeMap<u32, KeyPath> {
-    materials
-        .iter()
-        .flat_map(|m| m.regions.iter().map(|(_, r)| (*r, m.young.clone())))
-        .collect()
 }
