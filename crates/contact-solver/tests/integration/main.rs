@@ -31,6 +31,7 @@ mod random_spd;
 mod rccm_opening;
 mod real_world_inputs;
 mod reduced_3d;
+mod renumbering;
 mod rigid_targets;
 mod signorini_block;
 mod single_contact;

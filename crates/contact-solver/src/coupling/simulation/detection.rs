@@ -26,6 +26,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 expected: "a finite number",
             });
         }
+        self.follow_numbering()?;
         let version = self.structure.stiffness_version();
         if version != self.last_version {
             self.counters.stiffness_changes += 1;

@@ -106,6 +106,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters.equilibrium_iterations += report.equilibrium_iterations;
         self.counters.equilibrium_solves += report.equilibrium_solves;
         self.jumps = jumps;
+        self.nodal_u = self.nodal_of(&u);
         self.u = u;
         self.time = time;
         self.counters.steps += 1;

@@ -88,6 +88,10 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     w: Vec<f64>,
     w_version: Option<u64>,
     u: Vec<f64>,
+    /// Nodal displacements at the end of the last step (numbering-free).
+    nodal_u: Vec<[f64; 2]>,
+    /// Stiffness version the rows of `H` (and `u`) were numbered for.
+    rows_version: u64,
     time: f64,
     solver: UzawaSolver,
     counters: Counters,
@@ -134,27 +138,15 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             ));
         }
         check_rigid_targets(&structure, &zones, &candidates)?;
-        let mut h_rows = Vec::with_capacity(2 * candidates.len());
-        for c in &candidates {
-            for dir in [c.normal, c.tangent] {
-                let mut row = Vec::with_capacity(6);
-                c.h_row(&structure, dir, &mut row);
-                h_rows.push(row);
-            }
-            if h_rows[h_rows.len() - 2].is_empty() {
-                return Err(SolverError::InvalidGeometry(format!(
-                    "zone `{}`: the normal displacement of contactor node {} relative to its \
-                     target is fully prescribed, so it cannot take part in contact",
-                    zones[c.zone].name, c.node
-                )));
-            }
-        }
+        let h_rows = h_rows_of(&structure, &zones, &candidates)?;
         let states = candidates
             .iter()
             .map(|c| zones[c.zone].law.initial_state())
             .collect();
         let mut sim = Self {
             u: vec![0.0; structure.dof_count()],
+            nodal_u: vec![[0.0; 2]; structure.node_count()],
+            rows_version: structure.stiffness_version(),
             last_version: structure.stiffness_version(),
             structure,
             zones,
@@ -275,7 +267,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters
     }
 
-    /// The free-dof displacements at the end of the last step.
+    /// The free-dof displacements at the end of the last step, in the dof numbering of that
+    /// step (a change of supports since renumbers the structure's dofs; the next step follows).
     pub fn displacement(&self) -> &[f64] {
         &self.u
     }
@@ -283,9 +276,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// Nodal displacements `[u_x, u_y]` at the end of the last step (prescribed components
     /// included).
     pub fn nodal_displacements(&self) -> Vec<[f64; 2]> {
-        (0..self.structure.node_count())
-            .map(|n| nodal(&self.structure, &self.u, n))
-            .collect()
+        self.nodal_u.clone()
     }
 
     /// The reduced problem of the last solve — after condensation of the adhesive springs,
@@ -313,9 +304,41 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// states (e.g. after an installation phase whose displacements are discarded).
     pub fn reset_displacements(&mut self) {
         self.u.fill(0.0);
+        self.nodal_u.iter_mut().for_each(|v| *v = [0.0; 2]);
         self.alpha.fill(0.0);
         self.jumps = self.local_jumps_of(&self.u);
         self.r_bar.iter_mut().for_each(|r| *r = [0.0; 2]);
+    }
+
+    /// Follows a renumbering of the structure's dofs (supports added or released between
+    /// steps change the numbering and the stiffness version): the rows of `H` are rebuilt
+    /// from the candidates and `u` from the nodal displacements of the last step; the caches
+    /// keyed on the version rebuild themselves.
+    pub(super) fn follow_numbering(&mut self) -> Result<(), SolverError> {
+        let version = self.structure.stiffness_version();
+        if version == self.rows_version {
+            return Ok(());
+        }
+        self.h_rows = h_rows_of(&self.structure, &self.zones, &self.candidates)?;
+        self.u = vec![0.0; self.structure.dof_count()];
+        for (n, v) in self.nodal_u.iter().enumerate() {
+            for (c, d) in self.structure.node_dofs(n).into_iter().enumerate() {
+                if let Some(i) = d {
+                    self.u[i] = v[c];
+                }
+            }
+        }
+        self.primal = PrimalCache::default();
+        self.w_version = None;
+        self.rows_version = version;
+        Ok(())
+    }
+
+    /// The nodal displacements of the free-dof vector `u` under the current numbering.
+    pub(super) fn nodal_of(&self, u: &[f64]) -> Vec<[f64; 2]> {
+        (0..self.structure.node_count())
+            .map(|n| nodal(&self.structure, u, n))
+            .collect()
     }
 
     fn local_jumps_of(&self, u: &[f64]) -> Vec<[f64; 2]> {
@@ -371,6 +394,34 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let law = &self.zones[self.candidates[i].zone].law;
         !self.settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
     }
+}
+
+/// The rows of `H` (normal then tangent per candidate) on the structure's free dofs.
+///
+/// # Errors
+/// [`SolverError::InvalidGeometry`] for a candidate whose normal relative displacement is fully
+/// prescribed.
+fn h_rows_of<S: Structure + ?Sized, L>(
+    structure: &S,
+    zones: &[ContactZone<L>],
+    candidates: &[Candidate],
+) -> Result<Vec<Vec<(usize, f64)>>, SolverError> {
+    let mut h_rows = Vec::with_capacity(2 * candidates.len());
+    for c in candidates {
+        for dir in [c.normal, c.tangent] {
+            let mut row = Vec::with_capacity(6);
+            c.h_row(structure, dir, &mut row);
+            h_rows.push(row);
+        }
+        if h_rows[h_rows.len() - 2].is_empty() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{}`: the normal displacement of contactor node {} relative to its \
+                 target is fully prescribed, so it cannot take part in contact",
+                zones[c.zone].name, c.node
+            )));
+        }
+    }
+    Ok(h_rows)
 }
 
 fn nodal<S: Structure + ?Sized>(s: &S, u: &[f64], node: usize) -> [f64; 2] {

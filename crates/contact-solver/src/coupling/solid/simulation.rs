@@ -171,6 +171,10 @@ pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     w: Vec<f64>,
     w_version: Option<u64>,
     u: Vec<f64>,
+    /// Nodal displacements at the end of the last step (numbering-free).
+    nodal_u: Vec<[f64; 3]>,
+    /// Stiffness version the rows of `H` were numbered for.
+    rows_version: u64,
     time: f64,
     steps: usize,
     solver: UzawaSolver,
@@ -247,6 +251,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         let n = candidates.len();
         Ok(Self {
             u: vec![0.0; structure.dof_count()],
+            nodal_u: vec![[0.0; 3]; structure.node_count()],
+            rows_version: structure.stiffness_version(),
             structure,
             zones,
             settings,
@@ -291,7 +297,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         self.steps
     }
 
-    /// The free-dof displacement at the end of the last step.
+    /// The free-dof displacement at the end of the last step, in the dof numbering of that
+    /// step (a change of supports since renumbers the structure's dofs; the next step follows).
     pub fn displacement(&self) -> &[f64] {
         &self.u
     }
@@ -303,7 +310,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// If `node >= node_count()`.
     #[track_caller]
     pub fn nodal_displacement(&self, node: usize) -> [f64; 3] {
-        node_displacement(&self.structure, &self.u, node)
+        self.nodal_u[node]
     }
 
     /// Mutable access to the structure between steps (loads, prescribed values). A change of
@@ -338,6 +345,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             });
         }
         let dt = time - self.time;
+        self.follow_numbering()?;
         let ndof = self.structure.dof_count();
         let mut u_free = vec![0.0; ndof];
         self.structure
@@ -393,6 +401,37 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             residual: counts.residual,
             history: Vec::new(),
         })
+    }
+
+    /// Follows a renumbering of the structure's dofs (supports added or released between
+    /// steps change the numbering and the stiffness version): the rows of `H` are rebuilt from
+    /// the candidates; `F*` is rebuilt with the new version.
+    fn follow_numbering(&mut self) -> Result<(), SolverError> {
+        let version = self.structure.stiffness_version();
+        if version == self.rows_version {
+            return Ok(());
+        }
+        self.h_rows = self
+            .candidates
+            .iter()
+            .flat_map(|c| c.frame().map(|dir| c.h_row(&self.structure, dir)))
+            .collect();
+        if let Some(c) = self
+            .candidates
+            .iter()
+            .enumerate()
+            .find(|(i, _)| self.h_rows[3 * i].is_empty())
+            .map(|(_, c)| c)
+        {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{}`: node {} can no longer move along its contact normal relative to \
+                 its target (every component along it is now prescribed)",
+                self.zones[c.zone].name, c.node
+            )));
+        }
+        self.w_version = None;
+        self.rows_version = version;
+        Ok(())
     }
 
     /// `(x_n, u_t1, u_t2)` of candidate `i` for a free-dof displacement `u`.
@@ -682,6 +721,9 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             self.r_last[i] = reaction[i];
             self.r_bar_last[i] = law_reaction[i];
         }
+        self.nodal_u = (0..self.structure.node_count())
+            .map(|n| node_displacement(&self.structure, &u, n))
+            .collect();
         self.u = u;
         self.time += dt;
         self.steps += 1;
