@@ -555,3 +555,72 @@ fn matrix_free_3d_matches_dense() {
         );
     }
 }
+
+/// Laws by phase in 3D (`set_law`): a block pressed on a rigid plane without friction, then
+/// with Coulomb friction and a shear of its top: the first phase has no tangential reaction,
+/// the second `|Σ r_t| = μ Σ r_n` once it slides; an unknown zone and an adhesive law on a
+/// zone without areas are refused; `reset_displacements` zeroes the reported displacement.
+#[test]
+fn laws_by_phase_in_3d() {
+    use contact_laws::StandardLaw;
+    use contact_solver::SolverError;
+    let m = Material::new(1000.0, 0.0, 0.0).unwrap();
+    let mesh = box_mesh(
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 0.5, 1),
+        SolidKind::Tet10,
+    )
+    .unwrap();
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    let mut s = Supports::new();
+    s.prescribe(&top, Component::Z, -1e-3)
+        .unwrap()
+        .fix(&top, Component::X)
+        .fix(&top, Component::Y);
+    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+    let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let bare = ContactZone3::rigid(
+        "floor",
+        nodes.clone(),
+        plane,
+        StandardLaw::Signorini(Signorini),
+        0.1,
+    );
+    let zone = bare.clone().with_areas(areas);
+    let model = SolidModel::new(mesh.clone(), &[(0, m)], s.clone()).unwrap();
+    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let first = sim.step(1.0, 1.0).unwrap();
+    assert!(
+        first
+            .contacts
+            .iter()
+            .all(|c| c.r[1] == 0.0 && c.r[2] == 0.0)
+    );
+    let mu = 0.3;
+    sim.set_law("floor", StandardLaw::Coulomb(Coulomb::new(mu).unwrap()))
+        .unwrap();
+    sim.structure_mut()
+        .set_prescribed(&top, Component::X, 1e-2)
+        .unwrap();
+    let second = sim.step(2.0, 1.0).unwrap();
+    let (fn_, ft): (f64, f64) = second
+        .contacts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), c| (a + c.r[0], b + c.force()[0]));
+    assert!((ft.abs() / fn_ - mu).abs() < 1e-6, "{ft} {fn_}");
+    assert!(matches!(
+        sim.set_law("nowhere", StandardLaw::Signorini(Signorini)),
+        Err(SolverError::UnknownZone { .. })
+    ));
+    sim.reset_displacements();
+    assert_eq!(sim.nodal_displacement(top[0]), [0.0; 3]);
+    // a zone without areas cannot take an adhesive law
+    let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
+    let mut plain =
+        SolidContactSimulation::new(model, vec![bare], SolidSettings::default()).unwrap();
+    assert!(matches!(
+        plain.set_law("floor", StandardLaw::Rccm(rccm(100.0, 1e-4))),
+        Err(SolverError::InvalidGeometry(m)) if m.contains("areas")
+    ));
+}

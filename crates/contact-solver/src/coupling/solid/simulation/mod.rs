@@ -17,16 +17,15 @@
 //! dense `F*`).
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
-use crate::coupling::flexibility::{
-    flexibility_into, from_nearest_sample, sampled_diagonal_blocks,
-};
+use crate::coupling::flexibility::flexibility_into;
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
-use crate::local::matrix_free::solve_matrix_free_3d;
 use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver, symmetrize};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
+
+mod matrix_free;
 
 /// Settings of a [`SolidContactSimulation`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -193,27 +192,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         zones: Vec<ContactZone3<L>>,
         settings: SolidSettings,
     ) -> Result<Self, SolverError> {
-        if settings.columns_per_solve == 0 || settings.max_passes == 0 {
-            return Err(SolverError::InvalidSetting {
-                what: "columns_per_solve / max_passes",
-                value: 0.0,
-                expected: "at least 1",
-            });
-        }
-        if !(settings.penetration_tol > 0.0 && settings.penetration_tol.is_finite()) {
-            return Err(SolverError::InvalidSetting {
-                what: "penetration_tol",
-                value: settings.penetration_tol,
-                expected: "a finite tolerance > 0",
-            });
-        }
-        if settings.flexibility == FlexibilityMode::ActiveSet {
-            return Err(SolverError::Unsupported(
-                "the primal active set (FlexibilityMode::ActiveSet) in 3D: use Dense, \
-                 MatrixFree or Auto"
-                    .into(),
-            ));
-        }
+        check_settings(&settings)?;
         if structure.rigid_body_modes().is_some_and(|m| !m.is_empty()) {
             return Err(SolverError::Unsupported(
                 "a floating 3D structure (rigid-body modes): hold it with supports".into(),
@@ -285,6 +264,68 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// The zones.
     pub fn zones(&self) -> &[ContactZone3<L>] {
         &self.zones
+    }
+
+    /// Replaces the law of the zone named `zone` from the next step on (laws by phase: press
+    /// without friction, then shear with it; other parameters). Every candidate's state (β)
+    /// and accepted jump carry over.
+    ///
+    /// # Errors
+    /// [`SolverError::UnknownZone`] naming the zones there are;
+    /// [`SolverError::InvalidGeometry`] for an adhesive law on a zone without areas.
+    pub fn set_law(&mut self, zone: &str, law: L) -> Result<(), SolverError> {
+        let known = self
+            .zones
+            .iter()
+            .map(|z| format!("`{}`", z.name))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let Some(z) = self.zones.iter_mut().find(|z| z.name == zone) else {
+            return Err(SolverError::UnknownZone {
+                name: zone.to_string(),
+                known,
+            });
+        };
+        if law.has_adhesion() && z.areas.is_none() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{zone}`: an adhesive law needs the contactor nodes' tributary areas"
+            )));
+        }
+        z.law = law;
+        self.w_version = None;
+        Ok(())
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &SolidSettings {
+        &self.settings
+    }
+
+    /// Replaces the settings from the next step on.
+    ///
+    /// # Errors
+    /// As [`SolidContactSimulation::new`] for the settings.
+    pub fn set_settings(&mut self, settings: SolidSettings) -> Result<(), SolverError> {
+        check_settings(&settings)?;
+        self.settings = settings;
+        self.solver = UzawaSolver::new(settings.solver);
+        Ok(())
+    }
+
+    /// Per-candidate law states at the end of the last step.
+    pub fn states(&self) -> &[L::State] {
+        &self.states
+    }
+
+    /// Resets the displacements and the tangential references to zero while keeping the law
+    /// states (e.g. after an installation phase whose displacements are discarded).
+    pub fn reset_displacements(&mut self) {
+        self.u.fill(0.0);
+        self.nodal_u.iter_mut().for_each(|v| *v = [0.0; 3]);
+        for (j, c) in self.jumps.iter_mut().zip(&self.candidates) {
+            *j = [c.gap0, 0.0, 0.0];
+        }
+        self.r_bar_last.iter_mut().for_each(|r| *r = [0.0; 3]);
     }
 
     /// The time at the end of the last step (0 before the first).
@@ -572,113 +613,6 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         })
     }
 
-    /// The reduced problem on `active` without `F*`: each product `x = H K⁻¹ Hᵀ r + q` is one
-    /// structure solve ([`solve_matrix_free_3d`]). A direction the contact cannot use
-    /// (frictionless tangents, or held on both sides) answers `x = r / ρ⁰`, which the law's
-    /// projection drives to `r = 0` there (the dense path's decoupling).
-    fn solve_matrix_free(
-        &mut self,
-        active: &[usize],
-        free: &[[f64; 3]],
-    ) -> Result<Solved<L::State>, SolverError> {
-        let na = active.len();
-        let laws: Vec<L> = active
-            .iter()
-            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
-            .collect();
-        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let rho0 = self.estimate_rho0(active)?;
-        // rows of H that carry the contact's response; the others are decoupled
-        let used: Vec<bool> = active
-            .iter()
-            .flat_map(|&i| {
-                let t = self.tangent_needed(i);
-                (0..3).map(move |d| (i, d, t))
-            })
-            .map(|(i, d, t)| (d == 0 || t) && !self.h_rows[3 * i + d].is_empty())
-            .collect();
-        let rows: Vec<usize> = active
-            .iter()
-            .flat_map(|&i| [3 * i, 3 * i + 1, 3 * i + 2])
-            .collect();
-        let mut q = vec![0.0; 3 * na];
-        for (k, &i) in active.iter().enumerate() {
-            q[3 * k] = free[i][0];
-            for d in 1..3 {
-                if used[3 * k + d] {
-                    q[3 * k + d] = free[i][d] - self.jumps[i][d];
-                }
-            }
-        }
-        let mut r: Vec<f64> = active.iter().flat_map(|&i| self.r_bar_last[i]).collect();
-        let mut x = vec![0.0; 3 * na];
-        let (structure, h_rows) = (&self.structure, &self.h_rows);
-        let mut scratch = vec![0.0; structure.dof_count()];
-        let apply = |r: &[f64], x: &mut [f64]| -> Result<(), SolverError> {
-            scratch.fill(0.0);
-            for (j, &row) in rows.iter().enumerate() {
-                if used[j] && r[j] != 0.0 {
-                    for &(dof, a) in &h_rows[row] {
-                        scratch[dof] += a * r[j];
-                    }
-                }
-            }
-            structure.solve_in_place(&mut scratch)?;
-            for (j, &row) in rows.iter().enumerate() {
-                x[j] = q[j]
-                    + if used[j] {
-                        h_rows[row]
-                            .iter()
-                            .map(|&(dof, a)| a * scratch[dof])
-                            .sum::<f64>()
-                    } else {
-                        r[j] / rho0[j / 3]
-                    };
-            }
-            Ok(())
-        };
-        let report = solve_matrix_free_3d(
-            apply,
-            &laws,
-            &states,
-            &rho0,
-            &self.settings.solver,
-            &mut r,
-            &mut x,
-        )?;
-        Ok(Solved {
-            r_bar: r.clone(),
-            r,
-            states: None,
-            iterations: report.iterations,
-            adhesion_iterations: 0,
-            residual: report.residual,
-            matrix_free: true,
-        })
-    }
-
-    /// `ρ⁰` per active contact for the matrix-free iteration: `1 / λ̄` of the 3 × 3 diagonal
-    /// block of `F*` (`λ̄` its Gershgorin bound), computed exactly on up to 16 contacts spread
-    /// over the active set and given to the others from the nearest sample.
-    fn estimate_rho0(&self, active: &[usize]) -> Result<Vec<f64>, SolverError> {
-        let (samples, blocks) =
-            sampled_diagonal_blocks(&self.structure, &self.h_rows, active, 3, 16)?;
-        let rho: Vec<f64> = blocks
-            .iter()
-            .map(|w| {
-                let bound = (0..3)
-                    .map(|a| (0..3).map(|b| w[3 * a + b].abs()).sum::<f64>())
-                    .fold(0.0_f64, f64::max);
-                if bound > 0.0 && bound.is_finite() {
-                    1.0 / bound
-                } else {
-                    1.0
-                }
-            })
-            .collect();
-        Ok(from_nearest_sample(&samples, &rho, active.len()))
-    }
-
     fn accept(
         &mut self,
         active: &[usize],
@@ -758,6 +692,32 @@ struct Counts {
     passes: usize,
     residual: f64,
     matrix_free: bool,
+}
+
+/// The checks of [`SolidSettings`] (module docs of [`SolidContactSimulation::new`]).
+fn check_settings(settings: &SolidSettings) -> Result<(), SolverError> {
+    if settings.columns_per_solve == 0 || settings.max_passes == 0 {
+        return Err(SolverError::InvalidSetting {
+            what: "columns_per_solve / max_passes",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    if !(settings.penetration_tol > 0.0 && settings.penetration_tol.is_finite()) {
+        return Err(SolverError::InvalidSetting {
+            what: "penetration_tol",
+            value: settings.penetration_tol,
+            expected: "a finite tolerance > 0",
+        });
+    }
+    if settings.flexibility == FlexibilityMode::ActiveSet {
+        return Err(SolverError::Unsupported(
+            "the primal active set (FlexibilityMode::ActiveSet) in 3D: use Dense, MatrixFree \
+             or Auto"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// The displacement of `node` from free-dof values `u` (prescribed components added).
