@@ -16,7 +16,9 @@ use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettin
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidModel};
-use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
+use fem_core::{
+    Component, ElementKind, Idealization, LinearElasticModel, Material, Structure, Supports,
+};
 
 #[test]
 fn renumbered_supports_are_followed_in_2d() {
@@ -117,4 +119,62 @@ fn renumbered_supports_are_followed_in_3d() {
             assert!((x[c] - y[c]).abs() < 1e-12, "node {n}: {x:?} {y:?}");
         }
     }
+}
+
+/// `SolidModel::release` between steps: the corner's x support removed, against a simulation
+/// built without it; releasing every support along z of a body held only by them is refused
+/// and leaves the model as it was.
+#[test]
+fn released_supports_are_followed_in_3d() {
+    let mesh = box_mesh(
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 0.5, 1),
+        SolidKind::Tet10,
+    )
+    .unwrap();
+    let m = Material::new(1000.0, 0.3, 0.0).unwrap();
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+    let corner = vec![nodes[0]];
+    let build = |hold_corner: bool| {
+        let mut s = Supports::new();
+        s.prescribe(&top, Component::Z, -1e-3)
+            .unwrap()
+            .fix(&top, Component::X)
+            .fix(&top, Component::Y);
+        if hold_corner {
+            s.fix(&corner, Component::X);
+        }
+        let model = SolidModel::new(mesh.clone(), &[(0, m)], s).unwrap();
+        let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+        let zone = ContactZone3::rigid("floor", nodes.clone(), floor, Signorini, 0.1)
+            .with_areas(areas.clone());
+        SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap()
+    };
+    let mut a = build(true);
+    a.step(1.0, 1.0).unwrap();
+    a.structure_mut().release(&corner, Component::X).unwrap();
+    let ra = a.step(2.0, 1.0).unwrap();
+    let mut fresh = build(false);
+    let rf = fresh.step(1.0, 1.0).unwrap();
+    for (x, y) in ra.contacts.iter().zip(&rf.contacts) {
+        assert!((x.r[0] - y.r[0]).abs() < 1e-8, "{:?} vs {:?}", x.r, y.r);
+    }
+    for n in 0..mesh.node_count() {
+        let (x, y) = (a.nodal_displacement(n), fresh.nodal_displacement(n));
+        for c in 0..3 {
+            assert!((x[c] - y[c]).abs() < 1e-12, "node {n}: {x:?} {y:?}");
+        }
+    }
+    // the top's z support is all that holds the body along z: releasing it is refused
+    let dofs = a.structure().dof_count();
+    assert!(a.structure_mut().release(&top, Component::Z).is_err());
+    assert_eq!(a.structure().dof_count(), dofs);
+    assert!(
+        a.structure_mut()
+            .release(&[usize::MAX], Component::Z)
+            .is_err()
+    );
+    a.step(3.0, 1.0).unwrap();
 }

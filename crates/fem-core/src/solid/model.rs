@@ -264,24 +264,59 @@ impl SolidModel {
         let before = self.supports.clone();
         self.supports.update(nodes, component, value)?;
         if renumber {
-            let dofs = match DofMap::<3>::numbered(self.mesh.node_count(), &self.supports) {
-                Ok(d) => d,
-                Err(e) => {
-                    self.supports = before;
-                    return Err(e);
-                }
-            };
-            self.dofs = dofs;
-            let mesh = &self.mesh;
-            self.pattern = Pattern::new(
-                &self.dofs,
-                (0..mesh.element_count()).map(|e| mesh.element(e)),
-            )?;
-            self.solver = solver_for(&self.mesh, &self.dofs, &self.pattern, self.ordering)?;
-            self.values = vec![0.0; self.pattern.nnz()];
-            self.assemble_and_factor()?;
+            self.renumber(before)?;
         }
         Ok(())
+    }
+
+    /// Removes the supports of `component` on `nodes` (those nodes move freely along it from
+    /// the next solve on), then renumbers and refactors. A contact simulation holding the
+    /// model follows the new numbering at its next step.
+    ///
+    /// # Errors
+    /// [`FemError::UnknownNode`]; [`FemError::NotPositiveDefinite`] if the body is left
+    /// without enough supports (the supports are then restored).
+    pub fn release(&mut self, nodes: &[usize], component: Component) -> Result<(), FemError> {
+        if let Some(&node) = nodes.iter().find(|&&n| n >= self.mesh.node_count()) {
+            return Err(FemError::UnknownNode {
+                what: "a released support",
+                node,
+                node_count: self.mesh.node_count(),
+            });
+        }
+        if nodes
+            .iter()
+            .all(|&n| self.supports.value(n, component).is_none())
+        {
+            return Ok(());
+        }
+        let before = self.supports.clone();
+        self.supports.release(nodes, component);
+        self.renumber(before)
+    }
+
+    /// Numbers the dofs for the current supports, rebuilds the pattern and the solver, and
+    /// reassembles and refactors; on failure the supports `before` are restored (and the
+    /// model with them).
+    fn renumber(&mut self, before: Supports) -> Result<(), FemError> {
+        let rebuilt = self.rebuild_numbering();
+        if rebuilt.is_err() {
+            self.supports = before;
+            self.rebuild_numbering()?;
+        }
+        rebuilt
+    }
+
+    fn rebuild_numbering(&mut self) -> Result<(), FemError> {
+        self.dofs = DofMap::<3>::numbered(self.mesh.node_count(), &self.supports)?;
+        let mesh = &self.mesh;
+        self.pattern = Pattern::new(
+            &self.dofs,
+            (0..mesh.element_count()).map(|e| mesh.element(e)),
+        )?;
+        self.solver = solver_for(&self.mesh, &self.dofs, &self.pattern, self.ordering)?;
+        self.values = vec![0.0; self.pattern.nnz()];
+        self.assemble_and_factor()
     }
 
     /// Adds a reference nodal force `[f_x, f_y, f_z]`.
