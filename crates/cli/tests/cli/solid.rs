@@ -313,3 +313,24 @@ fn solid_two_blocks_pairs_and_faces_works() {
         let _ = std::fs::remove_dir_all(&out);
     }
 }
+
+/// Supports by phase in 3D (tests/solid/phases.toml): the top held along x while pressed,
+/// then that support released and another one shearing the top far beyond the stick limit.
+/// The normal force is `E δ A / H = 2` in both phases (1e-8); the tangential force is 0 while
+/// held and `μ N = 0.6` against the motion once it slides, within 1e-3: the contacts' slip
+/// directions spread a little about x on the Kuhn mesh (as in the library's sliding block), so
+/// the x component of the total is slightly below `μ N`.
+#[test]
+fn solid_supports_by_phase_works() {
+    let out = tmp("phases");
+    run(&dir("tests/solid/phases.toml"), &out);
+    let steps = csv(&out.join("steps.csv"));
+    assert_eq!(steps.len(), 2);
+    for row in &steps {
+        assert_close(num(row, "force_n"), 2.0, 1e-8);
+    }
+    assert!(num(&steps[0], "force_x").abs() < 1e-8);
+    let fx = num(&steps[1], "force_x");
+    assert!((fx + 0.6).abs() < 1e-3 && fx >= -0.6 - 1e-9, "{fx}");
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -7,8 +7,8 @@
 //! and names, the law of a zone, `[solver]`'s local keys, `[output]`); [`mesh`], [`model`] and
 //! [`contact`] hold what 3D reads differently: the box generator and Gmsh volume files, loads
 //! with three components and pressures on face sets, rigid planes, spheres and cylinders.
-//! What 3D does not have yet (supports added or released between phases, laws changed per
-//! phase, displacement resets, plots, floating bodies) is refused with its key path.
+//! What 3D scenes do not have yet (laws changed per phase, displacement resets, plots,
+//! floating bodies) is refused with its key path.
 
 mod contact;
 mod mesh;
@@ -41,7 +41,7 @@ pub struct SolidStudy {
     pub units: Units,
     /// The simulation.
     pub sim: SolidContactSimulation<SolidModel, StandardLaw>,
-    /// Supports (each acts in every phase).
+    /// Supports (each in its phases).
     pub supports: Vec<SupportRt>,
     /// Loads.
     pub loads: Vec<LoadRt3>,

@@ -131,9 +131,9 @@ pub(super) struct ModelPlan3 {
     pub(super) initial_stress: InitialStressPlan,
 }
 
-/// The model: materials on the mesh's regions, supports (every one acting in every phase: the
-/// 3D simulation keeps the dof numbering it started with, so supports change values only),
-/// ties, loads on their sets, the initial stress.
+/// The model: materials on the mesh's regions, the supports of the first phase (the others are
+/// added and released between phases by the run), ties, loads on their sets, the initial
+/// stress.
 pub(super) fn build(
     mesh: SolidMesh,
     plan: ModelPlan3,
@@ -147,17 +147,6 @@ pub(super) fn build(
     let mut paths = Vec::new();
     for s in plan.supports {
         let sp = s.path.parent();
-        if s.rt.phases.iter().any(|on| !on) {
-            let p = sp.key("phases");
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}`: in a 3D scene a support acts in every phase (the 3D simulation \
-                     cannot add or release supports between phases yet); leave `phases` out and \
-                     change its value with a function, or a phase's `functions` override"
-                ),
-            ));
-        }
         let mut rt = s.rt;
         rt.nodes = node_set(&s.path, &mesh, &s.set)?;
         supports.push(rt);
@@ -214,7 +203,8 @@ pub(super) fn build(
         };
         loads.push(rt);
     }
-    for s in &supports {
+    // the supports of the first phase; the others are added and released between phases
+    for s in supports.iter().filter(|s| s.phases[0]) {
         let f = function_value(&phases[0], &s.name, &s.function, functions, 0.0);
         for &c in &s.components {
             sup.prescribe(&s.nodes, c, s.value * f)

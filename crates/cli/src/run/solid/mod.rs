@@ -76,10 +76,38 @@ pub struct SolidSummary {
 
 /// Sets the supports' values and the loads of phase `p` at time `t` (the loads are rebuilt only
 /// when a factor changed since `last`).
+/// Releases, when phase `p > 0` starts, the supports that acted in the phase before and not in
+/// this one (the simulation follows the new dof numbering at its next step).
+fn release_ending(study: &mut SolidStudy, p: usize) -> CliResult<()> {
+    if p == 0 {
+        return Ok(());
+    }
+    let model = study.sim.structure_mut();
+    for s in study
+        .supports
+        .iter()
+        .filter(|s| s.phases[p - 1] && !s.phases[p])
+    {
+        for &c in &s.components {
+            model.release(&s.nodes, c).map_err(|e| {
+                fem_failed(
+                    &format!(
+                        "phase `{}`: releasing the supports that end",
+                        study.phases[p].name
+                    ),
+                    e,
+                )
+            })?;
+        }
+    }
+    Ok(())
+}
+
+/// The supports (those of phase `p`) and the loads at time `t`.
 fn apply(study: &mut SolidStudy, p: usize, t: f64, last: &mut Option<Vec<f64>>) -> CliResult<()> {
     let phase = &study.phases[p];
     let model = study.sim.structure_mut();
-    for s in &study.supports {
+    for s in study.supports.iter().filter(|s| s.phases[p]) {
         let v = s.value * function_value(phase, &s.name, &s.function, &study.functions, t);
         for &c in &s.components {
             model
@@ -154,6 +182,9 @@ fn drive(
     for p in 0..study.phases.len() {
         let phase: Phase = study.phases[p].clone();
         progress.begin_phase(&phase.name);
+        if let Err(e) = release_ending(study, p) {
+            return (out, Some(e));
+        }
         let t_phase = Instant::now();
         let (mut iterations, mut passes) = (0, 0);
         for k in 1..=phase.steps {
