@@ -9,7 +9,7 @@ pub fn lines(a: f64, b: f64, n: usize) -> Vec<f64> {
 }
 
 /// Orders a tetrahedron's corners so that its volume is positive.
-fn oriented(nodes: &[[f64; 3]], mut t: [usize; 4]) -> [usize; 4] {
+pub(super) fn oriented(nodes: &[[f64; 3]], mut t: [usize; 4]) -> [usize; 4] {
     if signed_volume(nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]) < 0.0 {
         t.swap(2, 3);
     }

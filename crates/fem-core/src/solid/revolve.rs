@@ -16,6 +16,7 @@
 //! cylinder and its meridian edges are the 2D ones (straight in `(r, z)`: a 2D mesh with curved
 //! mid-side nodes is revolved with straight ones).
 
+use super::generate::oriented;
 use super::mesh::{Face, SolidKind, SolidMesh, TET_EDGES};
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh};
@@ -332,12 +333,4 @@ fn cylindrical_midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     };
     let r = 0.5 * (ra + rb);
     [r * t.cos(), r * t.sin(), 0.5 * (a[2] + b[2])]
-}
-
-/// Orders a tetrahedron's corners so that its volume is positive.
-fn oriented(nodes: &[[f64; 3]], mut t: [usize; 4]) -> [usize; 4] {
-    if super::mesh::signed_volume(nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]) < 0.0 {
-        t.swap(2, 3);
-    }
-    t
 }

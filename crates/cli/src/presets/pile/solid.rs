@@ -224,9 +224,11 @@ impl PulloutSpec {
             let mut c = Vec::new();
             let mut t = Vec::new();
             let mut angle = Vec::new();
+            let mut seen = std::collections::HashSet::new();
             for (&p, &s) in pile.iter().zip(soil) {
                 for ((&cp, &ts), &a) in layers[p].iter().zip(&layers[s]).zip(&rev.angles) {
-                    if !c.contains(&cp) {
+                    // a node on the axis is the same at every layer: one pair
+                    if seen.insert(cp) {
                         c.push(cp);
                         t.push(ts);
                         angle.push(a);

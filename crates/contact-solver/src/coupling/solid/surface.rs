@@ -130,7 +130,13 @@ struct FaceEval {
     n: [f64; 6],
 }
 
-fn eval<S: Structure<3> + ?Sized>(s: &S, face: &[usize], xi: [f64; 2]) -> FaceEval {
+/// The face's map at `xi`: shape values, position and the two tangent vectors `∂X/∂ξ`,
+/// `∂X/∂η`.
+fn map_at<S: Structure<3> + ?Sized>(
+    s: &S,
+    face: &[usize],
+    xi: [f64; 2],
+) -> ([f64; 6], [f64; 3], [[f64; 3]; 2]) {
     let (n, dn) = triangle_shape(face.len(), xi);
     let mut x = [0.0; 3];
     let mut d = [[0.0; 3]; 2];
@@ -142,6 +148,11 @@ fn eval<S: Structure<3> + ?Sized>(s: &S, face: &[usize], xi: [f64; 2]) -> FaceEv
             d[1][a] += dn[i][1] * p[a];
         }
     }
+    (n, x, d)
+}
+
+fn eval<S: Structure<3> + ?Sized>(s: &S, face: &[usize], xi: [f64; 2]) -> FaceEval {
+    let (n, x, d) = map_at(s, face, xi);
     let c = cross(d[0], d[1]);
     let jac = dot(c, c).sqrt();
     FaceEval {
@@ -158,17 +169,7 @@ fn project_params<S: Structure<3> + ?Sized>(s: &S, face: &[usize], p: [f64; 3]) 
     let mut xi = [1.0 / 3.0, 1.0 / 3.0];
     let iterations = if face.len() == 3 { 1 } else { 25 };
     for _ in 0..iterations {
-        let (n, dn) = triangle_shape(face.len(), xi);
-        let mut x = [0.0; 3];
-        let mut d = [[0.0; 3]; 2];
-        for (i, &node) in face.iter().enumerate() {
-            let q = s.node_position(node);
-            for a in 0..3 {
-                x[a] += n[i] * q[a];
-                d[0][a] += dn[i][0] * q[a];
-                d[1][a] += dn[i][1] * q[a];
-            }
-        }
+        let (_, x, d) = map_at(s, face, xi);
         let r = sub(p, x);
         let (a11, a12, a22) = (dot(d[0], d[0]), dot(d[0], d[1]), dot(d[1], d[1]));
         let (b1, b2) = (dot(d[0], r), dot(d[1], r));
