@@ -3,8 +3,8 @@
 //! The same problem as `tools/peers/getfem_hertz3d.py` (GetFEM), grid for grid.
 //!
 //! Run: `cargo run --release --example hertz_3d -- 0 1` (refinement levels: each halves every
-//! cell of the graded base grid); `--matrix-free` or `--dense` chooses the reduced problem's
-//! path (default: the settings' `Auto`).
+//! cell of the graded base grid); `--matrix-free`, `--active-set` or `--dense` chooses the
+//! reduced problem's path (default: the settings' `Auto`).
 //!
 //! Block `[0, 4]² × [−4, 0]`, grid lines fine (0.15) up to 0.9 in x, y and 0.6 in depth, then
 //! geometric to 4; ball R = 10 centred at (0, 0, R); E = 1000, ν = 0.3; bottom pushed up by
@@ -49,6 +49,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut settings = SolidSettings::default();
     if args.iter().any(|a| a == "--matrix-free") {
         settings.flexibility = FlexibilityMode::MatrixFree;
+    } else if args.iter().any(|a| a == "--active-set") {
+        settings.flexibility = FlexibilityMode::ActiveSet;
     } else if args.iter().any(|a| a == "--dense") {
         settings.flexibility = FlexibilityMode::Dense;
     }
@@ -119,9 +121,11 @@ fn main() -> Result<(), Box<dyn Error>> {
             half / hertz_half,
             res.contact_iterations,
             if res.matrix_free {
-                " (matrix-free)"
+                " (matrix-free)".to_string()
+            } else if res.active_set {
+                format!(" (active set, {} factorisations)", res.factorizations)
             } else {
-                ""
+                String::new()
             }
         );
     }

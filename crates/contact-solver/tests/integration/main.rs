@@ -37,6 +37,7 @@ mod signorini_block;
 mod single_contact;
 mod skip_open;
 mod skip_rules;
+mod solid_active_set;
 mod solid_contact;
 mod solid_interfaces;
 mod sparse;

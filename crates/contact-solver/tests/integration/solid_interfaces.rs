@@ -30,7 +30,7 @@ use fem_core::{Component, Material, Supports};
 
 /// Two boxes, `[0,1]² × [0,1]` (region 0, sets `a.*`) under `[0,1]² × [1,2]` (region 1, sets
 /// `b.*`), `na` and `nb` cells per side in x and y: separate nodes on the interface.
-fn two_blocks(kind: SolidKind, na: usize, nb: usize) -> SolidMesh {
+pub(crate) fn two_blocks(kind: SolidKind, na: usize, nb: usize) -> SolidMesh {
     let a = box_mesh(
         &lines(0.0, 1.0, na),
         &lines(0.0, 1.0, na),
@@ -75,7 +75,7 @@ fn two_blocks(kind: SolidKind, na: usize, nb: usize) -> SolidMesh {
 
 /// Rollers on `x = 0` and `y = 0` of both blocks, the base held along z, the top moved by
 /// `top` (the components given).
-fn supports(mesh: &SolidMesh, top: &[(Component, f64)]) -> Supports {
+pub(crate) fn supports(mesh: &SolidMesh, top: &[(Component, f64)]) -> Supports {
     let mut s = Supports::new();
     for p in ["a", "b"] {
         s.fix(mesh.node_set(&format!("{p}.x0")).unwrap(), Component::X)
@@ -89,7 +89,7 @@ fn supports(mesh: &SolidMesh, top: &[(Component, f64)]) -> Supports {
 }
 
 /// The bottom block's node at the position of each of `nodes`.
-fn matching(mesh: &SolidMesh, nodes: &[usize], among: &[usize]) -> Vec<usize> {
+pub(crate) fn matching(mesh: &SolidMesh, nodes: &[usize], among: &[usize]) -> Vec<usize> {
     nodes
         .iter()
         .map(|&n| {

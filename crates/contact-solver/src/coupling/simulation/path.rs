@@ -43,9 +43,11 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 }
                 // Auto chose this path: fall back to one that converges more surely (the
                 // lagged friction coupling of the active set fails for large μ)
-                Err(SolverError::NotConverged { .. } | SolverError::Stalled { .. })
-                    if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) =>
-                {
+                Err(
+                    SolverError::NotConverged { .. }
+                    | SolverError::Stalled { .. }
+                    | SolverError::Unsupported(_),
+                ) if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) => {
                     self.counters.active_set_fallbacks += 1;
                     path = if active.len() <= FALLBACK_DENSE_LIMIT {
                         Path::Dense
@@ -140,7 +142,6 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         if self.structure.stiffness_matrix().is_none() {
             return Err("the structure does not expose its stiffness matrix".into());
         }
-        let mut frictional = Vec::with_capacity(active.len());
         for &i in active {
             let law = &self.zones[self.candidates[i].zone].law;
             if law.friction_coefficient(&self.states[i]).is_none() {
@@ -149,13 +150,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                     self.zones[self.candidates[i].zone].name
                 ));
             }
-            frictional.push(self.tangent_needed(i));
         }
-        frames(
-            &self.h_rows,
-            active,
-            &frictional,
-            self.structure.dof_count(),
-        )
+        frames(&self.h_rows, active, 2, self.structure.dof_count())
     }
 }

@@ -108,7 +108,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
         };
         let before = self.primal.factorizations;
-        let sol = solve_primal(&self.structure, &mut self.primal, &step)?;
+        let sol = solve_primal::<_, 2, _, 1>(&self.structure, &mut self.primal, &step)?;
         self.counters.active_set_steps += 1;
         self.counters.active_set_factorizations += self.primal.factorizations - before;
         self.counters.active_set_solves += sol.solves;

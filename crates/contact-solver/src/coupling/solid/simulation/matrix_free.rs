@@ -91,6 +91,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             adhesion_iterations: 0,
             residual: report.residual,
             matrix_free: true,
+            active_set: false,
+            factorizations: 0,
         })
     }
 

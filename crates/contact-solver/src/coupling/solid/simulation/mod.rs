@@ -12,12 +12,16 @@
 //! condensed exactly); then `u = u_free + K⁻¹ Hᵀ r` and the penetration check of the inactive
 //! candidates (added and solved again if one penetrates).
 //!
+//! Past `Auto`'s dense limit (or when asked), a step without adhesion is solved without `F*`:
+//! by the primal active set on the factorised stiffness when every active contact faces a rigid
+//! obstacle ([`crate::coupling::primal`]), matrix-free otherwise.
+//!
 //! What 3D does not have yet, refused with [`SolverError::Unsupported`] rather than answered
-//! wrongly: floating structures; the matrix-free and active-set paths (every 3D step uses the
-//! dense `F*`).
+//! wrongly: floating structures.
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
 use crate::coupling::flexibility::flexibility_into;
+use crate::coupling::primal::{LocalFrame, PrimalCache};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
@@ -25,6 +29,7 @@ use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver, symmetrize};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
 
+mod active_set;
 mod matrix_free;
 
 /// Settings of a [`SolidContactSimulation`].
@@ -43,9 +48,12 @@ pub struct SolidSettings {
     pub adhesion: AdhesionOptions,
     /// How the reduced problem is held: `Dense` (`F*` built with `3 n_c` solves), `MatrixFree`
     /// (one solve per iteration, no `F*`; adhesive steps still build `F*`, whose exact
-    /// condensation of the springs needs it), or `Auto { dense_limit }`: dense up to that many
-    /// active contacts, matrix-free beyond (the default, [`DEFAULT_DENSE_LIMIT_3D`]).
-    /// `ActiveSet` is 2D only and refused.
+    /// condensation of the springs needs it), `ActiveSet` (the primal active set: rigid
+    /// obstacles, no adhesion; a step out of its scope is refused with the reason), or
+    /// `Auto { dense_limit }` (the default, [`DEFAULT_DENSE_LIMIT_3D`]): dense up to that many
+    /// active contacts; beyond, the active set when the step is in its scope, else
+    /// matrix-free, and a step whose active-set iteration fails is solved again dense (up to
+    /// the limit's default) or matrix-free.
     pub flexibility: FlexibilityMode,
 }
 
@@ -124,6 +132,10 @@ pub struct SolidStepResult {
     pub active: usize,
     /// Whether the last pass was solved matrix-free (no `F*`).
     pub matrix_free: bool,
+    /// Whether the last pass was solved by the primal active set (no `F*`).
+    pub active_set: bool,
+    /// Numeric factorisations of the active set's constrained stiffness in this step.
+    pub factorizations: usize,
 }
 
 /// A quasi-static 3D contact simulation (module docs).
@@ -178,6 +190,8 @@ pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     steps: usize,
     solver: UzawaSolver,
     scale: f64,
+    /// The active-set path's symbolic analysis and factorisation, kept between steps.
+    primal: PrimalCache,
 }
 
 impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
@@ -248,6 +262,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             steps: 0,
             solver: UzawaSolver::new(settings.solver),
             scale,
+            primal: PrimalCache::default(),
         })
     }
 
@@ -413,6 +428,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 counts.adhesion_iterations += sol.adhesion_iterations;
                 counts.residual = sol.residual;
                 counts.matrix_free = sol.matrix_free;
+                counts.active_set = sol.active_set;
+                counts.factorizations += sol.factorizations;
                 let mut rhs = vec![0.0; ndof];
                 for (k, &i) in active.iter().enumerate() {
                     for d in 0..3 {
@@ -538,13 +555,45 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         let adhesive = active
             .iter()
             .any(|&i| self.zones[self.candidates[i].zone].law.has_adhesion());
-        let matrix_free = !adhesive
-            && match self.settings.flexibility {
-                FlexibilityMode::MatrixFree => true,
-                FlexibilityMode::Auto { dense_limit } => active.len() > dense_limit,
-                _ => false,
-            };
-        if matrix_free {
+        let path = match self.settings.flexibility {
+            FlexibilityMode::Dense => Path::Dense,
+            FlexibilityMode::MatrixFree if adhesive => Path::Dense,
+            FlexibilityMode::MatrixFree => Path::MatrixFree,
+            FlexibilityMode::ActiveSet => Path::ActiveSet(
+                self.active_set_frames(active)
+                    .map_err(SolverError::Unsupported)?,
+            ),
+            FlexibilityMode::Auto { dense_limit } => {
+                if adhesive || active.len() <= dense_limit {
+                    Path::Dense
+                } else if let Ok(f) = self.active_set_frames(active) {
+                    Path::ActiveSet(f)
+                } else {
+                    Path::MatrixFree
+                }
+            }
+        };
+        let path = match path {
+            Path::ActiveSet(frames) => match self.solve_active_set(active, &frames, free) {
+                Ok(solved) => return Ok(solved),
+                // Auto chose this path: fall back to one that converges more surely (the
+                // lagged friction coupling fails for large μ)
+                Err(
+                    SolverError::NotConverged { .. }
+                    | SolverError::Stalled { .. }
+                    | SolverError::Unsupported(_),
+                ) if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) => {
+                    if active.len() <= DEFAULT_DENSE_LIMIT_3D {
+                        Path::Dense
+                    } else {
+                        Path::MatrixFree
+                    }
+                }
+                Err(e) => return Err(e),
+            },
+            other => other,
+        };
+        if matches!(path, Path::MatrixFree) {
             return self.solve_matrix_free(active, free);
         }
         if self.w_active != active || self.w_version != Some(self.structure.stiffness_version()) {
@@ -590,6 +639,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 adhesion_iterations: sol.adhesion_iterations,
                 residual: sol.report.residual,
                 matrix_free: false,
+                active_set: false,
+                factorizations: 0,
             });
         }
         let mu: Vec<f64> = laws
@@ -610,6 +661,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             adhesion_iterations: 0,
             residual: sol.report.residual,
             matrix_free: false,
+            active_set: false,
+            factorizations: 0,
         })
     }
 
@@ -669,6 +722,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             residual: counts.residual,
             active: active.len(),
             matrix_free: counts.matrix_free,
+            active_set: counts.active_set,
+            factorizations: counts.factorizations,
         }
     }
 }
@@ -682,6 +737,9 @@ struct Solved<S> {
     adhesion_iterations: usize,
     residual: f64,
     matrix_free: bool,
+    active_set: bool,
+    /// Numeric factorisations of the active-set path.
+    factorizations: usize,
 }
 
 /// Iterations and passes of a step.
@@ -692,6 +750,15 @@ struct Counts {
     passes: usize,
     residual: f64,
     matrix_free: bool,
+    active_set: bool,
+    factorizations: usize,
+}
+
+/// How one pass solves its active set.
+enum Path {
+    Dense,
+    MatrixFree,
+    ActiveSet(Vec<LocalFrame>),
 }
 
 /// The checks of [`SolidSettings`] (module docs of [`SolidContactSimulation::new`]).
@@ -709,13 +776,6 @@ fn check_settings(settings: &SolidSettings) -> Result<(), SolverError> {
             value: settings.penetration_tol,
             expected: "a finite tolerance > 0",
         });
-    }
-    if settings.flexibility == FlexibilityMode::ActiveSet {
-        return Err(SolverError::Unsupported(
-            "the primal active set (FlexibilityMode::ActiveSet) in 3D: use Dense, MatrixFree \
-             or Auto"
-                .into(),
-        ));
     }
     Ok(())
 }
