@@ -5,9 +5,7 @@
 use super::{Correction, MAX_NEW_CORRECTIONS, PrimalCache, max_low_rank_update, position};
 use crate::error::SolverError;
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::Llt;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{MatMut, Side};
 
 /// Solves the rotated system with Dirichlet conditions `w_d = z_d` on `mask` and the applied
 /// `force` elsewhere, into `w`; returns the number of solves with the factor.
@@ -68,7 +66,7 @@ pub(super) fn solve_constrained(
     // correction columns of the dofs not seen yet with this factor, solved in one block with
     // the base right-hand side (column 0)
     if missing.is_empty() {
-        factor.solve_in_place(MatMut::from_column_major_slice_mut(w, n, 1));
+        factor.solve_in_place(w);
         if changed.is_empty() {
             return Ok(1);
         }
@@ -104,7 +102,7 @@ pub(super) fn solve_constrained(
                 rows.push(None);
             }
         }
-        factor.solve_in_place(block.as_mut());
+        factor.solve_many_in_place(block.as_mut());
         for (i, v) in w.iter_mut().enumerate() {
             *v = block[(i, 0)];
         }
@@ -178,16 +176,15 @@ fn refactor(
             }
         }
     }
-    let sym = cache
+    let mut solver = cache
         .symbolic
         .as_ref()
         .map(|s| s.1.clone())
         .ok_or_else(|| internal("a symbolic factorisation (internal)"))?;
     cache.factor = None;
     cache.columns.clear();
-    let llt = Llt::try_new_with_symbolic(sym, SparseColMatRef::new(pattern, &m), Side::Lower)
-        .map_err(fem_core::FemError::from)?;
-    cache.factor = Some(llt);
+    solver.factor(SparseColMatRef::new(pattern, &m))?;
+    cache.factor = Some(solver);
     cache.factor_mask.clear();
     cache.factor_mask.extend_from_slice(mask);
     cache.factorizations += 1;
