@@ -50,6 +50,11 @@ Writes into the output directory (default: [output] dir, else out/<scene name>):
         /// No progress bar and no per-phase lines (the final summary is still printed).
         #[arg(long, short)]
         quiet: bool,
+        /// Threads of the factorisations and dense kernels (faer): 1 runs them sequentially,
+        /// N on N threads; by default sequential for 2D scenes and on every core for 3D ones
+        /// (measured: `docs/benchmarks.md`, "Threads").
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+        threads: Option<u16>,
     },
     /// Validate a scene without solving: parse, check every value, build the mesh and the
     /// model, and recognise the contact zones.
@@ -171,7 +176,14 @@ pub fn main() -> ExitCode {
     }));
     let cli = Cli::parse();
     let code = match cli.command {
-        Command::Run { scene, out, quiet } => with_scene(&scene, |loaded| {
+        Command::Run {
+            scene,
+            out,
+            quiet,
+            threads,
+        } => with_scene(&scene, |loaded| {
+            let solid = loaded.scene.analysis.as_ref().is_some_and(|a| a.is_solid());
+            faer::set_global_parallelism(parallelism(threads, solid));
             let built = build::build(loaded)?;
             let dir = match &built {
                 build::Built::Plane(s) => &s.output.dir,
@@ -237,6 +249,18 @@ pub fn main() -> ExitCode {
         } => finish(templates::write(kind, output, force), None),
     };
     ExitCode::from(code)
+}
+
+/// faer's parallelism for `bipo run`: `--threads`, else sequential in 2D (rayon's start-up
+/// costs more than it saves on these sizes) and every core in 3D (the factorisations of 1e4 to
+/// 1e5 dofs gain from them).
+fn parallelism(threads: Option<u16>, solid: bool) -> faer::Par {
+    match threads {
+        Some(1) => faer::Par::Seq,
+        Some(n) => faer::Par::rayon(usize::from(n)),
+        None if solid => faer::Par::rayon(0),
+        None => faer::Par::Seq,
+    }
 }
 
 fn with_scene(path: &Path, f: impl FnOnce(&build::Loaded) -> CliResult<()>) -> u8 {

@@ -254,8 +254,28 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
             target,
         });
     }
-    // [[phases]] laws: every zone named exists; adhesion counts as for the zones
-    let mut phase_laws = Vec::new();
+    let phase_laws = phase_laws(scene, &names)?;
+    for l in phase_laws.iter().flatten().map(|(_, l)| l) {
+        adhesive += usize::from(l.has_adhesion());
+        friction += usize::from(l.has_friction());
+    }
+    Ok(ContactPlan {
+        zones,
+        adhesive,
+        friction,
+        settings,
+        phase_laws,
+    })
+}
+
+/// The laws `[[phases]]` set, per phase (in order): `(zone, law)`, every zone named one of
+/// `names` (2D and 3D scenes).
+pub(super) fn phase_laws(
+    scene: &Scene,
+    names: &BTreeSet<String>,
+) -> CliResult<Vec<Vec<(String, StandardLaw)>>> {
+    let root = KeyPath::root();
+    let mut out = Vec::new();
     for (i, ph) in scene.phases.iter().enumerate() {
         let mut laws = Vec::new();
         for (zone, raw) in &ph.laws {
@@ -270,23 +290,11 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
                 ));
             }
             let (l, _) = law(&p, &raw.resolve(&p)?)?;
-            if l.has_adhesion() {
-                adhesive += 1;
-            }
-            if l.has_friction() {
-                friction += 1;
-            }
             laws.push((zone.clone(), l));
         }
-        phase_laws.push(laws);
+        out.push(laws);
     }
-    Ok(ContactPlan {
-        zones,
-        adhesive,
-        friction,
-        settings,
-        phase_laws,
-    })
+    Ok(out)
 }
 
 /// The geometry of a target at `tp`, checked (rigid lines and arcs are built here).

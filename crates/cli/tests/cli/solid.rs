@@ -176,6 +176,21 @@ fn solid_hertz_sphere_quarter_works() {
             "δ = {delta}: P = {force}, error {error}"
         );
     }
+    // the interface series: one point per candidate, its local reactions and slips
+    let vtu = std::fs::read_to_string(out.join("interface_0001.vtu")).unwrap();
+    let contacts = csv(&out.join("contacts.csv"));
+    let per_step = contacts.iter().filter(|r| r["step"] == "2").count();
+    assert!(per_step > 0);
+    assert!(
+        vtu.contains(&format!("NumberOfPoints=\"{per_step}\"")),
+        "{per_step} points"
+    );
+    for name in [
+        "r_local", "slip", "force", "gap", "pressure", "beta", "\"u\"",
+    ] {
+        assert!(vtu.contains(name), "{name}");
+    }
+    assert!(out.join("interface.pvd").exists());
     let _ = std::fs::remove_dir_all(&out);
 }
 
@@ -226,9 +241,10 @@ fn solid_check_counts_steps_and_files_works() {
     assert!(o.status.success(), "{stdout}");
     assert!(stdout.contains("(3D scene)"), "{stdout}");
     assert!(stdout.contains("P2 (10-node tetrahedra)"), "{stdout}");
-    // summary.json, steps.csv, contacts.csv, mesh.pvd and two mesh_NNNN.vtu
+    // summary.json, steps.csv, contacts.csv, mesh.pvd and two mesh_NNNN.vtu, interface.pvd
+    // and two interface_NNNN.vtu
     assert!(
-        stdout.contains("ok: the scene is valid (2 steps to run, 6 files to write)"),
+        stdout.contains("ok: the scene is valid (2 steps to run, 9 files to write)"),
         "{stdout}"
     );
 }
@@ -332,5 +348,24 @@ fn solid_supports_by_phase_works() {
     assert!(num(&steps[0], "force_x").abs() < 1e-8);
     let fx = num(&steps[1], "force_x");
     assert!((fx + 0.6).abs() < 1e-3 && fx >= -0.6 - 1e-9, "{fx}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// Laws by phase and a displacement reset in 3D (tests/solid/phase_laws.toml): the scene of
+/// `phases.toml` with the floor's friction lowered to μ = 0.1 when the shear starts, so the
+/// tangential force is `μ N = 0.2` (within 1e-3, as above) instead of 0.6; the reset after the
+/// press leaves the normal force (the contact state is kept) at 2 (1e-8).
+#[test]
+fn solid_laws_by_phase_works() {
+    let out = tmp("phase_laws");
+    run(&dir("tests/solid/phase_laws.toml"), &out);
+    let steps = csv(&out.join("steps.csv"));
+    assert_eq!(steps.len(), 2);
+    for row in &steps {
+        assert_close(num(row, "force_n"), 2.0, 1e-8);
+    }
+    assert!(num(&steps[0], "force_x").abs() < 1e-8);
+    let fx = num(&steps[1], "force_x");
+    assert!((fx + 0.2).abs() < 1e-3 && fx >= -0.2 - 1e-9, "{fx}");
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -581,6 +581,22 @@ impl InterfaceSeries {
         records: &[ContactRecord],
         displacements: Option<&[[f64; 2]]>,
     ) -> Result<PathBuf, SolverError> {
+        self.write_step_with(time, |path| {
+            write_interface_vtu(path, records, displacements)
+        })
+    }
+
+    /// Writes the next file of the series at `time` with `write` (given its path, e.g.
+    /// [`write_interface_vtu_3d`](crate::coupling::solid::write_interface_vtu_3d) for a 3D
+    /// step), then rewrites the `.pvd` collection; returns the path of the `.vtu` file.
+    ///
+    /// # Errors
+    /// As [`InterfaceSeries::write_step`], with `write`'s errors.
+    pub fn write_step_with(
+        &mut self,
+        time: f64,
+        write: impl FnOnce(&Path) -> Result<(), SolverError>,
+    ) -> Result<PathBuf, SolverError> {
         if !time.is_finite() {
             return Err(SolverError::NonFinite {
                 what: "time",
@@ -590,7 +606,7 @@ impl InterfaceSeries {
         }
         let file = format!("{}_{:04}.vtu", self.stem, self.entries.len());
         let path = self.dir.join(&file);
-        write_interface_vtu(&path, records, displacements)?;
+        write(&path)?;
         self.entries.push((time, file));
         let entries: Vec<(f64, &str)> =
             self.entries.iter().map(|(t, f)| (*t, f.as_str())).collect();

@@ -4,19 +4,19 @@
 //! node-to-face zones plug in there), their candidates checked, and the simulation made.
 
 use super::super::checks::{finite, non_negative, positive, solver_error};
-use super::super::contact::{law, settings, zone_name};
+use super::super::contact::{law, phase_laws, settings, zone_name};
 use super::mesh::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::triple;
-use crate::scene::{FlexibilitySpec, Scene, SolverSpec};
+use crate::scene::{Scene, SolverSpec};
 use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
-use contact_solver::SolverError;
 use contact_solver::coupling::solid::{
-    Candidate3, ContactZone3, PairNormals3, RigidCylinder, RigidPlane, RigidSphere, Side3,
-    SolidContactSimulation, SolidSettings, TriSurface,
+    Candidate3, ContactZone3, DEFAULT_DENSE_LIMIT_3D, PairNormals3, RigidCylinder, RigidPlane,
+    RigidSphere, Side3, SolidContactSimulation, SolidSettings, TriSurface,
 };
+use contact_solver::{FlexibilityMode, SolverError};
 use fem_core::solid::{SolidMesh, SolidModel};
 use std::collections::BTreeSet;
 
@@ -53,35 +53,24 @@ pub(super) struct ContactPlan3 {
     pub(super) laws: Vec<String>,
     /// `[solver]`.
     pub(super) settings: SolidSettings,
+    /// Per phase (in order), the laws it sets: `(zone, law)`.
+    pub(super) phase_laws: Vec<Vec<(String, StandardLaw)>>,
 }
 
 /// `[solver]` for the 3D simulation: the local solver's and the adhesion loop's keys as in 2D;
-/// `max_detection_passes` bounds the active-set passes; the keys of what 3D does not have
-/// (other flexibility paths) are refused.
+/// `max_detection_passes` bounds the active-set passes; `flexibility` and `dense_limit` as in
+/// 2D, with the 3D default limit ([`DEFAULT_DENSE_LIMIT_3D`]).
 fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
-    let root = KeyPath::root().key("solver");
-    let refuse = |key: &str, why: &str| -> CliResult<()> {
-        let p = root.key(key);
-        Err(CliError::at(
-            &p,
-            format!("`{p}` is not read in a 3D scene: {why}"),
-        ))
-    };
-    if s.dense_limit.is_some() {
-        refuse("dense_limit", "3D steps always use a dense F*")?;
-    }
-    if let Some(f) = s.flexibility
-        && f != FlexibilitySpec::Dense
-    {
-        refuse(
-            "flexibility",
-            "3D steps always use a dense F* (flexibility = \"dense\"); the active-set and \
-             matrix-free paths are 2D only for now",
-        )?;
-    }
     let plane = settings(s)?;
+    let flexibility = match plane.flexibility {
+        FlexibilityMode::Auto { .. } if s.dense_limit.is_none() => FlexibilityMode::Auto {
+            dense_limit: DEFAULT_DENSE_LIMIT_3D,
+        },
+        other => other,
+    };
     let mut out = SolidSettings {
         solver: plane.solver,
+        flexibility,
         ..SolidSettings::default()
     };
     if s.max_detection_passes.is_some() {
@@ -204,10 +193,12 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
             target,
         });
     }
+    let phase_laws = phase_laws(scene, &names)?;
     Ok(ContactPlan3 {
         zones,
         laws,
         settings,
+        phase_laws,
     })
 }
 
@@ -398,18 +389,44 @@ mod tests {
     }
 
     #[test]
-    fn settings_3d_rejects_2d_only_keys() {
-        let s = SolverSpec {
-            dense_limit: Some(10),
-            ..SolverSpec::default()
-        };
-        let e = settings_3d(&s).unwrap_err();
-        assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
+    fn settings_3d_reads_the_paths_with_the_3d_default() {
+        use crate::scene::FlexibilitySpec;
         let s = SolverSpec {
             max_detection_passes: Some(7),
             flexibility: Some(FlexibilitySpec::Dense),
             ..SolverSpec::default()
         };
-        assert_eq!(settings_3d(&s).unwrap().max_passes, 7);
+        let out = settings_3d(&s).unwrap();
+        assert_eq!(out.max_passes, 7);
+        assert_eq!(out.flexibility, FlexibilityMode::Dense);
+        let auto = settings_3d(&SolverSpec::default()).unwrap().flexibility;
+        assert_eq!(
+            auto,
+            FlexibilityMode::Auto {
+                dense_limit: DEFAULT_DENSE_LIMIT_3D
+            }
+        );
+        let s = SolverSpec {
+            dense_limit: Some(10),
+            ..SolverSpec::default()
+        };
+        let limited = settings_3d(&s).unwrap().flexibility;
+        assert_eq!(limited, FlexibilityMode::Auto { dense_limit: 10 });
+        let s = SolverSpec {
+            flexibility: Some(FlexibilitySpec::ActiveSet),
+            ..SolverSpec::default()
+        };
+        assert_eq!(
+            settings_3d(&s).unwrap().flexibility,
+            FlexibilityMode::ActiveSet
+        );
+        // dense_limit with another path is refused at its key, as in 2D
+        let s = SolverSpec {
+            flexibility: Some(FlexibilitySpec::MatrixFree),
+            dense_limit: Some(10),
+            ..SolverSpec::default()
+        };
+        let e = settings_3d(&s).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
     }
 }

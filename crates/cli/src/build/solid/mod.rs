@@ -7,8 +7,7 @@
 //! and names, the law of a zone, `[solver]`'s local keys, `[output]`); [`mesh`], [`model`] and
 //! [`contact`] hold what 3D reads differently: the box generator and Gmsh volume files, loads
 //! with three components and pressures on face sets, rigid planes, spheres and cylinders.
-//! What 3D scenes do not have yet (laws changed per phase, displacement resets, plots,
-//! floating bodies) is refused with its key path.
+//! What 3D scenes do not have yet (plots, floating bodies) is refused with its key path.
 
 mod contact;
 mod mesh;
@@ -55,6 +54,8 @@ pub struct SolidStudy {
     pub zone_names: Vec<String>,
     /// Zone law names.
     pub zone_laws: Vec<String>,
+    /// Per phase (in order), the laws it sets: `(zone, law)`.
+    pub phase_laws: Vec<Vec<(String, StandardLaw)>>,
 }
 
 impl SolidStudy {
@@ -73,16 +74,16 @@ impl SolidStudy {
         self.output.vtk || self.output.mesh_vtk
     }
 
-    /// The files a run writes: `summary.json`, the CSV histories, one `.vtu` per written step
-    /// and the `.pvd`.
+    /// The files a run writes: `summary.json`, the CSV histories, and per `.vtu` series (the
+    /// body's, the interface's with `output.vtk`) one file per written step and the `.pvd`.
     pub fn output_files(&self) -> usize {
         let o = &self.output;
         let fixed = 1 + usize::from(o.history) + usize::from(o.report);
-        if self.writes_vtk() {
-            self.written_steps().saturating_add(fixed + 1)
-        } else {
-            fixed
-        }
+        let series = usize::from(self.writes_vtk()) + usize::from(o.vtk);
+        self.written_steps()
+            .saturating_add(1)
+            .saturating_mul(series)
+            .saturating_add(fixed)
     }
 }
 
@@ -95,23 +96,6 @@ fn refuse_unsupported(scene: &Scene) -> CliResult<()> {
             "[[plots]] are not available in a 3D scene yet (steps.csv and contacts.csv hold \
              the histories)",
         ));
-    }
-    for (i, ph) in scene.phases.iter().enumerate() {
-        let p = root.key("phases").index(i);
-        if ph.reset_displacements {
-            let rp = p.key("reset_displacements");
-            return Err(CliError::at(
-                &rp,
-                format!("`{rp}`: resetting displacements is not available in 3D yet"),
-            ));
-        }
-        if let Some(zone) = ph.laws.keys().next() {
-            let lp = p.key("laws").key(zone);
-            return Err(CliError::at(
-                &lp,
-                format!("`{lp}`: changing a zone's law between phases is not available in 3D yet"),
-            ));
-        }
     }
     Ok(())
 }
@@ -182,6 +166,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         output: scene.output.clone(),
         zone_names,
         zone_laws: contact.laws,
+        phase_laws: contact.phase_laws,
     };
     let candidates = study.sim.candidates();
     check_output_table(

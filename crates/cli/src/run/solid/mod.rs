@@ -74,8 +74,20 @@ pub struct SolidSummary {
     pub files: Vec<String>,
 }
 
-/// Sets the supports' values and the loads of phase `p` at time `t` (the loads are rebuilt only
-/// when a factor changed since `last`).
+/// Sets the laws phase `p` gives its zones (the interface states carry over), then releases the
+/// supports that end with the phase before.
+fn begin_phase(study: &mut SolidStudy, p: usize) -> CliResult<()> {
+    for (zone, law) in study.phase_laws.get(p).into_iter().flatten() {
+        study.sim.set_law(zone, *law).map_err(|e| {
+            CliError::failed(format!(
+                "phase `{}`: setting the law of zone `{zone}`: {e}",
+                study.phases[p].name
+            ))
+        })?;
+    }
+    release_ending(study, p)
+}
+
 /// Releases, when phase `p > 0` starts, the supports that acted in the phase before and not in
 /// this one (the simulation follows the new dof numbering at its next step).
 fn release_ending(study: &mut SolidStudy, p: usize) -> CliResult<()> {
@@ -103,7 +115,8 @@ fn release_ending(study: &mut SolidStudy, p: usize) -> CliResult<()> {
     Ok(())
 }
 
-/// The supports (those of phase `p`) and the loads at time `t`.
+/// The supports (those of phase `p`) and the loads at time `t` (the loads are rebuilt only
+/// when a factor changed since `last`).
 fn apply(study: &mut SolidStudy, p: usize, t: f64, last: &mut Option<Vec<f64>>) -> CliResult<()> {
     let phase = &study.phases[p];
     let model = study.sim.structure_mut();
@@ -182,7 +195,7 @@ fn drive(
     for p in 0..study.phases.len() {
         let phase: Phase = study.phases[p].clone();
         progress.begin_phase(&phase.name);
-        if let Err(e) = release_ending(study, p) {
+        if let Err(e) = begin_phase(study, p) {
             return (out, Some(e));
         }
         let t_phase = Instant::now();
@@ -219,6 +232,9 @@ fn drive(
                 return (out, Some(e));
             }
             progress.step(t, res.contact_iterations);
+        }
+        if phase.reset_displacements {
+            study.sim.reset_displacements();
         }
         let s = SolidPhaseSummary {
             name: phase.name.clone(),

@@ -1,14 +1,17 @@
 //! The outputs of a 3D run: `steps.csv` (one row per step: time, active contacts, iterations,
 //! the total contact force and each zone's Σ r_n), `contacts.csv` (one row per contact and
 //! written step), the body's `mesh_NNNN.vtu` series with `mesh.pvd` (displacement, contact force
-//! and pressure at the nodes, the element-mean stress), and the zones' tally for the summary.
+//! and pressure at the nodes, the element-mean stress), the interface's `interface_NNNN.vtu`
+//! series with `interface.pvd` (`output.vtk`: one point per contact at its deformed position,
+//! [`write_interface_vtu_3d`]), and the zones' tally for the summary.
 
 use super::super::errors::{create, fem_failed, io};
 use super::super::summary::{Peak, keep};
-use crate::error::CliResult;
+use crate::error::{CliError, CliResult};
 use contact_laws::StandardLaw;
+use contact_solver::coupling::output::InterfaceSeries;
 use contact_solver::coupling::solid::{
-    SolidContactRecord, SolidContactSimulation, SolidStepResult,
+    SolidContactRecord, SolidContactSimulation, SolidStepResult, write_interface_vtu_3d,
 };
 use fem_core::solid::SolidModel;
 use fem_core::vtk::{Field3, write_pvd, write_vtu_3d};
@@ -50,6 +53,7 @@ pub(super) struct SolidRecorder {
     steps: Option<BufWriter<File>>,
     contacts: Option<BufWriter<File>>,
     vtk: Option<Vec<(f64, String)>>,
+    interface: Option<InterfaceSeries>,
     zones_filter: Option<Vec<usize>>,
     nodes_filter: Option<Vec<usize>>,
     pub(super) zones: Vec<SolidZoneSummary>,
@@ -124,6 +128,7 @@ impl SolidRecorder {
             steps,
             contacts,
             vtk: study.writes_vtk().then(Vec::new),
+            interface: o.vtk.then(|| InterfaceSeries::new(dir, "interface")),
             zones_filter: o.zones.as_ref().map(|zs| {
                 zs.iter()
                     .filter_map(|z| study.zone_names.iter().position(|n| n == z))
@@ -232,6 +237,18 @@ impl SolidRecorder {
         if self.vtk.is_some() {
             self.write_vtk(sim, &selected, t)?;
         }
+        if let Some(series) = &mut self.interface {
+            let mesh = sim.structure().mesh();
+            let u: Vec<[f64; 3]> = (0..mesh.node_count())
+                .map(|n| sim.nodal_displacement(n))
+                .collect();
+            let records: Vec<SolidContactRecord> = selected.iter().map(|c| **c).collect();
+            series
+                .write_step_with(t, |path| {
+                    write_interface_vtu_3d(path, &records, mesh.nodes(), Some(&u))
+                })
+                .map_err(|e| CliError::failed(format!("writing the interface VTK: {e}")))?;
+        }
         Ok(())
     }
 
@@ -301,6 +318,13 @@ impl SolidRecorder {
         }
         if self.vtk.as_ref().is_some_and(|e| !e.is_empty()) {
             self.files.push("mesh.pvd".into());
+        }
+        if self
+            .interface
+            .as_ref()
+            .is_some_and(|s| s.pvd_path().exists())
+        {
+            self.files.push("interface.pvd".into());
         }
         Ok((self.files, self.zones))
     }

@@ -1,9 +1,11 @@
 //! 3D contact: rigid obstacles ([`obstacle`]), target surfaces of deformable bodies
 //! ([`surface`]), zones of nodes against either or paired with other nodes ([`zone`]), and the
-//! quasi-static simulation of a [`Structure<3>`](fem_core::Structure) ([`simulation`]) on the
-//! dense `F*` path with the local solver in 3D, RCCM adhesion included.
+//! quasi-static simulation of a [`Structure<3>`](fem_core::Structure) ([`simulation`]) with
+//! the local solver in 3D (dense `F*`, matrix-free or the primal active set), RCCM adhesion
+//! included.
 
 pub mod obstacle;
+pub mod output;
 pub mod simulation;
 pub mod surface;
 pub mod zone;
@@ -11,6 +13,10 @@ pub mod zone;
 pub use obstacle::{
     Obstacle3, ObstaclePoint3, RigidCylinder, RigidPlane, RigidSphere, Side3, tangent_frame,
 };
-pub use simulation::{SolidContactRecord, SolidContactSimulation, SolidSettings, SolidStepResult};
+pub use output::write_interface_vtu_3d;
+pub use simulation::{
+    DEFAULT_DENSE_LIMIT_3D, SolidContactRecord, SolidContactSimulation, SolidSettings,
+    SolidStepResult,
+};
 pub use surface::TriSurface;
 pub use zone::{Candidate3, ContactZone3, PairNormals3, Target3, recognize_3d};
