@@ -51,8 +51,8 @@ Writes into the output directory (default: [output] dir, else out/<scene name>):
         #[arg(long, short)]
         quiet: bool,
         /// Threads of the factorisations and dense kernels (faer): 1 runs them sequentially,
-        /// N on N threads; by default sequential for 2D scenes and on every core for 3D ones
-        /// (measured: `docs/benchmarks.md`, "Threads").
+        /// N on N threads; by default every core while the model is built, then sequential
+        /// for models under 50 000 free dofs (measured: `docs/benchmarks.md`, "Threads").
         #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
         threads: Option<u16>,
     },
@@ -182,9 +182,16 @@ pub fn main() -> ExitCode {
             quiet,
             threads,
         } => with_scene(&scene, |loaded| {
-            let solid = loaded.scene.analysis.as_ref().is_some_and(|a| a.is_solid());
-            faer::set_global_parallelism(parallelism(threads, solid));
+            faer::set_global_parallelism(parallelism(threads, None));
             let built = build::build(loaded)?;
+            let dofs = {
+                use fem_core::Structure;
+                match &built {
+                    build::Built::Plane(s) => s.model().dof_count(),
+                    build::Built::Solid(s) => s.sim.structure().dof_count(),
+                }
+            };
+            faer::set_global_parallelism(parallelism(threads, Some(dofs)));
             let dir = match &built {
                 build::Built::Plane(s) => &s.output.dir,
                 build::Built::Solid(s) => &s.output.dir,
@@ -251,15 +258,19 @@ pub fn main() -> ExitCode {
     ExitCode::from(code)
 }
 
-/// faer's parallelism for `bipo run`: `--threads`, else sequential in 2D (rayon's start-up
-/// costs more than it saves on these sizes) and every core in 3D (the factorisations of 1e4 to
-/// 1e5 dofs gain from them).
-fn parallelism(threads: Option<u16>, solid: bool) -> faer::Par {
-    match threads {
-        Some(1) => faer::Par::Seq,
-        Some(n) => faer::Par::rayon(usize::from(n)),
-        None if solid => faer::Par::rayon(0),
-        None => faer::Par::Seq,
+/// Below this many free dofs `bipo run` runs faer sequentially by default: rayon's start-up
+/// costs more than it saves on the seed's scenes and a 14k-dof 3D one, and both cores gain
+/// 10–20 % on a 1e5-dof 3D one (`docs/benchmarks.md`, "Threads").
+pub const SEQUENTIAL_BELOW_DOFS: usize = 50_000;
+
+/// faer's parallelism for `bipo run`: `--threads`, else every core (while building, `dofs`
+/// unknown, and for models of at least [`SEQUENTIAL_BELOW_DOFS`]) or sequential.
+fn parallelism(threads: Option<u16>, dofs: Option<usize>) -> faer::Par {
+    match (threads, dofs) {
+        (Some(1), _) => faer::Par::Seq,
+        (Some(n), _) => faer::Par::rayon(usize::from(n)),
+        (None, Some(d)) if d < SEQUENTIAL_BELOW_DOFS => faer::Par::Seq,
+        (None, _) => faer::Par::rayon(0),
     }
 }
 
