@@ -408,7 +408,11 @@ pub fn write_interface_vtu(
     records: &[ContactRecord],
     displacements: Option<&[[f64; 2]]>,
 ) -> Result<(), SolverError> {
-    let vtk = interface_model(records, displacements)?;
+    write_vtk(path, interface_model(records, displacements)?)
+}
+
+/// Writes a VTK model as XML to `path`.
+pub(crate) fn write_vtk(path: &Path, vtk: Vtk) -> Result<(), SolverError> {
     let io = |source: Cause| SolverError::Io {
         what: format!("cannot write `{}`", path.display()),
         source,
@@ -417,6 +421,28 @@ pub fn write_interface_vtu(
     let mut writer = std::io::BufWriter::new(file);
     vtk.write_xml(&mut writer).map_err(|e| io(Cause::new(e)))?;
     writer.flush().map_err(|e| io(Cause::new(e)))
+}
+
+/// An unstructured grid of one vertex per point (`points`: x, y, z of each) with point data.
+pub(crate) fn vertex_cloud(points: Vec<f64>, data: Attributes) -> Vtk {
+    let n = points.len() / 3;
+    Vtk {
+        version: Version::new_xml(1, 0),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(UnstructuredGridPiece {
+            points: points.into(),
+            cells: Cells {
+                cell_verts: VertexNumbers::XML {
+                    connectivity: (0..n as u64).collect(),
+                    offsets: (1..=n as u64).collect(),
+                },
+                types: vec![CellType::Vertex; n],
+            },
+            data,
+        }),
+    }
 }
 
 /// The VTK model of [`write_interface_vtu`].
@@ -433,7 +459,6 @@ fn interface_model(
             found: u.len(),
         });
     }
-    let n = records.len();
     let points: Vec<f64> = records
         .iter()
         .flat_map(|c| {
@@ -441,13 +466,6 @@ fn interface_model(
             [c.position[0] + ux, c.position[1] + uy, 0.0]
         })
         .collect();
-    let cells = Cells {
-        cell_verts: VertexNumbers::XML {
-            connectivity: (0..n as u64).collect(),
-            offsets: (1..=n as u64).collect(),
-        },
-        types: vec![CellType::Vertex; n],
-    };
     let scalar = |name: &str, f: fn(&ContactRecord) -> f64| {
         Attribute::scalars(name, 1).with_data(records.iter().map(f).collect::<Vec<f64>>())
     };
@@ -493,17 +511,7 @@ fn interface_model(
             ),
         );
     }
-    Ok(Vtk {
-        version: Version::new_xml(1, 0),
-        title: String::new(),
-        byte_order: ByteOrder::LittleEndian,
-        file_path: None,
-        data: DataSet::inline(UnstructuredGridPiece {
-            points: points.into(),
-            cells,
-            data,
-        }),
-    })
+    Ok(vertex_cloud(points, data))
 }
 
 /// A time series of interface files for ParaView: `<stem>_<k>.vtu` (k = 0, 1, … on 4 digits)

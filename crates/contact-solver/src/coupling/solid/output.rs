@@ -4,13 +4,10 @@
 //! [`InterfaceSeries::write_step_with`](crate::coupling::output::InterfaceSeries::write_step_with).
 
 use super::simulation::SolidContactRecord;
-use crate::error::{Cause, SolverError};
-use std::io::Write;
+use crate::coupling::output::{vertex_cloud, write_vtk};
+use crate::error::SolverError;
 use std::path::Path;
-use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, UnstructuredGridPiece, Version,
-    VertexNumbers, Vtk,
-};
+use vtkio::model::{Attribute, Attributes};
 
 /// Writes the contact records of a 3D step as a VTK unstructured grid of vertices (`.vtu`,
 /// ASCII XML). `positions[n]` is node `n`'s position, `displacements[n]` its displacement (the
@@ -53,7 +50,6 @@ pub fn write_interface_vtu_3d(
             });
         }
     }
-    let n = records.len();
     let u = |node: usize| displacements.map_or([0.0; 3], |u| u[node]);
     let points: Vec<f64> = records
         .iter()
@@ -62,13 +58,6 @@ pub fn write_interface_vtu_3d(
             [x[0] + d[0], x[1] + d[1], x[2] + d[2]]
         })
         .collect();
-    let cells = Cells {
-        cell_verts: VertexNumbers::XML {
-            connectivity: (0..n as u64).collect(),
-            offsets: (1..=n as u64).collect(),
-        },
-        types: vec![CellType::Vertex; n],
-    };
     let scalar = |name: &str, f: &dyn Fn(&SolidContactRecord) -> f64| {
         Attribute::scalars(name, 1).with_data(records.iter().map(f).collect::<Vec<f64>>())
     };
@@ -106,23 +95,5 @@ pub fn write_interface_vtu_3d(
     if displacements.is_some() {
         data.point.push(vector("u", &|c| u(c.candidate.node)));
     }
-    let vtk = Vtk {
-        version: Version::new_xml(1, 0),
-        title: String::new(),
-        byte_order: ByteOrder::LittleEndian,
-        file_path: None,
-        data: DataSet::inline(UnstructuredGridPiece {
-            points: points.into(),
-            cells,
-            data,
-        }),
-    };
-    let io = |source: Cause| SolverError::Io {
-        what: format!("cannot write `{}`", path.display()),
-        source,
-    };
-    let file = std::fs::File::create(path).map_err(|e| io(Cause::new(e)))?;
-    let mut writer = std::io::BufWriter::new(file);
-    vtk.write_xml(&mut writer).map_err(|e| io(Cause::new(e)))?;
-    writer.flush().map_err(|e| io(Cause::new(e)))
+    write_vtk(path, vertex_cloud(points, data))
 }
