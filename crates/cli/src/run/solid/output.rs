@@ -234,14 +234,18 @@ impl SolidRecorder {
                 line(w, &self.dir, "contacts.csv", &text)?;
             }
         }
+        if self.vtk.is_none() && self.interface.is_none() {
+            return Ok(());
+        }
+        // the nodal displacements, once for both series
+        let mesh = sim.structure().mesh();
+        let u: Vec<[f64; 3]> = (0..mesh.node_count())
+            .map(|n| sim.nodal_displacement(n))
+            .collect();
         if self.vtk.is_some() {
-            self.write_vtk(sim, &selected, t)?;
+            self.write_vtk(sim, &selected, &u, t)?;
         }
         if let Some(series) = &mut self.interface {
-            let mesh = sim.structure().mesh();
-            let u: Vec<[f64; 3]> = (0..mesh.node_count())
-                .map(|n| sim.nodal_displacement(n))
-                .collect();
             let records: Vec<SolidContactRecord> = selected.iter().map(|c| **c).collect();
             series
                 .write_step_with(t, |path| {
@@ -257,13 +261,11 @@ impl SolidRecorder {
         &mut self,
         sim: &SolidContactSimulation<SolidModel, StandardLaw>,
         selected: &[&SolidContactRecord],
+        u: &[[f64; 3]],
         t: f64,
     ) -> CliResult<()> {
         let model = sim.structure();
         let mesh = model.mesh();
-        let u: Vec<[f64; 3]> = (0..mesh.node_count())
-            .map(|n| sim.nodal_displacement(n))
-            .collect();
         let mut force = vec![[0.0; 3]; mesh.node_count()];
         let mut pressure = vec![0.0; mesh.node_count()];
         for c in selected {
@@ -273,7 +275,7 @@ impl SolidRecorder {
             pressure[n] += c.pressure();
         }
         let stress: Vec<[f64; 6]> = model
-            .stresses(&u)
+            .stresses(u)
             .map_err(|e| fem_failed("stresses", e))?
             .iter()
             .map(|points| {
@@ -293,7 +295,7 @@ impl SolidRecorder {
             &path,
             mesh,
             &[
-                ("u", Field3::Vector(&u)),
+                ("u", Field3::Vector(u)),
                 ("contact_force", Field3::Vector(&force)),
                 ("contact_pressure", Field3::Scalar(&pressure)),
             ],
