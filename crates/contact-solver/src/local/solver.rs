@@ -106,6 +106,11 @@ impl UzawaSolver {
         &self.settings
     }
 
+    /// The settings, to change for one solve.
+    pub(crate) fn settings_mut(&mut self) -> &mut UzawaSettings {
+        &mut self.settings
+    }
+
     /// Solves `problem` from `r = 0` with the laws' initial states.
     ///
     /// `laws` holds one law per contact, or a single law shared by all contacts.

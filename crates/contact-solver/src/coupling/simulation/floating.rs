@@ -144,6 +144,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
             always_iterate: false,
             anderson_window: self.settings.adhesion_anderson_window,
+            method: self.settings.adhesion_method,
         };
         let mut r_warm: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let mut q = q0.clone();

@@ -18,6 +18,10 @@ pub struct SimulationSettings {
     /// Anderson window of the adhesion fixed point (`0`: the seed's plain fixed point); see
     /// [`AdhesionOptions::anderson_window`](crate::local::adhesion::AdhesionOptions::anderson_window).
     pub adhesion_anderson_window: usize,
+    /// How adhesion and contact are solved together: the seed's fixed point or Newton with
+    /// the states eliminated (the default); see
+    /// [`AdhesionMethod`](crate::local::adhesion::AdhesionMethod).
+    pub adhesion_method: crate::local::adhesion::AdhesionMethod,
     /// Maximum passes of the penetration check per step (each adds the penetrating inactive
     /// candidates and redoes the step).
     pub max_detection_passes: usize,
@@ -118,6 +122,7 @@ impl Default for SimulationSettings {
             adhesion_tol: 1e-8,
             max_adhesion_iterations: 200,
             adhesion_anderson_window: crate::local::adhesion::DEFAULT_ANDERSON_WINDOW,
+            adhesion_method: crate::local::adhesion::AdhesionMethod::Newton,
             max_detection_passes: 5,
             columns_per_solve: 64,
             skip: SkipRules::default(),
@@ -154,6 +159,16 @@ impl SimulationSettings {
     #[must_use]
     pub fn with_adhesion_anderson_window(mut self, adhesion_anderson_window: usize) -> Self {
         self.adhesion_anderson_window = adhesion_anderson_window;
+        self
+    }
+
+    /// These settings with [`adhesion_method`](Self::adhesion_method) replaced.
+    #[must_use]
+    pub fn with_adhesion_method(
+        mut self,
+        adhesion_method: crate::local::adhesion::AdhesionMethod,
+    ) -> Self {
+        self.adhesion_method = adhesion_method;
         self
     }
 

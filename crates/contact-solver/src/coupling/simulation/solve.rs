@@ -241,6 +241,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
             always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
             anderson_window: self.settings.adhesion_anderson_window,
+            method: self.settings.adhesion_method,
         };
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
         report.contact_iterations += sol.contact_iterations;

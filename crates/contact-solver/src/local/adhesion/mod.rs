@@ -55,14 +55,19 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::dense::symmetrize;
+mod newton;
+
+use super::dense::{dense_parallelism, symmetrize};
 use super::problem::ReducedProblem;
-use super::settings::UzawaReport;
+use super::settings::{Algorithm, UzawaReport};
 use super::solver::UzawaSolver;
 use crate::error::SolverError;
 use contact_laws::{ContactLaw, LocalVec2, LocalVec3};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt;
+use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::Solve;
-use faer::{Mat, MatRef, Side};
+use faer::{Accum, Conj, Mat, MatRef};
 
 /// One step of a reduced problem with adhesive laws, in 2D (`D = 2`, per contact `(n, t)`,
 /// the default) or 3D (`D = 3`, per contact `(n, t₁, t₂)`).
@@ -87,6 +92,10 @@ pub struct AdhesiveStep<'a, L: ContactLaw, const D: usize = 2> {
 /// Default [`AdhesionOptions::anderson_window`], chosen by measurement (module docs).
 pub const DEFAULT_ANDERSON_WINDOW: usize = 1;
 
+/// Tolerance of the first reduced solve of [`AdhesionMethod::Newton`]: it only has to find
+/// the contact set Newton starts from.
+const NEWTON_START_TOL: f64 = 1e-3;
+
 /// Tolerance and cap of the adhesion fixed point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdhesionOptions {
@@ -102,6 +111,24 @@ pub struct AdhesionOptions {
     /// Anderson acceleration of the fixed point on the interface jumps: how many past
     /// iterates to mix (`0`: the plain fixed point of the seed).
     pub anderson_window: usize,
+    /// How adhesion and contact are solved together (ignored with
+    /// [`Algorithm::ClassicRccm`], which is a fixed point by definition).
+    pub method: AdhesionMethod,
+}
+
+/// How [`solve_adhesive`] couples the states to the contact problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub enum AdhesionMethod {
+    /// The seed's fixed point: the reduced problem with the springs condensed at frozen
+    /// states, solved by the configured algorithm; the states updated from its jumps
+    /// (Anderson-accelerated, [`AdhesionOptions::anderson_window`]); repeated.
+    FixedPoint,
+    /// One semi-smooth Newton iteration on the reactions with the states eliminated
+    /// ([`newton`](self#newton-adhesion-and-contact-together)); the fixed point when it cannot
+    /// make progress.
+    #[default]
+    Newton,
 }
 
 impl Default for AdhesionOptions {
@@ -112,6 +139,7 @@ impl Default for AdhesionOptions {
             accept_non_converged: false,
             always_iterate: false,
             anderson_window: DEFAULT_ANDERSON_WINDOW,
+            method: AdhesionMethod::default(),
         }
     }
 }
@@ -134,6 +162,9 @@ pub struct AdhesiveSolution<S> {
     pub contact_iterations: usize,
     /// Whether both the solver and the fixed point met their tolerances.
     pub converged: bool,
+    /// [`AdhesionMethod::Newton`] was asked for but could not make progress, so the answer
+    /// comes from the fixed point.
+    pub newton_fallback: bool,
     /// Report of the last reduced solve.
     pub report: UzawaReport,
     /// The last condensed problem `x = W̃ r̄ + q̃` with `μ̄` per contact (export it to compare
@@ -235,6 +266,11 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             .iter()
             .zip(&states)
             .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+    let mut newton_fallback = false;
+    let r_bar_initial = r_bar.clone();
+    let mut newton = adhesive
+        && options.method == AdhesionMethod::Newton
+        && solver.settings().algorithm != Algorithm::ClassicRccm;
     let mut history = Vec::new();
     let mut anderson = Anderson::new(options.anderson_window);
     let mut adhesion_iterations = 0;
@@ -257,7 +293,18 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
             .collect();
         let problem = ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?;
-        let sol = solver.solve_with_states(&problem, step.laws, &states, Some(&r_bar))?;
+        let sol = if newton && adhesion_iterations == 0 {
+            // Newton's start only needs the contact set: a loose solve
+            let saved = *solver.settings();
+            let s = solver.settings_mut();
+            s.tol = s.tol.max(NEWTON_START_TOL);
+            s.accept_non_converged = true;
+            let sol = solver.solve_with_states(&problem, step.laws, &states, Some(&r_bar));
+            *solver.settings_mut() = saved;
+            sol?
+        } else {
+            solver.solve_with_states(&problem, step.laws, &states, Some(&r_bar))?
+        };
         contact_iterations += sol.report.iterations;
         converged &= sol.report.converged;
         r_bar.copy_from_slice(&sol.r);
@@ -270,6 +317,21 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
                 r[i] = sol.r[i] - if d == 0 { kn } else { kt } * jumps[i];
             }
         }
+        if newton && adhesion_iterations == 0 {
+            // the first solve found the contact set at the start states: Newton from there
+            let start = r.clone();
+            if let Some(mut sol) = newton::solve(solver.settings(), step, &start, &offset)? {
+                sol.contact_iterations += contact_iterations;
+                sol.adhesion_iterations += 1;
+                return Ok(sol);
+            }
+            // Newton could not make progress: the seed's fixed point from the start of the
+            // step, as if Newton had not run (its loose first solve is not reused)
+            newton = false;
+            newton_fallback = true;
+            r_bar.copy_from_slice(&r_bar_initial);
+            continue;
+        }
         let finish = |states: Vec<L::State>, converged: bool| AdhesiveSolution {
             r,
             r_bar: sol.r,
@@ -278,6 +340,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             adhesion_iterations: 0,
             contact_iterations,
             converged,
+            newton_fallback,
             report: sol.report,
             condensed: problem,
         };
@@ -515,9 +578,21 @@ pub fn condense(
         let (l, bl) = springs[c];
         sa * wr[(j, l)] * bl.sqrt() + if a == c { 1.0 } else { 0.0 }
     });
-    let llt = g
-        .llt(Side::Lower)
-        .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
+    let par = dense_parallelism(m * na * (m + 1));
+    let mut g = g;
+    let mut stack = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(
+        na,
+        par,
+        Default::default(),
+    ));
+    llt::factor::cholesky_in_place(
+        g.as_mut(),
+        Default::default(),
+        par,
+        MemStack::new(&mut stack),
+        Default::default(),
+    )
+    .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
     // Y = G⁻¹ [ (WS)ᵀ | S z ]
     let mut rhs = Mat::<f64>::from_fn(na, m + 1, |a, c| {
         if c < m {
@@ -527,8 +602,22 @@ pub fn condense(
             b.sqrt() * z[j]
         }
     });
-    llt.solve_in_place(rhs.as_mut());
-    let correction = &ws * &rhs;
+    llt::solve::solve_in_place_with_conj(
+        g.as_ref(),
+        Conj::No,
+        rhs.as_mut(),
+        par,
+        MemStack::new(&mut []),
+    );
+    let mut correction = Mat::<f64>::zeros(m, m + 1);
+    matmul(
+        correction.as_mut(),
+        Accum::Replace,
+        ws.as_ref(),
+        rhs.as_ref(),
+        1.0,
+        par,
+    );
     let mut w_eff = w.to_vec();
     for i in 0..m {
         for j in 0..m {

@@ -1,0 +1,560 @@
+//! Adhesion and contact solved together: one semi-smooth Newton iteration on the total
+//! reactions, the states eliminated ([`AdhesionMethod::Newton`](super::AdhesionMethod)).
+//!
+//! The fixed point of the seed solves the contact problem for frozen states, updates the
+//! states from the jumps and repeats. Here the state update is a closed form of the jump
+//! (`ContactLaw::update_state`), so the states are functions of the unknowns and the whole
+//! step is one nonsmooth equation. With the total reactions `r` as unknowns, `x = W r + q`,
+//! the jumps `u = x + o` (`o` the tangential jump at the start of the step) and per contact
+//!
+//! ```text
+//! s(x)   = update_state(s_start, u_start, (max(u_n, 0), u_t), Δt)     the state, eliminated
+//! r̄(r,x) = r + A k(s) u                                               (r = r̄ + r_adh)
+//! F(r)   = r̄ − P_K(s)(r̄ + ρ v_s(x))                                    the natural map
+//! ```
+//! (`A` the tributary area, `k(s)` the law's adhesive stiffness, `P_K(s)` its projection and
+//! `v_s` its modified velocity, seed 5.26). `F` depends on contact `i`'s own `r_i` and
+//! `x_i` only, so its generalised Jacobian is `J = A + B W` with `A_i = ∂F_i/∂r_i` and
+//! `B_i = ∂F_i/∂x_i` block-diagonal; both come from central differences of the law's own
+//! functions (any [`ContactLaw`] works, and a user's law needs no derivatives). Each Newton
+//! step factorises the dense `m × m` matrix `J` (no condensation of the springs per
+//! iteration), with Armijo backtracking on `‖F‖²`. One iteration here counts as one contact
+//! iteration *and* one adhesion iteration: it updates the reactions and the states together,
+//! as the seed's "contact iterations" do.
+//!
+//! The iteration stops when the relative natural residual (the reduced layer's, with `r̄`)
+//! is at most the solver's `tol`. When it cannot make progress (no descent, a singular
+//! system or the iteration cap) it gives up and [`solve_adhesive`](super::solve_adhesive)
+//! runs the fixed point from the start of the step instead.
+
+use super::{AdhesiveSolution, AdhesiveStep, condense, update_state};
+use crate::error::SolverError;
+use crate::local::ReducedProblem;
+use crate::local::dense::dense_parallelism;
+use crate::local::settings::{Algorithm, UzawaReport, UzawaSettings};
+use contact_laws::{ContactLaw, ContactStatus, LocalVec2, LocalVec3};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor, solve};
+use faer::{MatMut, MatRef};
+
+/// Newton steps before the iteration gives up (it converges in 2–6 on the seed's scenes).
+const MAX_ITERATIONS: usize = 50;
+/// Armijo's sufficient-decrease constant.
+const ARMIJO: f64 = 1e-4;
+/// Smallest backtracking step before the iteration gives up.
+const MIN_STEP: f64 = 1.0 / 1_048_576.0;
+/// Relative step of the central differences of the Jacobian's blocks.
+const FD_STEP: f64 = 1e-7;
+/// Smallest component, relative to the contact's force scale, a difference step is
+/// relative to.
+const FD_FLOOR: f64 = 1e-6;
+
+/// What one contact's natural map needs besides its unknowns.
+struct ContactData<'a, L: ContactLaw, const D: usize> {
+    law: &'a L,
+    start: &'a L::State,
+    u_start: &'a [f64; D],
+    offset: [f64; D],
+    area: f64,
+    rho: f64,
+    dt: f64,
+}
+
+/// One contact's state, `r̄` and natural map at `(y, ξ) = (r_i, x_i)`.
+struct Eval<S, const D: usize> {
+    state: S,
+    r_bar: [f64; D],
+    f: [f64; D],
+}
+
+fn to_local<const D: usize>(a: &[f64; D]) -> ([f64; 3], bool) {
+    let mut v = [0.0; 3];
+    v[..D].copy_from_slice(a);
+    (v, D == 3)
+}
+
+fn project<L: ContactLaw, const D: usize>(law: &L, tau: &[f64; D], s: &L::State) -> [f64; D] {
+    let (v, three) = to_local(tau);
+    let mut out = [0.0; D];
+    if three {
+        let p = law.project(&LocalVec3::spatial(v[0], v[1], v[2]), s);
+        out[0] = p.n;
+        out[1] = p.t[0];
+        out[2] = p.t[1];
+    } else {
+        let p = law.project(&LocalVec2::planar(v[0], v[1]), s);
+        out[0] = p.n;
+        out[1] = p.t[0];
+    }
+    out
+}
+
+fn velocity<L: ContactLaw, const D: usize>(law: &L, x: &[f64; D], s: &L::State) -> [f64; D] {
+    let (v, three) = to_local(x);
+    let mut out = [0.0; D];
+    if three {
+        let p = law.modified_velocity(&LocalVec3::spatial(v[0], v[1], v[2]), s);
+        out[0] = p.n;
+        out[1] = p.t[0];
+        out[2] = p.t[1];
+    } else {
+        let p = law.modified_velocity(&LocalVec2::planar(v[0], v[1]), s);
+        out[0] = p.n;
+        out[1] = p.t[0];
+    }
+    out
+}
+
+fn eval<L: ContactLaw, const D: usize>(
+    c: &ContactData<'_, L, D>,
+    y: &[f64; D],
+    xi: &[f64; D],
+) -> Eval<L::State, D> {
+    let u: [f64; D] = core::array::from_fn(|d| xi[d] + c.offset[d]);
+    let mut u_state = u;
+    u_state[0] = u_state[0].max(0.0);
+    let state = update_state(c.law, c.start, c.u_start, &u_state, c.dt);
+    let [kn, kt] = c.law.adhesive_stiffness(&state);
+    let r_bar: [f64; D] =
+        core::array::from_fn(|d| y[d] + c.area * if d == 0 { kn } else { kt } * u[d]);
+    let v = velocity(c.law, xi, &state);
+    let tau: [f64; D] = core::array::from_fn(|d| r_bar[d] + c.rho * v[d]);
+    let p = project(c.law, &tau, &state);
+    let f = core::array::from_fn(|d| r_bar[d] - p[d]);
+    Eval { state, r_bar, f }
+}
+
+fn get<const D: usize>(v: &[f64], k: usize) -> [f64; D] {
+    core::array::from_fn(|d| v[D * k + d])
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|a| a * a).sum::<f64>().sqrt()
+}
+
+/// The iterate's states, `r̄` and natural map for every contact.
+struct Iterate<S> {
+    states: Vec<S>,
+    r_bar: Vec<f64>,
+    f: Vec<f64>,
+    merit: f64,
+}
+
+fn eval_all<L: ContactLaw, const D: usize>(
+    data: &[ContactData<'_, L, D>],
+    r: &[f64],
+    x: &[f64],
+) -> Iterate<L::State> {
+    let m = r.len();
+    let mut it = Iterate {
+        states: Vec::with_capacity(data.len()),
+        r_bar: vec![0.0; m],
+        f: vec![0.0; m],
+        merit: 0.0,
+    };
+    for (k, c) in data.iter().enumerate() {
+        let e = eval(c, &get(r, k), &get(x, k));
+        it.states.push(e.state);
+        it.r_bar[D * k..D * k + D].copy_from_slice(&e.r_bar);
+        it.f[D * k..D * k + D].copy_from_slice(&e.f);
+    }
+    it.merit = it.f.iter().map(|a| a * a).sum();
+    it
+}
+
+/// `x = W r + q` (row-major `W`; `q = 0` when `None`).
+fn apply(w: &[f64], r: &[f64], q: Option<&[f64]>, x: &mut [f64]) {
+    let m = r.len();
+    for (i, xi) in x.iter_mut().enumerate() {
+        let wr = w[i * m..(i + 1) * m]
+            .iter()
+            .zip(r)
+            .map(|(a, b)| a * b)
+            .sum::<f64>();
+        *xi = q.map_or(0.0, |q| q[i]) + wr;
+    }
+}
+
+/// The relative natural residual: `‖F‖ / max(‖r̄‖, max ρ ‖q‖, tiny)`.
+fn relative(it: &Iterate<impl Copy>, rho_max: f64, q_norm: f64) -> f64 {
+    it.merit.sqrt() / norm(&it.r_bar).max(rho_max * q_norm).max(f64::MIN_POSITIVE)
+}
+
+/// Solves the step by Newton; `Ok(None)` when the iteration cannot make progress (the
+/// caller then runs the fixed point).
+pub(super) fn solve<L: ContactLaw, const D: usize>(
+    settings: &UzawaSettings,
+    step: &AdhesiveStep<'_, L, D>,
+    r_start: &[f64],
+    offset: &[f64],
+) -> Result<Option<AdhesiveSolution<L::State>>, SolverError> {
+    let m = step.q.len();
+    let na = m / D;
+    let w = step.w;
+    // ρ_i = 1 / the largest diagonal entry of W_ii (a scale only: the zeros of F do not
+    // depend on it)
+    let data: Vec<ContactData<'_, L, D>> = (0..na)
+        .map(|k| {
+            let diag = (0..D)
+                .map(|d| w[(D * k + d) * m + D * k + d])
+                .fold(0.0_f64, f64::max);
+            ContactData {
+                law: &step.laws[k],
+                start: &step.start_states[k],
+                u_start: &step.u_start[k],
+                offset: get(offset, k),
+                area: step.areas[k],
+                rho: if diag > 0.0 && diag.is_finite() {
+                    1.0 / diag
+                } else {
+                    1.0
+                },
+                dt: step.dt,
+            }
+        })
+        .collect();
+    let rho_max = data.iter().map(|c| c.rho).fold(0.0, f64::max);
+    let q_norm = norm(step.q);
+    let mut r = r_start.to_vec();
+    let mut x = vec![0.0; m];
+    apply(w, &r, Some(step.q), &mut x);
+    let mut it = eval_all(&data, &r, &x);
+    let max_iterations = settings.max_iterations.min(MAX_ITERATIONS);
+    let par = dense_parallelism(2 * m * m * m / 3);
+    let mut jac = vec![0.0; m * m]; // column-major
+    let mut rhs = vec![0.0; m];
+    let mut perm = vec![0usize; m];
+    let mut perm_inv = vec![0usize; m];
+    let mut scratch = MemBuffer::new(
+        factor::lu_in_place_scratch::<usize, f64>(m, m, par, Default::default())
+            .or(solve::solve_in_place_scratch::<usize, f64>(m, 1, par)),
+    );
+    let mut wdr = vec![0.0; m];
+    let mut r_trial = vec![0.0; m];
+    let mut x_trial = vec![0.0; m];
+    let mut history = Vec::new();
+    let mut iterations = 0;
+    let mut change = 0.0;
+    loop {
+        let residual = relative(&it, rho_max, q_norm);
+        history.push(residual);
+        if residual <= settings.tol {
+            break;
+        }
+        if iterations >= max_iterations {
+            return Ok(None);
+        }
+        iterations += 1;
+        // J = A + B W, column-major
+        jac.fill(0.0);
+        for (k, c) in data.iter().enumerate() {
+            let (y0, x0) = (get::<D>(&r, k), get::<D>(&x, k));
+            // per-component steps, relative to the component (with a floor from the
+            // contact's force scale): a step larger than the distance to a kink of the law
+            // (|x_t| in v, the cone's edge, the damage threshold) would average two slopes
+            let scale = y0
+                .iter()
+                .chain(&get::<D>(&it.r_bar, k))
+                .map(|a| a.abs())
+                .fold(0.0, f64::max)
+                .max(c.rho * x0.iter().map(|a| a.abs()).fold(0.0, f64::max));
+            let scale = if scale > 0.0 {
+                scale
+            } else {
+                c.rho * q_norm.max(f64::MIN_POSITIVE)
+            };
+            let floor = FD_FLOOR * scale;
+            for j in 0..D {
+                // A: d F_k / d r_k,j
+                let h = FD_STEP * y0[j].abs().max(floor);
+                let (mut yp, mut ym) = (y0, y0);
+                yp[j] += h;
+                ym[j] -= h;
+                let (fp, fm) = (eval(c, &yp, &x0).f, eval(c, &ym, &x0).f);
+                for i in 0..D {
+                    jac[(D * k + i) + (D * k + j) * m] += (fp[i] - fm[i]) / (2.0 * h);
+                }
+                // B: d F_k / d x_k,j, times row D k + j of W
+                let hx = FD_STEP * x0[j].abs().max(floor / c.rho);
+                let (mut xp, mut xm) = (x0, x0);
+                xp[j] += hx;
+                xm[j] -= hx;
+                let (fp, fm) = (eval(c, &y0, &xp).f, eval(c, &y0, &xm).f);
+                let row = &w[(D * k + j) * m..(D * k + j + 1) * m];
+                for i in 0..D {
+                    let b = (fp[i] - fm[i]) / (2.0 * hx);
+                    if b != 0.0 {
+                        for (col, &wv) in row.iter().enumerate() {
+                            jac[(D * k + i) + col * m] += b * wv;
+                        }
+                    }
+                }
+            }
+        }
+        // a row with no dependence at all (a component held by a support, W's row zero, in
+        // stick): keep that reaction as it is
+        for i in 0..m {
+            if (0..m).all(|c| jac[i + c * m] == 0.0) {
+                jac[i + i * m] = 1.0;
+            }
+        }
+        for (o, f) in rhs.iter_mut().zip(&it.f) {
+            *o = -f;
+        }
+        let (_, p) = factor::lu_in_place(
+            MatMut::from_column_major_slice_mut(&mut jac, m, m),
+            &mut perm,
+            &mut perm_inv,
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        );
+        let lu = MatRef::from_column_major_slice(&jac, m, m);
+        solve::solve_in_place(
+            lu,
+            lu,
+            p,
+            MatMut::from_column_major_slice_mut(&mut rhs, m, 1),
+            par,
+            MemStack::new(&mut scratch),
+        );
+        if !rhs.iter().all(|v| v.is_finite()) {
+            return Ok(None);
+        }
+        // W Δr, then Armijo backtracking on ‖F‖²
+        apply(w, &rhs, None, &mut wdr);
+        let mut t = 1.0;
+        loop {
+            for i in 0..m {
+                r_trial[i] = r[i] + t * rhs[i];
+                x_trial[i] = x[i] + t * wdr[i];
+            }
+            let trial = eval_all(&data, &r_trial, &x_trial);
+            if trial.merit <= (1.0 - 2.0 * ARMIJO * t) * it.merit {
+                change = t * norm(&rhs) / norm(&r_trial).max(f64::MIN_POSITIVE);
+                core::mem::swap(&mut r, &mut r_trial);
+                core::mem::swap(&mut x, &mut x_trial);
+                it = trial;
+                break;
+            }
+            t *= 0.5;
+            if t < MIN_STEP {
+                return Ok(None);
+            }
+        }
+    }
+    // the answer: r̄ its projection (in the law's set exactly; it moves by |F| ≤ tol), r
+    // consistent with it
+    for (k, c) in data.iter().enumerate() {
+        let s = &it.states[k];
+        let xk = get::<D>(&x, k);
+        let v = velocity(c.law, &xk, s);
+        let rb = get::<D>(&it.r_bar, k);
+        let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
+        let p = project(c.law, &tau, s);
+        let [kn, kt] = c.law.adhesive_stiffness(s);
+        for d in 0..D {
+            let kd = c.area * if d == 0 { kn } else { kt };
+            it.r_bar[D * k + d] = p[d];
+            r[D * k + d] = p[d] - kd * (xk[d] + c.offset[d]);
+        }
+    }
+    // its statuses and the condensed problem of its states (for export)
+    let rho: Vec<f64> = data.iter().map(|c| c.rho).collect();
+    let stiff: Vec<[f64; 2]> = data
+        .iter()
+        .zip(&it.states)
+        .map(|(c, s)| c.law.adhesive_stiffness(s).map(|k| k * c.area))
+        .collect();
+    let (w_eff, q_eff) = condense(w, step.q, offset, &stiff, m)?;
+    let mu = data
+        .iter()
+        .zip(&it.states)
+        .map(|(c, s)| c.law.friction_coefficient(s).unwrap_or(0.0))
+        .collect();
+    let condensed = ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?;
+    let statuses = statuses(&data, &it, &x);
+    let report = UzawaReport {
+        algorithm: Algorithm::Newton,
+        iterations,
+        outer_iterations: iterations,
+        tangential_sweeps: 0,
+        converged: true,
+        stalled: false,
+        residual: *history.last().unwrap_or(&0.0),
+        change,
+        history,
+        rho_min: rho.iter().copied().fold(f64::INFINITY, f64::min),
+        rho_max,
+        statuses,
+        fallback_from: None,
+        asymmetry: 0.0,
+        rescaled: false,
+        solved_contacts: na,
+    };
+    Ok(Some(AdhesiveSolution {
+        r,
+        r_bar: it.r_bar,
+        x,
+        states: it.states,
+        adhesion_iterations: iterations,
+        contact_iterations: iterations,
+        converged: true,
+        newton_fallback: false,
+        report,
+        condensed,
+    }))
+}
+
+/// The case of each contact's projection at the answer.
+fn statuses<L: ContactLaw, const D: usize>(
+    data: &[ContactData<'_, L, D>],
+    it: &Iterate<L::State>,
+    x: &[f64],
+) -> Vec<ContactStatus> {
+    data.iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let s = &it.states[k];
+            let v = velocity(c.law, &get::<D>(x, k), s);
+            let rb = get::<D>(&it.r_bar, k);
+            let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
+            let p = project(c.law, &tau, s);
+            let gap = norm(&core::array::from_fn::<f64, D, _>(|d| p[d] - tau[d]));
+            if p.iter().all(|&a| a == 0.0) {
+                ContactStatus::Separation
+            } else if gap <= crate::local::residual::STATUS_TOL * norm(&tau) {
+                ContactStatus::Stick
+            } else {
+                ContactStatus::Slip
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{AdhesionMethod, AdhesionOptions, AdhesiveStep, solve_adhesive};
+    use crate::{UzawaSettings, UzawaSolver};
+    use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
+
+    fn rccm(alpha: f64, mu: f64, w: f64) -> Rccm {
+        Rccm::new(RccmParams {
+            c_n: 100.0,
+            c_t: 100.0,
+            w,
+            alpha,
+            mu,
+            m: 1,
+            beta_0: 1.0,
+            scheme: BetaScheme::ImplicitEuler,
+        })
+        .unwrap()
+    }
+
+    /// A coupled SPD `W` (`m × m`, row-major): `B Bᵀ/m + 0.5 I` scaled, deterministic.
+    fn spd(m: usize, seed: u64) -> Vec<f64> {
+        let mut state = seed;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        };
+        let b: Vec<f64> = (0..m * m).map(|_| next()).collect();
+        let mut w = vec![0.0; m * m];
+        for i in 0..m {
+            for j in 0..m {
+                let d: f64 = (0..m).map(|k| b[i * m + k] * b[j * m + k]).sum();
+                w[i * m + j] = 1e-3 * (d / m as f64 + if i == j { 0.5 } else { 0.0 });
+            }
+        }
+        w
+    }
+
+    /// Newton and the seed's fixed point on the same step: the same reactions and states.
+    fn compare<const D: usize>(step: &AdhesiveStep<'_, Rccm, D>) -> usize {
+        let mut solver = UzawaSolver::new(UzawaSettings::default());
+        let options = AdhesionOptions::default();
+        let newton = solve_adhesive(&mut solver, step, None, &options).unwrap();
+        let fixed = AdhesionOptions {
+            method: AdhesionMethod::FixedPoint,
+            ..options
+        };
+        let reference = solve_adhesive(&mut solver, step, None, &fixed).unwrap();
+        assert!(!newton.newton_fallback, "Newton fell back");
+        let scale = reference.r.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+        // the fixed point stops on a state change of 1e-8: its answer is that close
+        for (a, b) in newton.r.iter().zip(&reference.r) {
+            assert!((a - b).abs() <= 1e-6 * scale, "r {a} vs {b}");
+        }
+        for (a, b) in newton.states.iter().zip(&reference.states) {
+            assert!((a.beta() - b.beta()).abs() <= 1e-6, "β {a:?} vs {b:?}");
+        }
+        newton.adhesion_iterations
+    }
+
+    #[test]
+    fn one_glued_contact_pulled_beyond_the_critical_opening() {
+        let law = rccm(0.0, 0.2, 0.01);
+        let step = AdhesiveStep {
+            w: &[1e-3, 0.0, 0.0, 1e-3],
+            q: &[0.02, 0.003],
+            laws: &[law],
+            start_states: &[law.initial_state()],
+            u_start: &[[0.0, 0.0]],
+            areas: &[1.0],
+            dt: 1.0,
+        };
+        assert!(compare(&step) <= 5);
+    }
+
+    #[test]
+    fn coupled_interfaces_in_2d_and_3d_agree_with_the_fixed_point() {
+        // 12 contacts: some pulled open (damage), some pressed and sheared (friction with
+        // μ̄ = μ (1 − β)); viscous and rate-independent β; every pair of contacts coupled
+        for (alpha, seed) in [(0.0, 1), (0.5, 2), (0.0, 3)] {
+            let nc = 12;
+            let laws: Vec<Rccm> = (0..nc)
+                .map(|k| rccm(alpha, 0.3, 1e-4 * (1 + k % 3) as f64))
+                .collect();
+            let starts: Vec<_> = laws.iter().map(|l| l.initial_state()).collect();
+            let areas = vec![1.0; nc];
+            let q2: Vec<f64> = (0..nc)
+                .flat_map(|k| {
+                    let n = if k % 3 == 0 {
+                        -0.004
+                    } else {
+                        0.003 + 1e-3 * (k % 4) as f64
+                    };
+                    [n, 2e-3 * ((k % 5) as f64 - 2.0)]
+                })
+                .collect();
+            let w2 = spd(2 * nc, seed);
+            let u2 = vec![[0.0; 2]; nc];
+            compare(&AdhesiveStep {
+                w: &w2,
+                q: &q2,
+                laws: &laws,
+                start_states: &starts,
+                u_start: &u2,
+                areas: &areas,
+                dt: 0.1,
+            });
+            let q3: Vec<f64> = (0..nc)
+                .flat_map(|k| [q2[2 * k], q2[2 * k + 1], -1e-3 * ((k % 3) as f64 - 1.0)])
+                .collect();
+            let w3 = spd(3 * nc, seed + 10);
+            let u3 = vec![[0.0; 3]; nc];
+            compare(&AdhesiveStep {
+                w: &w3,
+                q: &q3,
+                laws: &laws,
+                start_states: &starts,
+                u_start: &u3,
+                areas: &areas,
+                dt: 0.1,
+            });
+        }
+    }
+}

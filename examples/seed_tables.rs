@@ -1,0 +1,154 @@
+//! The seed's scenes (5.6.1, 5.6.2, the Plancoët pile) with each way of solving adhesion and
+//! contact: contact iterations per step (min / median / max), β iterations, total time, and
+//! the largest difference of the answer (reactions, β) from the seed's fixed point.
+//!
+//! - `newton`: [`AdhesionMethod::Newton`] (the default): one loose reduced solve finds the
+//!   contact set, then Newton on the reactions with β eliminated;
+//! - `fixed point`: the seed's fixed point around the reduced solve (`Algorithm::Auto`);
+//! - `classic`: the fixed point around the classical RCCM solver.
+//!
+//! The runs alternate, `repeats` times each (default 5); times are medians.
+//!
+//! `cargo run --release --example seed_tables [repeats]` (figures in `docs/benchmarks.md`).
+
+use bipo::presets::{DelaminationSpec, PulloutSpec, ShearSpec};
+use bipotential::contact_solver::local::adhesion::AdhesionMethod;
+use bipotential::contact_solver::{Algorithm, SimulationSettings, StepResult};
+use std::error::Error;
+use std::time::Instant;
+
+#[derive(Clone, Copy, PartialEq)]
+enum Way {
+    Newton,
+    FixedPoint,
+    Classic,
+}
+
+impl Way {
+    fn name(self) -> &'static str {
+        match self {
+            Way::Newton => "newton",
+            Way::FixedPoint => "fixed point",
+            Way::Classic => "classic",
+        }
+    }
+
+    fn settings(self) -> SimulationSettings {
+        let s = SimulationSettings::default();
+        match self {
+            Way::Newton => s.with_adhesion_method(AdhesionMethod::Newton),
+            Way::FixedPoint => s.with_adhesion_method(AdhesionMethod::FixedPoint),
+            Way::Classic => {
+                let mut s = s.with_adhesion_method(AdhesionMethod::FixedPoint);
+                s.solver.algorithm = Algorithm::ClassicRccm;
+                s
+            }
+        }
+    }
+}
+
+/// The steps of one run and its wall time.
+fn run(scene: &str, way: Way) -> Result<(Vec<StepResult>, f64), Box<dyn Error>> {
+    let settings = way.settings();
+    let start = Instant::now();
+    let steps = match scene {
+        "5.6.1" => {
+            let spec = DelaminationSpec::default();
+            let mut s = spec.build(settings)?;
+            (1..=spec.steps)
+                .map(|k| s.step(k))
+                .collect::<Result<Vec<_>, _>>()?
+        }
+        "5.6.2" => {
+            let spec = ShearSpec::default();
+            let mut s = spec.build(settings)?;
+            (1..=spec.steps)
+                .map(|k| s.step(k))
+                .collect::<Result<Vec<_>, _>>()?
+        }
+        _ => {
+            let mut s = PulloutSpec::plancoet().build(settings)?;
+            let r = s.run()?;
+            r.steps.into_iter().map(|p| p.result).collect()
+        }
+    };
+    Ok((steps, start.elapsed().as_secs_f64()))
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let repeats: usize = std::env::args()
+        .nth(1)
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(5);
+    let ways = match std::env::var("WAYS").as_deref() {
+        Ok("fixed") => vec![Way::FixedPoint],
+        Ok("newton") => vec![Way::Newton],
+        _ => vec![Way::Newton, Way::FixedPoint, Way::Classic],
+    };
+    println!(
+        "| scene | way | contact iterations per step (min / median / max) | total | β iterations | time (median of {repeats}) | max abs Δr / max abs r | max abs Δβ |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for scene in ["5.6.1", "5.6.2", "pile"] {
+        let mut times = vec![Vec::new(); ways.len()];
+        let mut results = vec![Vec::new(); ways.len()];
+        let mut failed: Vec<Option<String>> = vec![None; ways.len()];
+        for _ in 0..repeats {
+            for (w, &way) in ways.iter().enumerate() {
+                match run(scene, way) {
+                    Ok((steps, t)) => {
+                        times[w].push(t);
+                        results[w] = steps;
+                    }
+                    Err(e) => failed[w] = Some(e.to_string().chars().take(60).collect()),
+                }
+            }
+        }
+        let reference = &results[if results.len() > 1 { 1 } else { 0 }];
+        let scale = reference
+            .iter()
+            .flat_map(|s| s.contacts.iter().map(|c| c.r.n.abs().max(c.r.t[0].abs())))
+            .fold(0.0, f64::max);
+        for (w, &way) in ways.iter().enumerate() {
+            if let Some(e) = &failed[w] {
+                println!("| {scene} | {} | fails: {e}… | | | | | |", way.name());
+                continue;
+            }
+            let mut per_step: Vec<f64> = results[w]
+                .iter()
+                .map(|s| s.report.contact_iterations as f64)
+                .collect();
+            let total: f64 = per_step.iter().sum();
+            let beta: usize = results[w]
+                .iter()
+                .map(|s| s.report.adhesion_iterations)
+                .sum();
+            let (mut dr, mut db) = (0.0_f64, 0.0_f64);
+            for (a, b) in results[w].iter().zip(reference) {
+                for (x, y) in a.contacts.iter().zip(&b.contacts) {
+                    dr = dr
+                        .max((x.r.n - y.r.n).abs())
+                        .max((x.r.t[0] - y.r.t[0]).abs());
+                    db = db.max((x.beta - y.beta).abs());
+                }
+            }
+            let min = per_step.iter().copied().fold(f64::INFINITY, f64::min);
+            let max = per_step.iter().copied().fold(0.0, f64::max);
+            let med = median(&mut per_step);
+            println!(
+                "| {scene} | {} | {min} / {med} / {max} | {total} | {beta} | {:.1} ms | {:.1e} | {db:.1e} |",
+                way.name(),
+                1e3 * median(&mut times[w]),
+                dr / scale.max(f64::MIN_POSITIVE),
+            );
+        }
+    }
+    Ok(())
+}
