@@ -96,7 +96,11 @@ fn main() -> Result<(), Box<dyn Error>> {
         "| scene | way | contact iterations per step (min / median / max) | total | β iterations | time (median of {repeats}) | max abs Δr / max abs r | max abs Δβ |"
     );
     println!("|---|---|---|---|---|---|---|---|");
+    let only = std::env::var("SCENE").ok();
     for scene in ["5.6.1", "5.6.2", "pile"] {
+        if only.as_deref().is_some_and(|o| o != scene) {
+            continue;
+        }
         let mut times = vec![Vec::new(); ways.len()];
         let mut results = vec![Vec::new(); ways.len()];
         let mut failed: Vec<Option<String>> = vec![None; ways.len()];

@@ -268,7 +268,12 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
     let mut newton_fallback = false;
     let r_bar_initial = r_bar.clone();
-    let mut newton = adhesive
+    // Newton only where a law is adhesive (not when the loop is forced on for a measurement)
+    let mut newton = step
+        .laws
+        .iter()
+        .zip(&states)
+        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s))
         && options.method == AdhesionMethod::Newton
         && solver.settings().algorithm != Algorithm::ClassicRccm;
     let mut history = Vec::new();

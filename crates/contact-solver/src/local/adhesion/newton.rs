@@ -359,6 +359,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
             r[D * k + d] = p[d] - kd * (xk[d] + c.offset[d]);
         }
     }
+    // (x stays the iterate's, the jumps the springs and the states were evaluated at)
     // its statuses and the condensed problem of its states (for export)
     let rho: Vec<f64> = data.iter().map(|c| c.rho).collect();
     let stiff: Vec<[f64; 2]> = data
