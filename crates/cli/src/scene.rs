@@ -174,6 +174,8 @@ pub struct SolverSpec {
     pub omega: Option<f64>,
     /// Adhesion fixed-point tolerance.
     pub adhesion_tol: Option<f64>,
+    /// How adhesion and contact are solved together: `newton` (default) or `fixed-point`.
+    pub adhesion_method: Option<AdhesionMethodSpec>,
     /// Maximum adhesion iterations.
     pub max_adhesion_iterations: Option<usize>,
     /// Maximum penetration-check passes.
@@ -205,6 +207,17 @@ pub enum FlexibilitySpec {
     /// One structure solve per product `F* r`.
     #[serde(rename = "matrix-free", alias = "matrix_free")]
     MatrixFree,
+}
+
+/// How adhesion and contact are solved together (`AdhesionMethod`).
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+pub enum AdhesionMethodSpec {
+    /// Newton on the reactions with the states eliminated (default).
+    #[serde(rename = "newton")]
+    Newton,
+    /// The seed's fixed point around the reduced solve.
+    #[serde(rename = "fixed-point", alias = "fixed_point")]
+    FixedPoint,
 }
 
 /// Algorithm names.

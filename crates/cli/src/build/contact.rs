@@ -7,9 +7,10 @@ use super::checks::{
     solver_error,
 };
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::scene::{AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
+use crate::scene::{AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
 use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
 use contact_solver::{
     Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
@@ -112,6 +113,23 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     }
     if let Some(t) = s.adhesion_tol {
         out.adhesion_tol = positive(&root.key("adhesion_tol"), t)?;
+    }
+    if let Some(m) = s.adhesion_method {
+        let p = root.key("adhesion_method");
+        out.adhesion_method = match m {
+            AdhesionMethodSpec::FixedPoint => AdhesionMethod::FixedPoint,
+            AdhesionMethodSpec::Newton if s.algorithm == Some(AlgorithmSpec::RccmClassic) => {
+                return Err(CliError::at(
+                    &p,
+                    format!(
+                        "`{p}` = \"newton\" does not combine with algorithm = \"rccm-classic\" \
+                         (the classical solver is a fixed point by definition): use \"fixed-point\" \
+                         or leave the key out"
+                    ),
+                ));
+            }
+            AdhesionMethodSpec::Newton => AdhesionMethod::Newton,
+        };
     }
     if let Some(n) = s.max_adhesion_iterations {
         out.max_adhesion_iterations = count(
