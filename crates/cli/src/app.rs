@@ -260,8 +260,10 @@ pub fn main() -> ExitCode {
 
 /// Below this many free dofs `bipo run` runs faer sequentially by default: rayon's start-up
 /// costs more than it saves on the seed's scenes and a 14k-dof 3D one, and both cores gain
-/// 10–20 % on a 1e5-dof 3D one (`docs/benchmarks.md`, "Threads").
-pub const SEQUENTIAL_BELOW_DOFS: usize = 50_000;
+/// 10–20 % on a 1e5-dof 3D one (`docs/benchmarks.md`, "Threads"). The library's sparse
+/// factorisations and solves follow the same rule whatever `--threads` says
+/// (`fem_core::linear_solver::SEQUENTIAL_BELOW_DOFS`).
+pub const SEQUENTIAL_BELOW_DOFS: usize = fem_core::linear_solver::SEQUENTIAL_BELOW_DOFS;
 
 /// faer's parallelism for `bipo run`: `--threads`, else every core (while building, `dofs`
 /// unknown, and for models of at least [`SEQUENTIAL_BELOW_DOFS`]) or sequential.
