@@ -47,32 +47,36 @@ impl Way {
     }
 }
 
-/// The steps of one run and its wall time.
-fn run(scene: &str, way: Way) -> Result<(Vec<StepResult>, f64), Box<dyn Error>> {
+/// The steps of one run, its wall time and its Newton fallbacks.
+fn run(scene: &str, way: Way) -> Result<(Vec<StepResult>, f64, usize), Box<dyn Error>> {
     let settings = way.settings();
     let start = Instant::now();
-    let steps = match scene {
+    let (steps, counters) = match scene {
         "5.6.1" => {
             let spec = DelaminationSpec::default();
             let mut s = spec.build(settings)?;
-            (1..=spec.steps)
+            let steps = (1..=spec.steps)
                 .map(|k| s.step(k))
-                .collect::<Result<Vec<_>, _>>()?
+                .collect::<Result<Vec<_>, _>>()?;
+            (steps, s.simulation.counters())
         }
         "5.6.2" => {
             let spec = ShearSpec::default();
             let mut s = spec.build(settings)?;
-            (1..=spec.steps)
+            let steps = (1..=spec.steps)
                 .map(|k| s.step(k))
-                .collect::<Result<Vec<_>, _>>()?
+                .collect::<Result<Vec<_>, _>>()?;
+            (steps, s.simulation.counters())
         }
         _ => {
             let mut s = PulloutSpec::plancoet().build(settings)?;
             let r = s.run()?;
-            r.steps.into_iter().map(|p| p.result).collect()
+            let steps = r.steps.into_iter().map(|p| p.result).collect();
+            (steps, s.simulation.counters())
         }
     };
-    Ok((steps, start.elapsed().as_secs_f64()))
+    let seconds = start.elapsed().as_secs_f64();
+    Ok((steps, seconds, counters.adhesion_newton_fallbacks))
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -93,9 +97,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         _ => vec![Way::Newton, Way::FixedPoint, Way::Classic],
     };
     println!(
-        "| scene | way | contact iterations per step (min / median / max) | total | β iterations | time (median of {repeats}) | max abs Δr / max abs r | max abs Δβ |"
+        "| scene | way | contact iterations per step (min / median / max) | total | β iterations | Newton fallbacks | time (median of {repeats}) | max abs Δr / max abs r | max abs Δβ |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let only = std::env::var("SCENE").ok();
     for scene in ["5.6.1", "5.6.2", "pile"] {
         if only.as_deref().is_some_and(|o| o != scene) {
@@ -104,12 +108,14 @@ fn main() -> Result<(), Box<dyn Error>> {
         let mut times = vec![Vec::new(); ways.len()];
         let mut results = vec![Vec::new(); ways.len()];
         let mut failed: Vec<Option<String>> = vec![None; ways.len()];
+        let mut fallbacks = vec![0; ways.len()];
         for _ in 0..repeats {
             for (w, &way) in ways.iter().enumerate() {
                 match run(scene, way) {
-                    Ok((steps, t)) => {
+                    Ok((steps, t, f)) => {
                         times[w].push(t);
                         results[w] = steps;
+                        fallbacks[w] = f;
                     }
                     Err(e) => failed[w] = Some(e.to_string().chars().take(60).collect()),
                 }
@@ -122,7 +128,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             .fold(0.0, f64::max);
         for (w, &way) in ways.iter().enumerate() {
             if let Some(e) = &failed[w] {
-                println!("| {scene} | {} | fails: {e}… | | | | | |", way.name());
+                println!("| {scene} | {} | fails: {e}… | | | | | | |", way.name());
                 continue;
             }
             let mut per_step: Vec<f64> = results[w]
@@ -147,8 +153,9 @@ fn main() -> Result<(), Box<dyn Error>> {
             let max = per_step.iter().copied().fold(0.0, f64::max);
             let med = median(&mut per_step);
             println!(
-                "| {scene} | {} | {min} / {med} / {max} | {total} | {beta} | {:.1} ms | {:.1e} | {db:.1e} |",
+                "| {scene} | {} | {min} / {med} / {max} | {total} | {beta} | {} | {:.1} ms | {:.1e} | {db:.1e} |",
                 way.name(),
+                fallbacks[w],
                 1e3 * median(&mut times[w]),
                 dr / scale.max(f64::MIN_POSITIVE),
             );

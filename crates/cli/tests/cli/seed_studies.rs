@@ -162,6 +162,7 @@ fn newton_on_the_seed_scenes_gives_the_fixed_points_answer_in_few_iterations() {
     let methods = [AdhesionMethod::Newton, AdhesionMethod::FixedPoint];
     for scene in ["5.6.1", "5.6.2"] {
         let mut runs = Vec::new();
+        let mut fallbacks = 0;
         for method in methods {
             let settings = SimulationSettings::default().with_adhesion_method(method);
             let results = if scene == "5.6.1" {
@@ -170,14 +171,18 @@ fn newton_on_the_seed_scenes_gives_the_fixed_points_answer_in_few_iterations() {
                     ..DelaminationSpec::default()
                 };
                 let mut s = spec.build(settings).unwrap();
-                run(&mut |k| s.step(k).unwrap(), spec.steps)
+                let out = run(&mut |k| s.step(k).unwrap(), spec.steps);
+                fallbacks += s.simulation.counters().adhesion_newton_fallbacks;
+                out
             } else {
                 let spec = ShearSpec {
                     steps: 42,
                     ..ShearSpec::default()
                 };
                 let mut s = spec.build(settings).unwrap();
-                run(&mut |k| s.step(k).unwrap(), spec.steps)
+                let out = run(&mut |k| s.step(k).unwrap(), spec.steps);
+                fallbacks += s.simulation.counters().adhesion_newton_fallbacks;
+                out
             };
             runs.push(results);
         }
@@ -206,7 +211,8 @@ fn newton_on_the_seed_scenes_gives_the_fixed_points_answer_in_few_iterations() {
         let fixed: usize = runs[1].iter().map(|s| s.report.contact_iterations).sum();
         let newton: usize = per_step.iter().sum();
         eprintln!(
-            "{scene}: Newton {newton} contact iterations (median {median}/step), fixed point {fixed}"
+            "{scene}: Newton {newton} contact iterations (median {median}/step, {fallbacks} \
+             fallbacks to the fixed point), fixed point {fixed}"
         );
         assert!(
             median <= 10,

@@ -339,6 +339,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             }
         }
         report.equilibrium_iterations += iterations;
+        // (the last solve's: the trial solves of the line search are not counted)
+        self.counters.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
         let (solved, condensed) = Solved::from_adhesive(sol, alpha);

@@ -135,6 +135,9 @@ pub struct Counters {
     pub equilibrium_iterations: usize,
     /// Floating structures: reduced solves of those iterations.
     pub equilibrium_solves: usize,
+    /// Adhesive solves where [`AdhesionMethod::Newton`](crate::local::adhesion::AdhesionMethod)
+    /// could not make progress and the fixed point gave the answer.
+    pub adhesion_newton_fallbacks: usize,
 }
 
 /// The result of one step.

@@ -244,6 +244,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             method: self.settings.adhesion_method,
         };
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
+        self.counters.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
         report.contact_iterations += sol.contact_iterations;
         report.adhesion_iterations += sol.adhesion_iterations;
         report.residual = sol.report.residual;
