@@ -341,7 +341,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
                 newton::Outcome::Solved(mut sol) => {
                     sol.contact_iterations += contact_iterations;
                     sol.adhesion_iterations += 1;
-                    return Ok(sol);
+                    return Ok(*sol);
                 }
                 // Newton stopped close to the answer (at the rounding of the forces): the
                 // fixed point finishes from its iterate

@@ -188,7 +188,7 @@ pub(super) const CLOSE: f64 = 1e-6;
 /// What Newton gives back.
 pub(super) enum Outcome<S> {
     /// Converged.
-    Solved(AdhesiveSolution<S>),
+    Solved(Box<AdhesiveSolution<S>>),
     /// Could not make progress; the last iterate's `r̄` and states when its residual is below
     /// [`CLOSE`] (a start for the fixed point), `None` otherwise.
     Failed(Option<(Vec<f64>, Vec<S>)>),
@@ -411,7 +411,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         rescaled: false,
         solved_contacts: na,
     };
-    Ok(Outcome::Solved(AdhesiveSolution {
+    Ok(Outcome::Solved(Box::new(AdhesiveSolution {
         r,
         r_bar: it.r_bar,
         x,
@@ -422,7 +422,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         newton_fallback: false,
         report,
         condensed,
-    }))
+    })))
 }
 
 /// The case of each contact's projection at the answer.
