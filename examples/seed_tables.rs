@@ -52,20 +52,15 @@ fn run(scene: &str, way: Way) -> Result<(Vec<StepResult>, f64, usize), Box<dyn E
     let settings = way.settings();
     let start = Instant::now();
     let (steps, counters) = match scene {
-        "5.6.1" => {
-            let spec = DelaminationSpec::default();
-            let mut s = spec.build(settings)?;
-            let steps = (1..=spec.steps)
-                .map(|k| s.step(k))
-                .collect::<Result<Vec<_>, _>>()?;
-            (steps, s.simulation.counters())
-        }
-        "5.6.2" => {
-            let spec = ShearSpec::default();
-            let mut s = spec.build(settings)?;
-            let steps = (1..=spec.steps)
-                .map(|k| s.step(k))
-                .collect::<Result<Vec<_>, _>>()?;
+        "5.6.1" | "5.6.2" => {
+            let (mut s, n) = if scene == "5.6.1" {
+                let spec = DelaminationSpec::default();
+                (spec.build(settings)?, spec.steps)
+            } else {
+                let spec = ShearSpec::default();
+                (spec.build(settings)?, spec.steps)
+            };
+            let steps = (1..=n).map(|k| s.step(k)).collect::<Result<Vec<_>, _>>()?;
             (steps, s.simulation.counters())
         }
         _ => {

@@ -156,34 +156,27 @@ fn anderson_acceleration_changes_the_work_not_the_answer() {
 /// steps are 5 times larger: 9 on 5.6.1, and 6 at 210 steps, `examples/seed_tables.rs`).
 #[test]
 fn newton_on_the_seed_scenes_gives_the_fixed_points_answer_in_few_iterations() {
-    fn run(steps: &mut dyn FnMut(usize) -> StepResult, n: usize) -> Vec<StepResult> {
-        (1..=n).map(steps).collect()
-    }
     let methods = [AdhesionMethod::Newton, AdhesionMethod::FixedPoint];
     for scene in ["5.6.1", "5.6.2"] {
         let mut runs = Vec::new();
         let mut fallbacks = 0;
         for method in methods {
             let settings = SimulationSettings::default().with_adhesion_method(method);
-            let results = if scene == "5.6.1" {
+            let (mut s, n) = if scene == "5.6.1" {
                 let spec = DelaminationSpec {
                     steps: 42,
                     ..DelaminationSpec::default()
                 };
-                let mut s = spec.build(settings).unwrap();
-                let out = run(&mut |k| s.step(k).unwrap(), spec.steps);
-                fallbacks += s.simulation.counters().adhesion_newton_fallbacks;
-                out
+                (spec.build(settings).unwrap(), spec.steps)
             } else {
                 let spec = ShearSpec {
                     steps: 42,
                     ..ShearSpec::default()
                 };
-                let mut s = spec.build(settings).unwrap();
-                let out = run(&mut |k| s.step(k).unwrap(), spec.steps);
-                fallbacks += s.simulation.counters().adhesion_newton_fallbacks;
-                out
+                (spec.build(settings).unwrap(), spec.steps)
             };
+            let results: Vec<StepResult> = (1..=n).map(|k| s.step(k).unwrap()).collect();
+            fallbacks += s.simulation.counters().adhesion_newton_fallbacks;
             runs.push(results);
         }
         let scale = runs[1]

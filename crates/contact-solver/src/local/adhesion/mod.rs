@@ -272,20 +272,16 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
         }
         None => vec![0.0; m],
     };
-    let adhesive = options.always_iterate
-        || step
-            .laws
-            .iter()
-            .zip(&states)
-            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
-    let mut newton_fallback = false;
-    let r_bar_initial = r_bar.clone();
-    // Newton only where a law is adhesive (not when the loop is forced on for a measurement)
-    let mut newton = step
+    let adhesion_active = step
         .laws
         .iter()
         .zip(&states)
-        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s))
+        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+    let adhesive = options.always_iterate || adhesion_active;
+    let mut newton_fallback = false;
+    let r_bar_initial = r_bar.clone();
+    // Newton only where a law is adhesive (not when the loop is forced on for a measurement)
+    let mut newton = adhesion_active
         && options.method == AdhesionMethod::Newton
         && solver.settings().algorithm != Algorithm::ClassicRccm;
     let mut history = Vec::new();

@@ -31,8 +31,9 @@ use super::{AdhesiveSolution, AdhesiveStep, condense, update_state};
 use crate::error::SolverError;
 use crate::local::ReducedProblem;
 use crate::local::dense::dense_parallelism;
+use crate::local::residual::contact_statuses;
 use crate::local::settings::{Algorithm, UzawaReport, UzawaSettings};
-use contact_laws::{ContactLaw, ContactStatus, LocalVec2, LocalVec3};
+use contact_laws::{ContactLaw, LocalVec2, LocalVec3};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::{MatMut, MatRef};
@@ -392,7 +393,11 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         .map(|(c, s)| c.law.friction_coefficient(s).unwrap_or(0.0))
         .collect();
     let condensed = ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?;
-    let statuses = statuses(&data, &it, &x);
+    let statuses = if D == 3 {
+        contact_statuses::<L, 2>(step.laws, &it.states, &rho, &it.r_bar, &x)
+    } else {
+        contact_statuses::<L, 1>(step.laws, &it.states, &rho, &it.r_bar, &x)
+    };
     let report = UzawaReport {
         algorithm: Algorithm::Newton,
         iterations,
@@ -423,32 +428,6 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         report,
         condensed,
     })))
-}
-
-/// The case of each contact's projection at the answer.
-fn statuses<L: ContactLaw, const D: usize>(
-    data: &[ContactData<'_, L, D>],
-    it: &Iterate<L::State>,
-    x: &[f64],
-) -> Vec<ContactStatus> {
-    data.iter()
-        .enumerate()
-        .map(|(k, c)| {
-            let s = &it.states[k];
-            let v = velocity(c.law, &get::<D>(x, k), s);
-            let rb = get::<D>(&it.r_bar, k);
-            let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
-            let p = project(c.law, &tau, s);
-            let gap = norm(&core::array::from_fn::<f64, D, _>(|d| p[d] - tau[d]));
-            if p.iter().all(|&a| a == 0.0) {
-                ContactStatus::Separation
-            } else if gap <= crate::local::residual::STATUS_TOL * norm(&tau) {
-                ContactStatus::Stick
-            } else {
-                ContactStatus::Slip
-            }
-        })
-        .collect()
 }
 
 #[cfg(test)]
