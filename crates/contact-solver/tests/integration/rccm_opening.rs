@@ -18,6 +18,13 @@ const E: f64 = 1e5;
 const WIDTH: f64 = 2.0;
 
 fn glued_block(alpha: f64) -> (ContactSimulation<LinearElasticModel, Rccm>, Vec<usize>) {
+    glued_block_with(alpha, SimulationSettings::default())
+}
+
+fn glued_block_with(
+    alpha: f64,
+    settings: SimulationSettings,
+) -> (ContactSimulation<LinearElasticModel, Rccm>, Vec<usize>) {
     let mesh = rectangle(&RectangleSpec::new([0.0, WIDTH], [0.0, 1.0], 6, 3)).unwrap();
     let top = mesh.node_set("top").unwrap().to_vec();
     let bottom = mesh.node_set("bottom").unwrap().to_vec();
@@ -44,7 +51,7 @@ fn glued_block(alpha: f64) -> (ContactSimulation<LinearElasticModel, Rccm>, Vec<
     .unwrap();
     let base = RigidLine::new([-1.0, 0.0], [WIDTH + 1.0, 0.0]).unwrap();
     let zone = ContactZone::rigid("glue", bottom, base, law, 1e-3);
-    let sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default()).unwrap();
+    let sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
     (sim, top)
 }
 
@@ -144,4 +151,62 @@ fn viscous_adhesion_peaks_higher_when_pulled_faster() {
         fast > slow * 1.01,
         "faster loading, higher peak: {fast} vs {slow}"
     );
+}
+
+/// The reduced problem a Newton step exports (formed on request from `F*` and the final
+/// states) is the fixed point's, and its solution is the step's `r̄`.
+#[test]
+fn newton_steps_export_the_condensed_problem_they_solved() {
+    use contact_solver::local::adhesion::AdhesionMethod;
+    use contact_solver::{UzawaSettings, UzawaSolver};
+    let exported = |method: AdhesionMethod| {
+        let settings = SimulationSettings::default().with_adhesion_method(method);
+        let (mut sim, top) = glued_block_with(0.0, settings);
+        // pressed and sheared past the tangential springs' peak (½ C_t u_t² > w at
+        // u_t > 0.014): r̄ in the cone, the springs damaged (β < 1), μ̄ = μ (1 − β) grown
+        sim.structure_mut()
+            .set_prescribed(&top, Component::Y, -1e-5)
+            .unwrap();
+        sim.structure_mut()
+            .set_prescribed(&top, Component::X, 0.02)
+            .unwrap();
+        let res = sim.step(1.0, 1.0).unwrap();
+        assert!(res.contacts.iter().all(|c| c.beta > 0.1 && c.beta < 0.9));
+        assert_eq!(sim.counters().adhesion_newton_fallbacks, 0);
+        let r_bar: Vec<f64> = sim
+            .last_active()
+            .iter()
+            .flat_map(|&i| [res.contacts[i].r_bar.n, res.contacts[i].r_bar.t[0]])
+            .collect();
+        let p = sim.last_reduced_problem().expect("a dense step").clone();
+        (p, r_bar)
+    };
+    let (newton, r_newton) = exported(AdhesionMethod::Newton);
+    let (fixed, _) = exported(AdhesionMethod::FixedPoint);
+    let scale = |v: &[f64]| v.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+    // the two answers' states agree to the fixed point's tolerance (a β change of 1e-8)
+    let (wn, wf) = (newton.w_dense().unwrap(), fixed.w_dense().unwrap());
+    let dw = wn
+        .iter()
+        .zip(wf)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(dw <= 1e-6 * scale(wf), "W̃ differs by {dw:e}");
+    let dq = newton
+        .q()
+        .iter()
+        .zip(fixed.q())
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(dq <= 1e-6 * scale(fixed.q()), "q̃ differs by {dq:e}");
+    // re-solved: the step's r̄ (both stop at a relative residual of 1e-10)
+    let mut settings = UzawaSettings::default();
+    settings.tol = 1e-12;
+    let s = UzawaSolver::new(settings)
+        .solve(&newton, &newton.coulomb_laws())
+        .unwrap();
+    let d =
+        s.r.iter()
+            .zip(&r_newton)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(scale(&r_newton) > 0.0);
+    assert!(d <= 1e-7 * scale(&r_newton), "r̄ differs by {d:e}");
 }

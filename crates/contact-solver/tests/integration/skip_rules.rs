@@ -20,6 +20,24 @@ fn run(
     Vec<StepResult>,
     ContactSimulation<LinearElasticModel, StandardLaw>,
 ) {
+    run_on(
+        law,
+        skip,
+        steps,
+        RigidLine::new([-1.0, 0.0], [1.0, 0.0]).unwrap(),
+    )
+}
+
+/// [`run`] with the left half facing `near`.
+fn run_on(
+    law: StandardLaw,
+    skip: SkipRules,
+    steps: usize,
+    near: RigidLine,
+) -> (
+    Vec<StepResult>,
+    ContactSimulation<LinearElasticModel, StandardLaw>,
+) {
     let mut spec = RectangleSpec::new([0.0, 2.0], [0.001, 1.001], 8, 4);
     spec.kind = ElementKind::Tri6;
     let mesh = rectangle(&spec).unwrap();
@@ -35,7 +53,6 @@ fn run(
         supports,
     )
     .unwrap();
-    let near = RigidLine::new([-1.0, 0.0], [1.0, 0.0]).unwrap();
     let far = RigidLine::new([1.0, -0.5], [3.0, -0.5]).unwrap();
     let settings = SimulationSettings::default().with_skip(skip);
     let (l, r): (Vec<usize>, Vec<usize>) = bottom
@@ -106,6 +123,32 @@ fn inactive_candidates_stay_out_and_f_star_is_reused() {
     // K never changes (only prescribed values): one factorisation for the whole run
     assert_eq!(sim_on.structure().factorizations(), 1);
     assert_eq!(sim_on.counters().stiffness_changes, 0);
+}
+
+#[test]
+fn a_growing_active_set_solves_only_the_new_contacts_columns() {
+    // the LINE falls away under the left half (gaps 0.001 to 0.021 against an alert distance
+    // of 0.01): candidates enter the active set step by step while K stays the same, so each
+    // rebuild of F* keeps the columns it has and solves the entering contacts' only
+    let law = StandardLaw::from(Coulomb::new(0.3).unwrap());
+    let line = || RigidLine::new([0.0, 0.0], [1.0, -0.02]).unwrap();
+    let (on, sim_on) = run_on(law, SkipRules::default(), 5, line());
+    let rebuild = SkipRules::default().with_reuse_flexibility(false);
+    let (off, sim_off) = run_on(law, rebuild, 5, line());
+    // the kept columns are the ones a rebuild computes (to the rounding of the solves)
+    same(&on, &off, 1e-9);
+    let active: Vec<usize> = on.iter().map(|s| s.report.active_contacts).collect();
+    assert!(active.windows(2).any(|w| w[1] > w[0]), "{active:?}");
+    let (c_on, c_off) = (sim_on.counters(), sim_off.counters());
+    assert!(c_on.flexibility_builds > 1, "{c_on:?}");
+    // two columns (friction) per contact that ever entered, once each
+    let entered = *active.iter().max().unwrap();
+    assert_eq!(c_on.flexibility_columns, 2 * entered, "{c_on:?}");
+    assert_eq!(
+        c_off.flexibility_columns,
+        active.iter().map(|a| 2 * a).sum::<usize>(),
+        "{c_off:?}"
+    );
 }
 
 #[test]

@@ -4,10 +4,9 @@
 
 use super::ContactSimulation;
 use crate::coupling::flexibility::{
-    flexibility_into, from_nearest_sample, sampled_diagonal_blocks,
+    Previous, build_dense, from_nearest_sample, sampled_diagonal_blocks,
 };
 use crate::error::SolverError;
-use crate::local::symmetrize;
 use contact_laws::ContactLaw;
 use fem_core::Structure;
 
@@ -15,25 +14,30 @@ use fem_core::Structure;
 const RHO_SAMPLES: usize = 16;
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
-    /// `F* = H K⁻¹ Hᵀ` on `active`, in chunks of right-hand sides.
-    pub(super) fn build_flexibility(&mut self, active: &[usize]) -> Result<(), SolverError> {
+    /// `F* = H K⁻¹ Hᵀ` on `active`, in chunks of right-hand sides. With `reuse` (the
+    /// stiffness unchanged since the last build) only the columns of contacts the last active
+    /// set did not have are solved.
+    pub(super) fn build_flexibility(
+        &mut self,
+        active: &[usize],
+        reuse: bool,
+    ) -> Result<(), SolverError> {
         let m = 2 * active.len();
-        self.w.clear();
-        self.w.resize(m * m, 0.0);
-        // local rows of W (index into 0..m) whose columns are solved for
-        let solved: Vec<usize> = (0..m)
-            .filter(|&j| j % 2 == 0 || self.tangent_needed(active[j / 2]))
-            .collect();
-        let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
-        flexibility_into(
+        let old = std::mem::take(&mut self.w);
+        let previous = reuse.then_some(Previous {
+            w: &old,
+            active: &self.w_active,
+        });
+        // the columns solved: normals, and tangents where a law needs them
+        let (w, columns) = build_dense(
             &self.structure,
             &self.h_rows,
-            &rows,
-            &solved,
+            active,
+            |j| j % 2 == 0 || self.tangent_needed(active[j / 2]),
+            previous,
             self.settings.columns_per_solve,
-            &mut self.w,
         )?;
-        symmetrize(&mut self.w, m);
+        self.w = w;
         // decoupled tangential unknowns of frictionless contacts: W_tt = W_nn, nothing else
         for (k, &i) in active.iter().enumerate() {
             if !self.tangent_needed(i) {
@@ -43,7 +47,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.w_active.clear();
         self.w_active.extend_from_slice(active);
         self.counters.flexibility_builds += 1;
-        self.counters.flexibility_columns += solved.len();
+        self.counters.flexibility_columns += columns;
         Ok(())
     }
 

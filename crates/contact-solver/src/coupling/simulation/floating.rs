@@ -29,6 +29,7 @@
 //! [`SimulationSettings::equilibrium_tol`](super::SimulationSettings::equilibrium_tol).
 
 use super::ContactSimulation;
+use super::last_problem::{LastProblem, Pending};
 use super::report::StepReport;
 use super::solve::Solved;
 use crate::error::SolverError;
@@ -343,8 +344,19 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
+        // the q of the accepted amplitudes
+        let q: Vec<f64> = (0..m)
+            .map(|row| q0[row] + (0..nm).map(|j| fl.g[row * nm + j] * alpha[j]).sum::<f64>())
+            .collect();
         let (solved, condensed) = Solved::from_adhesive(sol, alpha);
-        self.last_problem = Some(condensed);
+        let pending = Pending {
+            q,
+            laws,
+            states: solved.states.clone(),
+            u_start,
+            areas,
+        };
+        self.last_problem = LastProblem::from_solve(condensed, pending);
         Ok(solved)
     }
 }

@@ -27,6 +27,7 @@ mod detection;
 mod equilibrium;
 mod flexibility;
 mod floating;
+mod last_problem;
 mod path;
 mod report;
 mod settings;
@@ -41,6 +42,7 @@ use crate::error::SolverError;
 use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::ContactLaw;
 use fem_core::Structure;
+use last_problem::LastProblem;
 use std::time::Instant;
 
 /// A quasi-static contact simulation: structure, zones, per-contact state and the cached `F*`.
@@ -95,7 +97,7 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     time: f64,
     solver: UzawaSolver,
     counters: Counters,
-    last_problem: Option<ReducedProblem>,
+    last_problem: LastProblem<L>,
     last_version: u64,
     primal: PrimalCache,
     /// Floating structures: the accepted rigid-body amplitudes `α` (one per mode).
@@ -162,7 +164,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             time: 0.0,
             solver: UzawaSolver::new(settings.solver),
             counters: Counters::default(),
-            last_problem: None,
+            last_problem: LastProblem::None,
             primal: PrimalCache::default(),
             alpha: Vec::new(),
             mode_load: Vec::new(),
@@ -285,7 +287,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// last step was solved without a dense `F*` (matrix-free or active set; force
     /// `FlexibilityMode::Dense` to export a large step).
     pub fn last_reduced_problem(&self) -> Option<&ReducedProblem> {
-        self.last_problem.as_ref()
+        self.last_problem.get(&self.w)
     }
 
     /// Candidate indices of the contacts of the last reduced problem, in its order.

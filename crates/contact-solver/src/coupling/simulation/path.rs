@@ -3,6 +3,7 @@
 //! and the fallback when `Auto`'s active-set iteration does not converge.
 
 use super::ContactSimulation;
+use super::last_problem::LastProblem;
 use super::report::StepReport;
 use super::settings::{FALLBACK_DENSE_LIMIT, FlexibilityMode};
 use super::solve::Solved;
@@ -35,7 +36,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             self.w_active = active.to_vec();
             self.w.clear();
             self.w_version = None;
-            self.last_problem = None;
+            self.last_problem = LastProblem::None;
             match self.solve_active_set(free, frames, report) {
                 Ok(solved) => {
                     report.active_set = true;
@@ -64,15 +65,18 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             }
             self.w.clear();
             self.w_version = None;
-            self.last_problem = None;
+            self.last_problem = LastProblem::None;
             report.matrix_free = true;
             return self.solve_matrix_free_active(free, report);
         }
+        let same_stiffness = self.w_version == Some(version);
         if active != self.w_active
-            || self.w_version != Some(version)
+            || !same_stiffness
             || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
         {
-            self.build_flexibility(active)?;
+            // the columns of contacts already in F* are kept while the stiffness is the same
+            let reuse = same_stiffness && self.settings.skip.reuse_flexibility;
+            self.build_flexibility(active, reuse)?;
             self.w_version = Some(version);
             report.flexibility_rebuilt = true;
         }

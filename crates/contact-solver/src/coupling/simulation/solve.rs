@@ -5,6 +5,7 @@
 //! gaps, solves, and returns the reactions on the active set.
 
 use super::ContactSimulation;
+use super::last_problem::{LastProblem, Pending};
 use super::report::StepReport;
 use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
 use crate::error::SolverError;
@@ -44,11 +45,12 @@ impl<T> Solved<T> {
         }
     }
 
-    /// The pass's answer from the adhesive solve, and the condensed problem it solved.
+    /// The pass's answer from the adhesive solve, and the condensed problem it solved (`None`
+    /// after Newton: formed when asked, [`LastProblem`]).
     pub(super) fn from_adhesive(
         sol: AdhesiveSolution<T>,
         alpha: Vec<f64>,
-    ) -> (Self, ReducedProblem) {
+    ) -> (Self, Option<ReducedProblem>) {
         let solved = Self {
             r: sol.r,
             r_bar: sol.r_bar,
@@ -250,7 +252,14 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
         let (solved, condensed) = Solved::from_adhesive(sol, Vec::new());
-        self.last_problem = Some(condensed);
+        let pending = Pending {
+            q,
+            laws,
+            states: solved.states.clone(),
+            u_start,
+            areas,
+        };
+        self.last_problem = LastProblem::from_solve(condensed, pending);
         Ok(solved)
     }
 }

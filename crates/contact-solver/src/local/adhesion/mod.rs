@@ -180,8 +180,56 @@ pub struct AdhesiveSolution<S> {
     /// Report of the last reduced solve.
     pub report: UzawaReport,
     /// The last condensed problem `x = W̃ r̄ + q̃` with `μ̄` per contact (export it to compare
-    /// with another solver).
-    pub condensed: ReducedProblem,
+    /// with another solver): the fixed point's last solve. `None` after
+    /// [`AdhesionMethod::Newton`], which never condenses the springs of the final states (it
+    /// would cost a dense condensation per step); [`condensed_problem`] forms it from the step
+    /// and [`states`](Self::states).
+    pub condensed: Option<ReducedProblem>,
+}
+
+/// The condensed problem `x = W̃ r̄ + q̃` (springs of `states` condensed, `μ̄` of `states` per
+/// contact) of an adhesive step: the reduced problem whose solution is the step's `r̄` when
+/// `states` are the step's final states.
+///
+/// # Errors
+/// [`SolverError::SizeMismatch`] for inconsistent lengths; [`SolverError::NotPositiveDefinite`]
+/// when the condensation fails; the reduced problem's validation errors.
+pub fn condensed_problem<L: ContactLaw, const D: usize>(
+    step: &AdhesiveStep<'_, L, D>,
+    states: &[L::State],
+) -> Result<ReducedProblem, SolverError> {
+    let m = step.q.len();
+    let na = m / D;
+    check_len("q", D * na, m)?;
+    check_len("laws", na, step.laws.len())?;
+    check_len("states", na, states.len())?;
+    check_len("u_start", na, step.u_start.len())?;
+    check_len("areas", na, step.areas.len())?;
+    let offset = start_offset(step);
+    let stiff: Vec<[f64; 2]> = step
+        .laws
+        .iter()
+        .zip(states)
+        .zip(step.areas)
+        .map(|((l, s), &a)| l.adhesive_stiffness(s).map(|k| k * a))
+        .collect();
+    let (w_eff, q_eff) = condense(step.w, step.q, &offset, &stiff, m)?;
+    let mu = step
+        .laws
+        .iter()
+        .zip(states)
+        .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
+        .collect();
+    ReducedProblem::with_dimension(D, w_eff, q_eff, mu)
+}
+
+/// The springs act on the total tangential displacement: the offset of the jumps from `x`,
+/// their tangential values at the start of the step.
+fn start_offset<L: ContactLaw, const D: usize>(step: &AdhesiveStep<'_, L, D>) -> Vec<f64> {
+    step.u_start
+        .iter()
+        .flat_map(|u| (0..D).map(move |d| if d == 0 { 0.0 } else { u[d] }))
+        .collect()
 }
 
 fn check_len(what: &'static str, expected: usize, found: usize) -> Result<(), SolverError> {
@@ -258,12 +306,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             });
         }
     }
-    // the springs act on the total tangential displacement: offset by its value at the start
-    let offset: Vec<f64> = step
-        .u_start
-        .iter()
-        .flat_map(|u| (0..D).map(move |d| if d == 0 { 0.0 } else { u[d] }))
-        .collect();
+    let offset = start_offset(step);
     let mut states = step.start_states.to_vec();
     let mut r_bar = match r_bar_start {
         Some(r) => {
@@ -363,7 +406,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             converged,
             newton_fallback,
             report: sol.report,
-            condensed: problem,
+            condensed: Some(problem),
         };
         if !adhesive {
             return Ok(finish(states, converged));

@@ -27,9 +27,8 @@
 //! system or the iteration cap) it gives up and [`solve_adhesive`](super::solve_adhesive)
 //! runs the fixed point from the start of the step instead.
 
-use super::{AdhesiveSolution, AdhesiveStep, condense, update_state};
+use super::{AdhesiveSolution, AdhesiveStep, update_state};
 use crate::error::SolverError;
-use crate::local::ReducedProblem;
 use crate::local::dense::dense_parallelism;
 use crate::local::residual::contact_statuses;
 use crate::local::settings::{Algorithm, UzawaReport, UzawaSettings};
@@ -379,20 +378,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         }
     }
     // (x stays the iterate's, the jumps the springs and the states were evaluated at)
-    // its statuses and the condensed problem of its states (for export)
     let rho: Vec<f64> = data.iter().map(|c| c.rho).collect();
-    let stiff: Vec<[f64; 2]> = data
-        .iter()
-        .zip(&it.states)
-        .map(|(c, s)| c.law.adhesive_stiffness(s).map(|k| k * c.area))
-        .collect();
-    let (w_eff, q_eff) = condense(w, step.q, offset, &stiff, m)?;
-    let mu = data
-        .iter()
-        .zip(&it.states)
-        .map(|(c, s)| c.law.friction_coefficient(s).unwrap_or(0.0))
-        .collect();
-    let condensed = ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?;
     let statuses = if D == 3 {
         contact_statuses::<L, 2>(step.laws, &it.states, &rho, &it.r_bar, &x)
     } else {
@@ -426,7 +412,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         converged: true,
         newton_fallback: false,
         report,
-        condensed,
+        condensed: None,
     })))
 }
 

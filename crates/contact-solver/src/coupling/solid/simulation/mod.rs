@@ -20,12 +20,12 @@
 //! wrongly: floating structures.
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
-use crate::coupling::flexibility::flexibility_into;
+use crate::coupling::flexibility::{Previous, build_dense};
 use crate::coupling::primal::{LocalFrame, PrimalCache};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
-use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver, symmetrize};
+use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
 
@@ -506,30 +506,28 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         law.has_friction() || law.has_adhesion()
     }
 
-    /// `F* = H K⁻¹ Hᵀ` on `active` (frictionless contacts: their tangential block decoupled).
+    /// `F* = H K⁻¹ Hᵀ` on `active` (frictionless contacts: their tangential block decoupled);
+    /// while the stiffness is unchanged the columns of contacts already in it are kept.
     fn build_flexibility(&mut self, active: &[usize]) -> Result<(), SolverError> {
         let m = 3 * active.len();
-        self.w.clear();
-        self.w.resize(m * m, 0.0);
-        let solved: Vec<usize> = (0..m)
-            .filter(|&j| {
-                let i = active[j / 3];
-                j % 3 == 0 || (self.tangent_needed(i) && !self.h_rows[3 * i + j % 3].is_empty())
-            })
-            .collect();
-        let rows: Vec<usize> = active
-            .iter()
-            .flat_map(|&i| [3 * i, 3 * i + 1, 3 * i + 2])
-            .collect();
-        flexibility_into(
+        let version = self.structure.stiffness_version();
+        let old = std::mem::take(&mut self.w);
+        let previous = (self.w_version == Some(version)).then_some(Previous {
+            w: &old,
+            active: &self.w_active,
+        });
+        let (w, _) = build_dense(
             &self.structure,
             &self.h_rows,
-            &rows,
-            &solved,
+            active,
+            |j| {
+                let i = active[j / 3];
+                j % 3 == 0 || (self.tangent_needed(i) && !self.h_rows[3 * i + j % 3].is_empty())
+            },
+            previous,
             self.settings.columns_per_solve,
-            &mut self.w,
         )?;
-        symmetrize(&mut self.w, m);
+        self.w = w;
         // a tangential direction the contact cannot move along (frictionless, or held on both
         // sides, e.g. across a symmetry plane) is decoupled: its row of `F*` is zero, and the
         // normal's flexibility on its diagonal keeps the problem definite with `r_t = 0` there
@@ -542,7 +540,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             }
         }
         self.w_active = active.to_vec();
-        self.w_version = Some(self.structure.stiffness_version());
+        self.w_version = Some(version);
         Ok(())
     }
 
