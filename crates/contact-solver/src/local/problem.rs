@@ -186,11 +186,26 @@ impl ReducedProblem {
             Delassus::Dense { m, w } => {
                 let m = *m;
                 let (mut worst, mut row, mut col) = (0.0_f64, 0, 0);
-                for i in 0..m {
-                    for j in (i + 1)..m {
-                        let difference = (w[i * m + j] / w_max - w[j * m + i] / w_max).abs();
-                        if difference > worst {
-                            (worst, row, col) = (difference, i, j);
+                if w_max < 0.5 * f64::MAX {
+                    // |a − b| ≤ 2 w_max cannot overflow: one division, not two per pair
+                    for i in 0..m {
+                        for j in (i + 1)..m {
+                            let difference = (w[i * m + j] - w[j * m + i]).abs();
+                            if difference > worst {
+                                (worst, row, col) = (difference, i, j);
+                            }
+                        }
+                    }
+                    if worst > 0.0 {
+                        worst /= w_max;
+                    }
+                } else {
+                    for i in 0..m {
+                        for j in (i + 1)..m {
+                            let difference = (w[i * m + j] / w_max - w[j * m + i] / w_max).abs();
+                            if difference > worst {
+                                (worst, row, col) = (difference, i, j);
+                            }
                         }
                     }
                 }

@@ -79,7 +79,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::Solve;
-use faer::{Accum, Conj, Mat, MatRef};
+use faer::{Accum, Conj, Mat};
 
 /// One step of a reduced problem with adhesive laws, in 2D (`D = 2`, per contact `(n, t)`,
 /// the default) or 3D (`D = 3`, per contact `(n, t₁, t₂)`).
@@ -620,30 +620,42 @@ pub fn condense(
         return Ok((w.to_vec(), q.to_vec()));
     }
     let na = springs.len();
-    let wr = MatRef::from_row_major_slice(w, m, m);
-    // z = q − W (B o)
-    let mut z = q.to_vec();
+    let sqrt: Vec<f64> = springs.iter().map(|&(_, b)| b.sqrt()).collect();
+    // z = q − W (B o), by rows of W
+    let mut bo = vec![0.0; m];
     for &(j, b) in &springs {
-        let bo = b * offset[j];
-        if bo != 0.0 {
-            for (i, zi) in z.iter_mut().enumerate() {
-                *zi -= wr[(i, j)] * bo;
-            }
+        bo[j] = b * offset[j];
+    }
+    let mut z = q.to_vec();
+    if bo.iter().any(|&v| v != 0.0) {
+        for (zi, row) in z.iter_mut().zip(w.chunks_exact(m)) {
+            *zi -= row.iter().zip(&bo).map(|(a, b)| a * b).sum::<f64>();
         }
     }
-    // WS: m × na
-    let ws = Mat::<f64>::from_fn(m, na, |i, a| {
-        let (j, b) = springs[a];
-        wr[(i, j)] * b.sqrt()
-    });
-    let g = Mat::<f64>::from_fn(na, na, |a, c| {
-        let (j, b) = springs[a];
-        let sa = b.sqrt();
-        let (l, bl) = springs[c];
-        sa * wr[(j, l)] * bl.sqrt() + if a == c { 1.0 } else { 0.0 }
-    });
+    // rhs = [ (W S)ᵀ | S z ] (na × (m + 1), column-major): column i < m is row i of W at the
+    // springs' columns, scaled
+    let mut rhs = Mat::<f64>::zeros(na, m + 1);
+    for (i, row) in w.chunks_exact(m).enumerate() {
+        let col = rhs.col_as_slice_mut(i);
+        for (a, &(j, _)) in springs.iter().enumerate() {
+            col[a] = row[j] * sqrt[a];
+        }
+    }
+    for (a, &(j, _)) in springs.iter().enumerate() {
+        rhs[(a, m)] = sqrt[a] * z[j];
+    }
+    let ws_t = rhs.subcols(0, m).to_owned();
+    // G = I + S W S on the springs: column c is column j_c of (W S)ᵀ, scaled
+    let mut g = Mat::<f64>::zeros(na, na);
+    for (c, &(j, _)) in springs.iter().enumerate() {
+        let src = rhs.col_as_slice(j);
+        let col = g.col_as_slice_mut(c);
+        for (a, v) in col.iter_mut().enumerate() {
+            *v = src[a] * sqrt[c];
+        }
+        col[c] += 1.0;
+    }
     let par = dense_parallelism(m * na * (m + 1));
-    let mut g = g;
     let mut stack = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(
         na,
         par,
@@ -658,14 +670,6 @@ pub fn condense(
     )
     .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
     // Y = G⁻¹ [ (WS)ᵀ | S z ]
-    let mut rhs = Mat::<f64>::from_fn(na, m + 1, |a, c| {
-        if c < m {
-            ws[(c, a)]
-        } else {
-            let (j, b) = springs[a];
-            b.sqrt() * z[j]
-        }
-    });
     llt::solve::solve_in_place_with_conj(
         g.as_ref(),
         Conj::No,
@@ -673,21 +677,24 @@ pub fn condense(
         par,
         MemStack::new(&mut []),
     );
-    let mut correction = Mat::<f64>::zeros(m, m + 1);
+    // the correction W S Y, transposed ((m + 1) × m, column-major): column i is row i of
+    // W S Y, contiguous as row i of the row-major W̃
+    let mut correction = Mat::<f64>::zeros(m + 1, m);
     matmul(
         correction.as_mut(),
         Accum::Replace,
-        ws.as_ref(),
-        rhs.as_ref(),
+        rhs.transpose(),
+        ws_t.as_ref(),
         1.0,
         par,
     );
     let mut w_eff = w.to_vec();
-    for i in 0..m {
-        for j in 0..m {
-            w_eff[i * m + j] -= correction[(i, j)];
+    for (i, row) in w_eff.chunks_exact_mut(m).enumerate() {
+        let col = correction.col_as_slice(i);
+        for (v, c) in row.iter_mut().zip(col) {
+            *v -= c;
         }
-        z[i] -= correction[(i, m)];
+        z[i] -= col[m];
     }
     symmetrize(&mut w_eff, m);
     Ok((w_eff, z))
@@ -711,7 +718,7 @@ mod tests {
         let stiff = [[4.0, 0.0], [1.0, 2.0]];
         let (we, qe) = condense(&w, &q, &o, &stiff, 4).unwrap();
         let b = [4.0, 0.0, 1.0, 2.0];
-        let wm = MatRef::from_row_major_slice(&w, 4, 4);
+        let wm = faer::MatRef::from_row_major_slice(&w, 4, 4);
         let mut a = Mat::<f64>::identity(4, 4);
         for i in 0..4 {
             for j in 0..4 {

@@ -165,13 +165,26 @@ fn eval_all<L: ContactLaw, const D: usize>(
 fn apply(w: &[f64], r: &[f64], q: Option<&[f64]>, x: &mut [f64]) {
     let m = r.len();
     for (i, xi) in x.iter_mut().enumerate() {
-        let wr = w[i * m..(i + 1) * m]
-            .iter()
-            .zip(r)
-            .map(|(a, b)| a * b)
-            .sum::<f64>();
-        *xi = q.map_or(0.0, |q| q[i]) + wr;
+        *xi = q.map_or(0.0, |q| q[i]) + dot(&w[i * m..(i + 1) * m], r);
     }
+}
+
+/// `a · b` with four running sums (vectorised; the order of the sums is fixed).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = a4
+        .remainder()
+        .iter()
+        .zip(b4.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in a4.zip(b4) {
+        for l in 0..4 {
+            acc[l] += x[l] * y[l];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// The relative natural residual: `‖F‖ / max(‖r̄‖, max ρ ‖q‖, tiny)`, as in the reduced
@@ -234,13 +247,16 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
     let mut it = eval_all(&data, &r, &x);
     let max_iterations = settings.max_iterations.min(MAX_ITERATIONS);
     let par = dense_parallelism(2 * m * m * m / 3);
-    let mut jac = vec![0.0; m * m]; // column-major
+    // J row-major: rows are contiguous while it is built, and the buffer read column-major is
+    // Jᵀ, whose LU solves J Δ = −F by the transposed solve
+    let mut jac = vec![0.0; m * m];
     let mut rhs = vec![0.0; m];
     let mut perm = vec![0usize; m];
     let mut perm_inv = vec![0usize; m];
     let mut scratch = MemBuffer::new(
-        factor::lu_in_place_scratch::<usize, f64>(m, m, par, Default::default())
-            .or(solve::solve_in_place_scratch::<usize, f64>(m, 1, par)),
+        factor::lu_in_place_scratch::<usize, f64>(m, m, par, Default::default()).or(
+            solve::solve_transpose_in_place_scratch::<usize, f64>(m, 1, par),
+        ),
     );
     let mut wdr = vec![0.0; m];
     let mut r_trial = vec![0.0; m];
@@ -263,7 +279,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
             return failed(it, residual);
         }
         iterations += 1;
-        // J = A + B W, column-major
+        // J = A + B W
         jac.fill(0.0);
         for (k, c) in data.iter().enumerate() {
             let (y0, x0) = (get::<D>(&r, k), get::<D>(&x, k));
@@ -282,15 +298,26 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
                 c.rho * q_norm.max(f64::MIN_POSITIVE)
             };
             let floor = FD_FLOOR * scale;
+            // F_k's dependence on r_k alone: the state, the springs and v stay the iterate's
+            // (they are functions of x_k), r̄ moves with r_k
+            let state = &it.states[k];
+            let springs: [f64; D] = core::array::from_fn(|d| it.r_bar[D * k + d] - y0[d]);
+            let v = velocity(c.law, &x0, state);
+            let f_of_r = |y: &[f64; D]| -> [f64; D] {
+                let rb: [f64; D] = core::array::from_fn(|d| y[d] + springs[d]);
+                let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
+                let p = project(c.law, &tau, state);
+                core::array::from_fn(|d| rb[d] - p[d])
+            };
             for j in 0..D {
                 // A: d F_k / d r_k,j
                 let h = FD_STEP * y0[j].abs().max(floor);
                 let (mut yp, mut ym) = (y0, y0);
                 yp[j] += h;
                 ym[j] -= h;
-                let (fp, fm) = (eval(c, &yp, &x0).f, eval(c, &ym, &x0).f);
+                let (fp, fm) = (f_of_r(&yp), f_of_r(&ym));
                 for i in 0..D {
-                    jac[(D * k + i) + (D * k + j) * m] += (fp[i] - fm[i]) / (2.0 * h);
+                    jac[(D * k + i) * m + D * k + j] += (fp[i] - fm[i]) / (2.0 * h);
                 }
                 // B: d F_k / d x_k,j, times row D k + j of W
                 let hx = FD_STEP * x0[j].abs().max(floor / c.rho);
@@ -302,8 +329,9 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
                 for i in 0..D {
                     let b = (fp[i] - fm[i]) / (2.0 * hx);
                     if b != 0.0 {
-                        for (col, &wv) in row.iter().enumerate() {
-                            jac[(D * k + i) + col * m] += b * wv;
+                        let out = &mut jac[(D * k + i) * m..(D * k + i + 1) * m];
+                        for (o, &wv) in out.iter_mut().zip(row) {
+                            *o += b * wv;
                         }
                     }
                 }
@@ -311,9 +339,9 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         }
         // a row with no dependence at all (a component held by a support, W's row zero, in
         // stick): keep that reaction as it is
-        for i in 0..m {
-            if (0..m).all(|c| jac[i + c * m] == 0.0) {
-                jac[i + i * m] = 1.0;
+        for (i, row) in jac.chunks_exact_mut(m).enumerate() {
+            if row.iter().all(|&v| v == 0.0) {
+                row[i] = 1.0;
             }
         }
         for (o, f) in rhs.iter_mut().zip(&it.f) {
@@ -328,7 +356,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
             Default::default(),
         );
         let lu = MatRef::from_column_major_slice(&jac, m, m);
-        solve::solve_in_place(
+        solve::solve_transpose_in_place(
             lu,
             lu,
             p,
