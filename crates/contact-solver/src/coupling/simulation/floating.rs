@@ -146,6 +146,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             always_iterate: false,
             anderson_window: self.settings.adhesion_anderson_window,
             method: self.settings.adhesion_method,
+            warm_start: self.settings.adhesion_warm_start && self.warm.enabled(),
         };
         let mut r_warm: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let mut q = q0.clone();
@@ -341,7 +342,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
         report.equilibrium_iterations += iterations;
         // (the last solve's: the trial solves of the line search are not counted)
-        self.counters.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
+        self.warm.record(&sol);
+        self.counters.record_adhesive(&sol);
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
         // the q of the accepted amplitudes

@@ -39,6 +39,7 @@ pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, Ski
 use crate::coupling::primal::PrimalCache;
 use crate::coupling::zone::{Candidate, ContactZone, check_rigid_targets, recognize};
 use crate::error::SolverError;
+use crate::local::adhesion::WarmStartPacing;
 use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::ContactLaw;
 use fem_core::Structure;
@@ -100,6 +101,8 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     last_problem: LastProblem<L>,
     last_version: u64,
     primal: PrimalCache,
+    /// When adhesive steps try Newton from the previous step's reactions.
+    warm: WarmStartPacing,
     /// Floating structures: the accepted rigid-body amplitudes `α` (one per mode).
     alpha: Vec<f64>,
     /// Floating structures: the load along every mode at this step's load factor, `Rᵀ f`.
@@ -166,6 +169,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             counters: Counters::default(),
             last_problem: LastProblem::None,
             primal: PrimalCache::default(),
+            warm: WarmStartPacing::default(),
             alpha: Vec::new(),
             mode_load: Vec::new(),
         };

@@ -138,6 +138,22 @@ pub struct Counters {
     /// Adhesive solves where [`AdhesionMethod::Newton`](crate::local::adhesion::AdhesionMethod)
     /// could not make progress and the fixed point gave the answer.
     pub adhesion_newton_fallbacks: usize,
+    /// Adhesive solves that Newton solved from the previous step's reactions, without the
+    /// loose start and its condensation
+    /// ([`AdhesionOptions::warm_start`](crate::local::adhesion::AdhesionOptions::warm_start)).
+    pub adhesion_warm_starts: usize,
+    /// Warm starts that did not converge within their cap (the step went on from the loose
+    /// start).
+    pub adhesion_warm_start_failures: usize,
+}
+
+impl Counters {
+    /// Adds an adhesive solve's Newton outcomes.
+    pub(crate) fn record_adhesive<S>(&mut self, sol: &crate::local::adhesion::AdhesiveSolution<S>) {
+        self.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
+        self.adhesion_warm_starts += usize::from(sol.warm_started);
+        self.adhesion_warm_start_failures += usize::from(sol.warm_start_failed);
+    }
 }
 
 /// The result of one step.

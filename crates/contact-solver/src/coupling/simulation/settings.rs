@@ -22,6 +22,10 @@ pub struct SimulationSettings {
     /// the states eliminated (the default); see
     /// [`AdhesionMethod`](crate::local::adhesion::AdhesionMethod).
     pub adhesion_method: crate::local::adhesion::AdhesionMethod,
+    /// Newton adhesion: try Newton from the previous step's reactions before the loose start
+    /// ([`AdhesionOptions::warm_start`](crate::local::adhesion::AdhesionOptions::warm_start)),
+    /// paced by [`WarmStartPacing`](crate::local::adhesion::WarmStartPacing).
+    pub adhesion_warm_start: bool,
     /// Maximum passes of the penetration check per step (each adds the penetrating inactive
     /// candidates and redoes the step).
     pub max_detection_passes: usize,
@@ -123,6 +127,7 @@ impl Default for SimulationSettings {
             max_adhesion_iterations: 200,
             adhesion_anderson_window: crate::local::adhesion::DEFAULT_ANDERSON_WINDOW,
             adhesion_method: crate::local::adhesion::AdhesionMethod::Newton,
+            adhesion_warm_start: true,
             max_detection_passes: 5,
             columns_per_solve: 64,
             skip: SkipRules::default(),
@@ -159,6 +164,13 @@ impl SimulationSettings {
     #[must_use]
     pub fn with_adhesion_anderson_window(mut self, adhesion_anderson_window: usize) -> Self {
         self.adhesion_anderson_window = adhesion_anderson_window;
+        self
+    }
+
+    /// These settings with [`adhesion_warm_start`](Self::adhesion_warm_start) replaced.
+    #[must_use]
+    pub fn with_adhesion_warm_start(mut self, warm_start: bool) -> Self {
+        self.adhesion_warm_start = warm_start;
         self
     }
 

@@ -244,9 +244,11 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
             anderson_window: self.settings.adhesion_anderson_window,
             method: self.settings.adhesion_method,
+            warm_start: self.settings.adhesion_warm_start && self.warm.enabled(),
         };
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
-        self.counters.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
+        self.warm.record(&sol);
+        self.counters.record_adhesive(&sol);
         report.contact_iterations += sol.contact_iterations;
         report.adhesion_iterations += sol.adhesion_iterations;
         report.residual = sol.report.residual;

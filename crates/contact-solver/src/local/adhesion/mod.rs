@@ -67,19 +67,21 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod newton;
+mod condense;
 
-use super::dense::{dense_parallelism, symmetrize};
+use condense::start_offset;
+pub use condense::{condense, condensed_problem};
+pub use warm::WarmStartPacing;
+mod newton;
+mod warm;
+
 use super::problem::ReducedProblem;
 use super::settings::{Algorithm, UzawaReport};
 use super::solver::UzawaSolver;
 use crate::error::SolverError;
 use contact_laws::{ContactLaw, LocalVec2, LocalVec3};
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt;
-use faer::linalg::matmul::matmul;
+use faer::Mat;
 use faer::linalg::solvers::Solve;
-use faer::{Accum, Conj, Mat};
 
 /// One step of a reduced problem with adhesive laws, in 2D (`D = 2`, per contact `(n, t)`,
 /// the default) or 3D (`D = 3`, per contact `(n, t₁, t₂)`).
@@ -108,6 +110,19 @@ pub const DEFAULT_ANDERSON_WINDOW: usize = 1;
 /// the contact set Newton starts from.
 const NEWTON_START_TOL: f64 = 1e-3;
 
+/// Iteration cap of a warm-started Newton ([`AdhesionOptions::warm_start`]): from a good start
+/// it converges in 1–3 iterations (the seed's 5.6.2 and pile); past this the loose start is
+/// surer.
+const WARM_MAX_ITERATIONS: usize = 6;
+
+/// Largest [`ContactLaw::state_change`] of a contact a warm-started answer is accepted with.
+/// From the previous step's reactions Newton can reach another solution of the implicit step:
+/// a glued contact pulled from `r = 0` converges to its debonded branch (β = 0, the jump
+/// free), where the start states' springs hold it elastic. Past this change the loose start,
+/// which carries those springs, decides. The seed's steps change β by at most 0.07 (5.6.2,
+/// the pile).
+const WARM_MAX_STATE_CHANGE: f64 = 0.25;
+
 /// Tolerance and cap of the adhesion fixed point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdhesionOptions {
@@ -126,6 +141,16 @@ pub struct AdhesionOptions {
     /// How adhesion and contact are solved together (ignored with
     /// [`Algorithm::ClassicRccm`], which is a fixed point by definition).
     pub method: AdhesionMethod,
+    /// [`AdhesionMethod::Newton`] with a start `r̄` (the previous step's): first try Newton
+    /// from the total reactions that start implies (`r̄` plus the start states' springs on
+    /// the start jumps), at most 6 iterations, before the loose reduced solve and its
+    /// condensation; its answer is kept only if no contact's state changed by more than 0.25
+    /// ([`ContactLaw::state_change`]: a larger change may be another branch of the implicit
+    /// step). Saves the condensation when the step changes little (the seed's 5.6.2: 1
+    /// iteration per step); when it fails ([`AdhesiveSolution::warm_start_failed`]) the step
+    /// goes on as without it. A sequence of steps can pause it after failures
+    /// ([`WarmStartPacing`]).
+    pub warm_start: bool,
 }
 
 /// How [`solve_adhesive`] couples the states to the contact problem.
@@ -152,6 +177,7 @@ impl Default for AdhesionOptions {
             always_iterate: false,
             anderson_window: DEFAULT_ANDERSON_WINDOW,
             method: AdhesionMethod::default(),
+            warm_start: true,
         }
     }
 }
@@ -177,6 +203,11 @@ pub struct AdhesiveSolution<S> {
     /// [`AdhesionMethod::Newton`] was asked for but could not make progress, so the answer
     /// comes from the fixed point.
     pub newton_fallback: bool,
+    /// Newton solved the step from the start `r̄` ([`AdhesionOptions::warm_start`]).
+    pub warm_started: bool,
+    /// The warm-started Newton was tried and did not converge within its cap (its
+    /// iterations are counted in [`contact_iterations`](Self::contact_iterations)).
+    pub warm_start_failed: bool,
     /// Report of the last reduced solve.
     pub report: UzawaReport,
     /// The last condensed problem `x = W̃ r̄ + q̃` with `μ̄` per contact (export it to compare
@@ -185,51 +216,6 @@ pub struct AdhesiveSolution<S> {
     /// would cost a dense condensation per step); [`condensed_problem`] forms it from the step
     /// and [`states`](Self::states).
     pub condensed: Option<ReducedProblem>,
-}
-
-/// The condensed problem `x = W̃ r̄ + q̃` (springs of `states` condensed, `μ̄` of `states` per
-/// contact) of an adhesive step: the reduced problem whose solution is the step's `r̄` when
-/// `states` are the step's final states.
-///
-/// # Errors
-/// [`SolverError::SizeMismatch`] for inconsistent lengths; [`SolverError::NotPositiveDefinite`]
-/// when the condensation fails; the reduced problem's validation errors.
-pub fn condensed_problem<L: ContactLaw, const D: usize>(
-    step: &AdhesiveStep<'_, L, D>,
-    states: &[L::State],
-) -> Result<ReducedProblem, SolverError> {
-    let m = step.q.len();
-    let na = m / D;
-    check_len("q", D * na, m)?;
-    check_len("laws", na, step.laws.len())?;
-    check_len("states", na, states.len())?;
-    check_len("u_start", na, step.u_start.len())?;
-    check_len("areas", na, step.areas.len())?;
-    let offset = start_offset(step);
-    let stiff: Vec<[f64; 2]> = step
-        .laws
-        .iter()
-        .zip(states)
-        .zip(step.areas)
-        .map(|((l, s), &a)| l.adhesive_stiffness(s).map(|k| k * a))
-        .collect();
-    let (w_eff, q_eff) = condense(step.w, step.q, &offset, &stiff, m)?;
-    let mu = step
-        .laws
-        .iter()
-        .zip(states)
-        .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
-        .collect();
-    ReducedProblem::with_dimension(D, w_eff, q_eff, mu)
-}
-
-/// The springs act on the total tangential displacement: the offset of the jumps from `x`,
-/// their tangential values at the start of the step.
-fn start_offset<L: ContactLaw, const D: usize>(step: &AdhesiveStep<'_, L, D>) -> Vec<f64> {
-    step.u_start
-        .iter()
-        .flat_map(|u| (0..D).map(move |d| if d == 0 { 0.0 } else { u[d] }))
-        .collect()
 }
 
 fn check_len(what: &'static str, expected: usize, found: usize) -> Result<(), SolverError> {
@@ -332,6 +318,39 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
     let mut adhesion_iterations = 0;
     let mut contact_iterations = 0;
     let mut converged = true;
+    let mut warm_start_failed = false;
+    if let Some(r_bar_start) = r_bar_start.filter(|_| newton && options.warm_start) {
+        // the total reactions at the start: r̄ plus the start states' springs on the start
+        // jumps (x + o at the start is u_start)
+        let r_warm: Vec<f64> = (0..na)
+            .flat_map(|k| {
+                let [kn, kt] = step.laws[k].adhesive_stiffness(&step.start_states[k]);
+                let (a, u, rb) = (step.areas[k], step.u_start[k], &r_bar_start[D * k..]);
+                (0..D).map(move |d| rb[d] - a * if d == 0 { kn } else { kt } * u[d])
+            })
+            .collect();
+        let mut settings = *solver.settings();
+        settings.max_iterations = settings.max_iterations.min(WARM_MAX_ITERATIONS);
+        match newton::solve(&settings, step, &r_warm, &offset)? {
+            newton::Outcome::Solved(mut sol) => {
+                let change = step
+                    .laws
+                    .iter()
+                    .zip(sol.states.iter().zip(step.start_states))
+                    .fold(0.0_f64, |c, (l, (a, b))| c.max(l.state_change(a, b)));
+                if change <= WARM_MAX_STATE_CHANGE {
+                    sol.warm_started = true;
+                    return Ok(*sol);
+                }
+                contact_iterations += sol.contact_iterations;
+                warm_start_failed = true;
+            }
+            newton::Outcome::Failed(_, iterations) => {
+                contact_iterations += iterations;
+                warm_start_failed = true;
+            }
+        }
+    }
     loop {
         // nodal springs: the law's per-area stiffness times the tributary area
         let stiff: Vec<[f64; 2]> = step
@@ -380,17 +399,22 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
                 newton::Outcome::Solved(mut sol) => {
                     sol.contact_iterations += contact_iterations;
                     sol.adhesion_iterations += 1;
+                    sol.warm_start_failed = warm_start_failed;
                     return Ok(*sol);
                 }
                 // Newton stopped close to the answer (at the rounding of the forces): the
                 // fixed point finishes from its iterate
-                newton::Outcome::Failed(Some((r_bar_newton, states_newton))) => {
+                newton::Outcome::Failed(Some((r_bar_newton, states_newton)), iterations) => {
+                    contact_iterations += iterations;
                     r_bar.copy_from_slice(&r_bar_newton);
                     states = states_newton;
                 }
                 // Newton could not make progress: the seed's fixed point from the start of
                 // the step, as if Newton had not run (its loose first solve is not reused)
-                newton::Outcome::Failed(None) => r_bar.copy_from_slice(&r_bar_initial),
+                newton::Outcome::Failed(None, iterations) => {
+                    contact_iterations += iterations;
+                    r_bar.copy_from_slice(&r_bar_initial);
+                }
             }
             newton = false;
             newton_fallback = true;
@@ -405,6 +429,8 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             contact_iterations,
             converged,
             newton_fallback,
+            warm_started: false,
+            warm_start_failed,
             report: sol.report,
             condensed: Some(problem),
         };
@@ -579,163 +605,5 @@ impl Anderson {
         self.u_prev = Some(u);
         self.u = Some(out.clone());
         out
-    }
-}
-
-/// Exact condensation (public so that an FE code with its own coupling can reuse it) of the adhesive springs `r_adh = −B (x + o)`:
-/// `W̃ = W − W S G⁻¹ S W`, `q̃ = z − W S G⁻¹ S z`, `z = q − W B o`, `G = I + S W S`, `S = √B`,
-/// restricted to the dofs with a spring. Returns `(W, q)` unchanged without springs.
-///
-/// `stiff[k] = [k_n, k_t]` per contact; the dimension per contact is `m / stiff.len()`
-/// (2 or 3: `k_t` acts on every tangential component).
-///
-/// # Errors
-/// [`SolverError::SizeMismatch`] when `m` is not 2 or 3 times `stiff.len()`;
-/// [`SolverError::NotPositiveDefinite`] when `I + S W S` is not (an indefinite `W`).
-pub fn condense(
-    w: &[f64],
-    q: &[f64],
-    offset: &[f64],
-    stiff: &[[f64; 2]],
-    m: usize,
-) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
-    let dim = if stiff.is_empty() { 2 } else { m / stiff.len() };
-    if !(stiff.is_empty() || (dim * stiff.len() == m && (dim == 2 || dim == 3))) {
-        return Err(SolverError::SizeMismatch {
-            what: "stiff (2 or 3 unknowns per contact)",
-            expected: m / 2,
-            found: stiff.len(),
-        });
-    }
-    check_len("W", m * m, w.len())?;
-    check_len("q", m, q.len())?;
-    check_len("offset", m, offset.len())?;
-    let springs: Vec<(usize, f64)> = stiff
-        .iter()
-        .enumerate()
-        .flat_map(|(k, s)| (0..dim).map(move |d| (dim * k + d, if d == 0 { s[0] } else { s[1] })))
-        .filter(|&(_, b)| b > 0.0)
-        .collect();
-    if springs.is_empty() {
-        return Ok((w.to_vec(), q.to_vec()));
-    }
-    let na = springs.len();
-    let sqrt: Vec<f64> = springs.iter().map(|&(_, b)| b.sqrt()).collect();
-    // z = q − W (B o), by rows of W
-    let mut bo = vec![0.0; m];
-    for &(j, b) in &springs {
-        bo[j] = b * offset[j];
-    }
-    let mut z = q.to_vec();
-    if bo.iter().any(|&v| v != 0.0) {
-        for (zi, row) in z.iter_mut().zip(w.chunks_exact(m)) {
-            *zi -= row.iter().zip(&bo).map(|(a, b)| a * b).sum::<f64>();
-        }
-    }
-    // rhs = [ (W S)ᵀ | S z ] (na × (m + 1), column-major): column i < m is row i of W at the
-    // springs' columns, scaled
-    let mut rhs = Mat::<f64>::zeros(na, m + 1);
-    for (i, row) in w.chunks_exact(m).enumerate() {
-        let col = rhs.col_as_slice_mut(i);
-        for (a, &(j, _)) in springs.iter().enumerate() {
-            col[a] = row[j] * sqrt[a];
-        }
-    }
-    for (a, &(j, _)) in springs.iter().enumerate() {
-        rhs[(a, m)] = sqrt[a] * z[j];
-    }
-    let ws_t = rhs.subcols(0, m).to_owned();
-    // G = I + S W S on the springs: column c is column j_c of (W S)ᵀ, scaled
-    let mut g = Mat::<f64>::zeros(na, na);
-    for (c, &(j, _)) in springs.iter().enumerate() {
-        let src = rhs.col_as_slice(j);
-        let col = g.col_as_slice_mut(c);
-        for (a, v) in col.iter_mut().enumerate() {
-            *v = src[a] * sqrt[c];
-        }
-        col[c] += 1.0;
-    }
-    let par = dense_parallelism(m * na * (m + 1));
-    let mut stack = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(
-        na,
-        par,
-        Default::default(),
-    ));
-    llt::factor::cholesky_in_place(
-        g.as_mut(),
-        Default::default(),
-        par,
-        MemStack::new(&mut stack),
-        Default::default(),
-    )
-    .map_err(|_| SolverError::NotPositiveDefinite { contact: 0 })?;
-    // Y = G⁻¹ [ (WS)ᵀ | S z ]
-    llt::solve::solve_in_place_with_conj(
-        g.as_ref(),
-        Conj::No,
-        rhs.as_mut(),
-        par,
-        MemStack::new(&mut []),
-    );
-    // the correction W S Y, transposed ((m + 1) × m, column-major): column i is row i of
-    // W S Y, contiguous as row i of the row-major W̃
-    let mut correction = Mat::<f64>::zeros(m + 1, m);
-    matmul(
-        correction.as_mut(),
-        Accum::Replace,
-        rhs.transpose(),
-        ws_t.as_ref(),
-        1.0,
-        par,
-    );
-    let mut w_eff = w.to_vec();
-    for (i, row) in w_eff.chunks_exact_mut(m).enumerate() {
-        let col = correction.col_as_slice(i);
-        for (v, c) in row.iter_mut().zip(col) {
-            *v -= c;
-        }
-        z[i] -= col[m];
-    }
-    symmetrize(&mut w_eff, m);
-    Ok((w_eff, z))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn condensation_matches_the_direct_formula() {
-        // W̃ = (W⁻¹ + B)⁻¹ on a 2-contact problem, checked against (I + W B)⁻¹ W.
-        let w = vec![
-            2.0, 0.3, 0.5, 0.1, //
-            0.3, 1.5, 0.2, 0.4, //
-            0.5, 0.2, 3.0, 0.6, //
-            0.1, 0.4, 0.6, 2.5,
-        ];
-        let q = vec![0.1, -0.2, 0.3, 0.05];
-        let o = vec![0.0, 0.7, 0.0, -0.3];
-        let stiff = [[4.0, 0.0], [1.0, 2.0]];
-        let (we, qe) = condense(&w, &q, &o, &stiff, 4).unwrap();
-        let b = [4.0, 0.0, 1.0, 2.0];
-        let wm = faer::MatRef::from_row_major_slice(&w, 4, 4);
-        let mut a = Mat::<f64>::identity(4, 4);
-        for i in 0..4 {
-            for j in 0..4 {
-                a[(i, j)] += wm[(i, j)] * b[j];
-            }
-        }
-        let lu = a.partial_piv_lu();
-        let expect_w = lu.solve(wm);
-        let zq = Mat::<f64>::from_fn(4, 1, |i, _| {
-            q[i] - (0..4).map(|j| wm[(i, j)] * b[j] * o[j]).sum::<f64>()
-        });
-        let expect_q = lu.solve(&zq);
-        for i in 0..4 {
-            for j in 0..4 {
-                assert!((we[i * 4 + j] - expect_w[(i, j)]).abs() < 1e-13);
-            }
-            assert!((qe[i] - expect_q[(i, 0)]).abs() < 1e-13);
-        }
     }
 }

@@ -24,7 +24,7 @@ use crate::coupling::flexibility::{Previous, build_dense};
 use crate::coupling::primal::{LocalFrame, PrimalCache};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
-use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, solve_adhesive};
+use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, WarmStartPacing, solve_adhesive};
 use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
@@ -181,6 +181,7 @@ pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     w_active: Vec<usize>,
     w: Vec<f64>,
     w_version: Option<u64>,
+    warm: WarmStartPacing,
     u: Vec<f64>,
     /// Nodal displacements at the end of the last step (numbering-free).
     nodal_u: Vec<[f64; 3]>,
@@ -258,6 +259,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             w_active: Vec::new(),
             w: Vec::new(),
             w_version: None,
+            warm: WarmStartPacing::default(),
             time: 0.0,
             steps: 0,
             solver: UzawaSolver::new(settings.solver),
@@ -626,9 +628,11 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             let options = AdhesionOptions {
                 accept_non_converged: self.settings.adhesion.accept_non_converged
                     || self.settings.solver.accept_non_converged,
+                warm_start: self.settings.adhesion.warm_start && self.warm.enabled(),
                 ..self.settings.adhesion
             };
             let sol = solve_adhesive(&mut self.solver, &step, Some(&warm), &options)?;
+            self.warm.record(&sol);
             return Ok(Solved {
                 r: sol.r,
                 r_bar: sol.r_bar,
