@@ -243,6 +243,7 @@ fn shear_and_pile_scenes_check() {
         "delamination.toml",
         "block_force.toml",
         "pile_force.toml",
+        "pile_refined.toml",
     ] {
         let stdout = ok(&bipo(&["check".as_ref(), scenes().join(scene).as_os_str()]));
         assert!(

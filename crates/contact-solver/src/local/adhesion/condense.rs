@@ -29,6 +29,16 @@ pub fn condensed_problem<L: ContactLaw, const D: usize>(
     check_len("u_start", na, step.u_start.len())?;
     check_len("areas", na, step.areas.len())?;
     let offset = start_offset(step);
+    Ok(condensed_with_springs(step, states, &offset)?.0)
+}
+
+/// The condensed problem of `states` and the nodal springs `A k(state)` per contact.
+pub(super) fn condensed_with_springs<L: ContactLaw, const D: usize>(
+    step: &AdhesiveStep<'_, L, D>,
+    states: &[L::State],
+    offset: &[f64],
+) -> Result<(ReducedProblem, Vec<[f64; 2]>), SolverError> {
+    // nodal springs: the law's per-area stiffness times the tributary area
     let stiff: Vec<[f64; 2]> = step
         .laws
         .iter()
@@ -36,14 +46,14 @@ pub fn condensed_problem<L: ContactLaw, const D: usize>(
         .zip(step.areas)
         .map(|((l, s), &a)| l.adhesive_stiffness(s).map(|k| k * a))
         .collect();
-    let (w_eff, q_eff) = condense(step.w, step.q, &offset, &stiff, m)?;
+    let (w_eff, q_eff) = condense(step.w, step.q, offset, &stiff, step.q.len())?;
     let mu = step
         .laws
         .iter()
         .zip(states)
         .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
         .collect();
-    ReducedProblem::with_dimension(D, w_eff, q_eff, mu)
+    Ok((ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?, stiff))
 }
 
 /// The springs act on the total tangential displacement: the offset of the jumps from `x`,

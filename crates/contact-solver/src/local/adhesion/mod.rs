@@ -69,7 +69,7 @@
 
 mod condense;
 
-use condense::start_offset;
+use condense::{condensed_with_springs, start_offset};
 pub use condense::{condense, condensed_problem};
 pub use warm::WarmStartPacing;
 mod newton;
@@ -352,22 +352,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
         }
     }
     loop {
-        // nodal springs: the law's per-area stiffness times the tributary area
-        let stiff: Vec<[f64; 2]> = step
-            .laws
-            .iter()
-            .zip(&states)
-            .zip(step.areas)
-            .map(|((l, s), &a)| l.adhesive_stiffness(s).map(|k| k * a))
-            .collect();
-        let (w_eff, q_eff) = condense(step.w, step.q, &offset, &stiff, m)?;
-        let mu = step
-            .laws
-            .iter()
-            .zip(&states)
-            .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
-            .collect();
-        let problem = ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?;
+        let (problem, stiff) = condensed_with_springs(step, &states, &offset)?;
         let sol = if newton && adhesion_iterations == 0 {
             // Newton's start only needs the contact set: a loose solve
             let saved = *solver.settings();
