@@ -68,12 +68,13 @@
 //! ```
 
 mod condense;
-
-use condense::{condensed_with_springs, start_offset};
-pub use condense::{condense, condensed_problem};
-pub use warm::WarmStartPacing;
 mod newton;
 mod warm;
+
+pub use condense::{condense, condensed_problem};
+pub use warm::WarmStartPacing;
+
+use condense::{condensed_with_springs, start_offset};
 
 use super::problem::ReducedProblem;
 use super::settings::{Algorithm, UzawaReport};
