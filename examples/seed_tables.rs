@@ -47,9 +47,12 @@ impl Way {
     }
 }
 
-/// The steps of one run, its wall time, its Newton fallbacks and its warm starts (solved,
+/// The steps of one run, its wall time, and its Newton fallbacks and warm starts (solved,
 /// failed).
-fn run(scene: &str, way: Way) -> Result<(Vec<StepResult>, f64, [usize; 3]), Box<dyn Error>> {
+type Run = (Vec<StepResult>, f64, [usize; 3]);
+
+/// One run of a scene in one way ([`Run`]).
+fn run(scene: &str, way: Way) -> Result<Run, Box<dyn Error>> {
     let settings = way.settings();
     let start = Instant::now();
     let (steps, counters) = match scene {

@@ -176,6 +176,8 @@ pub struct SolverSpec {
     pub adhesion_tol: Option<f64>,
     /// How adhesion and contact are solved together: `newton` (default) or `fixed-point`.
     pub adhesion_method: Option<AdhesionMethodSpec>,
+    /// Newton adhesion: try Newton from the previous step's reactions first (default true).
+    pub adhesion_warm_start: Option<bool>,
     /// Maximum adhesion iterations.
     pub max_adhesion_iterations: Option<usize>,
     /// Maximum penetration-check passes.

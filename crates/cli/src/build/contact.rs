@@ -131,6 +131,19 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
             AdhesionMethodSpec::Newton => AdhesionMethod::Newton,
         };
     }
+    if let Some(w) = s.adhesion_warm_start {
+        let p = root.key("adhesion_warm_start");
+        if w && out.adhesion_method == AdhesionMethod::FixedPoint {
+            return Err(CliError::at(
+                &p,
+                format!(
+                    "`{p}` = true is only read with adhesion_method = \"newton\" (it starts \
+                     Newton from the previous step's reactions)"
+                ),
+            ));
+        }
+        out.adhesion_warm_start = w;
+    }
     if let Some(n) = s.max_adhesion_iterations {
         out.max_adhesion_iterations = count(
             &root.key("max_adhesion_iterations"),

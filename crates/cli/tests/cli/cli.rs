@@ -566,3 +566,42 @@ fn a_closed_pipe_ends_quietly() {
     assert!(out.status.success(), "{:?}: {stderr}", out.status);
     assert!(!stderr.contains("internal error"), "{stderr}");
 }
+
+/// `[solver] adhesion_warm_start` is read: off, no step tries Newton from the previous step's
+/// reactions; on (the default), the delamination tries it (and drops it: its steps move the
+/// front too far) a few paced times; the answers agree to the solvers' tolerances.
+#[test]
+fn the_warm_start_key_switches_the_warm_start() {
+    let dir = tmp("warm_start_key");
+    let text = std::fs::read_to_string(scenes().join("delamination.toml")).unwrap();
+    let run = |name: &str, extra: &str| {
+        let scene = dir.join(format!("{name}.toml"));
+        std::fs::write(
+            &scene,
+            text.replace("[solver]\n", &format!("[solver]\n{extra}")),
+        )
+        .unwrap();
+        let out = dir.join(name);
+        ok(&bipo(&[
+            "run".as_ref(),
+            scene.as_os_str(),
+            "-q".as_ref(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]));
+        summary(&out)
+    };
+    let on = run("on", "");
+    let off = run("off", "adhesion_warm_start = false\n");
+    let tried = |s: &serde_json::Value| {
+        s["counters"]["adhesion_warm_starts"].as_u64().unwrap()
+            + s["counters"]["adhesion_warm_start_failures"]
+                .as_u64()
+                .unwrap()
+    };
+    assert!((1..=30).contains(&tried(&on)), "{}", on["counters"]);
+    assert_eq!(tried(&off), 0, "{}", off["counters"]);
+    let force = |s: &serde_json::Value| s["zones"][0]["final_force_n"].as_f64().unwrap();
+    let (a, b) = (force(&on), force(&off));
+    assert!((a - b).abs() <= 1e-6 * a.abs().max(b.abs()), "{a} vs {b}");
+}

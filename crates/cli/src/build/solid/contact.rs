@@ -81,6 +81,7 @@ fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
     out.adhesion.max_iterations = plane.max_adhesion_iterations;
     out.adhesion.anderson_window = plane.adhesion_anderson_window;
     out.adhesion.method = plane.adhesion_method;
+    out.adhesion.warm_start = plane.adhesion_warm_start;
     out.adhesion.accept_non_converged = plane.solver.accept_non_converged;
     Ok(out)
 }
