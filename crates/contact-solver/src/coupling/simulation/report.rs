@@ -142,8 +142,8 @@ pub struct Counters {
     /// loose start and its condensation
     /// ([`AdhesionOptions::warm_start`](crate::local::adhesion::AdhesionOptions::warm_start)).
     pub adhesion_warm_starts: usize,
-    /// Warm starts that did not converge within their cap (the step went on from the loose
-    /// start).
+    /// Warm starts that did not converge within their cap or whose answer the state-change
+    /// guard dropped (the step went on from the loose start).
     pub adhesion_warm_start_failures: usize,
 }
 

@@ -206,8 +206,9 @@ pub struct AdhesiveSolution<S> {
     pub newton_fallback: bool,
     /// Newton solved the step from the start `r̄` ([`AdhesionOptions::warm_start`]).
     pub warm_started: bool,
-    /// The warm-started Newton was tried and did not converge within its cap (its
-    /// iterations are counted in [`contact_iterations`](Self::contact_iterations)).
+    /// The warm-started Newton was tried and did not converge within its cap, or its answer
+    /// moved a state by more than the guard allows (its iterations are counted in
+    /// [`contact_iterations`](Self::contact_iterations)).
     pub warm_start_failed: bool,
     /// Report of the last reduced solve.
     pub report: UzawaReport,
