@@ -29,7 +29,7 @@
 //! [`SimulationSettings::equilibrium_tol`](super::SimulationSettings::equilibrium_tol).
 
 use super::ContactSimulation;
-use super::last_problem::{LastProblem, Pending};
+use super::last_problem::AdhesiveInputs;
 use super::report::StepReport;
 use super::solve::Solved;
 use crate::error::SolverError;
@@ -342,24 +342,17 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
         report.equilibrium_iterations += iterations;
         // (the last solve's: the trial solves of the line search are not counted)
-        self.warm.record(&sol);
-        self.counters.record_adhesive(&sol);
-        report.residual = sol.report.residual;
-        report.converged &= sol.converged;
         // the q of the accepted amplitudes
         let q: Vec<f64> = (0..m)
             .map(|row| q0[row] + (0..nm).map(|j| fl.g[row * nm + j] * alpha[j]).sum::<f64>())
             .collect();
-        let (solved, condensed) = Solved::from_adhesive(sol, alpha);
-        let pending = Pending {
+        let inputs = AdhesiveInputs {
             q,
             laws,
-            states: solved.states.clone(),
             u_start,
             areas,
         };
-        self.last_problem = LastProblem::from_solve(condensed, pending);
-        Ok(solved)
+        Ok(self.finish_adhesive(sol, alpha, inputs, report))
     }
 }
 

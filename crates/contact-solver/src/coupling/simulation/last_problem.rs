@@ -9,13 +9,18 @@ use crate::local::adhesion::{AdhesiveStep, condensed_problem};
 use contact_laws::ContactLaw;
 use std::sync::OnceLock;
 
-/// What an adhesive step solved by Newton needs to form its condensed problem besides `F*`.
-pub(super) struct Pending<L: ContactLaw> {
+/// What an adhesive pass solved with besides `F*` and its final states.
+pub(super) struct AdhesiveInputs<L: ContactLaw> {
     pub(super) q: Vec<f64>,
     pub(super) laws: Vec<L>,
-    pub(super) states: Vec<L::State>,
     pub(super) u_start: Vec<[f64; 2]>,
     pub(super) areas: Vec<f64>,
+}
+
+/// What an adhesive step solved by Newton needs to form its condensed problem besides `F*`.
+pub(super) struct Pending<L: ContactLaw> {
+    inputs: AdhesiveInputs<L>,
+    states: Vec<L::State>,
 }
 
 /// The last reduced problem, formed or pending.
@@ -28,12 +33,9 @@ pub(super) enum LastProblem<L: ContactLaw> {
 }
 
 impl<L: ContactLaw> LastProblem<L> {
-    /// The problem a solve formed, or the pending one to form from `w` when asked.
-    pub(super) fn from_solve(formed: Option<ReducedProblem>, pending: Pending<L>) -> Self {
-        match formed {
-            Some(p) => Self::Formed(p),
-            None => Self::Pending(Box::new(pending), OnceLock::new()),
-        }
+    /// A problem to form from `F*`, `inputs` and the final `states` when asked.
+    pub(super) fn pending(inputs: AdhesiveInputs<L>, states: Vec<L::State>) -> Self {
+        Self::Pending(Box::new(Pending { inputs, states }), OnceLock::new())
     }
 
     /// The problem, formed now if pending (`w` is `F*` of the last solve). `None` when the
@@ -51,11 +53,11 @@ impl<L: ContactLaw> LastProblem<L> {
 fn form<L: ContactLaw>(p: &Pending<L>, w: &[f64]) -> Result<ReducedProblem, SolverError> {
     let step = AdhesiveStep::<L, 2> {
         w,
-        q: &p.q,
-        laws: &p.laws,
+        q: &p.inputs.q,
+        laws: &p.inputs.laws,
         start_states: &p.states,
-        u_start: &p.u_start,
-        areas: &p.areas,
+        u_start: &p.inputs.u_start,
+        areas: &p.inputs.areas,
         dt: 0.0,
     };
     condensed_problem(&step, &p.states)

@@ -5,7 +5,7 @@
 //! gaps, solves, and returns the reactions on the active set.
 
 use super::ContactSimulation;
-use super::last_problem::{LastProblem, Pending};
+use super::last_problem::{AdhesiveInputs, LastProblem};
 use super::report::StepReport;
 use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
 use crate::error::SolverError;
@@ -247,21 +247,36 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             warm_start: self.settings.adhesion_warm_start && self.warm.enabled(),
         };
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
-        self.warm.record(&sol);
-        self.counters.record_adhesive(&sol);
         report.contact_iterations += sol.contact_iterations;
         report.adhesion_iterations += sol.adhesion_iterations;
-        report.residual = sol.report.residual;
-        report.converged &= sol.converged;
-        let (solved, condensed) = Solved::from_adhesive(sol, Vec::new());
-        let pending = Pending {
+        let inputs = AdhesiveInputs {
             q,
             laws,
-            states: solved.states.clone(),
             u_start,
             areas,
         };
-        self.last_problem = LastProblem::from_solve(condensed, pending);
-        Ok(solved)
+        Ok(self.finish_adhesive(sol, Vec::new(), inputs, report))
+    }
+
+    /// An adhesive pass's answer: paces the warm start, counts Newton's outcomes, reports the
+    /// residual, and keeps the reduced problem for export (the solve's, or, after Newton, one
+    /// formed on request from `F*`, `inputs` and the final states).
+    pub(super) fn finish_adhesive(
+        &mut self,
+        sol: AdhesiveSolution<L::State>,
+        alpha: Vec<f64>,
+        inputs: AdhesiveInputs<L>,
+        report: &mut StepReport,
+    ) -> Solved<L::State> {
+        self.warm.record(&sol);
+        self.counters.record_adhesive(&sol);
+        report.residual = sol.report.residual;
+        report.converged &= sol.converged;
+        let (solved, condensed) = Solved::from_adhesive(sol, alpha);
+        self.last_problem = match condensed {
+            Some(p) => LastProblem::Formed(p),
+            None => LastProblem::pending(inputs, solved.states.clone()),
+        };
+        solved
     }
 }
