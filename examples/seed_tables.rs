@@ -49,7 +49,7 @@ impl Way {
 
 /// The steps of one run, its wall time, and its Newton fallbacks and warm starts (solved,
 /// failed).
-type Run = (Vec<StepResult>, f64, [usize; 3]);
+type Run = (Vec<StepResult>, f64, [usize; 4]);
 
 /// One run of a scene in one way ([`Run`]).
 fn run(scene: &str, way: Way) -> Result<Run, Box<dyn Error>> {
@@ -80,6 +80,7 @@ fn run(scene: &str, way: Way) -> Result<Run, Box<dyn Error>> {
         c.adhesion_newton_fallbacks,
         c.adhesion_warm_starts,
         c.adhesion_warm_start_failures,
+        c.adhesion_factorizations,
     ];
     Ok((steps, seconds, newton))
 }
@@ -102,9 +103,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         _ => vec![Way::Newton, Way::FixedPoint, Way::Classic],
     };
     println!(
-        "| scene | way | contact iterations per step (min / median / max) | total | β iterations | Newton fallbacks | warm starts (failed) | time (median of {repeats}) | max abs Δr / max abs r | max abs Δβ |"
+        "| scene | way | contact iterations per step (min / median / max) | total | β iterations | Newton fallbacks | warm starts (failed) | Jacobians factorised | time (median of {repeats}) | max abs Δr / max abs r | max abs Δβ |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     let only = std::env::var("SCENE").ok();
     for scene in ["5.6.1", "5.6.2", "pile"] {
         if only.as_deref().is_some_and(|o| o != scene) {
@@ -113,7 +114,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         let mut times = vec![Vec::new(); ways.len()];
         let mut results = vec![Vec::new(); ways.len()];
         let mut failed: Vec<Option<String>> = vec![None; ways.len()];
-        let mut fallbacks = vec![[0; 3]; ways.len()];
+        let mut fallbacks = vec![[0; 4]; ways.len()];
         for _ in 0..repeats {
             for (w, &way) in ways.iter().enumerate() {
                 match run(scene, way) {
@@ -133,7 +134,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             .fold(0.0, f64::max);
         for (w, &way) in ways.iter().enumerate() {
             if let Some(e) = &failed[w] {
-                println!("| {scene} | {} | fails: {e}… | | | | | | | |", way.name());
+                println!("| {scene} | {} | fails: {e}… | | | | | | | | |", way.name());
                 continue;
             }
             let mut per_step: Vec<f64> = results[w]
@@ -158,11 +159,12 @@ fn main() -> Result<(), Box<dyn Error>> {
             let max = per_step.iter().copied().fold(0.0, f64::max);
             let med = median(&mut per_step);
             println!(
-                "| {scene} | {} | {min} / {med} / {max} | {total} | {beta} | {} | {} ({}) | {:.1} ms | {:.1e} | {db:.1e} |",
+                "| {scene} | {} | {min} / {med} / {max} | {total} | {beta} | {} | {} ({}) | {} | {:.1} ms | {:.1e} | {db:.1e} |",
                 way.name(),
                 fallbacks[w][0],
                 fallbacks[w][1],
                 fallbacks[w][2],
+                fallbacks[w][3],
                 1e3 * median(&mut times[w]),
                 dr / scale.max(f64::MIN_POSITIVE),
             );

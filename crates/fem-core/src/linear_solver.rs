@@ -207,7 +207,37 @@ impl SpdSolver {
             self.factored,
             "SpdSolver::factor must succeed before solving"
         );
-        let par = parallelism(self.dim);
+        self.solve_columns(rhs, parallelism(self.dim));
+    }
+
+    /// Solves the columns of `rhs` with `par`: split by columns between its threads (each
+    /// share solved sequentially) when every thread gets [`MIN_COLUMNS_PER_THREAD`] of them.
+    fn solve_columns(&self, rhs: MatMut<'_, f64>, par: faer::Par) {
+        let threads = match par {
+            faer::Par::Seq => 1,
+            faer::Par::Rayon(n) => n.get(),
+        };
+        let groups = threads.min(rhs.ncols() / MIN_COLUMNS_PER_THREAD).max(1);
+        if groups == 1 {
+            self.solve_block(rhs, par);
+            return;
+        }
+        // independent columns: each thread solves its share sequentially (faer's parallel
+        // solve divides the work of every column, and costs more than it saves on the 60 000
+        // dofs of the refined pile: `docs/benchmarks.md`, "Threads")
+        let per = rhs.ncols().div_ceil(groups);
+        std::thread::scope(|scope| {
+            let mut rest = rhs;
+            while rest.ncols() > per {
+                let (block, tail) = rest.split_at_col_mut(per);
+                scope.spawn(move || self.solve_block(block, faer::Par::Seq));
+                rest = tail;
+            }
+            self.solve_block(rest, faer::Par::Seq);
+        });
+    }
+
+    fn solve_block(&self, rhs: MatMut<'_, f64>, par: faer::Par) {
         let mut scratch = MemBuffer::new(
             self.symbolic
                 .solve_in_place_scratch::<f64>(rhs.ncols(), par),
@@ -220,6 +250,10 @@ impl SpdSolver {
         );
     }
 }
+
+/// Below this many right-hand sides per thread a multi-column solve is not split between
+/// threads by columns.
+pub const MIN_COLUMNS_PER_THREAD: usize = 8;
 
 /// Below this many unknowns factorisations and solves run sequentially whatever faer's global
 /// parallelism: handing them to rayon's threads costs more than it saves. Measured with
@@ -320,6 +354,53 @@ mod tests {
         let mut b = vec![1.0; 400];
         s.solve_in_place(&mut b);
         assert!(b.iter().all(|x| x.is_finite() && *x > 0.0));
+    }
+
+    #[test]
+    fn columns_split_between_threads_solve_like_one_block() {
+        let a = laplacian(20, 0, 0.0);
+        let mut s = solver(&a, SupernodalThreshold::FORCE_SUPERNODAL);
+        s.factor(a.as_ref()).unwrap();
+        let n = 400;
+        let b = faer::Mat::<f64>::from_fn(n, 43, |i, j| ((i * 7 + j * 13) % 17) as f64 - 8.0);
+        let mut one = b.clone();
+        s.solve_block(one.as_mut(), faer::Par::Seq);
+        // 43 columns on 3 threads: shares of 15, 15 and 13; on 8 threads only 5 shares of 8+
+        for threads in [2, 3, 8] {
+            let mut split = b.clone();
+            s.solve_columns(split.as_mut(), faer::Par::rayon(threads));
+            for j in 0..43 {
+                for i in 0..n {
+                    // the same arithmetic per column: equal to rounding
+                    let (x, y) = (split[(i, j)], one[(i, j)]);
+                    assert!((x - y).abs() <= 1e-13 * y.abs().max(1.0), "{x} vs {y}");
+                }
+            }
+        }
+        // and the solution solves K x = b (residual of the 5-point stencil)
+        for j in [0, 42] {
+            for k in 0..n {
+                let (i, jj) = (k % 20, k / 20);
+                let mut kx = 4.0 * one[(k, j)];
+                if i > 0 {
+                    kx -= one[(k - 1, j)];
+                }
+                if i + 1 < 20 {
+                    kx -= one[(k + 1, j)];
+                }
+                if jj > 0 {
+                    kx -= one[(k - 20, j)];
+                }
+                if jj + 1 < 20 {
+                    kx -= one[(k + 20, j)];
+                }
+                assert!(
+                    (kx - b[(k, j)]).abs() < 1e-10,
+                    "row {k}: {kx} vs {}",
+                    b[(k, j)]
+                );
+            }
+        }
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 use super::anderson::{AndersonScratch, BaseMap};
 use super::classic::ClassicScratch;
+use super::dense::KeptLu;
 use super::newton::{NewtonScratch, factor_fill};
 use super::plain;
 use super::problem::ReducedProblem;
@@ -69,6 +70,8 @@ pub struct UzawaSolver {
     classic: ClassicScratch,
     anderson: AndersonScratch,
     newton: NewtonScratch,
+    /// The factors of the adhesive Newton's last Jacobian, for its chord steps.
+    kept_lu: KeptLu,
 }
 
 /// Solves `problem` with one Coulomb law `Coulomb::new(μ_i)` per contact — the entry point for
@@ -104,6 +107,11 @@ impl UzawaSolver {
     /// The settings.
     pub fn settings(&self) -> &UzawaSettings {
         &self.settings
+    }
+
+    /// The factors the adhesive Newton keeps between iterations and between steps.
+    pub(crate) fn kept_lu(&mut self) -> &mut KeptLu {
+        &mut self.kept_lu
     }
 
     /// The settings, to change for one solve.

@@ -145,6 +145,9 @@ pub struct Counters {
     /// Warm starts that did not converge within their cap or whose answer the state-change
     /// guard dropped (the step went on from the loose start).
     pub adhesion_warm_start_failures: usize,
+    /// Jacobians the adhesive Newton formed and factorised (its other iterations were chord
+    /// steps with kept factors).
+    pub adhesion_factorizations: usize,
 }
 
 impl Counters {
@@ -153,6 +156,7 @@ impl Counters {
         self.adhesion_newton_fallbacks += usize::from(sol.newton_fallback);
         self.adhesion_warm_starts += usize::from(sol.warm_started);
         self.adhesion_warm_start_failures += usize::from(sol.warm_start_failed);
+        self.adhesion_factorizations += sol.jacobian_factorizations;
     }
 }
 

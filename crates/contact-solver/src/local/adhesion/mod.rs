@@ -210,6 +210,10 @@ pub struct AdhesiveSolution<S> {
     /// moved a state by more than the guard allows (its iterations are counted in
     /// [`contact_iterations`](Self::contact_iterations)).
     pub warm_start_failed: bool,
+    /// Jacobians [`AdhesionMethod::Newton`] formed and factorised (dense LU, `2m³/3` flops
+    /// each), the step's dominant cost on a large interface; its other iterations were chord
+    /// steps with kept factors. 0 for the fixed point.
+    pub jacobian_factorizations: usize,
     /// Report of the last reduced solve.
     pub report: UzawaReport,
     /// The last condensed problem `x = W̃ r̄ + q̃` with `μ̄` per contact (export it to compare
@@ -321,6 +325,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
     let mut contact_iterations = 0;
     let mut converged = true;
     let mut warm_start_failed = false;
+    let mut factorizations = 0;
     if let Some(r_bar_start) = r_bar_start.filter(|_| newton && options.warm_start) {
         // the total reactions at the start: r̄ plus the start states' springs on the start
         // jumps (x + o at the start is u_start)
@@ -333,7 +338,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             .collect();
         let mut settings = *solver.settings();
         settings.max_iterations = settings.max_iterations.min(WARM_MAX_ITERATIONS);
-        match newton::solve(&settings, step, &r_warm, &offset)? {
+        match newton::solve(&settings, step, &r_warm, &offset, solver.kept_lu())? {
             newton::Outcome::Solved(mut sol) => {
                 let change = step
                     .laws
@@ -345,10 +350,12 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
                     return Ok(*sol);
                 }
                 contact_iterations += sol.contact_iterations;
+                factorizations += sol.jacobian_factorizations;
                 warm_start_failed = true;
             }
-            newton::Outcome::Failed(_, iterations) => {
-                contact_iterations += iterations;
+            newton::Outcome::Failed(_, work) => {
+                contact_iterations += work.iterations;
+                factorizations += work.factorizations;
                 warm_start_failed = true;
             }
         }
@@ -382,24 +389,28 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
         if newton && adhesion_iterations == 0 {
             // the first solve found the contact set at the start states: Newton from there
             let start = r.clone();
-            match newton::solve(solver.settings(), step, &start, &offset)? {
+            let settings = *solver.settings();
+            match newton::solve(&settings, step, &start, &offset, solver.kept_lu())? {
                 newton::Outcome::Solved(mut sol) => {
                     sol.contact_iterations += contact_iterations;
+                    sol.jacobian_factorizations += factorizations;
                     sol.adhesion_iterations += 1;
                     sol.warm_start_failed = warm_start_failed;
                     return Ok(*sol);
                 }
                 // Newton stopped close to the answer (at the rounding of the forces): the
                 // fixed point finishes from its iterate
-                newton::Outcome::Failed(Some((r_bar_newton, states_newton)), iterations) => {
-                    contact_iterations += iterations;
+                newton::Outcome::Failed(Some((r_bar_newton, states_newton)), work) => {
+                    contact_iterations += work.iterations;
+                    factorizations += work.factorizations;
                     r_bar.copy_from_slice(&r_bar_newton);
                     states = states_newton;
                 }
                 // Newton could not make progress: the seed's fixed point from the start of
                 // the step, as if Newton had not run (its loose first solve is not reused)
-                newton::Outcome::Failed(None, iterations) => {
-                    contact_iterations += iterations;
+                newton::Outcome::Failed(None, work) => {
+                    contact_iterations += work.iterations;
+                    factorizations += work.factorizations;
                     r_bar.copy_from_slice(&r_bar_initial);
                 }
             }
@@ -414,6 +425,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             states,
             adhesion_iterations: 0,
             contact_iterations,
+            jacobian_factorizations: factorizations,
             converged,
             newton_fallback,
             warm_started: false,

@@ -16,11 +16,15 @@
 //! `v_s` its modified velocity, seed 5.26). `F` depends on contact `i`'s own `r_i` and
 //! `x_i` only, so its generalised Jacobian is `J = A + B W` with `A_i = ∂F_i/∂r_i` and
 //! `B_i = ∂F_i/∂x_i` block-diagonal; both come from central differences of the law's own
-//! functions (any [`ContactLaw`] works, and a user's law needs no derivatives). Each Newton
+//! functions (any [`ContactLaw`] works, and a user's law needs no derivatives). A Newton
 //! step factorises the dense `m × m` matrix `J` (no condensation of the springs per
-//! iteration), with Armijo backtracking on `‖F‖²`. One iteration here counts as one contact
-//! iteration *and* one adhesion iteration: it updates the reactions and the states together,
-//! as the seed's "contact iterations" do.
+//! iteration), with Armijo backtracking on `‖F‖²`. Before forming a new `J`, a chord step
+//! solves with the factors kept from the last one (this solve's, or the previous solve's on
+//! the same `W`: a load step's Jacobian differs little from the last step's), two triangular
+//! solves against `2m³/3` flops; it is kept only if it divides `‖F‖` by 1.25, and it is tried
+//! only from `m` = 256 on, where the factorisation dominates. One iteration (Newton or
+//! chord) counts as one contact iteration *and* one adhesion iteration: it updates the
+//! reactions and the states together, as the seed's "contact iterations" do.
 //!
 //! The iteration stops when the relative natural residual (the reduced layer's, with `r̄`)
 //! is at most the solver's `tol`. When it cannot make progress (no descent, a singular
@@ -29,16 +33,28 @@
 
 use super::{AdhesiveSolution, AdhesiveStep, update_state};
 use crate::error::SolverError;
-use crate::local::dense::dense_parallelism;
+use crate::local::dense::{KeptLu, dense_parallelism, fingerprint};
 use crate::local::residual::contact_statuses;
 use crate::local::settings::{Algorithm, UzawaReport, UzawaSettings};
 use contact_laws::{ContactLaw, LocalVec2, LocalVec3};
+use faer::Par;
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::lu::partial_pivoting::{factor, solve};
-use faer::{MatMut, MatRef};
 
-/// Newton steps before the iteration gives up (it converges in 2–6 on the seed's scenes).
+/// Newton steps (each with a new Jacobian) before the iteration gives up (it converges in
+/// 2–6 on the seed's scenes).
 const MAX_ITERATIONS: usize = 50;
+/// Chord steps (with kept factors) in one solve at most; past them every step forms its
+/// Jacobian.
+const MAX_CHORDS: usize = 40;
+/// A chord step is kept only if it multiplies the natural residual `‖F‖` by at most this;
+/// otherwise the iterate's own Jacobian is formed and factorised. On the pile refined 4× and
+/// 10× (`m` = 518 and 1286), 0.8 and 0.9 gave the same time, 0.5 a third more
+/// (`docs/benchmarks.md`, "The pile with its interface refined").
+const CHORD_CONTRACTION: f64 = 0.8;
+/// Chord steps only from this many unknowns: below, a factorisation costs about what a chord
+/// step does (`m` = 66 and 130 on the seed's scenes), and chords only add iterations (5.6.1:
+/// 7 → 10 at the median, and slower).
+const CHORD_MIN_SIZE: usize = 256;
 /// Armijo's sufficient-decrease constant.
 const ARMIJO: f64 = 1e-4;
 /// Smallest backtracking step before the iteration gives up.
@@ -205,16 +221,29 @@ pub(super) enum Outcome<S> {
     /// Converged.
     Solved(Box<AdhesiveSolution<S>>),
     /// Could not make progress; the last iterate's `r̄` and states when its residual is below
-    /// [`CLOSE`] (a start for the fixed point), `None` otherwise; the iterations made.
-    Failed(Option<(Vec<f64>, Vec<S>)>, usize),
+    /// [`CLOSE`] (a start for the fixed point), `None` otherwise; the work done.
+    Failed(Option<(Vec<f64>, Vec<S>)>, Work),
+}
+
+/// The work of one Newton solve.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Work {
+    /// Iterations (Newton and chord steps).
+    pub(super) iterations: usize,
+    /// Jacobians formed and factorised.
+    pub(super) factorizations: usize,
 }
 
 /// Solves the step by Newton, or says it could not (the caller then runs the fixed point).
+/// `kept` holds the factors of the last Jacobian, reused by chord steps when they were built
+/// for the same `W` (and left there for the next solve); `settings.max_iterations` caps the
+/// Jacobians formed.
 pub(super) fn solve<L: ContactLaw, const D: usize>(
     settings: &UzawaSettings,
     step: &AdhesiveStep<'_, L, D>,
     r_start: &[f64],
     offset: &[f64],
+    kept: &mut KeptLu,
 ) -> Result<Outcome<L::State>, SolverError> {
     let m = step.q.len();
     let na = m / D;
@@ -247,29 +276,27 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
     let mut x = vec![0.0; m];
     apply(w, &r, Some(step.q), &mut x);
     let mut it = eval_all(&data, &r, &x);
-    let max_iterations = settings.max_iterations.min(MAX_ITERATIONS);
+    let max_newton = settings.max_iterations.min(MAX_ITERATIONS);
     let par = dense_parallelism(2 * m * m * m / 3);
-    // J row-major: rows are contiguous while it is built, and the buffer read column-major is
-    // Jᵀ, whose LU solves J Δ = −F by the transposed solve
-    let mut jac = vec![0.0; m * m];
+    let chords_allowed = m >= CHORD_MIN_SIZE;
+    let key = if chords_allowed { fingerprint(w) } else { 0 };
+    let mut scratch = MemBuffer::new(KeptLu::scratch(m, par));
     let mut rhs = vec![0.0; m];
-    let mut perm = vec![0usize; m];
-    let mut perm_inv = vec![0usize; m];
-    let mut scratch = MemBuffer::new(
-        factor::lu_in_place_scratch::<usize, f64>(m, m, par, Default::default()).or(
-            solve::solve_transpose_in_place_scratch::<usize, f64>(m, 1, par),
-        ),
-    );
     let mut wdr = vec![0.0; m];
     let mut r_trial = vec![0.0; m];
     let mut x_trial = vec![0.0; m];
     let mut history = Vec::new();
     let mut iterations = 0;
+    let mut factorizations = 0;
+    let mut chords = 0;
     let mut change = 0.0;
-    let failed = |it: Iterate<L::State>, residual: f64, iterations: usize| {
+    let failed = |it: Iterate<L::State>, residual: f64, iterations: usize, factorizations| {
         Ok(Outcome::Failed(
             (residual <= CLOSE).then_some((it.r_bar, it.states)),
-            iterations,
+            Work {
+                iterations,
+                factorizations,
+            },
         ))
     };
     loop {
@@ -278,12 +305,38 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         if residual <= settings.tol {
             break;
         }
-        if iterations >= max_iterations {
-            return failed(it, residual, iterations);
+        // a chord step: the kept factors (this solve's last Jacobian, or the last solve's on
+        // the same W), the full step kept only if it multiplies ‖F‖ by CHORD_CONTRACTION at most
+        if chords_allowed && chords < MAX_CHORDS && kept.matches(m, key) {
+            for (o, f) in rhs.iter_mut().zip(&it.f) {
+                *o = -f;
+            }
+            kept.solve(&mut rhs, Par::Seq, MemStack::new(&mut scratch));
+            if rhs.iter().all(|v| v.is_finite()) {
+                apply(w, &rhs, None, &mut wdr);
+                for i in 0..m {
+                    r_trial[i] = r[i] + rhs[i];
+                    x_trial[i] = x[i] + wdr[i];
+                }
+                let trial = eval_all(&data, &r_trial, &x_trial);
+                if trial.merit <= CHORD_CONTRACTION * CHORD_CONTRACTION * it.merit {
+                    change = norm(&rhs) / norm(&r_trial).max(f64::MIN_POSITIVE);
+                    core::mem::swap(&mut r, &mut r_trial);
+                    core::mem::swap(&mut x, &mut x_trial);
+                    it = trial;
+                    iterations += 1;
+                    chords += 1;
+                    continue;
+                }
+            }
+        }
+        if factorizations >= max_newton {
+            return failed(it, residual, iterations, factorizations);
         }
         iterations += 1;
-        // J = A + B W
-        jac.fill(0.0);
+        factorizations += 1;
+        // J = A + B W, row-major
+        let jac = kept.start(m);
         for (k, c) in data.iter().enumerate() {
             let (y0, x0) = (get::<D>(&r, k), get::<D>(&x, k));
             // per-component steps, relative to the component (with a floor from the
@@ -350,25 +403,12 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         for (o, f) in rhs.iter_mut().zip(&it.f) {
             *o = -f;
         }
-        let (_, p) = factor::lu_in_place(
-            MatMut::from_column_major_slice_mut(&mut jac, m, m),
-            &mut perm,
-            &mut perm_inv,
-            par,
-            MemStack::new(&mut scratch),
-            Default::default(),
-        );
-        let lu = MatRef::from_column_major_slice(&jac, m, m);
-        solve::solve_transpose_in_place(
-            lu,
-            lu,
-            p,
-            MatMut::from_column_major_slice_mut(&mut rhs, m, 1),
-            par,
-            MemStack::new(&mut scratch),
-        );
+        kept.factor(key, par, MemStack::new(&mut scratch));
+        kept.solve(&mut rhs, par, MemStack::new(&mut scratch));
         if !rhs.iter().all(|v| v.is_finite()) {
-            return failed(it, residual, iterations);
+            // singular: no chord step may reuse these factors
+            kept.forget();
+            return failed(it, residual, iterations, factorizations);
         }
         // W Δr, then Armijo backtracking on ‖F‖²
         apply(w, &rhs, None, &mut wdr);
@@ -388,7 +428,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
             }
             t *= 0.5;
             if t < MIN_STEP {
-                return failed(it, residual, iterations);
+                return failed(it, residual, iterations, factorizations);
             }
         }
     }
@@ -440,6 +480,7 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         states: it.states,
         adhesion_iterations: iterations,
         contact_iterations: iterations,
+        jacobian_factorizations: factorizations,
         converged: true,
         newton_fallback: false,
         warm_started: false,
@@ -509,6 +550,82 @@ mod tests {
             assert!((a.beta() - b.beta()).abs() <= 1e-6, "β {a:?} vs {b:?}");
         }
         newton.adhesion_iterations
+    }
+
+    /// `nc` contacts in 2D, some pulled open, some pressed and sheared (a fraction `load` of
+    /// the loading).
+    fn interface(nc: usize, load: f64) -> (Vec<Rccm>, Vec<f64>) {
+        let laws = (0..nc)
+            .map(|k| rccm(0.0, 0.3, 1e-4 * (1 + k % 3) as f64))
+            .collect();
+        let q = (0..nc)
+            .flat_map(|k| {
+                let n = if k % 3 == 0 {
+                    -0.004
+                } else {
+                    0.003 + 1e-3 * (k % 4) as f64
+                };
+                [load * n, load * 2e-3 * ((k % 5) as f64 - 2.0)]
+            })
+            .collect();
+        (laws, q)
+    }
+
+    #[test]
+    fn chord_steps_on_a_large_interface_keep_the_answer_and_reuse_the_factors() {
+        // 150 contacts in 2D: m = 300, where chord steps are tried
+        let nc = 150;
+        assert!(2 * nc >= super::CHORD_MIN_SIZE);
+        let (laws, q) = interface(nc, 1.0);
+        let w = spd(2 * nc, 5);
+        let starts: Vec<_> = laws.iter().map(|l| l.initial_state()).collect();
+        let (areas, u) = (vec![1.0; nc], vec![[0.0; 2]; nc]);
+        let step = AdhesiveStep {
+            w: &w,
+            q: &q,
+            laws: &laws,
+            start_states: &starts,
+            u_start: &u,
+            areas: &areas,
+            dt: 0.1,
+        };
+        // against the fixed point, from a fresh solver
+        compare(&step);
+        // the next load on the same W: the second solve starts from the first one's factors
+        let options = AdhesionOptions::default();
+        let mut solver = UzawaSolver::new(UzawaSettings::default());
+        solve_adhesive(&mut solver, &step, None, &options).unwrap();
+        let (_, q_next) = interface(nc, 1.05);
+        let next = AdhesiveStep { q: &q_next, ..step };
+        let second = solve_adhesive(&mut solver, &next, None, &options).unwrap();
+        let mut fresh = UzawaSolver::new(UzawaSettings::default());
+        let alone = solve_adhesive(&mut fresh, &next, None, &options).unwrap();
+        assert!(!second.newton_fallback && !alone.newton_fallback);
+        assert!(
+            second.jacobian_factorizations < alone.jacobian_factorizations,
+            "kept factors: {} Jacobians, fresh: {}",
+            second.jacobian_factorizations,
+            alone.jacobian_factorizations
+        );
+        // both stop at the relative residual 1e-10: their reactions agree to far below 1e-8
+        let scale = alone.r.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+        for (a, b) in second.r.iter().zip(&alone.r) {
+            assert!((a - b).abs() <= 1e-8 * scale, "r {a} vs {b}");
+        }
+        // a different W (same size): the kept factors are not used for it
+        let w_other = spd(2 * nc, 6);
+        let other = AdhesiveStep {
+            w: &w_other,
+            ..next
+        };
+        let mut fresh = UzawaSolver::new(UzawaSettings::default());
+        let reused = solve_adhesive(&mut solver, &other, None, &options).unwrap();
+        let alone = solve_adhesive(&mut fresh, &other, None, &options).unwrap();
+        assert_eq!(
+            reused.jacobian_factorizations,
+            alone.jacobian_factorizations
+        );
+        assert_eq!(reused.r, alone.r);
     }
 
     #[test]
