@@ -111,12 +111,19 @@ impl KeptLu {
         );
     }
 
-    /// Scratch enough for [`factor`](Self::factor) and [`solve`](Self::solve) at size `m`.
+    /// Scratch enough for [`factor`](Self::factor) with `par` and [`solve`](Self::solve) with
+    /// `par` or sequentially, at size `m`.
     pub(crate) fn scratch(m: usize, par: faer::Par) -> faer::dyn_stack::StackReq {
         use faer::linalg::lu::partial_pivoting::{factor, solve};
-        factor::lu_in_place_scratch::<usize, f64>(m, m, par, Default::default()).or(
-            solve::solve_transpose_in_place_scratch::<usize, f64>(m, 1, par),
-        )
+        factor::lu_in_place_scratch::<usize, f64>(m, m, par, Default::default())
+            .or(solve::solve_transpose_in_place_scratch::<usize, f64>(
+                m, 1, par,
+            ))
+            .or(solve::solve_transpose_in_place_scratch::<usize, f64>(
+                m,
+                1,
+                faer::Par::Seq,
+            ))
     }
 }
 
