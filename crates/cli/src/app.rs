@@ -516,6 +516,12 @@ fn print_summary(s: &run::Summary, dir: &Path) {
         "    adhesion iterations   {}{adhesion}",
         st.adhesion_iterations
     );
+    if c.adhesion_factorizations > 0 {
+        out::outln!(
+            "    Newton Jacobians      {} (dense LU factorisations of the adhesive Newton)",
+            c.adhesion_factorizations
+        );
+    }
     out::outln!(
         "    F* rebuilds           {} ({} columns)",
         c.flexibility_builds,

@@ -276,6 +276,13 @@ fn pile_preset_runs_its_three_phases() {
     assert_eq!(phases, ["geostatic", "installation", "pullout"]);
     assert_eq!(s["steps"], 4);
     assert!(stdout.contains("phase `pullout`: 2 steps"), "{stdout}");
+    // the adhesive Newton's factorisations, in summary.json and in the stage list
+    let jacobians = s["counters"]["adhesion_factorizations"].as_u64().unwrap();
+    assert!(jacobians > 0, "{}", s["counters"]);
+    assert!(
+        stdout.contains(&format!("Newton Jacobians      {jacobians} ")),
+        "{stdout}"
+    );
     assert!(out.join("pullout.svg").is_file());
     let q = s["curves"]
         .as_array()
