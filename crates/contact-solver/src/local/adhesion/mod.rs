@@ -359,6 +359,9 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
                 warm_start_failed = true;
             }
         }
+        // a dropped warm start's factors belong to the branch it went to (or to an iterate
+        // far from any answer): no chord step from the loose start may use them
+        solver.kept_lu().forget();
     }
     loop {
         let (problem, stiff) = condensed_with_springs(step, &states, &offset)?;
