@@ -18,7 +18,10 @@
 //! E=target/release/examples/contact_scaling
 //! $E run --nx 50 --ny 250 --mode dense --law coulomb   # one configuration (dense | free |
 //!                                                      # active), one CSV row; --steps N
-//!                                                      # applies the load in N steps
+//!                                                      # applies the load in N steps;
+//!                                                      # --tol T (default 1e-8);
+//!                                                      # --reactions FILE writes
+//!                                                      # `node r_n r_t` per contact
 //! $E probe --nx 5000 --ny 25 --block 64                # build, time of 1 and 64 solves
 //! $E sweep dof  --timeout 300    # n_c = 101, DOF 1e3 … 1e6  -> out/scale/dof.csv
 //! $E sweep nc   --timeout 300    # DOF ≈ 1e5, n_c 51 … 4001  -> out/scale/nc.csv
@@ -33,6 +36,8 @@
 
 #[path = "common/mod.rs"]
 mod common;
+#[path = "scale/plot.rs"]
+mod plot;
 
 use bipotential::contact_laws::{ContactLaw, Coulomb, Signorini};
 use bipotential::contact_solver::{
@@ -43,13 +48,14 @@ use bipotential::fem_core::generate::{RectangleSpec, rectangle};
 use bipotential::fem_core::{
     Component, ElementKind, Idealization, LinearElasticModel, Material, Structure, Supports,
 };
-use plotters::prelude::*;
 use std::collections::HashMap;
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
+
+use plot::{loglog, table};
 
 /// Solver tolerance of every timed run.
 const TOL: f64 = 1e-8;
@@ -80,6 +86,10 @@ struct Config {
     algorithm: Option<String>,
     /// Load steps (the top displacement in equal increments; 1: the whole load at once).
     steps: usize,
+    /// Solver tolerance (`None`: [`TOL`]), and a file for the final contact reactions (one
+    /// line `node r_n r_t` per candidate): to compare a run with a tighter one.
+    tol: Option<f64>,
+    reactions: Option<String>,
 }
 
 impl Config {
@@ -110,6 +120,16 @@ impl Config {
                 .flat_map(|a| ["--algorithm".to_string(), a.clone()]),
         )
         .chain(["--steps".to_string(), self.steps.to_string()])
+        .chain(
+            self.tol
+                .into_iter()
+                .flat_map(|t| ["--tol".to_string(), t.to_string()]),
+        )
+        .chain(
+            self.reactions
+                .iter()
+                .flat_map(|f| ["--reactions".to_string(), f.clone()]),
+        )
         .collect()
     }
 
@@ -174,6 +194,8 @@ fn parse_config(args: &[String]) -> Result<Config, Box<dyn Error>> {
         max_iterations: flag(args, "--max-iterations").map(str::parse).transpose()?,
         algorithm: flag(args, "--algorithm").map(String::from),
         steps: get("--steps", "1").parse::<usize>()?.max(1),
+        tol: flag(args, "--tol").map(str::parse).transpose()?,
+        reactions: flag(args, "--reactions").map(String::from),
     })
 }
 
@@ -219,7 +241,7 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
         "active" => FlexibilityMode::ActiveSet,
         other => return Err(format!("unknown mode `{other}` (dense | free | active)").into()),
     });
-    settings.solver.tol = TOL;
+    settings.solver.tol = cfg.tol.unwrap_or(TOL);
     settings.solver.algorithm = match cfg.algorithm.as_deref() {
         None => Algorithm::default(),
         Some("gs") => Algorithm::GaussSeidel,
@@ -271,12 +293,24 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
     let t_total = t0.elapsed().as_secs_f64();
     let c = sim.counters();
     let status = if res.report.converged { "ok" } else { "capped" };
+    eprintln!(
+        "{iterations} contact iterations ({} on the correction columns), {} factorisations, \
+         {} solves",
+        c.active_set_inner_iterations, c.active_set_factorizations, c.active_set_solves
+    );
     let closed = res
         .contacts
         .iter()
         .filter(|r| matches!(r.status, InterfaceStatus::Stick | InterfaceStatus::Slip))
         .count();
     let sum_rn: f64 = res.contacts.iter().map(|r| r.r.n).sum();
+    if let Some(path) = &cfg.reactions {
+        let mut text = String::new();
+        for c in &res.contacts {
+            writeln!(text, "{} {:e} {:e}", c.node, c.r.n, c.r.t[0])?;
+        }
+        std::fs::write(path, text)?;
+    }
     let n_c = sim.candidates().len();
     let dense_bytes = if res.report.matrix_free || res.report.active_set {
         0
@@ -368,6 +402,8 @@ fn sweep(
         max_iterations: None,
         algorithm: algorithm.clone(),
         steps: 1,
+        tol: None,
+        reactions: None,
     };
     // (series key, configurations in increasing cost)
     let mut plan: Vec<Config> = Vec::new();
@@ -676,133 +712,5 @@ fn plot() -> Result<(), Box<dyn Error>> {
             println!("\n{name}:\n{}", table(&rows));
         }
     }
-    Ok(())
-}
-
-/// A markdown table of the main columns.
-fn table(rows: &[HashMap<String, String>]) -> String {
-    let mut s = String::from(
-        "| law, path (solver) | n_c | free DOF | build (s) | step (s) | F* columns | products F* r | \
-         factorisations / solves | iterations | closed | peak RSS (MiB) |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n",
-    );
-    for r in rows {
-        let f = |k: &str, p: usize| {
-            let v = num(r, k);
-            if v.is_finite() {
-                format!("{v:.p$}")
-            } else {
-                "—".into()
-            }
-        };
-        let step = if r["status"] == "ok" {
-            f("t_step", 3)
-        } else {
-            r["status"].clone()
-        };
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {step} | {} | {} | {} | {} | {} | {} |",
-            label(r),
-            r["n_c"],
-            r["dof"],
-            f("t_build", 2),
-            f("flexibility_columns", 0),
-            f("operator_applications", 0),
-            if r["mode"] == "active" {
-                format!("{} / {}", f("factorizations", 0), f("active_set_solves", 0))
-            } else {
-                "—".into()
-            },
-            f("iterations", 0),
-            f("closed", 0),
-            f("peak_rss_mb", 0),
-        );
-    }
-    s
-}
-
-/// Colour, dashing and markers of a curve, from its name: one colour per path (solver), dashed
-/// for Coulomb, no markers on the model lines.
-fn style(name: &str) -> (RGBColor, bool, bool) {
-    let colour = if name.contains("active set") {
-        RGBColor(214, 39, 40)
-    } else if name.contains("matrix-free") || name.contains("products") {
-        RGBColor(31, 119, 180)
-    } else if name.contains("Newton") {
-        RGBColor(44, 160, 44)
-    } else if name.contains("Anderson") || name.contains("F* columns") {
-        RGBColor(255, 127, 14)
-    } else if name.contains("(GS)") {
-        RGBColor(148, 103, 189)
-    } else if name.contains("build") {
-        RGBColor(127, 127, 127)
-    } else {
-        RGBColor(0, 0, 0)
-    };
-    let model = name.contains("bytes") || name.contains("budget");
-    (colour, name.starts_with("coulomb"), !model)
-}
-
-/// A log–log SVG plot, a marker on every measured point; room is left above the curves for
-/// the legend.
-fn loglog(
-    path: &Path,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    series: &[common::Series],
-) -> Result<(), Box<dyn Error>> {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, 0.0_f64, f64::MAX, 0.0_f64);
-    for &(x, y) in series.iter().flat_map(|s| s.points.iter()) {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if x1 <= 0.0 {
-        return Ok(());
-    }
-    let decades = (y1 / y0).log10().max(1.0);
-    let top = y1 * 10f64.powf(0.05 * decades * series.len() as f64);
-    let root = SVGBackend::new(path, (820, 560)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(
-            (x0 / 1.3..x1 * 1.3).log_scale(),
-            (y0 / 1.5..top).log_scale(),
-        )?;
-    chart
-        .configure_mesh()
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .draw()?;
-    for s in series {
-        let (colour, dashed, markers) = style(&s.name);
-        let line = colour.stroke_width(2);
-        let points = s.points.iter().copied();
-        let drawn = if dashed {
-            chart.draw_series(DashedLineSeries::new(points, 8, 5, line))?
-        } else {
-            chart.draw_series(LineSeries::new(points, line))?
-        };
-        drawn.label(s.name.as_str()).legend(move |(x, y)| {
-            PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-        });
-        if markers {
-            chart.draw_series(s.points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
-        }
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
     Ok(())
 }

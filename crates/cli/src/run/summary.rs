@@ -295,6 +295,7 @@ pub(super) fn since(now: Counters, start: Counters) -> Counters {
     d.active_set_steps -= start.active_set_steps;
     d.active_set_factorizations -= start.active_set_factorizations;
     d.active_set_solves -= start.active_set_solves;
+    d.active_set_inner_iterations -= start.active_set_inner_iterations;
     d.active_set_fallbacks -= start.active_set_fallbacks;
     d
 }

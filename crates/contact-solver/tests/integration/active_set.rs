@@ -7,8 +7,8 @@
 use crate::support::hertz_scene::HertzScene;
 use contact_laws::{BetaScheme, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::{
-    ContactSimulation, ContactZone, FlexibilityMode, RigidLine, SimulationSettings, SolverError,
-    StepResult,
+    ContactSimulation, ContactZone, FlexibilityMode, InterfaceStatus, RigidLine,
+    SimulationSettings, SolverError, StepResult,
 };
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{
@@ -86,7 +86,16 @@ fn compare(a: &[StepResult], b: &[StepResult]) -> (f64, f64) {
             dg = dg
                 .max((x.gap - y.gap).abs())
                 .max((x.slip_increment - y.slip_increment).abs());
-            if x.r.n > 1e-6 * r_scale {
+            // a closed contact whose slip increment is below the solver tolerance in both runs
+            // (1e-8 of the largest gap or slip, against a tolerance of 1e-11) is on the cone's
+            // boundary: sticking and sliding are the same state there, and which one a path
+            // reports depends on the last guess
+            let closed =
+                |s: InterfaceStatus| matches!(s, InterfaceStatus::Stick | InterfaceStatus::Slip);
+            let boundary = closed(x.status)
+                && closed(y.status)
+                && x.slip_increment.abs().max(y.slip_increment.abs()) <= 1e-8 * g_scale;
+            if x.r.n > 1e-6 * r_scale && !boundary {
                 assert_eq!(x.status, y.status, "{x:?} vs {y:?}");
             }
         }
@@ -110,13 +119,17 @@ fn coulomb_block_matches_dense() {
         .collect();
     eprintln!(
         "Coulomb: max |Δr| / max r = {dr:.1e}, max |Δgap| / max gap = {dg:.1e}; \
-         active set: {} factorisations, {} solves, {} iterations; dense: {} F* columns",
+         active set: {} factorisations, {} solves, {} iterations ({} on the correction \
+         columns); dense: {} F* columns",
         ca.active_set_factorizations,
         ca.active_set_solves,
         ca.contact_iterations,
+        ca.active_set_inner_iterations,
         cd.flexibility_columns
     );
     assert!(statuses.len() >= 3, "{statuses:?}");
+    // the fronts moved on the correction columns too (21 of 49 iterations when written)
+    assert!(ca.active_set_inner_iterations > 0);
     assert!(dr <= 1e-8, "{dr}");
     assert!(dg <= 1e-7, "{dg}");
 }

@@ -78,6 +78,16 @@ impl Guess {
         }
     }
 
+    /// Whether the contact is guessed open.
+    pub(super) fn is_open(&self) -> bool {
+        self.kind == Kind::Open
+    }
+
+    /// Whether two guesses hold the same kind (open, sticking, sliding).
+    pub(super) fn same_kind(&self, other: &Self) -> bool {
+        self.kind == other.kind
+    }
+
     fn has_direction(&self) -> bool {
         self.direction != [0.0; 2]
     }
@@ -162,6 +172,35 @@ pub(super) fn guess_sets<L: ContactLaw, const T: usize>(
     }
 }
 
+/// The conditions one contact's guess puts on its dofs (`T + 1` components, `None` for a
+/// component without a dof): held at `z` (`true`, the value) or loaded by a force (`false`,
+/// the force: `g · s` on a sliding tangent, zero elsewhere).
+pub(super) fn node_conditions<L: ContactLaw>(
+    step: &PrimalStep<'_, L>,
+    d: usize,
+    kk: usize,
+    guess: Guess,
+    g: f64,
+) -> [Option<(usize, bool, f64)>; 3] {
+    let f = &step.frames[kk];
+    let mut out = [None; 3];
+    for (comp, o) in out.iter_mut().enumerate().take(d) {
+        let Some(dof) = f.dofs[comp] else { continue };
+        let held = match comp {
+            0 => guess.kind != Kind::Open,
+            _ => guess.kind == Kind::Stick,
+        };
+        *o = Some(if held {
+            (dof, true, -step.q[d * kk + comp])
+        } else if comp >= 1 && guess.kind == Kind::Slip && guess.has_direction() {
+            (dof, false, g * guess.direction[comp - 1])
+        } else {
+            (dof, false, 0.0)
+        });
+    }
+    out
+}
+
 /// The guess `sets` as constraints of the rotated system: the Dirichlet set `mask` with its values
 /// `z` (closed normals, sticking tangents) and the sliding forces `g · s` on the free
 /// tangential dofs.
@@ -177,22 +216,16 @@ pub(super) fn constraints<L: ContactLaw>(
     mask.fill(false);
     z.fill(0.0);
     force.clear();
-    for (kk, f) in step.frames.iter().enumerate() {
-        let guess = sets[kk];
-        if guess.kind == Kind::Open {
-            continue;
-        }
-        if let Some(dof) = f.dofs[0] {
-            mask[dof] = true;
-            z[dof] = -step.q[d * kk];
-        }
-        for comp in 1..d {
-            let Some(dof) = f.dofs[comp] else { continue };
-            if guess.kind == Kind::Stick {
+    for (kk, &guess) in sets.iter().enumerate() {
+        for (dof, held, v) in node_conditions(step, d, kk, guess, g[kk])
+            .into_iter()
+            .flatten()
+        {
+            if held {
                 mask[dof] = true;
-                z[dof] = -step.q[d * kk + comp];
-            } else if guess.has_direction() {
-                force.push((dof, g[kk] * guess.direction[comp - 1]));
+                z[dof] = v;
+            } else if v != 0.0 {
+                force.push((dof, v));
             }
         }
     }

@@ -46,7 +46,7 @@
 //! dense `F*`).
 
 use crate::error::SolverError;
-use crate::local::{contact_statuses, natural_residual};
+use crate::local::contact_statuses;
 use contact_laws::{ContactLaw, ContactStatus};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use fem_core::SpdSolver;
@@ -54,9 +54,11 @@ use fem_core::Structure;
 
 mod constrained;
 mod guess;
+mod inner;
 
-use constrained::solve_constrained;
-use guess::{Damping, Guess, constraints, guess_sets, read_back};
+use constrained::{Base, solve_constrained};
+use guess::{Damping, Guess, constraints, guess_sets};
+use inner::{Context, Iterate, window};
 
 /// Most new corrections one iteration may add before the constrained stiffness is refactored
 /// instead (a large change of the guess, typically in the first iterations).
@@ -222,12 +224,24 @@ pub(crate) struct PrimalCache {
     /// Dirichlet mask (by dof) of `factor`.
     factor_mask: Vec<bool>,
     /// Low-rank corrections of `factor` for dofs whose condition changed since it was
-    /// computed: `M₀⁻¹ u_c`, and for a released dof its row of `K̃`.
+    /// computed, or may change soon (a window around a moving front): `M₀⁻¹ u_c` on the probe
+    /// dofs, and for a released dof its row of `K̃`.
     columns: Vec<Correction>,
+    /// Per slot: the index of its correction column in `columns` (`usize::MAX`: none).
+    column_of: Vec<usize>,
     /// Slot of each contact dof (`usize::MAX` elsewhere) and, per slot, the entries of its row
     /// left of the diagonal (column, position): with its column, the full row of `K̃`.
     slot: Vec<usize>,
     upper: Vec<Vec<(usize, usize)>>,
+    /// The probe dofs: the contact dofs and every dof their rows of `K̃` touch (sorted), the
+    /// only values of a solve the contact conditions read; `probe_at[dof]` its position there
+    /// (`usize::MAX` elsewhere).
+    probe: Vec<usize>,
+    probe_at: Vec<usize>,
+    /// Per slot, the active contact it belongs to; per active contact, the others its dofs
+    /// couple with in `K̃` (the neighbours along the interface).
+    node_of_slot: Vec<usize>,
+    adjacent: Vec<Vec<usize>>,
     /// Numeric factorisations done.
     pub factorizations: usize,
 }
@@ -235,10 +249,12 @@ pub(crate) struct PrimalCache {
 /// The low-rank correction of a dof whose condition differs from the factorised one.
 struct Correction {
     dof: usize,
-    /// `M₀⁻¹ u_c`.
+    /// Position of `dof` among the probe dofs.
+    at: usize,
+    /// `M₀⁻¹ u_c` on the probe dofs.
     column: Vec<f64>,
-    /// A released dof's row of `K̃` (its condition is `(K̃ w)_c = f_c`); `None` for a newly
-    /// constrained one (`w_c = z_c`).
+    /// A released dof's row of `K̃` on the probe dofs (position, value): its condition is
+    /// `(K̃ w)_c = f_c`; `None` for a newly constrained one (`w_c = z_c`).
     row: Option<Vec<(usize, f64)>>,
 }
 
@@ -247,7 +263,9 @@ pub(crate) struct PrimalSolution {
     pub r: Vec<f64>,
     pub x: Vec<f64>,
     pub statuses: Vec<ContactStatus>,
+    /// Iterates solved, outer and inner (on the correction columns, [`inner`]).
     pub iterations: usize,
+    pub inner_iterations: usize,
     pub residual: f64,
     pub converged: bool,
     pub solves: usize,
@@ -327,6 +345,38 @@ impl PrimalCache {
             }
         }
         self.slot.clone_from(&slot);
+        self.node_of_slot = frames
+            .iter()
+            .enumerate()
+            .flat_map(|(kk, f)| f.dofs.iter().flatten().map(move |_| kk))
+            .collect();
+        self.column_of = vec![usize::MAX; members.len()];
+        self.columns.clear();
+        let mut probe_at = vec![usize::MAX; n];
+        let mut adjacent = vec![Vec::new(); frames.len()];
+        for (kk, f) in frames.iter().enumerate() {
+            for &c in f.dofs.iter().flatten() {
+                let row = ri[cp[c]..cp[c + 1]]
+                    .iter()
+                    .copied()
+                    .chain(self.upper[slot[c]].iter().map(|&(j, _)| j));
+                for j in std::iter::once(c).chain(row) {
+                    probe_at[j] = 0;
+                    if let Some(&o) = self.node_of_slot.get(slot[j])
+                        && o != kk
+                        && !adjacent[kk].contains(&o)
+                    {
+                        adjacent[kk].push(o);
+                    }
+                }
+            }
+        }
+        self.probe = (0..n).filter(|&i| probe_at[i] == 0).collect();
+        for (k, &i) in self.probe.iter().enumerate() {
+            probe_at[i] = k;
+        }
+        self.probe_at = probe_at;
+        self.adjacent = adjacent;
         let out = &mut self.rotated;
         out.clear();
         out.resize(values.len(), 0.0);
@@ -504,112 +554,138 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         .iter()
         .map(|c| c[..d].iter().fold(0.0_f64, |m, &v| m.max(v)))
         .collect();
-    let denom = {
+    let scale_q = {
         let qn = step.q.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let rq = rho.iter().fold(0.0_f64, |m, &r| m.max(r)) * qn;
-        move |r: &[f64]| {
-            let rn = r.iter().map(|v| v * v).sum::<f64>().sqrt();
-            rn.max(rq).max(f64::MIN_POSITIVE)
-        }
+        rho.iter().fold(0.0_f64, |m, &r| m.max(r)) * qn
     };
-
-    let mut r = step.r0.to_vec();
-    let mut x = step.q.to_vec();
+    let contact_dofs: Vec<usize> = step.frames.iter().flat_map(|f| f.dofs).flatten().collect();
+    let ctx = Context {
+        step,
+        pattern,
+        contact_dofs: &contact_dofs,
+        c: &c,
+        rho: &rho,
+        scale_q,
+    };
+    let mut it = Iterate::<L> {
+        r: step.r0.to_vec(),
+        x: step.q.to_vec(),
+        sets: vec![Guess::default(); na],
+        g: Vec::new(),
+        residual: 0.0,
+        history: Vec::new(),
+        done: 0,
+        inner: 0,
+        mask: vec![false; n],
+        z: vec![0.0; n],
+        force: Vec::new(),
+        w: vec![0.0; n],
+        law: std::marker::PhantomData,
+    };
     for (kk, &t) in step.tangent.iter().enumerate() {
         if !t {
             for j in d * kk + 1..d * (kk + 1) {
-                r[j] = 0.0;
-                x[j] = 0.0;
+                it.r[j] = 0.0;
+                it.x[j] = 0.0;
             }
         }
     }
-    let mut mask = vec![false; n];
-    let mut w = vec![0.0; n];
-    let mut z = vec![0.0; n];
-    let mut force: Vec<(usize, f64)> = Vec::new();
-    let contact_dofs: Vec<usize> = step.frames.iter().flat_map(|f| f.dofs).flatten().collect();
-    let mut sets: Vec<Guess> = vec![Guess::default(); na];
-    let mut history = Vec::new();
     let mut solves = 0;
-    let mut residual = natural_residual::<L, T>(step.laws, step.states, &rho, &r, &x) / denom(&r);
-    let mut g: Vec<f64> = (0..na).map(|kk| step.mu[kk] * r[d * kk].max(0.0)).collect();
+    it.residual = it.residual_of::<T>(&ctx);
+    it.g = (0..na)
+        .map(|kk| step.mu[kk] * it.r[d * kk].max(0.0))
+        .collect();
     let mut damping = Damping::default();
-    for iteration in 0..=step.max_iterations {
-        damping.observe(residual);
+    let mut base = Base::default();
+    // the guess of the last structure solve
+    let mut before = it.sets.clone();
+    // whether the last iterate came from a structure solve (the answer must: [`inner`])
+    let mut outer_last = false;
+    loop {
+        damping.observe(it.residual);
         // the semi-smooth Newton guess from the current iterate
-        if iteration > 0 {
+        if it.done > 0 {
             // Coulomb thresholds from the current normal reactions (the friction coupling is
             // lagged by one iteration: the linear systems stay symmetric)
             for kk in 0..na {
-                g[kk] = step.mu[kk] * r[d * kk].max(0.0);
+                it.g[kk] = step.mu[kk] * it.r[d * kk].max(0.0);
             }
         }
-        guess_sets::<L, T>(step, damping.factor, &c, &r, &x, &g, &mut sets);
-        if iteration > 0 && residual <= step.tol {
+        guess_sets::<L, T>(step, damping.factor, &c, &it.r, &it.x, &it.g, &mut it.sets);
+        if it.done > 0 && it.residual <= step.tol && outer_last {
             // the last iterate is in equilibrium (one exact solve) and meets the law to the
             // tolerance; the guess need not repeat (a P2 corner node with no force flips
             // between open and closed on round-off)
-            return Ok(finish::<L, T>(
-                step, &rho, r, x, iteration, residual, true, solves,
-            ));
+            let (done, residual) = (it.done, it.residual);
+            return Ok(finish::<L, T>(step, &rho, it, done, residual, true, solves));
         }
-        if iteration == step.max_iterations {
+        if it.done >= step.max_iterations {
             break;
         }
-        constraints(step, d, &sets, &g, &mut mask, &mut z, &mut force);
-        solves += solve_constrained(cache, pattern, &contact_dofs, &mask, &z, &force, &mut w)?;
-        if w.iter().any(|v| !v.is_finite()) {
-            return Err(SolverError::NotConverged {
-                iterations: iteration + 1,
-                residual: f64::NAN,
-                history,
-            });
+        constraints(
+            step,
+            d,
+            &it.sets,
+            &it.g,
+            &mut it.mask,
+            &mut it.z,
+            &mut it.force,
+        );
+        // the inner iterations are 2D only: in 3D every sliding contact's direction changes
+        // at every iteration, and on the sheared block they did not converge
+        let ahead = if T == 1 && it.done > 0 {
+            window(cache, step, &before, &it.sets)
+        } else {
+            Vec::new()
+        };
+        before.clone_from(&it.sets);
+        solves += solve_constrained(
+            cache,
+            pattern,
+            &contact_dofs,
+            &it.mask,
+            &it.z,
+            &it.force,
+            &ahead,
+            &mut it.w,
+            &mut base,
+        )?;
+        it.evaluate::<T>(&ctx, cache)?;
+        let inner_before = it.inner;
+        if T == 1 {
+            inner::iterate::<L, T>(&ctx, cache, &base, damping.factor, &mut it)?;
         }
-        // forces: reactions on Dirichlet dofs, the applied sliding force, zero elsewhere (the
-        // rows of K̃ w at the contact dofs only)
-        for &dof in &contact_dofs {
-            z[dof] = cache.row_dot(pattern, dof, &w);
-        }
-        read_back(step, d, &sets, &mask, &z, &w, &mut r, &mut x);
-        residual = natural_residual::<L, T>(step.laws, step.states, &rho, &r, &x) / denom(&r);
-        history.push(residual);
+        outer_last = it.inner == inner_before;
     }
     if step.accept_non_converged {
+        let (done, residual) = (it.done, it.residual);
         return Ok(finish::<L, T>(
-            step,
-            &rho,
-            r,
-            x,
-            step.max_iterations,
-            residual,
-            false,
-            solves,
+            step, &rho, it, done, residual, false, solves,
         ));
     }
     Err(SolverError::NotConverged {
-        iterations: step.max_iterations,
-        residual,
-        history,
+        iterations: it.done,
+        residual: it.residual,
+        history: it.history,
     })
 }
 
-#[allow(clippy::too_many_arguments)]
 fn finish<L: ContactLaw, const T: usize>(
     step: &PrimalStep<'_, L>,
     rho: &[f64],
-    r: Vec<f64>,
-    x: Vec<f64>,
+    it: Iterate<L>,
     iterations: usize,
     residual: f64,
     converged: bool,
     solves: usize,
 ) -> PrimalSolution {
-    let statuses = contact_statuses::<L, T>(step.laws, step.states, rho, &r, &x);
+    let statuses = contact_statuses::<L, T>(step.laws, step.states, rho, &it.r, &it.x);
     PrimalSolution {
-        r,
-        x,
+        r: it.r,
+        x: it.x,
         statuses,
         iterations,
+        inner_iterations: it.inner,
         residual,
         converged,
         solves,

@@ -128,6 +128,9 @@ pub struct Counters {
     pub active_set_factorizations: usize,
     /// Solves with the constrained stiffness by the active-set iteration.
     pub active_set_solves: usize,
+    /// Active-set iterations solved on the correction columns of a window around the moving
+    /// fronts, without a solve with the stiffness (counted in `contact_iterations` too).
+    pub active_set_inner_iterations: usize,
     /// Steps where `Auto`'s active-set iteration did not converge and the step was solved
     /// again with a dense `F*` (up to 8000 contacts) or matrix-free.
     pub active_set_fallbacks: usize,

@@ -114,6 +114,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters.active_set_steps += 1;
         self.counters.active_set_factorizations += self.primal.factorizations - before;
         self.counters.active_set_solves += sol.solves;
+        self.counters.active_set_inner_iterations += sol.inner_iterations;
         report.contact_iterations += sol.iterations;
         report.residual = sol.residual;
         report.converged &= sol.converged;
