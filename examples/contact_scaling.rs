@@ -21,7 +21,9 @@
 //!                                                      # applies the load in N steps;
 //!                                                      # --tol T (default 1e-8);
 //!                                                      # --reactions FILE writes
-//!                                                      # `node r_n r_t` per contact
+//!                                                      # `node r_n r_t` per contact;
+//!                                                      # --base block: on a deformable
+//!                                                      # block (node-to-segment)
 //! $E probe --nx 5000 --ny 25 --block 64                # build, time of 1 and 64 solves
 //! $E sweep dof  --timeout 300    # n_c = 101, DOF 1e3 … 1e6  -> out/scale/dof.csv
 //! $E sweep nc   --timeout 300    # DOF ≈ 1e5, n_c 51 … 4001  -> out/scale/nc.csv
@@ -90,6 +92,9 @@ struct Config {
     /// line `node r_n r_t` per candidate): to compare a run with a tighter one.
     tol: Option<f64>,
     reactions: Option<String>,
+    /// What the block is pressed on: the tilted rigid `line` (default) or a deformable
+    /// `block` below it (node-to-segment, non-matching meshes).
+    base: String,
 }
 
 impl Config {
@@ -120,6 +125,7 @@ impl Config {
                 .flat_map(|a| ["--algorithm".to_string(), a.clone()]),
         )
         .chain(["--steps".to_string(), self.steps.to_string()])
+        .chain(["--base".to_string(), self.base.clone()])
         .chain(
             self.tol
                 .into_iter()
@@ -196,11 +202,13 @@ fn parse_config(args: &[String]) -> Result<Config, Box<dyn Error>> {
         steps: get("--steps", "1").parse::<usize>()?.max(1),
         tol: flag(args, "--tol").map(str::parse).transpose()?,
         reactions: flag(args, "--reactions").map(String::from),
+        base: get("--base", "line"),
     })
 }
 
 /// A model with two node sets.
-type ModelWithSets = (LinearElasticModel, Vec<usize>, Vec<usize>);
+/// The model, its top and bottom nodes, and (`--base block`) the lower block's top surface.
+type ModelWithSets = (LinearElasticModel, Vec<usize>, Vec<usize>, Vec<usize>);
 
 /// The block, its top nodes, and its bottom (contactor) nodes.
 fn model(cfg: &Config) -> Result<ModelWithSets, Box<dyn Error>> {
@@ -208,25 +216,52 @@ fn model(cfg: &Config) -> Result<ModelWithSets, Box<dyn Error>> {
         kind: ElementKind::Tri6,
         ..RectangleSpec::new([0.0, cfg.width], [0.0, cfg.height], cfg.nx, cfg.ny)
     };
-    let mesh = rectangle(&spec)?;
+    let mut mesh = rectangle(&spec)?;
     let top = mesh.node_set("top")?.to_vec();
     let bottom = mesh.node_set("bottom")?.to_vec();
-    let delta = 0.01 * cfg.height;
+    let mut surface = Vec::new();
     let mut supports = Supports::new();
+    if cfg.base == "block" {
+        // a deformable base `[0, W] × [−H/2 − g₀, −g₀]` of `nx − 1` cells across (the meshes
+        // do not match), clamped at its bottom
+        let g0 = 0.005 * cfg.height;
+        let low = rectangle(&RectangleSpec {
+            kind: ElementKind::Tri6,
+            ..RectangleSpec::new(
+                [0.0, cfg.width],
+                [-0.5 * cfg.height - g0, -g0],
+                cfg.nx.saturating_sub(1).max(1),
+                cfg.ny.div_ceil(2),
+            )
+        })?;
+        let off = mesh.node_count();
+        let mut nodes = mesh.nodes().to_vec();
+        nodes.extend_from_slice(low.nodes());
+        let mut conn = mesh.connectivity().to_vec();
+        conn.extend(low.connectivity().iter().map(|n| n + off));
+        let regions = vec![0; mesh.element_count() + low.element_count()];
+        let mut by_x: Vec<usize> = low.node_set("top")?.iter().map(|n| n + off).collect();
+        by_x.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
+        surface = by_x;
+        let clamp: Vec<usize> = low.node_set("bottom")?.iter().map(|n| n + off).collect();
+        supports.fix(&clamp, Component::X).fix(&clamp, Component::Y);
+        mesh = bipotential::fem_core::Mesh::new(nodes, ElementKind::Tri6, conn, regions)?;
+    } else if cfg.base != "line" {
+        return Err(format!("unknown base `{}` (line | block)", cfg.base).into());
+    }
+    let delta = 0.01 * cfg.height;
     supports
         .prescribe(&top, Component::Y, -delta)?
         .prescribe(&top, Component::X, 0.1 * delta)?;
     let material = Material::new(YOUNG, POISSON, 0.0)?;
     let model =
         LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, material)], supports)?;
-    Ok((model, top, bottom))
+    Ok((model, top, bottom, surface))
 }
 
-/// One configuration: build, construct, one step; returns the CSV row (without the columns the
-/// sweep adds: wall time and peak memory).
 fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, Box<dyn Error>> {
     let t0 = Instant::now();
-    let (model, top, bottom) = model(cfg)?;
+    let (model, top, bottom, surface) = model(cfg)?;
     let t_build = t0.elapsed().as_secs_f64();
     let (dof, nnz) = (model.dof_count(), model.nnz());
     let (g0, slope) = (0.005 * cfg.height, 0.01 * cfg.height / cfg.width);
@@ -234,7 +269,11 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
         [-cfg.width, -g0 + slope * cfg.width],
         [2.0 * cfg.width, -g0 - 2.0 * slope * cfg.width],
     )?;
-    let zone = ContactZone::rigid("base", bottom, ground, law, cfg.height);
+    let zone = if surface.is_empty() {
+        ContactZone::rigid("base", bottom, ground, law, cfg.height)
+    } else {
+        ContactZone::node_to_segment("base", bottom, surface, law, cfg.height)
+    };
     let mut settings = SimulationSettings::default().with_flexibility(match cfg.mode.as_str() {
         "dense" => FlexibilityMode::Dense,
         "free" => FlexibilityMode::MatrixFree,
@@ -342,7 +381,7 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
 /// modes.
 fn probe(cfg: &Config, block_size: usize) -> Result<(), Box<dyn Error>> {
     let t = Instant::now();
-    let (model, _, bottom) = model(cfg)?;
+    let (model, _, bottom, _) = model(cfg)?;
     let t_build = t.elapsed().as_secs_f64();
     let n = model.dof_count();
     let mut rhs: Vec<f64> = (0..n).map(|i| ((i * 7919) % 1000) as f64 * 1e-3).collect();
@@ -404,6 +443,7 @@ fn sweep(
         steps: 1,
         tol: None,
         reactions: None,
+        base: "line".into(),
     };
     // (series key, configurations in increasing cost)
     let mut plan: Vec<Config> = Vec::new();

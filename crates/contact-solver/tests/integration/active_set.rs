@@ -218,28 +218,40 @@ fn auto_uses_the_active_set_past_the_limit_and_falls_back_for_adhesion() {
     }
 }
 
-#[test]
-fn two_bodies_are_out_of_scope_with_a_reason() {
-    // two blocks, the upper one's bottom nodes against the lower one's top edge
-    let low = rectangle(&RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 4, 2)).unwrap();
-    let up = rectangle(&RectangleSpec::new([0.0, 2.0], [1.0, 2.0], 3, 2)).unwrap();
+/// Two blocks, the upper one's bottom nodes against the lower one's top: node-to-segment on
+/// non-matching meshes (4 against 3 cells) or node pairs on matching ones; the lower block is
+/// clamped at its bottom, the upper one's top pressed down by `press` and moved sideways by
+/// `push`, in two steps.
+fn two_blocks<L: contact_laws::ContactLaw + Clone>(
+    mode: FlexibilityMode,
+    law: L,
+    pairs: bool,
+) -> (Vec<StepResult>, contact_solver::Counters) {
+    let (nx_low, nx_up) = if pairs { (6, 6) } else { (8, 6) };
+    let mut low_spec = RectangleSpec::new([0.0, 2.0], [0.0, 1.0], nx_low, 3);
+    low_spec.kind = ElementKind::Tri6;
+    let mut up_spec = RectangleSpec::new([0.0, 2.0], [1.0, 2.0], nx_up, 3);
+    up_spec.kind = ElementKind::Tri6;
+    let low = rectangle(&low_spec).unwrap();
+    let up = rectangle(&up_spec).unwrap();
     let off = low.node_count();
     let mut nodes = low.nodes().to_vec();
     nodes.extend_from_slice(up.nodes());
     let mut conn = low.connectivity().to_vec();
     conn.extend(up.connectivity().iter().map(|n| n + off));
     let regions = vec![0; low.element_count() + up.element_count()];
-    let mesh = Mesh::new(nodes, ElementKind::Tri3, conn, regions).unwrap();
+    let mesh = Mesh::new(nodes, ElementKind::Tri6, conn, regions).unwrap();
     let shift = |v: &[usize]| v.iter().map(|n| n + off).collect::<Vec<_>>();
     let up_bottom = shift(up.node_set("bottom").unwrap());
     let up_top = shift(up.node_set("top").unwrap());
     let low_top = low.node_set("top").unwrap().to_vec();
+    let low_bottom = low.node_set("bottom").unwrap().to_vec();
     let mut supports = Supports::new();
     supports
-        .fix(low.node_set("bottom").unwrap(), Component::X)
-        .fix(low.node_set("bottom").unwrap(), Component::Y)
-        .fix(&up_top, Component::X);
-    supports.prescribe(&up_top, Component::Y, -0.01).unwrap();
+        .fix(&low_bottom, Component::X)
+        .fix(&low_bottom, Component::Y);
+    supports.prescribe(&up_top, Component::X, 0.0).unwrap();
+    supports.prescribe(&up_top, Component::Y, 0.0).unwrap();
     let model = LinearElasticModel::new(
         mesh,
         Idealization::PlaneStrain,
@@ -247,21 +259,93 @@ fn two_bodies_are_out_of_scope_with_a_reason() {
         supports,
     )
     .unwrap();
-    let zone = ContactZone::node_to_segment("interface", up_bottom, low_top, Signorini, 0.1);
+    let zone = if pairs {
+        // the same x on both sides: pair them by position
+        let mut by_x = low_top.clone();
+        by_x.sort_by(|&a, &b| model.mesh().nodes()[a][0].total_cmp(&model.mesh().nodes()[b][0]));
+        let mut contactor = up_bottom.clone();
+        contactor
+            .sort_by(|&a, &b| model.mesh().nodes()[a][0].total_cmp(&model.mesh().nodes()[b][0]));
+        ContactZone::node_pairs("interface", contactor, by_x, Some([0.0, 1.0]), law, 0.1)
+    } else {
+        ContactZone::node_to_segment("interface", up_bottom, low_top, law, 0.1)
+    };
+    let mut settings = SimulationSettings::default().with_flexibility(mode);
+    settings.solver.tol = 1e-11;
+    let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
+    // the top's left part pressed, its right part lifted: the interface opens on the right
+    let x_of = |n: usize| sim.structure().mesh().nodes()[n][0];
+    let (left, right): (Vec<usize>, Vec<usize>) = up_top.iter().partition(|&&n| x_of(n) < 1.2);
+    let mut out = Vec::new();
+    for (k, (dy, dx)) in [(-0.01, 0.0), (-0.01, 0.02)].into_iter().enumerate() {
+        let s = sim.structure_mut();
+        s.set_prescribed(&left, Component::Y, dy).unwrap();
+        s.set_prescribed(&right, Component::Y, 0.01).unwrap();
+        s.set_prescribed(&up_top, Component::X, dx).unwrap();
+        out.push(sim.step(k as f64 + 1.0, 1.0).unwrap());
+    }
+    (out, sim.counters())
+}
+
+#[test]
+fn two_bodies_match_dense_node_to_segment_and_node_pairs() {
+    // the contactor's dofs carry its target's motion (u_a = Pᵀ x + Σ w_k u_k): the same
+    // answer as the dense F* to the tolerance (1e-11; 1e-8 of the largest reaction allowed)
+    for pairs in [false, true] {
+        let coulomb = Coulomb::new(0.6).unwrap();
+        let (dense, cd) = two_blocks(FlexibilityMode::Dense, coulomb, pairs);
+        let (active, ca) = two_blocks(FlexibilityMode::ActiveSet, coulomb, pairs);
+        assert_eq!(cd.active_set_steps, 0);
+        assert_eq!(ca.active_set_steps, 2, "pairs {pairs}");
+        assert_eq!(ca.flexibility_columns, 0);
+        let (dr, dg) = compare(&dense, &active);
+        let statuses: std::collections::HashSet<_> = active
+            .iter()
+            .flat_map(|s| s.contacts.iter().map(|c| c.status))
+            .collect();
+        eprintln!(
+            "two bodies (pairs {pairs}), Coulomb: max |Δr| / max r = {dr:.1e}, max |Δgap| / \
+             max gap = {dg:.1e}; statuses {statuses:?}; {} iterations",
+            ca.contact_iterations
+        );
+        assert!(statuses.len() >= 3, "{statuses:?}");
+        assert!(dr <= 1e-8, "pairs {pairs}: {dr}");
+        assert!(dg <= 1e-7, "pairs {pairs}: {dg}");
+        let (dense, _) = two_blocks(FlexibilityMode::Dense, Signorini, pairs);
+        let (active, ca) = two_blocks(FlexibilityMode::ActiveSet, Signorini, pairs);
+        assert_eq!(ca.active_set_steps, 2);
+        let (dr, dg) = compare(&dense, &active);
+        assert!(
+            dr <= 1e-8 && dg <= 1e-7,
+            "pairs {pairs}, Signorini: {dr} {dg}"
+        );
+    }
+}
+
+#[test]
+fn a_chain_of_contacts_is_out_of_scope_with_a_reason() {
+    // a node that is both a contactor and another contact's target: refused, with the reason
+    let (mesh, top, bottom) = block(ElementKind::Tri3, 4, 2);
+    let model = model(mesh, &top);
+    let (a, b, c) = (bottom[0], bottom[1], bottom[2]);
+    let zone = ContactZone::node_pairs(
+        "chain",
+        vec![a, b],
+        vec![b, c],
+        Some([0.0, 1.0]),
+        Signorini,
+        10.0,
+    );
     let settings = SimulationSettings::default().with_flexibility(FlexibilityMode::ActiveSet);
     let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
     match sim.step(1.0, 1.0) {
         Err(SolverError::Unsupported(why)) => {
-            eprintln!("{why}");
-            assert!(why.contains("node-to-segment"), "{why}");
+            assert!(why.contains("chain"), "{why}");
         }
         other => panic!("expected Unsupported, got {other:?}"),
     }
 }
 
-/// μ = 10 with lift-off: the active set's lagged friction coupling does not converge (see
-/// `tests/integration/stress_active_set.rs`). Forced, that is `NotConverged` with its history;
-/// under `Auto` the step falls back to the dense path and gives the dense answer.
 #[test]
 fn auto_falls_back_when_the_active_set_does_not_converge() {
     let run = |mode: FlexibilityMode| -> Result<(Vec<StepResult>, contact_solver::Counters), SolverError> {

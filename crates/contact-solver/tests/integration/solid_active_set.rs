@@ -262,11 +262,15 @@ fn scope_is_enforced_and_auto_falls_back() {
             .unwrap()
             .step(1.0, 1.0)
     };
+    // node pairs whose contactors lie on the roller planes (a prescribed component): the
+    // contactor cannot carry its target's motion along it, refused with the reason
     match pairs(FlexibilityMode::ActiveSet) {
-        Err(SolverError::Unsupported(why)) => assert!(why.contains("node-pair"), "{why}"),
+        Err(SolverError::Unsupported(why)) => {
+            assert!(why.contains("prescribed component"), "{why}")
+        }
         other => panic!("expected Unsupported, got {other:?}"),
     }
-    // Auto past its limit: matrix-free for pairs, with the dense answer
+    // Auto past its limit: matrix-free for them, with the dense answer
     let auto = pairs(FlexibilityMode::Auto { dense_limit: 0 }).unwrap();
     let dense = pairs(FlexibilityMode::Dense).unwrap();
     assert!(auto.matrix_free && !auto.active_set);

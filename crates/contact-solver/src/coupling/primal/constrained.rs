@@ -272,7 +272,7 @@ fn refactor(
     let mut solver = cache
         .symbolic
         .as_ref()
-        .map(|s| s.1.clone())
+        .map(|s| s.2.clone())
         .ok_or_else(|| internal("a symbolic factorisation (internal)"))?;
     cache.factor = None;
     cache.columns.clear();

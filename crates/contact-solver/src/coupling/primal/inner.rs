@@ -64,6 +64,20 @@ pub(super) struct Iterate<L: ContactLaw> {
 }
 
 impl<L: ContactLaw> Iterate<L> {
+    /// The guess as constraints of the rotated system (`mask`, `z`, `force`).
+    pub(super) fn constrain(&mut self, step: &PrimalStep<'_, L>) {
+        let d = step.q.len() / step.active.len().max(1);
+        constraints(
+            step,
+            d,
+            &self.sets,
+            &self.g,
+            &mut self.mask,
+            &mut self.z,
+            &mut self.force,
+        );
+    }
+
     /// The relative natural-map residual of `(r, x)`.
     pub(super) fn residual_of<const T: usize>(&self, ctx: &Context<'_, '_, L>) -> f64 {
         let rn = self.r.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -237,15 +251,7 @@ pub(super) fn iterate<L: ContactLaw, const T: usize>(
         two_back.clone_from(&it.sets);
         std::mem::swap(&mut it.sets, &mut trial);
         it.g.clone_from(&g_try);
-        constraints(
-            step,
-            d,
-            &it.sets,
-            &it.g,
-            &mut it.mask,
-            &mut it.z,
-            &mut it.force,
-        );
+        it.constrain(step);
         slot_forces(cache, &it.force, &mut forces);
         correct(cache, &it.mask, &it.z, &forces, base, &mut it.w)?;
         it.evaluate::<T>(ctx, cache)?;

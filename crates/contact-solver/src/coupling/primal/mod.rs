@@ -1,5 +1,5 @@
 //! The primal active-set solve of a step (no `F*`): a semi-smooth Newton iteration on the
-//! displacements, for contactor nodes against rigid obstacles.
+//! displacements, for contactor nodes against rigid obstacles or other bodies.
 //!
 //! A dense `F* = H K⁻¹ Hᵀ` costs `2 n_c` structure solves and `4 n_c²` values; the matrix-free
 //! iteration costs one solve per iteration and its iteration count grows with the condition
@@ -35,9 +35,18 @@
 //! one direction of its tangent plane (on a symmetry plane) gets a frame whose second tangent
 //! is that direction, without a dof; with friction, its free slip there must be zero.
 //!
-//! Scope: rigid-obstacle zones (the rows of `H` of a candidate are a rotation of its node's
-//! free dofs, restricted to them, with the normal not along a prescribed component),
-//! non-adhesive laws with a friction coefficient (`Signorini`, `Coulomb`, RCCM once fully
+//! Between two bodies (node pairs, node-to-segment, node-to-face) the jump is
+//! `x = P (u_a − Σ_k w_k u_k)`: the contactor's dofs are renamed as the jump's components and
+//! carry the targets' motion, `u = T v` with `u_a = Pᵀ x + Σ_k w_k u_k` and the identity
+//! elsewhere, so that the jump is again one dof per component and `K̃ = Tᵀ K T` (whose
+//! pattern couples a contactor with its targets' neighbours: its symbolic analysis is redone
+//! when the active list changes). The reactions of those dofs are the contact forces, as the
+//! generalised forces `Tᵀ f` of `+r` on the contactor and `−w_k r` on its targets.
+//!
+//! Scope: zones whose rows of `H` of a candidate are a rotation of its node's free dofs (with
+//! the normal not along a prescribed component), minus a combination of other nodes' dofs
+//! (a deformable target; then the contactor node has all its components free, and no
+//! contactor is another candidate's target), non-adhesive laws with a friction coefficient (`Signorini`, `Coulomb`, RCCM once fully
 //! debonded), one candidate per node, and a structure that exposes its stiffness
 //! ([`Structure::stiffness_matrix`]). A step out of scope is refused with the reason
 //! (`SolverError::Unsupported`). The lagged friction coupling converges for the friction
@@ -48,16 +57,20 @@
 use crate::error::SolverError;
 use crate::local::contact_statuses;
 use contact_laws::{ContactLaw, ContactStatus};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::sparse::SymbolicSparseColMatRef;
 use fem_core::SpdSolver;
 use fem_core::Structure;
 
 mod constrained;
+mod frame;
 mod guess;
 mod inner;
+mod transform;
+
+pub(crate) use frame::{LocalFrame, frames};
 
 use constrained::{Base, solve_constrained};
-use guess::{Damping, Guess, constraints, guess_sets};
+use guess::{Damping, Guess, guess_sets};
 use inner::{Context, Iterate, window};
 
 /// Most new corrections one iteration may add before the constrained stiffness is refactored
@@ -79,144 +92,15 @@ pub fn max_low_rank_update(n: usize) -> usize {
 /// (`docs/benchmarks.md`, "Scale").
 pub const PRIMAL_MAX_ITERATIONS: usize = 1000;
 
-/// One active contact as the primal solve sees it: the dofs of its node that carry the local
-/// normal and tangential components, and the rotation (2D: `n, t`; 3D: `n, t1, t2`; unused
-/// slots `None`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct LocalFrame {
-    /// Global dof renamed as local component `c` (`[0]` the normal); `None` for a direction
-    /// the node cannot move along (every component along it prescribed, e.g. across a
-    /// symmetry plane), and for the third slot in 2D.
-    pub dofs: [Option<usize>; 3],
-    /// `p[c][e]`: coefficient of original dof `dofs[e]` in local component `c`.
-    pub p: [[f64; 3]; 3],
-    /// 3D: the rotation of the tangent plane from the candidate's tangents `(t1, t2)` to the
-    /// frame's (`turn · (a1, a2)`); chosen so that a node held along one direction of its
-    /// tangent plane has that direction as its second tangent, with no dof. The identity in
-    /// 2D and for a node with three free dofs (an isotropic friction law does not depend on
-    /// the choice of the tangents).
-    pub turn: [[f64; 2]; 2],
-}
-
-/// The rows of `H` on a node's free dofs that are closer to zero than this are empty.
-const ROW_ZERO: f64 = 1e-10;
-
-/// The frames of the active contacts (`dim` rows of `H` per candidate), or why the primal
-/// solve does not apply: the rows must be a rotation of the candidate's node's free dofs (a
-/// rigid obstacle), restricted to those dofs, with the normal among them (not along a
-/// prescribed component).
-pub(crate) fn frames(
-    h_rows: &[Vec<(usize, f64)>],
-    candidates: &[usize],
-    dim: usize,
-    ndof: usize,
-) -> Result<Vec<LocalFrame>, String> {
-    let mut owner = vec![false; ndof];
-    let mut out = Vec::with_capacity(candidates.len());
-    for &i in candidates {
-        let frame = frame_of(&h_rows[dim * i..dim * (i + 1)], i)?;
-        for d in frame.dofs.into_iter().flatten() {
-            if std::mem::replace(&mut owner[d], true) {
-                return Err(format!("dof {d} belongs to two contact candidates"));
-            }
-        }
-        out.push(frame);
-    }
-    Ok(out)
-}
-
-/// The frame of candidate `i` from its rows of `H` (see [`frames`]).
-fn frame_of(rows: &[Vec<(usize, f64)>], i: usize) -> Result<LocalFrame, String> {
-    let dim = rows.len();
-    let mut dofs: Vec<usize> = rows
-        .iter()
-        .flat_map(|r| r.iter().map(|&(d, _)| d))
-        .collect();
-    dofs.sort_unstable();
-    dofs.dedup();
-    let s = dofs.len();
-    let not_rotation = || {
-        format!(
-            "candidate {i}: its jump is not a rotation of one node's displacement \
-             (node-pair, node-to-segment or node-to-face zone)"
-        )
-    };
-    if s > dim || s == 0 {
-        return Err(not_rotation());
-    }
-    // a[c][e]: coefficient of dofs[e] in row c
-    let mut a = [[0.0; 3]; 3];
-    for (c, row) in rows.iter().enumerate() {
-        for &(d, v) in row {
-            let e = dofs.binary_search(&d).map_err(|_| not_rotation())?;
-            a[c][e] += v;
-        }
-    }
-    let norm2 = |v: &[f64; 3]| v[..s].iter().map(|x| x * x).sum::<f64>();
-    if (norm2(&a[0]) - 1.0).abs() > 1e-10 {
-        return Err(format!(
-            "candidate {i}: its normal is not a unit combination of its node's free dofs \
-             (a node-pair, node-to-segment or node-to-face zone, or a normal along a \
-             prescribed component)"
-        ));
-    }
-    let mut turn = [[1.0, 0.0], [0.0, 1.0]];
-    // the frame's rows on the free dofs: the normal first, then the tangents that move
-    let mut basis: Vec<(usize, [f64; 3])> = vec![(0, a[0])];
-    if s == dim {
-        basis.extend((1..dim).map(|c| (c, a[c])));
-    } else if s == 2 && dim == 3 {
-        // the tangent rows are t = g bᵀ (rank one) with b ⊥ n in the free dofs' plane: turn
-        // the tangent plane so that g is the first tangent, the second one is held
-        let b = [-a[0][1], a[0][0], 0.0];
-        let g = [
-            a[1][0] * b[0] + a[1][1] * b[1],
-            a[2][0] * b[0] + a[2][1] * b[1],
-        ];
-        let gn = g[0].hypot(g[1]);
-        let rank_one = (0..2).all(|e| {
-            (a[1][e] - g[0] * b[e]).abs() < ROW_ZERO && (a[2][e] - g[1] * b[e]).abs() < ROW_ZERO
-        });
-        if (gn - 1.0).abs() > 1e-10 || !rank_one {
-            return Err(not_rotation());
-        }
-        turn = [[g[0], g[1]], [-g[1], g[0]]];
-        basis.push((1, b));
-    } else if (1..dim).any(|c| norm2(&a[c]) > ROW_ZERO * ROW_ZERO) {
-        // one free dof along the normal: the tangents must not move it
-        return Err(not_rotation());
-    }
-    let mut frame = LocalFrame {
-        dofs: [None; 3],
-        p: [[0.0; 3]; 3],
-        turn,
-    };
-    for (&(c, _), &d) in basis.iter().zip(&dofs) {
-        frame.dofs[c] = Some(d);
-    }
-    for &(c, row) in &basis {
-        for (e, &(ce, _)) in basis.iter().enumerate() {
-            frame.p[c][ce] = row[e];
-        }
-    }
-    let mut orth = 0.0;
-    for (k, &(_, u)) in basis.iter().enumerate() {
-        for (l, &(_, v)) in basis.iter().enumerate() {
-            let dot: f64 = u[..s].iter().zip(&v[..s]).map(|(x, y)| x * y).sum();
-            orth += (dot - if k == l { 1.0 } else { 0.0 }).abs();
-        }
-    }
-    if orth > 1e-10 {
-        return Err(not_rotation());
-    }
-    Ok(frame)
-}
-
 /// What the primal solve keeps between steps: the symbolic analysis of `K`'s pattern, the
 /// rotated stiffness and the last numeric factorisation with its Dirichlet set.
 #[derive(Default)]
 pub(crate) struct PrimalCache {
-    symbolic: Option<(u64, SpdSolver)>,
+    /// The symbolic analysis of `K̃`'s pattern, for a stiffness version and, when the pattern
+    /// is `expanded`, the active list.
+    symbolic: Option<(u64, Option<Vec<usize>>, SpdSolver)>,
+    /// The pattern of `K̃` when a contact has a deformable target (`None`: `K`'s).
+    expanded: Option<std::sync::Arc<faer::sparse::SymbolicSparseColMat<usize>>>,
     /// Stiffness version and active list the rotated values were built for.
     rotated_for: Option<(u64, Vec<usize>)>,
     rotated: Vec<f64>,
@@ -308,121 +192,6 @@ impl PrimalCache {
             .sum();
         lower + upper
     }
-
-    /// The rotated stiffness `K̃ = P K Pᵀ` (lower triangle, `K`'s pattern).
-    fn rotate(
-        &mut self,
-        k: SparseColMatRef<'_, usize, f64>,
-        frames: &[LocalFrame],
-    ) -> Result<(), SolverError> {
-        let pattern = k.symbolic();
-        let n = pattern.ncols();
-        let values = k.val();
-        // members[d]: the rotated dofs original dof d contributes to, with the coefficients
-        let mut members: Vec<[(usize, f64); 3]> = Vec::new();
-        let mut slot = vec![usize::MAX; n];
-        for f in frames {
-            for (e, d) in f.dofs.iter().enumerate() {
-                if let Some(d) = *d {
-                    slot[d] = members.len();
-                    let mut m = [(usize::MAX, 0.0); 3];
-                    for (c, dc) in f.dofs.iter().enumerate() {
-                        if let Some(dc) = *dc {
-                            m[c] = (dc, f.p[c][e]);
-                        }
-                    }
-                    members.push(m);
-                }
-            }
-        }
-        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-        self.upper = vec![Vec::new(); members.len()];
-        for j in 0..n {
-            for (off, &i) in ri[cp[j]..cp[j + 1]].iter().enumerate() {
-                if i != j && slot[i] != usize::MAX {
-                    self.upper[slot[i]].push((j, cp[j] + off));
-                }
-            }
-        }
-        self.slot.clone_from(&slot);
-        self.node_of_slot = frames
-            .iter()
-            .enumerate()
-            .flat_map(|(kk, f)| f.dofs.iter().flatten().map(move |_| kk))
-            .collect();
-        self.column_of = vec![usize::MAX; members.len()];
-        self.columns.clear();
-        let mut probe_at = vec![usize::MAX; n];
-        let mut adjacent = vec![Vec::new(); frames.len()];
-        for (kk, f) in frames.iter().enumerate() {
-            for &c in f.dofs.iter().flatten() {
-                let row = ri[cp[c]..cp[c + 1]]
-                    .iter()
-                    .copied()
-                    .chain(self.upper[slot[c]].iter().map(|&(j, _)| j));
-                for j in std::iter::once(c).chain(row) {
-                    probe_at[j] = 0;
-                    if let Some(&o) = self.node_of_slot.get(slot[j])
-                        && o != kk
-                        && !adjacent[kk].contains(&o)
-                    {
-                        adjacent[kk].push(o);
-                    }
-                }
-            }
-        }
-        self.probe = (0..n).filter(|&i| probe_at[i] == 0).collect();
-        for (k, &i) in self.probe.iter().enumerate() {
-            probe_at[i] = k;
-        }
-        self.probe_at = probe_at;
-        self.adjacent = adjacent;
-        let out = &mut self.rotated;
-        out.clear();
-        out.resize(values.len(), 0.0);
-        let missing = || SolverError::InvalidSetting {
-            what: "flexibility",
-            value: 0.0,
-            expected: "a stiffness pattern that couples the dofs of every contact node (ActiveSet)",
-        };
-        let add = |i: usize, j: usize, v: f64, out: &mut Vec<f64>| -> Result<(), SolverError> {
-            if i >= j {
-                let pos = position(pattern, i, j).ok_or_else(missing)?;
-                out[pos] += v;
-            }
-            Ok(())
-        };
-        let identity = |d: usize| [(d, 1.0), (usize::MAX, 0.0), (usize::MAX, 0.0)];
-        for q in 0..n {
-            for p in cp[q]..cp[q + 1] {
-                let (row, v) = (ri[p], values[p]);
-                if slot[row] == usize::MAX && slot[q] == usize::MAX {
-                    out[p] += v;
-                    continue;
-                }
-                let mp = if slot[row] == usize::MAX {
-                    identity(row)
-                } else {
-                    members[slot[row]]
-                };
-                let mq = if slot[q] == usize::MAX {
-                    identity(q)
-                } else {
-                    members[slot[q]]
-                };
-                for &(i, a) in mp.iter().filter(|m| m.0 != usize::MAX) {
-                    for &(j, b) in mq.iter().filter(|m| m.0 != usize::MAX) {
-                        // ordered entry (row, q) → K̃[i, j]; its mirror (q, row) → K̃[j, i]
-                        add(i, j, a * v * b, out)?;
-                        if row != q {
-                            add(j, i, a * v * b, out)?;
-                        }
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
 }
 
 /// The symbolic analysis of the stiffness's pattern: faer's AMD in 2D, nested dissection on the
@@ -508,7 +277,21 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
             value: 0.0,
             expected: "a structure that exposes its stiffness matrix (ActiveSet)",
         })?;
-    let pattern = k.symbolic();
+    let version = structure.stiffness_version();
+    let rotated_for = Some((version, step.active.to_vec()));
+    if cache.rotated_for != rotated_for {
+        cache.rotate(k, step.frames)?;
+        cache.rotated_for = rotated_for;
+        cache.factor = None;
+    }
+    let expanded = cache.expanded.clone();
+    let pattern = expanded.as_deref().map_or(k.symbolic(), |p| p.as_ref());
+    let symbolic_for = (version, expanded.as_ref().map(|_| step.active.to_vec()));
+    if cache.symbolic.as_ref().map(|s| (s.0, &s.1)) != Some((symbolic_for.0, &symbolic_for.1)) {
+        let solver = symbolic_of(structure, pattern)?;
+        cache.symbolic = Some((symbolic_for.0, symbolic_for.1, solver));
+        cache.factor = None;
+    }
     let n = pattern.ncols();
     let na = step.active.len();
     // a frictional contact that cannot move along one of its tangents (every component along
@@ -526,17 +309,6 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
                 )));
             }
         }
-    }
-    let version = structure.stiffness_version();
-    if cache.symbolic.as_ref().map(|s| s.0) != Some(version) {
-        cache.symbolic = Some((version, symbolic_of(structure, pattern)?));
-        cache.factor = None;
-    }
-    let rotated_for = Some((version, step.active.to_vec()));
-    if cache.rotated_for != rotated_for {
-        cache.rotate(k, step.frames)?;
-        cache.rotated_for = rotated_for;
-        cache.factor = None;
     }
     // diagonal of K̃ at the local dofs: the complementarity constants c
     let diag = |dof: usize| cache.rotated[position(pattern, dof, dof).unwrap_or(0)];
@@ -622,15 +394,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         if it.done >= step.max_iterations {
             break;
         }
-        constraints(
-            step,
-            d,
-            &it.sets,
-            &it.g,
-            &mut it.mask,
-            &mut it.z,
-            &mut it.force,
-        );
+        it.constrain(step);
         // the inner iterations are 2D only: in 3D every sliding contact's direction changes
         // at every iteration, and on the sheared block they did not converge
         let ahead = if T == 1 && it.done > 0 {

@@ -155,6 +155,13 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 ));
             }
         }
-        frames(&self.h_rows, active, 2, self.structure.dof_count())
+        let own = |i: usize| -> Vec<usize> {
+            self.structure
+                .node_dofs(self.candidates[i].node)
+                .into_iter()
+                .flatten()
+                .collect()
+        };
+        frames(&self.h_rows, active, 2, self.structure.dof_count(), &own)
     }
 }

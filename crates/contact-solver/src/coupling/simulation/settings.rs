@@ -52,7 +52,8 @@ pub struct SimulationSettings {
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum FlexibilityMode {
     /// Dense `F*` up to `dense_limit` active contacts; beyond, the primal active-set solve
-    /// when the step is in its scope ([`crate::coupling::primal`]: rigid obstacles, no active adhesion, a
+    /// when the step is in its scope ([`crate::coupling::primal`]: rigid obstacles, node pairs
+    /// and node-to-segment with every component of the contactors free, no active adhesion, a
     /// structure that exposes its stiffness), else matrix-free (when no active law is adhesive:
     /// the exact condensation of the springs needs the dense `F*`). A step whose active-set
     /// iteration does not converge is solved again with a dense `F*` (up to 8000 contacts) or

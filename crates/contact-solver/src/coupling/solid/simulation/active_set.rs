@@ -12,9 +12,10 @@ use contact_laws::ContactLaw;
 use fem_core::Structure;
 
 impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
-    /// The local frames of the active-set path on `active`, or why it does not apply: rigid
-    /// obstacles only (each contact's rows of `H` a rotation of its node's free dofs), laws with
-    /// a friction coefficient and no adhesion, a structure that exposes its stiffness.
+    /// The local frames of the active-set path on `active`, or why it does not apply: each
+    /// contact's rows of `H` a rotation of its node's free dofs, minus a combination of target
+    /// nodes' (rigid obstacles, node pairs, node-to-face), laws with a friction coefficient and
+    /// no adhesion, a structure that exposes its stiffness.
     pub(super) fn active_set_frames(&self, active: &[usize]) -> Result<Vec<LocalFrame>, String> {
         if self.structure.stiffness_matrix().is_none() {
             return Err("the structure does not expose its stiffness matrix".into());
@@ -34,7 +35,14 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 ));
             }
         }
-        frames(&self.h_rows, active, 3, self.structure.dof_count())
+        let own = |i: usize| -> Vec<usize> {
+            self.structure
+                .node_dofs(self.candidates[i].node)
+                .into_iter()
+                .flatten()
+                .collect()
+        };
+        frames(&self.h_rows, active, 3, self.structure.dof_count(), &own)
     }
 
     /// The primal active-set solve of the reduced problem on `active`.

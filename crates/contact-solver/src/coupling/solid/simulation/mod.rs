@@ -49,7 +49,8 @@ pub struct SolidSettings {
     /// How the reduced problem is held: `Dense` (`F*` built with `3 n_c` solves), `MatrixFree`
     /// (one solve per iteration, no `F*`; adhesive steps still build `F*`, whose exact
     /// condensation of the springs needs it), `ActiveSet` (the primal active set: rigid
-    /// obstacles, no adhesion; a step out of its scope is refused with the reason), or
+    /// obstacles, node pairs and node-to-face with every component of the contactors free, no
+    /// adhesion; a step out of its scope is refused with the reason), or
     /// `Auto { dense_limit }` (the default, [`DEFAULT_DENSE_LIMIT_3D`]): dense up to that many
     /// active contacts; beyond, the active set when the step is in its scope, else
     /// matrix-free, and a step whose active-set iteration fails is solved again dense (up to
