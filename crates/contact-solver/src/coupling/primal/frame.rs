@@ -3,6 +3,8 @@
 //! two bodies (node pairs, node-to-segment, node-to-face) the target dofs whose motion the
 //! contactor's carries.
 
+use fem_core::Structure;
+
 /// One active contact as the primal solve sees it: the dofs of its node that carry the local
 /// normal and tangential components, and the rotation (2D: `n, t`; 3D: `n, t1, t2`; unused
 /// slots `None`). Against a deformable target the local jump is `x = P (u_a − Σ_k w_k u_k)`:
@@ -30,24 +32,29 @@ pub(crate) struct LocalFrame {
 /// The rows of `H` on a node's free dofs that are closer to zero than this are empty.
 const ROW_ZERO: f64 = 1e-10;
 
-/// The frames of the active contacts (`dim` rows of `H` per candidate), or why the primal
-/// solve does not apply. `own(i)` lists candidate `i`'s contactor node's free dofs. The rows
+/// The frames of the active contacts (`N` rows of `H` per candidate), or why the primal
+/// solve does not apply. `node_of(i)` is candidate `i`'s contactor node. The rows
 /// on those dofs must be a rotation of them (with the normal among them, not along a
 /// prescribed component); on any other dof `j` (a target node's component `e`), the rows must
 /// be `−w` times their coefficients on the contactor's component `e`, and then the contactor
 /// must have all `dim` components free. A contactor's dof may belong to one candidate only and
 /// may not be another candidate's target (no chains).
-pub(crate) fn frames(
+pub(crate) fn frames<S: Structure<N> + ?Sized, const N: usize>(
+    structure: &S,
     h_rows: &[Vec<(usize, f64)>],
     candidates: &[usize],
-    dim: usize,
-    ndof: usize,
-    own: &dyn Fn(usize) -> Vec<usize>,
+    node_of: &dyn Fn(usize) -> usize,
 ) -> Result<Vec<LocalFrame>, String> {
-    let mut owner = vec![false; ndof];
+    let dim = N;
+    let mut owner = vec![false; structure.dof_count()];
     let mut out = Vec::with_capacity(candidates.len());
     for &i in candidates {
-        let frame = frame_of(&h_rows[dim * i..dim * (i + 1)], i, &own(i))?;
+        let own: Vec<usize> = structure
+            .node_dofs(node_of(i))
+            .into_iter()
+            .flatten()
+            .collect();
+        let frame = frame_of(&h_rows[dim * i..dim * (i + 1)], i, &own)?;
         for d in frame.dofs.into_iter().flatten() {
             if std::mem::replace(&mut owner[d], true) {
                 return Err(format!("dof {d} belongs to two contact candidates"));

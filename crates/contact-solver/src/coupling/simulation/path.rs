@@ -155,13 +155,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 ));
             }
         }
-        let own = |i: usize| -> Vec<usize> {
-            self.structure
-                .node_dofs(self.candidates[i].node)
-                .into_iter()
-                .flatten()
-                .collect()
-        };
-        frames(&self.h_rows, active, 2, self.structure.dof_count(), &own)
+        let node_of = |i: usize| self.candidates[i].node;
+        frames(&self.structure, &self.h_rows, active, &node_of)
     }
 }

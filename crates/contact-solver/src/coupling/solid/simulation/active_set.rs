@@ -35,14 +35,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 ));
             }
         }
-        let own = |i: usize| -> Vec<usize> {
-            self.structure
-                .node_dofs(self.candidates[i].node)
-                .into_iter()
-                .flatten()
-                .collect()
-        };
-        frames(&self.h_rows, active, 3, self.structure.dof_count(), &own)
+        let node_of = |i: usize| self.candidates[i].node;
+        frames(&self.structure, &self.h_rows, active, &node_of)
     }
 
     /// The primal active-set solve of the reduced problem on `active`.
