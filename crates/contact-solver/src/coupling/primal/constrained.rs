@@ -175,8 +175,7 @@ pub(super) fn solve_constrained(
     base.fixed.clear();
     base.fixed.extend(contact_dofs.iter().map(|&d| mask[d]));
     slot_forces(cache, force, &mut base.force);
-    let forces = base.force.clone();
-    correct(cache, mask, z, &forces, base, w)?;
+    correct(cache, mask, z, &base.force, base, w)?;
     Ok(solves)
 }
 

@@ -213,8 +213,12 @@ pub(super) fn constraints<L: ContactLaw>(
     z: &mut [f64],
     force: &mut Vec<(usize, f64)>,
 ) {
-    mask.fill(false);
-    z.fill(0.0);
+    // only the contact dofs are ever set (here, and the reactions read back into `z`): clear
+    // those, not all `n` (the inner iterations build a guess per small dense solve)
+    for &dof in step.frames.iter().flat_map(|f| f.dofs.iter().flatten()) {
+        mask[dof] = false;
+        z[dof] = 0.0;
+    }
     force.clear();
     for (kk, &guess) in sets.iter().enumerate() {
         for (dof, held, v) in node_conditions(step, d, kk, guess, g[kk])

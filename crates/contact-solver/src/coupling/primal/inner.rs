@@ -45,7 +45,7 @@ pub(super) struct Context<'a, 'p, L: ContactLaw> {
 }
 
 /// The current iterate of a primal solve and its buffers.
-pub(super) struct Iterate<L: ContactLaw> {
+pub(super) struct Iterate {
     pub r: Vec<f64>,
     pub x: Vec<f64>,
     pub sets: Vec<Guess>,
@@ -60,12 +60,11 @@ pub(super) struct Iterate<L: ContactLaw> {
     pub z: Vec<f64>,
     pub force: Vec<(usize, f64)>,
     pub w: Vec<f64>,
-    pub(super) law: std::marker::PhantomData<L>,
 }
 
-impl<L: ContactLaw> Iterate<L> {
+impl Iterate {
     /// The guess as constraints of the rotated system (`mask`, `z`, `force`).
-    pub(super) fn constrain(&mut self, step: &PrimalStep<'_, L>) {
+    pub(super) fn constrain<L: ContactLaw>(&mut self, step: &PrimalStep<'_, L>) {
         let d = step.q.len() / step.active.len().max(1);
         constraints(
             step,
@@ -79,7 +78,10 @@ impl<L: ContactLaw> Iterate<L> {
     }
 
     /// The relative natural-map residual of `(r, x)`.
-    pub(super) fn residual_of<const T: usize>(&self, ctx: &Context<'_, '_, L>) -> f64 {
+    pub(super) fn residual_of<L: ContactLaw, const T: usize>(
+        &self,
+        ctx: &Context<'_, '_, L>,
+    ) -> f64 {
         let rn = self.r.iter().map(|v| v * v).sum::<f64>().sqrt();
         let denom = rn.max(ctx.scale_q).max(f64::MIN_POSITIVE);
         natural_residual::<L, T>(ctx.step.laws, ctx.step.states, ctx.rho, &self.r, &self.x) / denom
@@ -87,7 +89,7 @@ impl<L: ContactLaw> Iterate<L> {
 
     /// Reads the reactions and jumps of the solve in `w` (exact on the probe dofs) back into
     /// the iterate, with its residual.
-    pub(super) fn evaluate<const T: usize>(
+    pub(super) fn evaluate<L: ContactLaw, const T: usize>(
         &mut self,
         ctx: &Context<'_, '_, L>,
         cache: &PrimalCache,
@@ -114,7 +116,7 @@ impl<L: ContactLaw> Iterate<L> {
             &mut self.r,
             &mut self.x,
         );
-        self.residual = self.residual_of::<T>(ctx);
+        self.residual = self.residual_of::<L, T>(ctx);
         self.history.push(self.residual);
         self.done += 1;
         Ok(())
@@ -207,7 +209,7 @@ pub(super) fn iterate<L: ContactLaw, const T: usize>(
     cache: &PrimalCache,
     base: &Base,
     damping: f64,
-    it: &mut Iterate<L>,
+    it: &mut Iterate,
 ) -> Result<(), SolverError> {
     if cache.columns.is_empty() {
         return Ok(());
@@ -254,7 +256,7 @@ pub(super) fn iterate<L: ContactLaw, const T: usize>(
         it.constrain(step);
         slot_forces(cache, &it.force, &mut forces);
         correct(cache, &it.mask, &it.z, &forces, base, &mut it.w)?;
-        it.evaluate::<T>(ctx, cache)?;
+        it.evaluate::<L, T>(ctx, cache)?;
         it.inner += 1;
     }
     Ok(())

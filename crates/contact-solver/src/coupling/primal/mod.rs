@@ -339,7 +339,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         rho: &rho,
         scale_q,
     };
-    let mut it = Iterate::<L> {
+    let mut it = Iterate {
         r: step.r0.to_vec(),
         x: step.q.to_vec(),
         sets: vec![Guess::default(); na],
@@ -352,7 +352,6 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         z: vec![0.0; n],
         force: Vec::new(),
         w: vec![0.0; n],
-        law: std::marker::PhantomData,
     };
     for (kk, &t) in step.tangent.iter().enumerate() {
         if !t {
@@ -363,7 +362,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         }
     }
     let mut solves = 0;
-    it.residual = it.residual_of::<T>(&ctx);
+    it.residual = it.residual_of::<L, T>(&ctx);
     it.g = (0..na)
         .map(|kk| step.mu[kk] * it.r[d * kk].max(0.0))
         .collect();
@@ -388,8 +387,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
             // the last iterate is in equilibrium (one exact solve) and meets the law to the
             // tolerance; the guess need not repeat (a P2 corner node with no force flips
             // between open and closed on round-off)
-            let (done, residual) = (it.done, it.residual);
-            return Ok(finish::<L, T>(step, &rho, it, done, residual, true, solves));
+            return Ok(finish::<L, T>(step, &rho, it, true, solves));
         }
         if it.done >= step.max_iterations {
             break;
@@ -414,7 +412,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
             &mut it.w,
             &mut base,
         )?;
-        it.evaluate::<T>(&ctx, cache)?;
+        it.evaluate::<L, T>(&ctx, cache)?;
         let inner_before = it.inner;
         if T == 1 {
             inner::iterate::<L, T>(&ctx, cache, &base, damping.factor, &mut it)?;
@@ -422,10 +420,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         outer_last = it.inner == inner_before;
     }
     if step.accept_non_converged {
-        let (done, residual) = (it.done, it.residual);
-        return Ok(finish::<L, T>(
-            step, &rho, it, done, residual, false, solves,
-        ));
+        return Ok(finish::<L, T>(step, &rho, it, false, solves));
     }
     Err(SolverError::NotConverged {
         iterations: it.done,
@@ -437,9 +432,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
 fn finish<L: ContactLaw, const T: usize>(
     step: &PrimalStep<'_, L>,
     rho: &[f64],
-    it: Iterate<L>,
-    iterations: usize,
-    residual: f64,
+    it: Iterate,
     converged: bool,
     solves: usize,
 ) -> PrimalSolution {
@@ -448,9 +441,9 @@ fn finish<L: ContactLaw, const T: usize>(
         r: it.r,
         x: it.x,
         statuses,
-        iterations,
+        iterations: it.done,
         inner_iterations: it.inner,
-        residual,
+        residual: it.residual,
         converged,
         solves,
     }
