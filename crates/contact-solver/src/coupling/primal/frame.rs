@@ -36,9 +36,11 @@ const ROW_ZERO: f64 = 1e-10;
 /// solve does not apply. `node_of(i)` is candidate `i`'s contactor node. The rows
 /// on those dofs must be a rotation of them (with the normal among them, not along a
 /// prescribed component); on any other dof `j` (a target node's component `e`), the rows must
-/// be `−w` times their coefficients on the contactor's component `e`, and then the contactor
-/// must have all `dim` components free. A contactor's dof may belong to one candidate only and
-/// may not be another candidate's target (no chains).
+/// be `−w` times their coefficients on the contactor's component `e` (which must then be
+/// free: a target may not move along a prescribed component of its contactor). When that
+/// fails for a node pair, the target node is renamed instead (its coefficients are `−P`, the
+/// contactor's the carried ones). A renamed dof may belong to one candidate only and may not
+/// be another candidate's target (no chains).
 pub(crate) fn frames<S: Structure<N> + ?Sized, const N: usize>(
     structure: &S,
     h_rows: &[Vec<(usize, f64)>],
@@ -48,13 +50,45 @@ pub(crate) fn frames<S: Structure<N> + ?Sized, const N: usize>(
     let dim = N;
     let mut owner = vec![false; structure.dof_count()];
     let mut out = Vec::with_capacity(candidates.len());
+    let dofs_of =
+        |node: usize| -> Vec<usize> { structure.node_dofs(node).into_iter().flatten().collect() };
+    // the node of each dof, built when a pair needs its target renamed
+    let mut node_of_dof: Vec<usize> = Vec::new();
     for &i in candidates {
-        let own: Vec<usize> = structure
-            .node_dofs(node_of(i))
-            .into_iter()
-            .flatten()
-            .collect();
-        let frame = frame_of(&h_rows[dim * i..dim * (i + 1)], i, &own)?;
+        let rows = &h_rows[dim * i..dim * (i + 1)];
+        let frame = match frame_of(rows, i, &dofs_of(node_of(i))) {
+            Ok(f) => f,
+            Err(e) => {
+                // a contactor that cannot carry the jump (a prescribed component along which
+                // its target moves, as a pile head lifted by a prescribed displacement): the
+                // target's dofs are renamed instead when the target is one node (a node pair)
+                if node_of_dof.is_empty() {
+                    node_of_dof = vec![usize::MAX; structure.dof_count()];
+                    for node in 0..structure.node_count() {
+                        for d in dofs_of(node) {
+                            if let Some(slot) = node_of_dof.get_mut(d) {
+                                *slot = node;
+                            }
+                        }
+                    }
+                }
+                let own = dofs_of(node_of(i));
+                let mut nodes: Vec<usize> = rows
+                    .iter()
+                    .flat_map(|r| r.iter().map(|&(d, _)| d))
+                    .filter(|d| !own.contains(d))
+                    .filter_map(|d| node_of_dof.get(d).copied())
+                    .collect();
+                nodes.sort_unstable();
+                nodes.dedup();
+                match nodes[..] {
+                    [target] if target != usize::MAX => {
+                        frame_of(rows, i, &dofs_of(target)).map_err(|_| e)?
+                    }
+                    _ => return Err(e),
+                }
+            }
+        };
         for d in frame.dofs.into_iter().flatten() {
             if std::mem::replace(&mut owner[d], true) {
                 return Err(format!("dof {d} belongs to two contact candidates"));
@@ -84,12 +118,6 @@ fn frame_of(rows: &[Vec<(usize, f64)>], i: usize, own: &[usize]) -> Result<Local
     all.dedup();
     let (dofs, targets): (Vec<usize>, Vec<usize>) = all.into_iter().partition(|d| own.contains(d));
     let s = dofs.len();
-    if !targets.is_empty() && s != dim {
-        return Err(format!(
-            "candidate {i}: a contact with a deformable target whose contactor node has a \
-             prescribed component"
-        ));
-    }
     let not_rotation = || {
         format!(
             "candidate {i}: its rows of H on its contactor node are not a rotation of its \
@@ -180,6 +208,12 @@ fn frame_of(rows: &[Vec<(usize, f64)>], i: usize, own: &[usize]) -> Result<Local
             .unwrap_or(0);
         let w = -dot(e);
         let off: f64 = (0..dim).map(|c| (hj[c] + w * a[c][e]).abs()).sum();
+        if s < dim && (off > 1e-10 * w.abs().max(1.0) || w.abs() <= ROW_ZERO) {
+            return Err(format!(
+                "candidate {i}: a contact with a deformable target whose contactor node has a \
+                 prescribed component along which the target moves (dof {j})"
+            ));
+        }
         if off > 1e-10 * w.abs().max(1.0) || w.abs() <= ROW_ZERO {
             return Err(format!(
                 "candidate {i}: its rows of H on dof {j} are not a multiple of the contactor's \

@@ -174,7 +174,7 @@ pub(super) fn guess_sets<L: ContactLaw, const T: usize>(
 
 /// The conditions one contact's guess puts on its dofs (`T + 1` components, `None` for a
 /// component without a dof): held at `z` (`true`, the value) or loaded by a force (`false`,
-/// the force: `g · s` on a sliding tangent, zero elsewhere).
+/// the force: `g · s` on a sliding tangent, zero elsewhere, plus the adhesive springs' load).
 pub(super) fn node_conditions<L: ContactLaw>(
     step: &PrimalStep<'_, L>,
     d: usize,
@@ -190,12 +190,14 @@ pub(super) fn node_conditions<L: ContactLaw>(
             0 => guess.kind != Kind::Open,
             _ => guess.kind == Kind::Stick,
         };
+        // the adhesive springs' load, on a dof that is not held
+        let load = step.spring_load.get(d * kk + comp).copied().unwrap_or(0.0);
         *o = Some(if held {
             (dof, true, -step.q[d * kk + comp])
         } else if comp >= 1 && guess.kind == Kind::Slip && guess.has_direction() {
-            (dof, false, g * guess.direction[comp - 1])
+            (dof, false, g * guess.direction[comp - 1] + load)
         } else {
-            (dof, false, 0.0)
+            (dof, false, load)
         });
     }
     out

@@ -37,6 +37,8 @@ pub(super) struct Context<'a, 'p, L: ContactLaw> {
     pub step: &'a PrimalStep<'p, L>,
     pub pattern: SymbolicSparseColMatRef<'a, usize>,
     pub contact_dofs: &'a [usize],
+    /// The adhesive springs' load on each contact dof (as `contact_dofs`).
+    pub contact_loads: &'a [f64],
     /// The complementarity constants (dof stiffnesses) and the natural map's `ρ` per contact.
     pub c: &'a [[f64; 3]],
     pub rho: &'a [f64],
@@ -102,9 +104,9 @@ impl Iterate {
             });
         }
         // forces: reactions on Dirichlet dofs, the applied sliding force, zero elsewhere (the
-        // rows of K̃ w at the contact dofs only)
-        for &dof in ctx.contact_dofs {
-            self.z[dof] = cache.row_dot(ctx.pattern, dof, &self.w);
+        // rows of K̃ w at the contact dofs only, less the springs' load)
+        for (&dof, &load) in ctx.contact_dofs.iter().zip(ctx.contact_loads) {
+            self.z[dof] = cache.row_dot(ctx.pattern, dof, &self.w) - load;
         }
         read_back(
             ctx.step,

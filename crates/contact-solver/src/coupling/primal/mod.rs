@@ -61,6 +61,7 @@ use faer::sparse::SymbolicSparseColMatRef;
 use fem_core::SpdSolver;
 use fem_core::Structure;
 
+pub(crate) mod adhesive;
 mod constrained;
 mod frame;
 mod guess;
@@ -126,6 +127,13 @@ pub(crate) struct PrimalCache {
     /// couple with in `K̃` (the neighbours along the interface).
     node_of_slot: Vec<usize>,
     adjacent: Vec<Vec<usize>>,
+    /// The adhesive springs added to the diagonal of `rotated`: (position, stiffness), and
+    /// as the step passed them (per component of the active list; empty when none or after a
+    /// new rotation).
+    sprung: Vec<(usize, f64)>,
+    springs_passed: Vec<f64>,
+    /// The guess of the last converged solve (a warm start for the next, [`PrimalStep::x0`]).
+    last_sets: Vec<Guess>,
     /// Numeric factorisations done.
     pub factorizations: usize,
 }
@@ -170,6 +178,17 @@ pub(crate) struct PrimalStep<'a, L: ContactLaw> {
     pub q: &'a [f64],
     /// Starting reactions (as `q`).
     pub r0: &'a [f64],
+    /// Starting jumps (as `q`; empty: `q`). When given, the first guess also starts from the
+    /// last solve's guess if it was on as many contacts (a sequence of solves of one step,
+    /// as the adhesion fixed point's).
+    pub x0: &'a [f64],
+    /// Adhesive springs on the jumps (as `q`, or empty: none): the nodal stiffness `b` of
+    /// each component, equal on the tangents of a contact (an isotropic law), added to the
+    /// diagonal of its dof; the reactions are then the contact law's `r̄`, the springs' force
+    /// `−b (x + o)` being the rest of the total reaction ([`adhesive`]).
+    pub springs: &'a [f64],
+    /// The springs' load at `w = 0`, `−b (q + o)` (as `springs`).
+    pub spring_load: &'a [f64],
     pub tol: f64,
     pub max_iterations: usize,
     pub accept_non_converged: bool,
@@ -182,6 +201,43 @@ fn position(k: SymbolicSparseColMatRef<'_, usize>, row: usize, col: usize) -> Op
 }
 
 impl PrimalCache {
+    /// Puts the step's adhesive springs on the diagonal of the rotated stiffness (forgetting
+    /// the factor when they change).
+    fn set_springs<L: ContactLaw>(
+        &mut self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        step: &PrimalStep<'_, L>,
+        d: usize,
+    ) -> Result<(), SolverError> {
+        let mut now = Vec::new();
+        if !step.springs.is_empty() {
+            for (kk, f) in step.frames.iter().enumerate() {
+                for (c, dof) in f.dofs.iter().enumerate().take(d) {
+                    let b = step.springs[d * kk + c];
+                    if let (Some(dof), true) = (*dof, b != 0.0) {
+                        let p = position(pattern, dof, dof).ok_or(SolverError::Unsupported(
+                            "a stiffness without a diagonal entry at a contact dof".into(),
+                        ))?;
+                        now.push((p, b));
+                    }
+                }
+            }
+        }
+        self.springs_passed.clear();
+        self.springs_passed.extend_from_slice(step.springs);
+        if now != self.sprung {
+            for &(p, b) in &self.sprung {
+                self.rotated[p] -= b;
+            }
+            for &(p, b) in &now {
+                self.rotated[p] += b;
+            }
+            self.sprung = now;
+            self.factor = None;
+        }
+        Ok(())
+    }
+
     /// `(K̃ v)_c` for a contact dof `c`: its column below the diagonal and its row left of it.
     fn row_dot(&self, pattern: SymbolicSparseColMatRef<'_, usize>, c: usize, v: &[f64]) -> f64 {
         let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
@@ -252,9 +308,20 @@ pub(crate) fn solve_primal<
     };
     let q_turned = turned(step.q, false);
     let r0_turned = turned(step.r0, false);
+    let turned_or_empty = |v: &[f64]| {
+        if v.is_empty() {
+            Vec::new()
+        } else {
+            turned(v, false)
+        }
+    };
+    let load_turned = turned_or_empty(step.spring_load);
+    let x0_turned = turned_or_empty(step.x0);
     let step = &PrimalStep {
         q: &q_turned,
         r0: &r0_turned,
+        x0: &x0_turned,
+        spring_load: &load_turned,
         ..*step
     };
     let mut sol = solve_turned::<S, N, L, T>(structure, cache, step)?;
@@ -282,6 +349,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
     if cache.rotated_for != rotated_for {
         cache.rotate(k, step.frames)?;
         cache.rotated_for = rotated_for;
+        cache.sprung.clear();
         cache.factor = None;
     }
     let expanded = cache.expanded.clone();
@@ -294,6 +362,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
     }
     let n = pattern.ncols();
     let na = step.active.len();
+    cache.set_springs(pattern, step, d)?;
     // a frictional contact that cannot move along one of its tangents (every component along
     // it prescribed) is solved with that slip zero: exact only when its free slip is zero (a
     // symmetry plane), which is checked here
@@ -331,18 +400,38 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         rho.iter().fold(0.0_f64, |m, &r| m.max(r)) * qn
     };
     let contact_dofs: Vec<usize> = step.frames.iter().flat_map(|f| f.dofs).flatten().collect();
+    // the springs' load on each contact dof (as `contact_dofs`)
+    let contact_loads: Vec<f64> = step
+        .frames
+        .iter()
+        .enumerate()
+        .flat_map(|(kk, f)| {
+            (0..3).filter_map(move |c| f.dofs[c].map(|_| step.spring_load.get(d * kk + c)))
+        })
+        .map(|v| v.copied().unwrap_or(0.0))
+        .collect();
     let ctx = Context {
         step,
         pattern,
         contact_dofs: &contact_dofs,
+        contact_loads: &contact_loads,
         c: &c,
         rho: &rho,
         scale_q,
     };
+    let warm = step.x0.len() == step.q.len() && cache.last_sets.len() == na;
     let mut it = Iterate {
         r: step.r0.to_vec(),
-        x: step.q.to_vec(),
-        sets: vec![Guess::default(); na],
+        x: if step.x0.len() == step.q.len() {
+            step.x0.to_vec()
+        } else {
+            step.q.to_vec()
+        },
+        sets: if warm {
+            cache.last_sets.clone()
+        } else {
+            vec![Guess::default(); na]
+        },
         g: Vec::new(),
         residual: 0.0,
         history: Vec::new(),
@@ -387,6 +476,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
             // the last iterate is in equilibrium (one exact solve) and meets the law to the
             // tolerance; the guess need not repeat (a P2 corner node with no force flips
             // between open and closed on round-off)
+            cache.last_sets.clone_from(&it.sets);
             return Ok(finish::<L, T>(step, &rho, it, true, solves));
         }
         if it.done >= step.max_iterations {

@@ -37,7 +37,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             self.w.clear();
             self.w_version = None;
             self.last_problem = LastProblem::None;
-            match self.solve_active_set(free, frames, report) {
+            match self.solve_active_set(free, frames, dt, report) {
                 Ok(solved) => {
                     report.active_set = true;
                     return Ok(solved);
@@ -117,13 +117,11 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                     Ok(Path::MatrixFree)
                 }
             }
-            FlexibilityMode::MatrixFree | FlexibilityMode::ActiveSet if adhesive => {
-                Err(SolverError::InvalidSetting {
-                    what: "flexibility",
-                    value: active.len() as f64,
-                    expected: "Dense or Auto for adhesive laws (the springs are condensed on a dense F*)",
-                })
-            }
+            FlexibilityMode::MatrixFree if adhesive => Err(SolverError::InvalidSetting {
+                what: "flexibility",
+                value: active.len() as f64,
+                expected: "Dense, ActiveSet or Auto for adhesive laws (MatrixFree has no place for the springs)",
+            }),
             FlexibilityMode::MatrixFree if active.is_empty() => Ok(Path::Dense),
             FlexibilityMode::MatrixFree => Ok(Path::MatrixFree),
             FlexibilityMode::ActiveSet if active.is_empty() => Ok(Path::Dense),

@@ -7,6 +7,7 @@
 use super::ContactSimulation;
 use super::last_problem::{AdhesiveInputs, LastProblem};
 use super::report::StepReport;
+use crate::coupling::primal::adhesive::{AdhesiveData, solve_primal_adhesive};
 use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
 use crate::error::SolverError;
 use crate::local::ReducedProblem;
@@ -65,11 +66,13 @@ impl<T> Solved<T> {
 }
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
-    /// The primal active-set solve of the step (no `F*`).
+    /// The primal active-set solve of the step (no `F*`), with the adhesion fixed point
+    /// around it when a law is adhesive ([`crate::coupling::primal::adhesive`]).
     pub(super) fn solve_active_set(
         &mut self,
         free: &[[f64; 2]],
         frames: &[LocalFrame],
+        dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
         let active = self.w_active.clone();
@@ -101,6 +104,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             tangent: &tangent,
             q: &q,
             r0: &r0,
+            x0: &[],
+            springs: &[],
+            spring_load: &[],
             tol: self.settings.solver.tol,
             max_iterations: self
                 .settings
@@ -110,6 +116,50 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
         };
         let before = self.primal.factorizations;
+        let adhesive = laws
+            .iter()
+            .zip(&states)
+            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+        if adhesive {
+            let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+            let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+            let data = AdhesiveData {
+                u_start: &u_start,
+                areas: &areas,
+                dt,
+            };
+            let options = AdhesionOptions {
+                tol: self.settings.adhesion_tol,
+                max_iterations: self.settings.max_adhesion_iterations,
+                accept_non_converged: self.settings.solver.accept_non_converged,
+                anderson_window: self.settings.adhesion_anderson_window,
+                ..AdhesionOptions::default()
+            };
+            let sol = solve_primal_adhesive::<_, 2, _, 1, 2>(
+                &self.structure,
+                &mut self.primal,
+                &step,
+                &data,
+                &options,
+            )?;
+            self.counters.active_set_steps += 1;
+            self.counters.active_set_factorizations += self.primal.factorizations - before;
+            self.counters.active_set_solves += sol.solves;
+            self.counters.active_set_inner_iterations += sol.inner_iterations;
+            report.contact_iterations += sol.iterations;
+            report.adhesion_iterations += sol.adhesion_iterations;
+            report.residual = sol.residual;
+            report.converged &= sol.converged;
+            return Ok(Solved {
+                r: sol.r,
+                r_bar: sol.r_bar,
+                x: sol.x,
+                statuses: sol.statuses,
+                states: sol.states,
+                alpha: Vec::new(),
+                extend: Vec::new(),
+            });
+        }
         let sol = solve_primal::<_, 2, _, 1>(&self.structure, &mut self.primal, &step)?;
         self.counters.active_set_steps += 1;
         self.counters.active_set_factorizations += self.primal.factorizations - before;

@@ -487,7 +487,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
 }
 
 /// The law's state update from the jumps `u0` (start of the step) and `u1`, in 2D or 3D.
-fn update_state<L: ContactLaw, const D: usize>(
+pub(crate) fn update_state<L: ContactLaw, const D: usize>(
     law: &L,
     start: &L::State,
     u0: &[f64; D],
@@ -511,7 +511,7 @@ fn update_state<L: ContactLaw, const D: usize>(
 /// is the plain fixed point. Safeguard: when the residual grows, the history is dropped and the
 /// damping `ω` halved (down to 1/64) — this is what makes a fixed point that would cycle (an
 /// interface whose friction grows as it debonds, `f(β) = 1 − β`) converge.
-struct Anderson {
+pub(crate) struct Anderson {
     window: usize,
     omega: f64,
     u: Option<Vec<f64>>,
@@ -525,7 +525,7 @@ struct Anderson {
 const MIN_DAMPING: f64 = 1.0 / 64.0;
 
 impl Anderson {
-    fn new(window: usize) -> Self {
+    pub(crate) fn new(window: usize) -> Self {
         Self {
             window,
             omega: 1.0,
@@ -538,7 +538,7 @@ impl Anderson {
     }
 
     /// The next iterate, given the image `g` of the current one.
-    fn next(&mut self, g: &[f64]) -> Vec<f64> {
+    pub(crate) fn next(&mut self, g: &[f64]) -> Vec<f64> {
         let Some(u) = self.u.take() else {
             self.u = Some(g.to_vec());
             return g.to_vec();

@@ -76,6 +76,9 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             tangent: &tangent,
             q: &q,
             r0: &r0,
+            x0: &[],
+            springs: &[],
+            spring_load: &[],
             tol: self.settings.solver.tol,
             max_iterations: self
                 .settings

@@ -1,0 +1,214 @@
+//! The primal active set with adhesive (RCCM) springs: the seed's fixed point on the states,
+//! each iteration one primal solve with the springs of the current states in the stiffness.
+//!
+//! With the springs `r_adh = −b (x + o)` (`b` the law's per-area stiffness times the tributary
+//! area, `o` the tangential jump at the start of the step), the total reaction is
+//! `r = r̄ + r_adh` and `K̃ w = r` becomes `(K̃ + b) w = r̄ − b (q + o)`: the springs are a
+//! diagonal stiffness on the contact dofs and a known load, and `r̄` obeys the contact law
+//! (Signorini and Coulomb with `μ̄` of the states) on the jumps `x = q + w`, which is the
+//! primal solve of [`super::solve_primal`]. The states are then updated from the jumps, with
+//! the same damped Anderson step as the dense path's fixed point
+//! ([`crate::local::adhesion`]), until the largest state change is below the tolerance.
+//!
+//! Every iteration whose springs changed refactorises the stiffness (the springs sit on its
+//! diagonal); Newton with the states eliminated, the dense path's default, would need the
+//! springs' tangent, which is not symmetric positive definite once the glue softens.
+
+use super::{PrimalCache, PrimalStep, solve_primal};
+use crate::error::SolverError;
+use crate::local::adhesion::{AdhesionOptions, Anderson, update_state};
+use contact_laws::{ContactLaw, ContactStatus};
+use fem_core::Structure;
+
+/// Most iterations with the springs' change lagged before they are put in the factor.
+const MAX_LAGGED_ITERATIONS: usize = 100;
+
+/// What an adhesive step adds to a [`PrimalStep`] (whose `states` are the start states, and
+/// whose `mu`, `springs` and `spring_load` are recomputed from the iterated states).
+pub(crate) struct AdhesiveData<'a, const D: usize> {
+    /// Jumps `(u_n, u_t…)` at the start of the step.
+    pub u_start: &'a [[f64; D]],
+    /// Tributary area of each contact.
+    pub areas: &'a [f64],
+    pub dt: f64,
+}
+
+/// The answer of an adhesive primal step, on the active list.
+pub(crate) struct AdhesivePrimal<S> {
+    /// Total reactions `r̄ + r_adh`.
+    pub r: Vec<f64>,
+    pub r_bar: Vec<f64>,
+    pub x: Vec<f64>,
+    pub states: Vec<S>,
+    pub statuses: Vec<ContactStatus>,
+    pub adhesion_iterations: usize,
+    /// Primal iterations summed over the fixed point, and of them the inner ones.
+    pub iterations: usize,
+    pub inner_iterations: usize,
+    pub solves: usize,
+    pub residual: f64,
+    pub converged: bool,
+}
+
+/// The fixed point on the states around [`solve_primal`] (module docs). `D = T + 1`.
+pub(crate) fn solve_primal_adhesive<
+    S: Structure<N> + ?Sized,
+    const N: usize,
+    L: ContactLaw,
+    const T: usize,
+    const D: usize,
+>(
+    structure: &S,
+    cache: &mut PrimalCache,
+    step: &PrimalStep<'_, L>,
+    data: &AdhesiveData<'_, D>,
+    options: &AdhesionOptions,
+) -> Result<AdhesivePrimal<L::State>, SolverError> {
+    let na = step.active.len();
+    if D != T + 1 || step.q.len() != D * na || data.u_start.len() != na || data.areas.len() != na {
+        return Err(SolverError::SizeMismatch {
+            what: "adhesive primal step (D values per contact)",
+            expected: D * na,
+            found: step.q.len(),
+        });
+    }
+    let m = D * na;
+    // the springs act on the total tangential jump: x + o
+    let offset: Vec<f64> = data
+        .u_start
+        .iter()
+        .flat_map(|u| (0..D).map(move |c| if c == 0 { 0.0 } else { u[c] }))
+        .collect();
+    let mut states = step.states.to_vec();
+    let mut r_bar = step.r0.to_vec();
+    let mut anderson = Anderson::new(options.anderson_window);
+    let mut history = Vec::new();
+    let (mut springs, mut load, mut mu) = (vec![0.0; m], vec![0.0; m], vec![0.0; na]);
+    let mut out = AdhesivePrimal {
+        r: Vec::new(),
+        r_bar: Vec::new(),
+        x: Vec::new(),
+        states: Vec::new(),
+        statuses: Vec::new(),
+        adhesion_iterations: 0,
+        iterations: 0,
+        inner_iterations: 0,
+        solves: 0,
+        residual: 0.0,
+        converged: true,
+    };
+    let update = |u: &[f64]| -> Vec<L::State> {
+        (0..na)
+            .map(|k| {
+                let mut u1: [f64; D] = core::array::from_fn(|c| u[D * k + c]);
+                // an opening cannot be negative: clamp a mixed normal jump
+                u1[0] = u1[0].max(0.0);
+                update_state(
+                    &step.laws[k],
+                    &step.states[k],
+                    &data.u_start[k],
+                    &u1,
+                    data.dt,
+                )
+            })
+            .collect()
+    };
+    // the springs in the factorised stiffness, `b₀`: the last step's while the active list
+    // is the same (a change of the springs is then lagged, below), else the start states'
+    let mut b0 = cache.springs_passed.clone();
+    // the jumps the lag is taken at: the start of the step's, then the iterate's
+    let mut u_iter: Vec<f64> = data.u_start.iter().flatten().copied().collect();
+    let mut since_exact = 0;
+    let mut x0 = vec![0.0; m];
+    loop {
+        for (k, (law, s)) in step.laws.iter().zip(&states).enumerate() {
+            let [kn, kt] = law.adhesive_stiffness(s);
+            mu[k] = law.friction_coefficient(s).unwrap_or(0.0);
+            for c in 0..D {
+                let b = data.areas[k] * if c == 0 { kn } else { kt };
+                springs[D * k + c] = if c == 0 || step.tangent[k] { b } else { 0.0 };
+            }
+        }
+        if b0.len() != m || since_exact >= MAX_LAGGED_ITERATIONS {
+            b0.clone_from(&springs);
+            since_exact = 0;
+        }
+        // the springs' load at w = 0, with the change of the springs since the factorisation
+        // lagged: (K̃ + b₀) w = r̄ − b (q + o) − (b − b₀) w_iter
+        for j in 0..m {
+            let w_iter = u_iter[j] - offset[j] - step.q[j];
+            load[j] = -springs[j] * (step.q[j] + offset[j]) - (springs[j] - b0[j]) * w_iter;
+        }
+        let lagged = springs != b0;
+        // the jumps to start from: the start of the step's (no slip yet), then the iterate's
+        for j in 0..m {
+            x0[j] = u_iter[j] - offset[j];
+        }
+        let inner = PrimalStep {
+            states: &states,
+            mu: &mu,
+            r0: &r_bar,
+            x0: &x0,
+            springs: &b0,
+            spring_load: &load,
+            ..*step
+        };
+        let sol = solve_primal::<S, N, L, T>(structure, cache, &inner)?;
+        out.iterations += sol.iterations;
+        out.inner_iterations += sol.inner_iterations;
+        out.solves += sol.solves;
+        out.residual = sol.residual;
+        out.converged &= sol.converged;
+        out.adhesion_iterations += 1;
+        since_exact += 1;
+        r_bar.clone_from(&sol.r);
+        let jumps: Vec<f64> = sol.x.iter().zip(&offset).map(|(x, o)| x + o).collect();
+        // the fixed-point residual: the states the solve's own jumps imply, against the
+        // states it used
+        let implied = update(&jumps);
+        let change = step
+            .laws
+            .iter()
+            .zip(implied.iter().zip(&states))
+            .fold(0.0_f64, |c, (law, (a, b))| c.max(law.state_change(a, b)));
+        history.push(change);
+        let done = change <= options.tol;
+        // the equilibrium error of the lag, (b − b₀)(w − w_iter), against the reactions: as
+        // small as a state change within the tolerance would make it
+        let lag_error = (0..m).fold(0.0_f64, |e, j| {
+            e.max(((springs[j] - b0[j]) * (jumps[j] - u_iter[j])).abs())
+        });
+        let scale = (0..m).fold(0.0_f64, |e, j| {
+            e.max(sol.r[j].abs()).max((springs[j] * jumps[j]).abs())
+        });
+        if done && lagged && lag_error > options.tol * scale {
+            // the states have converged with the springs' change lagged: solve once more
+            // with them in the factor (exact), from the jumps found
+            b0.clone_from(&springs);
+            u_iter = jumps;
+            since_exact = 0;
+            continue;
+        }
+        if done || out.adhesion_iterations >= options.max_iterations {
+            if !done && !options.accept_non_converged {
+                return Err(SolverError::AdhesionNotConverged {
+                    iterations: out.adhesion_iterations,
+                    change,
+                    history,
+                });
+            }
+            out.converged &= done;
+            // the total reaction with the springs the solve used
+            out.r = (0..m).map(|j| sol.r[j] - springs[j] * jumps[j]).collect();
+            out.r_bar = sol.r;
+            out.x = sol.x;
+            out.statuses = sol.statuses;
+            // the states of the answer: those its jumps imply (within the tolerance of those
+            // it was solved with)
+            out.states = implied;
+            return Ok(out);
+        }
+        u_iter = anderson.next(&jumps);
+        states = update(&u_iter);
+    }
+}
