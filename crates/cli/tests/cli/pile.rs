@@ -18,7 +18,7 @@
 //!   `f(β) = 1 − β` the RCCM shear never exceeds `max(√(wC), μ σ_n)` locally.
 
 use bipo::presets::{PulloutRun, PulloutScene, PulloutSpec};
-use contact_solver::{InterfaceStatus, SimulationSettings};
+use contact_solver::{FlexibilityMode, InterfaceStatus, SimulationSettings};
 
 /// Plancoët on a coarse mesh (17 shaft pairs), `steps` increments to 15 mm.
 fn coarse(steps: usize) -> PulloutSpec {
@@ -287,4 +287,30 @@ fn force_controlled_head_follows_the_displacement_controlled_curve() {
         ),
         "{err:?}"
     );
+}
+
+#[test]
+fn the_active_set_with_the_springs_gives_the_dense_curve() {
+    // the primal active set (no F*, the RCCM springs on the stiffness, the pile head's pairs
+    // renamed on the soil side) against the dense F*; both stop the adhesion iteration at a β
+    // change of 1e-8 by different algorithms (the fixed point, Newton): Q within 1e-6
+    let spec = coarse(10);
+    let settings = SimulationSettings::default().with_flexibility(FlexibilityMode::ActiveSet);
+    let mut scene = spec.build(settings).unwrap();
+    let active = scene.run().unwrap();
+    let counters = scene.simulation.counters();
+    assert_eq!(counters.flexibility_columns, 0);
+    assert_eq!(counters.active_set_steps, 12);
+    assert!(counters.adhesion_iterations > 12, "{counters:?}");
+    let (_, dense) = run(&spec);
+    let scale = dense.curve().iter().fold(0.0_f64, |m, p| m.max(p.1.abs()));
+    for (a, d) in active.curve().iter().zip(dense.curve()) {
+        assert!(
+            (a.1 - d.1).abs() <= 1e-6 * scale,
+            "v = {}: Q {} (active set) vs {} (dense)",
+            d.0,
+            a.1,
+            d.1
+        );
+    }
 }

@@ -23,6 +23,12 @@ use fem_core::Structure;
 /// Most iterations with the springs' change lagged before they are put in the factor.
 const MAX_LAGGED_ITERATIONS: usize = 100;
 
+/// The inexact fixed point: each primal solve's relative tolerance is this fraction of the
+/// last state change, at most [`LOOSEST`] and at least the solver's (which the answer's last
+/// solve always meets).
+const FORCING: f64 = 1e-2;
+const LOOSEST: f64 = 1e-3;
+
 /// What an adhesive step adds to a [`PrimalStep`] (whose `states` are the start states, and
 /// whose `mu`, `springs` and `spring_load` are recomputed from the iterated states).
 pub(crate) struct AdhesiveData<'a, const D: usize> {
@@ -120,6 +126,7 @@ pub(crate) fn solve_primal_adhesive<
     let mut u_iter: Vec<f64> = data.u_start.iter().flatten().copied().collect();
     let mut since_exact = 0;
     let mut x0 = vec![0.0; m];
+    let (mut last_change, mut force_full) = (f64::INFINITY, false);
     loop {
         for (k, (law, s)) in step.laws.iter().zip(&states).enumerate() {
             let [kn, kt] = law.adhesive_stiffness(s);
@@ -144,6 +151,12 @@ pub(crate) fn solve_primal_adhesive<
         for j in 0..m {
             x0[j] = u_iter[j] - offset[j];
         }
+        // an inexact fixed point: the solve's tolerance follows the last state change
+        let tol = if force_full {
+            step.tol
+        } else {
+            step.tol.max((FORCING * last_change).min(LOOSEST))
+        };
         let inner = PrimalStep {
             states: &states,
             mu: &mu,
@@ -151,6 +164,7 @@ pub(crate) fn solve_primal_adhesive<
             x0: &x0,
             springs: &b0,
             spring_load: &load,
+            tol,
             ..*step
         };
         let sol = solve_primal::<S, N, L, T>(structure, cache, &inner)?;
@@ -181,14 +195,20 @@ pub(crate) fn solve_primal_adhesive<
         let scale = (0..m).fold(0.0_f64, |e, j| {
             e.max(sol.r[j].abs()).max((springs[j] * jumps[j]).abs())
         });
-        if done && lagged && lag_error > options.tol * scale {
-            // the states have converged with the springs' change lagged: solve once more
-            // with them in the factor (exact), from the jumps found
-            b0.clone_from(&springs);
+        let lag_large = lagged && lag_error > options.tol * scale;
+        if done && (lag_large || tol > step.tol) {
+            // the states have converged with the springs' change lagged, or from a loose
+            // solve: solve once more at the tolerance, with the springs in the factor if
+            // the lag matters, from the jumps found
+            if lag_large {
+                b0.clone_from(&springs);
+                since_exact = 0;
+            }
             u_iter = jumps;
-            since_exact = 0;
+            force_full = true;
             continue;
         }
+        last_change = change;
         if done || out.adhesion_iterations >= options.max_iterations {
             if !done && !options.accept_non_converged {
                 return Err(SolverError::AdhesionNotConverged {

@@ -4,30 +4,26 @@
 //! direction in the tangent plane as a lagged unknown.
 
 use super::{SolidContactSimulation, Solved};
+use crate::coupling::primal::adhesive::{AdhesiveData, solve_primal_adhesive};
 use crate::coupling::primal::{
     LocalFrame, PRIMAL_MAX_ITERATIONS, PrimalStep, frames, solve_primal,
 };
 use crate::error::SolverError;
+use crate::local::adhesion::AdhesionOptions;
 use contact_laws::ContactLaw;
 use fem_core::Structure;
 
 impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// The local frames of the active-set path on `active`, or why it does not apply: each
     /// contact's rows of `H` a rotation of its node's free dofs, minus a combination of target
-    /// nodes' (rigid obstacles, node pairs, node-to-face), laws with a friction coefficient and
-    /// no adhesion, a structure that exposes its stiffness.
+    /// nodes' (rigid obstacles, node pairs, node-to-face), laws with a friction coefficient, a
+    /// structure that exposes its stiffness.
     pub(super) fn active_set_frames(&self, active: &[usize]) -> Result<Vec<LocalFrame>, String> {
         if self.structure.stiffness_matrix().is_none() {
             return Err("the structure does not expose its stiffness matrix".into());
         }
         for &i in active {
             let zone = &self.zones[self.candidates[i].zone];
-            if zone.law.has_adhesion() {
-                return Err(format!(
-                    "zone `{}`: an adhesive law (its springs are condensed on a dense F*)",
-                    zone.name
-                ));
-            }
             if zone.law.friction_coefficient(&self.states[i]).is_none() {
                 return Err(format!(
                     "zone `{}`: its law has no friction coefficient (not a Coulomb-cone law)",
@@ -39,12 +35,14 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         frames(&self.structure, &self.h_rows, active, &node_of)
     }
 
-    /// The primal active-set solve of the reduced problem on `active`.
+    /// The primal active-set solve of the reduced problem on `active`, with the adhesion
+    /// fixed point around it when a law is adhesive ([`crate::coupling::primal::adhesive`]).
     pub(super) fn solve_active_set(
         &mut self,
         active: &[usize],
         frames: &[LocalFrame],
         free: &[[f64; 3]],
+        dt: f64,
     ) -> Result<Solved<L::State>, SolverError> {
         let laws: Vec<L> = active
             .iter()
@@ -88,6 +86,42 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
         };
         let before = self.primal.factorizations;
+        if laws
+            .iter()
+            .zip(&states)
+            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s))
+        {
+            let u_start: Vec<[f64; 3]> = active.iter().map(|&i| self.jumps[i]).collect();
+            let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+            let data = AdhesiveData {
+                u_start: &u_start,
+                areas: &areas,
+                dt,
+            };
+            let options = AdhesionOptions {
+                accept_non_converged: self.settings.adhesion.accept_non_converged
+                    || self.settings.solver.accept_non_converged,
+                ..self.settings.adhesion
+            };
+            let sol = solve_primal_adhesive::<_, 3, _, 2, 3>(
+                &self.structure,
+                &mut self.primal,
+                &step,
+                &data,
+                &options,
+            )?;
+            return Ok(Solved {
+                r: sol.r,
+                r_bar: sol.r_bar,
+                states: Some(sol.states),
+                iterations: sol.iterations,
+                adhesion_iterations: sol.adhesion_iterations,
+                residual: sol.residual,
+                matrix_free: false,
+                active_set: true,
+                factorizations: self.primal.factorizations - before,
+            });
+        }
         let sol = solve_primal::<_, 3, _, 2>(&self.structure, &mut self.primal, &step)?;
         Ok(Solved {
             r_bar: sol.r.clone(),

@@ -49,8 +49,8 @@ pub struct SolidSettings {
     /// How the reduced problem is held: `Dense` (`F*` built with `3 n_c` solves), `MatrixFree`
     /// (one solve per iteration, no `F*`; adhesive steps still build `F*`, whose exact
     /// condensation of the springs needs it), `ActiveSet` (the primal active set: rigid
-    /// obstacles, node pairs and node-to-face with every component of the contactors free, no
-    /// adhesion; a step out of its scope is refused with the reason), or
+    /// obstacles, node pairs and node-to-face, adhesive laws by the fixed point on the states;
+    /// a step out of its scope is refused with the reason), or
     /// `Auto { dense_limit }` (the default, [`DEFAULT_DENSE_LIMIT_3D`]): dense up to that many
     /// active contacts; beyond, the active set when the step is in its scope, else
     /// matrix-free, and a step whose active-set iteration fails is solved again dense (up to
@@ -575,7 +575,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             }
         };
         let path = match path {
-            Path::ActiveSet(frames) => match self.solve_active_set(active, &frames, free) {
+            Path::ActiveSet(frames) => match self.solve_active_set(active, &frames, free, dt) {
                 Ok(solved) => return Ok(solved),
                 // Auto chose this path: fall back to one that converges more surely (the
                 // lagged friction coupling fails for large μ)
