@@ -16,7 +16,7 @@
 
 use super::{PrimalCache, PrimalStep, solve_primal};
 use crate::error::SolverError;
-use crate::local::adhesion::{AdhesionOptions, Anderson, update_state};
+use crate::local::adhesion::{AdhesionOptions, Anderson, largest_state_change, states_from_jumps};
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::Structure;
 
@@ -103,22 +103,7 @@ pub(crate) fn solve_primal_adhesive<
         residual: 0.0,
         converged: true,
     };
-    let update = |u: &[f64]| -> Vec<L::State> {
-        (0..na)
-            .map(|k| {
-                let mut u1: [f64; D] = core::array::from_fn(|c| u[D * k + c]);
-                // an opening cannot be negative: clamp a mixed normal jump
-                u1[0] = u1[0].max(0.0);
-                update_state(
-                    &step.laws[k],
-                    &step.states[k],
-                    &data.u_start[k],
-                    &u1,
-                    data.dt,
-                )
-            })
-            .collect()
-    };
+    let update = |u: &[f64]| states_from_jumps(step.laws, step.states, data.u_start, u, data.dt);
     // the springs in the factorised stiffness, `b₀`: the last step's while the active list
     // is the same (a change of the springs is then lagged, below), else the start states'
     let mut b0 = cache.springs_passed.clone();
@@ -180,11 +165,7 @@ pub(crate) fn solve_primal_adhesive<
         // the fixed-point residual: the states the solve's own jumps imply, against the
         // states it used
         let implied = update(&jumps);
-        let change = step
-            .laws
-            .iter()
-            .zip(implied.iter().zip(&states))
-            .fold(0.0_f64, |c, (law, (a, b))| c.max(law.state_change(a, b)));
+        let change = largest_state_change(step.laws, &implied, &states);
         history.push(change);
         let done = change <= options.tol;
         // the equilibrium error of the lag, (b − b₀)(w − w_iter), against the reactions: as

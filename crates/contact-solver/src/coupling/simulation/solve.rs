@@ -128,13 +128,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 areas: &areas,
                 dt,
             };
-            let options = AdhesionOptions {
-                tol: self.settings.adhesion_tol,
-                max_iterations: self.settings.max_adhesion_iterations,
-                accept_non_converged: self.settings.solver.accept_non_converged,
-                anderson_window: self.settings.adhesion_anderson_window,
-                ..AdhesionOptions::default()
-            };
+            let options = self.adhesion_options();
             let sol = solve_primal_adhesive::<_, 2, _, 1, 2>(
                 &self.structure,
                 &mut self.primal,
@@ -288,15 +282,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             areas: &areas,
             dt,
         };
-        let options = AdhesionOptions {
-            tol: self.settings.adhesion_tol,
-            max_iterations: self.settings.max_adhesion_iterations,
-            accept_non_converged: self.settings.solver.accept_non_converged,
-            always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
-            anderson_window: self.settings.adhesion_anderson_window,
-            method: self.settings.adhesion_method,
-            warm_start: self.settings.adhesion_warm_start && self.warm.enabled(),
-        };
+        let mut options = self.adhesion_options();
+        options.warm_start = options.warm_start && self.warm.enabled();
         let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
         report.contact_iterations += sol.contact_iterations;
         report.adhesion_iterations += sol.adhesion_iterations;
@@ -307,6 +294,21 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             areas,
         };
         Ok(self.finish_adhesive(sol, Vec::new(), inputs, report))
+    }
+
+    /// The adhesion loop's options from the settings (the primal path reads its tolerance,
+    /// cap and Anderson window; the warm start and the method are the dense path's, which
+    /// also asks its pacing, [`WarmStartPacing`](crate::local::adhesion::WarmStartPacing)).
+    fn adhesion_options(&self) -> AdhesionOptions {
+        AdhesionOptions {
+            tol: self.settings.adhesion_tol,
+            max_iterations: self.settings.max_adhesion_iterations,
+            accept_non_converged: self.settings.solver.accept_non_converged,
+            always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
+            anderson_window: self.settings.adhesion_anderson_window,
+            method: self.settings.adhesion_method,
+            warm_start: self.settings.adhesion_warm_start,
+        }
     }
 
     /// An adhesive pass's answer: paces the warm start, counts Newton's outcomes, reports the

@@ -441,31 +441,13 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
         }
         adhesion_iterations += 1;
         // the next jumps the states are computed from: the solve's, or Anderson's mix of them
-        let update = |u: &[f64]| -> Vec<L::State> {
-            (0..na)
-                .map(|k| {
-                    let mut u1: [f64; D] = core::array::from_fn(|d| u[D * k + d]);
-                    // an opening cannot be negative: clamp a mixed normal jump
-                    u1[0] = u1[0].max(0.0);
-                    update_state(
-                        &step.laws[k],
-                        &step.start_states[k],
-                        &step.u_start[k],
-                        &u1,
-                        step.dt,
-                    )
-                })
-                .collect()
-        };
+        let update =
+            |u: &[f64]| states_from_jumps(step.laws, step.start_states, step.u_start, u, step.dt);
         // the fixed-point residual: the states the solve's own jumps imply, against the
         // states the solve used
         let g = jumps;
         let implied = update(&g);
-        let change = step
-            .laws
-            .iter()
-            .zip(implied.iter().zip(&states))
-            .fold(0.0_f64, |c, (law, (a, b))| c.max(law.state_change(a, b)));
+        let change = largest_state_change(step.laws, &implied, &states);
         history.push(change);
         let done = change <= options.tol;
         // the states of the next solve: from the solve's jumps, or Anderson's mix of them
@@ -486,8 +468,37 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
     }
 }
 
+/// The states the jumps `u` (`D` per contact) imply from the start of the step; a negative
+/// normal jump (an Anderson mix may give one) is clamped to zero, as an opening.
+pub(crate) fn states_from_jumps<L: ContactLaw, const D: usize>(
+    laws: &[L],
+    start: &[L::State],
+    u_start: &[[f64; D]],
+    u: &[f64],
+    dt: f64,
+) -> Vec<L::State> {
+    (0..laws.len())
+        .map(|k| {
+            let mut u1: [f64; D] = core::array::from_fn(|d| u[D * k + d]);
+            u1[0] = u1[0].max(0.0);
+            update_state(&laws[k], &start[k], &u_start[k], &u1, dt)
+        })
+        .collect()
+}
+
+/// The largest [`ContactLaw::state_change`] between two lists of states.
+pub(crate) fn largest_state_change<L: ContactLaw>(
+    laws: &[L],
+    a: &[L::State],
+    b: &[L::State],
+) -> f64 {
+    laws.iter()
+        .zip(a.iter().zip(b))
+        .fold(0.0_f64, |c, (law, (x, y))| c.max(law.state_change(x, y)))
+}
+
 /// The law's state update from the jumps `u0` (start of the step) and `u1`, in 2D or 3D.
-pub(crate) fn update_state<L: ContactLaw, const D: usize>(
+fn update_state<L: ContactLaw, const D: usize>(
     law: &L,
     start: &L::State,
     u0: &[f64; D],

@@ -35,6 +35,18 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         frames(&self.structure, &self.h_rows, active, &node_of)
     }
 
+    /// The adhesion loop's options from the settings (the primal path reads its tolerance,
+    /// cap and Anderson window; the warm start and the method are the dense path's, which
+    /// also asks its pacing, [`WarmStartPacing`](crate::local::adhesion::WarmStartPacing)).
+    pub(super) fn adhesion_options(&self) -> AdhesionOptions {
+        AdhesionOptions {
+            accept_non_converged: self.settings.adhesion.accept_non_converged
+                || self.settings.solver.accept_non_converged,
+            warm_start: self.settings.adhesion.warm_start,
+            ..self.settings.adhesion
+        }
+    }
+
     /// The primal active-set solve of the reduced problem on `active`, with the adhesion
     /// fixed point around it when a law is adhesive ([`crate::coupling::primal::adhesive`]).
     pub(super) fn solve_active_set(
@@ -98,11 +110,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 areas: &areas,
                 dt,
             };
-            let options = AdhesionOptions {
-                accept_non_converged: self.settings.adhesion.accept_non_converged
-                    || self.settings.solver.accept_non_converged,
-                ..self.settings.adhesion
-            };
+            let options = self.adhesion_options();
             let sol = solve_primal_adhesive::<_, 3, _, 2, 3>(
                 &self.structure,
                 &mut self.primal,

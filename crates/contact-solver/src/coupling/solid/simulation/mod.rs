@@ -626,12 +626,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 areas: &areas,
                 dt,
             };
-            let options = AdhesionOptions {
-                accept_non_converged: self.settings.adhesion.accept_non_converged
-                    || self.settings.solver.accept_non_converged,
-                warm_start: self.settings.adhesion.warm_start && self.warm.enabled(),
-                ..self.settings.adhesion
-            };
+            let mut options = self.adhesion_options();
+            options.warm_start = options.warm_start && self.warm.enabled();
             let sol = solve_adhesive(&mut self.solver, &step, Some(&warm), &options)?;
             self.warm.record(&sol);
             return Ok(Solved {
