@@ -5,14 +5,15 @@
 //! curves and their largest relative difference, the sizes and the times.
 //!
 //! ```text
-//! cargo run --release --example pile_3d -- [S] [--coarse] [--steps N]
+//! cargo run --release --example pile_3d -- [S] [--coarse] [--steps N] [--active-set]
 //! ```
 //! Defaults: `S = 2`, the seed's mesh (32 shaft cells), 50 increments. `--coarse` takes 8 shaft
-//! cells (a quick look).
+//! cells (a quick look); `--active-set` solves the 3D model with the primal active set (the
+//! springs on the stiffness, no `F*`) instead of the dense `F*`.
 
 use bipo::presets::{Installation, PulloutSpec};
-use bipotential::contact_solver::SimulationSettings;
 use bipotential::contact_solver::coupling::solid::SolidSettings;
+use bipotential::contact_solver::{FlexibilityMode, SimulationSettings};
 use std::error::Error;
 use std::time::Instant;
 
@@ -41,7 +42,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let dofs2 = 2 * axi.simulation.structure().mesh().node_count();
     spec.installation = Installation::RadialDisplacement(axi.installation_displacement);
     let t = Instant::now();
-    let mut solid = spec.build_3d(sectors, SolidSettings::default())?;
+    let mut settings = SolidSettings::default();
+    if args.iter().any(|a| a == "--active-set") {
+        settings.flexibility = FlexibilityMode::ActiveSet;
+    }
+    let mut solid = spec.build_3d(sectors, settings)?;
     let curve3 = solid.run()?;
     let t3 = t.elapsed().as_secs_f64();
     let dofs3 = 3 * solid.simulation.structure().mesh().node_count();
