@@ -9,7 +9,9 @@
 //!
 //! The runs alternate, `repeats` times each (default 5); times are medians.
 //!
-//! `cargo run --release --example seed_tables [repeats]` (figures in `docs/benchmarks.md`).
+//! `cargo run --release --example seed_tables [repeats]` (figures in `docs/benchmarks.md`);
+//! `WAYS=newton` or `WAYS=fixed` runs one way, `SCENE=5.6.1` one scene, `FAER=default` leaves
+//! faer's parallelism at its default (every core) instead of sequential.
 
 use bipo::presets::{DelaminationSpec, PulloutSpec, ShearSpec};
 use bipotential::contact_solver::local::adhesion::AdhesionMethod;
@@ -91,7 +93,11 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    faer::set_global_parallelism(faer::Par::Seq);
+    // sequential faer (the scenes are small); `FAER=default` leaves faer's default, every
+    // core, as the criterion bench `benches/scenes.rs` and a dependent do
+    if std::env::var("FAER").as_deref() != Ok("default") {
+        faer::set_global_parallelism(faer::Par::Seq);
+    }
     let repeats: usize = std::env::args()
         .nth(1)
         .map(|s| s.parse())
