@@ -10,13 +10,19 @@
 //! the same damped Anderson step as the dense path's fixed point
 //! ([`crate::local::adhesion`]), until the largest state change is below the tolerance.
 //!
-//! Every iteration whose springs changed refactorises the stiffness (the springs sit on its
-//! diagonal); Newton with the states eliminated, the dense path's default, would need the
-//! springs' tangent, which is not symmetric positive definite once the glue softens.
+//! The factor keeps the springs `b₀` it was formed with (the last step's, while the active
+//! list is the same): a change of the springs is lagged as a load, and once the states have
+//! converged the springs go into the factor for one exact solve if the lag's force still
+//! matters (`docs/theory.md` §13). Each solve starts from the last one's guess and jumps, to a
+//! tolerance that follows the last state change. Newton with the states eliminated, the dense
+//! path's default, would need the springs' tangent, which is not symmetric positive definite
+//! once the glue softens.
 
 use super::{PrimalCache, PrimalStep, solve_primal};
 use crate::error::SolverError;
-use crate::local::adhesion::{AdhesionOptions, Anderson, largest_state_change, states_from_jumps};
+use crate::local::adhesion::{
+    AdhesionOptions, Anderson, largest_state_change, start_offset, states_from_jumps,
+};
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::Structure;
 
@@ -80,11 +86,7 @@ pub(crate) fn solve_primal_adhesive<
     }
     let m = D * na;
     // the springs act on the total tangential jump: x + o
-    let offset: Vec<f64> = data
-        .u_start
-        .iter()
-        .flat_map(|u| (0..D).map(move |c| if c == 0 { 0.0 } else { u[c] }))
-        .collect();
+    let offset = start_offset(data.u_start);
     let mut states = step.states.to_vec();
     let mut r_bar = step.r0.to_vec();
     let mut anderson = Anderson::new(options.anderson_window);
@@ -106,7 +108,7 @@ pub(crate) fn solve_primal_adhesive<
     let update = |u: &[f64]| states_from_jumps(step.laws, step.states, data.u_start, u, data.dt);
     // the springs in the factorised stiffness, `b₀`: the last step's while the active list
     // is the same (a change of the springs is then lagged, below), else the start states'
-    let mut b0 = cache.springs_passed.clone();
+    let mut b0 = cache.springs_for(step.active).to_vec();
     // the jumps the lag is taken at: the start of the step's, then the iterate's
     let mut u_iter: Vec<f64> = data.u_start.iter().flatten().copied().collect();
     let mut since_exact = 0;

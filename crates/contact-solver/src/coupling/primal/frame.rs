@@ -56,7 +56,8 @@ pub(crate) fn frames<S: Structure<N> + ?Sized, const N: usize>(
     let mut node_of_dof: Vec<usize> = Vec::new();
     for &i in candidates {
         let rows = &h_rows[dim * i..dim * (i + 1)];
-        let frame = match frame_of(rows, i, &dofs_of(node_of(i))) {
+        let own = dofs_of(node_of(i));
+        let frame = match frame_of(rows, i, &own) {
             Ok(f) => f,
             Err(e) => {
                 // a contactor that cannot carry the jump (a prescribed component along which
@@ -72,7 +73,6 @@ pub(crate) fn frames<S: Structure<N> + ?Sized, const N: usize>(
                         }
                     }
                 }
-                let own = dofs_of(node_of(i));
                 let mut nodes: Vec<usize> = rows
                     .iter()
                     .flat_map(|r| r.iter().map(|&(d, _)| d))
@@ -208,18 +208,19 @@ fn frame_of(rows: &[Vec<(usize, f64)>], i: usize, own: &[usize]) -> Result<Local
             .unwrap_or(0);
         let w = -dot(e);
         let off: f64 = (0..dim).map(|c| (hj[c] + w * a[c][e]).abs()).sum();
-        if s < dim && (off > 1e-10 * w.abs().max(1.0) || w.abs() <= ROW_ZERO) {
-            return Err(format!(
-                "candidate {i}: a contact with a deformable target whose contactor node has a \
-                 prescribed component along which the target moves (dof {j})"
-            ));
-        }
         if off > 1e-10 * w.abs().max(1.0) || w.abs() <= ROW_ZERO {
-            return Err(format!(
-                "candidate {i}: its rows of H on dof {j} are not a multiple of the contactor's \
-                 (the jump is not a contactor's displacement minus a combination of target \
-                 nodes' displacements)"
-            ));
+            return Err(if s < dim {
+                format!(
+                    "candidate {i}: a contact with a deformable target whose contactor node has \
+                     a prescribed component along which the target moves (dof {j})"
+                )
+            } else {
+                format!(
+                    "candidate {i}: its rows of H on dof {j} are not a multiple of the \
+                     contactor's (the jump is not a contactor's displacement minus a \
+                     combination of target nodes' displacements)"
+                )
+            });
         }
         frame.carry.push((e, j, w));
     }

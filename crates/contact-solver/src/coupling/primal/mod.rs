@@ -128,11 +128,11 @@ pub(crate) struct PrimalCache {
     node_of_slot: Vec<usize>,
     adjacent: Vec<Vec<usize>>,
     /// The adhesive springs added to the diagonal of `rotated`: (position, stiffness), and
-    /// as the step passed them (per component of the active list; empty when none or after a
-    /// new rotation).
+    /// as the last step passed them (per component of its active list, `rotated_for`'s).
     sprung: Vec<(usize, f64)>,
     springs_passed: Vec<f64>,
-    /// The guess of the last converged solve (a warm start for the next, [`PrimalStep::x0`]).
+    /// The guess of the last converged solve on `rotated_for` (a warm start for the next,
+    /// [`PrimalStep::x0`]; empty after a new rotation).
     last_sets: Vec<Guess>,
     /// Numeric factorisations done.
     pub factorizations: usize,
@@ -236,6 +236,14 @@ impl PrimalCache {
             self.factor = None;
         }
         Ok(())
+    }
+
+    /// The springs the last solve passed, if it was on `active` (empty otherwise).
+    pub(crate) fn springs_for(&self, active: &[usize]) -> &[f64] {
+        match &self.rotated_for {
+            Some((_, a)) if a == active => &self.springs_passed,
+            _ => &[],
+        }
     }
 
     /// `(K̃ v)_c` for a contact dof `c`: its column below the diagonal and its row left of it.
@@ -350,6 +358,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         cache.rotate(k, step.frames)?;
         cache.rotated_for = rotated_for;
         cache.sprung.clear();
+        cache.last_sets.clear();
         cache.factor = None;
     }
     let expanded = cache.expanded.clone();

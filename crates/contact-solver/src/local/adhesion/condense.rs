@@ -28,7 +28,7 @@ pub fn condensed_problem<L: ContactLaw, const D: usize>(
     check_len("states", na, states.len())?;
     check_len("u_start", na, step.u_start.len())?;
     check_len("areas", na, step.areas.len())?;
-    let offset = start_offset(step);
+    let offset = start_offset(step.u_start);
     Ok(condensed_with_springs(step, states, &offset)?.0)
 }
 
@@ -57,11 +57,9 @@ pub(super) fn condensed_with_springs<L: ContactLaw, const D: usize>(
 }
 
 /// The springs act on the total tangential displacement: the offset of the jumps from `x`,
-/// their tangential values at the start of the step.
-pub(super) fn start_offset<L: ContactLaw, const D: usize>(
-    step: &AdhesiveStep<'_, L, D>,
-) -> Vec<f64> {
-    step.u_start
+/// their tangential values at the start of the step (`u_start`, `D` per contact).
+pub(crate) fn start_offset<const D: usize>(u_start: &[[f64; D]]) -> Vec<f64> {
+    u_start
         .iter()
         .flat_map(|u| (0..D).map(move |d| if d == 0 { 0.0 } else { u[d] }))
         .collect()

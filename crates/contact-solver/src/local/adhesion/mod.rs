@@ -74,7 +74,8 @@ mod warm;
 pub use condense::{condense, condensed_problem};
 pub use warm::WarmStartPacing;
 
-use condense::{condensed_with_springs, start_offset};
+use condense::condensed_with_springs;
+pub(crate) use condense::start_offset;
 
 use super::problem::ReducedProblem;
 use super::settings::{Algorithm, UzawaReport};
@@ -298,7 +299,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             });
         }
     }
-    let offset = start_offset(step);
+    let offset = start_offset(step.u_start);
     let mut states = step.start_states.to_vec();
     let mut r_bar = match r_bar_start {
         Some(r) => {
