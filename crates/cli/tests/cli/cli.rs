@@ -575,8 +575,9 @@ fn a_closed_pipe_ends_quietly() {
 }
 
 /// `[solver] adhesion_warm_start` is read: off, no step tries Newton from the previous step's
-/// reactions; on (the default), the delamination tries it (and drops it: its steps move the
-/// front too far) a few paced times; the answers agree to the solvers' tolerances.
+/// reactions; on (the default), the delamination keeps it on most of its 210 steps (206 since
+/// the Jacobian's chain rule through the projection and the springs in ρ); the answers agree
+/// to the solvers' tolerances.
 #[test]
 fn the_warm_start_key_switches_the_warm_start() {
     let dir = tmp("warm_start_key");
@@ -606,7 +607,9 @@ fn the_warm_start_key_switches_the_warm_start() {
                 .as_u64()
                 .unwrap()
     };
-    assert!((1..=30).contains(&tried(&on)), "{}", on["counters"]);
+    assert!(tried(&on) >= 1, "{}", on["counters"]);
+    let kept = on["counters"]["adhesion_warm_starts"].as_u64().unwrap();
+    assert!(kept >= 150, "{}", on["counters"]);
     assert_eq!(tried(&off), 0, "{}", off["counters"]);
     let force = |s: &serde_json::Value| s["zones"][0]["final_force_n"].as_f64().unwrap();
     let (a, b) = (force(&on), force(&off));

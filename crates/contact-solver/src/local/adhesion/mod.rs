@@ -120,10 +120,12 @@ const WARM_MAX_ITERATIONS: usize = 6;
 /// Largest [`ContactLaw::state_change`] of a contact a warm-started answer is accepted with.
 /// From the previous step's reactions Newton can reach another solution of the implicit step:
 /// a glued contact pulled from `r = 0` converges to its debonded branch (β = 0, the jump
-/// free), where the start states' springs hold it elastic. Past this change the loose start,
+/// free), where the start states' springs hold it elastic: a change of 1 (β from 1 to 0; the
+/// stiff-glue stress cases, `tests/integration/stress.rs`). Past this change the loose start,
 /// which carries those springs, decides. The seed's steps change β by at most 0.07 (5.6.2,
-/// the pile).
-const WARM_MAX_STATE_CHANGE: f64 = 0.25;
+/// the pile) and 0.33 (5.6.1, where the front passes a node in a few steps: at 0.25, four of
+/// its warm answers were dropped though the loose start gave the same reactions to 2e-10).
+const WARM_MAX_STATE_CHANGE: f64 = 0.5;
 
 /// Tolerance and cap of the adhesion fixed point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -146,7 +148,7 @@ pub struct AdhesionOptions {
     /// [`AdhesionMethod::Newton`] with a start `r̄` (the previous step's): first try Newton
     /// from the total reactions that start implies (`r̄` plus the start states' springs on
     /// the start jumps), at most 6 iterations, before the loose reduced solve and its
-    /// condensation; its answer is kept only if no contact's state changed by more than 0.25
+    /// condensation; its answer is kept only if no contact's state changed by more than 0.5
     /// ([`ContactLaw::state_change`]: a larger change may be another branch of the implicit
     /// step). Saves the condensation when the step changes little (the seed's 5.6.2: 1
     /// iteration per step); when it fails ([`AdhesiveSolution::warm_start_failed`]) the step

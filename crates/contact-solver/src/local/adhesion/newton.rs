@@ -16,7 +16,10 @@
 //! `v_s` its modified velocity, seed 5.26). `F` depends on contact `i`'s own `r_i` and
 //! `x_i` only, so its generalised Jacobian is `J = A + B W` with `A_i = ∂F_i/∂r_i` and
 //! `B_i = ∂F_i/∂x_i` block-diagonal; both come from central differences of the law's own
-//! functions (any [`ContactLaw`] works, and a user's law needs no derivatives). A Newton
+//! functions (any [`ContactLaw`] works, and a user's law needs no derivatives), by the chain
+//! rule through `τ = r̄ + ρ v` so that the projection's step is on `τ`'s own scale
+//! (`contact_blocks`). `ρ` is the contact's stiffness: the body's plus the start state's
+//! springs (`docs/theory.md`, "The coupling solved by Newton"). A Newton
 //! step factorises the dense `m × m` matrix `J` (no condensation of the springs per
 //! iteration), with Armijo backtracking on `‖F‖²`. Before forming a new `J`, a chord step
 //! solves with the factors kept from the last one (this solve's, or the previous solve's on
@@ -72,6 +75,8 @@ struct ContactData<'a, L: ContactLaw, const D: usize> {
     u_start: &'a [f64; D],
     offset: [f64; D],
     area: f64,
+    /// The natural map's `ρ`: the body's stiffness at the contact plus the start state's
+    /// springs.
     rho: f64,
     dt: f64,
 }
@@ -234,6 +239,101 @@ pub(super) struct Work {
     pub(super) factorizations: usize,
 }
 
+/// One contact's blocks of the generalised Jacobian: `A = ∂F/∂r` and `B = ∂F/∂x`
+/// (`[row][column]`).
+struct Blocks<const D: usize> {
+    a: [[f64; D]; D],
+    b: [[f64; D]; D],
+}
+
+/// The blocks of contact `c` at `(y0, x0)` (its state and `r̄` there given), by the chain
+/// rule through the projection's argument `τ = r̄ + ρ v`:
+///
+/// ```text
+/// F = r̄ − P(τ, s),   A = I − P_τ,   B = ∂r̄/∂x − P_τ ∂τ/∂x − ∂P/∂s ∂s/∂x
+/// ```
+///
+/// Each factor is a central difference on its own scale. `P_τ` takes steps relative to `τ`'s
+/// components: where the cone is thin (RCCM's `μ (1 − β)` with β ≈ 1: a half-width of
+/// 1e-7 against reactions of order 1, the tangential force all carried by the spring), a step
+/// relative to `r` or `x` would straddle the cone's edge and average the stick and slip
+/// slopes, and Newton would stall there (5.6.1, issue 18). `∂r̄/∂x`, `∂τ/∂x` and the state's
+/// effect `∂P/∂s ∂s/∂x` (at fixed `τ`) are smooth but for the damage threshold and
+/// `|x_t|` in `v`, and take steps relative to `x` (with a floor from the contact's force
+/// scale).
+fn contact_blocks<L: ContactLaw, const D: usize>(
+    c: &ContactData<'_, L, D>,
+    y0: &[f64; D],
+    x0: &[f64; D],
+    state: &L::State,
+    r_bar0: &[f64; D],
+    q_norm: f64,
+) -> Blocks<D> {
+    let scale = y0
+        .iter()
+        .chain(r_bar0)
+        .map(|a| a.abs())
+        .fold(0.0, f64::max)
+        .max(c.rho * x0.iter().map(|a| a.abs()).fold(0.0, f64::max));
+    let scale = if scale > 0.0 {
+        scale
+    } else {
+        c.rho * q_norm.max(f64::MIN_POSITIVE)
+    };
+    let floor = FD_FLOOR * scale;
+    let v0 = velocity(c.law, x0, state);
+    let tau0: [f64; D] = core::array::from_fn(|d| r_bar0[d] + c.rho * v0[d]);
+    // P_τ, steps relative to τ's own components (floor from τ's size, else the force scale)
+    let tau_size = tau0.iter().map(|a| a.abs()).fold(0.0, f64::max);
+    let tau_floor = FD_FLOOR * if tau_size > 0.0 { tau_size } else { scale };
+    let mut p_tau = [[0.0; D]; D];
+    for j in 0..D {
+        let h = FD_STEP * tau0[j].abs().max(tau_floor);
+        let (mut tp, mut tm) = (tau0, tau0);
+        tp[j] += h;
+        tm[j] -= h;
+        let (pp, pm) = (project(c.law, &tp, state), project(c.law, &tm, state));
+        for i in 0..D {
+            p_tau[i][j] = (pp[i] - pm[i]) / (2.0 * h);
+        }
+    }
+    let mut blocks = Blocks {
+        a: core::array::from_fn(|i| {
+            core::array::from_fn(|j| if i == j { 1.0 } else { 0.0 } - p_tau[i][j])
+        }),
+        b: [[0.0; D]; D],
+    };
+    // what moves with x_j at fixed r: the state, r̄ (springs) and τ; P's own change with the
+    // state at fixed τ
+    let at = |xi: &[f64; D]| {
+        let u: [f64; D] = core::array::from_fn(|d| xi[d] + c.offset[d]);
+        let mut u_state = u;
+        u_state[0] = u_state[0].max(0.0);
+        let s = update_state(c.law, c.start, c.u_start, &u_state, c.dt);
+        let [kn, kt] = c.law.adhesive_stiffness(&s);
+        let rb: [f64; D] =
+            core::array::from_fn(|d| y0[d] + c.area * if d == 0 { kn } else { kt } * u[d]);
+        let v = velocity(c.law, xi, &s);
+        let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
+        let p_state = project(c.law, &tau0, &s);
+        (rb, tau, p_state)
+    };
+    for j in 0..D {
+        let hx = FD_STEP * x0[j].abs().max(floor / c.rho);
+        let (mut xp, mut xm) = (*x0, *x0);
+        xp[j] += hx;
+        xm[j] -= hx;
+        let ((rbp, tp, psp), (rbm, tm, psm)) = (at(&xp), at(&xm));
+        let dtau: [f64; D] = core::array::from_fn(|d| (tp[d] - tm[d]) / (2.0 * hx));
+        for i in 0..D {
+            let through_tau: f64 = (0..D).map(|l| p_tau[i][l] * dtau[l]).sum();
+            blocks.b[i][j] =
+                (rbp[i] - rbm[i]) / (2.0 * hx) - through_tau - (psp[i] - psm[i]) / (2.0 * hx);
+        }
+    }
+    blocks
+}
+
 /// Solves the step by Newton, or says it could not (the caller then runs the fixed point).
 /// `kept` holds the factors of the last Jacobian, reused by chord steps when they were built
 /// for the same `W` (and left there for the next solve); `settings.max_iterations` caps the
@@ -248,29 +348,38 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
     let m = step.q.len();
     let na = m / D;
     let w = step.w;
-    // ρ_i = 1 / the largest diagonal entry of W_ii (a scale only: the zeros of F do not
-    // depend on it)
-    let data: Vec<ContactData<'_, L, D>> = (0..na)
+    // the body's stiffness at each contact, 1 / the largest diagonal entry of W_ii: the
+    // scale of the relative residual
+    let body_rho: Vec<f64> = (0..na)
         .map(|k| {
             let diag = (0..D)
                 .map(|d| w[(D * k + d) * m + D * k + d])
                 .fold(0.0_f64, f64::max);
+            if diag > 0.0 && diag.is_finite() {
+                1.0 / diag
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let data: Vec<ContactData<'_, L, D>> = (0..na)
+        .map(|k| {
+            // the natural map's ρ: the contact's stiffness, the body's plus the start state's
+            // springs (a scale only: the zeros of F do not depend on it)
+            let [kn, kt] = step.laws[k].adhesive_stiffness(&step.start_states[k]);
+            let springs = step.areas[k] * kn.max(kt);
             ContactData {
                 law: &step.laws[k],
                 start: &step.start_states[k],
                 u_start: &step.u_start[k],
                 offset: get(offset, k),
                 area: step.areas[k],
-                rho: if diag > 0.0 && diag.is_finite() {
-                    1.0 / diag
-                } else {
-                    1.0
-                },
+                rho: body_rho[k] + if springs.is_finite() { springs } else { 0.0 },
                 dt: step.dt,
             }
         })
         .collect();
-    let rho_max = data.iter().map(|c| c.rho).fold(0.0, f64::max);
+    let rho_max = body_rho.iter().copied().fold(0.0, f64::max);
     let q_norm = norm(step.q);
     let mut r = r_start.to_vec();
     let mut x = vec![0.0; m];
@@ -339,51 +448,15 @@ pub(super) fn solve<L: ContactLaw, const D: usize>(
         let jac = kept.start(m);
         for (k, c) in data.iter().enumerate() {
             let (y0, x0) = (get::<D>(&r, k), get::<D>(&x, k));
-            // per-component steps, relative to the component (with a floor from the
-            // contact's force scale): a step larger than the distance to a kink of the law
-            // (|x_t| in v, the cone's edge, the damage threshold) would average two slopes
-            let scale = y0
-                .iter()
-                .chain(&get::<D>(&it.r_bar, k))
-                .map(|a| a.abs())
-                .fold(0.0, f64::max)
-                .max(c.rho * x0.iter().map(|a| a.abs()).fold(0.0, f64::max));
-            let scale = if scale > 0.0 {
-                scale
-            } else {
-                c.rho * q_norm.max(f64::MIN_POSITIVE)
-            };
-            let floor = FD_FLOOR * scale;
-            // F_k's dependence on r_k alone: the state, the springs and v stay the iterate's
-            // (they are functions of x_k), r̄ moves with r_k
-            let state = &it.states[k];
-            let springs: [f64; D] = core::array::from_fn(|d| it.r_bar[D * k + d] - y0[d]);
-            let v = velocity(c.law, &x0, state);
-            let f_of_r = |y: &[f64; D]| -> [f64; D] {
-                let rb: [f64; D] = core::array::from_fn(|d| y[d] + springs[d]);
-                let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
-                let p = project(c.law, &tau, state);
-                core::array::from_fn(|d| rb[d] - p[d])
-            };
+            let blocks = contact_blocks(c, &y0, &x0, &it.states[k], &get(&it.r_bar, k), q_norm);
             for j in 0..D {
-                // A: d F_k / d r_k,j
-                let h = FD_STEP * y0[j].abs().max(floor);
-                let (mut yp, mut ym) = (y0, y0);
-                yp[j] += h;
-                ym[j] -= h;
-                let (fp, fm) = (f_of_r(&yp), f_of_r(&ym));
                 for i in 0..D {
-                    jac[(D * k + i) * m + D * k + j] += (fp[i] - fm[i]) / (2.0 * h);
+                    jac[(D * k + i) * m + D * k + j] += blocks.a[i][j];
                 }
-                // B: d F_k / d x_k,j, times row D k + j of W
-                let hx = FD_STEP * x0[j].abs().max(floor / c.rho);
-                let (mut xp, mut xm) = (x0, x0);
-                xp[j] += hx;
-                xm[j] -= hx;
-                let (fp, fm) = (eval(c, &y0, &xp).f, eval(c, &y0, &xm).f);
+                // B's column j times row D k + j of W
                 let row = &w[(D * k + j) * m..(D * k + j + 1) * m];
                 for i in 0..D {
-                    let b = (fp[i] - fm[i]) / (2.0 * hx);
+                    let b = blocks.b[i][j];
                     if b != 0.0 {
                         let out = &mut jac[(D * k + i) * m..(D * k + i + 1) * m];
                         for (o, &wv) in out.iter_mut().zip(row) {
