@@ -70,3 +70,41 @@ fn pile_3d_follows_the_axisymmetric_curve() {
         "{friction} vs {expected}"
     );
 }
+
+/// The full pull-out of the coarse 3D quarter on the primal active set (the RCCM springs on
+/// the stiffness, no `F*`) follows the dense path's curve. Once the shaft slides, this used to
+/// end in `AdhesionNotConverged`: a node of the stiff pile swung its sliding direction back and
+/// forth (the per-contact damping of the direction, `primal::guess::Swing`), and loose solves
+/// left contacts flipping between stick and slip while the states cycled (the tight solves
+/// once the state change stalls, `primal::adhesive`). Both paths stop the adhesion iteration at
+/// a state change of 1e-8 and the solver at 1e-10, by different algorithms: the head loads
+/// agree within 1e-6 of the peak (measured below).
+#[test]
+fn the_active_set_pulls_the_3d_pile_out_on_the_dense_curve() {
+    use contact_solver::FlexibilityMode;
+    let mut spec = PulloutSpec::plancoet();
+    (
+        spec.mesh.cells_shaft,
+        spec.mesh.cells_soil_r,
+        spec.mesh.cells_below_tip,
+    ) = (8, 6, 4);
+    let curve = |mode: FlexibilityMode| {
+        let settings = SolidSettings {
+            flexibility: mode,
+            ..SolidSettings::default()
+        };
+        let mut solid = spec.build_3d(2, settings).unwrap();
+        solid.run().unwrap()
+    };
+    let dense = curve(FlexibilityMode::Dense);
+    let active = curve(FlexibilityMode::ActiveSet);
+    assert_eq!(dense.len(), active.len());
+    let peak = dense.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let worst = dense
+        .iter()
+        .zip(&active)
+        .map(|(a, b)| (a.1 - b.1).abs() / peak)
+        .fold(0.0, f64::max);
+    eprintln!("3D pile, 50 increments: active set against dense, {worst:e} of the peak {peak}");
+    assert!(worst < 1e-6, "{worst:e}");
+}

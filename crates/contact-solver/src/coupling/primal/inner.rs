@@ -17,7 +17,7 @@
 //! iterate before it, as without inner iterations.
 
 use super::constrained::{Base, correct, slot_forces};
-use super::guess::{Guess, constraints, guess_sets, node_conditions, read_back};
+use super::guess::{Guess, Swing, constraints, guess_sets, node_conditions, read_back};
 use super::{PrimalCache, PrimalStep};
 use crate::error::SolverError;
 use crate::local::natural_residual;
@@ -223,6 +223,7 @@ pub(super) fn iterate<L: ContactLaw, const T: usize>(
     let mut g_try = it.g.clone();
     let mut forces = Vec::new();
     let mut two_back = Vec::new();
+    let mut swings = vec![Swing::default(); na];
     for _ in 0..MAX_INNER_ITERATIONS {
         if it.residual <= step.tol || it.done >= step.max_iterations {
             break;
@@ -231,7 +232,17 @@ pub(super) fn iterate<L: ContactLaw, const T: usize>(
             *g = step.mu[kk] * it.r[d * kk].max(0.0);
         }
         trial.clone_from(&it.sets);
-        guess_sets::<L, T>(step, damping, ctx.c, &it.r, &it.x, &g_try, &mut trial);
+        // (2D only: no sliding direction to damp)
+        guess_sets::<L, T>(
+            step,
+            damping,
+            ctx.c,
+            &it.r,
+            &it.x,
+            &g_try,
+            &mut trial,
+            &mut swings,
+        );
         // a new guess somewhere the columns reach; the thresholds of the contacts outside stay
         // the outer iteration's
         let mut any = false;

@@ -71,7 +71,7 @@ mod transform;
 pub(crate) use frame::{LocalFrame, frames};
 
 use constrained::{Base, solve_constrained};
-use guess::{Damping, Guess, guess_sets};
+use guess::{Damping, Guess, Swing, guess_sets};
 use inner::{Context, Iterate, window};
 
 /// Most new corrections one iteration may add before the constrained stiffness is refactored
@@ -465,6 +465,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         .map(|kk| step.mu[kk] * it.r[d * kk].max(0.0))
         .collect();
     let mut damping = Damping::default();
+    let mut swings = vec![Swing::default(); na];
     let mut base = Base::default();
     // the guess of the last structure solve
     let mut before = it.sets.clone();
@@ -480,7 +481,16 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
                 it.g[kk] = step.mu[kk] * it.r[d * kk].max(0.0);
             }
         }
-        guess_sets::<L, T>(step, damping.factor, &c, &it.r, &it.x, &it.g, &mut it.sets);
+        guess_sets::<L, T>(
+            step,
+            damping.factor,
+            &c,
+            &it.r,
+            &it.x,
+            &it.g,
+            &mut it.sets,
+            &mut swings,
+        );
         if it.done > 0 && it.residual <= step.tol && outer_last {
             // the last iterate is in equilibrium (one exact solve) and meets the law to the
             // tolerance; the guess need not repeat (a P2 corner node with no force flips
