@@ -21,14 +21,20 @@ use bipo::presets::{Installation, PulloutSpec};
 use contact_solver::SimulationSettings;
 use contact_solver::coupling::solid::SolidSettings;
 
-#[test]
-fn pile_3d_follows_the_axisymmetric_curve() {
+/// The coarse Plancoët scene of `pile.rs`: 8 shaft cells.
+fn coarse() -> PulloutSpec {
     let mut spec = PulloutSpec::plancoet();
     (
         spec.mesh.cells_shaft,
         spec.mesh.cells_soil_r,
         spec.mesh.cells_below_tip,
     ) = (8, 6, 4);
+    spec
+}
+
+#[test]
+fn pile_3d_follows_the_axisymmetric_curve() {
+    let mut spec = coarse();
     spec.steps = 5;
     let mut axi = spec.build(SimulationSettings::default()).unwrap();
     let curve2 = axi.run().unwrap().curve();
@@ -82,12 +88,7 @@ fn pile_3d_follows_the_axisymmetric_curve() {
 #[test]
 fn the_active_set_pulls_the_3d_pile_out_on_the_dense_curve() {
     use contact_solver::FlexibilityMode;
-    let mut spec = PulloutSpec::plancoet();
-    (
-        spec.mesh.cells_shaft,
-        spec.mesh.cells_soil_r,
-        spec.mesh.cells_below_tip,
-    ) = (8, 6, 4);
+    let spec = coarse();
     let curve = |mode: FlexibilityMode| {
         let settings = SolidSettings {
             flexibility: mode,

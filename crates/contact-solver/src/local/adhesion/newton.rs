@@ -125,11 +125,12 @@ fn velocity<L: ContactLaw, const D: usize>(law: &L, x: &[f64; D], s: &L::State) 
     )
 }
 
-fn eval<L: ContactLaw, const D: usize>(
+/// One contact's state, `r̄` and projection argument `τ = r̄ + ρ v` at `(y, ξ) = (r_i, x_i)`.
+fn springs_and_tau<L: ContactLaw, const D: usize>(
     c: &ContactData<'_, L, D>,
     y: &[f64; D],
     xi: &[f64; D],
-) -> Eval<L::State, D> {
+) -> (L::State, [f64; D], [f64; D]) {
     let u: [f64; D] = core::array::from_fn(|d| xi[d] + c.offset[d]);
     let mut u_state = u;
     u_state[0] = u_state[0].max(0.0);
@@ -139,6 +140,15 @@ fn eval<L: ContactLaw, const D: usize>(
         core::array::from_fn(|d| y[d] + c.area * if d == 0 { kn } else { kt } * u[d]);
     let v = velocity(c.law, xi, &state);
     let tau: [f64; D] = core::array::from_fn(|d| r_bar[d] + c.rho * v[d]);
+    (state, r_bar, tau)
+}
+
+fn eval<L: ContactLaw, const D: usize>(
+    c: &ContactData<'_, L, D>,
+    y: &[f64; D],
+    xi: &[f64; D],
+) -> Eval<L::State, D> {
+    let (state, r_bar, tau) = springs_and_tau(c, y, xi);
     let p = project(c.law, &tau, &state);
     let f = core::array::from_fn(|d| r_bar[d] - p[d]);
     Eval { state, r_bar, f }
@@ -306,15 +316,7 @@ fn contact_blocks<L: ContactLaw, const D: usize>(
     // what moves with x_j at fixed r: the state, r̄ (springs) and τ; P's own change with the
     // state at fixed τ
     let at = |xi: &[f64; D]| {
-        let u: [f64; D] = core::array::from_fn(|d| xi[d] + c.offset[d]);
-        let mut u_state = u;
-        u_state[0] = u_state[0].max(0.0);
-        let s = update_state(c.law, c.start, c.u_start, &u_state, c.dt);
-        let [kn, kt] = c.law.adhesive_stiffness(&s);
-        let rb: [f64; D] =
-            core::array::from_fn(|d| y0[d] + c.area * if d == 0 { kn } else { kt } * u[d]);
-        let v = velocity(c.law, xi, &s);
-        let tau: [f64; D] = core::array::from_fn(|d| rb[d] + c.rho * v[d]);
+        let (s, rb, tau) = springs_and_tau(c, y0, xi);
         let p_state = project(c.law, &tau0, &s);
         (rb, tau, p_state)
     };
