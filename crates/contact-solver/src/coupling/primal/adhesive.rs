@@ -16,9 +16,9 @@
 //! matters (`docs/theory.md` §13). Each solve starts from the last one's guess and jumps, to a
 //! tolerance that follows the last state change, down to a tenth of the solver's (the states
 //! amplify the jumps' error), and at that tenth for the rest of the step once the state change
-//! stops falling (loose solves can leave a contact flipping between stick and slip). Newton with the states eliminated, the dense
-//! path's default, would need the springs' tangent, which is not symmetric positive definite
-//! once the glue softens.
+//! stops falling (loose solves can leave a contact flipping between stick and slip). Newton
+//! with the states eliminated, the dense path's default, would need the springs' tangent,
+//! which is not symmetric positive definite once the glue softens.
 
 use super::{PrimalCache, PrimalStep, solve_primal};
 use crate::error::SolverError;

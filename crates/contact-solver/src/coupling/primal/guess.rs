@@ -48,7 +48,8 @@ impl Default for Damping {
 /// turn of its direction. The global [`Damping`] scales every contact alike; a contact whose
 /// direction swings back and forth (the diagonal stiffness `c_t` overestimates the stiffness
 /// it meets, as at a node of a stiff pile sliding as a whole in soft soil: a 2-cycle at a
-/// residual of 3e-7 on the 3D pile) halves its own factor each time it swings back.
+/// residual of 3e-7 on the 3D pile) halves its own factor each time it swings back, and
+/// doubles it (up to 1) each time it turns on the same way.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Swing {
     scale: f64,
@@ -158,6 +159,7 @@ pub(super) fn guess_sets<L: ContactLaw, const T: usize>(
     sets: &mut [Guess],
     swings: &mut [Swing],
 ) {
+    debug_assert_eq!(sets.len(), swings.len());
     let d = T + 1;
     // a slip below this is round-off (of the free response), with no direction
     let tiny = 1e-12 * step.q.iter().fold(0.0_f64, |m, v| m.max(v.abs()));

@@ -11,7 +11,9 @@ use crate::coupling::primal::adhesive::{AdhesiveData, solve_primal_adhesive};
 use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
 use crate::error::SolverError;
 use crate::local::ReducedProblem;
-use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
+use crate::local::adhesion::{
+    AdhesionOptions, AdhesiveSolution, AdhesiveStep, any_adhesion_active, solve_adhesive,
+};
 use crate::local::contact_statuses;
 use crate::local::matrix_free::solve_matrix_free;
 use contact_laws::{ContactLaw, ContactStatus};
@@ -116,11 +118,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
         };
         let before = self.primal.factorizations;
-        let adhesive = laws
-            .iter()
-            .zip(&states)
-            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
-        if adhesive {
+        if any_adhesion_active(&laws, &states) {
             let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
             let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
             let data = AdhesiveData {

@@ -311,11 +311,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
         }
         None => vec![0.0; m],
     };
-    let adhesion_active = step
-        .laws
-        .iter()
-        .zip(&states)
-        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s));
+    let adhesion_active = any_adhesion_active(step.laws, &states);
     let adhesive = options.always_iterate || adhesion_active;
     let mut newton_fallback = false;
     let r_bar_initial = r_bar.clone();
@@ -470,6 +466,14 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
             return Ok(s);
         }
     }
+}
+
+/// Whether any law is adhesive with its adhesion active in its state (else a step needs no
+/// adhesion loop).
+pub(crate) fn any_adhesion_active<L: ContactLaw>(laws: &[L], states: &[L::State]) -> bool {
+    laws.iter()
+        .zip(states)
+        .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s))
 }
 
 /// The states the jumps `u` (`D` per contact) imply from the start of the step; a negative

@@ -9,7 +9,7 @@ use crate::coupling::primal::{
     LocalFrame, PRIMAL_MAX_ITERATIONS, PrimalStep, frames, solve_primal,
 };
 use crate::error::SolverError;
-use crate::local::adhesion::AdhesionOptions;
+use crate::local::adhesion::{AdhesionOptions, any_adhesion_active};
 use contact_laws::ContactLaw;
 use fem_core::Structure;
 
@@ -98,11 +98,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             accept_non_converged: self.settings.solver.accept_non_converged,
         };
         let before = self.primal.factorizations;
-        if laws
-            .iter()
-            .zip(&states)
-            .any(|(l, s)| l.has_adhesion() && l.adhesion_active(s))
-        {
+        if any_adhesion_active(&laws, &states) {
             let u_start: Vec<[f64; 3]> = active.iter().map(|&i| self.jumps[i]).collect();
             let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
             let data = AdhesiveData {
