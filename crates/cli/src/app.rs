@@ -464,22 +464,35 @@ fn print_solid_header(cmd: &str, loaded: &build::Loaded, study: &build::SolidStu
 
 fn print_solid_summary(s: &run::SolidSummary, dir: &Path) {
     out::outln!(
-        "done: {} steps in {:.3} s (t = {}), {} contact iterations, {} active-set passes, {} refactorisations of K",
+        "done: {} steps in {:.3} s (t = {}), {} contact iterations, {} active-set passes, {} factorisations ({} of K, {} by the active set), {} adhesion iterations",
         s.steps,
         s.wall_time_s,
         s.time,
         s.contact_iterations,
         s.passes,
-        s.factorizations
+        s.factorizations,
+        s.counters.stiffness_factorizations,
+        s.counters.active_set_factorizations,
+        s.counters.adhesion_iterations
+    );
+    out::outln!(
+        "  steps: {} dense, {} active set, {} matrix-free; support reactions at the end [{:.6e}, {:.6e}, {:.6e}]",
+        s.counters.steps - s.counters.active_set_steps - s.counters.matrix_free_steps,
+        s.counters.active_set_steps,
+        s.counters.matrix_free_steps,
+        s.final_reaction[0],
+        s.final_reaction[1],
+        s.final_reaction[2]
     );
     for z in &s.zones {
         out::outln!(
-            "  zone `{}` ({}, {} candidates): final Σr_n {:.6e} ({} active), force [{:.6e}, {:.6e}, {:.6e}], max Σr_n {}",
+            "  zone `{}` ({}, {} candidates): final Σr_n {:.6e} ({} active = closed, {} within the alert distance), force [{:.6e}, {:.6e}, {:.6e}], max Σr_n {}",
             z.name,
             z.law,
             z.candidates,
             z.final_force_n,
             z.final_active,
+            z.final_within_alert,
             z.final_force[0],
             z.final_force[1],
             z.final_force[2],
@@ -549,10 +562,12 @@ fn print_summary(s: &run::Summary, dir: &Path) {
                 .unwrap_or_else(|| "-".into())
         };
         out::outln!(
-            "  zone `{}` ({}, {} candidates): max Σr_n {}, min Σr_n {}, max |Σr_t| {}{}",
+            "  zone `{}` ({}, {} candidates): {} active = closed, {} within the alert distance at the end; max Σr_n {}, min Σr_n {}, max |Σr_t| {}{}",
             z.name,
             z.law,
             z.candidates,
+            z.final_active,
+            z.final_within_alert,
             peak(&z.max_force_n),
             peak(&z.min_force_n),
             peak(&z.max_abs_force_t),

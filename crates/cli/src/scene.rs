@@ -283,12 +283,25 @@ pub struct OutputSpec {
     pub report: bool,
     /// Interface `.vtu` series + `.pvd`.
     pub vtk: bool,
-    /// Whole-mesh `.vtu` series + `.pvd` (displacement, stress).
-    pub mesh_vtk: bool,
+    /// Whole-mesh `.vtu` series + `.pvd` (displacement, stress); by default only for the pile
+    /// preset (the soil).
+    pub mesh_vtk: Option<bool>,
     /// Restrict the contact history and VTK to these zones.
     pub zones: Option<Vec<String>>,
     /// Restrict the contact history to these contactor nodes.
     pub nodes: Option<Vec<usize>>,
+    /// The pile preset: the global steps whose shaft profiles against depth
+    /// (`profiles.csv` and SVGs) are written; by default the first pull-out step, the step of
+    /// the peak head load and the last step.
+    pub profile_steps: Option<Vec<usize>>,
+}
+
+impl OutputSpec {
+    /// Whether the whole-mesh series is written (`mesh_vtk`, false unless set; the pile
+    /// preset sets it when the scene does not).
+    pub fn writes_mesh_vtk(&self) -> bool {
+        self.mesh_vtk.unwrap_or(false)
+    }
 }
 
 impl Default for OutputSpec {
@@ -300,9 +313,10 @@ impl Default for OutputSpec {
             history: true,
             report: true,
             vtk: true,
-            mesh_vtk: false,
+            mesh_vtk: None,
             zones: None,
             nodes: None,
+            profile_steps: None,
         }
     }
 }

@@ -43,6 +43,7 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
         &|n| study.candidates().iter().any(|c| c.node == n),
         node_count,
     )?;
+    check_profile_steps(&study.output, study)?;
     let mut files = BTreeSet::new();
     for (i, plot) in scene.plots.iter().enumerate() {
         let pp = root.key("plots").index(i);
@@ -154,9 +155,33 @@ fn check_file_count(study: &Study) -> CliResult<()> {
              `output.steps`, or set `output.vtk` / `output.mesh_vtk` = false",
             study.written_steps(),
             study.total_steps(),
-            usize::from(o.vtk) + usize::from(o.mesh_vtk)
+            usize::from(o.vtk) + usize::from(o.writes_mesh_vtk())
         ),
     ))
+}
+
+/// `output.profile_steps`: the pile preset's only, each a step of the run.
+fn check_profile_steps(o: &OutputSpec, study: &Study) -> CliResult<()> {
+    let Some(list) = &o.profile_steps else {
+        return Ok(());
+    };
+    let p = KeyPath::root().key("output").key("profile_steps");
+    if !matches!(&study.body, Body::Preset(b) if b.kind == "pile") {
+        return Err(CliError::at(
+            &p,
+            format!(
+                "`{p}`: shaft profiles are written by the pile preset only ([preset] kind = \"pile\")"
+            ),
+        ));
+    }
+    let total = study.total_steps();
+    if let Some(s) = list.iter().find(|&&s| s == 0 || s > total) {
+        return Err(CliError::at(
+            &p,
+            format!("`{p}`: step {s} is not a step of the run (1 to {total})"),
+        ));
+    }
+    Ok(())
 }
 
 /// Index of a zone by name.

@@ -10,7 +10,7 @@ use super::phases::{Phase, phase};
 use super::study::{Body, Library, PresetStudy, Study};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::presets::{DelaminationSpec, Installation, PulloutSpec, ShearSpec};
-use crate::scene::Scene;
+use crate::scene::{OutputSpec, Scene};
 use crate::spec::{InstallationSpec, Preset, RccmOverride, RccmSpec, Site};
 use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
 use contact_solver::SimulationSettings;
@@ -421,7 +421,11 @@ fn finish(
         units: scene.units.clone().unwrap_or_default(),
         body: Body::Preset(Box::new(study_preset)),
         phases,
-        output: scene.output.clone(),
+        output: OutputSpec {
+            // the pile writes its soil mesh unless told not to
+            mesh_vtk: scene.output.mesh_vtk.or(Some(kind == "pile")),
+            ..scene.output.clone()
+        },
         plots: Vec::new(),
         zone_names,
         zone_laws,

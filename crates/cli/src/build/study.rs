@@ -166,7 +166,7 @@ impl Study {
     /// their `.pvd`, the CSV histories, the plots, `curves.csv` and `summary.json`.
     pub fn output_files(&self) -> usize {
         let o = &self.output;
-        let series = usize::from(o.vtk) + usize::from(o.mesh_vtk);
+        let series = usize::from(o.vtk) + usize::from(o.writes_mesh_vtk());
         let fixed = 1 + usize::from(o.history) + usize::from(o.report) + series;
         let plots = if self.plots.is_empty() {
             0

@@ -24,12 +24,13 @@ impl CsvWriter {
         history: bool,
         report: bool,
         nodes_filter: Option<Vec<usize>>,
+        axes: [&str; 2],
         files: &mut Vec<String>,
     ) -> CliResult<Self> {
         let history = if history {
             files.push("contacts.csv".to_string());
             Some(
-                HistoryWriter::new(create(dir, "contacts.csv")?)
+                HistoryWriter::with_axes(create(dir, "contacts.csv")?, axes)
                     .map_err(|e| io(&dir.join("contacts.csv"), e))?,
             )
         } else {

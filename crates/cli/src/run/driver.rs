@@ -4,6 +4,7 @@
 use super::errors::{fem_failed, step_error};
 use crate::build::{Custom, Library, LoadKind, Phase, PresetStudy, function_value};
 use crate::error::{CliError, CliResult};
+use crate::presets::ShaftPoint;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, StepResult};
 use fem_core::LinearElasticModel;
@@ -24,6 +25,10 @@ pub(super) trait Driver {
     /// Quantities only this driver knows (the pile's head load), at the last step.
     fn extras(&self) -> Extras {
         Extras::default()
+    }
+    /// The pile's shaft at the end of `res` (a step of this driver), for the profiles.
+    fn profile(&self, _res: &StepResult) -> Option<Vec<ShaftPoint>> {
+        None
     }
 }
 
@@ -238,5 +243,12 @@ impl Driver for PresetDriver<'_> {
 
     fn extras(&self) -> Extras {
         self.extras
+    }
+
+    fn profile(&self, res: &StepResult) -> Option<Vec<ShaftPoint>> {
+        match &self.p.scene {
+            Library::Pile(s) => Some(s.shaft_profile(res)),
+            Library::Seed(_) => None,
+        }
     }
 }

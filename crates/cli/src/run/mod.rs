@@ -11,8 +11,10 @@ mod csv;
 mod driver;
 mod errors;
 mod plots;
+mod profiles;
 mod progress;
 mod recorder;
+mod rigid;
 mod solid;
 mod summary;
 mod vtk;
@@ -62,7 +64,12 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
     let (phases, error) = outcome;
     let (tangential, detection) = recorder.stage_counts();
     let steps_done = recorder.steps();
-    let (mut files, curves, zones) = recorder.finish(&study)?;
+    let recorder::Finished {
+        mut files,
+        curves,
+        zones,
+        rigid,
+    } = recorder.finish(&study)?;
     let (counters, time, facts) = match &study.body {
         Body::Custom(c) => (c.sim.counters(), c.sim.time(), facts(&c.sim)),
         Body::Preset(p) => (p.sim().counters(), p.sim().time(), facts(p.sim())),
@@ -105,6 +112,7 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
         zones,
         curves,
         files,
+        rigid_motions: rigid,
     };
     summary::write(&opts.out_dir.join("summary.json"), &summary)?;
     match error {
@@ -149,7 +157,15 @@ fn drive<D: Driver>(
             if let Err(e) = rec.record(d.sim(), &res, d.extras(), global, k == phase.steps) {
                 return fail(&mut out, e);
             }
-            progress.step(t, res.report.contact_iterations);
+            if let Some(points) = d.profile(&res) {
+                let q = d.extras().head_load.unwrap_or(f64::NAN);
+                rec.profile(global, t, pi, q, points);
+            }
+            progress.step(
+                t,
+                res.report.contact_iterations,
+                progress::path_name(&res.report),
+            );
         }
         d.end_phase(phases, pi);
         let after = d.sim().counters();

@@ -7,13 +7,16 @@ use super::csv::CsvWriter;
 use super::driver::Extras;
 use super::errors::{fem_failed, io};
 use super::plots::Plots;
+use super::profiles::Profiles;
+use super::rigid::{RigidMotionSummary, RigidWriter};
 use super::summary::{CurveSummary, Tally, ZoneSummary};
 use super::vtk::VtkWriter;
-use crate::build::Study;
+use crate::build::{Body, Study};
 use crate::error::CliResult;
+use crate::presets::ShaftPoint;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactRecord, ContactSimulation, StepResult};
-use fem_core::LinearElasticModel;
+use fem_core::{Idealization, LinearElasticModel, Structure};
 use std::path::{Path, PathBuf};
 
 /// Which steps the CSV contact history and the VTK series write.
@@ -32,6 +35,18 @@ pub(super) struct Recorder {
     write_steps: WriteSteps,
     zones_filter: Option<Vec<usize>>,
     files: Vec<String>,
+    /// `rigid_motions.csv`, for a structure with rigid-body modes (floating bodies).
+    rigid: Option<RigidWriter>,
+    /// The pile's shaft profiles (the pile preset only).
+    profiles: Option<Profiles>,
+}
+
+/// The names of the two axes: `r, z` in axisymmetry, `x, y` otherwise.
+pub(super) fn axes(study: &Study) -> [&'static str; 2] {
+    match study.model().idealization() {
+        Idealization::Axisymmetric => ["r", "z"],
+        _ => ["x", "y"],
+    }
 }
 
 impl Recorder {
@@ -40,7 +55,24 @@ impl Recorder {
         std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
         let o = &study.output;
         let mut files = Vec::new();
-        let csv = CsvWriter::new(dir, o.history, o.report, o.nodes.clone(), &mut files)?;
+        let csv = CsvWriter::new(
+            dir,
+            o.history,
+            o.report,
+            o.nodes.clone(),
+            axes(study),
+            &mut files,
+        )?;
+        let floating = study
+            .model()
+            .rigid_body_modes()
+            .is_some_and(|m| !m.is_empty());
+        let rigid = if floating {
+            files.push("rigid_motions.csv".to_string());
+            Some(RigidWriter::new(dir, axes(study))?)
+        } else {
+            None
+        };
         let zones_filter = o.zones.as_ref().map(|zs| {
             zs.iter()
                 .filter_map(|z| study.zone_names.iter().position(|n| n == z))
@@ -57,7 +89,7 @@ impl Recorder {
         Ok(Self {
             dir: dir.to_path_buf(),
             csv,
-            vtk: VtkWriter::new(dir, o.vtk, o.mesh_vtk),
+            vtk: VtkWriter::new(dir, o.vtk, o.writes_mesh_vtk()),
             plots,
             tally: Tally::new(&study.zone_names, &study.zone_laws, &counts),
             write_steps: match &o.steps {
@@ -66,6 +98,9 @@ impl Recorder {
             },
             zones_filter,
             files,
+            rigid,
+            profiles: matches!(&study.body, Body::Preset(p) if p.kind == "pile")
+                .then(Profiles::default),
         })
     }
 
@@ -91,6 +126,9 @@ impl Recorder {
         let rep = &res.report;
         self.csv.write_report(rep)?;
         self.tally.record(res, global);
+        if let (Some(w), Some(modes)) = (&mut self.rigid, sim.structure().rigid_body_modes()) {
+            w.write_step(global, rep.time, modes, sim.rigid_body_amplitudes())?;
+        }
         let write = match &self.write_steps {
             WriteSteps::Every(k) => global.is_multiple_of(*k) || last_of_phase,
             WriteSteps::List(l) => l.contains(&global),
@@ -128,16 +166,48 @@ impl Recorder {
             .write_step(rep.time, &selected, disp.as_deref(), model)
     }
 
-    /// Closes the files, writes the curves and the plots; returns the files written (but
-    /// `summary.json`), the curves' and the zones' summaries.
-    pub(super) fn finish(
-        mut self,
-        study: &Study,
-    ) -> CliResult<(Vec<String>, Vec<CurveSummary>, Vec<ZoneSummary>)> {
+    /// Keeps the pile's shaft at global step `global` (time `t`, phase `phase`, head load `q`).
+    pub(super) fn profile(
+        &mut self,
+        global: usize,
+        t: f64,
+        phase: usize,
+        q: f64,
+        points: Vec<ShaftPoint>,
+    ) {
+        if let Some(p) = &mut self.profiles {
+            p.record(global, t, phase, q, points);
+        }
+    }
+
+    /// Closes the files, writes the curves, the plots and the pile's profiles; returns the files written (but
+    /// `summary.json`), the curves', the zones' summaries and the floating bodies' last rigid
+    /// motions.
+    pub(super) fn finish(mut self, study: &Study) -> CliResult<Finished> {
         self.csv.finish()?;
+        let rigid = match self.rigid.take() {
+            Some(w) => w.finish()?,
+            None => Vec::new(),
+        };
         let mut files = self.files.clone();
         files.extend(self.vtk.files());
         let summaries = self.plots.finish(study, &self.dir, &mut files)?;
-        Ok((files, summaries, self.tally.zones))
+        if let Some(p) = &self.profiles {
+            p.finish(&self.dir, study.output.profile_steps.as_deref(), &mut files)?;
+        }
+        Ok(Finished {
+            files,
+            curves: summaries,
+            zones: self.tally.zones,
+            rigid,
+        })
     }
+}
+
+/// What the recorder hands the summary at the end of a run.
+pub(super) struct Finished {
+    pub(super) files: Vec<String>,
+    pub(super) curves: Vec<CurveSummary>,
+    pub(super) zones: Vec<ZoneSummary>,
+    pub(super) rigid: Vec<RigidMotionSummary>,
 }

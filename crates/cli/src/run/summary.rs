@@ -56,6 +56,11 @@ pub struct ZoneSummary {
     pub final_force_t: f64,
     /// Final statuses: inactive, open, stick, slip.
     pub final_status: StatusCount,
+    /// Closed ("active") contacts at the end: the law's reaction is not zero (stick or slip).
+    pub final_active: usize,
+    /// Candidates of the reduced problem at the end (within the alert distance): closed or
+    /// open.
+    pub final_within_alert: usize,
 }
 
 /// Status counts.
@@ -166,6 +171,9 @@ pub struct Summary {
     pub curves: Vec<CurveSummary>,
     /// Files written (relative to the output directory).
     pub files: Vec<String>,
+    /// Floating bodies: the rigid-body motion of each mode at the last step (as
+    /// `rigid_motions.csv`); empty for supported bodies.
+    pub rigid_motions: Vec<super::rigid::RigidMotionSummary>,
 }
 
 /// Units note.
@@ -222,6 +230,8 @@ impl Tally {
                 final_force_n: 0.0,
                 final_force_t: 0.0,
                 final_status: StatusCount::default(),
+                final_active: 0,
+                final_within_alert: 0,
             })
             .collect();
         Self {
@@ -245,7 +255,10 @@ impl Tally {
             let mine = res.contacts.iter().filter(|c| c.zone == z);
             let (mut fn_, mut ft, mut bmin) = (0.0, 0.0, f64::INFINITY);
             let mut st = StatusCount::default();
+            let (mut closed, mut within) = (0, 0);
             for c in mine {
+                closed += usize::from(c.status.is_closed());
+                within += usize::from(c.status != InterfaceStatus::Inactive);
                 fn_ += c.r.n;
                 ft += c.r.t[0];
                 bmin = bmin.min(c.beta);
@@ -265,6 +278,8 @@ impl Tally {
             zs.final_force_n = fn_;
             zs.final_force_t = ft;
             zs.final_status = st;
+            zs.final_active = closed;
+            zs.final_within_alert = within;
         }
     }
 }

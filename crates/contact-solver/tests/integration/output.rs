@@ -118,6 +118,7 @@ fn history_round_trips_exactly_works() {
         let expected = [
             c.position[0], c.position[1], c.gap, c.u_t, c.slip_increment, c.beta,
             c.r.n, c.r.t[0], c.r_bar.n, c.r_bar.t[0], c.r_adh.n, c.r_adh.t[0], c.area,
+            c.force()[0], c.force()[1], c.normal[0], c.normal[1], c.tangent[0], c.tangent[1],
         ];
         // bit-exact: the writer uses round-trip formatting
         assert_eq!(floats, expected);
@@ -143,7 +144,7 @@ fn report_log_round_trips_exactly_works() {
         assert_eq!(int(0), r.step);
         assert_eq!(float(row[1]), r.time);
         assert_eq!(float(row[2]), r.load_factor);
-        assert_eq!(int(3), r.active_contacts);
+        assert_eq!(int(3), r.closed_contacts);
         assert_eq!(int(4), r.adhesion_iterations);
         assert_eq!(int(5), r.contact_iterations);
         assert_eq!(int(6), r.detection_passes);
@@ -152,6 +153,8 @@ fn report_log_round_trips_exactly_works() {
         assert_eq!(int(9), usize::from(r.converged));
         assert_eq!(float(row[10]), r.wall_time.as_secs_f64());
         assert_eq!(int(11), usize::from(r.matrix_free));
+        assert_eq!(int(12), usize::from(r.active_set));
+        assert_eq!(int(13), r.active_contacts);
     }
     assert_eq!(rows[0][7], "1"); // F* built in the first step
 }

@@ -71,7 +71,7 @@ impl SolidStudy {
 
     /// Whether the body's `.vtu` series is written (`output.vtk` or `output.mesh_vtk`).
     pub fn writes_vtk(&self) -> bool {
-        self.output.vtk || self.output.mesh_vtk
+        self.output.vtk || self.output.writes_mesh_vtk()
     }
 
     /// The files a run writes: `summary.json`, the CSV histories, and per `.vtu` series (the

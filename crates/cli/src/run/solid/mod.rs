@@ -31,8 +31,34 @@ pub struct SolidPhaseSummary {
     pub contact_iterations: usize,
     /// Active-set passes.
     pub passes: usize,
+    /// Adhesion fixed-point iterations.
+    pub adhesion_iterations: usize,
+    /// Numeric factorisations (of K, and of the active set's constrained stiffness).
+    pub factorizations: usize,
     /// Wall time.
     pub wall_time_s: f64,
+}
+
+/// The work a 3D run did, named as 2D's `contact_solver::Counters` where the two share a
+/// meaning.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct SolidCounters {
+    /// Steps done.
+    pub steps: usize,
+    /// Contact (solver) iterations.
+    pub contact_iterations: usize,
+    /// Adhesion fixed-point iterations.
+    pub adhesion_iterations: usize,
+    /// Passes of the penetration check (2D: `detection_passes` summed).
+    pub passes: usize,
+    /// Refactorisations of K (a support released, a stiffness change).
+    pub stiffness_factorizations: usize,
+    /// Steps solved matrix-free (no `F*`).
+    pub matrix_free_steps: usize,
+    /// Steps solved by the primal active-set iteration (no `F*`).
+    pub active_set_steps: usize,
+    /// Numeric factorisations of the constrained stiffness by the active-set iteration.
+    pub active_set_factorizations: usize,
 }
 
 /// `summary.json` of a 3D run.
@@ -64,8 +90,14 @@ pub struct SolidSummary {
     pub contact_iterations: usize,
     /// Active-set passes over the run.
     pub passes: usize,
-    /// Refactorisations of K over the run.
+    /// Numeric factorisations over the run: of K and of the active set's constrained stiffness
+    /// (`counters` splits them).
     pub factorizations: usize,
+    /// The work done, counter by counter.
+    pub counters: SolidCounters,
+    /// Sum of the support reactions at the last step, global axes: with the applied loads and
+    /// the contact forces on the body it balances.
+    pub final_reaction: [f64; 3],
     /// Phases.
     pub phases: Vec<SolidPhaseSummary>,
     /// Zones.
@@ -189,6 +221,7 @@ fn drive(
     progress: &Progress,
     time: &mut f64,
     global: &mut usize,
+    counters: &mut SolidCounters,
 ) -> (Vec<SolidPhaseSummary>, Option<CliError>) {
     let mut out = Vec::new();
     let mut last_loads = None;
@@ -199,10 +232,11 @@ fn drive(
             return (out, Some(e));
         }
         let t_phase = Instant::now();
-        let (mut iterations, mut passes) = (0, 0);
+        let (mut iterations, mut passes, mut adhesion, mut factorizations) = (0, 0, 0, 0);
         for k in 1..=phase.steps {
             let t = phase.time(k);
             let t_step = Instant::now();
+            let k0 = study.sim.structure().factorizations();
             let res = apply(study, p, t, &mut last_loads).and_then(|()| {
                 let at = t.max(study.sim.time());
                 study
@@ -221,17 +255,29 @@ fn drive(
             *time = t;
             iterations += res.contact_iterations;
             passes += res.passes;
+            adhesion += res.adhesion_iterations;
+            let k_step = study.sim.structure().factorizations() - k0;
+            factorizations += k_step + res.factorizations;
+            counters.steps += 1;
+            counters.contact_iterations += res.contact_iterations;
+            counters.adhesion_iterations += res.adhesion_iterations;
+            counters.passes += res.passes;
+            counters.stiffness_factorizations += k_step;
+            counters.matrix_free_steps += usize::from(res.matrix_free);
+            counters.active_set_steps += usize::from(res.active_set);
+            counters.active_set_factorizations += res.factorizations;
             let row = StepRow {
                 step: *global,
                 phase: &phase.name,
                 time: t,
                 wall_time_s: t_step.elapsed().as_secs_f64(),
+                factorizations: k_step + res.factorizations,
             };
             let write = written(study, *global, k == phase.steps);
             if let Err(e) = rec.record(&study.sim, &res, &row, write) {
                 return (out, Some(e));
             }
-            progress.step(t, res.contact_iterations);
+            progress.step(t, res.contact_iterations, path_name(&res));
         }
         if phase.reset_displacements {
             study.sim.reset_displacements();
@@ -243,27 +289,56 @@ fn drive(
             t_end: phase.t1,
             contact_iterations: iterations,
             passes,
+            adhesion_iterations: adhesion,
+            factorizations,
             wall_time_s: t_phase.elapsed().as_secs_f64(),
         };
         progress.line(&format!(
-            "phase `{}`: {} steps, t {} → {}: {} contact iterations, {} active-set passes, \
-             {:.3} s",
-            s.name, s.steps, s.t_start, s.t_end, s.contact_iterations, s.passes, s.wall_time_s
+            "phase `{}`: {} steps, t {} → {}: {} contact iterations, {} adhesion iterations, {} \
+             active-set passes, {} factorisations, {:.3} s",
+            s.name,
+            s.steps,
+            s.t_start,
+            s.t_end,
+            s.contact_iterations,
+            s.adhesion_iterations,
+            s.passes,
+            s.factorizations,
+            s.wall_time_s
         ));
         out.push(s);
     }
     (out, None)
 }
 
+/// How a step was solved, for the progress lines.
+fn path_name(res: &contact_solver::coupling::solid::SolidStepResult) -> &'static str {
+    if res.active_set {
+        "active set"
+    } else if res.matrix_free {
+        "matrix-free"
+    } else {
+        "dense"
+    }
+}
+
 /// Runs a 3D study; returns the summary (also written to `summary.json`).
 pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSummary> {
     let mut rec = SolidRecorder::new(&opts.out_dir, &study)?;
     let start = Instant::now();
-    let factorizations_0 = study.sim.structure().factorizations();
     let progress = Progress::new(study.total_steps(), opts.quiet);
     let (mut time, mut steps) = (0.0, 0);
-    let (phases, error) = drive(&mut study, &mut rec, &progress, &mut time, &mut steps);
+    let mut counters = SolidCounters::default();
+    let (phases, error) = drive(
+        &mut study,
+        &mut rec,
+        &progress,
+        &mut time,
+        &mut steps,
+        &mut counters,
+    );
     progress.finish();
+    let final_reaction = rec.reaction;
     let (mut files, zones) = rec.finish()?;
     files.insert(0, "summary.json".into());
     let model = study.sim.structure();
@@ -296,7 +371,9 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
         },
         contact_iterations: phases.iter().map(|p| p.contact_iterations).sum(),
         passes: phases.iter().map(|p| p.passes).sum(),
-        factorizations: model.factorizations() - factorizations_0,
+        factorizations: counters.stiffness_factorizations + counters.active_set_factorizations,
+        counters,
+        final_reaction,
         phases,
         zones,
         files,

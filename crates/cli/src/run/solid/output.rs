@@ -1,6 +1,7 @@
-//! The outputs of a 3D run: `steps.csv` (one row per step: time, active contacts, iterations,
-//! the total contact force and each zone's Σ r_n), `contacts.csv` (one row per contact and
-//! written step), the body's `mesh_NNNN.vtu` series with `mesh.pvd` (displacement, contact force
+//! The outputs of a 3D run: `steps.csv` (one row per step: time, closed ("active") contacts,
+//! iterations, the total contact force and each zone's Σ r_n; then the candidates of the
+//! reduced problem, the path's counters and the support reactions), `contacts.csv` (one row per
+//! contact and written step, its frame appended), the body's `mesh_NNNN.vtu` series with `mesh.pvd` (displacement, contact force
 //! and pressure at the nodes, the element-mean stress), the interface's `interface_NNNN.vtu`
 //! series with `interface.pvd` (`output.vtk`: one point per contact at its deformed position,
 //! [`write_interface_vtu_3d`]), and the zones' tally for the summary.
@@ -35,8 +36,11 @@ pub struct SolidZoneSummary {
     pub final_force_n: f64,
     /// Σ of the contact forces (global frame) at the end.
     pub final_force: [f64; 3],
-    /// Active contacts at the end.
+    /// Closed contacts at the end (`r̄_n > 0`; 2D's stick and slip).
     pub final_active: usize,
+    /// Candidates of the reduced problem at the end (within the alert distance): closed or
+    /// open.
+    pub final_within_alert: usize,
 }
 
 /// One step's row of `steps.csv`.
@@ -45,6 +49,8 @@ pub(super) struct StepRow<'a> {
     pub(super) phase: &'a str,
     pub(super) time: f64,
     pub(super) wall_time_s: f64,
+    /// Numeric factorisations of this step (K refactored, and the active set's).
+    pub(super) factorizations: usize,
 }
 
 /// The writers of a 3D run.
@@ -58,6 +64,8 @@ pub(super) struct SolidRecorder {
     nodes_filter: Option<Vec<usize>>,
     pub(super) zones: Vec<SolidZoneSummary>,
     pub(super) files: Vec<String>,
+    /// The support reactions `Σ R` (global axes) of the last step.
+    pub(super) reaction: [f64; 3],
 }
 
 /// A text field of a CSV row, quoted when it holds a comma, a quote or a line break (RFC 4180).
@@ -88,6 +96,10 @@ impl SolidRecorder {
             for z in &study.zone_names {
                 head.push_str(&format!(",{}", field(&format!("force_n:{z}"))));
             }
+            head.push_str(
+                ",candidates,adhesion_iterations,matrix_free,active_set,factorizations,\
+                 reaction_x,reaction_y,reaction_z",
+            );
             line(&mut w, dir, "steps.csv", &head)?;
             files.push("steps.csv".to_string());
             Some(w)
@@ -101,7 +113,7 @@ impl SolidRecorder {
                 dir,
                 "contacts.csv",
                 "step,time,zone,node,x,y,z,active,gap,r_n,r_t1,r_t2,area,pressure,slip_t1,\
-                 slip_t2,f_x,f_y,f_z,beta",
+                 slip_t2,f_x,f_y,f_z,beta,candidate,n_x,n_y,n_z,t1_x,t1_y,t1_z,t2_x,t2_y,t2_z",
             )?;
             files.push("contacts.csv".to_string());
             Some(w)
@@ -121,6 +133,7 @@ impl SolidRecorder {
                 final_force_n: 0.0,
                 final_force: [0.0; 3],
                 final_active: 0,
+                final_within_alert: 0,
             })
             .collect();
         Ok(Self {
@@ -137,6 +150,7 @@ impl SolidRecorder {
             nodes_filter: o.nodes.clone(),
             zones,
             files,
+            reaction: [0.0; 3],
         })
     }
 
@@ -153,25 +167,33 @@ impl SolidRecorder {
         let mut total = [0.0; 3];
         for (z, zs) in self.zones.iter_mut().enumerate() {
             let mine = res.contacts.iter().filter(|c| c.candidate.zone == z);
-            let (mut f_n, mut f, mut active) = (0.0, [0.0; 3], 0);
+            let (mut f_n, mut f, mut closed, mut within) = (0.0, [0.0; 3], 0, 0);
             for c in mine {
                 f_n += c.r[0];
                 let g = c.force();
                 (0..3).for_each(|a| f[a] += g[a]);
-                active += usize::from(c.active);
+                closed += usize::from(c.closed);
+                within += usize::from(c.active);
             }
             keep(&mut zs.max_force_n, f_n, step, t, true);
             zs.final_force_n = f_n;
             zs.final_force = f;
-            zs.final_active = active;
+            zs.final_active = closed;
+            zs.final_within_alert = within;
             total_n += f_n;
             (0..3).for_each(|a| total[a] += f[a]);
         }
+        // the nodal displacements, for the reactions and the VTK series
+        let mesh = sim.structure().mesh();
+        let u: Vec<[f64; 3]> = (0..mesh.node_count())
+            .map(|n| sim.nodal_displacement(n))
+            .collect();
+        self.reaction = support_reaction(sim.structure(), &u)?;
         if let Some(w) = &mut self.steps {
             let mut text = format!(
                 "{step},{},{t},1,{},{},{},{:e},{:e},{total_n:e},{:e},{:e},{:e}",
                 field(row.phase),
-                res.active,
+                res.closed,
                 res.contact_iterations,
                 res.passes,
                 res.residual,
@@ -183,6 +205,18 @@ impl SolidRecorder {
             for z in &self.zones {
                 text.push_str(&format!(",{:e}", z.final_force_n));
             }
+            let r = self.reaction;
+            text.push_str(&format!(
+                ",{},{},{},{},{},{:e},{:e},{:e}",
+                res.active,
+                res.adhesion_iterations,
+                u8::from(res.matrix_free),
+                u8::from(res.active_set),
+                row.factorizations,
+                r[0],
+                r[1],
+                r[2]
+            ));
             line(w, &self.dir, "steps.csv", &text)?;
         }
         if !write {
@@ -210,14 +244,14 @@ impl SolidRecorder {
                 }
                 let x = model.mesh().nodes()[cand.node];
                 let f = c.force();
-                let text = format!(
+                let mut text = format!(
                     "{step},{t},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
                     field(&self.zones[cand.zone].name),
                     cand.node,
                     x[0],
                     x[1],
                     x[2],
-                    u8::from(c.active),
+                    u8::from(c.closed),
                     c.gap,
                     c.r[0],
                     c.r[1],
@@ -231,17 +265,13 @@ impl SolidRecorder {
                     f[2],
                     c.beta
                 );
+                text.push_str(&format!(",{}", u8::from(c.active)));
+                for v in cand.frame().iter().flatten() {
+                    text.push_str(&format!(",{v:e}"));
+                }
                 line(w, &self.dir, "contacts.csv", &text)?;
             }
         }
-        if self.vtk.is_none() && self.interface.is_none() {
-            return Ok(());
-        }
-        // the nodal displacements, once for both series
-        let mesh = sim.structure().mesh();
-        let u: Vec<[f64; 3]> = (0..mesh.node_count())
-            .map(|n| sim.nodal_displacement(n))
-            .collect();
         if self.vtk.is_some() {
             self.write_vtk(sim, &selected, &u, t)?;
         }
@@ -330,6 +360,19 @@ impl SolidRecorder {
         }
         Ok((self.files, self.zones))
     }
+}
+
+/// The sum of the support reactions `R = K u − f` over every prescribed dof, global axes: with
+/// the applied loads and the contact forces it balances (the whole body's equilibrium).
+fn support_reaction(model: &SolidModel, u: &[[f64; 3]]) -> CliResult<[f64; 3]> {
+    let mut total = [0.0; 3];
+    for ((_, c), r) in model
+        .reactions(u, 1.0)
+        .map_err(|e| fem_failed("support reactions", e))?
+    {
+        total[c as usize] += r;
+    }
+    Ok(total)
 }
 
 #[cfg(test)]

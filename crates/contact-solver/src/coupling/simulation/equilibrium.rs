@@ -76,6 +76,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 u_t: jumps[i][1],
                 slip_increment: jumps[i][1] - self.jumps[i][1],
                 beta: self.zones[c.zone].law.adhesion_intensity(&self.states[i]),
+                normal: c.normal,
+                tangent: c.tangent,
                 r: LocalVec2::zeros(),
                 r_bar: LocalVec2::zeros(),
                 r_adh: LocalVec2::zeros(),
@@ -113,6 +115,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters.adhesion_iterations += report.adhesion_iterations;
         self.counters.contact_iterations += report.contact_iterations;
         report.active_contacts = self.w_active.len();
+        report.closed_contacts = records.iter().filter(|r| r.status.is_closed()).count();
         report.wall_time = start.elapsed();
         StepResult {
             report,

@@ -28,6 +28,20 @@ impl InterfaceStatus {
             Self::Slip => "slip",
         }
     }
+
+    /// Whether the contact is closed: the law's reaction `r̄` is not zero (compressed, sticking
+    /// or sliding), what the outputs count as "active". `Inactive` (outside the alert distance)
+    /// and `Open` (in the reduced problem, `r̄ = 0`) are not.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::InterfaceStatus;
+    /// assert!(InterfaceStatus::Stick.is_closed() && InterfaceStatus::Slip.is_closed());
+    /// assert!(!InterfaceStatus::Open.is_closed() && !InterfaceStatus::Inactive.is_closed());
+    /// ```
+    pub fn is_closed(self) -> bool {
+        !matches!(self, Self::Inactive | Self::Open)
+    }
 }
 
 /// One contact candidate at the end of a step. Local vectors have named components: `r.n` (normal,
@@ -53,12 +67,40 @@ pub struct ContactRecord {
     pub slip_increment: f64,
     /// Adhesion intensity β ([`ContactLaw::adhesion_intensity`](contact_laws::ContactLaw::adhesion_intensity), 0 without adhesion).
     pub beta: f64,
+    /// Unit normal of the contact, global axes, from the target towards the contactor.
+    pub normal: [f64; 2],
+    /// Unit tangent `t = (n_y, −n_x)`, global axes: `r.t` is along it.
+    pub tangent: [f64; 2],
     /// Total reaction `r = r̄ + r_adh` on the contactor (`r_n > 0` compression).
     pub r: LocalVec2,
     /// Reaction of the contact law proper, `r̄ ∈ K_μ̄`.
     pub r_bar: LocalVec2,
     /// Adhesive reaction `r_adh`.
     pub r_adh: LocalVec2,
+}
+
+impl ContactRecord {
+    /// The total reaction on the contactor node in global axes, `r_n n + r_t t`.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
+    /// let c = ContactRecord {
+    ///     zone: 0, node: 3, position: [0.0, 0.0], area: 1.0, status: InterfaceStatus::Slip,
+    ///     gap: 0.0, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
+    ///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
+    ///     r: LocalVec2::planar(2.0, -0.5), r_bar: LocalVec2::planar(2.0, -0.5),
+    ///     r_adh: LocalVec2::zeros(),
+    /// };
+    /// assert_eq!(c.force(), [-0.5, 2.0]);
+    /// ```
+    pub fn force(&self) -> [f64; 2] {
+        let (n, t) = (self.normal, self.tangent);
+        [
+            self.r.n * n[0] + self.r.t[0] * t[0],
+            self.r.n * n[1] + self.r.t[0] * t[1],
+        ]
+    }
 }
 
 /// Counters and timing of one step.
@@ -72,8 +114,13 @@ pub struct StepReport {
     pub time: f64,
     /// Load factor of the step.
     pub load_factor: f64,
-    /// Candidates in the reduced problem.
+    /// Candidates in the reduced problem (within the alert distance, in contact at the last
+    /// step, or adhesive): the `candidates` column of
+    /// [`ReportWriter`](crate::coupling::output::ReportWriter).
     pub active_contacts: usize,
+    /// Contacts closed at the end of the step ([`InterfaceStatus::is_closed`]): the
+    /// `active_contacts` column of [`ReportWriter`](crate::coupling::output::ReportWriter).
+    pub closed_contacts: usize,
     /// Adhesion fixed-point iterations (0 when the step had no adhesion).
     pub adhesion_iterations: usize,
     /// Contact iterations: solver sweeps summed over the adhesion iterations and passes.
@@ -181,6 +228,7 @@ impl StepReport {
             time,
             load_factor,
             active_contacts: 0,
+            closed_contacts: 0,
             adhesion_iterations: 0,
             contact_iterations: 0,
             detection_passes: 0,

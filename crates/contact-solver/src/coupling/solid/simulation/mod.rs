@@ -95,8 +95,12 @@ pub struct SolidContactRecord {
     /// Tangential displacement increment of the step `(Δu_t1, Δu_t2)` (the slip of a sliding
     /// contact).
     pub slip: [f64; 2],
-    /// Whether the contact was in the active set.
+    /// Whether the contact was in the step's reduced problem (within the alert distance, in
+    /// contact at the last step, or adhesive): a candidate, not necessarily closed.
     pub active: bool,
+    /// Whether the contact is closed: the law's reaction `r̄` is compressive (`r̄_n > 0`), as
+    /// 2D's [`InterfaceStatus::is_closed`](crate::InterfaceStatus::is_closed).
+    pub closed: bool,
 }
 
 impl SolidContactRecord {
@@ -129,8 +133,10 @@ pub struct SolidStepResult {
     pub passes: usize,
     /// The local solver's last residual.
     pub residual: f64,
-    /// Number of active contacts.
+    /// Contacts in the reduced problem (candidates within the alert distance).
     pub active: usize,
+    /// Contacts closed at the end of the step ([`SolidContactRecord::closed`]).
+    pub closed: usize,
     /// Whether the last pass was solved matrix-free (no `F*`).
     pub matrix_free: bool,
     /// Whether the last pass was solved by the primal active set (no `F*`).
@@ -702,6 +708,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 gap: x[0],
                 slip: [x[1] - start[1], x[2] - start[2]],
                 active: in_active[i],
+                closed: in_active[i] && law_reaction[i][0] > 0.0,
             });
             self.jumps[i] = x;
             self.r_last[i] = reaction[i];
@@ -713,6 +720,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         self.u = u;
         self.time += dt;
         self.steps += 1;
+        let closed = contacts.iter().filter(|c| c.closed).count();
         SolidStepResult {
             contacts,
             contact_iterations: counts.iterations,
@@ -720,6 +728,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             passes: counts.passes,
             residual: counts.residual,
             active: active.len(),
+            closed,
             matrix_free: counts.matrix_free,
             active_set: counts.active_set,
             factorizations: counts.factorizations,

@@ -19,21 +19,24 @@
 //! writer with one `write_all` per step; wrap a file in a [`std::io::BufWriter`] all the same
 //! when a step has few contacts.
 
-use crate::coupling::simulation::{ContactRecord, InterfaceStatus, StepReport, StepResult};
+use crate::coupling::simulation::{ContactRecord, StepReport, StepResult};
 use crate::error::{Cause, SolverError};
 use std::fmt::Write as _;
 use std::io::Write;
-use std::path::{Path, PathBuf};
-use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, UnstructuredGridPiece, Version,
-    VertexNumbers, Vtk,
-};
+
+mod vtk;
+
+pub use vtk::{InterfaceSeries, status_code, write_interface_vtu};
+pub(crate) use vtk::{vertex_cloud, write_vtk};
 
 /// Columns of [`HistoryWriter`], in order. `x, y` is the reference position of the contactor
-/// node, `status` its [`InterfaceStatus::name`], `r_*_n, r_*_t` the local components of
-/// `r`, `r̄` and `r_adh`, and `area` the tributary area ([`ContactRecord::area`], last so that
-/// the other columns keep their places).
-pub const CONTACT_COLUMNS: [&str; 19] = [
+/// node, `status` its [`InterfaceStatus::name`](crate::InterfaceStatus::name), `r_*_n, r_*_t`
+/// the local components of `r`, `r̄` and `r_adh`, and `area` the tributary area
+/// ([`ContactRecord::area`]); then, appended so that the other columns keep their places, the
+/// total reaction in global axes `f_x, f_y` ([`ContactRecord::force`]) and the contact's frame,
+/// its normal `n_x, n_y` and tangent `t_x, t_y`. [`HistoryWriter::with_axes`] renames the axes
+/// (`r, z` in axisymmetry: `r, z, f_r, f_z, n_r, n_z, t_r, t_z`).
+pub const CONTACT_COLUMNS: [&str; 25] = [
     "step",
     "time",
     "load_factor",
@@ -53,12 +56,20 @@ pub const CONTACT_COLUMNS: [&str; 19] = [
     "r_adh_n",
     "r_adh_t",
     "area",
+    "f_x",
+    "f_y",
+    "n_x",
+    "n_y",
+    "t_x",
+    "t_y",
 ];
 
-/// Columns of [`ReportWriter`], in order. The flags `flexibility_rebuilt`, `converged`,
-/// `matrix_free` and `active_set` are written `0` / `1` (so every column is numeric),
-/// `wall_time_s` in seconds.
-pub const REPORT_COLUMNS: [&str; 13] = [
+/// Columns of [`ReportWriter`], in order. `active_contacts` counts the contacts closed at the
+/// end of the step ([`StepReport::closed_contacts`]), `candidates` (appended) those of the
+/// reduced problem, within the alert distance ([`StepReport::active_contacts`]). The flags
+/// `flexibility_rebuilt`, `converged`, `matrix_free` and `active_set` are written `0` / `1` (so
+/// every column is numeric), `wall_time_s` in seconds.
+pub const REPORT_COLUMNS: [&str; 14] = [
     "step",
     "time",
     "load_factor",
@@ -72,25 +83,8 @@ pub const REPORT_COLUMNS: [&str; 13] = [
     "wall_time_s",
     "matrix_free",
     "active_set",
+    "candidates",
 ];
-
-/// The integer code of a status in the VTK output: 0 inactive, 1 open, 2 stick, 3 slip.
-///
-/// # Examples
-/// ```
-/// use contact_solver::InterfaceStatus;
-/// use contact_solver::coupling::output::status_code;
-/// assert_eq!(status_code(InterfaceStatus::Inactive), 0);
-/// assert_eq!(status_code(InterfaceStatus::Slip), 3);
-/// ```
-pub fn status_code(status: InterfaceStatus) -> u8 {
-    match status {
-        InterfaceStatus::Inactive => 0,
-        InterfaceStatus::Open => 1,
-        InterfaceStatus::Stick => 2,
-        InterfaceStatus::Slip => 3,
-    }
-}
 
 /// CSV history of the interface: one row per (step, contact candidate), columns
 /// [`CONTACT_COLUMNS`].
@@ -107,6 +101,7 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 /// let c = ContactRecord {
 ///     zone: 0, node: 7, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Stick,
 ///     gap: 0.0, u_t: 1e-3, slip_increment: 0.0, beta: 1.0,
+///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
 ///     r: LocalVec2::planar(2.0, -0.1), r_bar: LocalVec2::planar(2.0, -0.1),
 ///     r_adh: LocalVec2::zeros(),
 /// };
@@ -115,7 +110,7 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 /// let text = String::from_utf8(history.finish()?).unwrap();
 /// assert_eq!(
 ///     text.lines().nth(1),
-///     Some("1,0.5,1,0,7,0.5,0,stick,0,0.001,0,1,2,-0.1,2,-0.1,0,0,0.25")
+///     Some("1,0.5,1,0,7,0.5,0,stick,0,0.001,0,1,2,-0.1,2,-0.1,0,0,0.25,-0.1,2,0,1,1,0")
 /// );
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
@@ -139,11 +134,41 @@ impl<W: Write> HistoryWriter<W> {
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn new(out: W) -> Result<Self, SolverError> {
+        Self::with_axes(out, ["x", "y"])
+    }
+
+    /// Starts a history on `out` whose axis columns are named `axes` rather than `x, y`
+    /// (`["r", "z"]` in axisymmetry): `x, y`, `f_x, f_y`, `n_x, n_y` and `t_x, t_y` become
+    /// `r, z`, `f_r, f_z`, `n_r, n_z` and `t_r, t_z`; the rows are the same.
+    ///
+    /// # Errors
+    /// [`SolverError::Io`] if `out` fails.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::coupling::output::HistoryWriter;
+    /// let text = HistoryWriter::with_axes(Vec::new(), ["r", "z"])?.finish()?;
+    /// let head = String::from_utf8(text).unwrap();
+    /// assert!(head.starts_with("step,time,load_factor,zone,node,r,z,status,"));
+    /// assert!(head.trim_end().ends_with(",area,f_r,f_z,n_r,n_z,t_r,t_z"));
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn with_axes(out: W, axes: [&str; 2]) -> Result<Self, SolverError> {
         let mut w = Self {
             out,
             line: String::new(),
         };
-        w.line.push_str(&CONTACT_COLUMNS.join(","));
+        let head: Vec<String> = CONTACT_COLUMNS
+            .iter()
+            .map(|&c| match c {
+                "x" => axes[0].to_string(),
+                "y" => axes[1].to_string(),
+                "f_x" | "n_x" | "t_x" => format!("{}{}", &c[..2], axes[0]),
+                "f_y" | "n_y" | "t_y" => format!("{}{}", &c[..2], axes[1]),
+                _ => c.to_string(),
+            })
+            .collect();
+        w.line.push_str(&head.join(","));
         w.line.push('\n');
         w.flush_line()?;
         Ok(w)
@@ -212,6 +237,9 @@ impl<W: Write> HistoryWriter<W> {
                 push_float(line, x);
             }
             push_float(line, c.area);
+            for x in c.force().into_iter().chain(c.normal).chain(c.tangent) {
+                push_float(line, x);
+            }
             line.push('\n');
         }
         self.flush_line()
@@ -269,7 +297,7 @@ impl<W: Write> HistoryWriter<W> {
 /// let mut log = ReportWriter::new(Vec::new())?;
 /// log.write_report(&report)?;
 /// let text = String::from_utf8(log.finish()?).unwrap();
-/// // step 1 at t = 0.5, load factor 1, 3 active contacts, no adhesion iteration, …
+/// // step 1 at t = 0.5, load factor 1, 3 closed contacts, no adhesion iteration, …
 /// assert!(text.lines().nth(1).unwrap().starts_with("1,0.5,1,3,0,"));
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
@@ -325,7 +353,7 @@ impl<W: Write> ReportWriter<W> {
         let _ = write!(
             line,
             ",{},{},{},{},{}",
-            r.active_contacts,
+            r.closed_contacts,
             r.adhesion_iterations,
             r.contact_iterations,
             r.detection_passes,
@@ -336,9 +364,10 @@ impl<W: Write> ReportWriter<W> {
         push_float(line, r.wall_time.as_secs_f64());
         let _ = write!(
             line,
-            ",{},{}",
+            ",{},{},{}",
             u8::from(r.matrix_free),
-            u8::from(r.active_set)
+            u8::from(r.active_set),
+            r.active_contacts
         );
         line.push('\n');
         self.flush_line()
@@ -369,271 +398,6 @@ impl<W: Write> ReportWriter<W> {
     }
 }
 
-/// Writes the contact candidates of one step as a VTK XML unstructured grid (`.vtu`): one
-/// point and one `VTK_VERTEX` cell per record, in the order of `records`.
-///
-/// Points are at the reference `position` of each record, plus the displacement of its node
-/// when `displacements` is given — nodal displacements indexed by
-/// [`ContactRecord::node`], as [`ContactSimulation::nodal_displacements`](crate::ContactSimulation::nodal_displacements)
-/// returns them. Point data (every float array `Float64`):
-///
-/// | name | type | content |
-/// |---|---|---|
-/// | `status` | `UInt8` | [`status_code`]: 0 inactive, 1 open, 2 stick, 3 slip |
-/// | `zone`, `node` | `UInt64` | zone index, contactor node |
-/// | `area`, `gap`, `u_t`, `slip_increment`, `beta` | scalar | as in [`ContactRecord`] |
-/// | `r_local`, `r_bar_local`, `r_adh_local` | vector | local `[n, t, 0]` of `r`, `r̄`, `r_adh` |
-/// | `u` | vector | `[u_x, u_y, 0]` of the node (only with `displacements`) |
-///
-/// # Errors
-/// - [`SolverError::SizeMismatch`] if a record's node has no entry in `displacements`;
-/// - [`SolverError::Io`] if the file cannot be written.
-///
-/// # Examples
-/// ```
-/// use contact_solver::coupling::output::write_interface_vtu;
-/// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-/// let c = ContactRecord {
-///     zone: 0, node: 1, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Open,
-///     gap: 1e-3, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
-///     r: LocalVec2::zeros(), r_bar: LocalVec2::zeros(), r_adh: LocalVec2::zeros(),
-/// };
-/// let u = [[0.0, 0.0], [1e-4, -2e-4]];
-/// let path = std::env::temp_dir().join("contact_solver_output_doc.vtu");
-/// write_interface_vtu(&path, &[c], Some(&u))?;
-/// # Ok::<(), contact_solver::SolverError>(())
-/// ```
-pub fn write_interface_vtu(
-    path: &Path,
-    records: &[ContactRecord],
-    displacements: Option<&[[f64; 2]]>,
-) -> Result<(), SolverError> {
-    write_vtk(path, interface_model(records, displacements)?)
-}
-
-/// Writes a VTK model as XML to `path`.
-pub(crate) fn write_vtk(path: &Path, vtk: Vtk) -> Result<(), SolverError> {
-    let io = |source: Cause| SolverError::Io {
-        what: format!("cannot write `{}`", path.display()),
-        source,
-    };
-    let file = std::fs::File::create(path).map_err(|e| io(Cause::new(e)))?;
-    let mut writer = std::io::BufWriter::new(file);
-    vtk.write_xml(&mut writer).map_err(|e| io(Cause::new(e)))?;
-    writer.flush().map_err(|e| io(Cause::new(e)))
-}
-
-/// An unstructured grid of one vertex per point (`points`: x, y, z of each) with point data.
-pub(crate) fn vertex_cloud(points: Vec<f64>, data: Attributes) -> Vtk {
-    let n = points.len() / 3;
-    Vtk {
-        version: Version::new_xml(1, 0),
-        title: String::new(),
-        byte_order: ByteOrder::LittleEndian,
-        file_path: None,
-        data: DataSet::inline(UnstructuredGridPiece {
-            points: points.into(),
-            cells: Cells {
-                cell_verts: VertexNumbers::XML {
-                    connectivity: (0..n as u64).collect(),
-                    offsets: (1..=n as u64).collect(),
-                },
-                types: vec![CellType::Vertex; n],
-            },
-            data,
-        }),
-    }
-}
-
-/// The VTK model of [`write_interface_vtu`].
-fn interface_model(
-    records: &[ContactRecord],
-    displacements: Option<&[[f64; 2]]>,
-) -> Result<Vtk, SolverError> {
-    if let (Some(u), Some(max_node)) = (displacements, records.iter().map(|c| c.node).max())
-        && max_node >= u.len()
-    {
-        return Err(SolverError::SizeMismatch {
-            what: "displacements",
-            expected: max_node + 1,
-            found: u.len(),
-        });
-    }
-    let points: Vec<f64> = records
-        .iter()
-        .flat_map(|c| {
-            let [ux, uy] = displacements.map_or([0.0, 0.0], |u| u[c.node]);
-            [c.position[0] + ux, c.position[1] + uy, 0.0]
-        })
-        .collect();
-    let scalar = |name: &str, f: fn(&ContactRecord) -> f64| {
-        Attribute::scalars(name, 1).with_data(records.iter().map(f).collect::<Vec<f64>>())
-    };
-    let local = |name: &str, f: fn(&ContactRecord) -> [f64; 2]| {
-        Attribute::vectors(name).with_data(
-            records
-                .iter()
-                .flat_map(|c| {
-                    let [a, b] = f(c);
-                    [a, b, 0.0]
-                })
-                .collect::<Vec<f64>>(),
-        )
-    };
-    let mut data = Attributes::new();
-    data.point = vec![
-        Attribute::scalars("status", 1).with_data(
-            records
-                .iter()
-                .map(|c| status_code(c.status))
-                .collect::<Vec<u8>>(),
-        ),
-        Attribute::scalars("zone", 1)
-            .with_data(records.iter().map(|c| c.zone as u64).collect::<Vec<u64>>()),
-        Attribute::scalars("node", 1)
-            .with_data(records.iter().map(|c| c.node as u64).collect::<Vec<u64>>()),
-        scalar("area", |c| c.area),
-        scalar("gap", |c| c.gap),
-        scalar("u_t", |c| c.u_t),
-        scalar("slip_increment", |c| c.slip_increment),
-        scalar("beta", |c| c.beta),
-        local("r_local", |c| [c.r.n, c.r.t[0]]),
-        local("r_bar_local", |c| [c.r_bar.n, c.r_bar.t[0]]),
-        local("r_adh_local", |c| [c.r_adh.n, c.r_adh.t[0]]),
-    ];
-    if let Some(u) = displacements {
-        data.point.push(
-            Attribute::vectors("u").with_data(
-                records
-                    .iter()
-                    .flat_map(|c| [u[c.node][0], u[c.node][1], 0.0])
-                    .collect::<Vec<f64>>(),
-            ),
-        );
-    }
-    Ok(vertex_cloud(points, data))
-}
-
-/// A time series of interface files for ParaView: `<stem>_<k>.vtu` (k = 0, 1, … on 4 digits)
-/// in a directory, and `<stem>.pvd` listing them with their times, rewritten after every step
-/// so that a run stopped half-way can still be opened.
-///
-/// # Examples
-/// ```
-/// use contact_solver::coupling::output::InterfaceSeries;
-/// let dir = std::env::temp_dir().join("contact_solver_series_doc");
-/// std::fs::create_dir_all(&dir).unwrap();
-/// let mut series = InterfaceSeries::new(&dir, "interface");
-/// let vtu = series.write_step(0.5, &[], None)?;
-/// assert!(vtu.ends_with("interface_0000.vtu"));
-/// assert!(series.pvd_path().exists());
-/// # Ok::<(), contact_solver::SolverError>(())
-/// ```
-#[derive(Clone, Debug)]
-pub struct InterfaceSeries {
-    dir: PathBuf,
-    stem: String,
-    entries: Vec<(f64, String)>,
-}
-
-impl InterfaceSeries {
-    /// A series of files `<stem>_<k>.vtu` and `<stem>.pvd` in the existing directory `dir`.
-    /// Nothing is written until [`InterfaceSeries::write_step`].
-    ///
-    /// # Examples
-    /// ```
-    /// use contact_solver::coupling::output::InterfaceSeries;
-    /// let series = InterfaceSeries::new(std::env::temp_dir(), "contacts");
-    /// assert!(series.pvd_path().ends_with("contacts.pvd"));
-    /// ```
-    pub fn new(dir: impl Into<PathBuf>, stem: impl Into<String>) -> Self {
-        Self {
-            dir: dir.into(),
-            stem: stem.into(),
-            entries: Vec::new(),
-        }
-    }
-
-    /// The path of the `.pvd` collection.
-    ///
-    /// # Examples
-    /// See [`InterfaceSeries::new`].
-    /// ```
-    /// # use contact_solver::coupling::output::InterfaceSeries;
-    /// let series = InterfaceSeries::new("out", "contacts");
-    /// assert_eq!(series.pvd_path(), std::path::Path::new("out/contacts.pvd"));
-    /// ```
-    pub fn pvd_path(&self) -> PathBuf {
-        self.dir.join(format!("{}.pvd", self.stem))
-    }
-
-    /// Writes the records of one step at `time` with [`write_interface_vtu`], then rewrites
-    /// the `.pvd` collection; returns the path of the `.vtu` file.
-    ///
-    /// # Errors
-    /// - [`SolverError::NonFinite`] if `time` is NaN or infinite (nothing is written);
-    /// - the errors of [`write_interface_vtu`];
-    /// - [`SolverError::Io`] if the `.pvd` file cannot be written.
-    ///
-    /// # Examples
-    /// See [`InterfaceSeries`].
-    /// ```
-    /// # use contact_solver::coupling::output::InterfaceSeries;
-    /// # use contact_solver::SolverError;
-    /// let mut series = InterfaceSeries::new(std::env::temp_dir(), "contacts_doc");
-    /// assert!(matches!(series.write_step(f64::NAN, &[], None), Err(SolverError::NonFinite { .. })));
-    /// ```
-    pub fn write_step(
-        &mut self,
-        time: f64,
-        records: &[ContactRecord],
-        displacements: Option<&[[f64; 2]]>,
-    ) -> Result<PathBuf, SolverError> {
-        self.write_step_with(time, |path| {
-            write_interface_vtu(path, records, displacements)
-        })
-    }
-
-    /// Writes the next file of the series at `time` with `write` (given its path, e.g.
-    /// [`write_interface_vtu_3d`](crate::coupling::solid::write_interface_vtu_3d) for a 3D
-    /// step), then rewrites the `.pvd` collection; returns the path of the `.vtu` file.
-    ///
-    /// # Errors
-    /// As [`InterfaceSeries::write_step`], with `write`'s errors.
-    pub fn write_step_with(
-        &mut self,
-        time: f64,
-        write: impl FnOnce(&Path) -> Result<(), SolverError>,
-    ) -> Result<PathBuf, SolverError> {
-        if !time.is_finite() {
-            return Err(SolverError::NonFinite {
-                what: "time",
-                index: self.entries.len(),
-                value: time,
-            });
-        }
-        let file = format!("{}_{:04}.vtu", self.stem, self.entries.len());
-        let path = self.dir.join(&file);
-        write(&path)?;
-        self.entries.push((time, file));
-        let entries: Vec<(f64, &str)> =
-            self.entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
-        let pvd = self.pvd_path();
-        fem_core::vtk::write_pvd(&pvd, &entries).map_err(|e| match e {
-            fem_core::FemError::Io {
-                path,
-                detail,
-                source,
-            } => SolverError::Io {
-                what: format!("cannot write `{path}`"),
-                source: source.map_or_else(|| Cause::message(detail), Cause::new),
-            },
-            other => SolverError::Structure(other),
-        })?;
-        Ok(path)
-    }
-}
-
 /// Appends `,x` with the shortest digits that parse back to `x`: plain decimals for
 /// `1e-5 ≤ |x| < 1e16` and zero, scientific notation otherwise (Rust's `Display` would spell
 /// out every zero of `1e-300`).
@@ -657,9 +421,10 @@ fn io_error(what: &str, e: std::io::Error) -> SolverError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::coupling::simulation::InterfaceStatus;
     use contact_laws::LocalVec2;
 
-    fn record(node: usize, status: InterfaceStatus) -> ContactRecord {
+    pub(super) fn record(node: usize, status: InterfaceStatus) -> ContactRecord {
         ContactRecord {
             zone: 0,
             node,
@@ -670,6 +435,8 @@ mod tests {
             u_t: 0.0,
             slip_increment: 0.0,
             beta: 0.0,
+            normal: [0.0, 1.0],
+            tangent: [1.0, 0.0],
             r: LocalVec2::planar(1.0, 0.0),
             r_bar: LocalVec2::planar(1.0, 0.0),
             r_adh: LocalVec2::zeros(),
@@ -705,25 +472,6 @@ mod tests {
     }
 
     #[test]
-    fn interface_model_rejects_short_displacements() {
-        let records = [
-            record(0, InterfaceStatus::Open),
-            record(3, InterfaceStatus::Stick),
-        ];
-        let u = [[0.0; 2]; 3];
-        assert_eq!(
-            interface_model(&records, Some(&u)).unwrap_err(),
-            SolverError::SizeMismatch {
-                what: "displacements",
-                expected: 4,
-                found: 3
-            }
-        );
-        assert!(interface_model(&records, Some(&[[0.0; 2]; 4])).is_ok());
-        assert!(interface_model(&records, None).is_ok());
-    }
-
-    #[test]
     fn push_float_round_trips_works() {
         let values = [
             0.0,
@@ -752,17 +500,5 @@ mod tests {
         let mut line = String::new();
         push_float(&mut line, f64::NAN);
         assert!(line[1..].parse::<f64>().unwrap().is_nan());
-    }
-
-    #[test]
-    fn status_code_works() {
-        let codes = [
-            InterfaceStatus::Inactive,
-            InterfaceStatus::Open,
-            InterfaceStatus::Stick,
-            InterfaceStatus::Slip,
-        ]
-        .map(status_code);
-        assert_eq!(codes, [0, 1, 2, 3]);
     }
 }
