@@ -118,7 +118,7 @@ impl Profiles {
                     p.time,
                     p.head_load,
                     q.z,
-                    -q.z,
+                    -q.z + 0.0,
                     q.sigma_n,
                     q.tau,
                     q.beta,
@@ -132,7 +132,7 @@ impl Profiles {
             .map_err(|e| io(&path, e))?;
         files.push("profiles.csv".into());
         // every step has the same shaft contacts, in the same order: one abscissa
-        let depth: Vec<f64> = sel[0].points.iter().map(|q| -q.z).collect();
+        let depth: Vec<f64> = sel[0].points.iter().map(|q| -q.z + 0.0).collect();
         let labels: Vec<String> = sel
             .iter()
             .map(|p| format!("step {} (t = {}, Q = {:.4e})", p.step, p.time, p.head_load))

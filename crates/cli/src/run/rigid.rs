@@ -38,7 +38,10 @@ pub(super) struct RigidWriter {
 /// A translation's displacement and a rotation's angle for amplitude `a`.
 fn meaning(motion: &RigidMotion, a: f64) -> ([f64; 2], f64) {
     match *motion {
-        RigidMotion::Translation { direction } => ([a * direction[0], a * direction[1]], 0.0),
+        // `+ 0.0`: a negative amplitude times a zero component is 0, not −0
+        RigidMotion::Translation { direction } => {
+            ([a * direction[0] + 0.0, a * direction[1] + 0.0], 0.0)
+        }
         RigidMotion::Rotation { radius, .. } => ([0.0; 2], a / radius),
         _ => ([0.0; 2], 0.0),
     }

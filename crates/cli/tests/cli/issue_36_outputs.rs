@@ -418,8 +418,8 @@ fn issue_36_axisymmetric_csv_labels_r_z() {
 }
 
 /// The floating block's rigid-body motions: one row per step and mode in rigid_motions.csv
-/// (two translations and a rotation for one body in the plane), the last in summary.json.
-/// Fails on the old code: no such file.
+/// (its translations along x and y: the library keeps the modes the contact cannot hold by
+/// itself), the last step's in summary.json. Fails on the old code: no such file.
 #[test]
 fn issue_36_rigid_motions_of_a_floating_body() {
     let dir = tmp("rigid");
@@ -428,19 +428,25 @@ fn issue_36_rigid_motions_of_a_floating_body() {
     let rows = csv(&out.join("rigid_motions.csv"));
     let s = summary(&out);
     let steps = s["steps"].as_u64().unwrap() as usize;
-    assert_eq!(rows.len(), 3 * steps);
-    let kinds: Vec<&str> = rows[..3].iter().map(|r| r["motion"].as_str()).collect();
-    assert_eq!(kinds, ["translation", "translation", "rotation"]);
-    let last = &rows[rows.len() - 3..];
     let motions = s["rigid_motions"].as_array().unwrap();
-    assert_eq!(motions.len(), 3);
+    let names: Vec<&str> = motions
+        .iter()
+        .map(|m| m["motion"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["translation x", "translation y"]);
+    assert_eq!(rows.len(), motions.len() * steps);
+    let last = &rows[rows.len() - motions.len()..];
     for (row, m) in last.iter().zip(motions) {
+        assert_eq!(row["motion"], "translation");
         assert_eq!(num(row, "amplitude"), m["amplitude"].as_f64().unwrap());
         assert!(num(row, "amplitude").is_finite());
     }
-    // the translation along y moves the block by its amplitude along y
+    // a translation moves the block by its amplitude along its direction
+    assert_eq!(num(&last[0], "u_x"), num(&last[0], "amplitude"));
+    assert_eq!(last[0]["u_y"], "0e0");
     assert_eq!(num(&last[1], "u_y"), num(&last[1], "amplitude"));
-    assert_eq!(num(&last[1], "u_x"), 0.0);
+    // pressed down by its cap: the block moves down; sheared along +x in the last phase
+    assert!(num(&last[1], "u_y") < 0.0 && num(&last[0], "u_x") > 0.0);
     assert!(
         s["files"]
             .as_array()
@@ -448,5 +454,125 @@ fn issue_36_rigid_motions_of_a_floating_body() {
             .iter()
             .any(|f| f == "rigid_motions.csv")
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `examples/scenes/pile.toml` on a coarse mesh (4 cells along the shaft and the soil radius,
+/// 3 below the tip) in `steps` pull-out increments, with `extra` `[output]` lines.
+fn pile_scene(dir: &Path, name: &str, steps: usize, extra: &str) -> PathBuf {
+    let mut text = std::fs::read_to_string(scenes().join("pile.toml")).unwrap();
+    for (from, to) in [
+        ("steps = 50", format!("steps = {steps}")),
+        (
+            "every = 5\nvtk = true",
+            format!("every = 1\nvtk = false\n{extra}"),
+        ),
+        (
+            "# [preset.mesh]",
+            "[preset.mesh]\ncells_shaft = 4\ncells_soil_r = 4\ncells_below_tip = 3\n#".into(),
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, &to, 1);
+    }
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The pile's shaft profiles against depth: by default the first pull-out step (3: after the
+/// geostatic and installation steps), the peak head load's and the last, in profiles.csv
+/// (σ_n and τ are contacts.csv's `r / area` of the shaft, bit for bit in their text) and one
+/// SVG per quantity; the soil mesh series by default. `profile_steps` chooses the steps, and
+/// is refused outside the pile preset or out of range. Fails on the old code: no profiles, no
+/// mesh VTK.
+#[test]
+fn issue_36_pile_profiles_against_depth() {
+    let dir = tmp("pile_profiles");
+    let out = dir.join("out");
+    run(&pile_scene(&dir, "pile", 4, ""), &out, true);
+    let rows = csv(&out.join("profiles.csv"));
+    let s = summary(&out);
+    let curve: Vec<(u64, f64)> = csv(&out.join("curves.csv"))
+        .iter()
+        .map(|r| (num(r, "step") as u64, num(r, "Q (kN)")))
+        .collect();
+    let peak = curve
+        .iter()
+        .filter(|(k, _)| *k >= 3)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap()
+        .0;
+    let mut steps: Vec<u64> = rows.iter().map(|r| num(r, "step") as u64).collect();
+    steps.dedup();
+    let mut expected = vec![3, peak, 6];
+    expected.dedup();
+    assert_eq!(steps, expected);
+    let contacts = csv(&out.join("contacts.csv"));
+    for &k in &steps {
+        let mine: Vec<_> = rows.iter().filter(|r| num(r, "step") as u64 == k).collect();
+        let mut shaft: Vec<_> = contacts
+            .iter()
+            // zones `shaft` (0) and `tip_corner` (1): the shaft from the tip corner up
+            .filter(|c| num(c, "step") as u64 == k && (c["zone"] == "0" || c["zone"] == "1"))
+            .collect();
+        shaft.sort_by(|a, b| num(a, "z").total_cmp(&num(b, "z")));
+        assert_eq!(mine.len(), shaft.len());
+        for (p, c) in mine.iter().zip(&shaft) {
+            assert_eq!(num(p, "depth"), -num(c, "z"));
+            let area = num(c, "area");
+            for (q, r) in [("sigma_n", "r_n"), ("tau", "r_t")] {
+                let want = num(c, r) / area;
+                assert!((num(p, q) - want).abs() <= 1e-12 * (1.0 + want.abs()));
+            }
+            assert_eq!(num(p, "beta"), num(c, "beta"));
+            assert_eq!(num(p, "u_t"), num(c, "u_t"));
+        }
+    }
+    let files = s["files"].as_array().unwrap();
+    for f in [
+        "profiles.csv",
+        "profile_sigma_n.svg",
+        "profile_tau.svg",
+        "profile_beta.svg",
+        "profile_slip.svg",
+        "mesh.pvd",
+    ] {
+        assert!(files.iter().any(|g| g == f), "{f}");
+        assert!(out.join(f).exists(), "{f}");
+    }
+    // chosen steps
+    let out2 = dir.join("chosen");
+    run(
+        &pile_scene(&dir, "chosen", 4, "profile_steps = [5]\nmesh_vtk = false"),
+        &out2,
+        true,
+    );
+    let rows = csv(&out2.join("profiles.csv"));
+    assert!(!rows.is_empty() && rows.iter().all(|r| r["step"] == "5"));
+    assert!(!out2.join("mesh.pvd").exists());
+    // refused: out of range, and outside the pile preset
+    for (scene, fragment) in [
+        (
+            pile_scene(&dir, "far", 4, "profile_steps = [7]"),
+            "`output.profile_steps`: step 7 is not a step of the run (1 to 6)",
+        ),
+        (
+            block_scene(
+                &dir,
+                "block",
+                &[("[output]\n", "[output]\nprofile_steps = [1]\n")],
+            ),
+            "`output.profile_steps`: shaft profiles are written by the pile preset only",
+        ),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_bipo"))
+            .args(["check".as_ref(), scene.as_os_str()])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(fragment), "{stderr}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
