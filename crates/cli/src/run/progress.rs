@@ -5,7 +5,7 @@
 
 use super::summary::PhaseSummary;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::io::IsTerminal;
 use std::time::Instant;
 
@@ -20,7 +20,7 @@ pub(super) struct Progress {
     log: bool,
     total: usize,
     done: Cell<usize>,
-    phase: std::cell::RefCell<String>,
+    phase: RefCell<String>,
     start: Instant,
     last_line: Cell<f64>,
 }
@@ -48,7 +48,7 @@ impl Progress {
             log,
             total,
             done: Cell::new(0),
-            phase: std::cell::RefCell::new(String::new()),
+            phase: RefCell::new(String::new()),
             start: Instant::now(),
             last_line: Cell::new(0.0),
         }

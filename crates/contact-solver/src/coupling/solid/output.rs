@@ -17,12 +17,14 @@ use vtkio::model::{Attribute, Attributes};
 ///
 /// | name | type | content |
 /// |---|---|---|
-/// | `active` | `UInt8` | 1 if the contact was in the step's reduced problem |
+/// | `active` | `UInt8` | 1 if the contact is closed ([`SolidContactRecord::closed`], as the CSV outputs) |
 /// | `zone`, `node` | `UInt64` | zone index, contactor node |
 /// | `area`, `gap`, `pressure`, `beta` | scalar | as in [`SolidContactRecord`] |
 /// | `r_local` | vector | `[r_n, r_t1, r_t2]` |
 /// | `slip` | vector | `[slip_t1, slip_t2, 0]`, the step's slip increment |
 /// | `force` | vector | the contact force on the contactor node, global axes |
+/// | `candidate` | `UInt8` | 1 if the contact was in the step's reduced problem |
+/// | `normal`, `t1`, `t2` | vector | the contact's frame |
 /// | `u` | vector | the node's displacement (only with `displacements`) |
 ///
 /// # Errors
@@ -69,7 +71,7 @@ pub fn write_interface_vtu_3d(
         Attribute::scalars("active", 1).with_data(
             records
                 .iter()
-                .map(|c| u8::from(c.active))
+                .map(|c| u8::from(c.closed))
                 .collect::<Vec<u8>>(),
         ),
         Attribute::scalars("zone", 1).with_data(
@@ -91,6 +93,15 @@ pub fn write_interface_vtu_3d(
         vector("r_local", &|c| c.r),
         vector("slip", &|c| [c.slip[0], c.slip[1], 0.0]),
         vector("force", &|c| c.force()),
+        Attribute::scalars("candidate", 1).with_data(
+            records
+                .iter()
+                .map(|c| u8::from(c.active))
+                .collect::<Vec<u8>>(),
+        ),
+        vector("normal", &|c| c.candidate.normal),
+        vector("t1", &|c| c.candidate.t1),
+        vector("t2", &|c| c.candidate.t2),
     ];
     if displacements.is_some() {
         data.point.push(vector("u", &|c| u(c.candidate.node)));
