@@ -27,6 +27,7 @@ pub const QUANTITIES: &[(&str, &str)] = &[
     ("contact_iterations", "step"),
     ("adhesion_iterations", "step"),
     ("active_contacts", "step"),
+    ("candidates", "step"),
     ("residual", "step"),
     ("head_load", "pile"),
     ("head_displacement", "pile"),

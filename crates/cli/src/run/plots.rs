@@ -231,7 +231,9 @@ fn curve_value(
     match q {
         "contact_iterations" => rep.contact_iterations as f64,
         "adhesion_iterations" => rep.adhesion_iterations as f64,
-        "active_contacts" => rep.active_contacts as f64,
+        // closed, as steps.csv's column; the reduced problem's size is `candidates`
+        "active_contacts" => rep.closed_contacts as f64,
+        "candidates" => rep.active_contacts as f64,
         "residual" => rep.residual,
         "force_n" => res.contacts.iter().filter(in_zone).map(|r| r.r.n).sum(),
         "force_t" => res.contacts.iter().filter(in_zone).map(|r| r.r.t[0]).sum(),
