@@ -565,6 +565,19 @@ fn issue_36_pile_profiles_against_depth() {
             ),
             "`output.profile_steps`: shaft profiles are written by the pile preset only",
         ),
+        (
+            {
+                let b = box_scene(&dir, "box", "{ type = \"signorini\" }", [0.0; 3], "");
+                let text = std::fs::read_to_string(&b).unwrap();
+                std::fs::write(
+                    &b,
+                    text.replace("[output]\n", "[output]\nprofile_steps = [1]\n"),
+                )
+                .unwrap();
+                b
+            },
+            "`output.profile_steps`: shaft profiles are written by the 2D pile preset only",
+        ),
     ] {
         let o = Command::new(env!("CARGO_BIN_EXE_bipo"))
             .args(["check".as_ref(), scene.as_os_str()])

@@ -97,6 +97,13 @@ fn refuse_unsupported(scene: &Scene) -> CliResult<()> {
              the histories)",
         ));
     }
+    if scene.output.profile_steps.is_some() {
+        let p = root.key("output").key("profile_steps");
+        return Err(CliError::at(
+            &p,
+            format!("`{p}`: shaft profiles are written by the 2D pile preset only"),
+        ));
+    }
     Ok(())
 }
 
