@@ -239,7 +239,7 @@ fn curve_value(
             .contacts
             .iter()
             .filter(in_zone)
-            .filter(|r| matches!(r.status, InterfaceStatus::Stick | InterfaceStatus::Slip))
+            .filter(|r| r.status.is_closed())
             .count() as f64,
         "beta_mean" | "beta_min" => {
             let b: Vec<f64> = res

@@ -2,6 +2,7 @@
 //! final state, the plotted curves' extremes), and the tally of the zones kept step by step.
 
 use super::errors::io;
+use crate::build::PhaseLaw;
 use crate::error::CliResult;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, Counters, InterfaceStatus, StepResult};
@@ -38,7 +39,8 @@ pub(super) fn keep(p: &mut Option<Peak>, value: f64, step: usize, time: f64, lar
 pub struct ZoneSummary {
     /// Name.
     pub name: String,
-    /// Law.
+    /// The law in force at the end of the run (`[[phases]] laws` may have changed it; `laws`
+    /// lists them).
     pub law: String,
     /// Candidates.
     pub candidates: usize,
@@ -54,8 +56,11 @@ pub struct ZoneSummary {
     pub final_force_n: f64,
     /// Σ r_t at the end.
     pub final_force_t: f64,
-    /// Final statuses: inactive, open, stick, slip.
+    /// Final statuses: inactive, open, stick, slip (laws with friction), closed
+    /// (frictionless).
     pub final_status: StatusCount,
+    /// The law of each phase the run reached, with its global steps.
+    pub laws: Vec<PhaseLaw>,
 }
 
 /// Status counts.
@@ -69,6 +74,8 @@ pub struct StatusCount {
     pub stick: usize,
     /// Slip.
     pub slip: usize,
+    /// Closed under a frictionless law (neither sticking nor slipping).
+    pub closed: usize,
 }
 
 /// Per-phase results.
@@ -166,6 +173,8 @@ pub struct Summary {
     pub curves: Vec<CurveSummary>,
     /// Files written (relative to the output directory).
     pub files: Vec<String>,
+    /// The scene's warnings (e.g. contactor nodes held by a support, left out).
+    pub warnings: Vec<String>,
 }
 
 /// Units note.
@@ -222,6 +231,7 @@ impl Tally {
                 final_force_n: 0.0,
                 final_force_t: 0.0,
                 final_status: StatusCount::default(),
+                laws: Vec::new(),
             })
             .collect();
         Self {
@@ -254,6 +264,7 @@ impl Tally {
                     InterfaceStatus::Open => st.open += 1,
                     InterfaceStatus::Stick => st.stick += 1,
                     InterfaceStatus::Slip => st.slip += 1,
+                    InterfaceStatus::Closed => st.closed += 1,
                 }
             }
             keep(&mut zs.max_force_n, fn_, global, t, true);

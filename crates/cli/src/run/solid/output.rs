@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 pub struct SolidZoneSummary {
     /// Name.
     pub name: String,
-    /// Law.
+    /// The law in force at the end of the run (`laws` lists each phase's).
     pub law: String,
     /// Candidates.
     pub candidates: usize,
@@ -37,6 +37,8 @@ pub struct SolidZoneSummary {
     pub final_force: [f64; 3],
     /// Active contacts at the end.
     pub final_active: usize,
+    /// The law of each phase the run reached, with its global steps.
+    pub laws: Vec<crate::build::PhaseLaw>,
 }
 
 /// One step's row of `steps.csv`.
@@ -121,6 +123,7 @@ impl SolidRecorder {
                 final_force_n: 0.0,
                 final_force: [0.0; 3],
                 final_active: 0,
+                laws: Vec::new(),
             })
             .collect();
         Ok(Self {

@@ -12,21 +12,31 @@ pub enum InterfaceStatus {
     Inactive,
     /// In the reduced problem, `r̄ = 0` (open; adhesive springs may still pull).
     Open,
-    /// Compressed, sticking.
+    /// Compressed, sticking (a law with friction).
     Stick,
-    /// Compressed, sliding.
+    /// Compressed, sliding (a law with friction).
     Slip,
+    /// Compressed under a frictionless law (Signorini): neither sticking nor sliding, since
+    /// nothing resists the tangential motion (issue 36: these were reported as `Stick`).
+    Closed,
 }
 
 impl InterfaceStatus {
-    /// A short lowercase name (`inactive`, `open`, `stick`, `slip`).
+    /// A short lowercase name (`inactive`, `open`, `stick`, `slip`, `closed`).
     pub fn name(self) -> &'static str {
         match self {
             Self::Inactive => "inactive",
             Self::Open => "open",
             Self::Stick => "stick",
             Self::Slip => "slip",
+            Self::Closed => "closed",
         }
+    }
+
+    /// Whether the contact carries a compressive (or adhesive-closed) reaction: `Stick`,
+    /// `Slip` or `Closed`.
+    pub fn is_closed(self) -> bool {
+        matches!(self, Self::Stick | Self::Slip | Self::Closed)
     }
 }
 
@@ -70,7 +80,8 @@ pub struct StepReport {
     pub step: usize,
     /// Time at the end of the step.
     pub time: f64,
-    /// Load factor of the step.
+    /// The step's force factor ([`ContactSimulation::step`](crate::ContactSimulation::step)'s
+    /// second argument: it scales the applied forces, not prescribed displacements).
     pub load_factor: f64,
     /// Candidates in the reduced problem.
     pub active_contacts: usize,
