@@ -27,8 +27,7 @@ mod validate;
 
 pub use checks::kind_name;
 pub use phases::{
-    Phase, PhaseLaw, describe_laws, final_law, function_value, law_name, laws_by_phase,
-    phase_law_names,
+    Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
 };
 pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
 pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study};

@@ -8,7 +8,7 @@ use crate::build::Study;
 use crate::error::CliResult;
 use crate::plot;
 use crate::scene::{CurveSpec, XAxis};
-use contact_solver::{ContactRecord, InterfaceStatus, StepResult};
+use contact_solver::{ContactRecord, StepResult};
 use fem_core::Component;
 use std::path::Path;
 

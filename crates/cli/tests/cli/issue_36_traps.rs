@@ -142,8 +142,9 @@ fn issue_36_phase_law_switch_is_reported_2d() {
         "{:?}",
         status("1")
     );
+    // with friction: stick, or slip at the edges (partial slip)
     assert!(
-        status("3").iter().all(|v| v == "stick"),
+        status("3").iter().all(|v| v == "stick" || v == "slip"),
         "{:?}",
         status("3")
     );
@@ -351,7 +352,8 @@ fn issue_36_supported_contactors_left_out_with_a_warning_2d() {
 }
 
 /// A P1 box pressed on a rigid floor by a pressure on its top, held by its side `x0` along z
-/// (and its top along x and y): the floor's contactor nodes on `x0` are held along the normal.
+/// and x (and its top along x and y): the floor's contactor nodes on `x0` are held along the
+/// normal.
 const HELD_3D: &str = "\
 title = \"held\"
 [mesh]
@@ -372,6 +374,9 @@ poisson = 0.0
 [[supports]]
 set = \"x0\"
 component = \"z\"
+[[supports]]
+set = \"x0\"
+component = \"x\"
 [[supports]]
 set = \"z1\"
 component = \"x\"

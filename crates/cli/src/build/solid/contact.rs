@@ -5,7 +5,7 @@
 
 use super::super::checks::{finite, non_negative, positive, solver_error};
 use super::super::contact::{law, phase_laws, settings, zone_name};
-use super::super::supported::{Policy, point, resolve};
+use super::super::supported::{Policy, point as position_text, resolve};
 use super::mesh::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::triple;
@@ -333,7 +333,7 @@ pub(super) fn build(
             choice: z.supported,
         })
         .collect();
-    let (leave_out, warnings) = resolve(&held, &policies, &|n| point(&nodes[n]))?;
+    let (leave_out, warnings) = resolve(&held, &policies, &|n| position_text(&nodes[n]))?;
     let zones: Vec<_> = zones
         .into_iter()
         .zip(&leave_out)

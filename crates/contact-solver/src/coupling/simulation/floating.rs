@@ -172,6 +172,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             // every reduced solve of the equilibrium iteration runs the adhesion loop (issue
             // 36: these were not counted, and a damaging floating pile reported 0)
             report.adhesion_iterations += sol.adhesion_iterations;
+            self.counters.record_adhesive(&sol);
             report.equilibrium_solves += 1;
             r_warm.copy_from_slice(&sol.r_bar);
             let res = fl.residual(&sol.r);
@@ -355,7 +356,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             u_start,
             areas,
         };
-        Ok(self.finish_adhesive(sol, alpha, inputs, report))
+        Ok(self.finish_adhesive(sol, alpha, inputs, report, true))
     }
 }
 
