@@ -398,17 +398,20 @@ fn target(tp: &KeyPath, t: &TargetSpec) -> CliResult<TargetPlan> {
     })
 }
 
+/// The simulation, each zone's law name, and the warnings of [`build`].
+pub(super) type BuiltContact = (
+    ContactSimulation<LinearElasticModel, StandardLaw>,
+    Vec<String>,
+    Vec<String>,
+);
+
 /// The zones on the model's node sets, recognised and checked, and the simulation; also gives
 /// each zone's law name, and the warnings (contactor nodes held by a support, left out).
 pub(super) fn build(
     model: LinearElasticModel,
     plan: Vec<ZonePlan>,
     settings: SimulationSettings,
-) -> CliResult<(
-    ContactSimulation<LinearElasticModel, StandardLaw>,
-    Vec<String>,
-    Vec<String>,
-)> {
+) -> CliResult<BuiltContact> {
     let root = KeyPath::root();
     let mut zones = Vec::new();
     let mut zone_laws = Vec::new();
