@@ -14,7 +14,7 @@ Examples:
   bipo check block.toml               validate it (mesh, model, contact recognition)
   bipo run block.toml --out out/block run it: progress, summary, CSV, VTK, SVG
   bipo run examples/scenes/delamination.toml
-  bipo solve-local problem.json       solve a reduced problem {dim, W, q, mu}
+  bipo solve-local problem.json       solve a reduced problem {dim (2 or 3), W, q, mu}
 
 The scene format is documented in docs/guide.md, section \"Scene files and the bipo command\".";
 
@@ -68,9 +68,10 @@ error, as is any unknown key, missing node set or region, NaN or out-of-range pa
         /// The scene file (TOML).
         scene: PathBuf,
     },
-    /// Solve a reduced contact problem x = W r + q with Coulomb friction, read from JSON
-    /// {"dim": 2, "W": [...], "q": [...], "mu": [...]} (the Siconos fc2d export format), or
-    /// from an FCLIB HDF5 file (.h5, .hdf5; bipo built with --features fclib).
+    /// Solve a reduced contact problem x = W r + q with Coulomb friction, in 2D or 3D, read
+    /// from JSON {"dim": 2 or 3, "W": [...], "q": [...], "mu": [...]} (the Siconos fc2d / fc3d
+    /// export format), or from an FCLIB HDF5 file (.h5, .hdf5; bipo built with --features
+    /// fclib).
     #[command(
         name = "solve-local",
         after_help = "\
@@ -79,11 +80,16 @@ Examples:
   bipo solve-local problem.json --tol 1e-12 --json > solution.json
   bipo solve-local problem.hdf5     (FCLIB; needs a bipo built with --features fclib)
 
-W is m x m (flat row-major or a list of rows), q has m = 2 n_c entries (normal first per
-contact), mu has n_c. Signs: r_n >= 0 is compression, x_n >= 0 an opening. W symmetric to 1e-6
-(relative) is symmetrised; magnitudes beyond 1e+-100 are rescaled internally; an algorithm that
-stalls or whose answer fails the Signorini-Coulomb check falls back to rccm-classic (the
-output says so)."
+The problem, n_c contacts in dimension d = \"dim\" (2 or 3; 2 when the key is left out):
+  2D (dim 2): per contact (normal, tangent); m = 2 n_c
+  3D (dim 3): per contact (normal, tangent 1, tangent 2); m = 3 n_c
+W is m x m (flat row-major, a list of rows, or sparse triplets {\"m\", \"i\", \"j\", \"v\"}),
+q has m entries (normal first per contact), mu has n_c. The table printed has r_n, r_t (r_t1,
+r_t2 in 3D), the gap and the slip of each contact and its status: Separation, Stick, Slip, or
+Closed for a frictionless contact (mu = 0). Signs: r_n >= 0 is compression, x_n >= 0 an
+opening. W symmetric to 1e-6 (relative) is symmetrised; magnitudes beyond 1e+-100 are rescaled
+internally; an algorithm that stalls or whose answer fails the Signorini-Coulomb check falls
+back to rccm-classic (the output says so)."
     )]
     SolveLocal {
         /// The problem file (JSON, or FCLIB .h5/.hdf5).
@@ -258,6 +264,18 @@ pub fn main() -> ExitCode {
     ExitCode::from(code)
 }
 
+/// The name of a contact's status in `solve-local`'s table, by what its law is: a closed
+/// frictionless contact (`mu = 0`) is `Closed`, neither sticking nor slipping.
+fn status_name(status: contact_laws::ContactStatus, mu: f64) -> &'static str {
+    use contact_laws::ContactStatus;
+    match status {
+        ContactStatus::Separation => "Separation",
+        _ if mu == 0.0 => "Closed",
+        ContactStatus::Stick => "Stick",
+        ContactStatus::Slip => "Slip",
+    }
+}
+
 /// Below this many free dofs `bipo run` runs faer sequentially by default: rayon's start-up
 /// costs more than it saves on the seed's scenes and a 14k-dof 3D one, and both cores gain
 /// 10–20 % on a 1e5-dof 3D one (`docs/benchmarks.md`, "Threads"). The library's sparse
@@ -407,9 +425,34 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
             alert[z]
         );
     }
-    for p in &study.phases {
+    let set = match &study.body {
+        build::Body::Custom(c) => build::phase_law_names(&c.phase_laws),
+        build::Body::Preset(_) => Vec::new(),
+    };
+    print_phases(&study.phases, &set);
+    print_warnings(&study.warnings);
+}
+
+/// The scene's warnings (e.g. contactor nodes left out), one line each.
+fn print_warnings(warnings: &[String]) {
+    for w in warnings {
+        out::outln!("warning: {w}");
+    }
+}
+
+/// The header's phase lines, with the laws a phase sets (`[[phases]] laws`).
+fn print_phases(phases: &[build::Phase], set: &[Vec<(String, String)>]) {
+    for (i, p) in phases.iter().enumerate() {
+        let laws = set
+            .get(i)
+            .filter(|s| !s.is_empty())
+            .map(|s| {
+                let each: Vec<String> = s.iter().map(|(z, l)| format!("`{z}` {l}")).collect();
+                format!("; laws from here: {}", each.join(", "))
+            })
+            .unwrap_or_default();
         out::outln!(
-            "  phase `{}`: {} steps, t {} → {}",
+            "  phase `{}`: {} steps, t {} → {}{laws}",
             p.name,
             p.steps,
             p.t0,
@@ -451,15 +494,8 @@ fn print_solid_header(cmd: &str, loaded: &build::Loaded, study: &build::SolidStu
             zone.alert
         );
     }
-    for p in &study.phases {
-        out::outln!(
-            "  phase `{}`: {} steps, t {} → {}",
-            p.name,
-            p.steps,
-            p.t0,
-            p.t1
-        );
-    }
+    print_phases(&study.phases, &build::phase_law_names(&study.phase_laws));
+    print_warnings(&study.warnings);
 }
 
 fn print_solid_summary(s: &run::SolidSummary, dir: &Path) {
@@ -488,7 +524,7 @@ fn print_solid_summary(s: &run::SolidSummary, dir: &Path) {
         out::outln!(
             "  zone `{}` ({}, {} candidates): final Σr_n {:.6e} ({} active = closed, {} within the alert distance), force [{:.6e}, {:.6e}, {:.6e}], max Σr_n {}",
             z.name,
-            z.law,
+            build::describe_laws(&z.laws, &z.law),
             z.candidates,
             z.final_force_n,
             z.final_active,
@@ -564,7 +600,7 @@ fn print_summary(s: &run::Summary, dir: &Path) {
         out::outln!(
             "  zone `{}` ({}, {} candidates): {} active = closed, {} within the alert distance at the end; max Σr_n {}, min Σr_n {}, max |Σr_t| {}{}",
             z.name,
-            z.law,
+            build::describe_laws(&z.laws, &z.law),
             z.candidates,
             z.final_active,
             z.final_within_alert,
@@ -716,10 +752,10 @@ fn solve_local(
                 .join("  ")
         };
         out::outln!(
-            "{i:>7}  {}  {}  {:?}",
+            "{i:>7}  {}  {}  {}",
             cell(&sol.r),
             cell(&sol.x),
-            sol.report.statuses[i]
+            status_name(sol.report.statuses[i], problem.mu()[i])
         );
     }
     Ok(())

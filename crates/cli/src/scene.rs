@@ -156,6 +156,24 @@ pub struct ZoneSpec {
     pub law: RawLaw,
     /// Alert distance Δx.
     pub alert_distance: f64,
+    /// What to do with contactor nodes that a support holds along their contact normal (they
+    /// cannot take part in contact): `refuse` (default: an error listing them) or `leave_out`
+    /// (dropped from the zone, with a warning naming them).
+    #[serde(default)]
+    pub supported_contactors: SupportedContactors,
+}
+
+/// `[[contact]] supported_contactors`: contactor nodes held along their contact normal by a
+/// support.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SupportedContactors {
+    /// An error listing the nodes (ids and positions) and this key (the default).
+    #[default]
+    #[serde(rename = "refuse")]
+    Refuse,
+    /// The nodes are left out of the zone, with a warning naming them.
+    #[serde(rename = "leave_out", alias = "leave-out")]
+    LeaveOut,
 }
 
 /// Solver settings (all optional).

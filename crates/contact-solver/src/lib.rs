@@ -63,4 +63,6 @@ pub use coupling::simulation::{
     InterfaceStatus, SimulationSettings, SkipRules, StepReport, StepResult,
 };
 #[cfg(feature = "fe")]
-pub use coupling::zone::{Candidate, ContactZone, Target, check_rigid_targets, recognize};
+pub use coupling::zone::{
+    Candidate, ContactZone, Target, check_rigid_targets, recognize, supported_contactors,
+};

@@ -6,15 +6,18 @@ use super::checks::{
     at_least, expect, finite, finite2, law_error, list_names, node_set, non_negative, positive,
     solver_error,
 };
+use super::supported::{Policy, point, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::scene::{AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
+use crate::scene::{
+    AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
+};
 use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
 use contact_solver::{
     Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
-    FlexibilityMode, RigidArc, RigidLine, SimulationSettings, recognize,
+    FlexibilityMode, RigidArc, RigidLine, SimulationSettings, recognize, supported_contactors,
 };
 use fem_core::LinearElasticModel;
 use std::collections::BTreeSet;
@@ -42,6 +45,7 @@ pub(super) struct ZonePlan {
     law_name: &'static str,
     alert: f64,
     target: TargetPlan,
+    supported: SupportedContactors,
 }
 
 /// The zones of a scene, checked, how many have adhesion and friction, and the solver settings.
@@ -283,6 +287,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
             law_name,
             alert,
             target,
+            supported: z.supported_contactors,
         });
     }
     let phase_laws = phase_laws(scene, &names)?;
@@ -393,20 +398,31 @@ fn target(tp: &KeyPath, t: &TargetSpec) -> CliResult<TargetPlan> {
     })
 }
 
+/// The simulation, each zone's law name, and the warnings of [`build`].
+pub(super) type BuiltContact = (
+    ContactSimulation<LinearElasticModel, StandardLaw>,
+    Vec<String>,
+    Vec<String>,
+);
+
 /// The zones on the model's node sets, recognised and checked, and the simulation; also gives
-/// each zone's law name.
+/// each zone's law name, and the warnings (contactor nodes held by a support, left out).
 pub(super) fn build(
     model: LinearElasticModel,
     plan: Vec<ZonePlan>,
     settings: SimulationSettings,
-) -> CliResult<(
-    ContactSimulation<LinearElasticModel, StandardLaw>,
-    Vec<String>,
-)> {
+) -> CliResult<BuiltContact> {
     let root = KeyPath::root();
     let mut zones = Vec::new();
     let mut zone_laws = Vec::new();
+    let mut policies = Vec::new();
     for z in plan {
+        policies.push((
+            z.path.clone(),
+            z.name.clone(),
+            z.contactor.clone(),
+            z.supported,
+        ));
         let p = &z.path;
         let mesh = model.mesh();
         let contactor = node_set(&p.key("contactor"), mesh, &z.contactor)?;
@@ -459,12 +475,36 @@ pub(super) fn build(
         };
         zones.push(zone);
     }
+    let held =
+        supported_contactors(&model, &zones).map_err(|e| solver_error(&root.key("contact"), e))?;
+    let policies: Vec<Policy<'_>> = policies
+        .iter()
+        .map(|(path, name, contactor, choice)| Policy {
+            path: path.clone(),
+            name,
+            contactor,
+            choice: *choice,
+        })
+        .collect();
+    let position = |n: usize| point(&fem_core::Structure::node_position(&model, n));
+    let (leave_out, warnings) = resolve(&held, &policies, &position)?;
+    let zones: Vec<_> = zones
+        .into_iter()
+        .zip(&leave_out)
+        .map(|(z, l)| {
+            if l.is_empty() {
+                z
+            } else {
+                z.without_contactors(l)
+            }
+        })
+        .collect();
     let candidates =
         recognize(&model, &zones).map_err(|e| solver_error(&root.key("contact"), e))?;
     check_candidates(&candidates, &zones, &model)?;
     let sim = ContactSimulation::new(model, zones, settings)
         .map_err(|e| solver_error(&root.key("contact"), e))?;
-    Ok((sim, zone_laws))
+    Ok((sim, zone_laws, warnings))
 }
 
 /// Every zone must have a candidate, none deeper inside its target than the alert distance, and

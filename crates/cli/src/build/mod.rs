@@ -22,10 +22,13 @@ mod phases;
 mod presets;
 mod solid;
 mod study;
+mod supported;
 mod validate;
 
 pub use checks::kind_name;
-pub use phases::{Phase, function_value};
+pub use phases::{
+    Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
+};
 pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
 pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study};
 
@@ -106,7 +109,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
     let idealization = model.idealization;
     let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, idealization)?;
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
-    let (sim, zone_laws) = contact::build(model, contact.zones, contact.settings)?;
+    let (sim, zone_laws, warnings) = contact::build(model, contact.zones, contact.settings)?;
     let zone_names = sim.zones().iter().map(|z| z.name.clone()).collect();
     let mut study = Study {
         title: scene.title.clone().unwrap_or_else(|| {
@@ -131,6 +134,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         zone_laws,
         adhesive_zones: contact.adhesive,
         friction_zones: contact.friction,
+        warnings,
     };
     outputs::check_outputs(scene, &mut study)?;
     Ok(study)

@@ -1,10 +1,13 @@
 //! Time: the piecewise linear functions of `[functions]` and the phases of load steps
-//! (`[steps]` or `[[phases]]`), with the phase masks and function names of supports and loads.
+//! (`[steps]` or `[[phases]]`), with the phase masks and function names of supports and loads,
+//! and the law each zone has in each phase (`[[phases]] laws`), as the summaries report it.
 
 use super::checks::{at_least, finite2, list_names, positive};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
 use crate::spec::Pair;
+use contact_laws::StandardLaw;
+use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A piecewise linear function of time, constant beyond its first and last points.
@@ -274,9 +277,143 @@ pub fn function_value(
     f.and_then(|f| functions.get(f)).map_or(1.0, |f| f.eval(t))
 }
 
+/// The scene's name of a law (`signorini`, `coulomb`, `rccm`), as `law = { kind = ... }`
+/// spells it.
+pub fn law_name(law: &StandardLaw) -> &'static str {
+    match law {
+        StandardLaw::Signorini(_) => "signorini",
+        StandardLaw::Coulomb(_) => "coulomb",
+        StandardLaw::Rccm(_) => "rccm",
+    }
+}
+
+/// The law names that `[[phases]] laws` sets, per phase: `(zone, law)`.
+pub fn phase_law_names(phase_laws: &[Vec<(String, StandardLaw)>]) -> Vec<Vec<(String, String)>> {
+    phase_laws
+        .iter()
+        .map(|set| {
+            set.iter()
+                .map(|(zone, law)| (zone.clone(), law_name(law).to_string()))
+                .collect()
+        })
+        .collect()
+}
+
+/// The law of a zone during one phase of a run (`summary.json`: `zones[].laws`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PhaseLaw {
+    /// The phase.
+    pub phase: String,
+    /// The law in force during it (`signorini`, `coulomb`, `rccm`).
+    pub law: String,
+    /// Its first global step (1-based).
+    pub first_step: usize,
+    /// Its last global step done (`first_step − 1` when the run stopped at its first step).
+    pub last_step: usize,
+}
+
+/// Per zone, the law of each phase the run reached: the zone's own law (`zone_laws`) until a
+/// phase's `laws` (`set`, per phase `(zone, law name)`) gives it another, which then holds
+/// until the next. The phases listed are those with a step done (`steps_done` global steps)
+/// and, for a run that `failed`, the one it stopped in.
+pub fn laws_by_phase(
+    phases: &[Phase],
+    zone_names: &[String],
+    zone_laws: &[String],
+    set: &[Vec<(String, String)>],
+    steps_done: usize,
+    failed: bool,
+) -> Vec<Vec<PhaseLaw>> {
+    let mut current: Vec<String> = zone_laws.to_vec();
+    let mut out = vec![Vec::new(); zone_names.len()];
+    let mut before = 0;
+    for (p, phase) in phases.iter().enumerate() {
+        let first = before + 1;
+        let reached = first <= steps_done || (failed && first == steps_done + 1);
+        if !reached {
+            break;
+        }
+        for (zone, law) in set.get(p).into_iter().flatten() {
+            if let Some(z) = zone_names.iter().position(|n| n == zone) {
+                current[z] = law.clone();
+            }
+        }
+        let last = (before + phase.steps).min(steps_done);
+        for (z, laws) in out.iter_mut().enumerate() {
+            laws.push(PhaseLaw {
+                phase: phase.name.clone(),
+                law: current[z].clone(),
+                first_step: first,
+                last_step: last,
+            });
+        }
+        before += phase.steps;
+    }
+    out
+}
+
+/// The law in force at the end of a run (the last phase's of `laws`, else `initial`).
+pub fn final_law(laws: &[PhaseLaw], initial: &str) -> String {
+    laws.last().map_or(initial, |l| l.law.as_str()).to_string()
+}
+
+/// The laws of a zone in words: its one law, or each law with its phases and steps when a
+/// phase changed it (`signorini in `press` (steps 1–2), coulomb in `shear` (steps 3–6)`).
+pub fn describe_laws(laws: &[PhaseLaw], initial: &str) -> String {
+    if laws.iter().all(|l| l.law == initial) {
+        return initial.to_string();
+    }
+    laws.iter()
+        .map(|l| {
+            let steps = if l.last_step < l.first_step {
+                format!("stopped at step {}", l.first_step)
+            } else if l.last_step == l.first_step {
+                format!("step {}", l.first_step)
+            } else {
+                format!("steps {}–{}", l.first_step, l.last_step)
+            };
+            format!("{} in `{}` ({steps})", l.law, l.phase)
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn laws_by_phase_follows_the_switches_works() {
+        let phases = [phase("press", 2, 0.0, 1.0), phase("shear", 4, 1.0, 2.0)];
+        let names = ["base".to_string(), "side".to_string()];
+        let own = ["signorini".to_string(), "signorini".to_string()];
+        let set = vec![
+            Vec::new(),
+            vec![("base".to_string(), "coulomb".to_string())],
+        ];
+        let laws = laws_by_phase(&phases, &names, &own, &set, 6, false);
+        let base: Vec<_> = laws[0]
+            .iter()
+            .map(|l| (l.law.as_str(), l.first_step, l.last_step))
+            .collect();
+        assert_eq!(base, [("signorini", 1, 2), ("coulomb", 3, 6)]);
+        assert_eq!(final_law(&laws[0], "signorini"), "coulomb");
+        assert_eq!(final_law(&laws[1], "signorini"), "signorini");
+        assert_eq!(
+            describe_laws(&laws[0], "signorini"),
+            "signorini in `press` (steps 1–2), coulomb in `shear` (steps 3–6)"
+        );
+        assert_eq!(describe_laws(&laws[1], "signorini"), "signorini");
+        // a run that failed at the first step of `shear`: that phase is listed, no step done
+        let failed = laws_by_phase(&phases, &names, &own, &set, 2, true);
+        assert_eq!(failed[0].len(), 2);
+        assert_eq!((failed[0][1].first_step, failed[0][1].last_step), (3, 2));
+        // a run that stopped at step 2 without failing lists only `press`
+        assert_eq!(
+            laws_by_phase(&phases, &names, &own, &set, 2, false)[0].len(),
+            1
+        );
+    }
 
     #[test]
     fn time_functions_interpolate_and_hold_works() {

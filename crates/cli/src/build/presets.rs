@@ -431,6 +431,7 @@ fn finish(
         zone_laws,
         adhesive_zones,
         friction_zones,
+        warnings: Vec::new(),
     };
     check_outputs(scene, &mut study)?;
     Ok(study)

@@ -123,6 +123,9 @@ pub struct Study {
     pub adhesive_zones: usize,
     /// Zones with friction.
     pub friction_zones: usize,
+    /// What the scene's checks let pass but the user should know (e.g. contactor nodes held
+    /// by a support, left out): printed by `bipo check` and `bipo run`, and in `summary.json`.
+    pub warnings: Vec<String>,
 }
 
 impl Study {

@@ -39,8 +39,8 @@ pub(super) fn step_error(e: SolverError, phase: &Phase, t: f64) -> CliError {
              set accept_non_converged = true"
         }
         SolverError::Unbalanced { .. } => {
-            " — the body floats ([analysis] floating = true) and its contacts cannot hold it \
-             along that motion: add a support or a contact, or lower the load"
+            " (the body floats, [analysis] floating = true, so only its contacts hold it; a \
+             smaller load may also balance)"
         }
         SolverError::AdhesionNotConverged { .. } => {
             " — raise [solver] max_adhesion_iterations or adhesion_tol, or take smaller steps"

@@ -22,7 +22,7 @@ mod vtk;
 pub use solid::{SolidSummary, run_solid};
 pub use summary::{Peak, Summary};
 
-use crate::build::{Body, Phase, Study};
+use crate::build::{self, Body, Phase, Study};
 use crate::error::{CliError, CliResult};
 use driver::{CustomDriver, Driver, PresetDriver};
 use progress::Progress;
@@ -67,9 +67,25 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
     let recorder::Finished {
         mut files,
         curves,
-        zones,
+        mut zones,
         rigid,
     } = recorder.finish(&study)?;
+    let set = match &study.body {
+        Body::Custom(c) => build::phase_law_names(&c.phase_laws),
+        Body::Preset(_) => Vec::new(),
+    };
+    let laws = build::laws_by_phase(
+        &study.phases,
+        &study.zone_names,
+        &study.zone_laws,
+        &set,
+        steps_done,
+        error.is_some(),
+    );
+    for (z, laws) in zones.iter_mut().zip(laws) {
+        z.law = build::final_law(&laws, &z.law);
+        z.laws = laws;
+    }
     let (counters, time, facts) = match &study.body {
         Body::Custom(c) => (c.sim.counters(), c.sim.time(), facts(&c.sim)),
         Body::Preset(p) => (p.sim().counters(), p.sim().time(), facts(p.sim())),
@@ -113,6 +129,7 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
         curves,
         files,
         rigid_motions: rigid,
+        warnings: study.warnings.clone(),
     };
     summary::write(&opts.out_dir.join("summary.json"), &summary)?;
     match error {

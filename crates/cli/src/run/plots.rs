@@ -8,7 +8,7 @@ use crate::build::Study;
 use crate::error::CliResult;
 use crate::plot;
 use crate::scene::{CurveSpec, XAxis};
-use contact_solver::{ContactRecord, InterfaceStatus, StepResult};
+use contact_solver::{ContactRecord, StepResult};
 use fem_core::Component;
 use std::path::Path;
 
@@ -241,7 +241,7 @@ fn curve_value(
             .contacts
             .iter()
             .filter(in_zone)
-            .filter(|r| matches!(r.status, InterfaceStatus::Stick | InterfaceStatus::Slip))
+            .filter(|r| r.status.is_closed())
             .count() as f64,
         "beta_mean" | "beta_min" => {
             let b: Vec<f64> = res

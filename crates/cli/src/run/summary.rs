@@ -2,6 +2,7 @@
 //! final state, the plotted curves' extremes), and the tally of the zones kept step by step.
 
 use super::errors::io;
+use crate::build::PhaseLaw;
 use crate::error::CliResult;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, Counters, InterfaceStatus, StepResult};
@@ -38,7 +39,8 @@ pub(super) fn keep(p: &mut Option<Peak>, value: f64, step: usize, time: f64, lar
 pub struct ZoneSummary {
     /// Name.
     pub name: String,
-    /// Law.
+    /// The law in force at the end of the run (`[[phases]] laws` may have changed it; `laws`
+    /// lists them).
     pub law: String,
     /// Candidates.
     pub candidates: usize,
@@ -54,13 +56,16 @@ pub struct ZoneSummary {
     pub final_force_n: f64,
     /// Σ r_t at the end.
     pub final_force_t: f64,
-    /// Final statuses: inactive, open, stick, slip.
+    /// Final statuses: inactive, open, stick, slip (laws with friction), closed
+    /// (frictionless).
     pub final_status: StatusCount,
     /// Closed ("active") contacts at the end: the law's reaction is not zero (stick or slip).
     pub final_active: usize,
     /// Candidates of the reduced problem at the end (within the alert distance): closed or
     /// open.
     pub final_within_alert: usize,
+    /// The law of each phase the run reached, with its global steps.
+    pub laws: Vec<PhaseLaw>,
 }
 
 /// Status counts.
@@ -74,6 +79,8 @@ pub struct StatusCount {
     pub stick: usize,
     /// Slip.
     pub slip: usize,
+    /// Closed under a frictionless law (neither sticking nor slipping).
+    pub closed: usize,
 }
 
 /// Per-phase results.
@@ -174,6 +181,8 @@ pub struct Summary {
     /// Floating bodies: the rigid-body motion of each mode at the last step (as
     /// `rigid_motions.csv`); empty for supported bodies.
     pub rigid_motions: Vec<super::rigid::RigidMotionSummary>,
+    /// The scene's warnings (e.g. contactor nodes held by a support, left out).
+    pub warnings: Vec<String>,
 }
 
 /// Units note.
@@ -232,6 +241,7 @@ impl Tally {
                 final_status: StatusCount::default(),
                 final_active: 0,
                 final_within_alert: 0,
+                laws: Vec::new(),
             })
             .collect();
         Self {
@@ -267,6 +277,7 @@ impl Tally {
                     InterfaceStatus::Open => st.open += 1,
                     InterfaceStatus::Stick => st.stick += 1,
                     InterfaceStatus::Slip => st.slip += 1,
+                    InterfaceStatus::Closed => st.closed += 1,
                 }
             }
             keep(&mut zs.max_force_n, fn_, global, t, true);

@@ -8,6 +8,7 @@ mod cli;
 mod delamination;
 mod fuzz_corpus;
 mod issue_36_outputs;
+mod issue_36_traps;
 mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;

@@ -15,6 +15,7 @@
 //!    the [`StepResult`](simulation::StepResult); [`output`] writes it.
 
 mod flexibility;
+mod force_factor;
 pub mod obstacle;
 pub mod output;
 pub mod primal;

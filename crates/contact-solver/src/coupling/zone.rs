@@ -301,6 +301,84 @@ pub fn check_rigid_targets<S: Structure + ?Sized, L>(
     Ok(())
 }
 
+impl<L> ContactZone<L> {
+    /// This zone without the contactor nodes of `leave_out` (their paired target nodes and
+    /// their areas go with them): e.g. the nodes [`supported_contactors`] finds, which cannot
+    /// take part in contact.
+    #[must_use]
+    pub fn without_contactors(mut self, leave_out: &[usize]) -> Self {
+        let keep: Vec<bool> = self
+            .contactor
+            .iter()
+            .map(|n| !leave_out.contains(n))
+            .collect();
+        let kept = |v: &mut Vec<_>| {
+            let mut k = keep.iter();
+            v.retain(|_| *k.next().unwrap_or(&true));
+        };
+        if let Target::NodePairs { nodes, .. } = &mut self.target
+            && nodes.len() == keep.len()
+        {
+            kept(nodes);
+        }
+        if let Some(a) = &mut self.areas
+            && a.len() == keep.len()
+        {
+            let mut k = keep.iter();
+            a.retain(|_| *k.next().unwrap_or(&true));
+        }
+        kept(&mut self.contactor);
+        self
+    }
+}
+
+/// The contactor nodes of `zones` that a support holds along their contact normal: their
+/// normal displacement relative to the target is fully prescribed (no free dof along it), so
+/// they cannot take part in contact and [`ContactSimulation::new`](crate::ContactSimulation::new)
+/// refuses them. `(zone, node)`, in recognition order (zone, then contactor).
+///
+/// # Errors
+/// As [`recognize`].
+///
+/// # Examples
+/// ```
+/// use contact_solver::{ContactZone, supported_contactors};
+/// use contact_solver::coupling::obstacle::RigidLine;
+/// use contact_laws::Signorini;
+/// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+/// use fem_core::generate::{RectangleSpec, rectangle};
+///
+/// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+/// let bottom = mesh.node_set("bottom")?.to_vec();
+/// let mut supports = Supports::new();
+/// supports.fix(&mesh.node_set("top")?.to_vec(), Component::Y);
+/// supports.fix(&bottom[..1], Component::Y); // a corner held along the contact normal
+/// supports.fix(&bottom[..1], Component::X);
+/// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+///     &[(0, Material::new(100.0, 0.3, 0.0)?)], supports)?;
+/// let ground = RigidLine::new([-1.0, 0.0], [2.0, 0.0])?;
+/// let zone = ContactZone::rigid("base", bottom.clone(), ground, Signorini, 0.1);
+/// assert_eq!(supported_contactors(&model, &[zone.clone()])?, [(0, bottom[0])]);
+/// let zone = zone.without_contactors(&[bottom[0]]);
+/// assert!(supported_contactors(&model, &[zone])?.is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn supported_contactors<S: Structure + ?Sized, L>(
+    structure: &S,
+    zones: &[ContactZone<L>],
+) -> Result<Vec<(usize, usize)>, SolverError> {
+    let mut row = Vec::new();
+    Ok(recognize(structure, zones)?
+        .iter()
+        .filter(|c| {
+            row.clear();
+            c.h_row(structure, c.normal, &mut row);
+            row.is_empty()
+        })
+        .map(|c| (c.zone, c.node))
+        .collect())
+}
+
 /// Obstacle recognition on the reference configuration: the candidates of every zone, in zone
 /// order then contactor order. Contactor nodes of a rigid zone with no orthogonal projection on
 /// the obstacle are not candidates.

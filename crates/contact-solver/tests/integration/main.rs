@@ -23,6 +23,7 @@ mod hertz;
 mod hertz_force;
 mod hertz_revolved;
 mod invalid_input;
+mod issue_36_traps;
 mod local_algorithms;
 mod matrix_free;
 mod multibody_3d;

@@ -5,16 +5,17 @@
 
 use super::super::checks::{finite, non_negative, positive, solver_error};
 use super::super::contact::{law, phase_laws, settings, zone_name};
+use super::super::supported::{Policy, point as position_text, resolve};
 use super::mesh::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::triple;
-use crate::scene::{Scene, SolverSpec};
+use crate::scene::{Scene, SolverSpec, SupportedContactors};
 use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
 use contact_solver::coupling::solid::{
     Candidate3, ContactZone3, DEFAULT_DENSE_LIMIT_3D, PairNormals3, RigidCylinder, RigidPlane,
-    RigidSphere, Side3, SolidContactSimulation, SolidSettings, TriSurface,
+    RigidSphere, Side3, SolidContactSimulation, SolidSettings, TriSurface, supported_contactors_3d,
 };
 use contact_solver::{FlexibilityMode, SolverError};
 use fem_core::solid::{SolidMesh, SolidModel};
@@ -43,6 +44,7 @@ pub(super) struct ZonePlan3 {
     law: StandardLaw,
     alert: f64,
     target: Obstacle,
+    supported: SupportedContactors,
 }
 
 /// The zones of a 3D scene, checked, with their law names, and the settings.
@@ -193,6 +195,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
             law: l,
             alert,
             target,
+            supported: z.supported_contactors,
         });
     }
     let phase_laws = phase_laws(scene, &names)?;
@@ -308,20 +311,44 @@ fn pair_by_position(
         .collect()
 }
 
-/// The simulation of `model` with the zones of `plans`: zones built ([`zones`]), candidates
-/// recognised and checked (each zone has one, none deeper in its target than the alert
-/// distance, one within it). A library refusal is told at the `contact` key.
+/// The simulation of `model` with the zones of `plans`: zones built ([`zones`]), contactor
+/// nodes held by a support refused or left out (`supported_contactors`; the warnings are
+/// returned), candidates recognised and checked (each zone has one, none deeper in its target
+/// than the alert distance, one within it). A library refusal is told at the `contact` key.
 pub(super) fn build(
     model: SolidModel,
     plans: &[ZonePlan3],
     settings: SolidSettings,
-) -> CliResult<SolidContactSimulation<SolidModel, StandardLaw>> {
+) -> CliResult<(SolidContactSimulation<SolidModel, StandardLaw>, Vec<String>)> {
+    let contact = KeyPath::root().key("contact");
     let zones = zones(model.mesh(), plans)?;
     let nodes: Vec<[f64; 3]> = model.mesh().nodes().to_vec();
+    let held = supported_contactors_3d(&model, &zones).map_err(|e| solver_error(&contact, e))?;
+    let policies: Vec<Policy<'_>> = plans
+        .iter()
+        .map(|z| Policy {
+            path: z.path.clone(),
+            name: &z.name,
+            contactor: &z.contactor,
+            choice: z.supported,
+        })
+        .collect();
+    let (leave_out, warnings) = resolve(&held, &policies, &|n| position_text(&nodes[n]))?;
+    let zones: Vec<_> = zones
+        .into_iter()
+        .zip(&leave_out)
+        .map(|(z, l)| {
+            if l.is_empty() {
+                z
+            } else {
+                z.without_contactors(l)
+            }
+        })
+        .collect();
     let sim = SolidContactSimulation::new(model, zones, settings)
-        .map_err(|e| solver_error(&KeyPath::root().key("contact"), e))?;
+        .map_err(|e| solver_error(&contact, e))?;
     check_candidates(sim.candidates(), plans, &nodes)?;
-    Ok(sim)
+    Ok((sim, warnings))
 }
 
 /// Every zone must have a candidate, none deeper inside its target than the alert distance,

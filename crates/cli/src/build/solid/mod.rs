@@ -56,6 +56,9 @@ pub struct SolidStudy {
     pub zone_laws: Vec<String>,
     /// Per phase (in order), the laws it sets: `(zone, law)`.
     pub phase_laws: Vec<Vec<(String, StandardLaw)>>,
+    /// What the scene's checks let pass but the user should know (e.g. contactor nodes held
+    /// by a support, left out): printed by `bipo check` and `bipo run`, and in `summary.json`.
+    pub warnings: Vec<String>,
 }
 
 impl SolidStudy {
@@ -154,7 +157,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         initial_stress,
     };
     let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
-    let sim = contact::build(model, &contact.zones, contact.settings)?;
+    let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
     let study = SolidStudy {
         title: scene.title.clone().unwrap_or_else(|| {
@@ -174,6 +177,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         zone_names,
         zone_laws: contact.laws,
         phase_laws: contact.phase_laws,
+        warnings,
     };
     let candidates = study.sim.candidates();
     check_output_table(

@@ -104,6 +104,8 @@ pub struct SolidSummary {
     pub zones: Vec<SolidZoneSummary>,
     /// Files written (relative to the output directory).
     pub files: Vec<String>,
+    /// The scene's warnings (e.g. contactor nodes held by a support, left out).
+    pub warnings: Vec<String>,
 }
 
 /// Sets the laws phase `p` gives its zones (the interface states carry over), then releases the
@@ -339,7 +341,19 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
     );
     progress.finish();
     let final_reaction = rec.reaction;
-    let (mut files, zones) = rec.finish()?;
+    let (mut files, mut zones) = rec.finish()?;
+    let laws = crate::build::laws_by_phase(
+        &study.phases,
+        &study.zone_names,
+        &study.zone_laws,
+        &crate::build::phase_law_names(&study.phase_laws),
+        steps,
+        error.is_some(),
+    );
+    for (z, laws) in zones.iter_mut().zip(laws) {
+        z.law = crate::build::final_law(&laws, &z.law);
+        z.laws = laws;
+    }
     files.insert(0, "summary.json".into());
     let model = study.sim.structure();
     let summary = SolidSummary {
@@ -377,6 +391,7 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
         phases,
         zones,
         files,
+        warnings: study.warnings.clone(),
     };
     let path = opts.out_dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| io(&path, e))?;

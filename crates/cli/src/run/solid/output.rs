@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 pub struct SolidZoneSummary {
     /// Name.
     pub name: String,
-    /// Law.
+    /// The law in force at the end of the run (`laws` lists each phase's).
     pub law: String,
     /// Candidates.
     pub candidates: usize,
@@ -41,6 +41,8 @@ pub struct SolidZoneSummary {
     /// Candidates of the reduced problem at the end (within the alert distance): closed or
     /// open.
     pub final_within_alert: usize,
+    /// The law of each phase the run reached, with its global steps.
+    pub laws: Vec<crate::build::PhaseLaw>,
 }
 
 /// One step's row of `steps.csv`.
@@ -134,6 +136,7 @@ impl SolidRecorder {
                 final_force: [0.0; 3],
                 final_active: 0,
                 final_within_alert: 0,
+                laws: Vec::new(),
             })
             .collect();
         Ok(Self {

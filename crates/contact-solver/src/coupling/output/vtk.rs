@@ -10,7 +10,8 @@ use vtkio::model::{
     VertexNumbers, Vtk,
 };
 
-/// The integer code of a status in the VTK output: 0 inactive, 1 open, 2 stick, 3 slip.
+/// The integer code of a status in the VTK output: 0 inactive, 1 open, 2 stick, 3 slip,
+/// 4 closed (frictionless).
 ///
 /// # Examples
 /// ```
@@ -25,6 +26,7 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
         InterfaceStatus::Open => 1,
         InterfaceStatus::Stick => 2,
         InterfaceStatus::Slip => 3,
+        InterfaceStatus::Closed => 4,
     }
 }
 
@@ -38,7 +40,7 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 ///
 /// | name | type | content |
 /// |---|---|---|
-/// | `status` | `UInt8` | [`status_code`]: 0 inactive, 1 open, 2 stick, 3 slip |
+/// | `status` | `UInt8` | [`status_code`]: 0 inactive, 1 open, 2 stick, 3 slip, 4 closed |
 /// | `zone`, `node` | `UInt64` | zone index, contactor node |
 /// | `area`, `gap`, `u_t`, `slip_increment`, `beta` | scalar | as in [`ContactRecord`] |
 /// | `r_local`, `r_bar_local`, `r_adh_local` | vector | local `[n, t, 0]` of `r`, `r̄`, `r_adh` |
@@ -325,8 +327,9 @@ mod tests {
             InterfaceStatus::Open,
             InterfaceStatus::Stick,
             InterfaceStatus::Slip,
+            InterfaceStatus::Closed,
         ]
         .map(status_code);
-        assert_eq!(codes, [0, 1, 2, 3]);
+        assert_eq!(codes, [0, 1, 2, 3, 4]);
     }
 }

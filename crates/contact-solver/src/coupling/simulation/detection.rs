@@ -9,9 +9,9 @@ use contact_laws::ContactLaw;
 use fem_core::Structure;
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
-    /// Checks `time` and `load_factor` and counts a change of the stiffness; returns the
+    /// Checks `time` and `force_factor` and counts a change of the stiffness; returns the
     /// stiffness version of the step.
-    pub(super) fn begin_step(&mut self, time: f64, load_factor: f64) -> Result<u64, SolverError> {
+    pub(super) fn begin_step(&mut self, time: f64, force_factor: f64) -> Result<u64, SolverError> {
         if !(time.is_finite() && time >= self.time) {
             return Err(SolverError::InvalidSetting {
                 what: "time",
@@ -19,10 +19,10 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 expected: "a finite time not before the current time",
             });
         }
-        if !load_factor.is_finite() {
+        if !force_factor.is_finite() {
             return Err(SolverError::InvalidSetting {
-                what: "load_factor",
-                value: load_factor,
+                what: "force_factor",
+                value: force_factor,
                 expected: "a finite number",
             });
         }
@@ -35,15 +35,16 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         Ok(version)
     }
 
-    /// `u_free`, the response to the loads scaled by `load_factor` without contact, and the
+    /// `u_free`, the response to the applied forces scaled by `force_factor` (prescribed
+    /// displacements at their values) without contact, and the
     /// candidates' local jumps under it.
     pub(super) fn free_response(
         &mut self,
-        load_factor: f64,
+        force_factor: f64,
     ) -> Result<(Vec<f64>, Vec<[f64; 2]>), SolverError> {
         let mut u_free = vec![0.0; self.structure.dof_count()];
         self.structure
-            .free_response_into(load_factor, &mut u_free)?;
+            .free_response_into(force_factor, &mut u_free)?;
         self.counters.structure_solves += 1;
         // a floating structure: u_free = K⁺ f plus the rigid motion of the last step, and the
         // load along the modes that contact must balance
@@ -54,7 +55,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.mode_load.resize(count, 0.0);
         if let Some(modes) = self.structure.rigid_body_modes() {
             self.structure
-                .rigid_body_load_into(load_factor, &mut self.mode_load)?;
+                .rigid_body_load_into(force_factor, &mut self.mode_load)?;
             for (j, &a) in self.alpha.iter().enumerate() {
                 if a != 0.0 {
                     for (u, r) in u_free.iter_mut().zip(modes.column(j)) {

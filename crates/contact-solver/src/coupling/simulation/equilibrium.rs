@@ -96,8 +96,11 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             rec.r_bar = LocalVec2::planar(rb[0], rb[1]);
             rec.r = LocalVec2::planar(solved.r[2 * k], solved.r[2 * k + 1]);
             rec.r_adh = LocalVec2::planar(rec.r.n - rb[0], rec.r.t[0] - rb[1]);
+            // named by what the law is: a frictionless law's closed contact neither sticks
+            // nor slips
             rec.status = match solved.statuses[k] {
                 ContactStatus::Separation => InterfaceStatus::Open,
+                _ if !law.has_friction() => InterfaceStatus::Closed,
                 ContactStatus::Stick => InterfaceStatus::Stick,
                 ContactStatus::Slip => InterfaceStatus::Slip,
             };

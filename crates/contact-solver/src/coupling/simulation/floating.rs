@@ -169,6 +169,10 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             };
             let sol = solve_adhesive(&mut self.solver, &step, Some(r_warm), &options)?;
             report.contact_iterations += sol.contact_iterations;
+            // every reduced solve of the equilibrium iteration runs the adhesion loop (issue
+            // 36: these were not counted, and a damaging floating pile reported 0)
+            report.adhesion_iterations += sol.adhesion_iterations;
+            self.counters.record_adhesive(&sol);
             report.equilibrium_solves += 1;
             r_warm.copy_from_slice(&sol.r_bar);
             let res = fl.residual(&sol.r);
@@ -352,7 +356,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             u_start,
             areas,
         };
-        Ok(self.finish_adhesive(sol, alpha, inputs, report))
+        Ok(self.finish_adhesive(sol, alpha, inputs, report, true))
     }
 }
 
@@ -384,12 +388,19 @@ impl Floating {
     }
 
     /// The error for an out-of-balance force `res` along the free direction `d`: the mode
-    /// that `d` moves most.
+    /// that `d` moves most, or, when that is a translation, the direction in the plane along
+    /// which the body's translations move (a block sliding down an incline moves along the
+    /// slope, not along x).
     fn unbalanced(&self, res: &[f64], d: &[f64]) -> SolverError {
         let j = (0..self.nm)
             .max_by(|&a, &b| d[a].abs().total_cmp(&d[b].abs()))
             .unwrap_or(0);
         let mode = self.modes[j];
+        if matches!(mode.motion, RigidMotion::Translation { .. })
+            && let Some(e) = self.unbalanced_translation(mode.body, res, d)
+        {
+            return e;
+        }
         // the generalized force along a rotation mode scaled by 1/ρ is a moment / ρ
         let to_physical = match mode.motion {
             RigidMotion::Rotation { radius, .. } => radius,
@@ -401,6 +412,68 @@ impl Floating {
             imbalance: res[j] * to_physical,
             load: -self.e[j] * to_physical,
         }
+    }
+}
+
+impl Floating {
+    /// [`SolverError::Unbalanced`] along the translation `Σ d_k e_k` of `body`'s translation
+    /// modes `e_k` (orthonormal), oriented so that the force left over pushes along it: that
+    /// force `Σ res_k (e_k · dir)` and the load's own `Σ −e_k (e_k · dir)`. `None` (the mode is
+    /// reported as it is) when the direction is one of the modes' own, when the body's
+    /// translation directions are not orthonormal (a user's modes), or when `d` has no
+    /// translation part.
+    fn unbalanced_translation(&self, body: usize, res: &[f64], d: &[f64]) -> Option<SolverError> {
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let translations: Vec<(usize, [f64; 2])> = self
+            .modes
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.body == body)
+            .filter_map(|(k, m)| match m.motion {
+                RigidMotion::Translation { direction } => Some((k, direction)),
+                _ => None,
+            })
+            .collect();
+        for (a, &(_, ea)) in translations.iter().enumerate() {
+            for &(_, eb) in &translations[a..] {
+                let expected = if ea == eb { 1.0 } else { 0.0 };
+                if (dot(ea, eb) - expected).abs() > 1e-12 {
+                    return None;
+                }
+            }
+        }
+        let mut dir = [0.0; 2];
+        for &(k, e) in &translations {
+            dir[0] += d[k] * e[0];
+            dir[1] += d[k] * e[1];
+        }
+        let length = dir[0].hypot(dir[1]);
+        if !(length > 0.0 && length.is_finite()) {
+            return None;
+        }
+        dir = [dir[0] / length, dir[1] / length];
+        // an axis direction (to round-off) is the mode itself, reported as before
+        if translations
+            .iter()
+            .any(|&(_, e)| dot(e, dir).abs() >= 1.0 - 1e-9)
+        {
+            return None;
+        }
+        let along = |v: &dyn Fn(usize) -> f64| -> f64 {
+            translations.iter().map(|&(k, e)| v(k) * dot(e, dir)).sum()
+        };
+        let (mut imbalance, mut load) = (along(&|k| res[k]), along(&|k| -self.e[k]));
+        if imbalance < 0.0 {
+            dir = [-dir[0], -dir[1]];
+            imbalance = -imbalance;
+            load = -load;
+        }
+        Some(SolverError::Unbalanced {
+            body,
+            motion: RigidMotion::Translation { direction: dir },
+            imbalance,
+            load,
+        })
     }
 }
 

@@ -36,6 +36,7 @@ mod solve;
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
 
+use crate::coupling::force_factor::check_force_factor;
 use crate::coupling::primal::PrimalCache;
 use crate::coupling::zone::{Candidate, ContactZone, check_rigid_targets, recognize};
 use crate::error::SolverError;
@@ -354,22 +355,62 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             .collect()
     }
 
-    /// Solves one load step ending at `time` (`≥` the current time) with the structure's loads
-    /// scaled by `load_factor` (and its current prescribed values).
+    /// Solves one load step ending at `time` (`≥` the current time) with the structure's
+    /// applied forces scaled by `force_factor`.
+    ///
+    /// `force_factor` scales the applied forces only (point loads, tractions, body forces:
+    /// [`Structure::free_response_into`]): **prescribed displacements are not scaled** and
+    /// enter at their current values, as do initial stresses. To ramp a prescribed
+    /// displacement, set its value before each step through [`Self::structure_mut`] (`bipo`'s
+    /// time tables do that) and step with the factor 1. A factor other than 1 on a structure
+    /// without applied forces would change nothing and is refused.
     ///
     /// # Errors
-    /// [`SolverError::InvalidSetting`] if `time` is not finite or goes backwards;
-    /// [`SolverError::Structure`] if a structure solve fails; [`SolverError::NotConverged`] or
-    /// [`SolverError::AdhesionNotConverged`] unless the settings accept non-converged results.
-    /// On error the simulation keeps the state of the previous step.
-    pub fn step(&mut self, time: f64, load_factor: f64) -> Result<StepResult, SolverError> {
+    /// [`SolverError::InvalidSetting`] if `time` is not finite or goes backwards, if
+    /// `force_factor` is not finite, or if it is not 1 while the structure has no applied force
+    /// for it to scale; [`SolverError::Structure`] if a structure solve fails;
+    /// [`SolverError::NotConverged`] or [`SolverError::AdhesionNotConverged`] unless the
+    /// settings accept non-converged results. On error the simulation keeps the state of the
+    /// previous step.
+    ///
+    /// # Examples
+    /// A block pressed by a prescribed displacement of its top: the displacement is ramped
+    /// through the structure, not by the factor.
+    /// ```
+    /// use contact_solver::{ContactSimulation, ContactZone, SimulationSettings};
+    /// use contact_solver::coupling::obstacle::RigidLine;
+    /// use contact_laws::Signorini;
+    /// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    ///
+    /// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+    /// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+    /// let mut supports = Supports::new();
+    /// supports.prescribe(&top, Component::Y, 0.0)?.fix(&top, Component::X);
+    /// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+    ///     &[(0, Material::new(100.0, 0.0, 0.0)?)], supports)?;
+    /// let ground = RigidLine::new([-1.0, 0.0], [2.0, 0.0])?;
+    /// let zone = ContactZone::rigid("base", bottom, ground, Signorini, 0.1);
+    /// let mut sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default())?;
+    /// for k in 1..=2 {
+    ///     sim.structure_mut().set_prescribed(&top, Component::Y, -0.005 * k as f64)?;
+    ///     let res = sim.step(k as f64, 1.0)?;
+    ///     let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
+    ///     assert!((total - 0.5 * k as f64).abs() < 1e-9); // E × 0.005 k over a width of 1
+    /// }
+    /// // the factor scales forces only: on this structure (no force) 0.5 is refused
+    /// assert!(sim.step(3.0, 0.5).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn step(&mut self, time: f64, force_factor: f64) -> Result<StepResult, SolverError> {
         let start = Instant::now();
-        let version = self.begin_step(time, load_factor)?;
+        let version = self.begin_step(time, force_factor)?;
         let dt = time - self.time;
         // 1. detection: the free response and the active set
-        let (u_free, free) = self.free_response(load_factor)?;
+        let (u_free, free) = self.free_response(force_factor)?;
+        check_force_factor(&self.structure, force_factor, &u_free)?;
         let mut active = self.initial_active_set(&free);
-        let mut report = StepReport::start(self.counters.steps + 1, time, load_factor);
+        let mut report = StepReport::start(self.counters.steps + 1, time, force_factor);
         loop {
             report.detection_passes += 1;
             // 2–3. the path and its operator, then the local solve (with the adhesion loop)

@@ -12,35 +12,40 @@ pub enum InterfaceStatus {
     Inactive,
     /// In the reduced problem, `r̄ = 0` (open; adhesive springs may still pull).
     Open,
-    /// Compressed, sticking.
+    /// Compressed, sticking (a law with friction).
     Stick,
-    /// Compressed, sliding.
+    /// Compressed, sliding (a law with friction).
     Slip,
+    /// Compressed under a frictionless law (Signorini): neither sticking nor sliding, since
+    /// nothing resists the tangential motion (issue 36: these were reported as `Stick`).
+    Closed,
 }
 
 impl InterfaceStatus {
-    /// A short lowercase name (`inactive`, `open`, `stick`, `slip`).
+    /// A short lowercase name (`inactive`, `open`, `stick`, `slip`, `closed`).
     pub fn name(self) -> &'static str {
         match self {
             Self::Inactive => "inactive",
             Self::Open => "open",
             Self::Stick => "stick",
             Self::Slip => "slip",
+            Self::Closed => "closed",
         }
     }
 
-    /// Whether the contact is closed: the law's reaction `r̄` is not zero (compressed, sticking
-    /// or sliding), what the outputs count as "active". `Inactive` (outside the alert distance)
-    /// and `Open` (in the reduced problem, `r̄ = 0`) are not.
+    /// Whether the contact is closed: the law's reaction `r̄` is not zero (compressed, sticking,
+    /// sliding, or closed without friction), what the outputs count as "active". `Inactive`
+    /// (outside the alert distance) and `Open` (in the reduced problem, `r̄ = 0`) are not.
     ///
     /// # Examples
     /// ```
     /// use contact_solver::InterfaceStatus;
     /// assert!(InterfaceStatus::Stick.is_closed() && InterfaceStatus::Slip.is_closed());
+    /// assert!(InterfaceStatus::Closed.is_closed());
     /// assert!(!InterfaceStatus::Open.is_closed() && !InterfaceStatus::Inactive.is_closed());
     /// ```
     pub fn is_closed(self) -> bool {
-        !matches!(self, Self::Inactive | Self::Open)
+        matches!(self, Self::Stick | Self::Slip | Self::Closed)
     }
 }
 
@@ -112,7 +117,8 @@ pub struct StepReport {
     pub step: usize,
     /// Time at the end of the step.
     pub time: f64,
-    /// Load factor of the step.
+    /// The step's force factor ([`ContactSimulation::step`](crate::ContactSimulation::step)'s
+    /// second argument: it scales the applied forces, not prescribed displacements).
     pub load_factor: f64,
     /// Candidates in the reduced problem (within the alert distance, in contact at the last
     /// step, or adhesive): the `candidates` column of

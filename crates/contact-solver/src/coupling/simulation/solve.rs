@@ -291,7 +291,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             u_start,
             areas,
         };
-        Ok(self.finish_adhesive(sol, Vec::new(), inputs, report))
+        Ok(self.finish_adhesive(sol, Vec::new(), inputs, report, false))
     }
 
     /// The adhesion loop's options from the settings (the primal path reads its tolerance,
@@ -309,7 +309,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         }
     }
 
-    /// An adhesive pass's answer: paces the warm start, counts Newton's outcomes, reports the
+    /// An adhesive pass's answer: paces the warm start, counts Newton's outcomes (unless
+    /// `counted`: the floating stage counts every one of its solves as it goes), reports the
     /// residual, and keeps the reduced problem for export (the solve's, or, after Newton, one
     /// formed on request from `F*`, `inputs` and the final states).
     pub(super) fn finish_adhesive(
@@ -318,9 +319,12 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         alpha: Vec<f64>,
         inputs: AdhesiveInputs<L>,
         report: &mut StepReport,
+        counted: bool,
     ) -> Solved<L::State> {
         self.warm.record(&sol);
-        self.counters.record_adhesive(&sol);
+        if !counted {
+            self.counters.record_adhesive(&sol);
+        }
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
         let (solved, condensed) = Solved::from_adhesive(sol, alpha);

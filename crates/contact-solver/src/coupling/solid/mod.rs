@@ -19,4 +19,6 @@ pub use simulation::{
     SolidStepResult,
 };
 pub use surface::TriSurface;
-pub use zone::{Candidate3, ContactZone3, PairNormals3, Target3, recognize_3d};
+pub use zone::{
+    Candidate3, ContactZone3, PairNormals3, Target3, recognize_3d, supported_contactors_3d,
+};

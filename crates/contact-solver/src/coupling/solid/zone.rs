@@ -129,6 +129,56 @@ impl<L> ContactZone3<L> {
         self.areas = Some(areas);
         self
     }
+
+    /// This zone without the contactor nodes of `leave_out` (their paired target nodes, pair
+    /// normals and areas go with them): e.g. the nodes [`supported_contactors_3d`] finds,
+    /// which cannot take part in contact.
+    #[must_use]
+    pub fn without_contactors(mut self, leave_out: &[usize]) -> Self {
+        let keep: Vec<bool> = self.nodes.iter().map(|n| !leave_out.contains(n)).collect();
+        fn retain<T>(v: &mut Vec<T>, keep: &[bool]) {
+            if v.len() == keep.len() {
+                let mut k = keep.iter();
+                v.retain(|_| *k.next().unwrap_or(&true));
+            }
+        }
+        if let Target3::NodePairs { nodes, normals } = &mut self.target {
+            retain(nodes, &keep);
+            if let PairNormals3::PerPair(n) = normals {
+                retain(n, &keep);
+            }
+        }
+        if let Some(a) = &mut self.areas {
+            retain(a, &keep);
+        }
+        retain(&mut self.nodes, &keep);
+        self
+    }
+}
+
+/// The contactor nodes of `zones` that supports hold along their contact normal: every
+/// component of their displacement along it, relative to the target, is prescribed, so they
+/// cannot take part in contact and [`recognize_3d`] refuses them. `(zone, node)`, in
+/// recognition order.
+///
+/// # Errors
+/// As [`recognize_3d`], but for the refusal of these nodes.
+pub fn supported_contactors_3d<S: Structure<3> + ?Sized, L>(
+    structure: &S,
+    zones: &[ContactZone3<L>],
+) -> Result<Vec<(usize, usize)>, SolverError> {
+    Ok(recognize_all(structure, zones)?
+        .iter()
+        .filter(|c| held_along_normal(structure, c))
+        .map(|c| (c.zone, c.node))
+        .collect())
+}
+
+/// Whether `c`'s relative displacement along its normal is fully prescribed (its `H` row is
+/// empty to round-off).
+fn held_along_normal<S: Structure<3> + ?Sized>(structure: &S, c: &Candidate3) -> bool {
+    let row = c.h_row(structure, c.normal);
+    row.iter().map(|(_, a)| a * a).sum::<f64>() < 1e-24
 }
 
 /// A contactor node of a 3D zone, its frame and initial gap (reference configuration).
@@ -241,6 +291,22 @@ fn check_node<S: Structure<3> + ?Sized>(s: &S, zone: &str, node: usize) -> Resul
 /// without a single candidate; [`SolverError::InvalidSetting`] for a negative or non-finite
 /// alert distance or area, or areas of the wrong length.
 pub fn recognize_3d<S: Structure<3> + ?Sized, L>(
+    structure: &S,
+    zones: &[ContactZone3<L>],
+) -> Result<Vec<Candidate3>, SolverError> {
+    let out = recognize_all(structure, zones)?;
+    if let Some(c) = out.iter().find(|c| held_along_normal(structure, c)) {
+        return Err(SolverError::InvalidGeometry(format!(
+            "zone `{}`: node {} cannot move along the contact normal {:?} relative to its \
+             target (every component along it is prescribed)",
+            zones[c.zone].name, c.node, c.normal
+        )));
+    }
+    Ok(out)
+}
+
+/// [`recognize_3d`] without the refusal of the candidates held along their normal.
+fn recognize_all<S: Structure<3> + ?Sized, L>(
     structure: &S,
     zones: &[ContactZone3<L>],
 ) -> Result<Vec<Candidate3>, SolverError> {
@@ -365,16 +431,6 @@ pub fn recognize_3d<S: Structure<3> + ?Sized, L>(
                 "zone `{name}` has no candidate: none of its {} nodes projects on its target",
                 zone.nodes.len()
             )));
-        }
-        for c in &out[before..] {
-            let row = c.h_row(structure, c.normal);
-            if row.iter().map(|(_, a)| a * a).sum::<f64>() < 1e-24 {
-                return Err(SolverError::InvalidGeometry(format!(
-                    "zone `{name}`: node {} cannot move along the contact normal {:?} relative \
-                     to its target (every component along it is prescribed)",
-                    c.node, c.normal
-                )));
-            }
         }
     }
     Ok(out)

@@ -347,6 +347,9 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
                     .fold(0.0_f64, |c, (l, (a, b))| c.max(l.state_change(a, b)));
                 if change <= WARM_MAX_STATE_CHANGE {
                     sol.warm_started = true;
+                    // the warm start solved the adhesion: at least one iteration, even when
+                    // its start already met Newton's tolerance
+                    sol.adhesion_iterations = sol.adhesion_iterations.max(1);
                     return Ok(*sol);
                 }
                 contact_iterations += sol.contact_iterations;

@@ -21,6 +21,7 @@
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
 use crate::coupling::flexibility::{Previous, build_dense};
+use crate::coupling::force_factor::check_force_factor;
 use crate::coupling::primal::{LocalFrame, PrimalCache};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
@@ -385,16 +386,20 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     }
 
     /// One load step ending at `time` (`≥` the current time; the step's length is what the
-    /// laws' state updates see) with the structure's loads scaled by `load_factor` (and its
-    /// current prescribed values): the order of [`ContactSimulation::step`](crate::ContactSimulation::step).
+    /// laws' state updates see) with the structure's applied forces scaled by `force_factor`:
+    /// the order of [`ContactSimulation::step`](crate::ContactSimulation::step), and as there
+    /// **prescribed displacements are not scaled** by the factor (nor initial stresses): ramp
+    /// them through [`Self::structure_mut`] between steps and step with the factor 1. A factor
+    /// other than 1 on a structure without applied forces would change nothing and is refused.
     ///
     /// # Errors
     /// Errors of the structure's solves; the local solver's errors
     /// ([`SolverError::NotConverged`] …); [`SolverError::NotConverged`] if the active set
     /// still grows after `max_passes` passes; [`SolverError::InvalidSetting`] for a `time`
-    /// that is not finite or goes backwards, or a non-finite `load_factor`. On error the
-    /// simulation keeps the state of the previous step.
-    pub fn step(&mut self, time: f64, load_factor: f64) -> Result<SolidStepResult, SolverError> {
+    /// that is not finite or goes backwards, a non-finite `force_factor`, or one other than 1
+    /// while the structure has no applied force for it to scale. On error the simulation keeps
+    /// the state of the previous step.
+    pub fn step(&mut self, time: f64, force_factor: f64) -> Result<SolidStepResult, SolverError> {
         if !(time.is_finite() && time >= self.time) {
             return Err(SolverError::InvalidSetting {
                 what: "time",
@@ -402,11 +407,11 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
                 expected: "a finite time >= the current time",
             });
         }
-        if !load_factor.is_finite() {
+        if !force_factor.is_finite() {
             return Err(SolverError::InvalidSetting {
-                what: "load_factor",
-                value: load_factor,
-                expected: "a finite load factor",
+                what: "force_factor",
+                value: force_factor,
+                expected: "a finite force factor",
             });
         }
         let dt = time - self.time;
@@ -414,7 +419,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         let ndof = self.structure.dof_count();
         let mut u_free = vec![0.0; ndof];
         self.structure
-            .free_response_into(load_factor, &mut u_free)?;
+            .free_response_into(force_factor, &mut u_free)?;
+        check_force_factor(&self.structure, force_factor, &u_free)?;
         let free: Vec<[f64; 3]> = (0..self.candidates.len())
             .map(|i| self.local(i, &u_free))
             .collect();
