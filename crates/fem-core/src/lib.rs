@@ -24,6 +24,7 @@
 
 pub mod analytical;
 mod component;
+pub mod curve;
 pub mod error;
 pub mod generate;
 pub mod gmsh;

@@ -7,6 +7,7 @@ mod broken_local;
 mod cli;
 mod delamination;
 mod fuzz_corpus;
+mod gmsh_2d;
 mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;
