@@ -23,7 +23,7 @@ use crate::error::{CliError, CliResult, KeyPath};
 use contact_solver::coupling::zone::{lumped_areas, segment_areas};
 use contact_solver::{Candidate, ContactZone, Target};
 use contact_laws::StandardLaw;
-use fem_core::curve::{CurveOrder, NotACurve};
+use fem_core::curve::{CurveOrder, NotACurve, chain_sides};
 use fem_core::{LinearElasticModel, Mesh, Structure};
 
 /// The nodes of the target set `name` (at `path`) in order, and whether the curve they come
@@ -61,31 +61,40 @@ pub(super) fn target_nodes(
 }
 
 /// The tributary areas of the contactor set `name` (nodes `nodes`, in the set's order) where
-/// the zone's own lumping along the order would be wrong: a closed curve (its closing segment)
-/// and a curve that is not one curve (from its sides). `None` otherwise: the zone lumps
-/// along the set's order.
+/// the zone's own lumping along the order would be wrong: a closed curve (its closing
+/// segment), a curve that is not one curve, and a generator's set whose order does not run
+/// along its sides (the pile's `surface`): the last two from the sides of the edge set of the
+/// same name. `None` otherwise (the zone lumps along the set's order; every contact set of the
+/// shipped scenes).
 pub(super) fn contactor_areas(
     model: &LinearElasticModel,
     name: &str,
     nodes: &[usize],
 ) -> Option<Vec<f64>> {
     let mesh = model.mesh();
-    match mesh.curve_order(name)? {
-        CurveOrder::Open => None,
-        CurveOrder::Closed => Some(lumped_areas(model, nodes, true)),
-        CurveOrder::NotACurve(_) => {
-            let mut segments = Vec::new();
-            for &side in mesh.edge_set(name).ok()? {
-                let s: Vec<usize> = mesh.side_nodes(side).collect();
-                match s[..] {
-                    [a, b, m] => segments.extend([[a, m], [m, b]]),
-                    [a, b] => segments.push([a, b]),
-                    _ => {}
-                }
+    let sides = mesh.edge_set(name).ok();
+    match mesh.curve_order(name) {
+        Some(CurveOrder::Open) => return None,
+        Some(CurveOrder::Closed) => return Some(lumped_areas(model, nodes, true)),
+        Some(CurveOrder::NotACurve(_)) => {}
+        None => {
+            let curve = chain_sides(mesh, sides?).ok()?;
+            let along = |a: &[usize]| a.iter().eq(nodes.iter()) || a.iter().rev().eq(nodes.iter());
+            if along(&curve.nodes) {
+                return None;
             }
-            segment_areas(model, nodes, &segments).ok()
         }
     }
+    let mut segments = Vec::new();
+    for &side in sides? {
+        let s: Vec<usize> = mesh.side_nodes(side).collect();
+        match s[..] {
+            [a, b, m] => segments.extend([[a, m], [m, b]]),
+            [a, b] => segments.push([a, b]),
+            _ => {}
+        }
+    }
+    segment_areas(model, nodes, &segments).ok()
 }
 
 /// For node pairs between two open curves: the contactor's nodes reversed when that pairs

@@ -136,45 +136,42 @@ fn issue_36_gmsh_p2_mid_side_nodes_between_corners() {
     }
 }
 
-/// The generators keep their sets sorted by index; on every edge set that order already runs
-/// along the curve: it is the chained order or its reverse, so chaining them would change no
-/// number of the existing scenes but the direction.
+/// The generators keep their sets sorted by index; on every edge set but one that order
+/// already runs along the curve (it is the chained order or its reverse), so chaining them
+/// would change no number of the existing scenes but the direction. The exception is the
+/// pile's `surface` (the soil's top, `z = 0`, from the pile's radius out): its node at the
+/// pile's radius has a higher index than the rest, so sorted it jumps from one end to the
+/// other. No scene or preset takes it as a contact set; `bipo` refuses it as a `segments`
+/// target (it doubles back) and gives it, as a contactor, areas from its sides.
 #[test]
 fn issue_36_generator_sets_already_run_along_their_curves() {
-    let mut meshes = Vec::new();
+    let mut off = Vec::new();
     for kind in [fem_core::ElementKind::Tri3, fem_core::ElementKind::Tri6] {
-        meshes.push(
-            rectangle(&RectangleSpec {
-                kind,
-                grading_x: Grading::Geometric { ratio: 4.0 },
-                ..RectangleSpec::new([0.0, 3.0], [-1.0, 1.0], 5, 3)
-            })
-            .unwrap(),
-        );
-        meshes.push(
-            pile_in_soil(&PileSpec {
-                kind,
-                ..PileSpec::default()
-            })
-            .unwrap(),
-        );
-    }
-    for mesh in &meshes {
-        for name in mesh.edge_set_names() {
-            let sorted = mesh.node_set(name).unwrap().to_vec();
-            let Ok(curve) = chain_sides(mesh, mesh.edge_set(name).unwrap()) else {
-                continue; // not one curve (none of the generators' sets is)
-            };
-            let mut reversed = curve.nodes.clone();
-            reversed.reverse();
-            assert!(
-                curve.nodes == sorted || reversed == sorted,
-                "{:?} `{name}`: sorted {sorted:?}, along the curve {:?}",
-                mesh.kind(),
-                curve.nodes
-            );
+        let rect = rectangle(&RectangleSpec {
+            kind,
+            grading_x: Grading::Geometric { ratio: 4.0 },
+            ..RectangleSpec::new([0.0, 3.0], [-1.0, 1.0], 5, 3)
+        })
+        .unwrap();
+        let pile = pile_in_soil(&PileSpec {
+            kind,
+            ..PileSpec::default()
+        })
+        .unwrap();
+        for (generator, mesh) in [("rectangle", &rect), ("pile", &pile)] {
+            for name in mesh.edge_set_names() {
+                let sorted = mesh.node_set(name).unwrap().to_vec();
+                let curve = chain_sides(mesh, mesh.edge_set(name).unwrap())
+                    .unwrap_or_else(|e| panic!("{generator} `{name}`: {e}"));
+                let mut reversed = curve.nodes.clone();
+                reversed.reverse();
+                if curve.nodes != sorted && reversed != sorted {
+                    off.push(format!("{generator} {kind:?} {name}"));
+                }
+            }
         }
     }
+    assert_eq!(off, ["pile Tri3 surface", "pile Tri6 surface"]);
 }
 
 #[test]
