@@ -19,9 +19,10 @@
 //!   length 2, to 1e-12 (round-off). On the set sorted by tag (the old order) the P2 set
 //!   zig-zags and they sum to about 8.9: this fails on the old code;
 //! - every step agrees with the generator's mesh node by node (matched by position): `r_n`,
-//!   `r_t`, the gap and β, to 1e-8 of the largest reaction. Same nodes, same triangles, same
-//!   areas: only the numbering differs, hence the factorisation's round-off and the solver's
-//!   tolerance (1e-10 relative by default) separate them.
+//!   `r_t`, the gap and β, to 1e-8 of the largest reaction. Same triangles, the same nodes
+//!   (Gmsh's transfinite points lie within 1.3e-12 of the generator's, so nodes are matched
+//!   to 1e-10 and the areas agree to 1e-10): only the numbering and that round-off differ,
+//!   and the solver's tolerance (1e-10 relative by default) separates the answers.
 
 #![cfg(feature = "fe")]
 
@@ -142,8 +143,9 @@ fn issue_36_gmsh_two_blocks_agree_with_the_generator() {
                     .contacts
                     .iter()
                     .find(|d| {
-                        (d.position[0] - c.position[0]).abs() < 1e-12
-                            && (d.position[1] - c.position[1]).abs() < 1e-12
+                        // Gmsh's transfinite nodes are within 1.3e-12 of the generator's
+                        (d.position[0] - c.position[0]).abs() < 1e-10
+                            && (d.position[1] - c.position[1]).abs() < 1e-10
                     })
                     .unwrap_or_else(|| panic!("no generator node at {:?}", c.position));
                 // same nodes, triangles and areas: round-off and the solver's tolerance
@@ -153,7 +155,7 @@ fn issue_36_gmsh_two_blocks_agree_with_the_generator() {
                         && (c.r.t[0] - d.r.t[0]).abs() < tol
                         && (c.gap - d.gap).abs() < 1e-8 * 0.01
                         && (c.beta - d.beta).abs() < 1e-8
-                        && (c.area - d.area).abs() < 1e-12,
+                        && (c.area - d.area).abs() < 1e-10,
                     "P{order} step {step} at {:?}: Gmsh {c:?} vs generator {d:?}",
                     c.position
                 );
