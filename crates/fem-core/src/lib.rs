@@ -24,7 +24,6 @@
 
 pub mod analytical;
 mod component;
-pub mod curve;
 pub mod error;
 pub mod generate;
 pub mod gmsh;
@@ -36,6 +35,7 @@ pub mod vtk;
 pub use error::FemError;
 pub use idealization::Idealization;
 pub use material::{Material, MaterialParams};
+pub use mesh::curve;
 pub use mesh::{ElementKind, Mesh, Side};
 pub mod element;
 pub mod quadrature;

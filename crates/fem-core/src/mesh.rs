@@ -1,7 +1,9 @@
 //! Meshes of 3-node (P1) and 6-node (P2) triangles, with regions, node sets and edge sets.
 
-use crate::curve::{CurveOrder, chain_sides};
+pub mod curve;
+
 use crate::error::FemError;
+use curve::{CurveOrder, chain_sides};
 use std::collections::BTreeMap;
 
 /// The element family of a mesh.

@@ -2,11 +2,11 @@
 //! zones built on the model's node sets, recognised (every zone must have a candidate within its
 //! alert distance at the start), and the simulation made.
 
-use super::curves;
 use super::checks::{
     at_least, expect, finite, finite2, law_error, list_names, node_set, non_negative, positive,
     solver_error,
 };
+use super::curves;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec};
 use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};

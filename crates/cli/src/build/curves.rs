@@ -20,9 +20,9 @@
 
 use super::checks::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
+use contact_laws::StandardLaw;
 use contact_solver::coupling::zone::{lumped_areas, segment_areas};
 use contact_solver::{Candidate, ContactZone, Target};
-use contact_laws::StandardLaw;
 use fem_core::curve::{CurveOrder, NotACurve, chain_sides};
 use fem_core::{LinearElasticModel, Mesh, Structure};
 
@@ -147,7 +147,10 @@ pub(super) fn check_polyline(
         }
     }
     let joint = closed.then_some((0, n - 2, 1));
-    for (k, prev, next) in joint.into_iter().chain((1..n.saturating_sub(1)).map(|k| (k, k - 1, k + 1))) {
+    for (k, prev, next) in joint
+        .into_iter()
+        .chain((1..n.saturating_sub(1)).map(|k| (k, k - 1, k + 1)))
+    {
         let (a, v, b) = (x(prev), x(k), x(next));
         let (t1, t2) = ([v[0] - a[0], v[1] - a[1]], [b[0] - v[0], b[1] - v[1]]);
         let dot = t1[0] * t2[0] + t1[1] * t2[1];
@@ -185,7 +188,9 @@ pub(super) fn check_facing(
         let zone = &zones[c.zone];
         let what = match zone.target {
             Target::Rigid(_) => continue,
-            Target::NodePairs { normal: Some(_), .. } => "the zone's `normal`",
+            Target::NodePairs {
+                normal: Some(_), ..
+            } => "the zone's `normal`",
             Target::NodePairs { normal: None, .. } => {
                 "the normal of the target nodes taken as a polyline in order, contactor on \
                  its left"

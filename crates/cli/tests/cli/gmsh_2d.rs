@@ -106,11 +106,19 @@ fn refused(scene: &str, needles: &[&str]) {
 fn issue_36_check_refuses_bad_targets() {
     refused(
         "doubles_back",
-        &["contact[0].target.set", "doubles back at node", "lower_top_tagged"],
+        &[
+            "contact[0].target.set",
+            "doubles back at node",
+            "lower_top_tagged",
+        ],
     );
     refused(
         "facing_away",
-        &["contact[0].target", "contactor node", "faces away from its target"],
+        &[
+            "contact[0].target",
+            "contactor node",
+            "faces away from its target",
+        ],
     );
     refused(
         "square",

@@ -31,7 +31,9 @@ use contact_laws::{BetaScheme, Rccm, RccmParams};
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, StepResult};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::gmsh::read_msh;
-use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports};
+use fem_core::{
+    Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports,
+};
 use std::path::PathBuf;
 
 const PATH: [f64; 4] = [-0.01, -0.005, 0.001, 0.002];
