@@ -123,7 +123,7 @@ fn issue_36_gmsh_p2_mid_side_nodes_between_corners() {
     let outline = mesh.node_set("outline").unwrap();
     let x = mesh.nodes();
     let n = outline.len();
-    assert!(n % 2 == 0);
+    assert!(n.is_multiple_of(2));
     for k in (1..n).step_by(2) {
         let (a, m, b) = (x[outline[k - 1]], x[outline[k]], x[outline[(k + 1) % n]]);
         // the mid-side node of a straight P2 side is its midpoint (Gmsh's, to round-off)
