@@ -165,3 +165,46 @@ fn issue_36_gmsh_two_blocks_agree_with_the_generator() {
         }
     }
 }
+
+/// A closed curve's areas (the closing segment included) and those of a curve of two pieces
+/// (from its sides) on the square of `fem-core/tests/data/gmsh/square_curves_p2.msh`: the
+/// perimeter 6 and the two sides' lengths 2, to 1e-12 (round-off on a few tens of segments).
+/// Without the closing segment the outline's areas fall short by its length; lumped along the
+/// two pieces' sorted nodes they bridge the gap between the pieces.
+#[test]
+fn issue_36_closed_and_pieces_areas() {
+    use contact_solver::coupling::zone::{lumped_areas, segment_areas};
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../fem-core/tests/data/gmsh/square_curves_p2.msh");
+    let mesh = read_msh(&file).unwrap();
+    let outline = mesh.node_set("outline").unwrap().to_vec();
+    let ends = mesh.node_set("ends").unwrap().to_vec();
+    let mut segments = Vec::new();
+    for &side in mesh.edge_set("ends").unwrap() {
+        let s: Vec<usize> = mesh.side_nodes(side).collect();
+        segments.extend([[s[0], s[2]], [s[2], s[1]]]);
+    }
+    let bottom = mesh.node_set("bottom").unwrap().to_vec();
+    let mut supports = Supports::new();
+    supports
+        .fix(&bottom, Component::X)
+        .fix(&bottom, Component::Y);
+    let material = Material::new(100.0, 0.3, 0.0).unwrap();
+    let model = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(1, material), (2, material)],
+        supports,
+    )
+    .unwrap();
+    let closed: f64 = lumped_areas(&model, &outline, true).iter().sum();
+    assert!((closed - 6.0).abs() < 1e-12, "closed: {closed}");
+    let open: f64 = lumped_areas(&model, &outline, false).iter().sum();
+    assert!(open < 6.0 - 1e-3, "without the closing segment: {open}");
+    let pieces = segment_areas(&model, &ends, &segments).unwrap();
+    let sum: f64 = pieces.iter().sum();
+    assert!((sum - 2.0).abs() < 1e-12, "pieces: {sum}");
+    // sorted by index, a polyline through the two pieces would bridge them: more than 2
+    let bridged: f64 = lumped_areas(&model, &ends, false).iter().sum();
+    assert!(bridged > 2.5, "bridged: {bridged}");
+}
