@@ -13,10 +13,16 @@
 //!   Each line element (type 1 or 8) is matched to a triangle side by its two end nodes; where
 //!   two triangles share that side (an interior curve), the one to the left of the line's
 //!   direction is taken. The node set holds all the nodes of those sides, mid-side nodes
-//!   included.
+//!   included, **ordered along the curve** by chaining its sides ([`Mesh::add_curve_node_set`]:
+//!   mid-side nodes between their corners, the body on the right so that the outward normal is
+//!   on the left, a closed curve from its lowest node without repeating it), whatever order
+//!   Gmsh numbers the nodes and lists the lines in. A curve that branches or is made of
+//!   disjoint pieces keeps its nodes sorted, and [`Mesh::curve_order`] says why (a contact
+//!   target refuses it).
 //! - **Physical points** (dimension 0) become node sets (from the point elements, type 15).
 //! - **Names** come from `$PhysicalNames`; an unnamed group is called `curve_<tag>` or
-//!   `point_<tag>`. A curve group and a point group of the same name share one node set.
+//!   `point_<tag>`. A curve group and a point group of the same name share one node set
+//!   (sorted by index, as it is no longer one curve).
 //!
 //! Lines and points outside physical groups are ignored. Any other element type (quadrangles,
 //! tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
@@ -539,11 +545,11 @@ fn add_physical_sets(
             }
         }
     }
-    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    let curves: Vec<String> = edge_sets.keys().cloned().collect();
     for (name, set) in edge_sets {
         mesh.add_edge_set(&name, set)?;
-        node_sets.insert(name.clone(), mesh.edge_set_nodes(&name)?);
     }
+    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for point in points {
         let node = point
             .nodes
@@ -562,6 +568,19 @@ fn add_physical_sets(
                 .cloned()
                 .unwrap_or_else(|| format!("point_{p}"));
             node_sets.entry(name).or_default().push(node);
+        }
+    }
+    for name in &curves {
+        match node_sets.remove(name) {
+            // a point group of the same name: one sorted set of both
+            Some(points) => {
+                let mut all = mesh.edge_set_nodes(name)?;
+                all.extend(points);
+                mesh.add_node_set(name, all)?;
+            }
+            None => {
+                mesh.add_curve_node_set(name)?;
+            }
         }
     }
     for (name, set) in node_sets {

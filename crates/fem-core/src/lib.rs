@@ -35,6 +35,7 @@ pub mod vtk;
 pub use error::FemError;
 pub use idealization::Idealization;
 pub use material::{Material, MaterialParams};
+pub use mesh::curve;
 pub use mesh::{ElementKind, Mesh, Side};
 pub mod element;
 pub mod quadrature;

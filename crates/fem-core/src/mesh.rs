@@ -1,6 +1,9 @@
 //! Meshes of 3-node (P1) and 6-node (P2) triangles, with regions, node sets and edge sets.
 
+pub mod curve;
+
 use crate::error::FemError;
+use curve::{CurveOrder, chain_sides};
 use std::collections::BTreeMap;
 
 /// The element family of a mesh.
@@ -61,6 +64,8 @@ pub struct Mesh {
     regions: Vec<u32>,
     node_sets: BTreeMap<String, Vec<usize>>,
     edge_sets: BTreeMap<String, Vec<Side>>,
+    /// How the node sets made by [`Mesh::add_curve_node_set`] are ordered.
+    curves: BTreeMap<String, CurveOrder>,
 }
 
 impl Mesh {
@@ -127,6 +132,7 @@ impl Mesh {
             regions,
             node_sets: BTreeMap::new(),
             edge_sets: BTreeMap::new(),
+            curves: BTreeMap::new(),
         })
     }
 
@@ -137,7 +143,44 @@ impl Mesh {
     pub fn add_node_set(&mut self, name: &str, nodes: Vec<usize>) -> Result<(), FemError> {
         let nodes = checked_node_set(self.nodes.len(), nodes)?;
         self.node_sets.insert(name.to_string(), nodes);
+        self.curves.remove(name);
         Ok(())
+    }
+
+    /// Adds (or replaces) the node set of the edge set `name`, ordered along the curve its
+    /// sides make ([`chain_sides`]: mid-side nodes between their corners, the outward normal
+    /// on the left, a closed curve's first node not repeated); a set that is not one curve
+    /// (branches, disjoint pieces) is sorted by index instead. Returns, and records for
+    /// [`Mesh::curve_order`], which it is. The Gmsh reader makes the node sets of physical
+    /// curves this way; the generators keep their sets sorted (along their straight lines).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if there is no edge set of that name.
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::curve::CurveOrder;
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    /// let mut mesh = rectangle(&RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 2, 1))?;
+    /// assert_eq!(mesh.add_curve_node_set("top")?, CurveOrder::Open);
+    /// assert_eq!(mesh.node_set("top")?, &[3, 4, 5]); // left to right: the body below
+    /// # Ok::<(), fem_core::FemError>(())
+    /// ```
+    pub fn add_curve_node_set(&mut self, name: &str) -> Result<CurveOrder, FemError> {
+        let (nodes, order) = match chain_sides(self, self.edge_set(name)?) {
+            Ok(c) if c.closed => (c.nodes, CurveOrder::Closed),
+            Ok(c) => (c.nodes, CurveOrder::Open),
+            Err(why) => (self.edge_set_nodes(name)?, CurveOrder::NotACurve(why)),
+        };
+        self.node_sets.insert(name.to_string(), nodes);
+        self.curves.insert(name.to_string(), order.clone());
+        Ok(order)
+    }
+
+    /// How the node set `name` is ordered when it was made from a curve
+    /// ([`Mesh::add_curve_node_set`]), `None` for other sets (sorted by index).
+    pub fn curve_order(&self, name: &str) -> Option<&CurveOrder> {
+        self.curves.get(name)
     }
 
     /// Adds (or replaces) a named edge set.
@@ -193,6 +236,7 @@ impl Mesh {
             regions: Vec::new(),
             node_sets: BTreeMap::new(),
             edge_sets: BTreeMap::new(),
+            curves: BTreeMap::new(),
         };
         for (prefix, part) in parts {
             if part.kind != kind {
@@ -220,6 +264,9 @@ impl Mesh {
                 }
                 out.node_sets
                     .insert(name, nodes.iter().map(|n| n + node_off).collect());
+            }
+            for (name, order) in &part.curves {
+                out.curves.insert(format!("{prefix}{name}"), order.clone());
             }
             for (name, sides) in &part.edge_sets {
                 let name = format!("{prefix}{name}");
@@ -383,7 +430,8 @@ impl Mesh {
             .collect()
     }
 
-    /// Nodes of the sides of an edge set (sorted, without duplicates).
+    /// Nodes of the sides of an edge set (sorted by index, without duplicates; see
+    /// [`Mesh::add_curve_node_set`] for the order along the curve).
     ///
     /// # Errors
     /// [`FemError::UnknownSet`] if there is no edge set of that name.

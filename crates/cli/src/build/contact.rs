@@ -7,6 +7,7 @@ use super::checks::{
     solver_error,
 };
 use super::supported::{Policy, point, resolve};
+use super::curves;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
@@ -425,7 +426,7 @@ pub(super) fn build(
         ));
         let p = &z.path;
         let mesh = model.mesh();
-        let contactor = node_set(&p.key("contactor"), mesh, &z.contactor)?;
+        let mut contactor = node_set(&p.key("contactor"), mesh, &z.contactor)?;
         zone_laws.push(z.law_name.to_string());
         let tp = p.key("target");
         let (l, alert) = (z.law, z.alert);
@@ -433,7 +434,15 @@ pub(super) fn build(
             TargetPlan::Line(line) => ContactZone::rigid(&z.name, contactor, line, l, alert),
             TargetPlan::Arc(arc) => ContactZone::rigid(&z.name, contactor, arc, l, alert),
             TargetPlan::NodePairs { set, normal } => {
-                let targets = node_set(&tp.key("set"), mesh, &set)?;
+                let targets = match normal {
+                    Some(_) => node_set(&tp.key("set"), mesh, &set)?,
+                    None => curves::target_nodes(&tp.key("set"), mesh, &set)?.0,
+                };
+                curves::match_pairs(
+                    mesh,
+                    (z.contactor.as_str(), contactor.as_mut_slice()),
+                    (set.as_str(), targets.as_slice()),
+                );
                 if targets.len() != contactor.len() {
                     return Err(CliError::at(
                         &tp.key("set"),
@@ -460,7 +469,10 @@ pub(super) fn build(
                 ContactZone::node_pairs(&z.name, contactor, targets, normal, l, alert)
             }
             TargetPlan::Segments { set } => {
-                let surface = node_set(&tp.key("set"), mesh, &set)?;
+                let (mut surface, closed) = curves::target_nodes(&tp.key("set"), mesh, &set)?;
+                if closed {
+                    surface.push(surface[0]);
+                }
                 if surface.len() < 2 {
                     return Err(CliError::at(
                         &tp.key("set"),
@@ -470,8 +482,13 @@ pub(super) fn build(
                         ),
                     ));
                 }
+                curves::check_polyline(&tp.key("set"), &set, &model, &surface)?;
                 ContactZone::node_to_segment(&z.name, contactor, surface, l, alert)
             }
+        };
+        let zone = match curves::contactor_areas(&model, &z.contactor, &zone.contactor) {
+            Some(areas) => zone.with_areas(areas),
+            None => zone,
         };
         zones.push(zone);
     }
@@ -502,6 +519,7 @@ pub(super) fn build(
     let candidates =
         recognize(&model, &zones).map_err(|e| solver_error(&root.key("contact"), e))?;
     check_candidates(&candidates, &zones, &model)?;
+    curves::check_facing(&candidates, &zones, &model)?;
     let sim = ContactSimulation::new(model, zones, settings)
         .map_err(|e| solver_error(&root.key("contact"), e))?;
     Ok((sim, zone_laws, warnings))

@@ -15,6 +15,7 @@
 
 mod checks;
 mod contact;
+mod curves;
 mod mesh;
 mod model;
 mod outputs;

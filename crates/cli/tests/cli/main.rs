@@ -9,6 +9,7 @@ mod delamination;
 mod fuzz_corpus;
 mod issue_36_outputs;
 mod issue_36_traps;
+mod gmsh_2d;
 mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;

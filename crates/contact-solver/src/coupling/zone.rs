@@ -39,7 +39,8 @@ pub enum Target {
         normal: Option<[f64; 2]>,
     },
     /// Node-to-segment: the target surface is the polyline through these nodes, in order, with
-    /// the contactor on its left.
+    /// the contactor on its left. A closed polyline repeats its first node at the end (its
+    /// joint there is then a vertex like the others).
     Segments(Vec<usize>),
 }
 
@@ -516,24 +517,81 @@ fn zone_areas<S: Structure + ?Sized, L>(
         }
         return Ok(a.clone());
     }
+    Ok(lumped_areas(s, nodes, false))
+}
+
+/// The tributary areas of `nodes` taken as a polyline in their order, as a zone without
+/// [`areas`](ContactZone::areas) gets them: each node takes half of each segment next to it,
+/// weighted at its own position (`× r` in axisymmetry, `× thickness` in plane stress, 1 per
+/// unit thickness in plane strain). `closed`: the polyline also runs from the last node back
+/// to the first (the nodes of a closed curve, each listed once). On the nodes of a P2 curve in
+/// their order along it (corner, mid-side, corner, …) the areas sum to the curve's length
+/// (plane strain). A single node gets 1.
+///
+/// The areas depend on the order: nodes sorted by index, not along their curve, give a
+/// zig-zag and areas that sum to more than the curve's length.
+pub fn lumped_areas<S: Structure + ?Sized>(s: &S, nodes: &[usize], closed: bool) -> Vec<f64> {
+    let mut areas = vec![0.0; nodes.len()];
+    let mut add = |i: usize, j: usize| {
+        let [ai, aj] = half_segment(s, nodes[i], nodes[j]);
+        areas[i] += ai;
+        areas[j] += aj;
+    };
+    for k in 1..nodes.len() {
+        add(k - 1, k);
+    }
+    if closed && nodes.len() > 2 {
+        add(nodes.len() - 1, 0);
+    }
+    if nodes.len() == 1 {
+        areas[0] = 1.0;
+    }
+    areas
+}
+
+/// The tributary areas of `nodes` from `segments` (pairs of nodes, in any order and
+/// direction, e.g. the corner-to-mid-side halves of a curve's P2 sides), lumped as
+/// [`lumped_areas`] does: each end of a segment takes half of it, weighted at its own
+/// position. The order of `nodes` plays no part: the areas of a set that is not one curve
+/// (disjoint pieces, a branch) come out right.
+///
+/// # Errors
+/// [`SolverError::InvalidGeometry`] for a segment end that is not one of `nodes`.
+pub fn segment_areas<S: Structure + ?Sized>(
+    s: &S,
+    nodes: &[usize],
+    segments: &[[usize; 2]],
+) -> Result<Vec<f64>, SolverError> {
+    let index: std::collections::HashMap<usize, usize> =
+        nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+    let mut areas = vec![0.0; nodes.len()];
+    for &[a, b] in segments {
+        let (Some(&i), Some(&j)) = (index.get(&a), index.get(&b)) else {
+            return Err(SolverError::InvalidGeometry(format!(
+                "segment {a}–{b} has an end outside the {} nodes given",
+                nodes.len()
+            )));
+        };
+        let [ai, aj] = half_segment(s, a, b);
+        areas[i] += ai;
+        areas[j] += aj;
+    }
+    Ok(areas)
+}
+
+/// Half the length of the segment `a`–`b` for each end, weighted at the end's own position
+/// (`× r` in axisymmetry, `× thickness` in plane stress, 1 in plane strain).
+fn half_segment<S: Structure + ?Sized>(s: &S, a: usize, b: usize) -> [f64; 2] {
     let factor = |x: [f64; 2]| match s.idealization() {
         Idealization::Axisymmetric => x[0],
         Idealization::PlaneStress { thickness } => thickness,
         _ => 1.0, // plane strain: per unit thickness
     };
-    let mut areas = vec![0.0; nodes.len()];
-    for k in 1..nodes.len() {
-        let (a, b) = (s.node_position(nodes[k - 1]), s.node_position(nodes[k]));
-        let d = sub(b, a);
-        let half = 0.5 * d[0].hypot(d[1]);
-        // midpoint-lumped: each node takes half the segment, weighted at its own position
-        areas[k - 1] += half * factor(a).abs();
-        areas[k] += half * factor(b).abs();
-    }
-    if nodes.len() == 1 {
-        areas[0] = 1.0;
-    }
-    Ok(areas)
+    let (a, b) = (s.node_position(a), s.node_position(b));
+    let d = sub(b, a);
+    let half = 0.5 * d[0].hypot(d[1]);
+    // midpoint-lumped: each node takes half the segment, weighted at its own position
+    [half * factor(a).abs(), half * factor(b).abs()]
 }
 
 /// Closest point of `node` on the polyline: the segment of smallest `|gap|` among those it
@@ -580,17 +638,22 @@ fn project_on_polyline<S: Structure + ?Sized>(
         }
     }
     if best.is_none() {
-        for k in 1..surface.len() - 1 {
+        // the interior vertices, and the joint of a closed polyline (first node = last)
+        let last = surface.len() - 1;
+        let closed = surface.len() > 3 && surface[0] == surface[last];
+        let joint = closed.then_some((0, last - 1, 1));
+        let interior = (1..last).map(|k| (k, k - 1, k + 1));
+        for (k, prev, next) in joint.into_iter().chain(interior) {
             let v = s.node_position(surface[k]);
             let dist = sub(p, v);
-            let na = left_normal(unit(sub(v, s.node_position(surface[k - 1])), name)?);
-            let nb = left_normal(unit(sub(s.node_position(surface[k + 1]), v), name)?);
+            let na = left_normal(unit(sub(v, s.node_position(surface[prev])), name)?);
+            let nb = left_normal(unit(sub(s.node_position(surface[next]), v), name)?);
             let n = unit([na[0] + nb[0], na[1] + nb[1]], name)?;
             let d = dist[0].hypot(dist[1]);
             // only in the vertex's own region: past the end of the previous segment and before
             // the start of the next one
-            let before = sub(v, s.node_position(surface[k - 1]));
-            let after = sub(s.node_position(surface[k + 1]), v);
+            let before = sub(v, s.node_position(surface[prev]));
+            let after = sub(s.node_position(surface[next]), v);
             let in_wedge = dot(dist, before) > 0.0 && dot(dist, after) < 0.0;
             if in_wedge && surface[k] != node && best.as_ref().is_none_or(|(g, _)| d < *g) {
                 best = Some((

@@ -19,6 +19,7 @@ mod floating_block;
 mod floating_glued;
 mod floating_two_bodies;
 mod fuzz_corpus;
+mod gmsh_two_blocks;
 mod hertz;
 mod hertz_force;
 mod hertz_revolved;

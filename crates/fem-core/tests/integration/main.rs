@@ -9,6 +9,7 @@ mod common;
 mod convergence;
 mod exact_solutions;
 mod fuzz_corpus;
+mod gmsh_curves;
 mod hostile_input;
 mod mesh_io;
 mod patch;

@@ -371,8 +371,9 @@ fn assert_p1_square(mesh: &Mesh) {
     let top = mesh.edge_set("curve_3").unwrap();
     assert_eq!(top.len(), 1);
     assert_eq!(side_nodes(mesh, top[0]), [2, 3]);
-    assert_eq!(mesh.node_set("bottom").unwrap(), &[0, 1]);
-    assert_eq!(mesh.node_set("curve_3").unwrap(), &[2, 3]);
+    // along the curve, the body on the right (issue 36): against the sides' direction
+    assert_eq!(mesh.node_set("bottom").unwrap(), &[1, 0]);
+    assert_eq!(mesh.node_set("curve_3").unwrap(), &[3, 2]);
     assert_eq!(mesh.node_set("origin").unwrap(), &[0]);
 }
 
@@ -411,8 +412,9 @@ fn parse_msh_p2_square_works() {
     }
     let bottom = mesh.edge_set("bottom").unwrap();
     assert_eq!(side_nodes(&mesh, bottom[0]), [0, 1, 4]);
-    assert_eq!(mesh.node_set("bottom").unwrap(), &[0, 1, 4]);
-    assert_eq!(mesh.node_set("curve_3").unwrap(), &[2, 3, 6]);
+    // along the curve, mid-side node between the corners, the body on the right (issue 36)
+    assert_eq!(mesh.node_set("bottom").unwrap(), &[1, 4, 0]);
+    assert_eq!(mesh.node_set("curve_3").unwrap(), &[3, 6, 2]);
     assert_eq!(mesh.node_set("origin").unwrap(), &[0]);
 }
 
@@ -459,7 +461,7 @@ fn parse_msh_sparse_tags_works() {
             side: 0
         }]
     );
-    assert_eq!(mesh.node_set("curve_4").unwrap(), &[0, 1]);
+    assert_eq!(mesh.node_set("curve_4").unwrap(), &[1, 0]); // along the curve (issue 36)
 }
 
 #[test]
