@@ -171,7 +171,7 @@ fn issue_36_active_means_closed_in_2d() {
         let mine: Vec<_> = contacts.iter().filter(|c| &c["step"] == step).collect();
         let closed = mine
             .iter()
-            .filter(|c| c["status"] == "stick" || c["status"] == "slip")
+            .filter(|c| ["stick", "slip", "closed"].contains(&c["status"].as_str()))
             .count();
         let within = mine.iter().filter(|c| c["status"] != "inactive").count();
         assert_eq!(num(row, "active_contacts") as usize, closed, "step {step}");
