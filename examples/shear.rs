@@ -12,8 +12,8 @@
 mod common;
 
 use bipo::presets::{Scene, ShearSpec};
-use bipotential::contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};
-use common::{Series, line_plot, write_series_csv};
+use bipotential::contact_solver::{Algorithm, ContactRecord, StepResult};
+use common::{Series, check, line_plot, max_difference, write_series_csv};
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -30,9 +30,7 @@ fn run(
     algorithm: Algorithm,
     snapshots: &[usize],
 ) -> Result<(Run, Scene), Box<dyn Error>> {
-    let mut settings = SimulationSettings::default();
-    settings.solver.algorithm = algorithm;
-    let mut scene = spec.build(settings)?;
+    let mut scene = spec.build(table_settings(algorithm))?;
     let mut results = Vec::with_capacity(spec.steps);
     let mut shapes = Vec::new();
     let start = Instant::now();
@@ -64,7 +62,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .nth(1)
         .map(|s| s.parse())
         .transpose()?
-        .unwrap_or(210);
+        .unwrap_or(if common::quick() { 21 } else { 210 });
     let out = PathBuf::from("out/shear");
     std::fs::create_dir_all(&out)?;
     let spec = ShearSpec {
