@@ -11,4 +11,5 @@ mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;
 mod seed_studies;
+mod seed_tables;
 mod solid;
