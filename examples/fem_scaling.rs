@@ -19,7 +19,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         .skip(1)
         .map(|a| a.parse())
         .collect::<Result<_, _>>()?;
-    let targets = if targets.is_empty() && std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
+    let targets = if targets.is_empty() && std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0")
+    {
         vec![2_000]
     } else if targets.is_empty() {
         vec![10_000, 100_000, 1_000_000]

@@ -184,7 +184,10 @@ fn main() -> Result<(), Box<dyn Error>> {
             }
             // every way solves the same steps: the fixed point stops on a β change of 1e-8,
             // so the answers differ by ~1e-8 (measured at most 7.7e-8, docs/benchmarks.md)
-            for (what, value) in [("max abs Δr / max abs r", dr / scale.max(f64::MIN_POSITIVE)), ("max abs Δβ", db)] {
+            for (what, value) in [
+                ("max abs Δr / max abs r", dr / scale.max(f64::MIN_POSITIVE)),
+                ("max abs Δβ", db),
+            ] {
                 if let Err(e) = common::check(what, value, 1e-6) {
                     misses.push(format!("{scene} {}: {e}", way.name()));
                 }

@@ -23,10 +23,16 @@ use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let n: usize = args
-        .iter()
-        .find(|a| !a.starts_with("--"))
-        .map_or(Ok(if std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") { 6 } else { 24 }), |a| a.parse())?;
+    let n: usize = args.iter().find(|a| !a.starts_with("--")).map_or(
+        Ok(
+            if std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
+                6
+            } else {
+                24
+            },
+        ),
+        |a| a.parse(),
+    )?;
     let flexibility = if args.iter().any(|a| a == "--matrix-free") {
         FlexibilityMode::MatrixFree
     } else if args.iter().any(|a| a == "--active-set") {

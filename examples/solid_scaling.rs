@@ -20,7 +20,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut args = std::env::args().skip(1).peekable();
     let mode = args.next().unwrap_or_else(|| "p2".into());
     let targets: Vec<usize> = args.map(|a| a.parse()).collect::<Result<_, _>>()?;
-    let targets = if targets.is_empty() && std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
+    let targets = if targets.is_empty() && std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0")
+    {
         vec![3_000]
     } else if targets.is_empty() {
         vec![10_000, 100_000, 300_000]

@@ -571,8 +571,14 @@ mod tests {
             // numbers (~200 000 characters)
             assert!(debug.len() < 500, "{} chars: {debug}", debug.len());
             assert!(display.len() < 500, "{display}");
-            assert!(debug.contains("10000") && debug.contains("9.27e-8"), "{debug}");
-            assert!(display.contains("10000") && display.contains("9.27e-8"), "{display}");
+            assert!(
+                debug.contains("10000") && debug.contains("9.27e-8"),
+                "{debug}"
+            );
+            assert!(
+                display.contains("10000") && display.contains("9.27e-8"),
+                "{display}"
+            );
             assert!(display.contains(&format!("{last:.3e}")), "{display}");
             assert!(debug.contains(&format!("{last:e}")), "{debug}");
             assert!(debug.contains("10000 values, last 5"), "{debug}");

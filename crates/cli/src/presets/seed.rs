@@ -4,11 +4,11 @@
 //! `docs/validation.md` ("Reproducing the seed").
 
 use contact_laws::{BetaScheme, Rccm, RccmParams};
-use contact_solver::local::adhesion::AdhesionMethod;
-use contact_solver::{Algorithm, SolverError};
 use contact_solver::coupling::obstacle::RigidLine;
 use contact_solver::coupling::simulation::{ContactSimulation, SimulationSettings, StepResult};
 use contact_solver::coupling::zone::ContactZone;
+use contact_solver::local::adhesion::AdhesionMethod;
+use contact_solver::{Algorithm, SolverError};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 
@@ -114,7 +114,8 @@ impl Scene {
 /// assert_eq!(s.solver.algorithm, Algorithm::ClassicRccm);
 /// ```
 pub fn table_settings(algorithm: Algorithm) -> SimulationSettings {
-    let mut settings = SimulationSettings::default().with_adhesion_method(AdhesionMethod::FixedPoint);
+    let mut settings =
+        SimulationSettings::default().with_adhesion_method(AdhesionMethod::FixedPoint);
     settings.solver.algorithm = algorithm;
     settings
 }

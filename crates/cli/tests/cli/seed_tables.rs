@@ -30,9 +30,16 @@ fn scene_last_step(name: &str) -> BTreeMap<usize, BTreeMap<String, f64>> {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let text = std::fs::read_to_string(scenes.join(format!("{name}.toml"))).unwrap();
-    assert!(text.contains("\nsteps = 210"), "{name}.toml gives 210 steps");
+    assert!(
+        text.contains("\nsteps = 210"),
+        "{name}.toml gives 210 steps"
+    );
     let scene = dir.join(format!("{name}.toml"));
-    std::fs::write(&scene, text.replace("\nsteps = 210", &format!("\nsteps = {STEPS}"))).unwrap();
+    std::fs::write(
+        &scene,
+        text.replace("\nsteps = 210", &format!("\nsteps = {STEPS}")),
+    )
+    .unwrap();
     let out = dir.join("out");
     let run = Command::new(env!("CARGO_BIN_EXE_bipo"))
         .arg("run")

@@ -302,7 +302,11 @@ impl ClassicScratch {
             // step, so that it goes to its bound against x. The zero may be −0.0 (the spring
             // condensation writes one), and 1/−0.0 = −∞ sent it to the wrong bound: the 5.6.2
             // shear stalled at its corner node (issue 36).
-            if w_kk > 0.0 { 1.0 / w_kk } else { f64::INFINITY }
+            if w_kk > 0.0 {
+                1.0 / w_kk
+            } else {
+                f64::INFINITY
+            }
         }));
         self.inv_lambda_t.clear();
         if DT == 2 {
@@ -466,14 +470,23 @@ mod tests {
         let sol = UzawaSolver::new(settings).solve(&problem, &laws).unwrap();
         let (r_n, r_t) = (sol.r[0], sol.r[1]);
         // tol 1e-10 on the natural map: the answer to about that, relative to |r| ~ 1
-        assert!(r_n > 0.5 && sol.x[0].abs() < 1e-8, "r_n {r_n}, x_n {}", sol.x[0]);
+        assert!(
+            r_n > 0.5 && sol.x[0].abs() < 1e-8,
+            "r_n {r_n}, x_n {}",
+            sol.x[0]
+        );
         assert!((r_t + 0.3 * r_n).abs() < 1e-8, "r_t {r_t} against −μ r_n");
         // the bipotential sweep gives the same answer
         let gs = UzawaSolver::new(settings.with_algorithm(Algorithm::GaussSeidel))
             .solve(&problem, &laws)
             .unwrap();
         for (a, b) in sol.r.iter().zip(&gs.r) {
-            assert!((a - b).abs() < 1e-8, "classic {:?} against GS {:?}", sol.r, gs.r);
+            assert!(
+                (a - b).abs() < 1e-8,
+                "classic {:?} against GS {:?}",
+                sol.r,
+                gs.r
+            );
         }
     }
 }
