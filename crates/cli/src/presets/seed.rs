@@ -104,7 +104,7 @@ impl Scene {
 /// [`Algorithm::ClassicRccm`]), so that both count their contact iterations the same way; the
 /// rest is [`SimulationSettings::default`]. The answer is the `bipo` scene's
 /// (`examples/scenes/{delamination,shear}.toml`, default settings) to the solvers' tolerances
-/// (`crates/cli/tests/cli/seed_studies.rs`).
+/// (`crates/cli/tests/cli/seed_tables.rs`).
 ///
 /// # Examples
 /// ```
