@@ -87,7 +87,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
     // the same meridian mesh and installation: the 3D model differs by its sectors' faceting
     // (measured 0.55 % with 5 sectors on the coarse mesh); 3 % flags a real disagreement
-    if !(worst <= 0.03) {
+    if worst.is_nan() || worst > 0.03 {
         return Err(format!(
             "the 3D curve is {:.2} % of the peak off the axisymmetric one (tolerance 3 %)",
             100.0 * worst
