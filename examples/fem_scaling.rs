@@ -2,7 +2,8 @@
 //! model build (pattern + assembly + symbolic + numeric Cholesky), and one solve, for a list of
 //! target DOF counts (default 1e4, 1e5, 1e6).
 //!
-//! Run: `cargo run --release --example fem_scaling -- 10000 100000 1000000`
+//! Run: `cargo run --release --example fem_scaling -- 10000 100000 1000000` (`BIPO_QUICK=1`
+//! and no sizes: 2000 DOF).
 //! Peak memory: `/usr/bin/time -v target/release/examples/fem_scaling 1000000`.
 
 use bipotential::fem_core::generate::{RectangleSpec, rectangle};
@@ -18,7 +19,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         .skip(1)
         .map(|a| a.parse())
         .collect::<Result<_, _>>()?;
-    let targets = if targets.is_empty() {
+    let targets = if targets.is_empty() && std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0")
+    {
+        vec![2_000]
+    } else if targets.is_empty() {
         vec![10_000, 100_000, 1_000_000]
     } else {
         targets

@@ -9,7 +9,8 @@
 //! ```
 //! Defaults: `S = 2`, the seed's mesh (32 shaft cells), 50 increments. `--coarse` takes 8 shaft
 //! cells (a quick look); `--active-set` solves the 3D model with the primal active set (the
-//! springs on the stiffness, no `F*`) instead of the dense `F*`.
+//! springs on the stiffness, no `F*`) instead of the dense `F*`. `BIPO_QUICK=1`: `--coarse`
+//! and 5 increments. Ends in an error when the curves differ by more than 3 % of the peak.
 
 use bipo::presets::{Installation, PulloutSpec};
 use bipotential::contact_solver::coupling::solid::SolidSettings;
@@ -19,12 +20,22 @@ use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    // the first number that is not the value of `--steps`
     let sectors: usize = args
         .iter()
-        .find(|a| !a.starts_with("--") && a.parse::<usize>().is_ok())
-        .map_or(Ok(2), |s| s.parse())?;
+        .enumerate()
+        .find(|(i, a)| {
+            !a.starts_with("--")
+                && a.parse::<usize>().is_ok()
+                && (*i == 0 || args[i - 1] != "--steps")
+        })
+        .map_or(Ok(2), |(_, s)| s.parse())?;
+    let quick = std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0");
     let mut spec = PulloutSpec::plancoet();
-    if args.iter().any(|a| a == "--coarse") {
+    if quick {
+        spec.steps = 5;
+    }
+    if quick || args.iter().any(|a| a == "--coarse") {
         (
             spec.mesh.cells_shaft,
             spec.mesh.cells_soil_r,
@@ -74,5 +85,14 @@ fn main() -> Result<(), Box<dyn Error>> {
         "largest difference, relative to the peak load {peak:.2} kN: {:.2} %",
         100.0 * worst
     );
+    // the same meridian mesh and installation: the 3D model differs by its sectors' faceting
+    // (measured 0.55 % with 5 sectors on the coarse mesh); 3 % flags a real disagreement
+    if worst.is_nan() || worst > 0.03 {
+        return Err(format!(
+            "the 3D curve is {:.2} % of the peak off the axisymmetric one (tolerance 3 %)",
+            100.0 * worst
+        )
+        .into());
+    }
     Ok(())
 }

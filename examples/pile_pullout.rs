@@ -12,7 +12,8 @@
 //! `shaft_<site>.csv` and SVGs of the shear stress, β and normal stress along the shaft at
 //! increments 5, 10, 25 and 50, and `param_{C,w,mu}.{csv,svg}`.
 //!
-//! `cargo run --release --example pile_pullout`
+//! `cargo run --release --example pile_pullout` (`BIPO_QUICK=1`: 5 increments on a coarse mesh,
+//! 8 shaft cells).
 
 #[path = "common/mod.rs"]
 mod common;
@@ -30,6 +31,20 @@ struct Done {
     scene: PulloutScene,
     run: PulloutRun,
     seconds: f64,
+}
+
+/// `spec`, or with `BIPO_QUICK=1` its quick version: 5 increments on the coarse mesh of
+/// `pile_3d --coarse` (8 shaft cells).
+fn sized(mut spec: PulloutSpec) -> PulloutSpec {
+    if common::quick() {
+        spec.steps = 5;
+        (
+            spec.mesh.cells_shaft,
+            spec.mesh.cells_soil_r,
+            spec.mesh.cells_below_tip,
+        ) = (8, 6, 4);
+    }
+    spec
 }
 
 fn run(spec: &PulloutSpec) -> Result<Done, Box<dyn Error>> {
@@ -102,8 +117,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(&out)?;
 
     let sites = [
-        ("plancoet", PulloutSpec::plancoet()),
-        ("cran", PulloutSpec::cran()),
+        ("plancoet", sized(PulloutSpec::plancoet())),
+        ("cran", sized(PulloutSpec::cran())),
     ];
     let mut main_runs = Vec::new();
     for (name, spec) in &sites {
@@ -202,7 +217,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     write_series_csv(&out.join("load_displacement.csv"), "v_mm", "Q_kN", &all)?;
 
     // Parametric study on Plancoët (§6.5): one parameter varied at a time.
-    let base = PulloutSpec::plancoet();
+    let base = sized(PulloutSpec::plancoet());
     type Set = fn(&mut RccmParams, f64);
     let studies: [(&str, &str, &[f64], Set); 3] = [
         (

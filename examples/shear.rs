@@ -6,14 +6,19 @@
 //! t = 2.143, 3.143 and 3.571 s for both algorithms; adhesive, contact and total reactions at
 //! point A over the loading (seed figs 5.15–5.21), as CSV and SVG; and `table_5_2.md`.
 //!
-//! `cargo run --release --example shear [steps]` (default 210, the seed's).
+//! Both algorithms run in the seed's fixed point on β (`bipo::presets::seed::table_settings`),
+//! and their answers must agree (max |Δr| / max |r| and max |Δβ| at most 1e-6, else an error).
+//!
+//! `cargo run --release --example shear [steps]` (default 210, the seed's; 21 with
+//! `BIPO_QUICK=1`).
 
 #[path = "common/mod.rs"]
 mod common;
 
+use bipo::presets::seed::table_settings;
 use bipo::presets::{Scene, ShearSpec};
-use bipotential::contact_solver::{Algorithm, ContactRecord, SimulationSettings, StepResult};
-use common::{Series, line_plot, write_series_csv};
+use bipotential::contact_solver::{Algorithm, ContactRecord, StepResult};
+use common::{Series, check, line_plot, max_difference, write_series_csv};
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -30,9 +35,7 @@ fn run(
     algorithm: Algorithm,
     snapshots: &[usize],
 ) -> Result<(Run, Scene), Box<dyn Error>> {
-    let mut settings = SimulationSettings::default();
-    settings.solver.algorithm = algorithm;
-    let mut scene = spec.build(settings)?;
+    let mut scene = spec.build(table_settings(algorithm))?;
     let mut results = Vec::with_capacity(spec.steps);
     let mut shapes = Vec::new();
     let start = Instant::now();
@@ -64,7 +67,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .nth(1)
         .map(|s| s.parse())
         .transpose()?
-        .unwrap_or(210);
+        .unwrap_or(if common::quick() { 21 } else { 210 });
     let out = PathBuf::from("out/shear");
     std::fs::create_dir_all(&out)?;
     let spec = ShearSpec {
@@ -76,6 +79,11 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     let (bip, scene) = run(&spec, Algorithm::GaussSeidel, &snaps)?;
     let (cla, _) = run(&spec, Algorithm::ClassicRccm, &[])?;
+    // The two algorithms solve the same steps: their answers agree to the fixed point's β
+    // tolerance (1e-8, `SimulationSettings::adhesion_tol`) with a margin (measured: ~1e-9).
+    let (dr, db) = max_difference(&bip.results, &cla.results);
+    check("max |Δr| / max |r|, bipotential against classic", dr, 1e-6)?;
+    check("max |Δβ|, bipotential against classic", db, 1e-6)?;
     let t_of = |k: usize| spec.duration * k as f64 / steps as f64;
 
     // Deformed outline (fig 5.15): the four sides, displacements × 1.
@@ -228,7 +236,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     let last = along(bip.results.last().unwrap());
     let debonded = last.iter().filter(|c| c.beta < 1e-3).count();
     println!(
-        "\n{steps} steps; at the end {debonded} of {} interface nodes debonded; outputs in {}",
+        "\n{steps} steps; at the end {debonded} of {} interface nodes debonded; bipotential \
+         against classic: max |Δr| / max |r| = {dr:.1e}, max |Δβ| = {db:.1e}; outputs in {}",
         last.len(),
         out.display()
     );

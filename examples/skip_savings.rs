@@ -1,7 +1,11 @@
 //! "Skip what a scene does not need": time and counters on the seed scenes and on a
 //! frictionless pressed block, with every skip rule on and with each rule switched off.
 //!
-//! `cargo run --release --example skip_savings`
+//! `cargo run --release --example skip_savings` (`BIPO_QUICK=1`: 21 steps of the seed scenes, a
+//! 40 × 5 block).
+
+#[path = "common/mod.rs"]
+mod common;
 
 use bipo::presets::{DelaminationSpec, ShearSpec};
 use bipotential::contact_laws::Signorini;
@@ -19,10 +23,19 @@ type Outcome = (f64, Counters);
 
 fn seed_scene(delamination: bool, skip: SkipRules) -> Result<Outcome, Box<dyn Error>> {
     let settings = SimulationSettings::default().with_skip(skip);
+    let steps = if common::quick() { 21 } else { 210 };
     let mut scene = if delamination {
-        DelaminationSpec::default().build(settings)?
+        DelaminationSpec {
+            steps,
+            ..DelaminationSpec::default()
+        }
+        .build(settings)?
     } else {
-        ShearSpec::default().build(settings)?
+        ShearSpec {
+            steps,
+            ..ShearSpec::default()
+        }
+        .build(settings)?
     };
     let start = Instant::now();
     for k in 1..=scene.steps {
@@ -34,7 +47,8 @@ fn seed_scene(delamination: bool, skip: SkipRules) -> Result<Outcome, Box<dyn Er
 /// A 4 × 1 P2 block whose bottom 0.001 above a LINE is pressed in 20 steps; only the middle
 /// half of the bottom can touch (the LINE spans x ∈ [1, 3]), so half the candidates never do.
 fn block(skip: SkipRules) -> Result<Outcome, Box<dyn Error>> {
-    let mut spec = RectangleSpec::new([0.0, 4.0], [0.001, 1.001], 160, 20);
+    let (nx, ny) = if common::quick() { (40, 5) } else { (160, 20) };
+    let mut spec = RectangleSpec::new([0.0, 4.0], [0.001, 1.001], nx, ny);
     spec.kind = ElementKind::Tri6;
     let mesh = rectangle(&spec)?;
     let top = mesh.node_set("top")?.to_vec();

@@ -3,7 +3,8 @@
 //! (every top node active), indented by a rigid ball.
 //!
 //! Run: `cargo run --release --example solid_contact_scaling -- 24 --dense` (`n`: cells per
-//! side of the top; `--dense`, `--matrix-free` or `--active-set`; `--coulomb` for μ = 0.3).
+//! side of the top, default 24, 6 with `BIPO_QUICK=1`; `--dense`, `--matrix-free` or
+//! `--active-set`; `--coulomb` for μ = 0.3).
 //!
 //! Quarter model: block `[0, 1]² × [−0.5, 0]`, `n × n × n/2` cells of six P1 tetrahedra,
 //! symmetry on x = 0 and y = 0, bottom pushed up by 0.03; ball R = 1 centred at (0, 0, 1);
@@ -22,10 +23,16 @@ use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let n: usize = args
-        .iter()
-        .find(|a| !a.starts_with("--"))
-        .map_or(Ok(24), |a| a.parse())?;
+    let n: usize = args.iter().find(|a| !a.starts_with("--")).map_or(
+        Ok(
+            if std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
+                6
+            } else {
+                24
+            },
+        ),
+        |a| a.parse(),
+    )?;
     let flexibility = if args.iter().any(|a| a == "--matrix-free") {
         FlexibilityMode::MatrixFree
     } else if args.iter().any(|a| a == "--active-set") {

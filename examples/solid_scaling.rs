@@ -3,7 +3,8 @@
 //! numeric Cholesky), one numeric refactorisation alone, and one solve, for a list of target
 //! DOF counts (default 1e4, 1e5, 3e5).
 //!
-//! Run: `cargo run --release --example solid_scaling -- p2 10000 100000 300000`
+//! Run: `cargo run --release --example solid_scaling -- p2 10000 100000 300000` (`BIPO_QUICK=1`
+//! and no sizes: 3000 DOF).
 //! Peak memory, one size per process: `/usr/bin/time -v target/release/examples/solid_scaling p2 300000`.
 //! The first argument is `p1`/`p2` (nested dissection, the default) or `p1-amd`/`p2-amd`
 //! (faer's AMD ordering).
@@ -19,7 +20,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut args = std::env::args().skip(1).peekable();
     let mode = args.next().unwrap_or_else(|| "p2".into());
     let targets: Vec<usize> = args.map(|a| a.parse()).collect::<Result<_, _>>()?;
-    let targets = if targets.is_empty() {
+    let targets = if targets.is_empty() && std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0")
+    {
+        vec![3_000]
+    } else if targets.is_empty() {
         vec![10_000, 100_000, 300_000]
     } else {
         targets

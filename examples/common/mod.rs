@@ -1,7 +1,9 @@
-//! Shared helpers of the seed-study examples: CSV tables and SVG line plots (plotters).
+//! Shared helpers of the seed-study examples: CSV tables and SVG line plots (plotters), the
+//! quick mode (`BIPO_QUICK=1`, as CI runs the examples) and the checks of their figures.
 
 #![allow(dead_code)]
 
+use bipotential::contact_solver::StepResult;
 use plotters::prelude::*;
 use std::error::Error;
 use std::fmt::Write as _;
@@ -118,4 +120,41 @@ pub fn line_plot(
         .draw()?;
     root.present()?;
     Ok(())
+}
+
+/// `true` when the environment variable `BIPO_QUICK` is set (and not `0`): the examples then
+/// run a small version of their study (fewer steps, sizes or repeats, the same code), as CI
+/// does (`.ci/run`). Arguments given on the command line still win.
+pub fn quick() -> bool {
+    std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0")
+}
+
+/// The largest difference of two runs of the same scene over every step and contact: the
+/// reactions `|Δr_n|`, `|Δr_t|` relative to the largest `|r|` of `b`, and `|Δβ|`.
+pub fn max_difference(a: &[StepResult], b: &[StepResult]) -> (f64, f64) {
+    let scale = b
+        .iter()
+        .flat_map(|s| s.contacts.iter().map(|c| c.r.n.abs().max(c.r.t[0].abs())))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let (mut dr, mut db) = (0.0_f64, 0.0_f64);
+    for (x, y) in a.iter().zip(b) {
+        for (p, q) in x.contacts.iter().zip(&y.contacts) {
+            dr = dr
+                .max((p.r.n - q.r.n).abs())
+                .max((p.r.t[0] - q.r.t[0]).abs());
+            db = db.max((p.beta - q.beta).abs());
+        }
+    }
+    (dr / scale, db)
+}
+
+/// An error naming `what` when `value` exceeds `tolerance` (or is NaN): the examples' check of
+/// a figure against its reference, so that a miss stops them with a non-zero exit.
+pub fn check(what: &str, value: f64, tolerance: f64) -> Result<(), Box<dyn Error>> {
+    if value <= tolerance {
+        Ok(())
+    } else {
+        Err(format!("{what} = {value:e} exceeds its tolerance {tolerance:e}").into())
+    }
 }

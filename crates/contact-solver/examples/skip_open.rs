@@ -5,6 +5,7 @@
 //! ```text
 //! cargo run --release -p contact-solver --example skip_open -- [ROUNDS]
 //! ```
+//! `BIPO_QUICK=1`: one small half-space (16 cells across) and one small pile (5 × 5 × 3).
 //! Problems: the 3D elastic half-space under a sphere (a Hertz patch of radius ≈ 0.45 in a
 //! unit disc of nodes: ~20 % of the contacts close, ~40 % start with `q_n < 0`), dense, and
 //! the same with a larger disc (radius 1.5: ~9 % close); shaken piles of rigid spheres
@@ -23,7 +24,19 @@ use twins::sparse_twin;
 
 fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
     let mut out = Vec::new();
-    for (radius, cells) in [(1.0, 30), (1.0, 40), (1.5, 45)] {
+    // quick (`BIPO_QUICK=1`, as CI runs it): one small problem of each kind
+    let quick = std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0");
+    let discs: &[(f64, usize)] = if quick {
+        &[(1.0, 16)]
+    } else {
+        &[(1.0, 30), (1.0, 40), (1.5, 45)]
+    };
+    let piles: &[(usize, usize, u64)] = if quick {
+        &[(5, 3, 3)]
+    } else {
+        &[(7, 5, 3), (10, 6, 4)]
+    };
+    for &(radius, cells) in discs {
         let hs = HalfSpace {
             radius,
             cells_across: cells,
@@ -40,7 +53,7 @@ fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
         initial_speed: 0.05,
         ..SpherePile::default()
     };
-    for (nx, layers, seed) in [(7, 5, 3), (10, 6, 4)] {
+    for &(nx, layers, seed) in piles {
         let p = SpherePile {
             nx,
             ny: nx,

@@ -14,7 +14,8 @@
 //! and `OUT/ours.csv` (one row per problem, algorithm and tolerance) and `OUT/problems.txt`
 //! (one line per problem: name, contacts, bodies, rank deficiency). With `--only NAME` it
 //! times that problem alone and prints its rows (the Python script calls it so, between
-//! Siconos' runs, to alternate ours and theirs).
+//! Siconos' runs, to alternate ours and theirs). `BIPO_QUICK=1` (without `--only`) takes the
+//! smallest problem of each kind: `pile_rest_3x3x3`, `halfspace_12`, `random_100`.
 //!
 //! Timing: cold start (`r = 0`), one thread (`faer::Par::Seq`), fallback off, the **median** of
 //! 5 runs (1 run when the first takes over 2 s; the count is in the table), tolerances 1e-8
@@ -143,8 +144,15 @@ fn problems(only: Option<&str>) -> Result<Vec<Problem>, Box<dyn Error>> {
             }),
         ),
     ];
+    // quick (`BIPO_QUICK=1`, as CI runs it): the smallest problem of each kind
+    let quick = std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0");
+    let small = ["pile_rest_3x3x3", "halfspace_12", "random_100"];
     for (name, make) in makers {
-        if only.is_none_or(|o| o == name) {
+        let wanted = match only {
+            Some(o) => o == name,
+            None => !quick || small.contains(&name),
+        };
+        if wanted {
             out.push(make()?);
         }
     }

@@ -9,7 +9,14 @@ use std::fmt;
 use std::sync::Arc;
 
 /// Error of `contact-solver`.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+///
+/// `Debug` is written out (not derived) so that the variants carrying an iteration history
+/// ([`NotConverged`](Self::NotConverged), [`Stalled`](Self::Stalled),
+/// [`AdhesionNotConverged`](Self::AdhesionNotConverged)) print its length and last
+/// [`HISTORY_SHOWN`] values, not thousands of numbers: `main` returning
+/// `Result<(), Box<dyn Error>>` prints its error with `Debug`. The whole history stays in the
+/// field ([`history`](Self::history)).
+#[derive(Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SolverError {
     /// An array does not have the length the problem needs.
@@ -130,7 +137,8 @@ pub enum SolverError {
     },
     /// The iteration reached `max_iterations` before meeting the stopping rule.
     #[error(
-        "the contact iteration did not converge in {iterations} iterations (residual {residual:e})"
+        "the contact iteration did not converge in {iterations} iterations (residual {residual:e}; {})",
+        tail_note("residuals", history)
     )]
     NotConverged {
         /// Iterations done.
@@ -145,8 +153,9 @@ pub enum SolverError {
     /// (nor over the second half of the run) — typically a problem with no solution (a
     /// rank-deficient `W` with incompatible `q`), or one the algorithm cannot solve.
     #[error(
-        "the contact iteration stalled: {algorithm}{} made no progress, stopped after {iterations} iterations at residual {residual:e} (best {best_residual:e}); the problem may have no solution",
-        fallback_note(fallback_from)
+        "the contact iteration stalled: {algorithm}{} made no progress, stopped after {iterations} iterations at residual {residual:e} (best {best_residual:e}; {}); the problem may have no solution",
+        fallback_note(fallback_from),
+        tail_note("residuals", history)
     )]
     Stalled {
         /// The algorithm that stalled (the fallback's when there was one), by the name of its
@@ -220,7 +229,8 @@ pub enum SolverError {
     },
     /// The fixed point between the contact solve and the adhesion update did not converge.
     #[error(
-        "the adhesion fixed point did not converge in {iterations} iterations (last change of beta {change:e})"
+        "the adhesion fixed point did not converge in {iterations} iterations (last change of beta {change:e}; {})",
+        tail_note("changes", history)
     )]
     AdhesionNotConverged {
         /// Fixed-point iterations done.
@@ -236,6 +246,209 @@ pub enum SolverError {
 fn fallback_note(from: &Option<&'static str>) -> String {
     from.map(|a| format!(" (the fallback after {a})"))
         .unwrap_or_default()
+}
+
+/// `last residuals: a, b, …` (the last [`HISTORY_SHOWN`] values of `history`), or `no history`.
+fn tail_note(what: &str, history: &[f64]) -> String {
+    if history.is_empty() {
+        return "no history".to_string();
+    }
+    let shown = &history[history.len().saturating_sub(HISTORY_SHOWN)..];
+    let values: Vec<String> = shown.iter().map(|v| format!("{v:.3e}")).collect();
+    format!("last {what}: {}", values.join(", "))
+}
+
+/// How many of a history's last values [`SolverError`]'s `Debug` shows.
+pub const HISTORY_SHOWN: usize = 5;
+
+impl SolverError {
+    /// The iteration history an error carries (the natural-map residual of every iteration
+    /// for [`NotConverged`](Self::NotConverged) and [`Stalled`](Self::Stalled), the largest
+    /// state change of every fixed-point iteration for
+    /// [`AdhesionNotConverged`](Self::AdhesionNotConverged)), whole; `None` for the other
+    /// variants.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::SolverError;
+    /// let e = SolverError::NotConverged { iterations: 3, residual: 0.1, history: vec![1.0, 0.5, 0.1] };
+    /// assert_eq!(e.history(), Some(&[1.0, 0.5, 0.1][..]));
+    /// ```
+    pub fn history(&self) -> Option<&[f64]> {
+        match self {
+            Self::NotConverged { history, .. }
+            | Self::Stalled { history, .. }
+            | Self::AdhesionNotConverged { history, .. } => Some(history),
+            _ => None,
+        }
+    }
+}
+
+/// A history in `Debug`: its length and its last [`HISTORY_SHOWN`] values.
+struct HistoryTail<'a>(&'a [f64]);
+
+impl fmt::Debug for HistoryTail<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let h = self.0;
+        if h.len() <= HISTORY_SHOWN {
+            return f.debug_list().entries(h).finish();
+        }
+        write!(f, "[{} values, last {HISTORY_SHOWN}: ", h.len())?;
+        for (k, v) in h[h.len() - HISTORY_SHOWN..].iter().enumerate() {
+            if k > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "{v:e}")?;
+        }
+        f.write_str("]")
+    }
+}
+
+impl fmt::Debug for SolverError {
+    // one arm per variant, as `#[derive(Debug)]` would write them, but with the histories cut
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::SizeMismatch {
+                what,
+                expected,
+                found,
+            } => f
+                .debug_struct("SizeMismatch")
+                .field("what", what)
+                .field("expected", expected)
+                .field("found", found)
+                .finish(),
+            Self::NonFinite { what, index, value } => f
+                .debug_struct("NonFinite")
+                .field("what", what)
+                .field("index", index)
+                .field("value", value)
+                .finish(),
+            Self::IndexOutOfRange {
+                what,
+                index,
+                value,
+                bound,
+            } => f
+                .debug_struct("IndexOutOfRange")
+                .field("what", what)
+                .field("index", index)
+                .field("value", value)
+                .field("bound", bound)
+                .finish(),
+            Self::NotSymmetric {
+                row,
+                col,
+                difference,
+                tolerance,
+            } => f
+                .debug_struct("NotSymmetric")
+                .field("row", row)
+                .field("col", col)
+                .field("difference", difference)
+                .field("tolerance", tolerance)
+                .finish(),
+            Self::NotPositiveDefinite { contact } => f
+                .debug_struct("NotPositiveDefinite")
+                .field("contact", contact)
+                .finish(),
+            Self::InvalidLaw { contact, source } => f
+                .debug_struct("InvalidLaw")
+                .field("contact", contact)
+                .field("source", source)
+                .finish(),
+            Self::NoFrictionCoefficient { contact } => f
+                .debug_struct("NoFrictionCoefficient")
+                .field("contact", contact)
+                .finish(),
+            Self::Law(e) => f.debug_tuple("Law").field(e).finish(),
+            Self::Json { source } => f.debug_struct("Json").field("source", source).finish(),
+            Self::Format { reason } => f.debug_struct("Format").field("reason", reason).finish(),
+            Self::Fclib {
+                path,
+                reason,
+                source,
+            } => f
+                .debug_struct("Fclib")
+                .field("path", path)
+                .field("reason", reason)
+                .field("source", source)
+                .finish(),
+            Self::Io { what, source } => f
+                .debug_struct("Io")
+                .field("what", what)
+                .field("source", source)
+                .finish(),
+            Self::NotConverged {
+                iterations,
+                residual,
+                history,
+            } => f
+                .debug_struct("NotConverged")
+                .field("iterations", iterations)
+                .field("residual", residual)
+                .field("history", &HistoryTail(history))
+                .finish(),
+            Self::Stalled {
+                algorithm,
+                fallback_from,
+                iterations,
+                residual,
+                best_residual,
+                history,
+            } => f
+                .debug_struct("Stalled")
+                .field("algorithm", algorithm)
+                .field("fallback_from", fallback_from)
+                .field("iterations", iterations)
+                .field("residual", residual)
+                .field("best_residual", best_residual)
+                .field("history", &HistoryTail(history))
+                .finish(),
+            Self::InvalidGeometry(s) => f.debug_tuple("InvalidGeometry").field(s).finish(),
+            Self::Unsupported(s) => f.debug_tuple("Unsupported").field(s).finish(),
+            Self::UnknownZone { name, known } => f
+                .debug_struct("UnknownZone")
+                .field("name", name)
+                .field("known", known)
+                .finish(),
+            Self::InvalidSetting {
+                what,
+                value,
+                expected,
+            } => f
+                .debug_struct("InvalidSetting")
+                .field("what", what)
+                .field("value", value)
+                .field("expected", expected)
+                .finish(),
+            #[cfg(feature = "fe")]
+            Self::Structure(e) => f.debug_tuple("Structure").field(e).finish(),
+            #[cfg(feature = "fe")]
+            Self::Unbalanced {
+                body,
+                motion,
+                imbalance,
+                load,
+            } => f
+                .debug_struct("Unbalanced")
+                .field("body", body)
+                .field("motion", motion)
+                .field("imbalance", imbalance)
+                .field("load", load)
+                .finish(),
+            Self::AdhesionNotConverged {
+                iterations,
+                change,
+                history,
+            } => f
+                .debug_struct("AdhesionNotConverged")
+                .field("iterations", iterations)
+                .field("change", change)
+                .field("history", &HistoryTail(history))
+                .finish(),
+        }
+    }
 }
 
 #[cfg(feature = "serde")]
@@ -322,5 +535,67 @@ mod tests {
         assert_eq!(e.to_string(), "invalid contact law");
         assert!(chain(&e).starts_with("invalid contact law: invalid parameter `mu`"));
         assert_eq!(chain(&e).matches("invalid parameter").count(), 1);
+    }
+
+    /// Issue 36: an error with a 10 000-entry history (the seed's `shear` example printed
+    /// every value through `main`'s `Debug`) renders short, with the iterations, the residual
+    /// and the last values, in `Display` and `Debug`; the whole history stays in the field.
+    #[test]
+    fn issue_36_history_errors_render_short() {
+        let history: Vec<f64> = (0..10_000).map(|k| 1e-7 - 1e-12 * k as f64).collect();
+        let last = history[9_999];
+        let errors = [
+            SolverError::NotConverged {
+                iterations: 10_000,
+                residual: 9.27e-8,
+                history: history.clone(),
+            },
+            SolverError::Stalled {
+                algorithm: "GaussSeidel",
+                fallback_from: None,
+                iterations: 10_000,
+                residual: 9.27e-8,
+                best_residual: 9.2e-8,
+                history: history.clone(),
+            },
+            SolverError::AdhesionNotConverged {
+                iterations: 10_000,
+                change: 9.27e-8,
+                history: history.clone(),
+            },
+        ];
+        for e in &errors {
+            let debug = format!("{e:?}");
+            let display = e.to_string();
+            // 500 characters: a few lines of a terminal; the full history printed 10 000
+            // numbers (~200 000 characters)
+            assert!(debug.len() < 500, "{} chars: {debug}", debug.len());
+            assert!(display.len() < 500, "{display}");
+            assert!(
+                debug.contains("10000") && debug.contains("9.27e-8"),
+                "{debug}"
+            );
+            assert!(
+                display.contains("10000") && display.contains("9.27e-8"),
+                "{display}"
+            );
+            assert!(display.contains(&format!("{last:.3e}")), "{display}");
+            assert!(debug.contains(&format!("{last:e}")), "{debug}");
+            assert!(debug.contains("10000 values, last 5"), "{debug}");
+            assert_eq!(e.history(), Some(&history[..]));
+            // through `Box<dyn Error>`, as `main` prints it
+            let boxed: Box<dyn Error> = Box::new(e.clone());
+            assert!(format!("{boxed:?}").len() < 500);
+        }
+        // a short history is printed whole, as the derived Debug did
+        let e = SolverError::NotConverged {
+            iterations: 2,
+            residual: 0.5,
+            history: vec![1.0, 0.5],
+        };
+        assert_eq!(
+            format!("{e:?}"),
+            "NotConverged { iterations: 2, residual: 0.5, history: [1.0, 0.5] }"
+        );
     }
 }

@@ -4,10 +4,11 @@
 //! `docs/validation.md` ("Reproducing the seed").
 
 use contact_laws::{BetaScheme, Rccm, RccmParams};
-use contact_solver::SolverError;
 use contact_solver::coupling::obstacle::RigidLine;
 use contact_solver::coupling::simulation::{ContactSimulation, SimulationSettings, StepResult};
 use contact_solver::coupling::zone::ContactZone;
+use contact_solver::local::adhesion::AdhesionMethod;
+use contact_solver::{Algorithm, SolverError};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 
@@ -95,6 +96,28 @@ impl Scene {
         }
         self.simulation.step(self.duration * f, 1.0)
     }
+}
+
+/// The settings of the seed's tables 5.1 and 5.2 (`examples/delamination.rs`,
+/// `examples/shear.rs`): the seed's fixed point on β around the reduced solve by `algorithm`
+/// (the bipotential [`Algorithm::GaussSeidel`] sweep or the classical
+/// [`Algorithm::ClassicRccm`]), so that both count their contact iterations the same way; the
+/// rest is [`SimulationSettings::default`]. The answer is the `bipo` scene's
+/// (`examples/scenes/{delamination,shear}.toml`, default settings) to the solvers' tolerances
+/// (`crates/cli/tests/cli/seed_tables.rs`).
+///
+/// # Examples
+/// ```
+/// use bipo::presets::seed::table_settings;
+/// use contact_solver::Algorithm;
+/// let s = table_settings(Algorithm::ClassicRccm);
+/// assert_eq!(s.solver.algorithm, Algorithm::ClassicRccm);
+/// ```
+pub fn table_settings(algorithm: Algorithm) -> SimulationSettings {
+    let mut settings =
+        SimulationSettings::default().with_adhesion_method(AdhesionMethod::FixedPoint);
+    settings.solver.algorithm = algorithm;
+    settings
 }
 
 fn interface_law(p: RccmParams) -> Result<Rccm, SolverError> {

@@ -14,4 +14,5 @@ mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;
 mod seed_studies;
+mod seed_tables;
 mod solid;

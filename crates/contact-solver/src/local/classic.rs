@@ -200,7 +200,13 @@ fn sor_sweep(
     for i in 0..m / d {
         let k = d * i + component;
         let old = r[k];
-        let new = project(i, old - omega * x[k] * inv_diag[k]);
+        // x_k = 0 needs no step (and an infinite one would make 0 · ∞ = NaN)
+        let step = if x[k] == 0.0 {
+            0.0
+        } else {
+            omega * x[k] * inv_diag[k]
+        };
+        let new = project(i, old - step);
         r2 += new * new;
         let d = new - old;
         if d == 0.0 {
@@ -290,8 +296,18 @@ impl ClassicScratch {
             problem.displacement_into(r, x);
         }
         self.inv_diag.clear();
-        self.inv_diag
-            .extend((0..m).map(|k| 1.0 / problem.diagonal_block(k / d)[k % d][k % d]));
+        self.inv_diag.extend((0..m).map(|k| {
+            let w_kk = problem.diagonal_block(k / d)[k % d][k % d];
+            // A supported component (a prescribed slip: its row of W is zero) takes an infinite
+            // step, so that it goes to its bound against x. The zero may be −0.0 (the spring
+            // condensation writes one), and 1/−0.0 = −∞ sent it to the wrong bound: the 5.6.2
+            // shear stalled at its corner node (issue 36).
+            if w_kk > 0.0 {
+                1.0 / w_kk
+            } else {
+                f64::INFINITY
+            }
+        }));
         self.inv_lambda_t.clear();
         if DT == 2 {
             self.inv_lambda_t.extend((0..nc).map(|i| {
@@ -427,5 +443,50 @@ mod tests {
             v.clamp(-0.4, 0.4)
         });
         assert_eq!((r[1], change), (-0.4, 0.0));
+    }
+
+    /// Issue 36: a contact whose slip is prescribed (its tangential row and column of `W` are
+    /// zero, the diagonal entry written `−0.0`, as the spring condensation of the seed's 5.6.2
+    /// shear writes it) slides: `r_t = −μ r_n sign(x_t)`. With `1/W_tt = 1/−0.0 = −∞` the sweep
+    /// sent `r_t` to the wrong edge of the cone and the solver never converged (10 000
+    /// iterations at a constant residual).
+    #[test]
+    fn issue_36_classic_slides_a_contact_with_a_prescribed_slip() {
+        use crate::{Algorithm, UzawaSolver};
+        // contact 0: W_nn = 1, W_tt = −0.0; pressed (q_n = −1), sliding (q_t = 0.5 fixed);
+        // contact 1 an ordinary one coupled to contact 0's normal
+        #[rustfmt::skip]
+        let w = vec![
+            1.0, 0.0, 0.2, 0.0,
+            0.0, -0.0, 0.0, 0.0,
+            0.2, 0.0, 1.0, 0.1,
+            0.0, 0.0, 0.1, 0.5,
+        ];
+        let problem = ReducedProblem::new(w, vec![-1.0, 0.5, -0.5, 0.2], vec![0.3, 0.3]).unwrap();
+        let laws = problem.coulomb_laws();
+        let settings = UzawaSettings::default()
+            .with_algorithm(Algorithm::ClassicRccm)
+            .with_fallback(false);
+        let sol = UzawaSolver::new(settings).solve(&problem, &laws).unwrap();
+        let (r_n, r_t) = (sol.r[0], sol.r[1]);
+        // tol 1e-10 on the natural map: the answer to about that, relative to |r| ~ 1
+        assert!(
+            r_n > 0.5 && sol.x[0].abs() < 1e-8,
+            "r_n {r_n}, x_n {}",
+            sol.x[0]
+        );
+        assert!((r_t + 0.3 * r_n).abs() < 1e-8, "r_t {r_t} against −μ r_n");
+        // the bipotential sweep gives the same answer
+        let gs = UzawaSolver::new(settings.with_algorithm(Algorithm::GaussSeidel))
+            .solve(&problem, &laws)
+            .unwrap();
+        for (a, b) in sol.r.iter().zip(&gs.r) {
+            assert!(
+                (a - b).abs() < 1e-8,
+                "classic {:?} against GS {:?}",
+                sol.r,
+                gs.r
+            );
+        }
     }
 }
