@@ -15,6 +15,7 @@
 
 mod checks;
 mod contact;
+mod hertz;
 mod mesh;
 mod model;
 mod outputs;
@@ -25,6 +26,7 @@ mod study;
 mod validate;
 
 pub use checks::kind_name;
+pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{Phase, function_value};
 pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
 pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study};
@@ -131,6 +133,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         zone_laws,
         adhesive_zones: contact.adhesive,
         friction_zones: contact.friction,
+        hertz: None,
     };
     outputs::check_outputs(scene, &mut study)?;
     Ok(study)

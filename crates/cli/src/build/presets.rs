@@ -427,6 +427,7 @@ fn finish(
         zone_laws,
         adhesive_zones,
         friction_zones,
+        hertz: None,
     };
     check_outputs(scene, &mut study)?;
     Ok(study)

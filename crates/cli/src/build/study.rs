@@ -123,6 +123,8 @@ pub struct Study {
     pub adhesive_zones: usize,
     /// Zones with friction.
     pub friction_zones: usize,
+    /// `[hertz]`: the pressure plot against Hertz.
+    pub hertz: Option<super::HertzPlan>,
 }
 
 impl Study {
@@ -167,7 +169,12 @@ impl Study {
     pub fn output_files(&self) -> usize {
         let o = &self.output;
         let series = usize::from(o.vtk) + usize::from(o.mesh_vtk);
-        let fixed = 1 + usize::from(o.history) + usize::from(o.report) + series;
+        let fixed = 1
+            + usize::from(o.history)
+            + usize::from(o.report)
+            + series
+            + usize::from(o.pressure)
+            + usize::from(self.hertz.is_some());
         let plots = if self.plots.is_empty() {
             0
         } else {

@@ -11,6 +11,7 @@ mod csv;
 mod driver;
 mod errors;
 mod plots;
+mod pressure;
 mod progress;
 mod recorder;
 mod solid;

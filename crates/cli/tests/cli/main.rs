@@ -10,5 +10,6 @@ mod fuzz_corpus;
 mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;
+mod pressure;
 mod seed_studies;
 mod solid;

@@ -264,7 +264,7 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
     let (mut time, mut steps) = (0.0, 0);
     let (phases, error) = drive(&mut study, &mut rec, &progress, &mut time, &mut steps);
     progress.finish();
-    let (mut files, zones) = rec.finish()?;
+    let (mut files, zones) = rec.finish(study.sim.structure().mesh().nodes())?;
     files.insert(0, "summary.json".into());
     let model = study.sim.structure();
     let summary = SolidSummary {
