@@ -122,7 +122,7 @@ pub(super) fn check(
     };
     let e_star = match (h.e_star, scene.materials.as_slice()) {
         (Some(e), _) => positive(&p.key("e_star"), e)?,
-        ([m], _) => e_of(m.young, m.poisson),
+        (None, [m]) => e_of(m.young, m.poisson),
         (None, ms) => {
             return Err(CliError::at(
                 &p.key("e_star"),

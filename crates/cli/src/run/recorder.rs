@@ -182,7 +182,7 @@ fn pressure_recorder(
     zones_filter: Option<Vec<usize>>,
     files: &mut Vec<String>,
 ) -> CliResult<PressureRecorder> {
-    fn masses<L>(
+    fn masses<L: ContactLaw + Clone>(
         sim: &ContactSimulation<LinearElasticModel, L>,
     ) -> CliResult<Vec<Option<BoundaryMass>>> {
         let model = sim.structure();
