@@ -101,6 +101,9 @@ pub enum Mark {
     Dots,
 }
 
+/// One series of [`write_profile_svg`]: its label, its points `(x, y)` and how it is drawn.
+pub type Profile<'a> = (&'a str, &'a [(f64, f64)], Mark);
+
 /// Writes one plot of `(label, points, mark)` series, each with its own abscissae (a profile
 /// along a surface against a closed form). Non-finite points are skipped.
 pub fn write_profile_svg(
@@ -108,7 +111,7 @@ pub fn write_profile_svg(
     title: &str,
     x_label: &str,
     y_label: &str,
-    series: &[(&str, &[(f64, f64)], Mark)],
+    series: &[Profile<'_>],
 ) -> Result<(), String> {
     let root = SVGBackend::new(path, (800, 500)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;

@@ -459,7 +459,10 @@ mod tests {
         let a = BoundaryMass::on_nodes(&mesh, bottom, Idealization::PlaneStrain).unwrap();
         let b = BoundaryMass::from_sides(&mesh, &sides, Idealization::PlaneStrain).unwrap();
         assert_eq!(a.nodes(), b.nodes());
-        assert_eq!(a.areas(), b.areas());
+        for (x, y) in a.areas().iter().zip(b.areas()) {
+            // the same integrals summed in another order
+            assert!((x - y).abs() < 1e-15);
+        }
         // a single node makes no side
         assert!(matches!(
             BoundaryMass::on_nodes(&mesh, &bottom[..1], Idealization::PlaneStrain),
