@@ -3,7 +3,9 @@
 //! written step), the body's `mesh_NNNN.vtu` series with `mesh.pvd` (displacement, contact force
 //! and pressure at the nodes, the element-mean stress), the interface's `interface_NNNN.vtu`
 //! series with `interface.pvd` (`output.vtk`: one point per contact at its deformed position,
-//! [`write_interface_vtu_3d`]), and the zones' tally for the summary.
+//! [`write_interface_vtu_3d`]), `pressure.csv` and `pressure.svg` (the recovered pressure
+//! field, [`super::super::pressure`]; the VTK files then carry it too), and the zones' tally
+//! for the summary.
 
 use super::super::errors::{create, fem_failed, io};
 use super::super::pressure::{PressureRecorder, zone_mass};
