@@ -1,12 +1,17 @@
 //! A rigid ball pressed into an elastic block, in 3D (quarter model, P2 tetrahedra), against
-//! Hertz: the contact radius and the force inside half of it, for the measured total force.
+//! Hertz: the contact radius and the force inside half of it, for the measured total force, and
+//! the continuous pressure recovered from the reactions by the consistent mass of the top face
+//! (`TractionField`): at the centre against `p0`, and its relative `L²` distance to the Hertz
+//! ellipse over the contact disc `r < a`.
 //! The same problem as `tools/peers/getfem_hertz3d.py` (GetFEM), grid for grid.
 //!
 //! Run: `cargo run --release --example hertz_3d -- 0 1` (refinement levels: each halves every
 //! cell of the graded base grid); `--matrix-free`, `--active-set` or `--dense` chooses the
-//! reduced problem's path (default: the settings' `Auto`). `BIPO_QUICK=1` runs level 0 alone.
-//! Ends in an error when Hertz's radius is not between the farthest closed and the nearest
-//! open node, or the force inside `a_H/2` misses Hertz's by more than 10 %.
+//! reduced problem's path (default: the settings' `Auto`); `--svg DIR` draws each level's
+//! recovered pressure against the ellipse into `DIR/hertz_3d_pressure_<level>.svg`.
+//! `BIPO_QUICK=1` runs level 0 alone. Ends in an error when Hertz's radius is not between the
+//! farthest closed and the nearest open node, or the force inside `a_H/2` misses Hertz's by
+//! more than 10 %.
 //!
 //! Block `[0, 4]² × [−4, 0]`, grid lines fine (0.15) up to 0.9 in x, y and 0.6 in depth, then
 //! geometric to 4; ball R = 10 centred at (0, 0, R); E = 1000, ν = 0.3; bottom pushed up by
@@ -17,6 +22,8 @@ use bipotential::contact_solver::FlexibilityMode;
 use bipotential::contact_solver::coupling::solid::{
     ContactZone3, RigidSphere, Side3, SolidContactSimulation, SolidSettings,
 };
+use bipotential::contact_solver::coupling::traction::TractionField;
+use bipotential::fem_core::boundary_mass::BoundaryMass;
 use bipotential::fem_core::solid::generate::{box_mesh, lines};
 use bipotential::fem_core::solid::{SolidKind, SolidModel};
 use bipotential::fem_core::{Component, Material, Structure, Supports};
@@ -56,9 +63,14 @@ fn main() -> Result<(), Box<dyn Error>> {
     } else if args.iter().any(|a| a == "--dense") {
         settings.flexibility = FlexibilityMode::Dense;
     }
+    let svg_dir = args
+        .iter()
+        .position(|a| a == "--svg")
+        .and_then(|i| args.get(i + 1))
+        .map(std::path::PathBuf::from);
     let levels: Vec<usize> = args
         .iter()
-        .filter(|a| !a.starts_with("--"))
+        .filter(|a| !a.starts_with("--") && Some(std::path::Path::new(a)) != svg_dir.as_deref())
         .map(|a| a.parse())
         .collect::<Result<_, _>>()?;
     let levels = if !levels.is_empty() {
@@ -72,9 +84,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     let (e, nu, radius, d) = (1000.0, 0.3, 10.0, 0.04);
     let e_star = e / (1.0 - nu * nu);
     println!(
-        "| level | DOF | active contacts | P | a (farthest closed) | a (nearest open) | a_Hertz(P) | force inside a_H/2 / Hertz | build (s) | step (s) | iterations |"
+        "| level | DOF | active contacts | P | a (farthest closed) | a (nearest open) | a_Hertz(P) | force inside a_H/2 / Hertz | build (s) | step (s) | iterations | p(0) / p0 | L2 distance (r < a) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for level in levels {
         let xy = refine(&graded(4.0, 6, 0.9, 4), level);
         let mut z: Vec<f64> = refine(&graded(4.0, 4, 0.6, 4), level)
@@ -119,8 +131,48 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .map(|(c, _)| c.r[0])
                 .sum::<f64>();
         let hertz_half = p * (1.0 - 0.75_f64.powf(1.5));
+        // the pressure field: M p = r_n on the top face, against p0 √(1 − r²/a²)
+        let mesh = sim.structure().mesh();
+        let mass = BoundaryMass::from_faces(mesh, mesh.face_set("z1")?)?;
+        let field = TractionField::from_records_3d(&mass, 0, &res.contacts)?;
+        let p0 = 3.0 * p / (2.0 * std::f64::consts::PI * a_h * a_h);
+        let ellipse = |r: f64| p0 * (1.0 - (r / a_h).powi(2)).max(0.0).sqrt();
+        // the node at the first point of contact, the origin
+        let at_origin = |n: &usize| mesh.nodes()[*n].iter().map(|c| c * c).sum::<f64>();
+        let origin = field
+            .nodes
+            .iter()
+            .min_by(|a, b| at_origin(a).total_cmp(&at_origin(b)));
+        let centre = origin.and_then(|&n| field.at(n)).map_or(f64::NAN, |v| v.0) / p0;
+        let disc = |x: [f64; 3]| x[0].hypot(x[1]) < a_h;
+        let err = mass.integrate(&field.pressure, |x, v| {
+            if disc(x) {
+                (v - ellipse(x[0].hypot(x[1]))).powi(2)
+            } else {
+                0.0
+            }
+        });
+        let norm = mass.integrate(&field.pressure, |x, _| {
+            if disc(x) {
+                ellipse(x[0].hypot(x[1])).powi(2)
+            } else {
+                0.0
+            }
+        });
+        let l2 = (err / norm).sqrt();
+        if let Some(dir) = &svg_dir {
+            let profile: Vec<(f64, f64)> = field
+                .nodes
+                .iter()
+                .zip(&field.pressure)
+                .map(|(&n, &v)| (mesh.nodes()[n][0].hypot(mesh.nodes()[n][1]), v))
+                .filter(|(r, _)| *r < 2.0 * a_h)
+                .collect();
+            let path = dir.join(format!("hertz_3d_pressure_{level}.svg"));
+            plot_pressure(&path, level, a_h, &ellipse, &profile)?;
+        }
         println!(
-            "| {level} | {dofs} | {} | {p:.4} | {inside:.4} ({:+.2} %) | {outside:.4} | {a_h:.4} | {:.4} | {t_build:.2} | {t_step:.2} | {}{} |",
+            "| {level} | {dofs} | {} | {p:.4} | {inside:.4} ({:+.2} %) | {outside:.4} | {a_h:.4} | {:.4} | {t_build:.2} | {t_step:.2} | {}{} | {centre:.4} | {:.2} % |",
             res.active,
             100.0 * (inside / a_h - 1.0),
             half / hertz_half,
@@ -131,7 +183,8 @@ fn main() -> Result<(), Box<dyn Error>> {
                 format!(" (active set, {} factorisations)", res.factorizations)
             } else {
                 String::new()
-            }
+            },
+            100.0 * l2
         );
         // Hertz's radius lies between the farthest closed node and the nearest open one (1 %
         // slack for the force's own discretisation); the force inside a_H/2 within 10 % of
@@ -146,5 +199,55 @@ fn main() -> Result<(), Box<dyn Error>> {
     if !misses.is_empty() {
         return Err(misses.join("; ").into());
     }
+    Ok(())
+}
+
+/// The recovered pressure at the top face's nodes (dots) against the Hertz ellipse (line).
+fn plot_pressure(
+    path: &std::path::Path,
+    level: usize,
+    a: f64,
+    ellipse: &dyn Fn(f64) -> f64,
+    nodes: &[(f64, f64)],
+) -> Result<(), Box<dyn Error>> {
+    use plotters::prelude::*;
+    let root = SVGBackend::new(path, (800, 500)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let top = nodes.iter().map(|p| p.1).fold(ellipse(0.0), f64::max) * 1.1;
+    let low = nodes.iter().map(|p| p.1).fold(0.0, f64::min) * 1.1;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!("hertz_3d level {level}: recovered pressure against Hertz"),
+            ("sans-serif", 20),
+        )
+        .margin(15)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..2.0 * a, low..top)?;
+    chart
+        .configure_mesh()
+        .x_desc("r = √(x² + y²)")
+        .y_desc("p")
+        .draw()?;
+    let blue = RGBColor(31, 119, 180);
+    let red = RGBColor(214, 39, 40);
+    chart
+        .draw_series(nodes.iter().map(|&p| Circle::new(p, 3, blue.filled())))?
+        .label("M p = r_n (nodes)")
+        .legend(move |(x, y)| Circle::new((x + 10, y), 3, blue.filled()));
+    let curve = (0..=200).map(|k| {
+        let r = 2.0 * a * f64::from(k) / 200.0;
+        (r, ellipse(r))
+    });
+    chart
+        .draw_series(LineSeries::new(curve, red.stroke_width(2)))?
+        .label("Hertz p0 √(1 − r²/a²)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
     Ok(())
 }

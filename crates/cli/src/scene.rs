@@ -61,6 +61,28 @@ pub struct Scene {
     /// SVG plots.
     #[serde(default)]
     pub plots: Vec<PlotSpec>,
+    /// The recovered contact pressure against Hertz's (an SVG at the last written step).
+    pub hertz: Option<HertzSpec>,
+}
+
+/// `[hertz]`: plot a zone's recovered contact pressure against the Hertz ellipse of a
+/// cylinder (plane problems) or a sphere (axisymmetry, 3D) on a flat, at the last written step.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct HertzSpec {
+    /// The zone (optional with a single zone).
+    pub zone: Option<String>,
+    /// Radius of the curved body.
+    pub radius: f64,
+    /// The first point of contact, reference configuration (default: the origin).
+    pub center: Option<Vec<f64>>,
+    /// The whole contact's force over the zone's `Σ r_n` (2 for a half model, 4 for a
+    /// quarter model; default 1).
+    pub symmetry: Option<f64>,
+    /// The contact modulus `E*` (default: from the scene's only material).
+    pub e_star: Option<f64>,
+    /// The SVG file (default `pressure.svg`).
+    pub file: Option<String>,
 }
 
 /// Units note.
@@ -312,6 +334,8 @@ pub struct OutputSpec {
     /// (`profiles.csv` and SVGs) are written; by default the first pull-out step, the step of
     /// the peak head load and the last step.
     pub profile_steps: Option<Vec<usize>>,
+    /// `pressure.csv`, and the recovered pressure in the interface VTK.
+    pub pressure: bool,
 }
 
 impl OutputSpec {
@@ -335,6 +359,7 @@ impl Default for OutputSpec {
             zones: None,
             nodes: None,
             profile_steps: None,
+            pressure: true,
         }
     }
 }

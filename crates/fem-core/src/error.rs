@@ -154,6 +154,23 @@ pub enum FemError {
         /// Number of elements of the mesh.
         element_count: usize,
     },
+    /// A boundary mass ([`BoundaryMass`](crate::boundary_mass::BoundaryMass)) was asked of
+    /// no side or face.
+    #[error("{what}: the list is empty, so there is no boundary to integrate over")]
+    EmptyBoundary {
+        /// Which boundary.
+        what: &'static str,
+    },
+    /// The consistent mass of a boundary is singular: the sides or faces through `node` carry
+    /// no weight (in axisymmetry, sides along the axis `r = 0`).
+    #[error(
+        "the boundary mass is singular at node {node}: the sides through it carry no weight \
+         (in axisymmetry, a side along the axis r = 0)"
+    )]
+    SingularBoundaryMass {
+        /// The node (mesh numbering) whose pivot failed.
+        node: usize,
+    },
     /// A node coordinate of a 3D mesh is NaN or infinite.
     #[error("node {node} has a non-finite coordinate {coords:?}")]
     NonFiniteNode3 {

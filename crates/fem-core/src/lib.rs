@@ -14,6 +14,8 @@
 //!   ([`linear_solver`], [`SpdSolver`]).
 //! - **The model** ([`model`]): [`LinearElasticModel`] assembles and factors the reduced
 //!   stiffness, applies loads, solves, and recovers stresses, strains and reactions.
+//! - **Boundary fields** ([`boundary_mass`]): the consistent mass of a boundary's sides or
+//!   faces, to recover a continuous traction from nodal forces.
 //! - **The seam to the contact solver**: the [`Structure`] trait, implemented by
 //!   [`LinearElasticModel`] and by users' own FE codes.
 //! - **Verification**: closed-form elasticity solutions ([`analytical`]).
@@ -23,6 +25,7 @@
 #![warn(missing_docs)]
 
 pub mod analytical;
+pub mod boundary_mass;
 mod component;
 pub mod error;
 pub mod generate;

@@ -16,6 +16,7 @@
 mod checks;
 mod contact;
 mod curves;
+mod hertz;
 mod mesh;
 mod model;
 mod outputs;
@@ -27,6 +28,7 @@ mod supported;
 mod validate;
 
 pub use checks::kind_name;
+pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{
     Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
 };
@@ -136,6 +138,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         adhesive_zones: contact.adhesive,
         friction_zones: contact.friction,
         warnings,
+        hertz: None,
     };
     outputs::check_outputs(scene, &mut study)?;
     Ok(study)

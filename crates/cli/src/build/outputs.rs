@@ -45,6 +45,13 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
         node_count,
     )?;
     check_profile_steps(&study.output, study)?;
+    let plane_stress = matches!(
+        fem_core::Structure::idealization(study.model()),
+        fem_core::Idealization::PlaneStress { .. }
+    );
+    study.hertz = super::hertz::check(scene, &study.zone_names, 2, |e, nu| {
+        if plane_stress { e } else { e / (1.0 - nu * nu) }
+    })?;
     let mut files = BTreeSet::new();
     for (i, plot) in scene.plots.iter().enumerate() {
         let pp = root.key("plots").index(i);

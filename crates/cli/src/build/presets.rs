@@ -432,6 +432,7 @@ fn finish(
         adhesive_zones,
         friction_zones,
         warnings: Vec::new(),
+        hertz: None,
     };
     check_outputs(scene, &mut study)?;
     Ok(study)

@@ -126,6 +126,8 @@ pub struct Study {
     /// What the scene's checks let pass but the user should know (e.g. contactor nodes held
     /// by a support, left out): printed by `bipo check` and `bipo run`, and in `summary.json`.
     pub warnings: Vec<String>,
+    /// `[hertz]`: the pressure plot against Hertz.
+    pub hertz: Option<super::HertzPlan>,
 }
 
 impl Study {
@@ -170,7 +172,12 @@ impl Study {
     pub fn output_files(&self) -> usize {
         let o = &self.output;
         let series = usize::from(o.vtk) + usize::from(o.writes_mesh_vtk());
-        let fixed = 1 + usize::from(o.history) + usize::from(o.report) + series;
+        let fixed = 1
+            + usize::from(o.history)
+            + usize::from(o.report)
+            + series
+            + usize::from(o.pressure)
+            + usize::from(self.hertz.is_some());
         let plots = if self.plots.is_empty() {
             0
         } else {

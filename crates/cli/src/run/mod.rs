@@ -2,7 +2,8 @@
 //! the VTK series, the plots and `summary.json`, and prints what work was done.
 //!
 //! One file per output: [`csv`] (`contacts.csv`, `steps.csv`), [`vtk`] (the interface and mesh
-//! series), [`plots`] (`curves.csv` and the SVGs), [`summary`] (`summary.json`) and
+//! series), [`plots`] (`curves.csv` and the SVGs), [`pressure`] (`pressure.csv` and the Hertz
+//! plot of the recovered pressure field), [`summary`] (`summary.json`) and
 //! [`progress`] (the bar and the phase lines); the [`recorder`] hands each step to them, and a
 //! [`driver`] steps the study (a scene described key by key or a library preset). A 3D study
 //! runs through [`solid`] (its own driver and outputs; the bar and the error hints are shared).
@@ -12,6 +13,7 @@ mod driver;
 mod errors;
 mod plots;
 mod profiles;
+mod pressure;
 mod progress;
 mod recorder;
 mod rigid;

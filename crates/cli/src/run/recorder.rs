@@ -7,15 +7,18 @@ use super::csv::CsvWriter;
 use super::driver::Extras;
 use super::errors::{fem_failed, io};
 use super::plots::Plots;
+use super::pressure::{PressureRecorder, zone_mass};
 use super::profiles::Profiles;
 use super::rigid::{RigidMotionSummary, RigidWriter};
 use super::summary::{CurveSummary, Tally, ZoneSummary};
 use super::vtk::VtkWriter;
-use crate::build::{Body, Study};
+use crate::build::{Body, HertzShape, Study};
 use crate::error::CliResult;
 use crate::presets::ShaftPoint;
 use contact_laws::ContactLaw;
+use contact_solver::coupling::traction::TractionField;
 use contact_solver::{ContactRecord, ContactSimulation, StepResult};
+use fem_core::boundary_mass::BoundaryMass;
 use fem_core::{Idealization, LinearElasticModel, Structure};
 use std::path::{Path, PathBuf};
 
@@ -31,6 +34,9 @@ pub(super) struct Recorder {
     csv: CsvWriter,
     vtk: VtkWriter,
     plots: Plots,
+    pressure: PressureRecorder,
+    /// The recovered traction goes into the interface VTK (`output.pressure`).
+    vtk_pressure: bool,
     tally: Tally,
     write_steps: WriteSteps,
     zones_filter: Option<Vec<usize>>,
@@ -79,6 +85,7 @@ impl Recorder {
                 .collect()
         });
         let plots = Plots::new(study);
+        let pressure = pressure_recorder(study, dir, zones_filter.clone(), &mut files)?;
         let counts = study
             .candidates()
             .iter()
@@ -91,6 +98,8 @@ impl Recorder {
             csv,
             vtk: VtkWriter::new(dir, o.vtk, o.writes_mesh_vtk()),
             plots,
+            pressure,
+            vtk_pressure: o.pressure,
             tally: Tally::new(&study.zone_names, &study.zone_laws, &counts),
             write_steps: match &o.steps {
                 Some(l) => WriteSteps::List(l.clone()),
@@ -162,8 +171,28 @@ impl Recorder {
             .copied()
             .collect();
         self.csv.write_contacts(rep, &selected)?;
+        let fields = if self.pressure.is_active() || (self.vtk_pressure && self.vtk.is_active()) {
+            let nodes = model.mesh().nodes();
+            self.pressure.record(
+                global,
+                rep.time,
+                |mass, zone| TractionField::from_records(mass, zone, &res.contacts),
+                |zone| {
+                    res.contacts
+                        .iter()
+                        .filter(|c| c.zone == zone)
+                        .map(|c| c.r.n)
+                        .sum()
+                },
+                |node| nodes[node].to_vec(),
+                1,
+            )?
+        } else {
+            Vec::new()
+        };
+        let fields = if self.vtk_pressure { &fields[..] } else { &[] };
         self.vtk
-            .write_step(rep.time, &selected, disp.as_deref(), model)
+            .write_step(rep.time, &selected, disp.as_deref(), model, fields)
     }
 
     /// Keeps the pile's shaft at global step `global` (time `t`, phase `phase`, head load `q`).
@@ -192,6 +221,9 @@ impl Recorder {
         let mut files = self.files.clone();
         files.extend(self.vtk.files());
         let summaries = self.plots.finish(study, &self.dir, &mut files)?;
+        let nodes = study.model().mesh().nodes();
+        self.pressure
+            .finish(|n| [nodes[n][0], nodes[n][1], 0.0], &mut files)?;
         if let Some(p) = &self.profiles {
             p.finish(&self.dir, study.output.profile_steps.as_deref(), &mut files)?;
         }
@@ -210,4 +242,54 @@ pub(super) struct Finished {
     pub(super) curves: Vec<CurveSummary>,
     pub(super) zones: Vec<ZoneSummary>,
     pub(super) rigid: Vec<RigidMotionSummary>,
+}
+
+/// The masses of the zones' contactor surfaces (when `output.pressure` or `[hertz]` asks for
+/// them) and the writer of `pressure.csv`.
+fn pressure_recorder(
+    study: &Study,
+    dir: &Path,
+    zones_filter: Option<Vec<usize>>,
+    files: &mut Vec<String>,
+) -> CliResult<PressureRecorder> {
+    fn masses<L: ContactLaw + Clone>(
+        sim: &ContactSimulation<LinearElasticModel, L>,
+    ) -> CliResult<Vec<Option<BoundaryMass>>> {
+        let model = sim.structure();
+        sim.zones()
+            .iter()
+            .map(|z| {
+                let m = BoundaryMass::on_nodes(model.mesh(), &z.contactor, model.idealization());
+                zone_mass(&z.name, m)
+            })
+            .collect()
+    }
+    let wanted = study.output.pressure || study.hertz.is_some();
+    let masses = match (&study.body, wanted) {
+        (_, false) => vec![None; study.zone_names.len()],
+        (Body::Custom(c), true) => masses(&c.sim)?,
+        (Body::Preset(p), true) => masses(p.sim())?,
+    };
+    let ideal = study.model().idealization();
+    let shape = match ideal {
+        Idealization::Axisymmetric => HertzShape::Sphere {
+            ring: std::f64::consts::TAU,
+        },
+        Idealization::PlaneStress { thickness } => HertzShape::Cylinder { thickness },
+        _ => HertzShape::Cylinder { thickness: 1.0 },
+    };
+    let coords: &[&str] = if ideal == Idealization::Axisymmetric {
+        &["r", "z"]
+    } else {
+        &["x", "y"]
+    };
+    PressureRecorder::new(
+        dir,
+        study.output.pressure,
+        masses,
+        zones_filter,
+        study.hertz.clone().map(|h| (h, shape)),
+        (coords, &["t"][..]),
+        files,
+    )
 }

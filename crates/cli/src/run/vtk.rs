@@ -4,6 +4,7 @@
 
 use super::errors::{fem_failed, io};
 use crate::error::CliResult;
+use contact_solver::coupling::traction::{TractionField, write_interface_vtu_with_traction};
 use contact_solver::{ContactRecord, InterfaceSeries};
 use fem_core::LinearElasticModel;
 use std::path::{Path, PathBuf};
@@ -30,17 +31,25 @@ impl VtkWriter {
         self.interface.is_some() || self.mesh_entries.is_some()
     }
 
-    /// One written step at time `t`; `disp` is given whenever [`is_active`](Self::is_active).
+    /// One written step at time `t`; `disp` is given whenever [`is_active`](Self::is_active);
+    /// the interface carries the recovered traction `fields` when there are some.
     pub(super) fn write_step(
         &mut self,
         t: f64,
         selected: &[ContactRecord],
         disp: Option<&[[f64; 2]]>,
         model: &LinearElasticModel,
+        fields: &[TractionField],
     ) -> CliResult<()> {
         if let Some(s) = &mut self.interface {
-            s.write_step(t, selected, disp)
-                .map_err(|e| io(&self.dir, e))?;
+            if fields.is_empty() {
+                s.write_step(t, selected, disp)
+            } else {
+                s.write_step_with(t, |path| {
+                    write_interface_vtu_with_traction(path, selected, disp, fields)
+                })
+            }
+            .map_err(|e| io(&self.dir, e))?;
         }
         if let Some(entries) = &mut self.mesh_entries {
             let d = disp.expect("computed by the recorder");

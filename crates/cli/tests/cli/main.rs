@@ -13,6 +13,7 @@ mod gmsh_2d;
 mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;
+mod pressure;
 mod seed_studies;
 mod seed_tables;
 mod solid;

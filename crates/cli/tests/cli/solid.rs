@@ -241,10 +241,10 @@ fn solid_check_counts_steps_and_files_works() {
     assert!(o.status.success(), "{stdout}");
     assert!(stdout.contains("(3D scene)"), "{stdout}");
     assert!(stdout.contains("P2 (10-node tetrahedra)"), "{stdout}");
-    // summary.json, steps.csv, contacts.csv, mesh.pvd and two mesh_NNNN.vtu, interface.pvd
-    // and two interface_NNNN.vtu
+    // summary.json, steps.csv, contacts.csv, pressure.csv, pressure.svg, mesh.pvd and two
+    // mesh_NNNN.vtu, interface.pvd and two interface_NNNN.vtu
     assert!(
-        stdout.contains("ok: the scene is valid (2 steps to run, 9 files to write)"),
+        stdout.contains("ok: the scene is valid (2 steps to run, 11 files to write)"),
         "{stdout}"
     );
 }

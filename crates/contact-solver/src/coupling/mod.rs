@@ -12,7 +12,8 @@
 //!    ([`local::adhesion`](crate::local::adhesion)), or the matrix-free / active-set iteration.
 //! 4. **Equilibrium and report** (`equilibrium`, `report`): `u = u_free + K⁻¹ Hᵀ r`, the
 //!    penetration check (back to 2 if an inactive candidate penetrates), the accepted state and
-//!    the [`StepResult`](simulation::StepResult); [`output`] writes it.
+//!    the [`StepResult`](simulation::StepResult); [`output`] writes it, and [`traction`]
+//!    recovers the continuous contact pressure from its reactions.
 
 mod flexibility;
 mod force_factor;
@@ -21,4 +22,5 @@ pub mod output;
 pub mod primal;
 pub mod simulation;
 pub mod solid;
+pub mod traction;
 pub mod zone;

@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod boundary_mass;
 mod convergence;
 mod exact_solutions;
 mod fuzz_corpus;

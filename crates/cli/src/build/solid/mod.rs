@@ -59,6 +59,8 @@ pub struct SolidStudy {
     /// What the scene's checks let pass but the user should know (e.g. contactor nodes held
     /// by a support, left out): printed by `bipo check` and `bipo run`, and in `summary.json`.
     pub warnings: Vec<String>,
+    /// `[hertz]`: the pressure plot against Hertz.
+    pub hertz: Option<super::HertzPlan>,
 }
 
 impl SolidStudy {
@@ -81,7 +83,11 @@ impl SolidStudy {
     /// body's, the interface's with `output.vtk`) one file per written step and the `.pvd`.
     pub fn output_files(&self) -> usize {
         let o = &self.output;
-        let fixed = 1 + usize::from(o.history) + usize::from(o.report);
+        let fixed = 1
+            + usize::from(o.history)
+            + usize::from(o.report)
+            + usize::from(o.pressure)
+            + usize::from(self.hertz.is_some());
         let series = usize::from(self.writes_vtk()) + usize::from(o.vtk);
         self.written_steps()
             .saturating_add(1)
@@ -159,6 +165,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
     let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
     let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
+    let hertz = super::hertz::check(scene, &zone_names, 3, |e, nu| e / (1.0 - nu * nu))?;
     let study = SolidStudy {
         title: scene.title.clone().unwrap_or_else(|| {
             loaded
@@ -178,6 +185,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         zone_laws: contact.laws,
         phase_laws: contact.phase_laws,
         warnings,
+        hertz,
     };
     let candidates = study.sim.candidates();
     check_output_table(

@@ -341,7 +341,7 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
     );
     progress.finish();
     let final_reaction = rec.reaction;
-    let (mut files, mut zones) = rec.finish()?;
+    let (mut files, mut zones) = rec.finish(study.sim.structure().mesh().nodes())?;
     let laws = crate::build::laws_by_phase(
         &study.phases,
         &study.zone_names,

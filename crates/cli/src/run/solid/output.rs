@@ -4,9 +4,12 @@
 //! contact and written step, its frame appended), the body's `mesh_NNNN.vtu` series with `mesh.pvd` (displacement, contact force
 //! and pressure at the nodes, the element-mean stress), the interface's `interface_NNNN.vtu`
 //! series with `interface.pvd` (`output.vtk`: one point per contact at its deformed position,
-//! [`write_interface_vtu_3d`]), and the zones' tally for the summary.
+//! [`write_interface_vtu_3d`]), `pressure.csv` and `pressure.svg` (the recovered pressure
+//! field, [`super::super::pressure`]; the VTK files then carry it too), and the zones' tally
+//! for the summary.
 
 use super::super::errors::{create, fem_failed, io};
+use super::super::pressure::{PressureRecorder, zone_mass};
 use super::super::summary::{Peak, keep};
 use crate::error::{CliError, CliResult};
 use contact_laws::StandardLaw;
@@ -14,6 +17,8 @@ use contact_solver::coupling::output::InterfaceSeries;
 use contact_solver::coupling::solid::{
     SolidContactRecord, SolidContactSimulation, SolidStepResult, write_interface_vtu_3d,
 };
+use contact_solver::coupling::traction::{TractionField, write_interface_vtu_3d_with_traction};
+use fem_core::boundary_mass::BoundaryMass;
 use fem_core::solid::SolidModel;
 use fem_core::vtk::{Field3, write_pvd, write_vtu_3d};
 use serde::Serialize;
@@ -64,6 +69,9 @@ pub(super) struct SolidRecorder {
     interface: Option<InterfaceSeries>,
     zones_filter: Option<Vec<usize>>,
     nodes_filter: Option<Vec<usize>>,
+    pressure: PressureRecorder,
+    /// The recovered traction goes into the VTK files (`output.pressure`).
+    vtk_pressure: bool,
     pub(super) zones: Vec<SolidZoneSummary>,
     pub(super) files: Vec<String>,
     /// The support reactions `Σ R` (global axes) of the last step.
@@ -122,6 +130,35 @@ impl SolidRecorder {
         } else {
             None
         };
+        let zones_filter: Option<Vec<usize>> = o.zones.as_ref().map(|zs| {
+            zs.iter()
+                .filter_map(|z| study.zone_names.iter().position(|n| n == z))
+                .collect()
+        });
+        let masses = if o.pressure || study.hertz.is_some() {
+            let mesh = study.sim.structure().mesh();
+            study
+                .sim
+                .zones()
+                .iter()
+                .map(|z| zone_mass(&z.name, BoundaryMass::on_nodes_3d(mesh, &z.nodes)))
+                .collect::<CliResult<Vec<_>>>()?
+        } else {
+            vec![None; study.zone_names.len()]
+        };
+        let hertz = study
+            .hertz
+            .clone()
+            .map(|h| (h, crate::build::HertzShape::Sphere { ring: 1.0 }));
+        let pressure = PressureRecorder::new(
+            dir,
+            o.pressure,
+            masses,
+            zones_filter.clone(),
+            hertz,
+            (&["x", "y", "z"][..], &["t1", "t2"][..]),
+            &mut files,
+        )?;
         let candidates = study.sim.candidates();
         let zones = study
             .zone_names
@@ -145,12 +182,10 @@ impl SolidRecorder {
             contacts,
             vtk: study.writes_vtk().then(Vec::new),
             interface: o.vtk.then(|| InterfaceSeries::new(dir, "interface")),
-            zones_filter: o.zones.as_ref().map(|zs| {
-                zs.iter()
-                    .filter_map(|z| study.zone_names.iter().position(|n| n == z))
-                    .collect()
-            }),
+            zones_filter,
             nodes_filter: o.nodes.clone(),
+            pressure,
+            vtk_pressure: o.pressure,
             zones,
             files,
             reaction: [0.0; 3],
@@ -275,14 +310,47 @@ impl SolidRecorder {
                 line(w, &self.dir, "contacts.csv", &text)?;
             }
         }
+        let vtk_any = self.vtk.is_some() || self.interface.is_some();
+        let fields = if self.pressure.is_active() || (self.vtk_pressure && vtk_any) {
+            self.pressure.record(
+                step,
+                t,
+                |mass, zone| TractionField::from_records_3d(mass, zone, &res.contacts),
+                |zone| {
+                    res.contacts
+                        .iter()
+                        .filter(|c| c.candidate.zone == zone)
+                        .map(|c| c.r[0])
+                        .sum()
+                },
+                |node| mesh.nodes()[node].to_vec(),
+                2,
+            )?
+        } else {
+            Vec::new()
+        };
+        let fields = if self.vtk_pressure { &fields[..] } else { &[] };
+        if !vtk_any {
+            return Ok(());
+        }
         if self.vtk.is_some() {
-            self.write_vtk(sim, &selected, &u, t)?;
+            self.write_vtk(sim, &selected, &u, t, fields)?;
         }
         if let Some(series) = &mut self.interface {
             let records: Vec<SolidContactRecord> = selected.iter().map(|c| **c).collect();
             series
                 .write_step_with(t, |path| {
-                    write_interface_vtu_3d(path, &records, mesh.nodes(), Some(&u))
+                    if fields.is_empty() {
+                        write_interface_vtu_3d(path, &records, mesh.nodes(), Some(&u))
+                    } else {
+                        write_interface_vtu_3d_with_traction(
+                            path,
+                            &records,
+                            mesh.nodes(),
+                            Some(&u),
+                            fields,
+                        )
+                    }
                 })
                 .map_err(|e| CliError::failed(format!("writing the interface VTK: {e}")))?;
         }
@@ -296,6 +364,7 @@ impl SolidRecorder {
         selected: &[&SolidContactRecord],
         u: &[[f64; 3]],
         t: f64,
+        fields: &[TractionField],
     ) -> CliResult<()> {
         let model = sim.structure();
         let mesh = model.mesh();
@@ -324,14 +393,25 @@ impl SolidRecorder {
         };
         let name = format!("mesh_{:04}.vtu", entries.len());
         let path = self.dir.join(&name);
+        // the recovered pressure on the contactor surfaces (0 elsewhere)
+        let mut field = vec![0.0; mesh.node_count()];
+        for f in fields {
+            for (&n, &p) in f.nodes.iter().zip(&f.pressure) {
+                field[n] += p;
+            }
+        }
+        let mut point = vec![
+            ("u", Field3::Vector(u)),
+            ("contact_force", Field3::Vector(&force)),
+            ("contact_pressure", Field3::Scalar(&pressure)),
+        ];
+        if !fields.is_empty() {
+            point.push(("pressure_field", Field3::Scalar(&field)));
+        }
         write_vtu_3d(
             &path,
             mesh,
-            &[
-                ("u", Field3::Vector(u)),
-                ("contact_force", Field3::Vector(&force)),
-                ("contact_pressure", Field3::Scalar(&pressure)),
-            ],
+            &point,
             &[("stress", Field3::SymTensor(&stress))],
         )
         .map_err(|e| io(&path, e))?;
@@ -341,8 +421,13 @@ impl SolidRecorder {
         write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
     }
 
-    /// Flushes the CSV files; returns the files written (but `summary.json`).
-    pub(super) fn finish(mut self) -> CliResult<(Vec<String>, Vec<SolidZoneSummary>)> {
+    /// Flushes the CSV files and draws the Hertz plot; returns the files written (but
+    /// `summary.json`).
+    pub(super) fn finish(
+        mut self,
+        positions: &[[f64; 3]],
+    ) -> CliResult<(Vec<String>, Vec<SolidZoneSummary>)> {
+        self.pressure.finish(|n| positions[n], &mut self.files)?;
         for (w, name) in [
             (&mut self.steps, "steps.csv"),
             (&mut self.contacts, "contacts.csv"),

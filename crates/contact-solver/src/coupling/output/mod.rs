@@ -27,7 +27,7 @@ use std::io::Write;
 mod vtk;
 
 pub use vtk::{InterfaceSeries, status_code, write_interface_vtu};
-pub(crate) use vtk::{vertex_cloud, write_vtk};
+pub(crate) use vtk::{interface_model, vertex_cloud, write_vtk};
 
 /// Columns of [`HistoryWriter`], in order. `x, y` is the reference position of the contactor
 /// node, `status` its [`InterfaceStatus::name`](crate::InterfaceStatus::name), `r_*_n, r_*_t`

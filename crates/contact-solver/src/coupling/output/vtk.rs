@@ -108,7 +108,7 @@ pub(crate) fn vertex_cloud(points: Vec<f64>, data: Attributes) -> Vtk {
 }
 
 /// The VTK model of [`write_interface_vtu`].
-fn interface_model(
+pub(crate) fn interface_model(
     records: &[ContactRecord],
     displacements: Option<&[[f64; 2]]>,
 ) -> Result<Vtk, SolverError> {

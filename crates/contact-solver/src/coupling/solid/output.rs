@@ -7,7 +7,7 @@ use super::simulation::SolidContactRecord;
 use crate::coupling::output::{vertex_cloud, write_vtk};
 use crate::error::SolverError;
 use std::path::Path;
-use vtkio::model::{Attribute, Attributes};
+use vtkio::model::{Attribute, Attributes, Vtk};
 
 /// Writes the contact records of a 3D step as a VTK unstructured grid of vertices (`.vtu`,
 /// ASCII XML). `positions[n]` is node `n`'s position, `displacements[n]` its displacement (the
@@ -37,6 +37,15 @@ pub fn write_interface_vtu_3d(
     positions: &[[f64; 3]],
     displacements: Option<&[[f64; 3]]>,
 ) -> Result<(), SolverError> {
+    write_vtk(path, interface_model_3d(records, positions, displacements)?)
+}
+
+/// The VTK model of [`write_interface_vtu_3d`].
+pub(crate) fn interface_model_3d(
+    records: &[SolidContactRecord],
+    positions: &[[f64; 3]],
+    displacements: Option<&[[f64; 3]]>,
+) -> Result<Vtk, SolverError> {
     let max_node = records.iter().map(|c| c.candidate.node).max();
     for (what, len) in [
         ("positions", Some(positions.len())),
@@ -106,5 +115,5 @@ pub fn write_interface_vtu_3d(
     if displacements.is_some() {
         data.point.push(vector("u", &|c| u(c.candidate.node)));
     }
-    write_vtk(path, vertex_cloud(points, data))
+    Ok(vertex_cloud(points, data))
 }
