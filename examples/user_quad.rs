@@ -11,11 +11,11 @@
 //! Run: `cargo run --release --example user_quad`. Ends in an error when a tip deflection
 //! misses Timoshenko's (P2 by more than 1 %, Q4 by more than 5 %).
 
+use bipotential::faer::Mat;
 use bipotential::fem_core::{
     Component, ElementKind, FemError, Idealization, LinearElasticModel, Material, Mesh, Side,
     Structure, Supports,
 };
-use faer::Mat;
 use nalgebra::{DMatrix, DVector, Matrix4};
 use std::error::Error;
 
@@ -159,7 +159,10 @@ impl Structure for QuadCantilever {
         rhs.copy_from_slice(x.as_slice());
         Ok(())
     }
-    fn solve_many_in_place(&self, mut rhs: faer::MatMut<'_, f64>) -> Result<(), FemError> {
+    fn solve_many_in_place(
+        &self,
+        mut rhs: bipotential::faer::MatMut<'_, f64>,
+    ) -> Result<(), FemError> {
         for c in 0..rhs.ncols() {
             let b = DVector::from_iterator(rhs.nrows(), (0..rhs.nrows()).map(|i| rhs[(i, c)]));
             let x = self.chol.solve(&b);

@@ -9,6 +9,10 @@ pub use contact_solver;
 /// Finite-element core: meshes, P1/P2 triangles, idealizations, sparse assembly, the
 /// `Structure` trait.
 pub use fem_core;
+/// The `faer` that fem-core and contact-solver are built with (dense and sparse matrices in
+/// the [`Structure`](fem_core::Structure) trait): use it to implement the trait, so that your
+/// code and the library share one version.
+pub use fem_core::faer;
 
 /// The user guide (`docs/guide.md`), included here so that its examples are compiled and
 /// run as doctests.

@@ -1,5 +1,7 @@
 //! `bipo new KIND`: the commented template scenes. They are the scene files of
-//! `examples/scenes/` (so every template is run by the tests).
+//! `examples/scenes/` (so every template is run by the tests), read through the symbolic links
+//! in `crates/cli/templates/`, which `cargo package` turns into files: the published crate
+//! carries its templates.
 
 use crate::error::{CliError, CliResult};
 use std::path::PathBuf;
@@ -22,13 +24,13 @@ pub enum Kind {
     Sphere3d,
 }
 
-const BLOCK: &str = include_str!("../../../examples/scenes/block.toml");
-const HERTZ: &str = include_str!("../../../examples/scenes/hertz.toml");
-const HERTZ_MSH: &str = include_str!("../../../examples/scenes/hertz_cylinder.msh");
-const DELAMINATION: &str = include_str!("../../../examples/scenes/delamination.toml");
-const SHEAR: &str = include_str!("../../../examples/scenes/shear.toml");
-const PILE: &str = include_str!("../../../examples/scenes/pile.toml");
-const SPHERE_3D: &str = include_str!("../../../examples/scenes/sphere_3d.toml");
+const BLOCK: &str = include_str!("../templates/block.toml");
+const HERTZ: &str = include_str!("../templates/hertz.toml");
+const HERTZ_MSH: &str = include_str!("../templates/hertz_cylinder.msh");
+const DELAMINATION: &str = include_str!("../templates/delamination.toml");
+const SHEAR: &str = include_str!("../templates/shear.toml");
+const PILE: &str = include_str!("../templates/pile.toml");
+const SPHERE_3D: &str = include_str!("../templates/sphere_3d.toml");
 
 impl Kind {
     fn name(self) -> &'static str {

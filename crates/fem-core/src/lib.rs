@@ -56,3 +56,9 @@ pub use linear_solver::SpdSolver;
 pub use model::{LinearElasticModel, Reaction, StressField, StressPoint, geostatic};
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
 pub use structure::Structure;
+
+/// The `faer` this crate is built with (its sparse matrices and `MatMut` are in
+/// [`Structure`]'s signatures): an implementer of [`Structure`] writes `fem_core::faer::…`
+/// (or `bipotential::faer::…`) instead of adding `faer` to its own `Cargo.toml`, so the two
+/// can never be different versions.
+pub use faer;
