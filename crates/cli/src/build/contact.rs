@@ -6,8 +6,8 @@ use super::checks::{
     at_least, expect, finite, finite2, law_error, list_names, node_set, non_negative, positive,
     solver_error,
 };
-use super::supported::{Policy, point, resolve};
 use super::curves;
+use super::supported::{Policy, point, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,

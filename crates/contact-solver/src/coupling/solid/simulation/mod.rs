@@ -385,12 +385,9 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         &mut self.structure
     }
 
-    /// One load step ending at `time` (`≥` the current time; the step's length is what the
-    /// laws' state updates see) with the structure's applied forces scaled by `force_factor`:
-    /// the order of [`ContactSimulation::step`](crate::ContactSimulation::step), and as there
-    /// **prescribed displacements are not scaled** by the factor (nor initial stresses): ramp
-    /// them through [`Self::structure_mut`] between steps and step with the factor 1. A factor
-    /// other than 1 on a structure without applied forces would change nothing and is refused.
+    /// One load step ending at `time` (`≥` the current time) with the applied forces scaled by
+    /// `force_factor`, as [`ContactSimulation::step`](crate::ContactSimulation::step): the
+    /// **prescribed displacements are not scaled** (ramp them through [`Self::structure_mut`]).
     ///
     /// # Errors
     /// Errors of the structure's solves; the local solver's errors
