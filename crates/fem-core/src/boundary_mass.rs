@@ -208,7 +208,9 @@ impl BoundaryMass {
     ///
     /// # Errors
     /// [`FemError::EmptyBoundary`] if no boundary side has all its nodes in `nodes`; as
-    /// [`BoundaryMass::from_sides`] otherwise.
+    /// [`BoundaryMass::from_sides`] otherwise. A P2 side whose mid-side node and one corner are
+    /// in `nodes` is taken too (a contactor that ends at a corner belonging to another zone:
+    /// that corner then carries no reaction of this one).
     pub fn on_nodes(
         mesh: &Mesh,
         nodes: &[usize],
@@ -218,7 +220,17 @@ impl BoundaryMass {
         let sides: Vec<Side> = mesh
             .boundary_sides()
             .into_iter()
-            .filter(|&s| mesh.side_nodes(s).all(|n| set.contains(&n)))
+            .filter(|&s| {
+                // all the side's nodes in the set, or (P2) the mid-side node and one corner: a
+                // contactor that stops at a corner held by another zone keeps that side
+                let (inside, all) = mesh.side_nodes(s).fold((0, 0), |(i, a), n| {
+                    (i + usize::from(set.contains(&n)), a + 1)
+                });
+                inside == all
+                    || (all == 3
+                        && inside == 2
+                        && mesh.side_nodes(s).nth(2).is_some_and(|m| set.contains(&m)))
+            })
             .collect();
         if sides.is_empty() {
             return Err(FemError::EmptyBoundary {
