@@ -4,7 +4,7 @@
 use super::checks::{at_least, list_names, node_set};
 use super::study::{Body, Study};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::scene::{CurveSpec, OutputSpec, Scene};
+use crate::scene::{CurveSpec, OutputSpec, PlotSpec, Scene};
 use fem_core::Component;
 use std::collections::BTreeSet;
 
@@ -55,28 +55,7 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
     let mut files = BTreeSet::new();
     for (i, plot) in scene.plots.iter().enumerate() {
         let pp = root.key("plots").index(i);
-        if !plot.file.ends_with(".svg") || plot.file.contains(['/', '\\']) {
-            return Err(CliError::at(
-                &pp.key("file"),
-                format!(
-                    "`{}` = \"{}\": expected a file name ending in .svg (written in the output directory)",
-                    pp.key("file"),
-                    plot.file
-                ),
-            ));
-        }
-        if !files.insert(plot.file.clone()) {
-            return Err(CliError::at(
-                &pp.key("file"),
-                format!("plot file `{}` is used twice", plot.file),
-            ));
-        }
-        if plot.curves.is_empty() {
-            return Err(CliError::at(
-                &pp.key("curves"),
-                "a plot needs at least one curve",
-            ));
-        }
+        check_plot_file(&pp, plot, &mut files)?;
         for (k, c) in plot.curves.iter().enumerate() {
             check_curve(&pp.key("curves").index(k), c, study)?;
         }
@@ -86,6 +65,38 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
     }
     study.plots = scene.plots.clone();
     check_file_count(study)
+}
+
+/// Checks plot `pp`'s file (an `.svg` name, not used twice: `files` holds those seen) and that
+/// it has curves (2D and 3D scenes).
+pub(super) fn check_plot_file(
+    pp: &KeyPath,
+    plot: &PlotSpec,
+    files: &mut BTreeSet<String>,
+) -> CliResult<()> {
+    if !plot.file.ends_with(".svg") || plot.file.contains(['/', '\\']) {
+        return Err(CliError::at(
+            &pp.key("file"),
+            format!(
+                "`{}` = \"{}\": expected a file name ending in .svg (written in the output directory)",
+                pp.key("file"),
+                plot.file
+            ),
+        ));
+    }
+    if !files.insert(plot.file.clone()) {
+        return Err(CliError::at(
+            &pp.key("file"),
+            format!("plot file `{}` is used twice", plot.file),
+        ));
+    }
+    if plot.curves.is_empty() {
+        return Err(CliError::at(
+            &pp.key("curves"),
+            "a plot needs at least one curve",
+        ));
+    }
+    Ok(())
 }
 
 /// Checks `[output]` (`every`, `steps`, `zones`, `nodes`) for a run of `total` steps with

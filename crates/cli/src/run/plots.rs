@@ -1,5 +1,7 @@
 //! The plotted curves: one value per step of each `[[plots]]` curve (and abscissa), written
-//! at the end as `curves.csv` and one SVG per plot, with their extremes for the summary.
+//! at the end as `curves.csv` and one SVG per plot, with their extremes for the summary. The
+//! curves are those of a 2D or a 3D run: each run hands the values of a step through
+//! [`Plots::record_3d`] (2D: [`Plots::record`]).
 
 use super::driver::Extras;
 use super::errors::io;
@@ -7,7 +9,7 @@ use super::summary::{CurveSummary, keep};
 use crate::build::Study;
 use crate::error::CliResult;
 use crate::plot;
-use crate::scene::{CurveSpec, XAxis};
+use crate::scene::{CurveSpec, PlotSpec, XAxis};
 use contact_solver::{ContactRecord, StepResult};
 use fem_core::Component;
 use std::path::Path;
@@ -35,8 +37,19 @@ pub(super) struct Plots {
 impl Plots {
     /// The curves of the study's plots, with their labels, zones and node sets resolved.
     pub(super) fn new(study: &Study) -> Self {
+        Self::of(&study.plots, &study.zone_names, |s| {
+            study.model().mesh().node_set(s).ok().map(|s| s.to_vec())
+        })
+    }
+
+    /// The curves of `plots` for a run with these zones; `node_set` gives a set's nodes.
+    pub(super) fn of(
+        plots: &[PlotSpec],
+        zone_names: &[String],
+        node_set: impl Fn(&str) -> Option<Vec<usize>>,
+    ) -> Self {
         let mut curves = Vec::new();
-        for (i, p) in study.plots.iter().enumerate() {
+        for (i, p) in plots.iter().enumerate() {
             let all = p
                 .curves
                 .iter()
@@ -46,18 +59,9 @@ impl Plots {
                 let zone = c
                     .zone
                     .as_ref()
-                    .and_then(|z| study.zone_names.iter().position(|n| n == z))
-                    .or(if study.zone_names.len() == 1 {
-                        Some(0)
-                    } else {
-                        None
-                    });
-                let set_nodes = c
-                    .set
-                    .as_ref()
-                    .and_then(|s| study.model().mesh().node_set(s).ok())
-                    .map(|s| s.to_vec())
-                    .unwrap_or_default();
+                    .and_then(|z| zone_names.iter().position(|n| n == z))
+                    .or(if zone_names.len() == 1 { Some(0) } else { None });
+                let set_nodes = c.set.as_deref().and_then(&node_set).unwrap_or_default();
                 let label = c.label.clone().unwrap_or_else(|| {
                     let mut l = c.quantity.clone();
                     if let Some(z) = &c.zone {
@@ -121,24 +125,50 @@ impl Plots {
         reactions: Option<&[fem_core::Reaction]>,
         global: usize,
     ) {
-        for c in &mut self.curves {
-            let v = match c.spec.quantity.as_str() {
-                "head_load" => extras.head_load.unwrap_or(f64::NAN),
-                "head_displacement" => extras.head_displacement.unwrap_or(f64::NAN),
-                _ => curve_value(c, res, disp, reactions),
-            };
-            c.values.push(v);
+        let (time, load) = (res.report.time, res.report.load_factor);
+        self.record_with(time, load, global, |c| match c.spec.quantity.as_str() {
+            "head_load" => extras.head_load.unwrap_or(f64::NAN),
+            "head_displacement" => extras.head_displacement.unwrap_or(f64::NAN),
+            _ => curve_value(c, res, disp, reactions),
+        });
+    }
+
+    /// Records global step `global` at `time` and `load_factor`: `value(quantity, zone)` gives
+    /// each curve's value (`zone`: the curve's zone, or the only one).
+    pub(super) fn record_3d(
+        &mut self,
+        time: f64,
+        load_factor: f64,
+        global: usize,
+        value: impl Fn(&str, Option<usize>) -> f64,
+    ) {
+        self.record_with(time, load_factor, global, |c| {
+            value(&c.spec.quantity, c.zone)
+        });
+    }
+
+    /// Records global step `global`: `value(curve)` gives each curve's value.
+    fn record_with(
+        &mut self,
+        time: f64,
+        load_factor: f64,
+        global: usize,
+        value: impl Fn(&CurveRt) -> f64,
+    ) {
+        for i in 0..self.curves.len() {
+            let v = value(&self.curves[i]);
+            self.curves[i].values.push(v);
         }
-        self.x_time.push(res.report.time);
+        self.x_time.push(time);
         self.x_step.push(global as f64);
-        self.x_load.push(res.report.load_factor);
+        self.x_load.push(load_factor);
     }
 
     /// Writes `curves.csv` and the SVGs in `dir` (nothing without curves), adds them to `files`,
     /// and returns each curve's extremes.
     pub(super) fn finish(
         &self,
-        study: &Study,
+        plots: &[PlotSpec],
         dir: &Path,
         files: &mut Vec<String>,
     ) -> CliResult<Vec<CurveSummary>> {
@@ -163,7 +193,7 @@ impl Plots {
             let path = dir.join("curves.csv");
             std::fs::write(&path, csv).map_err(|e| io(&path, e))?;
             files.push("curves.csv".into());
-            for (i, p) in study.plots.iter().enumerate() {
+            for (i, p) in plots.iter().enumerate() {
                 let x_curve = self.curves.iter().find(|c| c.plot == i && c.is_x);
                 let xs = match (x_curve, p.x) {
                     (Some(c), _) => &c.values,
@@ -196,7 +226,7 @@ impl Plots {
             }
             for c in &self.curves {
                 let mut s = CurveSummary {
-                    plot: study.plots[c.plot].file.clone(),
+                    plot: plots[c.plot].file.clone(),
                     label: c.label.clone(),
                     min: None,
                     max: None,

@@ -220,7 +220,7 @@ impl Recorder {
         };
         let mut files = self.files.clone();
         files.extend(self.vtk.files());
-        let summaries = self.plots.finish(study, &self.dir, &mut files)?;
+        let summaries = self.plots.finish(&study.plots, &self.dir, &mut files)?;
         let nodes = study.model().mesh().nodes();
         self.pressure
             .finish(|n| [nodes[n][0], nodes[n][1], 0.0], &mut files)?;

@@ -589,3 +589,101 @@ fn issue_36_pile_profiles_against_depth() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// 3D `[[plots]]`: the turned box's Σ r_n, closed contacts and contact iterations against
+/// time, written as in 2D (`curves.csv`, one SVG, the extremes in `summary.json`). The values
+/// are steps.csv's columns of the same step (`force_n`, `active_contacts`,
+/// `contact_iterations`), to 1e-12 relative (both are printed round-trip). Fails on the old
+/// code: 3D scenes refused `[[plots]]`.
+#[test]
+fn issue_36_plots_in_3d_match_steps_csv() {
+    let dir = tmp("plots_3d");
+    let scene = box_scene(&dir, "box", "{ type = \"signorini\" }", [0.0; 3], "");
+    let text = std::fs::read_to_string(&scene).unwrap()
+        + "[[plots]]\nfile = \"force.svg\"\nx = \"time\"\ncurves = [\
+           { quantity = \"force_n\", label = \"sum r_n\" }, { quantity = \"closed\" }, \
+           { quantity = \"contact_iterations\" }]\n";
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("out");
+    run(&scene, &out, true);
+    let steps = csv(&out.join("steps.csv"));
+    let curves = csv(&out.join("curves.csv"));
+    assert_eq!(curves.len(), steps.len());
+    assert_eq!(steps.len(), 2);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+    for (c, s) in curves.iter().zip(&steps) {
+        assert!(close(num(c, "time"), num(s, "time")), "{c:?}");
+        assert!(close(num(c, "sum r_n"), num(s, "force_n")), "{c:?} {s:?}");
+        assert_eq!(num(c, "closed"), num(s, "active_contacts"), "{c:?}");
+        assert_eq!(
+            num(c, "contact_iterations"),
+            num(s, "contact_iterations"),
+            "{c:?}"
+        );
+    }
+    let last = num(steps.last().unwrap(), "force_n");
+    assert!(last > 0.0);
+    let svg = std::fs::read_to_string(out.join("force.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("sum r_n"), "{svg}");
+    let s = summary(&out);
+    let files: Vec<&str> = s["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    assert!(
+        files.contains(&"curves.csv") && files.contains(&"force.svg"),
+        "{files:?}"
+    );
+    let c = &s["curves"][0];
+    assert_eq!(c["label"], "sum r_n");
+    assert!(close(c["last"].as_f64().unwrap(), last), "{c}");
+    let first = num(&steps[0], "force_n");
+    assert!(
+        close(c["max"]["value"].as_f64().unwrap(), last.max(first)),
+        "{c}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// 3D `contacts.csv`'s `status` (appended last), named as 2D's: on the turned box, Signorini
+/// gives `closed` where `active` = 1 and `open` where the candidate is not closed (both occur);
+/// Coulomb (μ = 0.3) names its closed contacts `stick` or `slip`, never `closed`. Fails on the
+/// old code: no `status` column.
+#[test]
+fn issue_36_status_column_in_3d() {
+    let dir = tmp("status_3d");
+    for (law, closed_names) in [
+        ("{ type = \"signorini\" }", &["closed"][..]),
+        ("{ type = \"coulomb\", mu = 0.3 }", &["stick", "slip"][..]),
+    ] {
+        let scene = box_scene(&dir, "box", law, [0.0; 3], "");
+        let out = dir.join("out");
+        let _ = std::fs::remove_dir_all(&out);
+        run(&scene, &out, true);
+        let text = std::fs::read_to_string(out.join("contacts.csv")).unwrap();
+        assert!(text.lines().next().unwrap().ends_with(",t2_z,status"));
+        let contacts = csv(&out.join("contacts.csv"));
+        let (mut closed, mut open) = (0, 0);
+        for c in &contacts {
+            let status = c["status"].as_str();
+            match (c["candidate"].as_str(), c["active"].as_str()) {
+                ("0", _) => assert_eq!(status, "inactive", "{c:?}"),
+                (_, "1") => {
+                    assert!(closed_names.contains(&status), "{law}: {c:?}");
+                    closed += 1;
+                }
+                _ => {
+                    assert_eq!(status, "open", "{c:?}");
+                    open += 1;
+                }
+            }
+        }
+        assert!(
+            closed > 0 && open > 0,
+            "{law}: {closed} closed, {open} open"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

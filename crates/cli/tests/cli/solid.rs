@@ -242,9 +242,9 @@ fn solid_check_counts_steps_and_files_works() {
     assert!(stdout.contains("(3D scene)"), "{stdout}");
     assert!(stdout.contains("P2 (10-node tetrahedra)"), "{stdout}");
     // summary.json, steps.csv, contacts.csv, pressure.csv, pressure.svg, mesh.pvd and two
-    // mesh_NNNN.vtu, interface.pvd and two interface_NNNN.vtu
+    // mesh_NNNN.vtu, interface.pvd and two interface_NNNN.vtu, curves.csv and force.svg
     assert!(
-        stdout.contains("ok: the scene is valid (2 steps to run, 11 files to write)"),
+        stdout.contains("ok: the scene is valid (2 steps to run, 13 files to write)"),
         "{stdout}"
     );
 }

@@ -7,11 +7,13 @@
 //! and names, the law of a zone, `[solver]`'s local keys, `[output]`); [`mesh`], [`model`] and
 //! [`contact`] hold what 3D reads differently: the box generator and Gmsh volume files, loads
 //! with three components and pressures on face sets, rigid planes, spheres and cylinders.
-//! What 3D scenes do not have yet (plots, floating bodies) is refused with its key path.
+//! [`plots`] checks `[[plots]]` (the quantities a 3D run records). What 3D scenes do not have
+//! yet (floating bodies, shaft profiles) is refused with its key path.
 
 mod contact;
 mod mesh;
 mod model;
+mod plots;
 
 pub use mesh::solid_kind_name;
 pub use model::{LoadKind3, LoadRt3};
@@ -25,7 +27,7 @@ use super::outputs::{MAX_OUTPUT_FILES, check_output_table};
 use super::phases::{Phase, TimeFunction, phases_of, time_function};
 use super::study::{SupportRt, written_steps};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::scene::{OutputSpec, Scene, Units};
+use crate::scene::{OutputSpec, PlotSpec, Scene, Units};
 use contact_laws::StandardLaw;
 use contact_solver::coupling::solid::SolidContactSimulation;
 use fem_core::solid::SolidModel;
@@ -61,6 +63,8 @@ pub struct SolidStudy {
     pub warnings: Vec<String>,
     /// `[hertz]`: the pressure plot against Hertz.
     pub hertz: Option<super::HertzPlan>,
+    /// `[[plots]]`: curves against time, step or load factor (`curves.csv` and one SVG each).
+    pub plots: Vec<PlotSpec>,
 }
 
 impl SolidStudy {
@@ -87,7 +91,12 @@ impl SolidStudy {
             + usize::from(o.history)
             + usize::from(o.report)
             + usize::from(o.pressure)
-            + usize::from(self.hertz.is_some());
+            + usize::from(self.hertz.is_some())
+            + if self.plots.is_empty() {
+                0
+            } else {
+                self.plots.len() + 1
+            };
         let series = usize::from(self.writes_vtk()) + usize::from(o.vtk);
         self.written_steps()
             .saturating_add(1)
@@ -99,13 +108,6 @@ impl SolidStudy {
 /// Refuses, with its key path, what a 3D scene cannot do yet.
 fn refuse_unsupported(scene: &Scene) -> CliResult<()> {
     let root = KeyPath::root();
-    if !scene.plots.is_empty() {
-        return Err(CliError::at(
-            &root.key("plots"),
-            "[[plots]] are not available in a 3D scene yet (steps.csv and contacts.csv hold \
-             the histories)",
-        ));
-    }
     if scene.output.profile_steps.is_some() {
         let p = root.key("output").key("profile_steps");
         return Err(CliError::at(
@@ -166,6 +168,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
     let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
     let hertz = super::hertz::check(scene, &zone_names, 3, |e, nu| e / (1.0 - nu * nu))?;
+    let plots = plots::check(&scene.plots, &zone_names)?;
     let study = SolidStudy {
         title: scene.title.clone().unwrap_or_else(|| {
             loaded
@@ -186,6 +189,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         phase_laws: contact.phase_laws,
         warnings,
         hertz,
+        plots,
     };
     let candidates = study.sim.candidates();
     check_output_table(

@@ -8,7 +8,7 @@ pub use output::SolidZoneSummary;
 use super::RunOptions;
 use super::errors::{fem_failed, io, step_error};
 use super::progress::Progress;
-use super::summary::{BTreeUnits, MeshFacts};
+use super::summary::{BTreeUnits, CurveSummary, MeshFacts};
 use crate::build::{LoadKind3, Phase, SolidStudy, function_value};
 use crate::error::{CliError, CliResult};
 use fem_core::Structure;
@@ -106,6 +106,8 @@ pub struct SolidSummary {
     pub files: Vec<String>,
     /// The scene's warnings (e.g. contactor nodes held by a support, left out).
     pub warnings: Vec<String>,
+    /// The `[[plots]]` curves: each one's least, largest and last value, as 2D's.
+    pub curves: Vec<CurveSummary>,
 }
 
 /// Sets the laws phase `p` gives its zones (the interface states carry over), then releases the
@@ -341,7 +343,7 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
     );
     progress.finish();
     let final_reaction = rec.reaction;
-    let (mut files, mut zones) = rec.finish(study.sim.structure().mesh().nodes())?;
+    let (mut files, mut zones, curves) = rec.finish(study.sim.structure().mesh().nodes())?;
     let laws = crate::build::laws_by_phase(
         &study.phases,
         &study.zone_names,
@@ -392,6 +394,7 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
         zones,
         files,
         warnings: study.warnings.clone(),
+        curves,
     };
     let path = opts.out_dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| io(&path, e))?;

@@ -6,13 +6,14 @@
 //! series with `interface.pvd` (`output.vtk`: one point per contact at its deformed position,
 //! [`write_interface_vtu_3d`]), `pressure.csv` and `pressure.svg` (the recovered pressure
 //! field, [`super::super::pressure`]; the VTK files then carry it too), and the zones' tally
-//! for the summary.
+//! for the summary; the `[[plots]]` curves ([`super::super::plots`]: `curves.csv` and the SVGs).
 
 use super::super::errors::{create, fem_failed, io};
+use super::super::plots::Plots;
 use super::super::pressure::{PressureRecorder, zone_mass};
-use super::super::summary::{Peak, keep};
+use super::super::summary::{CurveSummary, Peak, keep};
 use crate::error::{CliError, CliResult};
-use contact_laws::StandardLaw;
+use contact_laws::{ContactLaw, RccmState, StandardLaw};
 use contact_solver::coupling::output::InterfaceSeries;
 use contact_solver::coupling::solid::{
     SolidContactRecord, SolidContactSimulation, SolidStepResult, write_interface_vtu_3d,
@@ -74,6 +75,10 @@ pub(super) struct SolidRecorder {
     vtk_pressure: bool,
     pub(super) zones: Vec<SolidZoneSummary>,
     pub(super) files: Vec<String>,
+    /// The `[[plots]]` curves.
+    plots: Plots,
+    /// The plots' specs.
+    plot_specs: Vec<crate::scene::PlotSpec>,
     /// The support reactions `Σ R` (global axes) of the last step.
     pub(super) reaction: [f64; 3],
 }
@@ -123,7 +128,7 @@ impl SolidRecorder {
                 dir,
                 "contacts.csv",
                 "step,time,zone,node,x,y,z,active,gap,r_n,r_t1,r_t2,area,pressure,slip_t1,\
-                 slip_t2,f_x,f_y,f_z,beta,candidate,n_x,n_y,n_z,t1_x,t1_y,t1_z,t2_x,t2_y,t2_z",
+                 slip_t2,f_x,f_y,f_z,beta,candidate,n_x,n_y,n_z,t1_x,t1_y,t1_z,t2_x,t2_y,t2_z,status",
             )?;
             files.push("contacts.csv".to_string());
             Some(w)
@@ -188,6 +193,8 @@ impl SolidRecorder {
             vtk_pressure: o.pressure,
             zones,
             files,
+            plots: Plots::of(&study.plots, &study.zone_names, |_| None),
+            plot_specs: study.plots.clone(),
             reaction: [0.0; 3],
         })
     }
@@ -221,6 +228,8 @@ impl SolidRecorder {
             total_n += f_n;
             (0..3).for_each(|a| total[a] += f[a]);
         }
+        self.plots
+            .record_3d(t, 1.0, step, |q, zone| plot_value(res, q, zone));
         // the nodal displacements, for the reactions and the VTK series
         let mesh = sim.structure().mesh();
         let u: Vec<[f64; 3]> = (0..mesh.node_count())
@@ -271,6 +280,7 @@ impl SolidRecorder {
             .collect();
         if let Some(w) = &mut self.contacts {
             let model = sim.structure();
+            let model_zones = sim.zones();
             for c in &selected {
                 let cand = &c.candidate;
                 if self
@@ -307,6 +317,7 @@ impl SolidRecorder {
                 for v in cand.frame().iter().flatten() {
                     text.push_str(&format!(",{v:e}"));
                 }
+                text.push_str(&format!(",{}", status(&model_zones[cand.zone].law, c)));
                 line(w, &self.dir, "contacts.csv", &text)?;
             }
         }
@@ -426,8 +437,11 @@ impl SolidRecorder {
     pub(super) fn finish(
         mut self,
         positions: &[[f64; 3]],
-    ) -> CliResult<(Vec<String>, Vec<SolidZoneSummary>)> {
+    ) -> CliResult<(Vec<String>, Vec<SolidZoneSummary>, Vec<CurveSummary>)> {
         self.pressure.finish(|n| positions[n], &mut self.files)?;
+        let curves = self
+            .plots
+            .finish(&self.plot_specs, &self.dir, &mut self.files)?;
         for (w, name) in [
             (&mut self.steps, "steps.csv"),
             (&mut self.contacts, "contacts.csv"),
@@ -446,7 +460,63 @@ impl SolidRecorder {
         {
             self.files.push("interface.pvd".into());
         }
-        Ok((self.files, self.zones))
+        Ok((self.files, self.zones, curves))
+    }
+}
+
+/// The value of a 3D plot's `quantity` at this step, over `zone` (all zones: `None`); the
+/// quantities are those [`crate::build`] lets through for 3D.
+fn plot_value(res: &SolidStepResult, quantity: &str, zone: Option<usize>) -> f64 {
+    let mine = || {
+        res.contacts
+            .iter()
+            .filter(move |c| zone.is_none_or(|z| c.candidate.zone == z))
+    };
+    match quantity {
+        "contact_iterations" => res.contact_iterations as f64,
+        "adhesion_iterations" => res.adhesion_iterations as f64,
+        // closed, as steps.csv's column; the reduced problem's size is `candidates`
+        "active_contacts" => res.closed as f64,
+        "candidates" => res.active as f64,
+        "residual" => res.residual,
+        "force_n" => mine().map(|c| c.r[0]).sum(),
+        "closed" => mine().filter(|c| c.closed).count() as f64,
+        "beta_mean" | "beta_min" => {
+            let b: Vec<f64> = mine().map(|c| c.beta).collect();
+            if b.is_empty() {
+                f64::NAN
+            } else if quantity == "beta_min" {
+                b.iter().copied().fold(f64::INFINITY, f64::min)
+            } else {
+                b.iter().sum::<f64>() / b.len() as f64
+            }
+        }
+        _ => f64::NAN,
+    }
+}
+
+/// The status of a 3D contact, named as 2D's `InterfaceStatus`: `inactive` (outside the
+/// reduced problem), `open` (`r̄ = 0`), `closed` (compressed under a frictionless law),
+/// `stick` or `slip` (compressed under a law with friction: `slip` when the tangential reaction
+/// is on the Coulomb cone `|r_t| = μ r_n`, to a relative 1e-6). With adhesion the reaction is
+/// the total one (`r̄` plus the springs') and the cone the law's `μ f(β)`.
+fn status(law: &StandardLaw, c: &SolidContactRecord) -> &'static str {
+    if !c.active {
+        return "inactive";
+    }
+    if !c.closed {
+        return "open";
+    }
+    if !law.has_friction() {
+        return "closed";
+    }
+    let state = RccmState::new(c.beta.clamp(0.0, 1.0)).unwrap_or(RccmState::ZERO);
+    let mu = law.friction_coefficient(&state).unwrap_or(0.0);
+    let r_t = c.r[1].hypot(c.r[2]);
+    if r_t >= (1.0 - 1e-6) * mu * c.r[0] {
+        "slip"
+    } else {
+        "stick"
     }
 }
 
