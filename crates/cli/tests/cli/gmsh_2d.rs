@@ -12,57 +12,13 @@
 //!   (a set sorted by tag), pairs whose normal faces away from the contactor, a target curve
 //!   of two disjoint pieces and one that branches.
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn dir(sub: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(sub)
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bipo_gmsh2d_{name}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn bipo(args: &[&std::ffi::OsStr]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_bipo"))
-        .args(args)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("internal error"),
-        "{stderr}"
-    );
-    out
-}
-
-fn csv(path: &Path) -> Vec<BTreeMap<String, String>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    lines
-        .map(|l| {
-            head.iter()
-                .cloned()
-                .zip(l.split(',').map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(row: &BTreeMap<String, String>, key: &str) -> f64 {
-    row[key].parse().unwrap()
-}
+use super::support::{bipo, csv, manifest, num, tmp};
 
 #[test]
 fn issue_36_gmsh_two_blocks_run() {
     for scene in ["two_blocks", "two_blocks_pairs"] {
         let out = tmp(scene);
-        let path = dir(&format!("tests/gmsh/{scene}.toml"));
+        let path = manifest(&format!("tests/gmsh/{scene}.toml"));
         let o = bipo(&[
             "run".as_ref(),
             path.as_os_str(),
@@ -93,7 +49,7 @@ fn issue_36_gmsh_two_blocks_run() {
 
 /// `bipo check` on `scene` fails with a message holding every one of `needles`.
 fn refused(scene: &str, needles: &[&str]) {
-    let path = dir(&format!("tests/gmsh/{scene}.toml"));
+    let path = manifest(&format!("tests/gmsh/{scene}.toml"));
     let o = bipo(&["check".as_ref(), path.as_os_str()]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success(), "{scene}: accepted");

@@ -8,20 +8,9 @@
 //! (tests/solid/patch_box.toml's block, E = 1000, ν = 0) pressed on a plane turned the same way;
 //! the floating block of `examples/scenes/block_force.toml`.
 
-use std::collections::BTreeMap;
+use super::support::{csv, num, scenes, summary, tmp};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bipo_i36_{name}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// `bipo run scene --out out` (`--quiet` when `quiet`), stderr piped (not a terminal);
 /// returns (stdout, stderr).
@@ -48,32 +37,6 @@ fn run(scene: &Path, out: &Path, quiet: bool) -> (String, String) {
     assert!(o.status.success(), "bipo failed:\n{stdout}\n{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     (stdout, stderr)
-}
-
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
-}
-
-/// Rows of a CSV file (no quoted commas) as maps column → text.
-fn csv(path: &Path) -> Vec<BTreeMap<String, String>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    lines
-        .map(|l| {
-            head.iter()
-                .cloned()
-                .zip(l.split(',').map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(row: &BTreeMap<String, String>, key: &str) -> f64 {
-    row.get(key)
-        .unwrap_or_else(|| panic!("no column `{key}` in {row:?}"))
-        .parse()
-        .unwrap()
 }
 
 /// The block scene with `edits` (from, to) applied, written as `dir/name.toml`.

@@ -16,32 +16,10 @@
 //! The numbers checked are statics: the Signorini block of block.toml (E = 100, ν = 0, pressed
 //! by 0.01 over a width 1: Σ r_n = 1), the patch (E δ A / H = 2).
 
+use super::support::{bipo, csv, scenes, summary, tmp};
 use bipo::presets::PulloutSpec;
 use contact_solver::SimulationSettings;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bipo_i36_{name}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn bipo(args: &[&std::ffi::OsStr]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_bipo"))
-        .args(args)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    out
-}
 
 /// `bipo run SCENE --quiet --out OUT`: (success, stdout, stderr).
 fn run(scene: &Path, out: &Path) -> (bool, String, String) {
@@ -57,25 +35,6 @@ fn run(scene: &Path, out: &Path) -> (bool, String, String) {
         String::from_utf8_lossy(&o.stdout).into_owned(),
         String::from_utf8_lossy(&o.stderr).into_owned(),
     )
-}
-
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
-}
-
-/// Rows of a CSV file as maps column → text.
-fn csv(path: &Path) -> Vec<BTreeMap<String, String>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    lines
-        .map(|l| {
-            head.iter()
-                .cloned()
-                .zip(l.split(',').map(String::from))
-                .collect()
-        })
-        .collect()
 }
 
 /// `scene` with `from` replaced by `to` (each must occur), written to `dir/name`.

@@ -17,3 +17,4 @@ mod pressure;
 mod seed_studies;
 mod seed_tables;
 mod solid;
+mod support;

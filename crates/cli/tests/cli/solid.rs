@@ -27,33 +27,8 @@
 //!   ═══════════ rigid plane      └─────────────┘ z = −1: u_z = δ
 //! ```
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn dir(sub: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(sub)
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bipo_solid_{name}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn bipo(args: &[&std::ffi::OsStr]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_bipo"))
-        .args(args)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("internal error"),
-        "{stderr}"
-    );
-    out
-}
+use super::support::{bipo, csv, manifest, num, tmp};
+use std::path::Path;
 
 fn run(scene: &Path, out: &Path) -> String {
     let o = bipo(&[
@@ -72,30 +47,11 @@ fn run(scene: &Path, out: &Path) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-/// Rows of a CSV file as maps column → text.
-fn csv(path: &Path) -> Vec<BTreeMap<String, String>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    lines
-        .map(|l| {
-            head.iter()
-                .cloned()
-                .zip(l.split(',').map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
 fn assert_close(got: f64, expected: f64, rel: f64) {
     assert!(
         (got - expected).abs() <= rel * expected.abs(),
         "{got} is not {expected} to {rel:e}"
     );
-}
-
-fn num(row: &BTreeMap<String, String>, key: &str) -> f64 {
-    row[key].parse().unwrap()
 }
 
 /// The patch of `scene`: Σ r_n = 2 in steps.csv at the last step, the pressure 2 at every
@@ -134,18 +90,18 @@ fn check_patch(scene: &Path, name: &str) {
 
 #[test]
 fn solid_signorini_patch_box_works() {
-    check_patch(&dir("tests/solid/patch_box.toml"), "patch_box");
+    check_patch(&manifest("tests/solid/patch_box.toml"), "patch_box");
 }
 
 #[test]
 fn solid_signorini_patch_gmsh_works() {
-    check_patch(&dir("tests/solid/patch_gmsh.toml"), "patch_gmsh");
+    check_patch(&manifest("tests/solid/patch_gmsh.toml"), "patch_gmsh");
 }
 
 #[test]
 fn solid_hertz_sphere_quarter_works() {
     let out = tmp("hertz");
-    run(&dir("../../examples/scenes/sphere_3d.toml"), &out);
+    run(&manifest("../../examples/scenes/sphere_3d.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     assert_eq!(steps.len(), 2);
     let (young, poisson, radius, depth): (f64, f64, f64, f64) = (1000.0, 0.3, 1.0, 1.0);
@@ -197,7 +153,7 @@ fn solid_hertz_sphere_quarter_works() {
 #[test]
 fn solid_loads_reach_the_contact_works() {
     let out = tmp("loads");
-    run(&dir("tests/solid/loads.toml"), &out);
+    run(&manifest("tests/solid/loads.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     let phases: Vec<&str> = steps.iter().map(|r| r["phase"].as_str()).collect();
     assert_eq!(phases, ["traction", "pressure", "weight"]);
@@ -214,7 +170,7 @@ fn solid_loads_reach_the_contact_works() {
 #[test]
 fn solid_resultant_on_a_tied_set_works() {
     let out = tmp("tied");
-    run(&dir("tests/solid/tied.toml"), &out);
+    run(&manifest("tests/solid/tied.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     // a bar under one force on a rigid cap: exact up to the solver tolerance 1e-12
     assert_close(num(&steps[0], "force_n"), 0.8, 1e-8);
@@ -224,7 +180,7 @@ fn solid_resultant_on_a_tied_set_works() {
 #[test]
 fn solid_patch_on_a_cylinder_works() {
     let out = tmp("cylinder");
-    run(&dir("tests/solid/patch_cylinder.toml"), &out);
+    run(&manifest("tests/solid/patch_cylinder.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     // the cylinder's surface is 1.25e-7 from flat under the block, δ = 1e-3: 1e-3 covers it
     assert_close(num(&steps[1], "force_n"), 2.0, 1e-3);
@@ -235,7 +191,7 @@ fn solid_patch_on_a_cylinder_works() {
 fn solid_check_counts_steps_and_files_works() {
     let o = bipo(&[
         "check".as_ref(),
-        dir("../../examples/scenes/sphere_3d.toml").as_os_str(),
+        manifest("../../examples/scenes/sphere_3d.toml").as_os_str(),
     ]);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{stdout}");
@@ -257,7 +213,7 @@ fn solid_check_counts_steps_and_files_works() {
 #[test]
 fn solid_glued_block_follows_rccm_works() {
     let out = tmp("glued");
-    run(&dir("tests/solid/glued.toml"), &out);
+    run(&manifest("tests/solid/glued.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     let contacts = csv(&out.join("contacts.csv"));
     assert_eq!(steps.len(), 8);
@@ -313,7 +269,7 @@ fn solid_glued_block_follows_rccm_works() {
 fn solid_two_blocks_pairs_and_faces_works() {
     for kind in ["pairs", "faces"] {
         let out = tmp(&format!("blocks_{kind}"));
-        run(&dir(&format!("tests/solid/blocks_{kind}.toml")), &out);
+        run(&manifest(&format!("tests/solid/blocks_{kind}.toml")), &out);
         let steps = csv(&out.join("steps.csv"));
         assert_close(num(&steps[1], "force_n"), 0.5, 1e-8);
         assert_close(num(&steps[0], "force_n"), 0.25, 1e-8);
@@ -339,7 +295,7 @@ fn solid_two_blocks_pairs_and_faces_works() {
 #[test]
 fn solid_supports_by_phase_works() {
     let out = tmp("phases");
-    run(&dir("tests/solid/phases.toml"), &out);
+    run(&manifest("tests/solid/phases.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     assert_eq!(steps.len(), 2);
     for row in &steps {
@@ -358,7 +314,7 @@ fn solid_supports_by_phase_works() {
 #[test]
 fn solid_laws_by_phase_works() {
     let out = tmp("phase_laws");
-    run(&dir("tests/solid/phase_laws.toml"), &out);
+    run(&manifest("tests/solid/phase_laws.toml"), &out);
     let steps = csv(&out.join("steps.csv"));
     assert_eq!(steps.len(), 2);
     for row in &steps {

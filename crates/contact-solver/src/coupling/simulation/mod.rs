@@ -36,7 +36,7 @@ mod solve;
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
 
-use crate::coupling::force_factor::check_force_factor;
+use crate::coupling::force_factor::ForceFactorCheck;
 use crate::coupling::primal::PrimalCache;
 use crate::coupling::zone::{Candidate, ContactZone, check_rigid_targets, recognize};
 use crate::error::SolverError;
@@ -108,6 +108,8 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     alpha: Vec<f64>,
     /// Floating structures: the load along every mode at this step's load factor, `Rᵀ f`.
     mode_load: Vec<f64>,
+    /// The check of `step`'s force factor (until the structure shows applied forces).
+    force_check: ForceFactorCheck,
 }
 
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
@@ -173,6 +175,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             warm: WarmStartPacing::default(),
             alpha: Vec::new(),
             mode_load: Vec::new(),
+            force_check: ForceFactorCheck::default(),
         };
         sim.jumps = sim.local_jumps_of(&sim.u);
         Ok(sim)
@@ -408,7 +411,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let dt = time - self.time;
         // 1. detection: the free response and the active set
         let (u_free, free) = self.free_response(force_factor)?;
-        check_force_factor(&self.structure, force_factor, &u_free)?;
+        self.force_check
+            .check(&self.structure, force_factor, &u_free)?;
         let mut active = self.initial_active_set(&free);
         let mut report = StepReport::start(self.counters.steps + 1, time, force_factor);
         loop {

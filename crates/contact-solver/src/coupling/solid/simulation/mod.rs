@@ -21,7 +21,7 @@
 
 use super::zone::{Candidate3, ContactZone3, recognize_3d};
 use crate::coupling::flexibility::{Previous, build_dense};
-use crate::coupling::force_factor::check_force_factor;
+use crate::coupling::force_factor::ForceFactorCheck;
 use crate::coupling::primal::{LocalFrame, PrimalCache};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
@@ -96,11 +96,9 @@ pub struct SolidContactRecord {
     /// Tangential displacement increment of the step `(Δu_t1, Δu_t2)` (the slip of a sliding
     /// contact).
     pub slip: [f64; 2],
-    /// Whether the contact was in the step's reduced problem (within the alert distance, in
-    /// contact at the last step, or adhesive): a candidate, not necessarily closed.
+    /// Whether the contact was in the step's reduced problem (a candidate, maybe open).
     pub active: bool,
-    /// Whether the contact is closed: the law's reaction `r̄` is compressive (`r̄_n > 0`), as
-    /// 2D's [`InterfaceStatus::is_closed`](crate::InterfaceStatus::is_closed).
+    /// Whether it is closed (`r̄_n > 0`, 2D's [`crate::InterfaceStatus::is_closed`]).
     pub closed: bool,
 }
 
@@ -201,6 +199,8 @@ pub struct SolidContactSimulation<S: Structure<3>, L: ContactLaw> {
     scale: f64,
     /// The active-set path's symbolic analysis and factorisation, kept between steps.
     primal: PrimalCache,
+    /// The check of `step`'s force factor (until the structure shows applied forces).
+    force_check: ForceFactorCheck,
 }
 
 impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
@@ -273,6 +273,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
             solver: UzawaSolver::new(settings.solver),
             scale,
             primal: PrimalCache::default(),
+            force_check: ForceFactorCheck::default(),
         })
     }
 
@@ -390,12 +391,10 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// **prescribed displacements are not scaled** (ramp them through [`Self::structure_mut`]).
     ///
     /// # Errors
-    /// Errors of the structure's solves; the local solver's errors
-    /// ([`SolverError::NotConverged`] …); [`SolverError::NotConverged`] if the active set
-    /// still grows after `max_passes` passes; [`SolverError::InvalidSetting`] for a `time`
-    /// that is not finite or goes backwards, a non-finite `force_factor`, or one other than 1
-    /// while the structure has no applied force for it to scale. On error the simulation keeps
-    /// the state of the previous step.
+    /// Errors of the structure's solves and of the local solver; [`SolverError::NotConverged`]
+    /// if the active set still grows after `max_passes` passes; [`SolverError::InvalidSetting`]
+    /// for a `time` not finite or going backwards, or a `force_factor` not finite or other than
+    /// 1 without applied forces to scale. On error the simulation keeps the previous state.
     pub fn step(&mut self, time: f64, force_factor: f64) -> Result<SolidStepResult, SolverError> {
         if !(time.is_finite() && time >= self.time) {
             return Err(SolverError::InvalidSetting {
@@ -417,7 +416,8 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         let mut u_free = vec![0.0; ndof];
         self.structure
             .free_response_into(force_factor, &mut u_free)?;
-        check_force_factor(&self.structure, force_factor, &u_free)?;
+        self.force_check
+            .check(&self.structure, force_factor, &u_free)?;
         let free: Vec<[f64; 3]> = (0..self.candidates.len())
             .map(|i| self.local(i, &u_free))
             .collect();
