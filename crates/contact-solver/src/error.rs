@@ -227,6 +227,26 @@ pub enum SolverError {
         /// The load's own force or moment along the mode.
         load: f64,
     },
+    /// The penetration check ran out: after the last detection pass allowed, candidates
+    /// outside the solved reduced problem still penetrate their targets, so the step is not
+    /// accepted (the answer would be a wrong one).
+    #[error(
+        "after {passes} detection passes, {count} contact candidate(s) outside the reduced problem still penetrate (the deepest: zone `{zone}`, contactor node {node}, gap {gap:e}); raise `{setting}` or refine the step"
+    )]
+    StillPenetrating {
+        /// Detection passes done (each adds the penetrating candidates and solves again).
+        passes: usize,
+        /// Candidates still penetrating after the last pass.
+        count: usize,
+        /// The zone of the deepest one.
+        zone: String,
+        /// Its contactor node.
+        node: usize,
+        /// Its gap (negative).
+        gap: f64,
+        /// The setting that bounds the passes.
+        setting: &'static str,
+    },
     /// The fixed point between the contact solve and the adhesion update did not converge.
     #[error(
         "the adhesion fixed point did not converge in {iterations} iterations (last change of beta {change:e}; {})",
@@ -436,6 +456,22 @@ impl fmt::Debug for SolverError {
                 .field("motion", motion)
                 .field("imbalance", imbalance)
                 .field("load", load)
+                .finish(),
+            Self::StillPenetrating {
+                passes,
+                count,
+                zone,
+                node,
+                gap,
+                setting,
+            } => f
+                .debug_struct("StillPenetrating")
+                .field("passes", passes)
+                .field("count", count)
+                .field("zone", zone)
+                .field("node", node)
+                .field("gap", gap)
+                .field("setting", setting)
                 .finish(),
             Self::AdhesionNotConverged {
                 iterations,

@@ -50,11 +50,13 @@ pub mod model;
 pub mod ordering;
 pub mod rigid_modes;
 pub mod solid;
+pub mod space;
 pub mod structure;
 pub use dirichlet::{Component, DofMap, Supports};
 pub use linear_solver::SpdSolver;
 pub use model::{LinearElasticModel, Reaction, StressField, StressPoint, geostatic};
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
+pub use space::{Dim, Plane, Solid, Space};
 pub use structure::Structure;
 
 /// The `faer` this crate is built with (its sparse matrices and `MatMut` are in

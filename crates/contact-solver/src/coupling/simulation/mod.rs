@@ -373,7 +373,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// `force_factor` is not finite, or if it is not 1 while the structure has no applied force
     /// for it to scale; [`SolverError::Structure`] if a structure solve fails;
     /// [`SolverError::NotConverged`] or [`SolverError::AdhesionNotConverged`] unless the
-    /// settings accept non-converged results. On error the simulation keeps the state of the
+    /// settings accept non-converged results; [`SolverError::StillPenetrating`] if candidates
+    /// outside the reduced problem still penetrate after
+    /// [`max_detection_passes`](SimulationSettings::max_detection_passes) passes. On error the simulation keeps the state of the
     /// previous step.
     ///
     /// # Examples
@@ -429,10 +431,25 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             // 4. equilibrium, then the penetration check and the report
             let (u, jumps) = self.equilibrium(&u_free, &solved)?;
             let penetrating = self.penetrating(&jumps);
-            if penetrating.is_empty()
-                || report.detection_passes >= self.settings.max_detection_passes
-            {
+            if penetrating.is_empty() {
                 return Ok(self.accept(time, u, jumps, solved, report, start));
+            }
+            if report.detection_passes >= self.settings.max_detection_passes {
+                // issue 35: accepting the step would return contacts that penetrate
+                let deepest = penetrating
+                    .iter()
+                    .copied()
+                    .min_by(|&a, &b| jumps[a][0].total_cmp(&jumps[b][0]))
+                    .unwrap_or(penetrating[0]);
+                let c = &self.candidates[deepest];
+                return Err(SolverError::StillPenetrating {
+                    passes: report.detection_passes,
+                    count: penetrating.len(),
+                    zone: self.zones[c.zone].name.clone(),
+                    node: c.node,
+                    gap: jumps[deepest][0],
+                    setting: "max_detection_passes",
+                });
             }
             active.extend(penetrating);
             active.sort_unstable();
