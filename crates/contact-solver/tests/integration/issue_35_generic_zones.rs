@@ -82,7 +82,7 @@ fn issue_35_one_recognition_for_2d_and_3d() {
     let bottom = mesh.node_set("bottom").unwrap().to_vec();
     let top = mesh.node_set("top").unwrap().to_vec();
     let mut supports = Supports::new();
-    supports.fix(&top, Component::Y);
+    supports.fix(&top, Component::Y).fix(&top, Component::X);
     let plane =
         LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports).unwrap();
     let line = RigidLine::new([-1.0, -GAP], [2.0, -GAP]).unwrap();
@@ -99,7 +99,9 @@ fn issue_35_one_recognition_for_2d_and_3d() {
     let bottom3 = mesh.node_set("z0").unwrap().to_vec();
     let top3 = mesh.node_set("z1").unwrap().to_vec();
     let mut s = Supports::new();
-    s.fix(&top3, Component::Z);
+    s.fix(&top3, Component::Z)
+        .fix(&top3, Component::X)
+        .fix(&top3, Component::Y);
     let solid = SolidModel::new(mesh, &[(0, m)], s).unwrap();
     let floor = RigidPlane::new([0.0, 0.0, -GAP], [0.0, 0.0, 1.0]).unwrap();
     let zone = ContactZone::rigid("floor", bottom3.clone(), floor, Signorini, 0.1);
