@@ -62,9 +62,9 @@ where
             c.gap0
         );
         let x = s.node_position(c.node);
-        for a in 0..D {
-            let want = if a == D - 1 { x[a] - GAP } else { x[a] };
-            assert!((c.point[a] - want).abs() <= 1e-15, "node {}", c.node);
+        for (a, (&p, &xa)) in c.point.iter().zip(&x).enumerate() {
+            let want = if a == D - 1 { xa - GAP } else { xa };
+            assert!((p - want).abs() <= 1e-15, "node {}", c.node);
         }
         // the local jump of a rigid translation along the normal: x_n = g₀ + 1, u_t = 0
         let local = c.local(c.relative(|n| if n == c.node { up } else { [0.0; D] }));
