@@ -3,7 +3,7 @@
 //! candidates and recognition ([`zone`](super::zone)) are written once over `const D: usize`.
 //!
 //! What stays per dimension is geometry: the tangents of a contact frame (`t = (n_y, −n_x)`
-//! in the plane, [`tangent_frame`](super::solid::tangent_frame) in space), the surface of a
+//! in the plane, [`tangent_frame`] in space), the surface of a
 //! deformable target (a polyline of nodes, [`Polyline`]; triangles, [`TriSurface`]), the
 //! default tributary areas (lumped along the contactor polyline in the plane, 1 per node in
 //! space), and the round-off rule of the rows of `H` (kept as each dimension had it, so that
