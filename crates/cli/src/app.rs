@@ -484,14 +484,14 @@ fn print_solid_header(cmd: &str, loaded: &build::Loaded, study: &build::SolidStu
             .iter()
             .filter(|c| c.zone == z)
             .collect();
-        let within = c.iter().filter(|c| c.gap0 <= zone.alert).count();
+        let within = c.iter().filter(|c| c.gap0 <= zone.alert_distance).count();
         let min_gap = c.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
         out::outln!(
             "  zone `{}` ({}): {} candidates, {within} within the alert distance {} at the start (smallest gap {min_gap:.4e})",
             zone.name,
             study.zone_laws[z],
             c.len(),
-            zone.alert
+            zone.alert_distance
         );
     }
     print_phases(&study.phases, &build::phase_law_names(&study.phase_laws));

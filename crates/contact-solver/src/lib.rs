@@ -64,5 +64,6 @@ pub use coupling::simulation::{
 };
 #[cfg(feature = "fe")]
 pub use coupling::zone::{
-    Candidate, ContactZone, Target, check_rigid_targets, recognize, supported_contactors,
+    Candidate, ContactZone, PairNormals, Polyline, Target, check_rigid_targets, recognize,
+    supported_contactors,
 };

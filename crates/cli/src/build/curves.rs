@@ -22,7 +22,7 @@ use super::checks::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
 use contact_laws::StandardLaw;
 use contact_solver::coupling::zone::{lumped_areas, segment_areas};
-use contact_solver::{Candidate, ContactZone, Target};
+use contact_solver::{Candidate, ContactZone, PairNormals, Target};
 use fem_core::curve::{CurveOrder, NotACurve, chain_sides};
 use fem_core::{LinearElasticModel, Mesh, Structure};
 
@@ -189,18 +189,19 @@ pub(super) fn check_facing(
         let what = match zone.target {
             Target::Rigid(_) => continue,
             Target::NodePairs {
-                normal: Some(_), ..
-            } => "the zone's `normal`",
-            Target::NodePairs { normal: None, .. } => {
+                normals: PairNormals::FromTargets,
+                ..
+            } => {
                 "the normal of the target nodes taken as a polyline in order, contactor on \
                  its left"
             }
-            Target::Segments(_) => "the target polyline's normal (contactor on its left)",
+            Target::NodePairs { .. } => "the zone's `normal`",
+            Target::Surface(_) => "the target polyline's normal (contactor on its left)",
         };
         let Some(out) = model.outward_normal(c.node) else {
             continue;
         };
-        let n = c.normal;
+        let n = c.normal();
         if out[0] * n[0] + out[1] * n[1] > 1e-9 {
             let p = KeyPath::root().key("contact").index(c.zone).key("target");
             let x = model.node_position(c.node);

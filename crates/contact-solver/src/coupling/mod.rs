@@ -22,5 +22,6 @@ pub mod output;
 pub mod primal;
 pub mod simulation;
 pub mod solid;
+pub mod space;
 pub mod traction;
 pub mod zone;

@@ -1,28 +1,30 @@
-//! Rigid obstacles (seed 5.5): the analytic LINE segment and circular ARC, and the
-//! [`Obstacle`] trait for your own.
+//! Rigid obstacles (seed 5.5): the [`Obstacle`] trait, one for 2D and 3D, with the analytic
+//! LINE segment and circular ARC of the plane here and the plane, sphere and cylinder of space
+//! in [`solid::obstacle`](super::solid::obstacle).
 //!
 //! An obstacle answers one question: the closest point of its surface to a point `p`, with the
 //! unit normal `n` pointing *towards the contactor's side* and the signed gap
-//! `g = (p − point)·n` (positive outside the obstacle). The tangent of the contact frame is
-//! `t = (n_y, −n_x)`, so that walking a LINE from `a` to `b` goes along `t` with the contactor
-//! on the left (`docs/theory.md` §13).
+//! `g = (p − point)·n` (positive outside the obstacle). In 2D the tangent of the contact frame
+//! is `t = (n_y, −n_x)`, so that walking a LINE from `a` to `b` goes along `t` with the
+//! contactor on the left (`docs/theory.md` §13); in 3D the tangents follow
+//! [`tangent_frame`](super::solid::tangent_frame).
 
 use crate::error::SolverError;
 use std::f64::consts::TAU;
 use std::fmt::Debug;
 
-/// The closest point of an obstacle to a query point.
+/// The closest point of an obstacle to a query point, in `D` dimensions.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ObstaclePoint {
+pub struct ObstaclePoint<const D: usize = 2> {
     /// The closest point on the obstacle's surface.
-    pub point: [f64; 2],
+    pub point: [f64; D],
     /// Unit normal at `point`, towards the contactor's side.
-    pub normal: [f64; 2],
+    pub normal: [f64; D],
     /// Signed gap `(p − point)·normal`: positive when `p` is outside the obstacle.
     pub gap: f64,
 }
 
-impl ObstaclePoint {
+impl ObstaclePoint<2> {
     /// The frame's tangent `t = (n_y, −n_x)`.
     #[inline]
     pub fn tangent(&self) -> [f64; 2] {
@@ -30,7 +32,8 @@ impl ObstaclePoint {
     }
 }
 
-/// A rigid obstacle: the closest point of its surface to a point.
+/// A rigid obstacle in `D` dimensions (2 unless said): the closest point of its surface to a
+/// point.
 ///
 /// Implement it for your own shape; it must return a unit normal and a gap consistent with
 /// it, and `None` for points whose orthogonal projection falls outside the surface (they are
@@ -39,30 +42,34 @@ impl ObstaclePoint {
 /// # Examples
 /// ```
 /// use contact_solver::coupling::obstacle::{Obstacle, RigidLine};
+/// use contact_solver::coupling::solid::RigidPlane;
 /// let ground = RigidLine::new([0.0, 0.0], [10.0, 0.0])?; // contactor above (left of a → b)
 /// let p = ground.project([2.0, 0.5]).unwrap();
 /// assert_eq!((p.point, p.normal, p.gap), ([2.0, 0.0], [0.0, 1.0], 0.5));
 /// assert!(ground.project([11.0, 0.5]).is_none()); // beyond the end b
+/// let floor = RigidPlane::new([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])?; // an `Obstacle<3>`
+/// let p = floor.project([2.0, 1.0, 0.5]).unwrap();
+/// assert_eq!((p.point, p.gap), ([2.0, 1.0, 0.0], 0.5));
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
-pub trait Obstacle: Debug + Send + Sync {
+pub trait Obstacle<const D: usize = 2>: Debug + Send + Sync {
     /// The closest point to `p`, or `None` if `p` has no orthogonal projection on the surface.
-    fn project(&self, p: [f64; 2]) -> Option<ObstaclePoint>;
+    fn project(&self, p: [f64; D]) -> Option<ObstaclePoint<D>>;
 
     /// A length of the surface (a LINE's length, an ARC's length), if it has one: a simulation
     /// refuses a target that is degenerate against the body it faces (see
     /// [`check_rigid_targets`](crate::coupling::zone::check_rigid_targets)). `None` (the
-    /// default) skips that check.
+    /// default, and every unbounded surface) skips that check.
     fn extent(&self) -> Option<f64> {
         None
     }
 }
 
-/// Relative tolerance on the ends of a LINE and an ARC: a point projecting exactly on an end
-/// (up to rounding) is a candidate.
-const END_TOL: f64 = 1e-12;
-
-fn finite_point(what: &'static str, p: [f64; 2]) -> Result<[f64; 2], SolverError> {
+/// `p` if every coordinate is finite, else [`SolverError::NonFinite`] naming `what`.
+pub(crate) fn finite_point<const D: usize>(
+    what: &'static str,
+    p: [f64; D],
+) -> Result<[f64; D], SolverError> {
     for (index, &value) in p.iter().enumerate() {
         if !value.is_finite() {
             return Err(SolverError::NonFinite { what, index, value });
@@ -70,6 +77,10 @@ fn finite_point(what: &'static str, p: [f64; 2]) -> Result<[f64; 2], SolverError
     }
     Ok(p)
 }
+
+/// Relative tolerance on the ends of a LINE and an ARC: a point projecting exactly on an end
+/// (up to rounding) is a candidate.
+const END_TOL: f64 = 1e-12;
 
 /// A rigid straight segment from `a` to `b`; the contactor lies on its left (normal
 /// `n = (−t_y, t_x)`, `t = (b − a)/|b − a|`).

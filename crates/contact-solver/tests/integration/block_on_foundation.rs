@@ -87,8 +87,8 @@ fn resultant(
     res.contacts.iter().fold([0.0; 2], |s, c| {
         let k = sim.candidates().iter().find(|k| k.node == c.node).unwrap();
         [
-            s[0] + c.r.n * k.normal[0] + c.r.t[0] * k.tangent[0],
-            s[1] + c.r.n * k.normal[1] + c.r.t[0] * k.tangent[1],
+            s[0] + c.r.n * k.normal()[0] + c.r.t[0] * k.tangent()[0],
+            s[1] + c.r.n * k.normal()[1] + c.r.t[0] * k.tangent()[1],
         ]
     })
 }

@@ -168,7 +168,7 @@ fn check_uniform(
             c.r[0]
         );
         assert!(c.gap.abs() < 1e-12, "{label}: gap {}", c.gap);
-        assert!((c.candidate.normal[2] - 1.0).abs() < 1e-12);
+        assert!((c.candidate.normal()[2] - 1.0).abs() < 1e-12);
     }
 }
 

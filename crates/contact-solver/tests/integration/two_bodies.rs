@@ -67,7 +67,7 @@ fn node_pairs_give_the_series_solution() {
     settings.solver.tol = 1e-12;
     let mut sim = ContactSimulation::new(model, vec![zone], settings).unwrap();
     for c in sim.candidates() {
-        assert_eq!(c.normal, [0.0, 1.0]); // from the lower body to the upper one
+        assert_eq!(c.normal(), [0.0, 1.0]); // from the lower body to the upper one
         assert_eq!(c.gap0, 0.0);
     }
     let res = sim.step(1.0, 1.0).unwrap();

@@ -290,7 +290,7 @@ impl Cylinders {
                     .iter()
                     .find(|k| k.node == c.node && k.zone == c.zone)
                     .unwrap();
-                let (n, t) = (k.normal, k.tangent);
+                let (n, t) = (k.normal(), k.tangent());
                 let f = [
                     c.r.n * n[0] + c.r.t[0] * t[0],
                     c.r.n * n[1] + c.r.t[0] * t[1],

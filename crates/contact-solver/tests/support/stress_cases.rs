@@ -444,8 +444,8 @@ fn equilibrium_sum(
     }
     for (cand, rec) in sim.candidates().iter().zip(&res.contacts) {
         let f = [
-            rec.r.n * cand.normal[0] + rec.r.t[0] * cand.tangent[0],
-            rec.r.n * cand.normal[1] + rec.r.t[0] * cand.tangent[1],
+            rec.r.n * cand.normal()[0] + rec.r.t[0] * cand.tangent()[0],
+            rec.r.n * cand.normal()[1] + rec.r.t[0] * cand.tangent()[1],
         ];
         let mut add = |node: usize, w: f64| {
             for (c, d) in model.node_dofs(node).into_iter().enumerate() {
@@ -2021,10 +2021,10 @@ fn arc_case(
         let d = [x[0], x[1] + R];
         let l = d[0].hypot(d[1]);
         ensure!(
-            (c.normal[0] - d[0] / l).abs() <= 1e-15 && (c.normal[1] - d[1] / l).abs() <= 1e-15,
+            (c.normal()[0] - d[0] / l).abs() <= 1e-15 && (c.normal()[1] - d[1] / l).abs() <= 1e-15,
             "node {}: normal {:?}",
             c.node,
-            c.normal
+            c.normal()
         );
         ensure!(
             (c.gap0 - (l - R)).abs() <= 1e-14,

@@ -262,7 +262,7 @@ impl PulloutScene {
         let candidates = self.simulation.candidates();
         for (c, rec) in candidates.iter().zip(&result.contacts) {
             // global force on the contactor, −w times it on each target
-            let f_z = rec.r.n * c.normal[1] + rec.r.t[0] * c.tangent[1];
+            let f_z = rec.r.n * c.normal()[1] + rec.r.t[0] * c.tangent()[1];
             if self.head.binary_search(&c.node).is_ok() {
                 q -= f_z;
             }

@@ -268,13 +268,17 @@ impl PulloutSpec {
             self.alert_distance,
         )
         .with_areas(a);
-        let (n_shaft, n_corner, n_tip) = (shaft.nodes.len(), corner.nodes.len(), tip.nodes.len());
+        let (n_shaft, n_corner, n_tip) = (
+            shaft.contactor.len(),
+            corner.contactor.len(),
+            tip.contactor.len(),
+        );
 
         // δ for the requested installation (quarter sums on both sides)
         let geostatic_normal: f64 = shaft
-            .nodes
+            .contactor
             .iter()
-            .chain(&corner.nodes)
+            .chain(&corner.contactor)
             .map(|n| {
                 let z = model.mesh().nodes()[*n][2];
                 self.k0 * self.soil_unit_weight * (-z).max(0.0) * shaft_area[n]

@@ -146,7 +146,7 @@ impl SolidRecorder {
                 .sim
                 .zones()
                 .iter()
-                .map(|z| zone_mass(&z.name, BoundaryMass::on_nodes_3d(mesh, &z.nodes)))
+                .map(|z| zone_mass(&z.name, BoundaryMass::on_nodes_3d(mesh, &z.contactor)))
                 .collect::<CliResult<Vec<_>>>()?
         } else {
             vec![None; study.zone_names.len()]

@@ -476,10 +476,8 @@ fn h_rows_of<S: Structure + ?Sized, L>(
 ) -> Result<Vec<Vec<(usize, f64)>>, SolverError> {
     let mut h_rows = Vec::with_capacity(2 * candidates.len());
     for c in candidates {
-        for dir in [c.normal, c.tangent] {
-            let mut row = Vec::with_capacity(6);
-            c.h_row(structure, dir, &mut row);
-            h_rows.push(row);
+        for dir in c.frame() {
+            h_rows.push(c.h_row(structure, dir));
         }
         if h_rows[h_rows.len() - 2].is_empty() {
             return Err(SolverError::InvalidGeometry(format!(

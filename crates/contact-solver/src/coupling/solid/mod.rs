@@ -1,5 +1,5 @@
 //! 3D contact: rigid obstacles ([`obstacle`]), target surfaces of deformable bodies
-//! ([`surface`]), zones of nodes against either or paired with other nodes ([`zone`]), and the
+//! ([`surface`]), the 3D names of the generic zones and candidates ([`zone`]), and the
 //! quasi-static simulation of a [`Structure<3>`](fem_core::Structure) ([`simulation`]) with
 //! the local solver in 3D (dense `F*`, matrix-free or the primal active set), RCCM adhesion
 //! included.
@@ -10,9 +10,7 @@ pub mod simulation;
 pub mod surface;
 pub mod zone;
 
-pub use obstacle::{
-    Obstacle3, ObstaclePoint3, RigidCylinder, RigidPlane, RigidSphere, Side3, tangent_frame,
-};
+pub use obstacle::{ObstaclePoint3, RigidCylinder, RigidPlane, RigidSphere, Side3, tangent_frame};
 pub use output::write_interface_vtu_3d;
 pub use simulation::{
     DEFAULT_DENSE_LIMIT_3D, SolidContactRecord, SolidContactSimulation, SolidSettings,

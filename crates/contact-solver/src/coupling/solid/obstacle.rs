@@ -1,5 +1,5 @@
-//! Rigid obstacles in 3D: [`RigidPlane`], [`RigidSphere`], [`RigidCylinder`], and the
-//! [`Obstacle3`] trait for your own.
+//! Rigid obstacles in 3D: [`RigidPlane`], [`RigidSphere`], [`RigidCylinder`]; your own
+//! implements [`Obstacle<3>`].
 //!
 //! An obstacle answers the closest point of its surface to a point `p`, with the unit normal
 //! `n` towards the contactor's side and the signed gap `g = (p − point)·n` (positive outside the
@@ -8,43 +8,12 @@
 //! to `n`, and `t₂ = n × t₁`, so `(n, t₁, t₂)` is right-handed; on a plane of normal `e_z`,
 //! `t₁ = e_x` and `t₂ = e_y`.
 
+use crate::coupling::obstacle::{Obstacle, ObstaclePoint, finite_point};
+use crate::coupling::space::dot;
 use crate::error::SolverError;
-use std::fmt::Debug;
 
-/// The closest point of a 3D obstacle to a query point.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ObstaclePoint3 {
-    /// The closest point on the obstacle's surface.
-    pub point: [f64; 3],
-    /// Unit normal at `point`, towards the contactor's side.
-    pub normal: [f64; 3],
-    /// Signed gap `(p − point)·normal`: positive when `p` is outside the obstacle.
-    pub gap: f64,
-}
-
-/// A rigid obstacle in 3D: the closest point of its surface to a point.
-///
-/// Implement it for your own shape: return a unit normal and a gap consistent with it, and
-/// `None` for points that have no projection on the surface (they are not contact
-/// candidates).
-///
-/// # Examples
-/// ```
-/// use contact_solver::coupling::solid::{Obstacle3, RigidPlane};
-/// let floor = RigidPlane::new([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])?;
-/// let p = floor.project([2.0, 1.0, 0.5]).unwrap();
-/// assert_eq!((p.point, p.gap), ([2.0, 1.0, 0.0], 0.5));
-/// # Ok::<(), contact_solver::SolverError>(())
-/// ```
-pub trait Obstacle3: Debug + Send + Sync {
-    /// The closest point to `p`, or `None` if `p` has no projection on the surface.
-    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3>;
-}
-
-#[inline]
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
+/// The closest point of a 3D obstacle: [`ObstaclePoint<3>`].
+pub type ObstaclePoint3 = ObstaclePoint<3>;
 
 #[inline]
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -70,17 +39,8 @@ pub fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     (t1, cross(n, t1))
 }
 
-fn finite3(what: &'static str, p: [f64; 3]) -> Result<[f64; 3], SolverError> {
-    for (index, &value) in p.iter().enumerate() {
-        if !value.is_finite() {
-            return Err(SolverError::NonFinite { what, index, value });
-        }
-    }
-    Ok(p)
-}
-
 fn unit(what: &'static str, v: [f64; 3]) -> Result<[f64; 3], SolverError> {
-    let v = finite3(what, v)?;
+    let v = finite_point(what, v)?;
     let len = dot(v, v).sqrt();
     if !(len > 0.0 && len.is_finite()) {
         return Err(SolverError::InvalidGeometry(format!(
@@ -117,14 +77,14 @@ impl RigidPlane {
     /// [`SolverError::InvalidGeometry`] for a zero normal.
     pub fn new(point: [f64; 3], normal: [f64; 3]) -> Result<Self, SolverError> {
         Ok(Self {
-            point: finite3("plane point", point)?,
+            point: finite_point("plane point", point)?,
             normal: unit("plane normal", normal)?,
         })
     }
 }
 
-impl Obstacle3 for RigidPlane {
-    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3> {
+impl Obstacle<3> for RigidPlane {
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint<3>> {
         let gap = dot(
             [
                 p[0] - self.point[0],
@@ -133,7 +93,7 @@ impl Obstacle3 for RigidPlane {
             ],
             self.normal,
         );
-        Some(ObstaclePoint3 {
+        Some(ObstaclePoint {
             point: core::array::from_fn(|a| p[a] - gap * self.normal[a]),
             normal: self.normal,
             gap,
@@ -166,15 +126,15 @@ impl RigidSphere {
     /// finite and positive.
     pub fn new(center: [f64; 3], radius_: f64, side: Side3) -> Result<Self, SolverError> {
         Ok(Self {
-            center: finite3("sphere center", center)?,
+            center: finite_point("sphere center", center)?,
             radius: radius("sphere radius", radius_)?,
             side,
         })
     }
 }
 
-impl Obstacle3 for RigidSphere {
-    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3> {
+impl Obstacle<3> for RigidSphere {
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint<3>> {
         let d = [
             p[0] - self.center[0],
             p[1] - self.center[1],
@@ -189,7 +149,7 @@ impl Obstacle3 for RigidSphere {
             Side3::Outside => (out, len - self.radius),
             Side3::Inside => (out.map(|v| -v), self.radius - len),
         };
-        Some(ObstaclePoint3 {
+        Some(ObstaclePoint {
             point: core::array::from_fn(|a| self.center[a] + self.radius * out[a]),
             normal,
             gap,
@@ -220,7 +180,7 @@ impl RigidCylinder {
         side: Side3,
     ) -> Result<Self, SolverError> {
         Ok(Self {
-            point: finite3("cylinder point", point)?,
+            point: finite_point("cylinder point", point)?,
             axis: unit("cylinder axis", axis)?,
             radius: radius("cylinder radius", radius_)?,
             side,
@@ -228,8 +188,8 @@ impl RigidCylinder {
     }
 }
 
-impl Obstacle3 for RigidCylinder {
-    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint3> {
+impl Obstacle<3> for RigidCylinder {
+    fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint<3>> {
         let d = [
             p[0] - self.point[0],
             p[1] - self.point[1],
@@ -246,7 +206,7 @@ impl Obstacle3 for RigidCylinder {
             Side3::Outside => (out, len - self.radius),
             Side3::Inside => (out.map(|v| -v), self.radius - len),
         };
-        Some(ObstaclePoint3 {
+        Some(ObstaclePoint {
             point: core::array::from_fn(|a| {
                 self.point[a] + along * self.axis[a] + self.radius * out[a]
             }),

@@ -108,9 +108,9 @@ pub(crate) fn interface_model_3d(
                 .map(|c| u8::from(c.active))
                 .collect::<Vec<u8>>(),
         ),
-        vector("normal", &|c| c.candidate.normal),
-        vector("t1", &|c| c.candidate.t1),
-        vector("t2", &|c| c.candidate.t2),
+        vector("normal", &|c| c.candidate.normal()),
+        vector("t1", &|c| c.candidate.frame()[1]),
+        vector("t2", &|c| c.candidate.frame()[2]),
     ];
     if displacements.is_some() {
         data.point.push(vector("u", &|c| u(c.candidate.node)));

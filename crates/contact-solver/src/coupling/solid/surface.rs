@@ -18,7 +18,8 @@
 //! surface's border). A node beyond the surface's border is not a candidate, as a node beyond
 //! a rigid obstacle's end is not.
 
-use super::obstacle::dot;
+use crate::coupling::space::{dot, sub};
+use crate::coupling::zone::{MAX_TARGETS, Projection, TargetSurface, check_node};
 use crate::error::SolverError;
 use fem_core::Structure;
 use fem_core::solid::{SolidKind, SolidMesh, triangle_shape};
@@ -121,6 +122,32 @@ impl TriSurface {
     }
 }
 
+impl TargetSurface<3> for TriSurface {
+    fn check<S: Structure<3> + ?Sized>(&self, s: &S, zone: &str) -> Result<(), SolverError> {
+        for &n in &self.connectivity {
+            check_node(s, zone, n)?;
+        }
+        Ok(())
+    }
+
+    fn project_all<S: Structure<3> + ?Sized>(
+        &self,
+        s: &S,
+        _zone: &str,
+        nodes: &[usize],
+    ) -> Result<Vec<Option<Projection<3>>>, SolverError> {
+        let topo = Topology::new(s, self);
+        Ok(nodes
+            .iter()
+            .map(|&node| project_on_surface(s, self, &topo, node))
+            .collect())
+    }
+
+    fn node_normals<S: Structure<3> + ?Sized>(&self, s: &S) -> HashMap<usize, [f64; 3]> {
+        node_normals(s, self)
+    }
+}
+
 /// A point of a face: position, unit normal, surface Jacobian and shape values.
 #[derive(Clone, Copy, Debug)]
 struct FaceEval {
@@ -206,19 +233,9 @@ fn clamp_to_triangle(xi: [f64; 2]) -> [f64; 2] {
     [a, b]
 }
 
-/// A node's target on a surface: the face, the weights of its nodes, the point and the frame.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct SurfaceHit {
-    /// Target nodes and weights (the first `count`).
-    pub(crate) targets: [Option<(usize, f64)>; 6],
-    pub(crate) point: [f64; 3],
-    pub(crate) normal: [f64; 3],
-    pub(crate) gap: f64,
-}
-
 /// The surface's topology for the convex-edge fallback: how many faces share each corner
 /// edge, and which corners lie on the border.
-pub(crate) struct Topology {
+struct Topology {
     edges: HashMap<(usize, usize), Vec<usize>>,
     corner_faces: HashMap<usize, Vec<usize>>,
     border_corners: HashSet<usize>,
@@ -230,7 +247,7 @@ fn key(a: usize, b: usize) -> (usize, usize) {
 }
 
 impl Topology {
-    pub(crate) fn new<S: Structure<3> + ?Sized>(s: &S, surface: &TriSurface) -> Self {
+    fn new<S: Structure<3> + ?Sized>(s: &S, surface: &TriSurface) -> Self {
         let mut edges: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
         let mut corner_faces: HashMap<usize, Vec<usize>> = HashMap::new();
         let mut boxes = Vec::with_capacity(surface.face_count());
@@ -277,12 +294,12 @@ fn box_distance(p: [f64; 3], (lo, hi): &([f64; 3], [f64; 3])) -> f64 {
 }
 
 /// The target of `node` on `surface` (module docs), or `None`.
-pub(crate) fn project_on_surface<S: Structure<3> + ?Sized>(
+fn project_on_surface<S: Structure<3> + ?Sized>(
     s: &S,
     surface: &TriSurface,
     topo: &Topology,
     node: usize,
-) -> Option<SurfaceHit> {
+) -> Option<Projection<3>> {
     let p = s.node_position(node);
     // the inside projection of smallest |gap|, and the closest clamped point of the others
     let mut best: Option<(f64, usize, [f64; 2])> = None;
@@ -339,7 +356,7 @@ fn edge_hit<S: Structure<3> + ?Sized>(
     p: [f64; 3],
     k: usize,
     xi: [f64; 2],
-) -> Option<SurfaceHit> {
+) -> Option<Projection<3>> {
     let face = surface.face(k);
     let e = eval(s, face, xi);
     let l = [1.0 - xi[0] - xi[1], xi[0], xi[1]];
@@ -377,12 +394,12 @@ fn edge_hit<S: Structure<3> + ?Sized>(
     Some(hit(face, &e, n.map(|v| v / len), p))
 }
 
-fn hit(face: &[usize], e: &FaceEval, normal: [f64; 3], p: [f64; 3]) -> SurfaceHit {
-    let mut targets = [None; 6];
+fn hit(face: &[usize], e: &FaceEval, normal: [f64; 3], p: [f64; 3]) -> Projection<3> {
+    let mut targets = [None; MAX_TARGETS];
     for (i, &node) in face.iter().enumerate() {
         targets[i] = Some((node, e.n[i]));
     }
-    SurfaceHit {
+    Projection {
         targets,
         point: e.x,
         normal,
@@ -393,10 +410,7 @@ fn hit(face: &[usize], e: &FaceEval, normal: [f64; 3], p: [f64; 3]) -> SurfaceHi
 /// The unit normal of `surface` at each of its nodes: the mean of the normals of the faces
 /// around the node, at the node, weighted by their surface Jacobians there. A node whose
 /// normals cancel (a knife edge) has none.
-pub(crate) fn node_normals<S: Structure<3> + ?Sized>(
-    s: &S,
-    surface: &TriSurface,
-) -> HashMap<usize, [f64; 3]> {
+fn node_normals<S: Structure<3> + ?Sized>(s: &S, surface: &TriSurface) -> HashMap<usize, [f64; 3]> {
     // reference coordinates of the six nodes of a triangle
     const AT: [[f64; 2]; 6] = [
         [0.0, 0.0],
@@ -423,11 +437,6 @@ pub(crate) fn node_normals<S: Structure<3> + ?Sized>(
             (len > 0.0 && len.is_finite()).then(|| (node, n.map(|v| v / len)))
         })
         .collect()
-}
-
-#[inline]
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[inline]

@@ -317,7 +317,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         let mut active: Vec<usize> = (0..self.candidates.len())
             .filter(|&i| {
                 let law = &self.zones[self.candidates[i].zone].law;
-                free[i][0] <= self.zones[self.candidates[i].zone].alert
+                free[i][0] <= self.zones[self.candidates[i].zone].alert_distance
                     || self.r_last[i][0] > 0.0
                     || (law.has_adhesion() && law.adhesion_active(&self.states[i]))
             })
@@ -413,10 +413,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
     /// `(x_n, u_t1, u_t2)` of candidate `i` for a free-dof displacement `u`.
     fn local(&self, i: usize, u: &[f64]) -> [f64; 3] {
         let c = &self.candidates[i];
-        let v = c.relative(|node| node_displacement(&self.structure, u, node));
-        let [n, t1, t2] = c.frame();
-        let d = super::obstacle::dot;
-        [c.gap0 + d(n, v), d(t1, v), d(t2, v)]
+        c.local(c.relative(|node| node_displacement(&self.structure, u, node)))
     }
 
     fn tangent_needed(&self, i: usize) -> bool {

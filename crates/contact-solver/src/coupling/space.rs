@@ -1,0 +1,224 @@
+//! What the contact geometry needs to know of the dimension: [`ContactSpace`], implemented for
+//! [`Dim<2>`] and [`Dim<3>`] (sealed, as [`Space`] is), so that the obstacles, the zones, the
+//! candidates and recognition ([`zone`](super::zone)) are written once over `const D: usize`.
+//!
+//! What stays per dimension is geometry: the tangents of a contact frame (`t = (n_y, −n_x)`
+//! in the plane, [`tangent_frame`] in space), the surface of a
+//! deformable target (a polyline of nodes, [`Polyline`]; triangles, [`TriSurface`]), the
+//! default tributary areas (lumped along the contactor polyline in the plane, 1 per node in
+//! space), and the round-off rule of the rows of `H` (kept as each dimension had it, so that
+//! no number moves; see [`ContactSpace::ROUND_OFF`]).
+//!
+//! Generic code is written with the bound `Dim<D>: ContactSpace<D>`:
+//!
+//! ```
+//! use contact_solver::coupling::space::ContactSpace;
+//! use fem_core::Dim;
+//!
+//! fn tangents<const D: usize>(n: [f64; D]) -> usize
+//! where
+//!     Dim<D>: ContactSpace<D>,
+//! {
+//!     let frame = <Dim<D> as ContactSpace<D>>::frame(n);
+//!     frame.len() - 1
+//! }
+//! assert_eq!(tangents([0.0, 1.0]), 1);
+//! assert_eq!(tangents([0.0, 0.0, 1.0]), 2);
+//! ```
+
+use super::solid::{TriSurface, tangent_frame};
+use super::zone::{Polyline, TargetSurface, lumped_areas};
+use crate::error::SolverError;
+use contact_laws::LocalVec;
+use fem_core::{Dim, Space, Structure};
+use std::fmt::Debug;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for fem_core::Dim<2> {}
+    impl Sealed for fem_core::Dim<3> {}
+}
+
+/// What differs between 2D and 3D contact (module docs); implemented for [`Dim<2>`] and
+/// [`Dim<3>`] only (sealed).
+pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
+    /// The number of tangential directions of a contact frame, `D − 1`.
+    const TANGENTS: usize;
+    /// The coefficients of an `H` row at or below this size are dropped, and the row is merged
+    /// to one entry per dof: `0` in 2D (every nonzero coefficient is kept, one entry per node
+    /// and component, as the 2D coupling always had it), `1e-14` in 3D (a unit direction's
+    /// `cos 90°`, a shape value at a vertex: so that a direction held on both sides has an
+    /// empty row).
+    const ROUND_OFF: f64;
+    /// A candidate is held along its normal when the squared norm of its normal `H` row is
+    /// below this (or the row is empty): `0` in 2D (the row must be empty), `1e-24` in 3D.
+    const HELD: f64;
+    /// The local vector of one contact, `(n, t)`: [`LocalVec<1>`] or [`LocalVec<2>`].
+    type Local: Copy + Debug + PartialEq + Send + Sync + 'static;
+    /// The surface of a deformable target: [`Polyline`] in 2D, [`TriSurface`] in 3D.
+    type Surface: TargetSurface<D>;
+
+    /// The contact frame `[n, t…]` of the unit normal `n`: `t = (n_y, −n_x)` in 2D,
+    /// [`tangent_frame`] in 3D.
+    fn frame(normal: [f64; D]) -> [[f64; D]; D];
+
+    /// The local components `[n, t…]` as the typed local vector.
+    fn local_vec(x: [f64; D]) -> Self::Local;
+
+    /// The tributary areas of a zone's contactor nodes when the zone gives none: lumped along
+    /// the nodes taken as a polyline in 2D ([`lumped_areas`]), 1 per node in 3D.
+    fn default_areas<S: Structure<D> + ?Sized>(s: &S, nodes: &[usize]) -> Vec<f64>;
+
+    /// The normals of node pairs taken from the target nodes themselves
+    /// ([`PairNormals::FromTargets`](super::zone::PairNormals::FromTargets)): in 2D the
+    /// target nodes as a polyline in the given order, contactor on its left (at pair `k`, the
+    /// chord from target `k − 1` to `k + 1`).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidGeometry`] naming the zone: a single pair, a degenerate chord, or
+    /// in 3D always (a list of nodes has no normal there: give `Fixed`, `PerPair` or
+    /// `Surface` normals).
+    fn normals_from_targets<S: Structure<D> + ?Sized>(
+        s: &S,
+        zone: &str,
+        targets: &[usize],
+    ) -> Result<Vec<[f64; D]>, SolverError>;
+}
+
+/// `a·b`, summed left to right (the order the 2D and 3D copies had).
+#[inline]
+pub(crate) fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
+    let mut s = a[0] * b[0];
+    for k in 1..D {
+        s += a[k] * b[k];
+    }
+    s
+}
+
+/// `a − b`.
+#[inline]
+pub(crate) fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
+    core::array::from_fn(|k| a[k] - b[k])
+}
+
+/// `v / |v|`, or an error naming the zone for a zero or non-finite `v`.
+pub(crate) fn unit<const D: usize>(zone: &str, v: [f64; D]) -> Result<[f64; D], SolverError> {
+    let l = if D == 2 {
+        v[0].hypot(v[1])
+    } else {
+        dot(v, v).sqrt()
+    };
+    if !(l > 0.0 && l.is_finite()) {
+        return Err(SolverError::InvalidGeometry(format!(
+            "zone `{zone}`: cannot build a unit normal from {v:?}"
+        )));
+    }
+    Ok(v.map(|x| x / l))
+}
+
+/// The left normal `(−t_y, t_x)` of a 2D direction.
+#[inline]
+pub(crate) fn left_normal(t: [f64; 2]) -> [f64; 2] {
+    [-t[1], t[0]]
+}
+
+impl ContactSpace<2> for Dim<2> {
+    const TANGENTS: usize = 1;
+    const ROUND_OFF: f64 = 0.0;
+    const HELD: f64 = 0.0;
+    type Local = LocalVec<1>;
+    type Surface = Polyline;
+
+    #[inline]
+    fn frame(n: [f64; 2]) -> [[f64; 2]; 2] {
+        [n, [n[1], -n[0]]]
+    }
+
+    #[inline]
+    fn local_vec(x: [f64; 2]) -> LocalVec<1> {
+        LocalVec::planar(x[0], x[1])
+    }
+
+    fn default_areas<S: Structure<2> + ?Sized>(s: &S, nodes: &[usize]) -> Vec<f64> {
+        lumped_areas(s, nodes, false)
+    }
+
+    fn normals_from_targets<S: Structure<2> + ?Sized>(
+        s: &S,
+        zone: &str,
+        nodes: &[usize],
+    ) -> Result<Vec<[f64; 2]>, SolverError> {
+        if nodes.len() < 2 {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{zone}`: a single pair needs an explicit normal"
+            )));
+        }
+        (0..nodes.len())
+            .map(|k| {
+                let a = nodes[k.saturating_sub(1)];
+                let b = nodes[(k + 1).min(nodes.len() - 1)];
+                let t = unit(zone, sub(s.node_position(b), s.node_position(a)))?;
+                Ok(left_normal(t))
+            })
+            .collect()
+    }
+}
+
+impl ContactSpace<3> for Dim<3> {
+    const TANGENTS: usize = 2;
+    const ROUND_OFF: f64 = 1e-14;
+    const HELD: f64 = 1e-24;
+    type Local = LocalVec<2>;
+    type Surface = TriSurface;
+
+    #[inline]
+    fn frame(n: [f64; 3]) -> [[f64; 3]; 3] {
+        let (t1, t2) = tangent_frame(n);
+        [n, t1, t2]
+    }
+
+    #[inline]
+    fn local_vec(x: [f64; 3]) -> LocalVec<2> {
+        LocalVec::spatial(x[0], x[1], x[2])
+    }
+
+    fn default_areas<S: Structure<3> + ?Sized>(_: &S, nodes: &[usize]) -> Vec<f64> {
+        vec![1.0; nodes.len()]
+    }
+
+    fn normals_from_targets<S: Structure<3> + ?Sized>(
+        _: &S,
+        zone: &str,
+        _: &[usize],
+    ) -> Result<Vec<[f64; 3]>, SolverError> {
+        Err(SolverError::InvalidGeometry(format!(
+            "zone `{zone}`: 3D node pairs need their normals (`Fixed`, `PerPair` or `Surface`): \
+             a list of target nodes has no normal in space"
+        )))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frames_are_orthonormal_works() {
+        let [n, t] = <Dim<2> as ContactSpace<2>>::frame([0.6, 0.8]);
+        assert_eq!((n, t), ([0.6, 0.8], [0.8, -0.6]));
+        let f = <Dim<3> as ContactSpace<3>>::frame([0.0, 0.0, 1.0]);
+        assert_eq!(f, [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        assert_eq!(dot([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]), 32.0);
+        let l = <Dim<3> as ContactSpace<3>>::local_vec([1.0, 2.0, 3.0]);
+        assert_eq!((l.n, l.t[0], l.t[1]), (1.0, 2.0, 3.0));
+    }
+
+    #[test]
+    fn unit_rejects_zero_vectors() {
+        assert!(matches!(
+            unit("z", [0.0, 0.0, 0.0]),
+            Err(SolverError::InvalidGeometry(m)) if m.contains("unit normal")
+        ));
+        assert_eq!(unit("z", [3.0, 4.0]).unwrap(), [0.6, 0.8]);
+    }
+}
