@@ -1,4 +1,4 @@
-//! Reading 2D triangle meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
+//! Reading 2D triangle and quadrilateral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
 //!
 //! The file is parsed by the [`mshio`] crate; this module turns it into a [`Mesh`]:
 //!
@@ -9,6 +9,9 @@
 //!   Clockwise triangles are reordered (corners 1 ↔ 2 and the mid-side nodes with them), so
 //!   either orientation of the surface is accepted. The region of a triangle is the first
 //!   physical tag of its surface entity, or 0 if it has none.
+//! - **Quadrangles.** 4-node (type 3), 8-node (type 16) and 9-node (type 10) quadrangles, in
+//!   the same node order as VTK's 9, 23 and 28; clockwise ones are reordered as triangles are.
+//!   One element kind per file.
 //! - **Physical curves** (dimension 1) become an edge set and a node set of the same name.
 //!   Each line element (type 1 or 8) is matched to a triangle side by its two end nodes; where
 //!   two triangles share that side (an interior curve), the one to the left of the line's
@@ -24,8 +27,7 @@
 //!   `point_<tag>`. A curve group and a point group of the same name share one node set
 //!   (sorted by index, as it is no longer one curve).
 //!
-//! Lines and points outside physical groups are ignored. Any other element type (quadrangles,
-//! tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
+//! Lines and points outside physical groups are ignored. Any other element type (tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
 //! read by [`crate::solid::gmsh`].
 
 use crate::error::FemError;
@@ -414,14 +416,27 @@ fn build(
     for block in &elements.element_blocks {
         let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
         match t {
-            ElementType::Tri3 | ElementType::Tri6 => {
+            ElementType::Tri3
+            | ElementType::Tri6
+            | ElementType::Qua4
+            | ElementType::Qua8
+            | ElementType::Qua9 => {
                 let this = match t {
                     ElementType::Tri3 => ElementKind::Tri3,
-                    _ => ElementKind::Tri6,
+                    ElementType::Tri6 => ElementKind::Tri6,
+                    ElementType::Qua4 => ElementKind::Quad4,
+                    ElementType::Qua8 => ElementKind::Quad8,
+                    _ => ElementKind::Quad9,
                 };
-                if *kind.get_or_insert(this) != this {
+                let first = *kind.get_or_insert(this);
+                if first != this {
                     return Err(FemError::Unsupported {
-                        what: format!("mixed 3-node and 6-node triangles in {origin}"),
+                        what: format!(
+                            "mixed {}-node and {}-node elements ({first:?} and {this:?}) in \
+                             {origin}: one kind per mesh",
+                            first.node_count(),
+                            this.node_count()
+                        ),
                     });
                 }
                 let region = region_of(&physical, dim, tag, origin)?;
@@ -449,8 +464,8 @@ fn build(
                     t,
                     dim,
                     tag,
-                    "triangles (types 2, 9), lines (1, 8) and points (15) \
-                     (volume meshes: `solid::gmsh`)",
+                    "triangles (types 2, 9), quadrangles (3, 16, 10), lines (1, 8) and \
+                     points (15) (volume meshes: `solid::gmsh`)",
                 ));
             }
         }
@@ -458,8 +473,9 @@ fn build(
     let Some(kind) = kind else {
         return Err(FemError::Unsupported {
             what: format!(
-                "{origin} holds no triangles (Gmsh types 2 or 9); note that once physical \
-                 groups exist Gmsh saves only their elements (add a physical surface)"
+                "{origin} holds no triangles or quadrangles (Gmsh types 2, 9, 3, 16, 10); \
+                 note that once physical groups exist Gmsh saves only their elements (add a \
+                 physical surface)"
             ),
         });
     };
@@ -484,12 +500,31 @@ fn build(
     let mut connectivity = Vec::with_capacity(npe * triangles.len());
     for t in &triangles {
         let mut cell: Vec<usize> = t.iter().map(|tag| index[tag]).collect();
-        let [a, b, c] = [cell[0], cell[1], cell[2]].map(|n| nodes[n]);
-        if (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]) < 0.0 {
-            cell.swap(1, 2);
-            if kind == ElementKind::Tri6 {
-                // Mid-sides 3 (0-1), 4 (1-2), 5 (2-0) become 5 (0-2), 4 (2-1), 3 (1-0).
-                cell.swap(3, 5);
+        if kind.side_count() == 3 {
+            let [a, b, c] = [cell[0], cell[1], cell[2]].map(|n| nodes[n]);
+            if (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]) < 0.0 {
+                cell.swap(1, 2);
+                if kind == ElementKind::Tri6 {
+                    // Mid-sides 3 (0-1), 4 (1-2), 5 (2-0) become 5 (0-2), 4 (2-1), 3 (1-0).
+                    cell.swap(3, 5);
+                }
+            }
+        } else {
+            // shoelace area of the corners
+            let area: f64 = (0..4)
+                .map(|k| {
+                    let (p, q) = (nodes[cell[k]], nodes[cell[(k + 1) % 4]]);
+                    p[0] * q[1] - q[0] * p[1]
+                })
+                .sum();
+            if area < 0.0 {
+                // corners 0 1 2 3 become 0 3 2 1; mid-sides 4 (0-1), 5, 6, 7 (3-0) become
+                // 7 (0-3), 6 (3-2), 5 (2-1), 4 (1-0); the centre stays
+                cell.swap(1, 3);
+                if kind.is_quadratic() {
+                    cell.swap(4, 7);
+                    cell.swap(5, 6);
+                }
             }
         }
         connectivity.extend(cell);
@@ -519,7 +554,7 @@ fn add_physical_sets(
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
     for element in 0..mesh.element_count() {
-        for side in 0..3u8 {
+        for side in 0..mesh.kind().side_count() as u8 {
             let mut it = mesh.side_nodes(Side { element, side });
             if let (Some(a), Some(b)) = (it.next(), it.next()) {
                 sides.insert((a, b), Side { element, side });
@@ -718,8 +753,8 @@ fn match_side(
     let a = *index.get(line.nodes.first()?)?;
     let b = *index.get(line.nodes.get(1)?)?;
     let side = sides.get(&(a, b)).or_else(|| sides.get(&(b, a))).copied()?;
-    match (line.nodes.get(2), mesh.kind()) {
-        (Some(mid), ElementKind::Tri6) => {
+    match (line.nodes.get(2), mesh.kind().is_quadratic()) {
+        (Some(mid), true) => {
             let m = *index.get(mid)?;
             (mesh.side_nodes(side).nth(2) == Some(m)).then_some(side)
         }

@@ -139,6 +139,9 @@ pub fn box_mesh(
     match kind {
         SolidKind::Tet4 => Ok(mesh),
         SolidKind::Tet10 => mesh.to_tet10(None),
+        other => Err(FemError::Unsupported {
+            what: format!("box_mesh of {other:?} elements (it makes tetrahedra)"),
+        }),
     }
 }
 
@@ -255,6 +258,9 @@ pub fn sphere_shell_octant(
             };
             mesh.to_tet10(Some(&mid))
         }
+        other => Err(FemError::Unsupported {
+            what: format!("sphere_shell_octant of {other:?} elements (it makes tetrahedra)"),
+        }),
     }
 }
 

@@ -72,6 +72,7 @@ fn distorted_kind(mesh: &SolidMesh, kind: SolidKind, amp: f64, h: f64) -> SolidM
             let p2 = p1.to_tet10(None).unwrap();
             shaken(&p2, 0.2 * amp, h, p1.node_count(), &mut seed)
         }
+        other => panic!("this test meshes tetrahedra, not {other:?}"),
     }
 }
 
