@@ -14,6 +14,7 @@ mod gmsh_curves;
 mod hostile_input;
 mod mesh_io;
 mod patch;
+mod quad_hex;
 mod revolve;
 mod solid;
 mod solid_io;
