@@ -1,4 +1,5 @@
-//! Reading 2D triangle and quadrilateral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
+//! Reading 2D triangle and quadrilateral meshes from Gmsh `.msh` files, format 4.1 (ASCII or
+//! binary).
 //!
 //! The file is parsed by the [`mshio`] crate; this module turns it into a [`Mesh`]:
 //!
@@ -43,7 +44,7 @@ use std::path::Path;
 /// - [`FemError::Io`] if the file cannot be read or is not valid MSH 4.1 (with the line of
 ///   the first error where it is known);
 /// - [`FemError::Unsupported`] for another format version, an element type other than
-///   triangles, lines and points, mixed 3-node and 6-node triangles, a line in a physical
+///   triangles, quadrangles, lines and points, mixed element kinds, a line in a physical
 ///   group that is not a triangle side, or a negative physical tag;
 /// - the errors of [`Mesh::new`] (e.g. a degenerate triangle).
 ///
@@ -415,37 +416,21 @@ fn build(
     let mut points: Vec<Lower> = Vec::new();
     for block in &elements.element_blocks {
         let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
-        match t {
-            ElementType::Tri3
-            | ElementType::Tri6
-            | ElementType::Qua4
-            | ElementType::Qua8
-            | ElementType::Qua9 => {
-                let this = match t {
-                    ElementType::Tri3 => ElementKind::Tri3,
-                    ElementType::Tri6 => ElementKind::Tri6,
-                    ElementType::Qua4 => ElementKind::Quad4,
-                    ElementType::Qua8 => ElementKind::Quad8,
-                    _ => ElementKind::Quad9,
-                };
-                let first = *kind.get_or_insert(this);
-                if first != this {
-                    return Err(FemError::Unsupported {
-                        what: format!(
-                            "mixed {}-node and {}-node elements ({first:?} and {this:?}) in \
-                             {origin}: one kind per mesh",
-                            first.node_count(),
-                            this.node_count()
-                        ),
-                    });
-                }
-                let region = region_of(&physical, dim, tag, origin)?;
-                for e in &block.elements {
-                    triangles.push(&e.nodes);
-                    triangle_tags.push(e.element_tag);
-                    regions.push(region);
-                }
+        if let Some(this) = kind_of(t) {
+            let first = *kind.get_or_insert(this);
+            if first != this {
+                let what = format!("mixed {first:?} and {this:?} elements in {origin}");
+                return Err(FemError::Unsupported { what });
             }
+            let region = region_of(&physical, dim, tag, origin)?;
+            for e in &block.elements {
+                triangles.push(&e.nodes);
+                triangle_tags.push(e.element_tag);
+                regions.push(region);
+            }
+            continue;
+        }
+        match t {
             ElementType::Lin2 | ElementType::Lin3 | ElementType::Pnt => {
                 if tags_of(dim, tag).is_empty() {
                     continue;
@@ -500,32 +485,23 @@ fn build(
     let mut connectivity = Vec::with_capacity(npe * triangles.len());
     for t in &triangles {
         let mut cell: Vec<usize> = t.iter().map(|tag| index[tag]).collect();
-        if kind.side_count() == 3 {
-            let [a, b, c] = [cell[0], cell[1], cell[2]].map(|n| nodes[n]);
-            if (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]) < 0.0 {
-                cell.swap(1, 2);
-                if kind == ElementKind::Tri6 {
-                    // Mid-sides 3 (0-1), 4 (1-2), 5 (2-0) become 5 (0-2), 4 (2-1), 3 (1-0).
-                    cell.swap(3, 5);
-                }
-            }
-        } else {
-            // shoelace area of the corners
-            let area: f64 = (0..4)
-                .map(|k| {
-                    let (p, q) = (nodes[cell[k]], nodes[cell[(k + 1) % 4]]);
-                    p[0] * q[1] - q[0] * p[1]
-                })
-                .sum();
-            if area < 0.0 {
-                // corners 0 1 2 3 become 0 3 2 1; mid-sides 4 (0-1), 5, 6, 7 (3-0) become
-                // 7 (0-3), 6 (3-2), 5 (2-1), 4 (1-0); the centre stays
-                cell.swap(1, 3);
-                if kind.is_quadratic() {
-                    cell.swap(4, 7);
-                    cell.swap(5, 6);
-                }
-            }
+        // the shoelace area of the corners; a clockwise element is mirrored: triangles 1 ↔ 2
+        // (mid-sides 3 ↔ 5), quadrangles 1 ↔ 3 (mid-sides 4 ↔ 7, 5 ↔ 6; the centre stays)
+        let nc = kind.corner_count();
+        let area: f64 = (0..nc)
+            .map(|k| {
+                let (p, q) = (nodes[cell[k]], nodes[cell[(k + 1) % nc]]);
+                p[0] * q[1] - q[0] * p[1]
+            })
+            .sum();
+        if area < 0.0 {
+            let swaps: &[(usize, usize)] = match (nc, kind.is_quadratic()) {
+                (3, false) => &[(1, 2)],
+                (3, true) => &[(1, 2), (3, 5)],
+                (_, false) => &[(1, 3)],
+                (_, true) => &[(1, 3), (4, 7), (5, 6)],
+            };
+            swaps.iter().for_each(|&(a, b)| cell.swap(a, b));
         }
         connectivity.extend(cell);
     }
@@ -740,6 +716,13 @@ pub(crate) fn node_coordinates(
         }
     }
     Ok(coords)
+}
+
+/// The mesh kind of a Gmsh element type, from the catalogue's [`crate::element::Topology`].
+fn kind_of(t: ElementType) -> Option<ElementKind> {
+    ElementKind::ALL
+        .into_iter()
+        .find(|k| k.element().topology().gmsh_type == t as u32)
 }
 
 /// The triangle side of a line element: to the left of the line if two triangles share it.

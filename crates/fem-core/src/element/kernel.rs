@@ -538,6 +538,9 @@ where
     Ok(())
 }
 
+/// Position, displacement, strain (3D Voigt, tensor shears) and weight at a point.
+pub(crate) type Field3 = ([f64; 3], [f64; 3], [f64; 6], f64);
+
 /// Position, displacement, strain (3D Voigt, tensor shears) and weight at one quadrature
 /// point of a 3D element, for error norms.
 pub(crate) fn field_at3<E: Element<3> + ?Sized>(
@@ -546,7 +549,7 @@ pub(crate) fn field_at3<E: Element<3> + ?Sized>(
     coords: &[[f64; 3]],
     u_e: &[f64],
     q: QuadPoint<3>,
-) -> Result<([f64; 3], [f64; 3], [f64; 6], f64), FemError> {
+) -> Result<Field3, FemError> {
     let nodes = el.node_count();
     let p = point(el, element, coords, &(), q)?;
     let mut u = [0.0; 3];

@@ -122,7 +122,7 @@ mod solid {
 
     fn tet10(c: &[[f64; 3]]) -> Vec<[f64; 3]> {
         let mut out = c.to_vec();
-        for [i, j] in crate::solid::TET_EDGES {
+        for [i, j] in crate::element::tet10::TET_EDGES {
             out.push(core::array::from_fn(|a| 0.5 * (c[i][a] + c[j][a])));
         }
         out

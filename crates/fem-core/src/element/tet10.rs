@@ -9,8 +9,7 @@
 
 use super::tet4::{DL, tet_load_rule};
 use super::{Element, QuadPoint, Topology};
-use crate::solid::mesh::{TET_EDGES, dot, sub};
-use crate::solid::quadrature::{TET_4, conical_rule};
+use crate::quadrature::{TET_4, conical_rule};
 use std::sync::OnceLock;
 
 /// The 10-node tetrahedron: stiffness with Keast's 4-point rule (exact for straight sides),
@@ -28,6 +27,19 @@ pub const FACES: [&[usize]; 4] = [
     &[1, 2, 3, 5, 9, 8],
     &[0, 3, 2, 7, 9, 6],
 ];
+
+/// The edges of a tetrahedron, in the order of the P2 mid-edge nodes `4..10`.
+pub const TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
+
+#[inline]
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
 
 /// Whether a 10-node element has a mid-edge node off the midpoint of its edge (by more than
 /// `1e-12` of the edge's length).

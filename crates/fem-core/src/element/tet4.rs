@@ -4,7 +4,7 @@
 //! functions the barycentric coordinates `N = (1 − ξ − η − ζ, ξ, η, ζ)`.
 
 use super::{Element, QuadPoint, Topology};
-use crate::solid::quadrature::{TET_1, conical_rule};
+use crate::quadrature::{TET_1, conical_rule};
 use std::sync::OnceLock;
 
 /// The 4-node linear tetrahedron: stiffness at the centroid (its strain is constant); loads

@@ -26,8 +26,7 @@ pub enum SolidKind {
     Hex20,
 }
 
-/// The edges of a tetrahedron, in the order of the P2 mid-edge nodes `4..10`.
-pub const TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
+pub use crate::element::tet10::TET_EDGES;
 
 impl SolidKind {
     /// Every kind, for tests and messages.
