@@ -15,6 +15,7 @@ mod hostile_input;
 mod mesh_io;
 mod patch;
 mod quad_hex;
+mod quad_hex_io;
 mod quad_hex_rates;
 mod revolve;
 mod solid;
