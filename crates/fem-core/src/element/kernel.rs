@@ -148,17 +148,25 @@ where
     Ok(p)
 }
 
-/// Entry `(k, col)` of the plane strain–displacement matrix `B` (rows `xx, yy, γ_xy, θθ`).
+/// The plane strain–displacement matrix `B` (rows `xx, yy, γ_xy, θθ`; the first `2 n`
+/// columns are set, the rest is zero).
+type PlaneB = [[f64; 2 * MAX_NODES]; 4];
+
+/// `B` at a point of an element of `nodes` nodes; the hoop row only in axisymmetry.
 #[inline]
-fn plane_b<const D: usize>(p: &Point<D>, axi: bool, k: usize, col: usize) -> f64 {
-    let i = col / 2;
-    let (gx, gy) = (p.grad[i][0], p.grad[i][1]);
-    match (k, col % 2) {
-        (0, 0) | (2, 1) => gx,
-        (1, 1) | (2, 0) => gy,
-        (3, 0) if axi => p.n[i] / p.x[0],
-        _ => 0.0,
+fn plane_b<const D: usize>(p: &Point<D>, nodes: usize, axi: bool) -> PlaneB {
+    let mut b = [[0.0; 2 * MAX_NODES]; 4];
+    for i in 0..nodes {
+        let (gx, gy) = (p.grad[i][0], p.grad[i][1]);
+        b[0][2 * i] = gx;
+        b[1][2 * i + 1] = gy;
+        b[2][2 * i] = gy;
+        b[2][2 * i + 1] = gx;
+        if axi {
+            b[3][2 * i] = p.n[i] / p.x[0];
+        }
     }
+    b
 }
 
 /// Lamé's constants `(λ, μ)` of a material.
@@ -261,14 +269,15 @@ where
     let axi = matches!(ideal, Idealization::Axisymmetric);
     for &q in el.stiffness_rule(setting, coords) {
         let p = point(el, element, coords, setting, q)?;
+        let b = plane_b(&p, el.node_count(), axi);
         // DB = D B (m × nd) column by column, then K += Bᵀ (DB) w
         for c in 0..nd {
             let mut db = [0.0; 4];
             for (r, v) in db.iter_mut().enumerate().take(m) {
-                *v = (0..m).map(|k| d[(r, k)] * plane_b(&p, axi, k, c)).sum();
+                *v = (0..m).map(|k| d[(r, k)] * b[k][c]).sum();
             }
             for a in 0..=c {
-                let v: f64 = (0..m).map(|k| plane_b(&p, axi, k, a) * db[k]).sum::<f64>() * p.weight;
+                let v: f64 = (0..m).map(|k| b[k][a] * db[k]).sum::<f64>() * p.weight;
                 k_e[(a, c)] += v;
             }
         }
@@ -386,9 +395,10 @@ where
             Some(ideal) => {
                 let m = ideal.strain_size();
                 let axi = matches!(ideal, Idealization::Axisymmetric);
+                let b = plane_b(&p, nodes, axi);
                 // σ in B's row order: (xx, yy, xy, θθ)
                 for (a, f) in f_e.iter_mut().enumerate().take(D * nodes) {
-                    let v: f64 = (0..m).map(|k| plane_b(&p, axi, k, a) * s[k]).sum();
+                    let v: f64 = (0..m).map(|k| b[k][a] * s[k]).sum();
                     *f -= v * p.weight;
                 }
             }
@@ -436,11 +446,10 @@ where
                 let d = material.elasticity(ideal);
                 let m = ideal.strain_size();
                 let axi = matches!(ideal, Idealization::Axisymmetric);
+                let b = plane_b(&p, nodes, axi);
                 let mut eps = [0.0; 4];
                 for (k, e) in eps.iter_mut().enumerate().take(m) {
-                    *e = (0..D * nodes)
-                        .map(|a| plane_b(&p, axi, k, a) * u_e[a])
-                        .sum();
+                    *e = (0..D * nodes).map(|a| b[k][a] * u_e[a]).sum();
                 }
                 for (r, sr) in s.iter_mut().enumerate().take(m) {
                     *sr = (0..m).map(|k| d[(r, k)] * eps[k]).sum();
