@@ -114,3 +114,72 @@ $Elements\n1 1 1 1\n2 1 10 1\n1 1 2 3 4 5 6 7 8 9\n$EndElements\n";
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Boundaries of quadrilateral and hexahedral meshes: the boundary sides and faces, the
+/// outward normals, the edge sets' nodes, and the consistent nodal areas of quadrangle faces
+/// (`∫ N_i dA`: a quarter of each face at a Hex8 face's corners; on Hex20 faces the corners'
+/// `−A/12` are clipped to 0 as the P2 triangles' 0 are, the mid-edge nodes keep `A/3`).
+#[test]
+fn issue_35_boundaries_of_quadrilateral_and_hexahedral_meshes_works() {
+    use fem_core::generate::{RectangleSpec, rectangle};
+    use fem_core::solid::generate::{box_mesh, lines};
+    for kind in [ElementKind::Quad4, ElementKind::Quad8, ElementKind::Quad9] {
+        let spec = RectangleSpec {
+            kind,
+            ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 4, 2)
+        };
+        let mesh = rectangle(&spec).unwrap();
+        assert_eq!(mesh.element_count(), 8);
+        assert_eq!(mesh.boundary_sides().len(), 12, "{kind:?}");
+        let per = if kind == ElementKind::Quad4 { 1 } else { 2 };
+        assert_eq!(mesh.node_set("bottom").unwrap().len(), 4 * per + 1);
+        let normals = mesh.outward_normals();
+        let corner = mesh.node_set("top_right").unwrap()[0];
+        let n = normals[corner].unwrap();
+        // the bisector of +x and +y; round-off
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(
+            (n[0] - h).abs() < 1e-15 && (n[1] - h).abs() < 1e-15,
+            "{kind:?}: {n:?}"
+        );
+        let inside = (0..mesh.node_count())
+            .filter(|&k| normals[k].is_none())
+            .count();
+        let interior = if per == 1 {
+            3
+        } else {
+            7 * 3 - if kind == ElementKind::Quad8 { 8 } else { 0 }
+        };
+        assert_eq!(inside, interior, "{kind:?}: interior nodes");
+    }
+    for (kind, corner_area, mid_area) in [
+        (SolidKind::Hex8, 0.25, None),
+        (SolidKind::Hex20, 0.0, Some(1.0 / 3.0)),
+    ] {
+        let mesh = box_mesh(
+            &lines(0.0, 2.0, 2),
+            &lines(0.0, 1.0, 1),
+            &lines(0.0, 1.0, 1),
+            kind,
+        )
+        .unwrap();
+        assert_eq!(mesh.boundary_faces().len(), 2 * (2 + 2 + 1), "{kind:?}");
+        assert_eq!(mesh.face_set("z0").unwrap().len(), 2);
+        let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+        let total: f64 = areas.iter().sum();
+        let x = mesh.nodes();
+        // the face z = 0 is 2 × 1: two unit squares
+        let at = |p: [f64; 3]| areas[nodes.iter().position(|&n| x[n] == p).unwrap()];
+        // round-off of a 3×3 rule
+        assert!(
+            (at([0.0, 0.0, 0.0]) - corner_area).abs() < 1e-14,
+            "{kind:?}"
+        );
+        if let Some(mid) = mid_area {
+            assert!((at([0.5, 0.0, 0.0]) - mid).abs() < 1e-14, "{kind:?}");
+            assert!((total - 2.0 * 4.0 / 3.0).abs() < 1e-13, "{kind:?}: {total}");
+        } else {
+            assert!((total - 2.0).abs() < 1e-13, "{kind:?}: {total}");
+        }
+    }
+}
