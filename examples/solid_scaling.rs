@@ -47,7 +47,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         let per_side = (target as f64 / 3.0).cbrt();
         let n = match kind {
             SolidKind::Tet4 => (per_side - 1.0).round().max(1.0) as usize,
-            SolidKind::Tet10 => ((per_side - 1.0) / 2.0).round().max(1.0) as usize,
+            _ => ((per_side - 1.0) / 2.0).round().max(1.0) as usize,
         };
         let t = Instant::now();
         let g = lines(0.0, 1.0, n);

@@ -370,6 +370,7 @@ fn element_of(kind: ElementKind) -> &'static str {
     match kind {
         ElementKind::Tri3 => "P1",
         ElementKind::Tri6 => "P2",
+        _ => "other",
     }
 }
 

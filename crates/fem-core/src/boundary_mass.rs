@@ -102,7 +102,7 @@ impl BoundaryMass {
             });
         }
         for s in sides {
-            if s.element >= mesh.element_count() || s.side > 2 {
+            if s.element >= mesh.element_count() || s.side as usize >= mesh.kind().side_count() {
                 return Err(FemError::InvalidSide {
                     element: s.element,
                     side: s.side,
@@ -173,10 +173,9 @@ impl BoundaryMass {
                 what: "the faces of a 3D boundary",
             });
         }
-        if let Some(f) = faces
-            .iter()
-            .find(|f| f.element >= mesh.element_count() || f.face > 3)
-        {
+        if let Some(f) = faces.iter().find(|f| {
+            f.element >= mesh.element_count() || f.face as usize >= mesh.kind().face_count()
+        }) {
             return Err(FemError::InvalidSide {
                 element: f.element,
                 side: f.face,

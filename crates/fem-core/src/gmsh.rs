@@ -1,4 +1,5 @@
-//! Reading 2D triangle meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
+//! Reading 2D triangle and quadrilateral meshes from Gmsh `.msh` files, format 4.1 (ASCII or
+//! binary).
 //!
 //! The file is parsed by the [`mshio`] crate; this module turns it into a [`Mesh`]:
 //!
@@ -9,6 +10,9 @@
 //!   Clockwise triangles are reordered (corners 1 ↔ 2 and the mid-side nodes with them), so
 //!   either orientation of the surface is accepted. The region of a triangle is the first
 //!   physical tag of its surface entity, or 0 if it has none.
+//! - **Quadrangles.** 4-node (type 3), 8-node (type 16) and 9-node (type 10) quadrangles, in
+//!   the same node order as VTK's 9, 23 and 28; clockwise ones are reordered as triangles are.
+//!   One element kind per file.
 //! - **Physical curves** (dimension 1) become an edge set and a node set of the same name.
 //!   Each line element (type 1 or 8) is matched to a triangle side by its two end nodes; where
 //!   two triangles share that side (an interior curve), the one to the left of the line's
@@ -24,8 +28,7 @@
 //!   `point_<tag>`. A curve group and a point group of the same name share one node set
 //!   (sorted by index, as it is no longer one curve).
 //!
-//! Lines and points outside physical groups are ignored. Any other element type (quadrangles,
-//! tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
+//! Lines and points outside physical groups are ignored. Any other element type (tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
 //! read by [`crate::solid::gmsh`].
 
 use crate::error::FemError;
@@ -41,7 +44,7 @@ use std::path::Path;
 /// - [`FemError::Io`] if the file cannot be read or is not valid MSH 4.1 (with the line of
 ///   the first error where it is known);
 /// - [`FemError::Unsupported`] for another format version, an element type other than
-///   triangles, lines and points, mixed 3-node and 6-node triangles, a line in a physical
+///   triangles, quadrangles, lines and points, mixed element kinds, a line in a physical
 ///   group that is not a triangle side, or a negative physical tag;
 /// - the errors of [`Mesh::new`] (e.g. a degenerate triangle).
 ///
@@ -413,24 +416,21 @@ fn build(
     let mut points: Vec<Lower> = Vec::new();
     for block in &elements.element_blocks {
         let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
-        match t {
-            ElementType::Tri3 | ElementType::Tri6 => {
-                let this = match t {
-                    ElementType::Tri3 => ElementKind::Tri3,
-                    _ => ElementKind::Tri6,
-                };
-                if *kind.get_or_insert(this) != this {
-                    return Err(FemError::Unsupported {
-                        what: format!("mixed 3-node and 6-node triangles in {origin}"),
-                    });
-                }
-                let region = region_of(&physical, dim, tag, origin)?;
-                for e in &block.elements {
-                    triangles.push(&e.nodes);
-                    triangle_tags.push(e.element_tag);
-                    regions.push(region);
-                }
+        if let Some(this) = kind_of(t) {
+            let first = *kind.get_or_insert(this);
+            if first != this {
+                let what = format!("mixed {first:?} and {this:?} elements in {origin}");
+                return Err(FemError::Unsupported { what });
             }
+            let region = region_of(&physical, dim, tag, origin)?;
+            for e in &block.elements {
+                triangles.push(&e.nodes);
+                triangle_tags.push(e.element_tag);
+                regions.push(region);
+            }
+            continue;
+        }
+        match t {
             ElementType::Lin2 | ElementType::Lin3 | ElementType::Pnt => {
                 if tags_of(dim, tag).is_empty() {
                     continue;
@@ -449,8 +449,8 @@ fn build(
                     t,
                     dim,
                     tag,
-                    "triangles (types 2, 9), lines (1, 8) and points (15) \
-                     (volume meshes: `solid::gmsh`)",
+                    "triangles (types 2, 9), quadrangles (3, 16, 10), lines (1, 8) and \
+                     points (15) (volume meshes: `solid::gmsh`)",
                 ));
             }
         }
@@ -458,8 +458,9 @@ fn build(
     let Some(kind) = kind else {
         return Err(FemError::Unsupported {
             what: format!(
-                "{origin} holds no triangles (Gmsh types 2 or 9); note that once physical \
-                 groups exist Gmsh saves only their elements (add a physical surface)"
+                "{origin} holds no triangles or quadrangles (Gmsh types 2, 9, 3, 16, 10); \
+                 note that once physical groups exist Gmsh saves only their elements (add a \
+                 physical surface)"
             ),
         });
     };
@@ -484,13 +485,23 @@ fn build(
     let mut connectivity = Vec::with_capacity(npe * triangles.len());
     for t in &triangles {
         let mut cell: Vec<usize> = t.iter().map(|tag| index[tag]).collect();
-        let [a, b, c] = [cell[0], cell[1], cell[2]].map(|n| nodes[n]);
-        if (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]) < 0.0 {
-            cell.swap(1, 2);
-            if kind == ElementKind::Tri6 {
-                // Mid-sides 3 (0-1), 4 (1-2), 5 (2-0) become 5 (0-2), 4 (2-1), 3 (1-0).
-                cell.swap(3, 5);
-            }
+        // the shoelace area of the corners; a clockwise element is mirrored: triangles 1 ↔ 2
+        // (mid-sides 3 ↔ 5), quadrangles 1 ↔ 3 (mid-sides 4 ↔ 7, 5 ↔ 6; the centre stays)
+        let nc = kind.corner_count();
+        let area: f64 = (0..nc)
+            .map(|k| {
+                let (p, q) = (nodes[cell[k]], nodes[cell[(k + 1) % nc]]);
+                p[0] * q[1] - q[0] * p[1]
+            })
+            .sum();
+        if area < 0.0 {
+            let swaps: &[(usize, usize)] = match (nc, kind.is_quadratic()) {
+                (3, false) => &[(1, 2)],
+                (3, true) => &[(1, 2), (3, 5)],
+                (_, false) => &[(1, 3)],
+                (_, true) => &[(1, 3), (4, 7), (5, 6)],
+            };
+            swaps.iter().for_each(|&(a, b)| cell.swap(a, b));
         }
         connectivity.extend(cell);
     }
@@ -519,7 +530,7 @@ fn add_physical_sets(
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
     for element in 0..mesh.element_count() {
-        for side in 0..3u8 {
+        for side in 0..mesh.kind().side_count() as u8 {
             let mut it = mesh.side_nodes(Side { element, side });
             if let (Some(a), Some(b)) = (it.next(), it.next()) {
                 sides.insert((a, b), Side { element, side });
@@ -707,6 +718,13 @@ pub(crate) fn node_coordinates(
     Ok(coords)
 }
 
+/// The mesh kind of a Gmsh element type, from the catalogue's [`crate::element::Topology`].
+fn kind_of(t: ElementType) -> Option<ElementKind> {
+    ElementKind::ALL
+        .into_iter()
+        .find(|k| k.element().topology().gmsh_type == t as u32)
+}
+
 /// The triangle side of a line element: to the left of the line if two triangles share it.
 /// For a 3-node line in a P2 mesh the middle node must be the side's.
 fn match_side(
@@ -718,8 +736,8 @@ fn match_side(
     let a = *index.get(line.nodes.first()?)?;
     let b = *index.get(line.nodes.get(1)?)?;
     let side = sides.get(&(a, b)).or_else(|| sides.get(&(b, a))).copied()?;
-    match (line.nodes.get(2), mesh.kind()) {
-        (Some(mid), ElementKind::Tri6) => {
+    match (line.nodes.get(2), mesh.kind().is_quadratic()) {
+        (Some(mid), true) => {
             let m = *index.get(mid)?;
             (mesh.side_nodes(side).nth(2) == Some(m)).then_some(side)
         }

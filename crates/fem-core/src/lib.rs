@@ -1,13 +1,16 @@
-//! Finite-element core of `bipotential`: 2D linear elasticity on triangle meshes.
+//! Finite-element core of `bipotential`: linear elasticity on 2D and 3D meshes.
 //!
 //! What the crate holds:
 //! - **Meshes** ([`mesh`]): 3-node (P1) and 6-node (P2) triangles with regions, node sets and
 //!   edge sets; structured generators ([`generate`]: graded rectangles, the axisymmetric
 //!   pile-in-soil domain); a Gmsh `.msh` 4.1 reader ([`gmsh`]); VTK `.vtu`/`.pvd` output for
 //!   ParaView ([`vtk`]).
-//! - **Elements** ([`element`]): the [`Element`] trait and the isoparametric triangles
-//!   [`Tri3`] and [`Tri6`], integrated with the rules of [`quadrature`], for an isotropic
-//!   [`Material`] under plane strain, plane stress or axisymmetry ([`Idealization`]).
+//! - **Elements** ([`element`]): one isoparametric [`Element`] trait for 2D and 3D with its
+//!   kernels written once, and the catalogue — triangles [`Tri3`], [`Tri6`], quadrilaterals
+//!   [`Quad4`], [`Quad8`], [`Quad9`] (plane strain, plane stress or axisymmetry,
+//!   [`Idealization`]), tetrahedra and hexahedra ([`element::Tet4`], [`element::Tet10`],
+//!   [`element::Hex8`], [`element::Hex20`]) — integrated with the rules of [`quadrature`], for
+//!   an isotropic [`Material`].
 //! - **Assembly and solution**: supports and the free/prescribed dof numbering
 //!   ([`dirichlet`]), the sparsity pattern built once and refilled in place ([`assembly`]),
 //!   and a sparse Cholesky solver whose symbolic analysis is done once per pattern
@@ -42,7 +45,7 @@ pub use mesh::curve;
 pub use mesh::{ElementKind, Mesh, Side};
 pub mod element;
 pub mod quadrature;
-pub use element::{Element, Stress, Tri3, Tri6};
+pub use element::{Element, Quad4, Quad8, Quad9, Stress, Tri3, Tri6};
 pub mod assembly;
 pub mod dirichlet;
 pub mod linear_solver;

@@ -2,41 +2,105 @@
 
 pub mod curve;
 
+use crate::element::{Element, Quad4, Quad8, Quad9, Tri3, Tri6};
 use crate::error::FemError;
 use curve::{CurveOrder, chain_sides};
 use std::collections::BTreeMap;
 
 /// The element family of a mesh.
 ///
-/// Node order: corners `0, 1, 2` counter-clockwise, then for P2 the mid-edge nodes
-/// `3` (edge 0–1), `4` (edge 1–2), `5` (edge 2–0) — Gmsh's order.
+/// Node order (Gmsh's and VTK's): triangles have corners `0, 1, 2` counter-clockwise, then for
+/// P2 the mid-edge nodes `3` (edge 0–1), `4` (edge 1–2), `5` (edge 2–0); quadrilaterals have
+/// corners `0..4` counter-clockwise, then for Quad8/Quad9 the mid-side nodes `4` (0–1),
+/// `5` (1–2), `6` (2–3), `7` (3–0), and for Quad9 the centre `8`. The element of each kind is
+/// [`ElementKind::element`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum ElementKind {
     /// Linear 3-node triangle.
     Tri3,
     /// Quadratic 6-node isoparametric triangle.
     Tri6,
+    /// Bilinear 4-node quadrilateral.
+    Quad4,
+    /// Quadratic 8-node serendipity quadrilateral.
+    Quad8,
+    /// Biquadratic 9-node Lagrange quadrilateral.
+    Quad9,
 }
 
 impl ElementKind {
-    /// Nodes per element: 3 or 6.
+    /// Every kind, for tests and messages.
+    pub const ALL: [ElementKind; 5] = [
+        ElementKind::Tri3,
+        ElementKind::Tri6,
+        ElementKind::Quad4,
+        ElementKind::Quad8,
+        ElementKind::Quad9,
+    ];
+
+    /// The built-in element of this kind.
+    #[inline]
+    pub fn element(self) -> &'static dyn Element<2> {
+        match self {
+            ElementKind::Tri3 => &Tri3,
+            ElementKind::Tri6 => &Tri6,
+            ElementKind::Quad4 => &Quad4,
+            ElementKind::Quad8 => &Quad8,
+            ElementKind::Quad9 => &Quad9,
+        }
+    }
+
+    /// Nodes per element: 3, 6, 4, 8 or 9.
     #[inline]
     pub fn node_count(self) -> usize {
         match self {
             ElementKind::Tri3 => 3,
             ElementKind::Tri6 => 6,
+            ElementKind::Quad4 => 4,
+            ElementKind::Quad8 => 8,
+            ElementKind::Quad9 => 9,
         }
     }
 
-    /// The local nodes of side `side ∈ {0, 1, 2}`, from its first corner to its second, with
-    /// the mid-side node last for P2 (`[a, b]` or `[a, b, m]`).
+    /// Corners per element: 3 or 4.
     #[inline]
-    pub fn side_nodes(self, side: usize) -> &'static [usize] {
-        const P1: [[usize; 2]; 3] = [[0, 1], [1, 2], [2, 0]];
-        const P2: [[usize; 3]; 3] = [[0, 1, 3], [1, 2, 4], [2, 0, 5]];
+    pub fn corner_count(self) -> usize {
+        self.side_count()
+    }
+
+    /// Sides per element: 3 (triangles) or 4 (quadrilaterals).
+    #[inline]
+    pub fn side_count(self) -> usize {
         match self {
-            ElementKind::Tri3 => &P1[side],
-            ElementKind::Tri6 => &P2[side],
+            ElementKind::Tri3 | ElementKind::Tri6 => 3,
+            _ => 4,
+        }
+    }
+
+    /// Whether the sides carry a mid-side node (3-node sides).
+    #[inline]
+    pub fn is_quadratic(self) -> bool {
+        matches!(
+            self,
+            ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9
+        )
+    }
+
+    /// The local nodes of side `side ∈ 0..side_count()`, from its first corner to its second
+    /// (the body on its left), with the mid-side node last for quadratic kinds (`[a, b]` or
+    /// `[a, b, m]`).
+    ///
+    /// # Panics
+    /// If `side >= self.side_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn side_nodes(self, side: usize) -> &'static [usize] {
+        match self {
+            ElementKind::Tri3 => crate::element::tri3::SIDES[side],
+            ElementKind::Tri6 => crate::element::tri6::SIDES[side],
+            ElementKind::Quad4 => crate::element::quad4::SIDES[side],
+            ElementKind::Quad8 | ElementKind::Quad9 => crate::element::quad8::SIDES[side],
         }
     }
 }
@@ -47,7 +111,7 @@ impl ElementKind {
 pub struct Side {
     /// Element index.
     pub element: usize,
-    /// Local side index in `0..3`.
+    /// Local side index in `0..side_count()` of the element's kind.
     pub side: u8,
 }
 
@@ -97,33 +161,7 @@ impl Mesh {
         let npe = kind.node_count();
         let regions = checked_cells(nodes.len(), npe, &connectivity, regions)?;
         for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
-            let [a, b, c] = [nodes[cell[0]], nodes[cell[1]], nodes[cell[2]]];
-            let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
-            let l2 = [(a, b), (b, c), (c, a)]
-                .iter()
-                .map(|(p, q)| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2))
-                .fold(0.0, f64::max);
-            if !(area.is_finite() && l2.is_finite()) {
-                // the coordinates are finite, but their products overflow
-                let value = [a, b, c]
-                    .iter()
-                    .flat_map(|p| p.iter())
-                    .fold(0.0_f64, |m, v| m.max(v.abs()));
-                return Err(FemError::InvalidParameter {
-                    name: "node coordinates",
-                    value,
-                    expected: "magnitudes whose products stay finite (below about 1e150)",
-                });
-            }
-            if area.abs() <= 1e-12 * l2 || l2 == 0.0 {
-                return Err(FemError::DegenerateElement { element, area });
-            }
-            if area < 0.0 {
-                return Err(FemError::InvertedElement {
-                    element,
-                    det_j: 2.0 * area,
-                });
-            }
+            check_corners(element, &nodes, &cell[..kind.corner_count()])?;
         }
         Ok(Self {
             nodes,
@@ -188,10 +226,9 @@ impl Mesh {
     /// # Errors
     /// [`FemError::InvalidSide`] for a side whose element or local index is out of range.
     pub fn add_edge_set(&mut self, name: &str, sides: Vec<Side>) -> Result<(), FemError> {
-        if let Some(s) = sides
-            .iter()
-            .find(|s| s.element >= self.element_count() || s.side > 2)
-        {
+        if let Some(s) = sides.iter().find(|s| {
+            s.element >= self.element_count() || s.side as usize >= self.kind.side_count()
+        }) {
             return Err(FemError::InvalidSide {
                 element: s.element,
                 side: s.side,
@@ -387,7 +424,7 @@ impl Mesh {
         let mut count: BTreeMap<[usize; 2], (usize, Side)> = BTreeMap::new();
         for element in 0..self.element_count() {
             let cell = self.element(element);
-            for side in 0..3u8 {
+            for side in 0..self.kind.side_count() as u8 {
                 let local = self.kind.side_nodes(side as usize);
                 let (a, b) = (cell[local[0]], cell[local[1]]);
                 count
@@ -445,6 +482,57 @@ impl Mesh {
         nodes.dedup();
         Ok(nodes)
     }
+}
+
+/// Checks the corners of one element: finite products, not degenerate, counter-clockwise. A
+/// triangle's area is tested; a quadrilateral is tested at each corner (the triangle of the
+/// corner and its two neighbours), which accepts exactly the strictly convex quadrilaterals —
+/// those whose bilinear map has a positive Jacobian everywhere.
+fn check_corners(element: usize, nodes: &[[f64; 2]], cell: &[usize]) -> Result<(), FemError> {
+    let c = cell.len();
+    let corner_triangles = if c == 3 { 1 } else { c };
+    let (mut area, mut l2) = (f64::INFINITY, 0.0_f64);
+    for k in 0..corner_triangles {
+        // for a triangle: (0, 1, 2); for a quadrilateral: (k, k + 1, k − 1)
+        let [a, b, cc] = if c == 3 {
+            [nodes[cell[0]], nodes[cell[1]], nodes[cell[2]]]
+        } else {
+            [
+                nodes[cell[k]],
+                nodes[cell[(k + 1) % c]],
+                nodes[cell[(k + c - 1) % c]],
+            ]
+        };
+        let ak = 0.5 * ((b[0] - a[0]) * (cc[1] - a[1]) - (cc[0] - a[0]) * (b[1] - a[1]));
+        let lk = [(a, b), (b, cc), (cc, a)]
+            .iter()
+            .map(|(p, q)| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2))
+            .fold(0.0, f64::max);
+        if !(ak.is_finite() && lk.is_finite()) {
+            // the coordinates are finite, but their products overflow
+            let value = cell
+                .iter()
+                .flat_map(|&n| nodes[n].iter())
+                .fold(0.0_f64, |m, v| m.max(v.abs()));
+            return Err(FemError::InvalidParameter {
+                name: "node coordinates",
+                value,
+                expected: "magnitudes whose products stay finite (below about 1e150)",
+            });
+        }
+        area = area.min(ak);
+        l2 = l2.max(lk);
+    }
+    if area.abs() <= 1e-12 * l2 || l2 == 0.0 {
+        return Err(FemError::DegenerateElement { element, area });
+    }
+    if area < 0.0 {
+        return Err(FemError::InvertedElement {
+            element,
+            det_j: 2.0 * area,
+        });
+    }
+    Ok(())
 }
 
 /// Checks a flat connectivity of `npe` nodes per element against `node_count` nodes and returns

@@ -20,6 +20,7 @@
 //! assert_eq!((voigt::<2>(), voigt::<3>()), (4, 6));
 //! ```
 
+use crate::idealization::Idealization;
 use std::fmt::Debug;
 
 /// The dimension `D` as a type (see the module docs).
@@ -60,6 +61,13 @@ pub trait Space:
         + AsRef<[f64]>
         + AsMut<[f64]>
         + 'static;
+    /// The kinematic setting an element's kernels take: the [`Idealization`] in the plane
+    /// (plane strain, plane stress with its thickness, axisymmetry with its `2πr` weight and
+    /// hoop strain), `()` in 3D.
+    type Setting: Copy + Debug + PartialEq + Send + Sync + 'static;
+
+    /// The plane idealisation a setting stands for; `None` in 3D.
+    fn idealization(setting: &Self::Setting) -> Option<&Idealization>;
 }
 
 impl Space for Dim<2> {
@@ -67,6 +75,12 @@ impl Space for Dim<2> {
     const VOIGT: usize = 4;
     const NAME: &'static str = "2D";
     type Stress = [f64; 4];
+    type Setting = Idealization;
+
+    #[inline]
+    fn idealization(setting: &Idealization) -> Option<&Idealization> {
+        Some(setting)
+    }
 }
 
 impl Space for Dim<3> {
@@ -74,6 +88,12 @@ impl Space for Dim<3> {
     const VOIGT: usize = 6;
     const NAME: &'static str = "3D";
     type Stress = [f64; 6];
+    type Setting = ();
+
+    #[inline]
+    fn idealization(_: &()) -> Option<&Idealization> {
+        None
+    }
 }
 
 #[cfg(test)]

@@ -212,6 +212,9 @@ fn model(
     let cell_type = match mesh.kind() {
         ElementKind::Tri3 => CellType::Triangle,
         ElementKind::Tri6 => CellType::QuadraticTriangle,
+        ElementKind::Quad4 => CellType::Quad,
+        ElementKind::Quad8 => CellType::QuadraticQuad,
+        ElementKind::Quad9 => CellType::BiquadraticQuad,
     };
     let mut data = Attributes::new();
     data.point = point_data.iter().map(|(n, f)| f.attribute(n)).collect();
@@ -235,6 +238,8 @@ fn model_3d(
     let cell_type = match mesh.kind() {
         SolidKind::Tet4 => CellType::Tetra,
         SolidKind::Tet10 => CellType::QuadraticTetra,
+        SolidKind::Hex8 => CellType::Hexahedron,
+        SolidKind::Hex20 => CellType::QuadraticHexahedron,
     };
     let mut data = Attributes::new();
     data.point = point_data.iter().map(|(n, f)| f.attribute(n)).collect();

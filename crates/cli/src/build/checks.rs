@@ -91,6 +91,23 @@ pub fn kind_name(k: ElementKind) -> &'static str {
     match k {
         ElementKind::Tri3 => "P1 (3-node triangles)",
         ElementKind::Tri6 => "P2 (6-node triangles)",
+        ElementKind::Quad4 => "P1 (4-node quadrilaterals)",
+        ElementKind::Quad8 => "P2 (8-node serendipity quadrilaterals)",
+        ElementKind::Quad9 => "P2 (9-node Lagrange quadrilaterals)",
+        _ => "elements of a kind this version of bipo does not name",
+    }
+}
+
+/// Whether a mesh of kind `k` has the order of the scene's element name (`P1`: linear
+/// triangles or quadrilaterals, `P2`: quadratic ones): `mesh.element` of a Gmsh file names
+/// the order, the file the shape.
+pub(super) fn has_order(e: Element, k: ElementKind) -> bool {
+    match e {
+        Element::P1 => matches!(k, ElementKind::Tri3 | ElementKind::Quad4),
+        Element::P2 => matches!(
+            k,
+            ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9
+        ),
     }
 }
 

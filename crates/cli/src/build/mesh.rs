@@ -1,7 +1,9 @@
 //! The mesh: `[mesh]`'s values checked into a generator's spec (or a Gmsh file to read), then
 //! the mesh generated or read, and the axisymmetric mesh checked to lie right of the axis.
 
-use super::checks::{at_least, fem, finite, finite2, grading, kind, kind_name, positive};
+use super::checks::{
+    at_least, fem, finite, finite2, grading, has_order, kind, kind_name, positive,
+};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::{Element, MeshSpec, Pair, TipCornerSpec};
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner};
@@ -329,7 +331,7 @@ pub(super) fn build(mp: &KeyPath, plan: MeshPlan, idealization: Idealization) ->
         } => {
             let mesh = fem_core::gmsh::read_msh(&path).map_err(|e| fem(&mp.key("file"), e))?;
             if let Some(e) = element
-                && kind(e) != mesh.kind()
+                && !has_order(e, mesh.kind())
             {
                 return Err(CliError::at(
                     &mp.key("element"),

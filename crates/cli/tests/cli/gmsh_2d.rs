@@ -85,3 +85,49 @@ fn issue_36_check_refuses_bad_targets() {
         &["contact[0].target.set", "`tee`", "branches at node"],
     );
 }
+
+/// Issue 35: the nine-node quadrilaterals of tests/gmsh/quad_block.msh (quad_block.toml) pressed
+/// on a rigid line, E = 100, ν = 0, by δ = 0.01 over the height 1: uniaxial strain, so
+/// `Σ r_n = E δ A / H = 1` (the Q9 elements hold the linear field exactly: the solver tolerance
+/// 1e-12 and round-off are left, 1e-8 relative); the 9 nodes of the bottom carry it, their
+/// areas summing to the width 1 (1e-12); the mesh written to VTK.
+#[test]
+fn issue_35_gmsh_quadrilateral_block_works() {
+    let out = tmp("quad_block");
+    let path = manifest("tests/gmsh/quad_block.toml");
+    let o = bipo(&[
+        "run".as_ref(),
+        path.as_os_str(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(
+        o.status.success(),
+        "bipo failed:\n{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let force = summary["zones"][0]["final_force_n"].as_f64().unwrap();
+    assert!((force - 1.0).abs() < 1e-8, "Σ r_n = {force}");
+    let contacts = csv(&out.join("contacts.csv"));
+    let half: f64 = contacts
+        .iter()
+        .filter(|r| r["step"] == "1")
+        .map(|r| num(r, "r_n"))
+        .sum();
+    assert!((half - 0.5).abs() < 1e-8, "Σ r_n at t = 1/2: {half}");
+    let last: Vec<_> = contacts.iter().filter(|r| r["step"] == "2").collect();
+    assert_eq!(last.len(), 9, "the 9 nodes of the bottom");
+    let areas: f64 = last.iter().map(|r| num(r, "area")).sum();
+    assert!((areas - 1.0).abs() < 1e-12, "Σ areas = {areas}");
+    let vtu = std::fs::read_to_string(out.join("mesh_0001.vtu")).unwrap();
+    // VTK_BIQUADRATIC_QUAD, the only cell type
+    assert!(
+        vtu.contains(r#"Name="types" format="binary" RangeMin="28" RangeMax="28""#),
+        "the mesh output's cells are not all of type 28"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -325,3 +325,10 @@ fn solid_laws_by_phase_works() {
     assert!((fx + 0.2).abs() < 1e-3 && fx >= -0.2 - 1e-9, "{fx}");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// Issue 35: the Signorini patch on the Gmsh hexahedral block tests/solid/hex_block.msh
+/// (8-node hexahedra, quadrangle surfaces): the same closed form, exact in Hex8.
+#[test]
+fn issue_35_solid_signorini_patch_hexahedra_works() {
+    check_patch(&manifest("tests/solid/patch_hex.toml"), "patch_hex");
+}

@@ -1,466 +1,270 @@
-//! Elements: the [`Element`] trait and the isoparametric triangles [`Tri3`] and [`Tri6`].
+//! Elements: one isoparametric [`Element`] trait for 2D and 3D, and the built-in catalogue,
+//! one file per element.
 //!
-//! "Which dofs an element touches" lives in the mesh and the dof map; an element only
-//! computes local arrays from its node coordinates, into buffers the caller reuses.
-//! Local dof order: `(u_0, v_0, u_1, v_1, …)`.
+//! | element | dim | nodes | stiffness rule | file |
+//! |---|---|---|---|---|
+//! | [`Tri3`] | 2 | 3 | centroid (3 points in axisymmetry) | `tri3.rs` |
+//! | [`Tri6`] | 2 | 6 | 3 points (6 in axisymmetry) | `tri6.rs` |
+//! | [`Quad4`] | 2 | 4 | full 2×2 Gauss | `quad4.rs` |
+//! | [`Quad8`] | 2 | 8 (serendipity) | full 3×3 Gauss | `quad8.rs` |
+//! | [`Quad9`] | 2 | 9 (Lagrange) | full 3×3 Gauss | `quad9.rs` |
+//! | [`Tet4`] | 3 | 4 | centroid | `tet4.rs` |
+//! | [`Tet10`] | 3 | 10 | 4 points (degree 3 when curved) | `tet10.rs` |
+//! | [`Hex8`] | 3 | 8 | full 2×2×2 Gauss | `hex8.rs` |
+//! | [`Hex20`] | 3 | 20 (serendipity) | full 3×3×3 Gauss | `hex20.rs` |
+//!
+//! An element supplies what is its own — reference shape functions and their derivatives,
+//! quadrature rules and topology ([`Topology`]: sides or faces in local numbering, VTK cell
+//! type, Gmsh element type) — and receives the kernels (stiffness, body force, initial-stress
+//! force, stresses at the quadrature points, consistent and lumped mass) from one
+//! implementation written once for any dimension ([`kernel`]). It may override any kernel.
+//!
+//! "Which dofs an element touches" lives in the mesh and the dof map; an element only computes
+//! local arrays from its node coordinates, into buffers the caller reuses. Local dof order:
+//! `(u_0, v_0[, w_0], u_1, …)`. The kinematic setting of a kernel is
+//! [`Space::Setting`]: the [`crate::Idealization`] in 2D (plane strain, plane stress with its
+//! thickness, axisymmetry with its `r` weight per radian and hoop strain `u_r / r`), `()` in 3D.
+//!
+//! # Examples
+//! A user's element is any type that implements the trait; here a Quad4 with a reduced
+//! one-point rule (hourglass-prone, for illustration), taking every kernel from the defaults:
+//! ```
+//! use fem_core::element::{Element, Quad4, QuadPoint, Topology};
+//! use fem_core::{Idealization, Material};
+//!
+//! #[derive(Debug)]
+//! struct OnePointQuad;
+//! impl Element<2> for OnePointQuad {
+//!     fn node_count(&self) -> usize { 4 }
+//!     fn shape(&self, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 2]]) {
+//!         Quad4.shape(xi, n, dn)
+//!     }
+//!     fn stiffness_rule(&self, _: &Idealization, _: &[[f64; 2]]) -> &[QuadPoint<2>] {
+//!         &[([0.0, 0.0], 4.0)]
+//!     }
+//!     fn load_rule(&self, s: &Idealization) -> &[QuadPoint<2>] { Quad4.load_rule(s) }
+//!     fn topology(&self) -> Topology { Quad4.topology() }
+//! }
+//! let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+//! let material = Material::new(1.0, 0.25, 0.0)?;
+//! let mut k_e = nalgebra::DMatrix::zeros(0, 0);
+//! OnePointQuad.stiffness_into(0, &square, &material, &Idealization::PlaneStrain, &mut k_e)?;
+//! assert_eq!(k_e.shape(), (8, 8));
+//! # Ok::<(), fem_core::FemError>(())
+//! ```
 
+pub mod hex20;
+pub mod hex8;
+pub mod kernel;
+pub mod quad4;
+pub mod quad8;
+pub mod quad9;
+pub mod tet10;
+pub mod tet4;
 pub mod tri3;
 pub mod tri6;
 
+#[cfg(test)]
+mod tests;
+
+pub use hex8::Hex8;
+pub use hex20::Hex20;
+pub use quad4::Quad4;
+pub use quad8::Quad8;
+pub use quad9::Quad9;
+pub use tet4::Tet4;
+pub use tet10::Tet10;
+pub use tri3::Tri3;
+pub use tri6::Tri6;
+
 use crate::error::FemError;
-use crate::idealization::Idealization;
 use crate::material::Material;
-use crate::quadrature::{TRI_1, TRI_3, TRI_6, TriPoint};
-use nalgebra::{DMatrix, Matrix4};
+use crate::space::{Dim, Space};
+use nalgebra::DMatrix;
+use std::fmt::Debug;
 
-/// Largest number of nodes of a built-in element (scratch arrays are sized by it).
-pub const MAX_NODES: usize = 6;
+/// Largest number of nodes an element may have for the default kernels (their scratch
+/// arrays are sized by it; a 27-node hexahedron fits).
+pub const MAX_NODES: usize = 27;
 
-/// Stress (or strain) components: `(xx, yy, xy, zz)` in the plane — `zz` is the out-of-plane
-/// stress `ν(σ_xx + σ_yy)` in plane strain and 0 in plane stress — and `(rr, zz, rz, θθ)` in
-/// axisymmetry.
+/// Stress (or strain) components in 2D: `(xx, yy, xy, zz)` in the plane — `zz` is the
+/// out-of-plane stress `ν(σ_xx + σ_yy)` in plane strain and 0 in plane stress — and
+/// `(rr, zz, rz, θθ)` in axisymmetry.
 pub type Stress = [f64; 4];
 
-/// A finite element of linear elasticity, as the assembly consumes it.
-pub trait Element {
-    /// Number of nodes.
+/// Stress (or strain) components in 3D: `(xx, yy, zz, xy, yz, zx)` (strains with tensor
+/// shears `ε_xy`, not `γ_xy`).
+pub type Stress3 = [f64; 6];
+
+/// A quadrature point `ξ` of the reference element and its weight.
+pub type QuadPoint<const D: usize> = ([f64; D], f64);
+
+/// The kinematic setting of dimension `D` ([`Space::Setting`]).
+pub type Setting<const D: usize> = <Dim<D> as Space>::Setting;
+
+/// The Voigt stress of dimension `D` ([`Space::Stress`]).
+pub type VoigtStress<const D: usize> = <Dim<D> as Space>::Stress;
+
+/// The topology of an element: what the mesh, the readers and the writers need.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Topology {
+    /// Number of corner (vertex) nodes; they come first in the local numbering.
+    pub corners: usize,
+    /// The sides (2D) or faces (3D) in local numbering. A 2D side runs from its first corner to
+    /// its second with the body on its left, mid-side node last (`[a, b]` or `[a, b, m]`). A
+    /// 3D face lists its corners counter-clockwise seen from outside, then its mid-edge nodes
+    /// for the edges (c0–c1, c1–c2, …): the node order of a 3/6-node triangle or a 4/8-node
+    /// quadrilateral.
+    pub sides: &'static [&'static [usize]],
+    /// The VTK cell type (5 triangle, 22 quadratic triangle, 9 quad, 23 quadratic quad,
+    /// 28 biquadratic quad, 10 tetra, 24 quadratic tetra, 12 hexahedron, 25 quadratic
+    /// hexahedron).
+    pub vtk_cell: u8,
+    /// The Gmsh element type (2, 9, 3, 16, 10, 4, 11, 5, 17).
+    pub gmsh_type: u32,
+}
+
+/// An isoparametric finite element of linear elasticity in dimension `D` (2 or 3).
+///
+/// Required: the node count, the reference shape functions and their derivatives, the
+/// quadrature rules and the topology. Every kernel has a default written once for any `D` in
+/// [`kernel`]; an element may override one (e.g. a B-bar stiffness).
+///
+/// Coordinates and rules are in reference coordinates `ξ ∈ ℝ^D`; the element's node order is
+/// that of its [`Topology`].
+pub trait Element<const D: usize>: Debug + Send + Sync
+where
+    Dim<D>: Space,
+{
+    /// Number of nodes (at most [`MAX_NODES`] for the default kernels).
     fn node_count(&self) -> usize;
 
-    /// The element stiffness `K_e = ∫ Bᵀ D B w dA` (`w` = 1, thickness or `r`), of size
-    /// `2n × 2n`, written into `k_e` (resized if needed). `element` is only used in errors.
+    /// Shape values `n[i] = N_i(ξ)` and reference derivatives `dn[i][a] = ∂N_i/∂ξ_a` at `ξ`
+    /// (the first `node_count()` entries of each).
+    fn shape(&self, xi: [f64; D], n: &mut [f64], dn: &mut [[f64; D]]);
+
+    /// The rule of the stiffness (and, unless [`Element::stress_rule`] says otherwise, of the
+    /// stresses); it may depend on the setting and on the node coordinates (a curved element).
+    fn stiffness_rule(&self, setting: &Setting<D>, coords: &[[f64; D]]) -> &[QuadPoint<D>];
+
+    /// A rule for loads (exact for `N` times the setting's weight on straight elements).
+    fn load_rule(&self, setting: &Setting<D>) -> &[QuadPoint<D>];
+
+    /// The rule at whose points [`Element::stresses_into`] reports; the stiffness rule by
+    /// default.
+    fn stress_rule(&self, setting: &Setting<D>, coords: &[[f64; D]]) -> &[QuadPoint<D>] {
+        self.stiffness_rule(setting, coords)
+    }
+
+    /// A rule for the mass `∫ ρ NᵀN`; the load rule by default.
+    fn mass_rule(&self, setting: &Setting<D>) -> &[QuadPoint<D>] {
+        self.load_rule(setting)
+    }
+
+    /// Sides or faces, VTK and Gmsh types.
+    fn topology(&self) -> Topology;
+
+    /// The element stiffness `K_e = ∫ Bᵀ D B w dΩ` (`w` = 1, the thickness or `r`), of size
+    /// `Dn × Dn`, written into `k_e` (resized if needed). `element` is only used in errors.
     ///
     /// # Errors
-    /// [`FemError::InvertedElement`] if the Jacobian is not positive at a quadrature point.
+    /// [`FemError::InvertedElement`] if the Jacobian is not positive at a quadrature point;
+    /// [`FemError::Unsupported`] for more than [`MAX_NODES`] nodes.
     fn stiffness_into(
         &self,
         element: usize,
-        coords: &[[f64; 2]],
+        coords: &[[f64; D]],
         material: &Material,
-        idealization: &Idealization,
+        setting: &Setting<D>,
         k_e: &mut DMatrix<f64>,
-    ) -> Result<(), FemError>;
+    ) -> Result<(), FemError> {
+        kernel::stiffness_into(self, element, coords, material, setting, k_e)
+    }
 
-    /// Adds `f_e += ∫ Nᵀ b w dA` for a body force density `b(x)` (force per volume).
+    /// Adds `f_e += ∫ Nᵀ b w dΩ` for a body force density `b(x)` (force per volume).
     ///
     /// # Errors
-    /// [`FemError::InvertedElement`] as for the stiffness.
+    /// As for the stiffness.
     fn body_force_into(
         &self,
         element: usize,
-        coords: &[[f64; 2]],
-        idealization: &Idealization,
-        b: &dyn Fn([f64; 2]) -> [f64; 2],
+        coords: &[[f64; D]],
+        setting: &Setting<D>,
+        b: &dyn Fn([f64; D]) -> [f64; D],
         f_e: &mut [f64],
-    ) -> Result<(), FemError>;
+    ) -> Result<(), FemError> {
+        kernel::body_force_into(self, element, coords, setting, b, f_e)
+    }
 
-    /// Adds the internal force of an initial stress field, `f_e −= ∫ Bᵀ σ₀ w dA`, so that
-    /// the equilibrium `K u = f_ext + f_e` accounts for `σ₀(x)` (components as [`Stress`]).
+    /// Adds the internal force of an initial stress field, `f_e −= ∫ Bᵀ σ₀ w dΩ`, so that the
+    /// equilibrium `K u = f_ext + f_e` accounts for `σ₀(x)` (components as [`VoigtStress`]).
     ///
     /// # Errors
-    /// [`FemError::InvertedElement`] as for the stiffness.
+    /// As for the stiffness.
     fn initial_stress_force_into(
         &self,
         element: usize,
-        coords: &[[f64; 2]],
-        idealization: &Idealization,
-        sigma_0: &dyn Fn([f64; 2]) -> Stress,
+        coords: &[[f64; D]],
+        setting: &Setting<D>,
+        sigma_0: &dyn Fn([f64; D]) -> VoigtStress<D>,
         f_e: &mut [f64],
-    ) -> Result<(), FemError>;
+    ) -> Result<(), FemError> {
+        kernel::initial_stress_force_into(self, element, coords, setting, sigma_0, f_e)
+    }
 
-    /// Stresses `σ = D B u_e` (plus nothing else: add `σ₀` yourself) at the quadrature points
-    /// of the element's stiffness rule, with their positions; returns how many were written.
+    /// Appends the stresses `σ = D ε(u_e)` (add `σ₀` yourself) at the points of
+    /// [`Element::stress_rule`], with their positions.
     ///
     /// # Errors
-    /// [`FemError::InvertedElement`] as for the stiffness.
+    /// As for the stiffness.
     fn stresses_into(
         &self,
         element: usize,
-        coords: &[[f64; 2]],
+        coords: &[[f64; D]],
         material: &Material,
-        idealization: &Idealization,
+        setting: &Setting<D>,
         u_e: &[f64],
-        out: &mut Vec<([f64; 2], Stress)>,
-    ) -> Result<(), FemError>;
-}
-
-/// The 3-node linear triangle.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Tri3;
-
-/// The 6-node quadratic isoparametric triangle.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Tri6;
-
-type ShapeFn = fn([f64; 2], &mut [f64]);
-type ShapeDerivFn = fn([f64; 2], &mut [[f64; 2]]);
-
-/// Kinematics at one quadrature point: shape values, Cartesian gradients, position, weight.
-struct Point {
-    n: [f64; MAX_NODES],
-    grad: [[f64; 2]; MAX_NODES],
-    x: [f64; 2],
-    /// Quadrature weight × det J × idealisation weight.
-    weight: f64,
-}
-
-/// The isoparametric kinematics shared by [`Tri3`] and [`Tri6`].
-#[derive(Clone, Copy)]
-struct Iso {
-    nodes: usize,
-    shape: ShapeFn,
-    dshape: ShapeDerivFn,
-}
-
-impl Iso {
-    fn point(
-        &self,
-        element: usize,
-        coords: &[[f64; 2]],
-        idealization: &Idealization,
-        (xi, w): TriPoint,
-    ) -> Result<Point, FemError> {
-        let mut p = Point {
-            n: [0.0; MAX_NODES],
-            grad: [[0.0; 2]; MAX_NODES],
-            x: [0.0; 2],
-            weight: 0.0,
-        };
-        let mut dn = [[0.0; 2]; MAX_NODES];
-        (self.shape)(xi, &mut p.n[..self.nodes]);
-        (self.dshape)(xi, &mut dn[..self.nodes]);
-        // J = [∂x/∂ξ ∂x/∂η; ∂y/∂ξ ∂y/∂η]
-        let mut j = [[0.0; 2]; 2];
-        for i in 0..self.nodes {
-            for a in 0..2 {
-                p.x[a] += p.n[i] * coords[i][a];
-                for b in 0..2 {
-                    j[a][b] += coords[i][a] * dn[i][b];
-                }
-            }
-        }
-        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        if det.is_nan() || det <= 0.0 {
-            return Err(FemError::InvertedElement {
-                element,
-                det_j: det,
-            });
-        }
-        // ∇N = J⁻ᵀ ∂N/∂ξ
-        for (g, &[dxi, deta]) in p.grad.iter_mut().zip(&dn).take(self.nodes) {
-            *g = [
-                (j[1][1] * dxi - j[1][0] * deta) / det,
-                (-j[0][1] * dxi + j[0][0] * deta) / det,
-            ];
-        }
-        p.weight = w * det * idealization.weight(p.x[0]);
-        Ok(p)
-    }
-
-    /// Strain–displacement matrix `B` (rows: xx, yy, xy[, θθ]) at a point.
-    fn b_matrix(&self, p: &Point, idealization: &Idealization) -> [[f64; 2 * MAX_NODES]; 4] {
-        let mut b = [[0.0; 2 * MAX_NODES]; 4];
-        let axi = matches!(idealization, Idealization::Axisymmetric);
-        for i in 0..self.nodes {
-            let [gx, gy] = p.grad[i];
-            b[0][2 * i] = gx;
-            b[1][2 * i + 1] = gy;
-            b[2][2 * i] = gy;
-            b[2][2 * i + 1] = gx;
-            if axi {
-                b[3][2 * i] = p.n[i] / p.x[0];
-            }
-        }
-        b
-    }
-
-    fn rule(&self, idealization: &Idealization) -> &'static [TriPoint] {
-        match (self.nodes, idealization) {
-            (3, Idealization::Axisymmetric) => &TRI_3,
-            (3, _) => &TRI_1,
-            (_, Idealization::Axisymmetric) => &TRI_6,
-            _ => &TRI_3,
-        }
-    }
-
-    /// A rule exact for `N` times the idealisation weight (loads).
-    fn load_rule(&self, idealization: &Idealization) -> &'static [TriPoint] {
-        match (self.nodes, idealization) {
-            (3, Idealization::Axisymmetric) => &TRI_3,
-            (3, _) => &TRI_3,
-            _ => &TRI_6,
-        }
-    }
-
-    fn stiffness_into(
-        &self,
-        element: usize,
-        coords: &[[f64; 2]],
-        material: &Material,
-        idealization: &Idealization,
-        k_e: &mut DMatrix<f64>,
+        out: &mut Vec<([f64; D], VoigtStress<D>)>,
     ) -> Result<(), FemError> {
-        let nd = 2 * self.nodes;
-        if k_e.nrows() != nd || k_e.ncols() != nd {
-            *k_e = DMatrix::zeros(nd, nd);
-        } else {
-            k_e.fill(0.0);
-        }
-        let d: Matrix4<f64> = material.elasticity(idealization);
-        let m = idealization.strain_size();
-        for &q in self.rule(idealization) {
-            let p = self.point(element, coords, idealization, q)?;
-            let b = self.b_matrix(&p, idealization);
-            // DB = D B (m × nd), then K += Bᵀ (DB) w
-            let mut db = [[0.0; 2 * MAX_NODES]; 4];
-            for r in 0..m {
-                for c in 0..nd {
-                    db[r][c] = (0..m).map(|k| d[(r, k)] * b[k][c]).sum();
-                }
-            }
-            for a in 0..nd {
-                for c in a..nd {
-                    let v: f64 = (0..m).map(|k| b[k][a] * db[k][c]).sum::<f64>() * p.weight;
-                    k_e[(a, c)] += v;
-                }
-            }
-        }
-        for a in 0..nd {
-            for c in 0..a {
-                k_e[(a, c)] = k_e[(c, a)];
-            }
-        }
-        Ok(())
+        kernel::stresses_into(self, element, coords, material, setting, u_e, out)
     }
 
-    fn body_force_into(
+    /// The consistent mass `M_e = ∫ ρ NᵀN w dΩ` (`Dn × Dn`, the same block on every
+    /// component) into `m_e` (resized if needed), with the mass density `density`.
+    ///
+    /// # Errors
+    /// As for the stiffness.
+    fn mass_into(
         &self,
         element: usize,
-        coords: &[[f64; 2]],
-        idealization: &Idealization,
-        b: &dyn Fn([f64; 2]) -> [f64; 2],
-        f_e: &mut [f64],
+        coords: &[[f64; D]],
+        density: f64,
+        setting: &Setting<D>,
+        m_e: &mut DMatrix<f64>,
     ) -> Result<(), FemError> {
-        for &q in self.load_rule(idealization) {
-            let p = self.point(element, coords, idealization, q)?;
-            let bx = b(p.x);
-            for i in 0..self.nodes {
-                f_e[2 * i] += p.n[i] * bx[0] * p.weight;
-                f_e[2 * i + 1] += p.n[i] * bx[1] * p.weight;
-            }
-        }
-        Ok(())
+        kernel::mass_into(self, element, coords, density, setting, m_e)
     }
 
-    fn initial_stress_force_into(
+    /// A lumped (diagonal) mass, one entry per dof, by HRZ diagonal scaling (Hinton, Rock
+    /// & Zienkiewicz 1976): the diagonal of the consistent mass scaled so that it sums to the
+    /// element's mass. Row sums are not used because they vanish or turn negative at the
+    /// corners of quadratic elements (Tri6: 0, Tet10 and Quad8/Hex20: negative); HRZ is positive
+    /// for every element and keeps the total mass exact.
+    ///
+    /// # Errors
+    /// As for the stiffness.
+    ///
+    /// # Panics
+    /// If `m_e.len() != D · node_count()`.
+    #[track_caller]
+    fn lumped_mass_into(
         &self,
         element: usize,
-        coords: &[[f64; 2]],
-        idealization: &Idealization,
-        sigma_0: &dyn Fn([f64; 2]) -> Stress,
-        f_e: &mut [f64],
+        coords: &[[f64; D]],
+        density: f64,
+        setting: &Setting<D>,
+        m_e: &mut [f64],
     ) -> Result<(), FemError> {
-        let m = idealization.strain_size();
-        for &q in self.load_rule(idealization) {
-            let p = self.point(element, coords, idealization, q)?;
-            let b = self.b_matrix(&p, idealization);
-            let s = sigma_0(p.x);
-            // Stress vector in B's row order: (xx, yy, xy, θθ); Stress is (xx, yy, xy, zz/θθ).
-            for (a, f) in f_e.iter_mut().enumerate().take(2 * self.nodes) {
-                let v: f64 = (0..m).map(|k| b[k][a] * s[k]).sum();
-                *f -= v * p.weight;
-            }
-        }
-        Ok(())
-    }
-
-    fn stresses_into(
-        &self,
-        element: usize,
-        coords: &[[f64; 2]],
-        material: &Material,
-        idealization: &Idealization,
-        u_e: &[f64],
-        out: &mut Vec<([f64; 2], Stress)>,
-    ) -> Result<(), FemError> {
-        let d = material.elasticity(idealization);
-        let m = idealization.strain_size();
-        for &q in self.rule(idealization) {
-            let p = self.point(element, coords, idealization, q)?;
-            let b = self.b_matrix(&p, idealization);
-            let mut eps = [0.0; 4];
-            for (k, e) in eps.iter_mut().enumerate().take(m) {
-                *e = (0..2 * self.nodes).map(|a| b[k][a] * u_e[a]).sum();
-            }
-            let mut s = [0.0; 4];
-            for (r, sr) in s.iter_mut().enumerate().take(m) {
-                *sr = (0..m).map(|k| d[(r, k)] * eps[k]).sum();
-            }
-            if let Idealization::PlaneStrain = idealization {
-                s[3] = material.poisson() * (s[0] + s[1]);
-            }
-            out.push((p.x, s));
-        }
-        Ok(())
-    }
-}
-
-const TRI3: Iso = Iso {
-    nodes: 3,
-    shape: tri3::shape,
-    dshape: tri3::shape_derivatives,
-};
-const TRI6: Iso = Iso {
-    nodes: 6,
-    shape: tri6::shape,
-    dshape: tri6::shape_derivatives,
-};
-
-macro_rules! impl_element {
-    ($t:ty, $iso:expr) => {
-        impl Element for $t {
-            #[inline]
-            fn node_count(&self) -> usize {
-                $iso.nodes
-            }
-            fn stiffness_into(
-                &self,
-                element: usize,
-                coords: &[[f64; 2]],
-                material: &Material,
-                idealization: &Idealization,
-                k_e: &mut DMatrix<f64>,
-            ) -> Result<(), FemError> {
-                $iso.stiffness_into(element, coords, material, idealization, k_e)
-            }
-            fn body_force_into(
-                &self,
-                element: usize,
-                coords: &[[f64; 2]],
-                idealization: &Idealization,
-                b: &dyn Fn([f64; 2]) -> [f64; 2],
-                f_e: &mut [f64],
-            ) -> Result<(), FemError> {
-                $iso.body_force_into(element, coords, idealization, b, f_e)
-            }
-            fn initial_stress_force_into(
-                &self,
-                element: usize,
-                coords: &[[f64; 2]],
-                idealization: &Idealization,
-                sigma_0: &dyn Fn([f64; 2]) -> Stress,
-                f_e: &mut [f64],
-            ) -> Result<(), FemError> {
-                $iso.initial_stress_force_into(element, coords, idealization, sigma_0, f_e)
-            }
-            fn stresses_into(
-                &self,
-                element: usize,
-                coords: &[[f64; 2]],
-                material: &Material,
-                idealization: &Idealization,
-                u_e: &[f64],
-                out: &mut Vec<([f64; 2], Stress)>,
-            ) -> Result<(), FemError> {
-                $iso.stresses_into(element, coords, material, idealization, u_e, out)
-            }
-        }
-    };
-}
-
-impl_element!(Tri3, TRI3);
-impl_element!(Tri6, TRI6);
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn p2_coords(c: [[f64; 2]; 3]) -> Vec<[f64; 2]> {
-        let mid = |a: [f64; 2], b: [f64; 2]| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-        vec![
-            c[0],
-            c[1],
-            c[2],
-            mid(c[0], c[1]),
-            mid(c[1], c[2]),
-            mid(c[2], c[0]),
-        ]
-    }
-
-    #[test]
-    fn shape_functions_partition_unity_and_gradients_sum_to_zero_works() {
-        for xi in [[0.2, 0.3], [0.0, 0.0], [0.7, 0.1]] {
-            let mut n = [0.0; 6];
-            let mut dn = [[0.0; 2]; 6];
-            tri6::shape(xi, &mut n);
-            tri6::shape_derivatives(xi, &mut dn);
-            assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-15);
-            for a in 0..2 {
-                assert!(dn.iter().map(|g| g[a]).sum::<f64>().abs() < 1e-14);
-            }
-            // Finite-difference check of the derivatives.
-            let h = 1e-7;
-            for a in 0..2 {
-                let mut xp = xi;
-                let mut xm = xi;
-                xp[a] += h;
-                xm[a] -= h;
-                let (mut np, mut nm) = ([0.0; 6], [0.0; 6]);
-                tri6::shape(xp, &mut np);
-                tri6::shape(xm, &mut nm);
-                for i in 0..6 {
-                    assert!(((np[i] - nm[i]) / (2.0 * h) - dn[i][a]).abs() < 1e-8);
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn stiffness_is_symmetric_with_rigid_modes_in_kernel_works() {
-        let m = Material::new(200.0, 0.3, 0.0).unwrap();
-        let c3 = vec![[0.1, 0.0], [1.3, 0.2], [0.4, 0.9]];
-        let c6 = p2_coords([[0.1, 0.0], [1.3, 0.2], [0.4, 0.9]]);
-        let mut k = DMatrix::zeros(0, 0);
-        for ideal in [
-            Idealization::PlaneStrain,
-            Idealization::PlaneStress { thickness: 2.0 },
-        ] {
-            for (el, coords) in [(&Tri3 as &dyn Element, &c3), (&Tri6, &c6)] {
-                el.stiffness_into(0, coords, &m, &ideal, &mut k).unwrap();
-                assert!((&k - k.transpose()).norm() < 1e-12 * k.norm());
-                // Translations and the infinitesimal rotation produce no force.
-                let n = coords.len();
-                let modes = [
-                    (0..n).flat_map(|_| [1.0, 0.0]).collect::<Vec<_>>(),
-                    (0..n).flat_map(|_| [0.0, 1.0]).collect(),
-                    coords.iter().flat_map(|p| [-p[1], p[0]]).collect(),
-                ];
-                for mode in modes {
-                    let f = &k * nalgebra::DVector::from_vec(mode);
-                    assert!(f.norm() < 1e-12 * k.norm(), "rigid mode not in kernel");
-                }
-                assert!(k.clone().symmetric_eigenvalues().min() > -1e-10 * k.norm());
-            }
-        }
-        // Axisymmetric: only the axial translation is a rigid mode.
-        Tri6.stiffness_into(0, &c6, &m, &Idealization::Axisymmetric, &mut k)
-            .unwrap();
-        let f = &k * nalgebra::DVector::from_vec((0..6).flat_map(|_| [0.0, 1.0]).collect());
-        assert!(f.norm() < 1e-12 * k.norm());
-    }
-
-    #[test]
-    fn stiffness_rejects_inverted_element() {
-        let m = Material::new(1.0, 0.3, 0.0).unwrap();
-        let mut k = DMatrix::zeros(0, 0);
-        let err = Tri3
-            .stiffness_into(
-                7,
-                &[[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]],
-                &m,
-                &Idealization::PlaneStrain,
-                &mut k,
-            )
-            .unwrap_err();
-        assert!(matches!(err, FemError::InvertedElement { element: 7, .. }));
+        kernel::lumped_mass_into(self, element, coords, density, setting, m_e)
     }
 }

@@ -32,3 +32,48 @@ pub fn shape_derivatives(xi: [f64; 2], dn: &mut [[f64; 2]]) {
     dn[4] = [4.0 * l2, 4.0 * l1];
     dn[5] = [-4.0 * l2, 4.0 * (l0 - l2)];
 }
+
+use super::{Element, QuadPoint, Topology};
+use crate::idealization::Idealization;
+use crate::quadrature::{TRI_3, TRI_6, TRI_7};
+
+/// The 6-node quadratic isoparametric triangle: corners `0, 1, 2` counter-clockwise, then the
+/// mid-side nodes `3` (0–1), `4` (1–2), `5` (2–0) — Gmsh's and VTK's order. Stiffness with 3
+/// points (6 in axisymmetry), loads with 6, mass with 7 (degree 5).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tri6;
+
+/// The sides of a 6-node triangle (corners, then the mid-side node).
+pub const SIDES: [&[usize]; 3] = [&[0, 1, 3], &[1, 2, 4], &[2, 0, 5]];
+
+impl Element<2> for Tri6 {
+    #[inline]
+    fn node_count(&self) -> usize {
+        6
+    }
+    #[inline]
+    fn shape(&self, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 2]]) {
+        shape(xi, n);
+        shape_derivatives(xi, dn);
+    }
+    fn stiffness_rule(&self, setting: &Idealization, _: &[[f64; 2]]) -> &[QuadPoint<2>] {
+        match setting {
+            Idealization::Axisymmetric => &TRI_6,
+            _ => &TRI_3,
+        }
+    }
+    fn load_rule(&self, _: &Idealization) -> &[QuadPoint<2>] {
+        &TRI_6
+    }
+    fn mass_rule(&self, _: &Idealization) -> &[QuadPoint<2>] {
+        &TRI_7
+    }
+    fn topology(&self) -> Topology {
+        Topology {
+            corners: 3,
+            sides: &SIDES,
+            vtk_cell: 22,
+            gmsh_type: 9,
+        }
+    }
+}

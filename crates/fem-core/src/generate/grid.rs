@@ -27,9 +27,9 @@ pub(super) struct Grid {
 
 impl Grid {
     pub(super) fn new(xs: &[f64], ys: &[f64], kind: ElementKind) -> Self {
-        let refine = |c: &[f64]| match kind {
-            ElementKind::Tri3 => c.to_vec(),
-            ElementKind::Tri6 => {
+        let refine = |c: &[f64]| match kind.is_quadratic() {
+            false => c.to_vec(),
+            true => {
                 let mut out = Vec::with_capacity(2 * c.len() - 1);
                 for w in c.windows(2) {
                     out.extend([w[0], 0.5 * (w[0] + w[1])]);
@@ -38,10 +38,7 @@ impl Grid {
                 out
             }
         };
-        let step = match kind {
-            ElementKind::Tri3 => 1,
-            ElementKind::Tri6 => 2,
-        };
+        let step = if kind.is_quadratic() { 2 } else { 1 };
         Self {
             xs: refine(xs),
             ys: refine(ys),
@@ -62,7 +59,8 @@ impl Grid {
             .collect()
     }
 
-    /// Connectivity and regions of the two triangles of every cell `(i, j)`.
+    /// Connectivity and regions of the two triangles (or the quadrilateral) of every cell
+    /// `(i, j)`. A Quad8 grid leaves the cell centres unused (see [`compact`]).
     pub(super) fn cells(&self, region: impl Fn(usize, usize) -> u32) -> (Vec<usize>, Vec<u32>) {
         let s = self.step;
         let (nx, ny) = ((self.xs.len() - 1) / s, (self.ys.len() - 1) / s);
@@ -72,6 +70,20 @@ impl Grid {
             for i in 0..nx {
                 let (a, b) = ((s * i, s * j), (s * i + s, s * j));
                 let (c, d) = ((s * i + s, s * j + s), (s * i, s * j + s));
+                let mid = |(i0, j0): (usize, usize), (i1, j1): (usize, usize)| {
+                    self.id((i0 + i1) / 2, (j0 + j1) / 2)
+                };
+                if self.kind.side_count() == 4 {
+                    connectivity.extend([a, b, c, d].map(|(i, j)| self.id(i, j)));
+                    if self.kind.is_quadratic() {
+                        connectivity.extend([mid(a, b), mid(b, c), mid(c, d), mid(d, a)]);
+                    }
+                    if self.kind == ElementKind::Quad9 {
+                        connectivity.push(mid(a, c));
+                    }
+                    regions.push(region(i, j));
+                    continue;
+                }
                 let triangles = match (i + j) % 2 {
                     0 => [[a, b, c], [a, c, d]],
                     _ => [[a, b, d], [b, c, d]],
@@ -79,9 +91,6 @@ impl Grid {
                 for [p, q, r] in triangles {
                     connectivity.extend([p, q, r].map(|(i, j)| self.id(i, j)));
                     if self.kind == ElementKind::Tri6 {
-                        let mid = |(i0, j0): (usize, usize), (i1, j1): (usize, usize)| {
-                            self.id((i0 + i1) / 2, (j0 + j1) / 2)
-                        };
                         connectivity.extend([mid(p, q), mid(q, r), mid(r, p)]);
                     }
                     regions.push(region(i, j));
@@ -90,6 +99,30 @@ impl Grid {
         }
         (connectivity, regions)
     }
+}
+
+/// Drops the nodes no element uses (the cell centres of a Quad8 grid) and renumbers the
+/// rest in order; returns the nodes and the map from old to new ids (`usize::MAX`: dropped).
+pub(super) fn compact(
+    points: Vec<[f64; 2]>,
+    connectivity: &mut [usize],
+) -> (Vec<[f64; 2]>, Vec<usize>) {
+    let mut used = vec![false; points.len()];
+    for &n in connectivity.iter() {
+        used[n] = true;
+    }
+    let mut map = vec![usize::MAX; points.len()];
+    let mut kept = Vec::with_capacity(points.len());
+    for (old, p) in points.into_iter().enumerate() {
+        if used[old] {
+            map[old] = kept.len();
+            kept.push(p);
+        }
+    }
+    for n in connectivity.iter_mut() {
+        *n = map[*n];
+    }
+    (kept, map)
 }
 
 /// A straight boundary line `x = c` or `y = c`, with a tolerance.

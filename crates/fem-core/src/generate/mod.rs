@@ -136,11 +136,7 @@ pub(crate) fn check_grid_size(
     cells_y: usize,
     kind: crate::ElementKind,
 ) -> Result<(), FemError> {
-    let per = if kind == crate::ElementKind::Tri6 {
-        2
-    } else {
-        1
-    };
+    let per = if kind.is_quadratic() { 2 } else { 1 };
     let line = |cells: usize| cells.checked_mul(per).and_then(|n| n.checked_add(1));
     let nodes = line(cells_x)
         .zip(line(cells_y))

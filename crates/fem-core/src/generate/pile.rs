@@ -144,6 +144,12 @@ pub const PILE: u32 = 1;
 /// assert_eq!(mesh.node_set("interface_soil").unwrap().len(), 65);
 /// ```
 pub fn pile_in_soil(spec: &PileSpec) -> Result<Mesh, FemError> {
+    if spec.kind == ElementKind::Quad8 {
+        // the lattice's cell centres would be nodes of no element
+        return Err(FemError::Unsupported {
+            what: "the pile-in-soil generator with Quad8 elements (use Quad4 or Quad9)".into(),
+        });
+    }
     let diameter = positive("diameter", spec.diameter)?;
     let length = positive("length", spec.length)?;
     let radius = 0.5 * diameter;

@@ -1,6 +1,6 @@
 //! Layered rectangles: [`rectangle`] and its [`RectangleSpec`].
 
-use super::grid::{Grid, Line, add_edge_and_node_set, increasing, select_sides};
+use super::grid::{Grid, Line, add_edge_and_node_set, compact, increasing, select_sides};
 use super::{Grading, graded_points};
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh};
@@ -122,14 +122,18 @@ pub fn rectangle(spec: &RectangleSpec) -> Result<Mesh, FemError> {
         layer_of_row.extend(std::iter::repeat_n(layer.region, layer.ny));
     }
     let grid = Grid::new(&xs, &ys, spec.kind);
-    let (connectivity, regions) = grid.cells(|_, j| layer_of_row[j]);
+    let (mut connectivity, regions) = grid.cells(|_, j| layer_of_row[j]);
+    let (points, map) = compact(grid.points(), &mut connectivity);
     let corners = [
-        ("bottom_left", grid.id(0, 0)),
-        ("bottom_right", grid.id(grid.xs.len() - 1, 0)),
-        ("top_left", grid.id(0, grid.ys.len() - 1)),
-        ("top_right", grid.id(grid.xs.len() - 1, grid.ys.len() - 1)),
+        ("bottom_left", map[grid.id(0, 0)]),
+        ("bottom_right", map[grid.id(grid.xs.len() - 1, 0)]),
+        ("top_left", map[grid.id(0, grid.ys.len() - 1)]),
+        (
+            "top_right",
+            map[grid.id(grid.xs.len() - 1, grid.ys.len() - 1)],
+        ),
     ];
-    let mut mesh = Mesh::new(grid.points(), spec.kind, connectivity, regions)?;
+    let mut mesh = Mesh::new(points, spec.kind, connectivity, regions)?;
     let [x0, x1] = [xs[0], xs[spec.nx]];
     let [y0, y1] = [ys[0], ys[ys.len() - 1]];
     let tol = 1e-12 * (x1 - x0).max(y1 - y0);

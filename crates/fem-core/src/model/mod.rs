@@ -2,17 +2,18 @@
 //! once, that implements [`Structure`]. Recovery from a solution (stresses, strains, nodal
 //! stresses, reactions) is in `post.rs`.
 
+mod elements;
 mod floating;
 mod post;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
-use crate::element::{Element, Stress, Tri3, Tri6};
+use crate::element::{Element, Stress};
 use crate::error::{FemError, finite};
 use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
-use crate::mesh::{ElementKind, Mesh};
+use crate::mesh::Mesh;
 use crate::quadrature::GAUSS_3;
 use crate::rigid_modes::RigidBodyModes;
 use crate::structure::Structure;
@@ -76,6 +77,8 @@ pub struct LinearElasticModel {
     pinned: Vec<usize>,
     /// `K` with the pinned rows and columns decoupled (the matrix factorised when floating).
     pinned_values: Vec<f64>,
+    /// Users' elements by region, in place of the mesh kind's ([`LinearElasticModel::with_element`]).
+    elements: BTreeMap<u32, Arc<dyn Element<2>>>,
     /// An orthonormal basis of the modes (column-major), for the projection `P = I − Q Qᵀ`.
     mode_basis: Vec<f64>,
 }
@@ -90,13 +93,6 @@ impl core::fmt::Debug for LinearElasticModel {
             .field("nnz", &self.pattern.nnz())
             .field("version", &self.version)
             .finish()
-    }
-}
-
-fn element_of(kind: ElementKind) -> &'static dyn Element {
-    match kind {
-        ElementKind::Tri3 => &Tri3,
-        ElementKind::Tri6 => &Tri6,
     }
 }
 
@@ -173,6 +169,7 @@ impl LinearElasticModel {
             pinned: Vec::new(),
             pinned_values: Vec::new(),
             mode_basis: Vec::new(),
+            elements: BTreeMap::new(),
         };
         model.find_modes()?;
         model.assemble_and_factor()?;
@@ -181,7 +178,7 @@ impl LinearElasticModel {
 
     fn assemble_and_factor(&mut self) -> Result<(), FemError> {
         self.values.fill(0.0);
-        let element = element_of(self.mesh.kind());
+        let kind = self.mesh.kind();
         let mut k_e = DMatrix::zeros(0, 0);
         let mut coords = Vec::with_capacity(6);
         let mut coupling = Vec::new();
@@ -189,7 +186,9 @@ impl LinearElasticModel {
             let cell = self.mesh.element(e);
             coords.clear();
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            let material = &self.materials[&self.mesh.regions()[e]];
+            let region = self.mesh.regions()[e];
+            let material = &self.materials[&region];
+            let element = self.elements.get(&region).map_or(kind.element(), |a| &**a);
             element.stiffness_into(e, &coords, material, &self.idealization, &mut k_e)?;
             if k_e.iter().any(|v| !v.is_finite()) {
                 return Err(FemError::NonFiniteStiffness {
@@ -415,14 +414,13 @@ impl LinearElasticModel {
     fn element_forces(
         &self,
         integrate: impl Fn(
-            &dyn Element,
+            &dyn Element<2>,
             usize,
             &[[f64; 2]],
             &Idealization,
             &mut [f64],
         ) -> Result<(), FemError>,
     ) -> Result<Vec<f64>, FemError> {
-        let element = element_of(self.mesh.kind());
         let mut force = vec![0.0; 2 * self.mesh.node_count()];
         let mut coords = Vec::with_capacity(6);
         let mut f_e = vec![0.0; 12];
@@ -430,8 +428,9 @@ impl LinearElasticModel {
             let cell = self.mesh.element(e);
             coords.clear();
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            f_e.resize(2 * cell.len(), 0.0);
             f_e.fill(0.0);
-            integrate(element, e, &coords, &self.idealization, &mut f_e)?;
+            integrate(self.element_at(e), e, &coords, &self.idealization, &mut f_e)?;
             for (a, &n) in cell.iter().enumerate() {
                 force[2 * n] += f_e[2 * a];
                 force[2 * n + 1] += f_e[2 * a + 1];

@@ -1,7 +1,7 @@
 //! Recovery from a solution: stresses and strains at the quadrature points, smoothed nodal
 //! stresses and support reactions.
 
-use super::{LinearElasticModel, Reaction, StressPoint, element_of};
+use super::{LinearElasticModel, Reaction, StressPoint};
 use crate::element::Stress;
 use crate::error::FemError;
 use crate::idealization::Idealization;
@@ -37,7 +37,6 @@ impl LinearElasticModel {
                 got: displacements.len(),
             });
         }
-        let element = element_of(self.mesh.kind());
         let mut out = Vec::with_capacity(self.mesh.element_count());
         let mut coords = Vec::with_capacity(6);
         let mut u_e = Vec::with_capacity(12);
@@ -49,6 +48,7 @@ impl LinearElasticModel {
             u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
             let material = &self.materials[&self.mesh.regions()[e]];
             let mut pts = Vec::new();
+            let element = self.element_at(e);
             element.stresses_into(e, &coords, material, &self.idealization, &u_e, &mut pts)?;
             out.push(pts);
         }

@@ -1,7 +1,7 @@
 //! Unit tests of `LinearElasticModel`.
 
 use super::*;
-use crate::mesh::Side;
+use crate::mesh::{ElementKind, Side};
 
 /// Unit square, two P1 triangles; right side loaded by a uniform traction.
 fn square_model(idealization: Idealization) -> LinearElasticModel {

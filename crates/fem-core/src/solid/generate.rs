@@ -1,4 +1,5 @@
-//! Structured tetrahedral meshes: a graded box and the octant of a hollow sphere.
+//! Structured meshes: a graded box (tetrahedra or hexahedra) and the octant of a hollow sphere
+//! (tetrahedra).
 
 use super::mesh::{Face, SolidKind, SolidMesh, dot, signed_volume};
 use crate::error::FemError;
@@ -63,7 +64,8 @@ fn name_planes(
 
 /// A box meshed on the grid `xs × ys × zs` (strictly increasing grid lines, graded as you
 /// like), each cell cut into six tetrahedra around its diagonal (Kuhn's subdivision, conforming
-/// across cells). Face sets (and node sets) `x0, x1, y0, y1, z0, z1` name the six sides
+/// across cells), or one hexahedron per cell for [`SolidKind::Hex8`] and [`SolidKind::Hex20`]
+/// (mid-edge nodes at the middle of the edges). Face sets (and node sets) `x0, x1, y0, y1, z0, z1` name the six sides
 /// (`x0` at `x = xs[0]`, …).
 ///
 /// # Errors
@@ -86,6 +88,9 @@ pub fn box_mesh(
     check_lines("xs", xs)?;
     check_lines("ys", ys)?;
     check_lines("zs", zs)?;
+    if matches!(kind, SolidKind::Hex8 | SolidKind::Hex20) {
+        return hex_box(xs, ys, zs, kind);
+    }
     let (nx, ny, nz) = (xs.len(), ys.len(), zs.len());
     let id = |i: usize, j: usize, k: usize| i + nx * (j + ny * k);
     let mut nodes = Vec::with_capacity(nx * ny * nz);
@@ -139,7 +144,85 @@ pub fn box_mesh(
     match kind {
         SolidKind::Tet4 => Ok(mesh),
         SolidKind::Tet10 => mesh.to_tet10(None),
+        other => Err(FemError::Unsupported {
+            what: format!("box_mesh of {other:?} elements"),
+        }),
     }
+}
+
+/// The hexahedral box of [`box_mesh`]: a lattice of the grid lines (and their midpoints for
+/// Hex20, whose nodes are the lattice points with at most one odd index).
+fn hex_box(xs: &[f64], ys: &[f64], zs: &[f64], kind: SolidKind) -> Result<SolidMesh, FemError> {
+    use crate::element::hex8::CORNERS;
+    use crate::element::hex20::EDGES;
+    let quadratic = kind == SolidKind::Hex20;
+    let refine = |c: &[f64]| -> Vec<f64> {
+        if !quadratic {
+            return c.to_vec();
+        }
+        let mut out: Vec<f64> = c
+            .windows(2)
+            .flat_map(|w| [w[0], 0.5 * (w[0] + w[1])])
+            .collect();
+        out.push(c[c.len() - 1]);
+        out
+    };
+    let (lx, ly, lz) = (refine(xs), refine(ys), refine(zs));
+    let step = if quadratic { 2 } else { 1 };
+    let (mx, my) = (lx.len(), ly.len());
+    let lattice = |i: usize, j: usize, k: usize| i + mx * (j + my * k);
+    // number the used lattice points in order
+    let mut id = vec![usize::MAX; mx * my * lz.len()];
+    let mut nodes = Vec::new();
+    for (k, &z) in lz.iter().enumerate() {
+        for (j, &y) in ly.iter().enumerate() {
+            for (i, &x) in lx.iter().enumerate() {
+                if (i % 2 + j % 2 + k % 2) <= 1 || !quadratic {
+                    id[lattice(i, j, k)] = nodes.len();
+                    nodes.push([x, y, z]);
+                }
+            }
+        }
+    }
+    let cells = (xs.len() - 1) * (ys.len() - 1) * (zs.len() - 1);
+    let mut connectivity = Vec::with_capacity(kind.node_count() * cells);
+    for ck in 0..zs.len() - 1 {
+        for cj in 0..ys.len() - 1 {
+            for ci in 0..xs.len() - 1 {
+                // lattice index of a reference point (−1, 0, 1 per axis) of the cell
+                let at = |c: [f64; 3]| {
+                    let o = |a: usize, v: f64| step * a + ((v + 1.0) * step as f64 / 2.0) as usize;
+                    id[lattice(o(ci, c[0]), o(cj, c[1]), o(ck, c[2]))]
+                };
+                connectivity.extend(CORNERS.iter().map(|&c| at(c)));
+                if quadratic {
+                    connectivity.extend(EDGES.iter().map(|&[a, b]| {
+                        at(core::array::from_fn(|d| {
+                            0.5 * (CORNERS[a][d] + CORNERS[b][d])
+                        }))
+                    }));
+                }
+            }
+        }
+    }
+    let span = [xs, ys, zs]
+        .iter()
+        .map(|v| v[v.len() - 1] - v[0])
+        .fold(0.0, f64::max);
+    let mut mesh = SolidMesh::new(nodes, kind, connectivity, Vec::new())?;
+    name_planes(
+        &mut mesh,
+        &[
+            ("x0", 0, xs[0]),
+            ("x1", 0, xs[xs.len() - 1]),
+            ("y0", 1, ys[0]),
+            ("y1", 1, ys[ys.len() - 1]),
+            ("z0", 2, zs[0]),
+            ("z1", 2, zs[zs.len() - 1]),
+        ],
+        span,
+    )?;
+    Ok(mesh)
 }
 
 /// The octant `x, y, z ≥ 0` of a hollow sphere of radii `inner < outer`: the spherical
@@ -255,6 +338,9 @@ pub fn sphere_shell_octant(
             };
             mesh.to_tet10(Some(&mid))
         }
+        other => Err(FemError::Unsupported {
+            what: format!("sphere_shell_octant of {other:?} elements (it makes tetrahedra)"),
+        }),
     }
 }
 

@@ -1,4 +1,4 @@
-//! Reading 3D tetrahedral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
+//! Reading 3D tetrahedral and hexahedral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
 //!
 //! The 3D counterpart of [`crate::gmsh`], whose checks around the [`mshio`] parser it shares;
 //! this module turns the file into a [`SolidMesh`]:
@@ -12,6 +12,12 @@
 //!   (corners 2 ↔ 3 and the mid-edge nodes with them), so either orientation is accepted. The
 //!   region of a tetrahedron is the first physical tag of its volume entity, or 0 if it has
 //!   none (the names of physical volumes are not kept).
+//! - **Hexahedra.** 8-node (type 5) or 20-node (type 17) hexahedra. Gmsh numbers the mid-edge
+//!   nodes of the 20-node hexahedron by edge 0–1, 0–3, 0–4, 1–2, 1–5, 2–3, 2–6, 3–7, 4–5,
+//!   4–7, 5–6, 6–7, VTK (cell 25, our order) by 0–1, 1–2, 2–3, 3–0, 4–5, 5–6, 6–7, 7–4, 0–4,
+//!   1–5, 2–6, 3–7: the reader maps them ([`crate::element::hex20::GMSH_TO_LOCAL`]).
+//!   Left-handed hexahedra are mirrored (bottom ↔ top). Physical surfaces of a hexahedral
+//!   mesh are quadrangles (type 3 or 16) matched to faces by their four corners.
 //! - **Physical surfaces** (dimension 2) become a face set and a node set of the same name.
 //!   Each triangle (type 2 or 9) is matched to a tetrahedron face by its three corners; where
 //!   two tetrahedra share that face (an interior surface), the one the triangle's normal
@@ -23,10 +29,11 @@
 //!   `curve_<tag>` or `point_<tag>`. Groups of different dimensions with one name share one
 //!   node set.
 //!
-//! Triangles, lines and points outside physical groups are ignored. Any other element type
-//! (hexahedra, prisms, quadrangles, higher orders, …) is [`FemError::Unsupported`].
+//! Triangles, quadrangles, lines and points outside physical groups are ignored. Any other
+//! element type (prisms, pyramids, higher orders, …) is [`FemError::Unsupported`].
 
 use super::mesh::{Face, SolidKind, SolidMesh, signed_volume};
+use crate::element::hex20::GMSH_TO_LOCAL;
 use crate::error::FemError;
 use crate::gmsh::{
     Names, check_elements, node_coordinates, parse_file, physical_tags, region_of,
@@ -37,7 +44,8 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
 /// What the reader takes, for the error on any other element type.
-const READ: &str = "tetrahedra (types 4, 11), triangles (2, 9), lines (1, 8) and points (15)";
+const READ: &str = "tetrahedra (types 4, 11), hexahedra (5, 17), triangles (2, 9), \
+                    quadrangles (3, 16), lines (1, 8) and points (15)";
 
 /// `ours[k] = gmsh[FROM_GMSH_TET10[k]]`: Gmsh's mid-edge nodes 8 (edge 2–3) and 9 (edge 1–3)
 /// are our 9 and 8.
@@ -46,6 +54,12 @@ const FROM_GMSH_TET10: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8];
 /// `right[k] = left[MIRROR[k]]`: corners 2 ↔ 3, so the mid-edge nodes of edges 1–2 ↔ 1–3
 /// (5 ↔ 8) and 2–0 ↔ 0–3 (6 ↔ 7); those of 0–1 (4) and 2–3 (9) stay.
 const MIRROR: [usize; 10] = [0, 1, 3, 2, 4, 8, 7, 6, 5, 9];
+
+/// `right[k] = left[HEX_MIRROR[k]]` for a hexahedron: bottom ↔ top (corners 0..4 ↔ 4..8, the
+/// mid-edge nodes of the bottom edges ↔ those of the top edges; the vertical ones stay).
+const HEX_MIRROR: [usize; 20] = [
+    4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19,
+];
 
 /// Reads a Gmsh `.msh` 4.1 file holding a tetrahedral mesh (see the [module docs](self)).
 ///
@@ -101,6 +115,7 @@ fn parse(bytes: &[u8], origin: &str) -> Result<SolidMesh, FemError> {
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Shape {
     Triangle,
+    Quadrangle,
     Line,
     Point,
 }
@@ -109,7 +124,7 @@ impl Shape {
     /// The prefix of an unnamed group's name.
     fn prefix(self) -> &'static str {
         match self {
-            Shape::Triangle => "surface",
+            Shape::Triangle | Shape::Quadrangle => "surface",
             Shape::Line => "curve",
             Shape::Point => "point",
         }
@@ -147,16 +162,21 @@ fn build(file: MshFile<u64, i32, f64>, names: &Names, origin: &str) -> Result<So
     for block in &elements.element_blocks {
         let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
         let shape = match t {
-            ElementType::Tet4 | ElementType::Tet10 => {
+            ElementType::Tet4 | ElementType::Tet10 | ElementType::Hex8 | ElementType::Hex20 => {
                 let this = match t {
                     ElementType::Tet4 => SolidKind::Tet4,
-                    _ => SolidKind::Tet10,
+                    ElementType::Tet10 => SolidKind::Tet10,
+                    ElementType::Hex8 => SolidKind::Hex8,
+                    _ => SolidKind::Hex20,
                 };
-                if *kind.get_or_insert(this) != this {
+                let first = *kind.get_or_insert(this);
+                if first != this {
                     return Err(FemError::Unsupported {
                         what: format!(
-                            "mixed 4-node and 10-node tetrahedra in {origin} (volume {tag} \
-                             holds {}-node ones): one kind per file",
+                            "mixed {}-node and {}-node elements ({first:?} and {this:?}) in \
+                             {origin} (volume {tag} holds {}-node ones): one kind per file",
+                            first.node_count(),
+                            this.node_count(),
                             this.node_count()
                         ),
                     });
@@ -178,6 +198,7 @@ fn build(file: MshFile<u64, i32, f64>, names: &Names, origin: &str) -> Result<So
                 continue;
             }
             ElementType::Tri3 | ElementType::Tri6 => Shape::Triangle,
+            ElementType::Qua4 | ElementType::Qua8 | ElementType::Qua9 => Shape::Quadrangle,
             ElementType::Lin2 | ElementType::Lin3 => Shape::Line,
             ElementType::Pnt => Shape::Point,
             _ => return Err(unsupported_type(t, dim, tag, READ)),
@@ -195,8 +216,9 @@ fn build(file: MshFile<u64, i32, f64>, names: &Names, origin: &str) -> Result<So
     let Some(kind) = kind else {
         return Err(FemError::Unsupported {
             what: format!(
-                "{origin} holds no tetrahedra (Gmsh types 4 or 11); note that once physical \
-                 groups exist Gmsh saves only their elements (add a physical volume)"
+                "{origin} holds no tetrahedra or hexahedra (Gmsh types 4, 11, 5, 17); note \
+                 that once physical groups exist Gmsh saves only their elements (add a \
+                 physical volume)"
             ),
         });
     };
@@ -214,17 +236,28 @@ fn build(file: MshFile<u64, i32, f64>, names: &Names, origin: &str) -> Result<So
     let mut connectivity = Vec::with_capacity(npe * tets.len());
     for t in &tets {
         let cell: Vec<usize> = match kind {
-            SolidKind::Tet4 => t.iter().map(|tag| index[tag]).collect(),
             SolidKind::Tet10 => FROM_GMSH_TET10.iter().map(|&k| index[&t[k]]).collect(),
+            SolidKind::Hex20 => {
+                let mut cell = vec![0; 20];
+                for (k, &local) in GMSH_TO_LOCAL.iter().enumerate() {
+                    cell[local] = index[&t[k]];
+                }
+                cell
+            }
+            _ => t.iter().map(|tag| index[tag]).collect(),
         };
+        // the triad at corner 0: (1, 2, 3) of a tetrahedron, (1, 3, 4) of a hexahedron
+        let hex = kind.corner_count() == 8;
+        let [i, j, k] = if hex { [1, 3, 4] } else { [1, 2, 3] };
         let volume = signed_volume(
             nodes[cell[0]],
-            nodes[cell[1]],
-            nodes[cell[2]],
-            nodes[cell[3]],
+            nodes[cell[i]],
+            nodes[cell[j]],
+            nodes[cell[k]],
         );
         if volume < 0.0 {
-            connectivity.extend(MIRROR[..npe].iter().map(|&k| cell[k]));
+            let mirror: &[usize] = if hex { &HEX_MIRROR } else { &MIRROR };
+            connectivity.extend(mirror[..npe].iter().map(|&k| cell[k]));
         } else {
             connectivity.extend(cell);
         }
@@ -245,11 +278,14 @@ fn add_physical_sets(
     origin: &str,
 ) -> Result<(), FemError> {
     // The faces of every tetrahedron, by their sorted corners (two for an interior face).
-    let mut faces: HashMap<[usize; 3], Vec<Face>> = HashMap::new();
-    if lower.iter().any(|l| l.shape == Shape::Triangle) {
-        faces.reserve(4 * mesh.element_count());
+    let mut faces: HashMap<[usize; 4], Vec<Face>> = HashMap::new();
+    if lower
+        .iter()
+        .any(|l| matches!(l.shape, Shape::Triangle | Shape::Quadrangle))
+    {
+        faces.reserve(mesh.kind().face_count() * mesh.element_count());
         for element in 0..mesh.element_count() {
-            for face in 0..4u8 {
+            for face in 0..mesh.kind().face_count() as u8 {
                 let f = Face { element, face };
                 faces.entry(sorted_corners(mesh, f)).or_default().push(f);
             }
@@ -268,12 +304,16 @@ fn add_physical_sets(
                     .unwrap_or_else(|| format!("{}_{p}", l.shape.prefix()))
             })
             .collect();
-        if l.shape == Shape::Triangle {
+        if matches!(l.shape, Shape::Triangle | Shape::Quadrangle) {
+            let (what, of) = match l.shape {
+                Shape::Triangle => ("triangle", "a tetrahedron"),
+                _ => ("quadrangle", "a hexahedron"),
+            };
             let face =
                 match_face(mesh, &faces, index, &l.nodes).ok_or_else(|| FemError::Unsupported {
                     what: format!(
-                        "triangle {} (nodes {:?}) of physical surface {} (entity {entity}) in \
-                         {origin} is not a face of a tetrahedron",
+                        "{what} {} (nodes {:?}) of physical surface {} (entity {entity}) in \
+                         {origin} is not a face of {of}",
                         l.element_tag,
                         l.nodes,
                         groups.join(", ")
@@ -315,9 +355,11 @@ fn add_physical_sets(
 }
 
 /// The corner nodes of a face, sorted.
-fn sorted_corners(mesh: &SolidMesh, face: Face) -> [usize; 3] {
-    let mut it = mesh.face_node_ids(face);
-    let mut key = [0; 3];
+fn sorted_corners(mesh: &SolidMesh, face: Face) -> [usize; 4] {
+    let mut it = mesh
+        .face_node_ids(face)
+        .take(mesh.kind().face_corner_count());
+    let mut key = [0; 4];
     for k in &mut key {
         *k = it.next().unwrap_or(usize::MAX);
     }
@@ -325,15 +367,21 @@ fn sorted_corners(mesh: &SolidMesh, face: Face) -> [usize; 3] {
     key
 }
 
-/// The tetrahedron face of a triangle element (node tags), if there is one.
+/// The element face of a triangle or quadrangle element (node tags), if there is one.
 fn match_face(
     mesh: &SolidMesh,
-    faces: &HashMap<[usize; 3], Vec<Face>>,
+    faces: &HashMap<[usize; 4], Vec<Face>>,
     index: &HashMap<u64, usize>,
     nodes: &[u64],
 ) -> Option<Face> {
-    let mut corners = [0; 3];
-    for (c, tag) in corners.iter_mut().zip(nodes) {
+    let nc = mesh.kind().face_corner_count();
+    // a triangle on a hexahedral mesh (or a quadrangle on a tetrahedral one) is no face
+    let element_corners = if matches!(nodes.len(), 3 | 6) { 3 } else { 4 };
+    if element_corners != nc {
+        return None;
+    }
+    let mut corners = [usize::MAX; 4];
+    for (c, tag) in corners.iter_mut().zip(nodes).take(nc) {
         *c = *index.get(tag)?;
     }
     let mut key = corners;
@@ -344,9 +392,9 @@ fn match_face(
         .iter()
         .copied()
         .find(|&f| {
-            let ids: Vec<usize> = mesh.face_node_ids(f).take(3).collect();
+            let ids: Vec<usize> = mesh.face_node_ids(f).take(nc).collect();
             let i = ids.iter().position(|&n| n == corners[0]).unwrap_or(0);
-            ids[(i + 1) % 3] == corners[1]
+            ids[(i + 1) % nc] == corners[1]
         })
         .unwrap_or(candidates[0]);
     if nodes.len() == 6 && mesh.kind() == SolidKind::Tet10 {

@@ -1,59 +1,113 @@
 //! Meshes of 4-node (P1) and 10-node (P2) tetrahedra, with regions, node sets and face sets.
 
+use crate::element::{Element, Hex8, Hex20, Tet4, Tet10};
 use crate::error::FemError;
 use std::collections::BTreeMap;
 
 /// The element family of a 3D mesh.
 ///
-/// Node order: corners `0, 1, 2, 3` with `(x₁ − x₀, x₂ − x₀, x₃ − x₀)` a right-handed
-/// triad (positive volume), then for P2 the mid-edge nodes `4` (edge 0–1), `5` (1–2),
-/// `6` (2–0), `7` (0–3), `8` (1–3), `9` (2–3): VTK's order. Gmsh numbers the last two the other
-/// way round; [`crate::solid::gmsh`] swaps them on reading.
+/// Node order: tetrahedra have corners `0, 1, 2, 3` with `(x₁ − x₀, x₂ − x₀, x₃ − x₀)` a
+/// right-handed triad (positive volume), then for P2 the mid-edge nodes `4` (edge 0–1), `5`
+/// (1–2), `6` (2–0), `7` (0–3), `8` (1–3), `9` (2–3): VTK's order. Gmsh numbers the last two the
+/// other way round; [`crate::solid::gmsh`] swaps them on reading. Hexahedra have corners
+/// `0..4` counter-clockwise seen from above, then `4..8` above them, then for Hex20 the
+/// mid-edge nodes in VTK's order ([`crate::element::hex20`]; Gmsh's order is mapped on reading).
+/// The element of each kind is [`SolidKind::element`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum SolidKind {
     /// Linear 4-node tetrahedron.
     Tet4,
     /// Quadratic 10-node isoparametric tetrahedron.
     Tet10,
+    /// Trilinear 8-node hexahedron.
+    Hex8,
+    /// Quadratic 20-node serendipity hexahedron.
+    Hex20,
 }
 
-/// The edges of a tetrahedron, in the order of the P2 mid-edge nodes `4..10`.
-pub const TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
+pub use crate::element::tet10::TET_EDGES;
 
 impl SolidKind {
-    /// Nodes per element: 4 or 10.
+    /// Every kind, for tests and messages.
+    pub const ALL: [SolidKind; 4] = [
+        SolidKind::Tet4,
+        SolidKind::Tet10,
+        SolidKind::Hex8,
+        SolidKind::Hex20,
+    ];
+
+    /// The built-in element of this kind.
+    #[inline]
+    pub fn element(self) -> &'static dyn Element<3> {
+        match self {
+            SolidKind::Tet4 => &Tet4,
+            SolidKind::Tet10 => &Tet10,
+            SolidKind::Hex8 => &Hex8,
+            SolidKind::Hex20 => &Hex20,
+        }
+    }
+
+    /// Nodes per element: 4, 10, 8 or 20.
     #[inline]
     pub fn node_count(self) -> usize {
         match self {
             SolidKind::Tet4 => 4,
             SolidKind::Tet10 => 10,
+            SolidKind::Hex8 => 8,
+            SolidKind::Hex20 => 20,
         }
     }
 
-    /// The local nodes of face `face ∈ {0, 1, 2, 3}` (face `k` is opposite corner `3 − k`…
-    /// see the table), corners counter-clockwise seen from outside, then for P2 the mid-edge
-    /// nodes of edges (0–1, 1–2, 2–0) of the face: the node order of a 3- or 6-node triangle.
+    /// Corners per element: 4 or 8.
+    #[inline]
+    pub fn corner_count(self) -> usize {
+        match self {
+            SolidKind::Tet4 | SolidKind::Tet10 => 4,
+            _ => 8,
+        }
+    }
+
+    /// Faces per element: 4 (triangles) or 6 (quadrilaterals).
+    #[inline]
+    pub fn face_count(self) -> usize {
+        match self {
+            SolidKind::Tet4 | SolidKind::Tet10 => 4,
+            _ => 6,
+        }
+    }
+
+    /// Corners per face: 3 or 4.
+    #[inline]
+    pub fn face_corner_count(self) -> usize {
+        match self {
+            SolidKind::Tet4 | SolidKind::Tet10 => 3,
+            _ => 4,
+        }
+    }
+
+    /// The local nodes of face `face ∈ 0..face_count()`, corners counter-clockwise seen from
+    /// outside, then for quadratic kinds the mid-edge nodes of the face's edges (c0–c1, c1–c2,
+    /// …): the node order of a 3/6-node triangle or a 4/8-node quadrilateral. Tetrahedra:
     ///
     /// ```text
     /// face 0: 0 2 1 (opposite corner 3)    face 2: 1 2 3 (opposite corner 0)
     /// face 1: 0 1 3 (opposite corner 2)    face 3: 0 3 2 (opposite corner 1)
     /// ```
     ///
+    /// hexahedra: faces `ζ = −1, η = −1, ξ = 1, η = 1, ξ = −1, ζ = 1`
+    /// ([`crate::element::hex8::FACES`]).
+    ///
     /// # Panics
-    /// If `face > 3`.
+    /// If `face >= self.face_count()`.
     #[inline]
     #[track_caller]
     pub fn face_nodes(self, face: usize) -> &'static [usize] {
-        const P1: [[usize; 3]; 4] = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
-        const P2: [[usize; 6]; 4] = [
-            [0, 2, 1, 6, 5, 4],
-            [0, 1, 3, 4, 8, 7],
-            [1, 2, 3, 5, 9, 8],
-            [0, 3, 2, 7, 9, 6],
-        ];
         match self {
-            SolidKind::Tet4 => &P1[face],
-            SolidKind::Tet10 => &P2[face],
+            SolidKind::Tet4 => crate::element::tet4::FACES[face],
+            SolidKind::Tet10 => crate::element::tet10::FACES[face],
+            SolidKind::Hex8 => crate::element::hex8::FACES[face],
+            SolidKind::Hex20 => crate::element::hex20::FACES[face],
         }
     }
 }
@@ -69,8 +123,8 @@ pub(crate) struct FacePoint {
     pub(crate) normal: [f64; 3],
     /// Rule weight × surface Jacobian.
     pub(crate) weight: f64,
-    /// The face nodes' shape values (the first 3 or 6).
-    pub(crate) n: [f64; 6],
+    /// The face nodes' shape values (the first 3, 4, 6 or 8).
+    pub(crate) n: [f64; 8],
 }
 
 /// A face of a tetrahedron: element index and local face `0..4` (see
@@ -79,7 +133,7 @@ pub(crate) struct FacePoint {
 pub struct Face {
     /// Element index.
     pub element: usize,
-    /// Local face index in `0..4`.
+    /// Local face index in `0..face_count()` of the element's kind.
     pub face: u8,
 }
 
@@ -151,40 +205,7 @@ impl SolidMesh {
         let npe = kind.node_count();
         let regions = crate::mesh::checked_cells(nodes.len(), npe, &connectivity, regions)?;
         for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
-            let c = [
-                nodes[cell[0]],
-                nodes[cell[1]],
-                nodes[cell[2]],
-                nodes[cell[3]],
-            ];
-            let volume = signed_volume(c[0], c[1], c[2], c[3]);
-            let l2 = TET_EDGES
-                .iter()
-                .map(|&[i, j]| {
-                    let d = sub(c[i], c[j]);
-                    dot(d, d)
-                })
-                .fold(0.0, f64::max);
-            if !(volume.is_finite() && l2.is_finite()) {
-                let value = c
-                    .iter()
-                    .flat_map(|p| p.iter())
-                    .fold(0.0_f64, |m, v| m.max(v.abs()));
-                return Err(FemError::InvalidParameter {
-                    name: "node coordinates",
-                    value,
-                    expected: "magnitudes whose products stay finite (below about 1e100)",
-                });
-            }
-            if volume.abs() <= 1e-12 * l2 * l2.sqrt() || l2 == 0.0 {
-                return Err(FemError::DegenerateSolid { element, volume });
-            }
-            if volume < 0.0 {
-                return Err(FemError::InvertedElement {
-                    element,
-                    det_j: 6.0 * volume,
-                });
-            }
+            check_corners(element, &nodes, &cell[..kind.corner_count()])?;
         }
         Ok(Self {
             nodes,
@@ -213,10 +234,9 @@ impl SolidMesh {
     /// [`FemError::InvalidSide`] for a face whose element or local index (`0..4`) is out of
     /// range.
     pub fn add_face_set(&mut self, name: &str, faces: Vec<Face>) -> Result<(), FemError> {
-        if let Some(f) = faces
-            .iter()
-            .find(|f| f.element >= self.element_count() || f.face > 3)
-        {
+        if let Some(f) = faces.iter().find(|f| {
+            f.element >= self.element_count() || f.face as usize >= self.kind.face_count()
+        }) {
             return Err(FemError::InvalidSide {
                 element: f.element,
                 side: f.face,
@@ -333,23 +353,37 @@ impl SolidMesh {
         &self.face_sets
     }
 
-    /// Calls `f(nodes, point)` at each point of a degree-4 rule on `face` (a 3- or 6-node
-    /// triangle, curved P2 faces included), with the face's nodes in
+    /// Calls `f(nodes, point)` at each point of a rule on `face` (degree 4 on a 3- or 6-node
+    /// triangle, curved P2 faces included; 3×3 Gauss on a 4- or 8-node quadrilateral), with the face's nodes in
     /// [`SolidKind::face_nodes`] order; stops at the first error.
     pub(crate) fn face_points(
         &self,
         face: Face,
         mut f: impl FnMut(&[usize], &FacePoint) -> Result<(), FemError>,
     ) -> Result<(), FemError> {
-        let mut nodes = [0usize; 6];
+        let mut nodes = [0usize; 8];
         let mut count = 0;
         for (slot, node) in nodes.iter_mut().zip(self.face_node_ids(face)) {
             *slot = node;
             count += 1;
         }
         let nodes = &nodes[..count];
-        for &(xi, w) in &crate::quadrature::TRI_6 {
-            let (n, dn) = triangle_shape(count, xi);
+        let quad = self.kind.face_corner_count() == 4;
+        let rule: &[([f64; 2], f64)] = if quad {
+            crate::element::quad4::square_rule(3)
+        } else {
+            &crate::quadrature::TRI_6
+        };
+        for &(xi, w) in rule {
+            let (n, dn) = if quad {
+                quadrilateral_shape(count, xi)
+            } else {
+                let (n6, dn6) = triangle_shape(count, xi);
+                let (mut n, mut dn) = ([0.0; 8], [[0.0; 2]; 8]);
+                n[..6].copy_from_slice(&n6);
+                dn[..6].copy_from_slice(&dn6);
+                (n, dn)
+            };
             let mut x = [0.0; 3];
             let mut d = [[0.0; 3]; 2];
             for (i, &node) in nodes.iter().enumerate() {
@@ -403,13 +437,17 @@ impl SolidMesh {
 
     /// The faces that belong to one element only (the boundary), in element order.
     pub fn boundary_faces(&self) -> Vec<Face> {
-        let mut seen: std::collections::HashMap<[usize; 3], (Face, u32)> =
+        let mut seen: std::collections::HashMap<[usize; 4], (Face, u32)> =
             std::collections::HashMap::with_capacity(2 * self.element_count());
+        let corners = self.kind.face_corner_count();
         for element in 0..self.element_count() {
             let cell = self.element(element);
-            for face in 0..4u8 {
-                let l = SolidKind::Tet4.face_nodes(face as usize);
-                let mut key = [cell[l[0]], cell[l[1]], cell[l[2]]];
+            for face in 0..self.kind.face_count() as u8 {
+                let l = self.kind.face_nodes(face as usize);
+                let mut key = [usize::MAX; 4];
+                for (k, &i) in key.iter_mut().zip(&l[..corners]) {
+                    *k = cell[i];
+                }
                 key.sort_unstable();
                 seen.entry(key)
                     .and_modify(|e| e.1 += 1)
@@ -435,8 +473,14 @@ impl SolidMesh {
     /// # Errors
     /// As [`SolidMesh::new`] (an inverted curved element shows up when assembled).
     pub fn to_tet10(&self, midpoint: Option<&MidpointFn<'_>>) -> Result<Self, FemError> {
-        if self.kind == SolidKind::Tet10 {
-            return Ok(self.clone());
+        match self.kind {
+            SolidKind::Tet10 => return Ok(self.clone()),
+            SolidKind::Tet4 => {}
+            other => {
+                return Err(FemError::Unsupported {
+                    what: format!("making 10-node tetrahedra of a {other:?} mesh"),
+                });
+            }
         }
         let mut nodes = self.nodes.clone();
         let mut index: std::collections::HashMap<(usize, usize), usize> =
@@ -477,6 +521,80 @@ impl SolidMesh {
         }
         Ok(out)
     }
+}
+
+/// Shape values and reference derivatives of a 4- or 8-node quadrilateral face at `(ξ, η)`
+/// on `[−1, 1]²` (corners, then the mid-edge nodes), padded to 8.
+pub(crate) fn quadrilateral_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 8], [[f64; 2]; 8]) {
+    let (mut n, mut dn) = ([0.0; 8], [[0.0; 2]; 8]);
+    if nodes == 4 {
+        crate::element::Quad4.shape(xi, &mut n, &mut dn);
+    } else {
+        crate::element::Quad8.shape(xi, &mut n, &mut dn);
+    }
+    (n, dn)
+}
+
+/// Checks the corners of one element: finite products, not degenerate, right-handed. A
+/// tetrahedron's volume is tested; a hexahedron is tested at each corner (the tetrahedron of
+/// the corner and its three neighbours, as a right-handed triad).
+fn check_corners(element: usize, nodes: &[[f64; 3]], cell: &[usize]) -> Result<(), FemError> {
+    let p = |k: usize| nodes[cell[k]];
+    let mut tets: Vec<[usize; 4]> = Vec::with_capacity(8);
+    if cell.len() == 4 {
+        tets.push([0, 1, 2, 3]);
+    } else {
+        let corners = &crate::element::hex8::CORNERS;
+        for (i, c) in corners.iter().enumerate() {
+            let flip = |a: usize| {
+                let mut d = *c;
+                d[a] = -d[a];
+                corners.iter().position(|q| *q == d).unwrap_or(i)
+            };
+            let (jx, jy, jz) = (flip(0), flip(1), flip(2));
+            // the triad (x, y, z) of neighbours is right-handed where c_x c_y c_z < 0
+            tets.push(if c[0] * c[1] * c[2] < 0.0 {
+                [i, jx, jy, jz]
+            } else {
+                [i, jy, jx, jz]
+            });
+        }
+    }
+    let (mut volume, mut l2) = (f64::INFINITY, 0.0_f64);
+    for t in &tets {
+        let c = t.map(p);
+        let v = signed_volume(c[0], c[1], c[2], c[3]);
+        let lk = TET_EDGES
+            .iter()
+            .map(|&[i, j]| {
+                let d = sub(c[i], c[j]);
+                dot(d, d)
+            })
+            .fold(0.0, f64::max);
+        if !(v.is_finite() && lk.is_finite()) {
+            let value = c
+                .iter()
+                .flat_map(|p| p.iter())
+                .fold(0.0_f64, |m, v| m.max(v.abs()));
+            return Err(FemError::InvalidParameter {
+                name: "node coordinates",
+                value,
+                expected: "magnitudes whose products stay finite (below about 1e100)",
+            });
+        }
+        volume = volume.min(v);
+        l2 = l2.max(lk);
+    }
+    if volume.abs() <= 1e-12 * l2 * l2.sqrt() || l2 == 0.0 {
+        return Err(FemError::DegenerateSolid { element, volume });
+    }
+    if volume < 0.0 {
+        return Err(FemError::InvertedElement {
+            element,
+            det_j: 6.0 * volume,
+        });
+    }
+    Ok(())
 }
 
 /// Shape values and reference derivatives `(∂/∂ξ, ∂/∂η)` of a 3- or 6-node triangle at

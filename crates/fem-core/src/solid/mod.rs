@@ -9,7 +9,6 @@
 //! values are refilled and refactored in place, and supports are the same [`crate::Supports`]
 //! with [`crate::Component::Z`].
 
-pub mod element;
 pub mod generate;
 pub mod gmsh;
 pub mod mesh;
@@ -18,7 +17,7 @@ mod modes;
 pub mod quadrature;
 pub mod revolve;
 
-pub use element::{SolidElement, Stress3, Tet4, Tet10};
+pub use crate::element::{Stress3, Tet4, Tet10};
 pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES, triangle_shape};
 pub use model::{SolidModel, StressField3, StressPoint3, geostatic_3d};
 pub use revolve::{Revolved, revolve};

@@ -1,10 +1,14 @@
 //! [`SolidModel`]: a 3D linear-elastic body on a tetrahedral mesh, assembled and factored once,
 //! and the [`Structure<3>`](crate::Structure) the contact solver sees.
 
-use super::element::{SolidElement, Stress3, Tet4, Tet10};
-use super::mesh::{SolidKind, SolidMesh};
+use crate::element::kernel::{field_at3, hooke, lame};
+
+#[path = "model_elements.rs"]
+mod elements;
+use super::mesh::SolidMesh;
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
+use crate::element::{Element, Stress3};
 use crate::error::{FemError, finite};
 use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
@@ -32,13 +36,6 @@ pub fn geostatic_3d(gamma: f64, k0: f64, z_surface: f64) -> StressField3 {
     })
 }
 
-fn element_of(kind: SolidKind) -> &'static dyn SolidElement {
-    match kind {
-        SolidKind::Tet4 => &Tet4,
-        SolidKind::Tet10 => &Tet10,
-    }
-}
-
 /// A linear-elastic 3D body: mesh, materials per region, supports and loads, with its reduced
 /// stiffness assembled and factored.
 ///
@@ -62,6 +59,8 @@ pub struct SolidModel {
     initial_force: Vec<f64>,
     version: u64,
     ordering: FillOrdering,
+    /// Users' elements by region ([`SolidModel::with_element`]).
+    elements: BTreeMap<u32, Arc<dyn Element<3>>>,
 }
 
 impl core::fmt::Debug for SolidModel {
@@ -134,6 +133,7 @@ impl SolidModel {
             initial_force: vec![0.0; n3],
             version: 0,
             ordering,
+            elements: BTreeMap::new(),
         };
         model.assemble_and_factor()?;
         Ok(model)
@@ -141,7 +141,7 @@ impl SolidModel {
 
     fn assemble_and_factor(&mut self) -> Result<(), FemError> {
         self.values.fill(0.0);
-        let element = element_of(self.mesh.kind());
+        let kind = self.mesh.kind();
         let mut k_e = DMatrix::zeros(0, 0);
         let mut coords = Vec::with_capacity(10);
         let mut coupling = Vec::new();
@@ -149,8 +149,10 @@ impl SolidModel {
             let cell = self.mesh.element(e);
             coords.clear();
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            let material = &self.materials[&self.mesh.regions()[e]];
-            element.stiffness_into(e, &coords, material, &mut k_e)?;
+            let region = self.mesh.regions()[e];
+            let material = &self.materials[&region];
+            let element = self.elements.get(&region).map_or(kind.element(), |a| &**a);
+            element.stiffness_into(e, &coords, material, &(), &mut k_e)?;
             if k_e.iter().any(|v| !v.is_finite()) {
                 return Err(FemError::NonFiniteStiffness {
                     element: e,
@@ -380,7 +382,7 @@ impl SolidModel {
     pub fn add_self_weight(&mut self) -> Result<(), FemError> {
         let force = self.element_forces(|element, e, coords, f_e| {
             let gamma = self.materials[&self.mesh.regions()[e]].unit_weight();
-            element.body_force_into(e, coords, &|_| [0.0, 0.0, -gamma], f_e)
+            element.body_force_into(e, coords, &(), &|_| [0.0, 0.0, -gamma], f_e)
         })?;
         self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
         Ok(())
@@ -394,7 +396,7 @@ impl SolidModel {
     /// non-finite value.
     pub fn add_body_force(&mut self, b: impl Fn([f64; 3]) -> [f64; 3]) -> Result<(), FemError> {
         let force = self.element_forces(|element, e, coords, f_e| {
-            element.body_force_into(e, coords, &b, f_e)
+            element.body_force_into(e, coords, &(), &b, f_e)
         })?;
         if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
             return Err(FemError::InvalidParameter {
@@ -414,7 +416,7 @@ impl SolidModel {
     /// [`FemError::InvertedElement`]; [`FemError::InvalidParameter`] if `σ₀` is not finite.
     pub fn set_initial_stress(&mut self, sigma_0: StressField3) -> Result<(), FemError> {
         let force = self.element_forces(|element, e, coords, f_e| {
-            element.initial_stress_force_into(e, coords, &*sigma_0, f_e)
+            element.initial_stress_force_into(e, coords, &(), &*sigma_0, f_e)
         })?;
         if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
             return Err(FemError::InvalidParameter {
@@ -447,7 +449,9 @@ impl SolidModel {
         let regions = self.mesh.regions();
         let force = self.element_forces(|element, e, coords, f_e| {
             match fields.iter().find(|(r, _)| *r == regions[e]) {
-                Some((_, sigma_0)) => element.initial_stress_force_into(e, coords, &**sigma_0, f_e),
+                Some((_, sigma_0)) => {
+                    element.initial_stress_force_into(e, coords, &(), &**sigma_0, f_e)
+                }
                 None => Ok(()),
             }
         })?;
@@ -469,9 +473,8 @@ impl SolidModel {
 
     fn element_forces(
         &self,
-        integrate: impl Fn(&dyn SolidElement, usize, &[[f64; 3]], &mut [f64]) -> Result<(), FemError>,
+        integrate: impl Fn(&dyn Element<3>, usize, &[[f64; 3]], &mut [f64]) -> Result<(), FemError>,
     ) -> Result<Vec<f64>, FemError> {
-        let element = element_of(self.mesh.kind());
         let mut force = vec![0.0; 3 * self.mesh.node_count()];
         let mut coords = Vec::with_capacity(10);
         let mut f_e = vec![0.0; 30];
@@ -479,8 +482,9 @@ impl SolidModel {
             let cell = self.mesh.element(e);
             coords.clear();
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            f_e.resize(3 * cell.len(), 0.0);
             f_e.fill(0.0);
-            integrate(element, e, &coords, &mut f_e)?;
+            integrate(self.element_at(e), e, &coords, &mut f_e)?;
             for (a, &n) in cell.iter().enumerate() {
                 for c in 0..3 {
                     force[3 * n + c] += f_e[3 * a + c];
@@ -568,7 +572,6 @@ impl SolidModel {
                 got: displacements.len(),
             });
         }
-        let element = element_of(self.mesh.kind());
         let mut out = Vec::with_capacity(self.mesh.element_count());
         let mut coords = Vec::with_capacity(10);
         let mut u_e = Vec::with_capacity(30);
@@ -580,7 +583,8 @@ impl SolidModel {
             u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
             let material = &self.materials[&self.mesh.regions()[e]];
             let mut points = Vec::with_capacity(4);
-            element.stresses_into(e, &coords, material, &u_e, &mut points)?;
+            let element = self.element_at(e);
+            element.stresses_into(e, &coords, material, &(), &u_e, &mut points)?;
             out.push(points);
         }
         Ok(out)
@@ -605,7 +609,6 @@ impl SolidModel {
                 got: displacements.len(),
             });
         }
-        let npe = self.mesh.kind().node_count();
         let (mut l2, mut energy) = (0.0, 0.0);
         let mut coords = Vec::with_capacity(10);
         let mut u_e = Vec::with_capacity(30);
@@ -615,9 +618,10 @@ impl SolidModel {
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
             u_e.clear();
             u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
-            let (lambda, mu) = super::element::lame(self.material(e));
-            for &q in super::element::load_rule() {
-                let (x, u, eps, w) = super::element::field_at(npe, e, &coords, &u_e, q)?;
+            let (lambda, mu) = lame(self.material(e));
+            let element = self.element_at(e);
+            for &q in element.load_rule(&()) {
+                let (x, u, eps, w) = field_at3(element, e, &coords, &u_e, q)?;
                 let (ue, g) = exact(x);
                 let de: Stress3 = [
                     eps[0] - g[0][0],
@@ -627,7 +631,7 @@ impl SolidModel {
                     eps[4] - 0.5 * (g[1][2] + g[2][1]),
                     eps[5] - 0.5 * (g[2][0] + g[0][2]),
                 ];
-                let s = super::element::hooke(lambda, mu, de);
+                let s = hooke(lambda, mu, de);
                 let inner = s[0] * de[0]
                     + s[1] * de[1]
                     + s[2] * de[2]

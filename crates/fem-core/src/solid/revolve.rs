@@ -48,6 +48,14 @@ pub struct Revolved {
 /// side on the axis gives a single tetrahedron per sector, never a flat one).
 pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemError> {
     use std::f64::consts::{FRAC_PI_2, TAU};
+    if !matches!(mesh.kind(), ElementKind::Tri3 | ElementKind::Tri6) {
+        return Err(FemError::Unsupported {
+            what: format!(
+                "revolving a {:?} mesh (revolve takes triangles into tetrahedra)",
+                mesh.kind()
+            ),
+        });
+    }
     if !(angle > 0.0 && angle < TAU) {
         return Err(FemError::InvalidParameter {
             name: "angle",
@@ -189,7 +197,7 @@ pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemE
     // P2: mid-edge nodes at the cylindrical midpoints
     let (mut solid, angles) = match mesh.kind() {
         ElementKind::Tri3 => (p1, (0..=sectors).map(theta).collect::<Vec<_>>()),
-        ElementKind::Tri6 => {
+        _ => {
             let mid = |a: [f64; 3], b: [f64; 3]| cylindrical_midpoint(a, b);
             let p2 = p1.to_tet10(Some(&mid))?;
             (

@@ -502,12 +502,15 @@ fn read_msh_rejects_missing_file() {
 }
 
 #[test]
-fn parse_msh_rejects_quadrangles() {
+fn parse_msh_rejects_other_element_types() {
+    // A 4-node quadrangle (type 3) is read since issue 35 (it was rejected before).
     let quad = SPARSE_TAGS.replace("2 3 5 100", "2 2 5 100").replace(
         "2 1 2 2\n7 10 20 30\n100 10 30 40",
         "2 1 3 1\n7 10 20 30 40",
     );
-    assert_unsupported(parse_msh(quad.as_bytes()), "type 3 (MSH_QUA_4)");
+    let mesh = parse_msh(quad.as_bytes()).unwrap();
+    assert_eq!(mesh.kind(), fem_core::ElementKind::Quad4);
+    assert_eq!(mesh.element(0), &[0, 1, 2, 3]);
     let tet = SPARSE_TAGS.replace("2 3 5 100", "2 2 5 100").replace(
         "2 1 2 2\n7 10 20 30\n100 10 30 40",
         "3 1 4 1\n7 10 20 30 40",

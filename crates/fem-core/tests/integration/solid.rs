@@ -72,6 +72,7 @@ fn distorted_kind(mesh: &SolidMesh, kind: SolidKind, amp: f64, h: f64) -> SolidM
             let p2 = p1.to_tet10(None).unwrap();
             shaken(&p2, 0.2 * amp, h, p1.node_count(), &mut seed)
         }
+        other => panic!("this test meshes tetrahedra, not {other:?}"),
     }
 }
 
@@ -222,7 +223,7 @@ fn mms_body_force(p: [f64; 3]) -> [f64; 3] {
 }
 
 /// Least-squares slope of `log e` against `log h`.
-fn slope(h: &[f64], e: &[f64]) -> f64 {
+pub(crate) fn slope(h: &[f64], e: &[f64]) -> f64 {
     let n = h.len() as f64;
     let (lx, ly): (Vec<f64>, Vec<f64>) = h.iter().zip(e).map(|(h, e)| (h.ln(), e.ln())).unzip();
     let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
@@ -231,7 +232,7 @@ fn slope(h: &[f64], e: &[f64]) -> f64 {
     num / den
 }
 
-fn mms_errors(kind: SolidKind, n: usize) -> (f64, f64) {
+pub(crate) fn mms_errors(kind: SolidKind, n: usize) -> (f64, f64) {
     let mesh = box_mesh(
         &lines(0.0, 1.0, n),
         &lines(0.0, 1.0, n),

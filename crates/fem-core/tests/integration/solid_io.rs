@@ -527,14 +527,22 @@ fn parse_msh_3d_rejects_a_triangle_off_the_tetrahedra() {
 
 #[test]
 fn parse_msh_3d_rejects_other_element_types() {
-    // An 8-node hexahedron (type 5), known to Gmsh but not read here.
+    // An 8-node hexahedron (type 5) is read since issue 35, but not beside tetrahedra.
     let text = edit(P1_CUBE, "\n5 12 1 12\n", "\n6 13 1 13\n");
     let text = edit(
         &text,
         "$EndElements",
         "3 1 5 1\n13 1 2 3 4 5 6 7 8\n$EndElements",
     );
-    assert_unsupported(parse_msh_3d(text.as_bytes()), "MSH_HEX_8");
+    assert_unsupported(parse_msh_3d(text.as_bytes()), "mixed 4-node and 8-node");
+    // A 6-node prism (type 6), known to Gmsh but not read here.
+    let text = edit(P1_CUBE, "\n5 12 1 12\n", "\n6 13 1 13\n");
+    let text = edit(
+        &text,
+        "$EndElements",
+        "3 1 6 1\n13 1 2 3 4 5 6\n$EndElements",
+    );
+    assert_unsupported(parse_msh_3d(text.as_bytes()), "MSH_PRI_6");
     // A type number that Gmsh does not have.
     let text = edit(P1_CUBE, "\n3 1 4 6\n", "\n3 1 200 6\n");
     assert_unsupported(parse_msh_3d(text.as_bytes()), "200");

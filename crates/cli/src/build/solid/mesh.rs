@@ -40,11 +40,23 @@ pub(super) fn solid_kind(e: Element) -> SolidKind {
     }
 }
 
-/// Name of a tetrahedron kind for messages.
+/// Name of a 3D element kind for messages.
 pub fn solid_kind_name(k: SolidKind) -> &'static str {
     match k {
         SolidKind::Tet4 => "P1 (4-node tetrahedra)",
         SolidKind::Tet10 => "P2 (10-node tetrahedra)",
+        SolidKind::Hex8 => "P1 (8-node hexahedra)",
+        SolidKind::Hex20 => "P2 (20-node serendipity hexahedra)",
+        _ => "elements of a kind this version of bipo does not name",
+    }
+}
+
+/// Whether a 3D mesh of kind `k` has the order of the scene's element name (`P1`: Tet4 or
+/// Hex8, `P2`: Tet10 or Hex20).
+fn has_order(e: Element, k: SolidKind) -> bool {
+    match e {
+        Element::P1 => matches!(k, SolidKind::Tet4 | SolidKind::Hex8),
+        Element::P2 => matches!(k, SolidKind::Tet10 | SolidKind::Hex20),
     }
 }
 
@@ -97,7 +109,7 @@ pub(super) fn build(mp: &KeyPath, plan: MeshPlan3) -> CliResult<SolidMesh> {
             let mesh =
                 fem_core::solid::gmsh::read_msh_3d(&path).map_err(|e| fem(&mp.key("file"), e))?;
             if let Some(e) = element
-                && solid_kind(e) != mesh.kind()
+                && !has_order(e, mesh.kind())
             {
                 return Err(CliError::at(
                     &mp.key("element"),

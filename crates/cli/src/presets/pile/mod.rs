@@ -630,10 +630,7 @@ fn consistent_weights(
     kind: ElementKind,
     weight: impl Fn(f64) -> f64,
 ) -> Result<Vec<f64>, SolverError> {
-    let per_side = match kind {
-        ElementKind::Tri3 => 1,
-        ElementKind::Tri6 => 2,
-    };
+    let per_side = if kind.is_quadratic() { 2 } else { 1 };
     if s.len() < per_side + 1 || !(s.len() - 1).is_multiple_of(per_side) {
         return Err(SolverError::InvalidGeometry(format!(
             "a line of {} nodes is not made of whole {kind:?} sides",

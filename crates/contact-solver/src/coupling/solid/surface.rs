@@ -81,6 +81,15 @@ impl TriSurface {
         let npf = match mesh.kind() {
             SolidKind::Tet4 => 3,
             SolidKind::Tet10 => 6,
+            // a bilinear face split into two triangles would carry the target's reactions by
+            // linear, not bilinear, shape functions: not the element's surface
+            other => {
+                return Err(SolverError::InvalidGeometry(format!(
+                    "face set `{set}` of a {other:?} mesh: node-to-face targets are triangle \
+                     surfaces (tetrahedral meshes); use a rigid obstacle or a tetrahedral \
+                     target body"
+                )));
+            }
         };
         let connectivity: Vec<usize> = faces
             .iter()
