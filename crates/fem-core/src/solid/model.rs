@@ -6,7 +6,6 @@ use super::mesh::{SolidKind, SolidMesh};
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
 use crate::error::{FemError, finite};
-use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
 use crate::ordering::{FillOrdering, nested_dissection};
@@ -700,15 +699,6 @@ impl Structure<3> for SolidModel {
             Dof::Prescribed(_) => self.supports.value(node, c).unwrap_or(0.0),
             Dof::Free(_) => 0.0,
         })
-    }
-
-    /// Not used in 3D: the unit weight of plane strain.
-    fn idealization(&self) -> Idealization {
-        Idealization::PlaneStrain
-    }
-
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
-        self.mesh.node_set(name)
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
