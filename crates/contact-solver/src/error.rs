@@ -149,7 +149,7 @@ pub enum SolverError {
         history: Vec<f64>,
     },
     /// The [stall detector](crate::local::stall) stopped the iteration: its residual had not
-    /// halved over the last [`stall_window`](crate::UzawaSettings::stall_window) iterations
+    /// halved over the last [`stall_window`](crate::UzawaTuning::stall_window) iterations
     /// (nor over the second half of the run) — typically a problem with no solution (a
     /// rank-deficient `W` with incompatible `q`), or one the algorithm cannot solve.
     #[error(
