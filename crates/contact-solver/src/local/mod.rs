@@ -188,6 +188,7 @@ mod delassus;
 mod dense;
 #[cfg(feature = "fclib")]
 pub mod fclib;
+mod friction;
 mod gauss_seidel;
 pub mod generate;
 #[cfg(feature = "serde")]

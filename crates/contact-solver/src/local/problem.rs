@@ -432,10 +432,18 @@ impl ReducedProblem {
         &self.q
     }
 
-    /// The friction coefficients, one per contact.
+    /// The friction coefficients, one per contact: the laws of
+    /// [`coulomb_laws`](Self::coulomb_laws) and [`solve_coulomb`](crate::solve_coulomb);
+    /// a solve with other laws takes μ from them and refuses a problem that disagrees
+    /// ([`with_friction_of`](Self::with_friction_of)).
     #[inline]
     pub fn mu(&self) -> &[f64] {
         &self.mu
+    }
+
+    /// The friction coefficients to replace (`crate::local::friction`).
+    pub(crate) fn mu_mut(&mut self) -> &mut [f64] {
+        &mut self.mu
     }
 
     /// The `d × d` diagonal block of contact `i` (normal first), in the top-left corner of a

@@ -124,7 +124,8 @@ impl UzawaSolver {
     ///
     /// # Errors
     /// [`SolverError::SizeMismatch`] if `laws` has neither 1 nor `n_c` entries;
-    /// [`SolverError::NotConverged`] unless `accept_non_converged`.
+    /// [`SolverError::FrictionMismatch`] if a law's friction coefficient disagrees with the
+    /// problem's `μ_i`; [`SolverError::NotConverged`] unless `accept_non_converged`.
     pub fn solve<L: ContactLaw>(
         &mut self,
         problem: &ReducedProblem,
@@ -139,6 +140,9 @@ impl UzawaSolver {
     ///
     /// # Errors
     /// [`SolverError::SizeMismatch`] if `laws`, `states` or `r_start` has the wrong length;
+    /// [`SolverError::FrictionMismatch`] if a law's friction coefficient in its state
+    /// disagrees with the problem's `μ_i` (μ has one owner, the law: build the problem with
+    /// [`ReducedProblem::with_friction_of`]);
     /// [`SolverError::NonFinite`] if `r_start` is not finite, or `tol` or `rho_scale` is not
     /// finite and positive; [`SolverError::InvalidSetting`] if `omega` is not in `(0, 2)` or
     /// `stall_window` is neither 0 nor at least
@@ -158,6 +162,8 @@ impl UzawaSolver {
     ) -> Result<Solution, SolverError> {
         let mut st = self.settings;
         let r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
+        // μ has one owner, the law: the problem's coefficients may not disagree (friction.rs)
+        problem.check_friction_of(laws, states)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
         if st.algorithm == Algorithm::Auto {
             st.algorithm = if mu.is_some() && newton_pays(problem) {

@@ -106,6 +106,8 @@ impl UzawaSolver {
         for _ in 0..MAX_ROUNDS {
             let idx: Vec<usize> = (0..nc).filter(|&i| keep[i]).collect();
             let sub = problem.restricted(&idx);
+            // the laws' coefficients (which the problem's agree with, friction.rs)
+            let mu_sub: Vec<f64> = idx.iter().map(|&i| mu[i]).collect();
             let laws_sub: Vec<Coulomb> = idx
                 .iter()
                 .map(|&i| {
@@ -123,7 +125,7 @@ impl UzawaSolver {
                 &laws_sub,
                 &[()],
                 r_sub,
-                Some(sub.mu()),
+                Some(&mu_sub),
             )?;
             let report = &sol.report;
             iterations += report.iterations;
