@@ -25,8 +25,8 @@ use crate::coupling::force_factor::ForceFactorCheck;
 use crate::coupling::primal::{LocalFrame, PrimalCache};
 use crate::coupling::simulation::FlexibilityMode;
 use crate::error::SolverError;
-use crate::local::adhesion::{AdhesionOptions, AdhesiveStep, WarmStartPacing, solve_adhesive};
-use crate::local::{ReducedProblem, UzawaSettings, UzawaSolver};
+use crate::local::adhesion::{AdhesiveStep, WarmStartPacing, solve_adhesive};
+use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::{ContactLaw, LocalVec};
 use fem_core::Structure;
 

@@ -5,7 +5,7 @@ use crate::coupling::simulation::FlexibilityMode;
 use crate::local::UzawaSettings;
 use crate::local::adhesion::AdhesionOptions;
 
-/// Settings of a [`SolidContactSimulation`].
+/// Settings of a [`SolidContactSimulation`](super::SolidContactSimulation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolidSettings {
     /// The local solver's settings.
