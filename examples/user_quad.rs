@@ -126,6 +126,9 @@ impl QuadCantilever {
     }
 }
 
+/// The required methods only: plane strain (the default idealization), no boundary normals,
+/// no assembled sparse `K`, no rigid-body modes, and single solves through
+/// `solve_many_in_place` (the trait's defaults).
 impl Structure for QuadCantilever {
     fn dof_count(&self) -> usize {
         self.load.len()
@@ -141,23 +144,6 @@ impl Structure for QuadCantilever {
     }
     fn prescribed_displacement(&self, _node: usize) -> [f64; 2] {
         [0.0, 0.0] // every support of this structure is a fixed (zero) displacement
-    }
-    fn idealization(&self) -> Idealization {
-        Idealization::PlaneStrain
-    }
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
-        match name {
-            "bottom" => Ok(&self.bottom),
-            _ => Err(FemError::UnknownSet {
-                kind: "node",
-                name: name.to_string(),
-            }),
-        }
-    }
-    fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
-        let x = self.chol.solve(&DVector::from_column_slice(rhs));
-        rhs.copy_from_slice(x.as_slice());
-        Ok(())
     }
     fn solve_many_in_place(
         &self,
@@ -247,10 +233,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let quad = QuadCantilever::new(&material)?;
     let (p2, p2_bottom) = p2_model(&material)?;
     let probe = [NX / 2, 3 * NX / 4, NX]; // indices along the bottom side
-    let (xq, fq) = contact_input(
-        &quad,
-        &probe.map(|i| quad.boundary_nodes("bottom").unwrap()[i]),
-    )?;
+    let (xq, fq) = contact_input(&quad, &probe.map(|i| quad.bottom[i]))?;
     let (xt, ft) = contact_input(&p2, &probe.map(|i| p2_bottom[i]))?;
 
     // Timoshenko beam, plane strain: E' = E/(1−ν²), shear correction 5/6, load P = t h.

@@ -1,6 +1,6 @@
 //! Sweeps of the classical RCCM solver (`Algorithm::ClassicRccm`) for several over-relaxation
 //! factors ω, against the bipotential Gauss–Seidel sweeps: the measurement behind
-//! `classic::DEFAULT_OMEGA` (see the docs of `contact_solver::local::classic`).
+//! the default `UzawaTuning::omega` (1) (see the docs of `contact_solver::local::classic`).
 //!
 //! ```text
 //! cargo run --release -p contact-solver --example classic_omega

@@ -1,4 +1,4 @@
-//! The measurement behind [`UzawaSettings::skip_open`] (issue 14, "contacts that cannot close
+//! The measurement behind `UzawaTuning::skip_open` (issue 14, "contacts that cannot close
 //! leave the sweep"): the default solver with the restriction on and off, on problems whose
 //! candidates are mostly open, timed in one run, alternated, median of `ROUNDS`.
 //!

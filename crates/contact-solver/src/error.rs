@@ -94,6 +94,23 @@ pub enum SolverError {
         /// Index of the contact.
         contact: usize,
     },
+    /// The problem's friction coefficient at a contact disagrees with the law it is solved
+    /// with. μ has one owner, the law: a [`ReducedProblem`](crate::ReducedProblem) solved with
+    /// laws must carry their coefficients
+    /// ([`ReducedProblem::with_friction_of`](crate::ReducedProblem::with_friction_of) builds
+    /// it so), and a plain Coulomb problem is solved with
+    /// [`solve_coulomb`](crate::solve_coulomb), whose laws are the problem's.
+    #[error(
+        "contact {contact}: the problem's friction coefficient mu = {problem} disagrees with its law's {law}; the law owns mu: build the problem with the laws' coefficients (ReducedProblem::with_friction_of) or solve it with its own Coulomb laws (solve_coulomb)"
+    )]
+    FrictionMismatch {
+        /// Index of the contact.
+        contact: usize,
+        /// `μ_i` stored in the problem.
+        problem: f64,
+        /// The law's coefficient `μ̄_i` in its state.
+        law: f64,
+    },
     /// A local law was rejected (without a contact index; the law's error is the source).
     #[error("invalid contact law")]
     Law(#[from] LawError),
@@ -149,7 +166,7 @@ pub enum SolverError {
         history: Vec<f64>,
     },
     /// The [stall detector](crate::local::stall) stopped the iteration: its residual had not
-    /// halved over the last [`stall_window`](crate::UzawaSettings::stall_window) iterations
+    /// halved over the last [`stall_window`](crate::UzawaTuning::stall_window) iterations
     /// (nor over the second half of the run) — typically a problem with no solution (a
     /// rank-deficient `W` with incompatible `q`), or one the algorithm cannot solve.
     #[error(
@@ -380,6 +397,16 @@ impl fmt::Debug for SolverError {
             Self::NoFrictionCoefficient { contact } => f
                 .debug_struct("NoFrictionCoefficient")
                 .field("contact", contact)
+                .finish(),
+            Self::FrictionMismatch {
+                contact,
+                problem,
+                law,
+            } => f
+                .debug_struct("FrictionMismatch")
+                .field("contact", contact)
+                .field("problem", problem)
+                .field("law", law)
                 .finish(),
             Self::Law(e) => f.debug_tuple("Law").field(e).finish(),
             Self::Json { source } => f.debug_struct("Json").field("source", source).finish(),

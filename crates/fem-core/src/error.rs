@@ -279,8 +279,10 @@ pub enum FemError {
         /// Row (and column) of the matrix whose pivot failed, when known.
         row: Option<usize>,
     },
-    /// A [`Structure`](crate::Structure) relies on a default method that cannot answer for it
-    /// (e.g. a floating structure without `rigid_body_load_into`).
+    /// A [`Structure`](crate::Structure) relies on a default method that cannot answer for it.
+    /// (No default of fem-core's traits returns it since a floating body's modes and load
+    /// became one capability, [`Floating`](crate::Floating); kept for implementers' own
+    /// defaults.)
     #[error("the structure must implement `Structure::{method}`: {reason}")]
     MissingMethod {
         /// The method.

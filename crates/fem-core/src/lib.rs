@@ -60,7 +60,7 @@ pub use linear_solver::SpdSolver;
 pub use model::{LinearElasticModel, Reaction, StressField, StressPoint, geostatic};
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
 pub use space::{Dim, Plane, Solid, Space};
-pub use structure::Structure;
+pub use structure::{Floating, Structure};
 
 /// The `faer` this crate is built with (its sparse matrices and `MatMut` are in
 /// [`Structure`]'s signatures): an implementer of [`Structure`] writes `fem_core::faer::…`

@@ -49,7 +49,7 @@ pub use error::FenrisBodyError;
 use elasticity::BodyForce;
 use fem_core::faer::MatMut;
 use fem_core::faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use fem_core::{Component, FemError, Idealization, SpdSolver, Structure};
+use fem_core::{Component, FemError, SpdSolver, Structure};
 use fenris::assembly::global::{CsrAssembler, VectorAssembler};
 use fenris::assembly::local::{
     ElementEllipticAssemblerBuilder, ElementSourceAssemblerBuilder, UniformQuadratureTable,
@@ -187,8 +187,8 @@ impl FenrisBody {
         })
     }
 
-    /// Names a node set (e.g. a contactor surface) for [`Structure::boundary_nodes`]; a set of
-    /// the same name is replaced.
+    /// Names a node set (e.g. a contactor surface), read back by
+    /// [`node_set`](Self::node_set); a set of the same name is replaced.
     ///
     /// # Errors
     /// [`FenrisBodyError::UnknownNode`] naming the set if a node is not in the mesh.
@@ -204,6 +204,21 @@ impl FenrisBody {
         self.sets.retain(|(n, _)| n != name);
         self.sets.push((name.to_string(), nodes));
         Ok(self)
+    }
+
+    /// The nodes of a set named by [`with_node_set`](Self::with_node_set).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownSet`] if the body has no such set.
+    pub fn node_set(&self, name: &str) -> Result<&[usize], FemError> {
+        self.sets
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, nodes)| nodes.as_slice())
+            .ok_or_else(|| FemError::UnknownSet {
+                kind: "node",
+                name: name.to_string(),
+            })
     }
 
     /// The body-force load over the free dofs (fenris's `∫ b · φ`).
@@ -280,21 +295,6 @@ impl Structure for FenrisBody {
     fn prescribed_displacement(&self, node: usize) -> [f64; 2] {
         assert!(node < self.nodes.len(), "node {node} out of range");
         [0.0, 0.0] // every support of this body is fixed at zero
-    }
-
-    fn idealization(&self) -> Idealization {
-        Idealization::PlaneStrain
-    }
-
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
-        self.sets
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, nodes)| nodes.as_slice())
-            .ok_or_else(|| FemError::UnknownSet {
-                kind: "node",
-                name: name.to_string(),
-            })
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {

@@ -101,7 +101,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
         out.solver.tol = positive(&root.key("tol"), t)?;
     }
     if let Some(r) = s.rho_scale {
-        out.solver.rho_scale = positive(&root.key("rho_scale"), r)?;
+        out.solver.tuning.rho_scale = positive(&root.key("rho_scale"), r)?;
     }
     if let Some(n) = s.max_iterations {
         out.solver.max_iterations = count(&root.key("max_iterations"), n, MAX_ITERATIONS)?;
@@ -114,7 +114,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
                 format!("`{p}` is only read with algorithm = \"rccm-classic\" (its SOR factor)"),
             ));
         }
-        out.solver.omega = expect(&p, w, w > 0.0 && w < 2.0, "a factor in (0, 2)")?;
+        out.solver.tuning.omega = expect(&p, w, w > 0.0 && w < 2.0, "a factor in (0, 2)")?;
     }
     if let Some(t) = s.adhesion_tol {
         out.adhesion_tol = positive(&root.key("adhesion_tol"), t)?;
@@ -174,7 +174,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
                 ),
             ));
         }
-        out.solver.stall_window = n;
+        out.solver.tuning.stall_window = n;
     }
     if let Some(b) = s.fallback {
         out.solver.fallback = b;

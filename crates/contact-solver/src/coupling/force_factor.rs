@@ -39,10 +39,11 @@ impl ForceFactorCheck {
         structure.free_response_into(1.0, &mut at_one)?;
         let mut same = same_to_round_off(u_free, &at_one);
         // a floating structure: the load along its rigid-body modes scales too
-        if let Some(count) = structure.rigid_body_modes().map(|m| m.len()) {
+        if let Some(floating) = structure.floating() {
+            let count = floating.rigid_body_modes().len();
             let (mut here, mut one) = (vec![0.0; count], vec![0.0; count]);
-            structure.rigid_body_load_into(force_factor, &mut here)?;
-            structure.rigid_body_load_into(1.0, &mut one)?;
+            floating.rigid_body_load_into(force_factor, &mut here)?;
+            floating.rigid_body_load_into(1.0, &mut one)?;
             same &= same_to_round_off(&here, &one);
         }
         if same {

@@ -8,7 +8,7 @@
 //! step) in [`UzawaSolver`](crate::UzawaSolver).
 //!
 //! With `G` the base map (`g_k = G(r_k)`, `f_k = g_k − r_k`) and a memory of the last
-//! `d ≤` [`ANDERSON_DEPTH`] differences `Δf_j = f_{j+1} − f_j`, `Δg_j = g_{j+1} − g_j`:
+//! `d ≤` `ANDERSON_DEPTH` differences `Δf_j = f_{j+1} − f_j`, `Δg_j = g_{j+1} − g_j`:
 //!
 //! ```text
 //! γ_k     = argmin_γ ‖f_k − ΔF γ‖                 (normal equations ΔFᵀΔF γ = ΔFᵀ f_k by
@@ -58,7 +58,7 @@ use super::sweep::Sweeps;
 use contact_laws::ContactLaw;
 
 /// Memory depth `d` of the Anderson mixing (the "window"): the last `d` differences.
-pub const ANDERSON_DEPTH: usize = 5;
+pub(crate) const ANDERSON_DEPTH: usize = 5;
 
 /// After the `k`-th rejected iterate the next `2^k` steps are plain (`k ≤ 16`).
 const MAX_BACKOFF: u32 = 16;
@@ -251,7 +251,7 @@ impl AndersonScratch {
         let mut f_prev_norm = f64::INFINITY;
         // Plain steps still to do before mixing again, and the rejections so far.
         let (mut plain_left, mut rejections) = (0_usize, 0_u32);
-        let mut stall = StallDetector::new(settings.stall_window);
+        let mut stall = StallDetector::new(settings.tuning.stall_window);
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             self.g.copy_from_slice(r);

@@ -78,7 +78,7 @@
 //! ```
 //! ω = 1 (plain projected Gauss–Seidel) is the fastest on every random problem (7–42 % fewer
 //! sweeps than ω = 1.2) and within 3 % of ω = 1.2 on the strings except the smallest (256
-//! against 230); ω ≥ 1.5 is always slower. So the default [`DEFAULT_OMEGA`] is 1:
+//! against 230); ω ≥ 1.5 is always slower. So the default `DEFAULT_OMEGA` is 1:
 //! over-relaxation does not pay here because `W` is a flexibility (a dense, smoothing matrix),
 //! not a stiffness. The outer iterations hardly depend on ω (15–29 on the random problems, 7–11
 //! on the strings). The classic solver needs 3–8 times the bipotential's sweeps on the random
@@ -106,8 +106,6 @@ use super::settings::UzawaSettings;
 use super::stall::StallDetector;
 use crate::error::SolverError;
 use contact_laws::{ContactLaw, LawError};
-
-pub use super::settings::DEFAULT_OMEGA;
 
 /// Scratch buffers of the classical solver, kept in the [`UzawaSolver`](crate::UzawaSolver)
 /// and reused across solves.
@@ -321,7 +319,7 @@ impl ClassicScratch {
         self.r_prev.clear();
         self.r_prev.resize(m, 0.0);
 
-        let (tol, omega, max) = (settings.tol, settings.omega, settings.max_iterations);
+        let (tol, omega, max) = (settings.tol, settings.tuning.omega, settings.max_iterations);
         let denom_q = rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
         let mut run = ClassicRun {
             iterations: 0,
@@ -332,7 +330,7 @@ impl ClassicScratch {
             residual: f64::INFINITY,
             change: f64::INFINITY,
         };
-        let window = settings.stall_window;
+        let window = settings.tuning.stall_window;
         let mut stall = StallDetector::new(window);
         while run.iterations < max {
             self.r_prev.copy_from_slice(r);

@@ -23,6 +23,7 @@ pub(crate) enum Delassus {
 
 /// A read-only view of `W`, dense or sparse ([`ReducedProblem::w`](super::ReducedProblem::w)).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum WView<'a> {
     /// Dense row-major `m × m`.
     Dense(&'a [f64]),

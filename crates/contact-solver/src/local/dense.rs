@@ -19,10 +19,10 @@ pub(crate) fn symmetrize(w: &mut [f64], m: usize) {
 /// sequentially whatever faer's global parallelism: on the seed's scenes (`m = 66`, about
 /// 3·10⁵ flops per condensation) handing the work to rayon's threads costs more than the work
 /// (`docs/benchmarks.md`, "Threads").
-pub const SEQUENTIAL_BELOW_FLOPS: usize = 1 << 26;
+pub(crate) const SEQUENTIAL_BELOW_FLOPS: usize = 1 << 26;
 
 /// faer's parallelism for a dense operation of about `flops` operations: sequential below
-/// [`SEQUENTIAL_BELOW_FLOPS`], faer's global setting above.
+/// `SEQUENTIAL_BELOW_FLOPS`, faer's global setting above.
 pub(crate) fn dense_parallelism(flops: usize) -> faer::Par {
     if flops < SEQUENTIAL_BELOW_FLOPS {
         faer::Par::Seq

@@ -60,6 +60,7 @@ use std::path::Path;
 
 /// A solution or an initial guess stored in an FCLIB file.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct FclibSolution {
     /// The reactions `r` (`m` entries).
     pub r: Vec<f64>,
@@ -71,6 +72,7 @@ pub struct FclibSolution {
 
 /// Where the problem of an FCLIB file came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum FclibSource {
     /// The group `fclib_local`, read as it is.
     Local,
@@ -83,6 +85,7 @@ pub enum FclibSource {
 
 /// An FCLIB file read by [`read_fclib`]: the reduced problem and what else the file holds.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct FclibProblem {
     /// The reduced problem `x = W r + q`.
     pub problem: ReducedProblem,

@@ -157,7 +157,7 @@ fn solve<L: ContactLaw, const DT: usize>(
     let mut r_new = vec![0.0; m];
     let mut x_new = vec![0.0; m];
     let mut v = vec![0.0; m];
-    let mut theta = settings.rho_scale;
+    let mut theta = settings.tuning.rho_scale;
     let mut t = 1.0_f64;
     let mut history = Vec::new();
     let mut restarts = 0;
@@ -168,7 +168,7 @@ fn solve<L: ContactLaw, const DT: usize>(
     let mut iterations = 0;
     let mut converged = false;
     let mut stalled = false;
-    let mut stall = StallDetector::new(settings.stall_window);
+    let mut stall = StallDetector::new(settings.tuning.stall_window);
     // cones `‖r_t‖ ≤ μ̄ r_n`, whose answers cannot penetrate
     let coulomb_type = laws
         .iter()

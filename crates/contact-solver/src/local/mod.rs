@@ -85,11 +85,11 @@
 //! - [`Algorithm::Auto`] applies a rule per problem, re-measured on 2D and 3D problems of
 //!   every kind with `W` dense and sparse (`examples/auto_rule.rs`, `docs/benchmarks.md`
 //!   "Which algorithm, measured"): for Coulomb-type laws, Newton on a dense `W` with
-//!   `n_c ≤` [`AUTO_NEWTON_MAX_CONTACTS`] (1000) — 2–3× faster than the sweep on FE problems,
+//!   `n_c ≤` `AUTO_NEWTON_MAX_CONTACTS` (1000) — 2–3× faster than the sweep on FE problems,
 //!   even with it on the 3D half-space and the sphere piles — and on a sparse `W` whose contact
-//!   graph fills a factorisation by at most [`AUTO_NEWTON_MAX_FILL`] (10; geometric graphs:
+//!   graph fills a factorisation by at most `AUTO_NEWTON_MAX_FILL` (10; geometric graphs:
 //!   piles fill 3–5 and Newton is 1.3–1.9× faster) up to
-//!   [`AUTO_SPARSE_NEWTON_MAX_CONTACTS`]; else the accelerated Gauss–Seidel sweep (random
+//!   `AUTO_SPARSE_NEWTON_MAX_CONTACTS`; else the accelerated Gauss–Seidel sweep (random
 //!   sparse couplings fill 27–87 and Newton is 3–20× slower). Random *dense* problems, which
 //!   are well conditioned (the sweep converges in about 25 iterations), are the one class where
 //!   the rule picks the slower one (Newton 3–6× slower); FE and multibody problems are what
@@ -102,7 +102,7 @@
 //! (2×2, or 3×3 in 3D, whose largest eigenvalue is computed in closed form):
 //! the largest step for which the local map `r_i ↦ r_i − ρ W_ii r_i` is non-expansive, i.e. the
 //! local step never overshoots, whatever the block's anisotropy (`1/W_nn` can exceed it when
-//! `W_tt > W_nn`). The user may scale it by [`UzawaSettings::rho_scale`]. It is then adapted
+//! `W_tt > W_nn`). The user may scale it by [`UzawaTuning::rho_scale`]. It is then adapted
 //! (Khobotov 1987, Solodov–Tseng 1996): after a trial step `r → r'`,
 //!
 //! ```text
@@ -138,8 +138,8 @@
 //! Before and after the chosen algorithm, the dispatcher ([`UzawaSolver`]) handles what a
 //! problem from another code may bring (`tests/integration/real_world_inputs.rs`):
 //! - **Round-off asymmetry.** [`ReducedProblem::new`] symmetrises `W` when
-//!   `max|W_ij − W_ji| / max|W|` is between [`SYMMETRY_TOL`] (1e-12) and
-//!   [`DEFAULT_ASYMMETRY_TOL`] (1e-6, or [`ReducedProblem::with_asymmetry_tolerance`]) and
+//!   `max|W_ij − W_ji| / max|W|` is between `SYMMETRY_TOL` (1e-12) and
+//!   `DEFAULT_ASYMMETRY_TOL` (1e-6, or [`ReducedProblem::with_asymmetry_tolerance`]) and
 //!   reports it ([`UzawaReport::asymmetry`]); beyond, a typed error gives the entry and the
 //!   difference.
 //! - **Every gap open.** With `r = 0` as the start and every `q_n ≥ 0` (Coulomb-type laws; for
@@ -151,14 +151,14 @@
 //!   `Δr_i = 0`, and `W r` skips zero entries of `r`), so an open contact costs one projection
 //!   of `d` numbers per sweep, against `O(stored entries of its row)` for a closed one; and
 //!   Newton gives it no unknown (its equation is the known step `Δr_i = −F_i`).
-//! - **Extreme magnitudes.** `W` or `q` with entries beyond `1e±100` ([`RESCALE_ABOVE`]) are
+//! - **Extreme magnitudes.** `W` or `q` with entries beyond `1e±100` (`RESCALE_ABOVE`) are
 //!   solved on a copy scaled by powers of two (exact), when every law is
 //!   [scale invariant](contact_laws::ContactLaw::is_scale_invariant) (the built-in laws are);
 //!   for other laws, magnitudes beyond `1e±150` (where squares overflow) are refused with a
 //!   typed error. [`UzawaReport::rescaled`] says when it happened.
 //! - **A converged answer is checked.** For Coulomb-type laws the Signorini–Coulomb
 //!   conditions are checked without the modified velocity (`r_n − max(0, r_n − ρ⁰ x_n)`,
-//!   `r_t − clamp(r_t − ρ⁰ x_t, ±μ̄ r_n)`, relative like the residual) to [`CHECK_FACTOR`]
+//!   `r_t − clamp(r_t − ρ⁰ x_t, ±μ̄ r_n)`, relative like the residual) to `CHECK_FACTOR`
 //!   × `tol`: with a huge `μ̄` the sum `x_n + μ̄|x_t|` can absorb a penetration and the
 //!   bipotential residual reads 0 on a wrong answer (`μ = 1e100` did).
 //! - **Fallback.** When the algorithm does not converge (it stalls, or reaches
@@ -173,7 +173,7 @@
 //! - **Stalls** (issue 14: a positive semidefinite, rank-deficient `W` whose `q` admits no
 //!   solution, or an algorithm that cannot solve the problem). The [`stall`] detector, shared
 //!   by every algorithm loop, stops a run whose residual has not halved over the last
-//!   `max(`[`UzawaSettings::stall_window`]`, k/2)` of its `k` iterations, so the fallback starts
+//!   `max(`[`UzawaTuning::stall_window`]`, k/2)` of its `k` iterations, so the fallback starts
 //!   after a few windows instead of after `max_iterations`, and the error is
 //!   [`SolverError::Stalled`](crate::SolverError::Stalled) (the residual it stalled at, the
 //!   best one, the iterations, the history); with `accept_non_converged`,
@@ -188,6 +188,7 @@ mod delassus;
 mod dense;
 #[cfg(feature = "fclib")]
 pub mod fclib;
+mod friction;
 mod gauss_seidel;
 pub mod generate;
 #[cfg(feature = "serde")]
@@ -207,15 +208,8 @@ pub use csr::CsrMatrix;
 pub use delassus::WView;
 #[cfg(feature = "fe")]
 pub(crate) use dense::symmetrize;
-pub use problem::{DEFAULT_ASYMMETRY_TOL, ReducedProblem, SYMMETRY_TOL};
+pub use problem::ReducedProblem;
 #[cfg(feature = "fe")]
 pub(crate) use residual::{contact_statuses, natural_residual, norm};
-pub use settings::{
-    ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE, AUTO_NEWTON_MAX_CONTACTS,
-    AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm, DEFAULT_OMEGA, Solution,
-    UzawaReport, UzawaSettings,
-};
-pub use solver::{
-    CHECK_FACTOR, RESCALE_ABOVE, SKIP_OPEN_MAX_FRACTION, SKIP_OPEN_MIN_CONTACTS, UzawaSolver,
-    solve_coulomb,
-};
+pub use settings::{Algorithm, Solution, UzawaReport, UzawaSettings, UzawaTuning};
+pub use solver::{UzawaSolver, solve_coulomb};

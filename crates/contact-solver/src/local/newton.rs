@@ -50,7 +50,7 @@
 //! product per Newton step, none per trial). If the direction is not finite (a singular
 //! system) or no `t ≥ 2⁻²⁰` is accepted, one projected Gauss–Seidel sweep is done instead.
 //!
-//! **Warm-up.** [`WARMUP_SWEEPS`] = 2 projected Gauss–Seidel sweeps run before the first
+//! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
 //! factorisation). Measured (release, one thread, cold start, tol 1e-10; problems of
 //! `examples/work_precision_local.rs`), time per solve and Newton steps in brackets:
@@ -111,7 +111,7 @@ pub(crate) use sparse::factor_fill;
 const ARMIJO: f64 = 1e-4;
 /// Projected Gauss–Seidel sweeps before the first Newton step (they find most of the active
 /// set); measured in the [module docs](self).
-pub const WARMUP_SWEEPS: usize = 2;
+pub(crate) const WARMUP_SWEEPS: usize = 2;
 /// Halvings of the step before the line search gives up (`t ≥ 2⁻²⁰`).
 const MAX_HALVINGS: usize = 20;
 /// Newton systems up to this size are factorised by [`lu_solve_in_place`], larger ones by
@@ -538,8 +538,8 @@ impl NewtonScratch {
         self.resize(m, nc);
         self.rho.clear();
         self.rho
-            .extend(sweeps.rho0().iter().map(|a| a * settings.rho_scale));
-        let exact_rho = settings.rho_scale == 1.0;
+            .extend(sweeps.rho0().iter().map(|a| a * settings.tuning.rho_scale));
+        let exact_rho = settings.tuning.rho_scale == 1.0;
         let tol = settings.tol;
         let mut run = NewtonRun {
             iterations: 0,
@@ -552,7 +552,7 @@ impl NewtonScratch {
         let mut phi = self.refresh::<L, DT>(laws, states, r, x);
         // Once the residual is ≤ tol, sweeps polish r until the change is ≤ tol too.
         let mut polishing = false;
-        let mut stall = StallDetector::new(settings.stall_window);
+        let mut stall = StallDetector::new(settings.tuning.stall_window);
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             let mut stepped = false;

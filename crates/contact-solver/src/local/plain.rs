@@ -42,7 +42,7 @@ pub(crate) fn run<L: ContactLaw, const DT: usize>(
         residual: f64::INFINITY,
         change: f64::INFINITY,
     };
-    let mut stall = StallDetector::new(st.stall_window);
+    let mut stall = StallDetector::new(st.tuning.stall_window);
     while run.iterations < st.max_iterations {
         run.iterations += 1;
         let dr2 = match st.algorithm {

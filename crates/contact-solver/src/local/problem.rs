@@ -24,12 +24,12 @@ use contact_laws::{Coulomb, CoulombCone};
 
 /// Asymmetry below which `W` is taken as given: `|W_ij − W_ji| ≤ 1e-12 · max|W|` (round-off
 /// of a symmetric assembly).
-pub const SYMMETRY_TOL: f64 = 1e-12;
+pub(crate) const SYMMETRY_TOL: f64 = 1e-12;
 
 /// Default relative asymmetry [`ReducedProblem::new`] repairs: up to
 /// `|W_ij − W_ji| ≤ 1e-6 · max|W|` (round-off of the exporting code) `W` is replaced by
 /// `(W + Wᵀ)/2` and [`ReducedProblem::asymmetry`] says by how much; beyond it, an error.
-pub const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
+pub(crate) const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 
 /// A validated reduced contact problem `x = W r + q` with friction coefficients `μ_i`, in
 /// dimension `d` = 2 or 3 (the size of a contact's block: one normal and `d − 1` tangents).
@@ -41,7 +41,7 @@ pub const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 ///
 /// Invariants (checked by every constructor):
 /// `W` is `m × m`, `q` has `m` entries, `μ` has `n_c = m/d`; every entry
-/// is finite; `W` is symmetric (to [`SYMMETRY_TOL`] as given, or symmetrised, see
+/// is finite; `W` is symmetric (to `SYMMETRY_TOL` as given, or symmetrised, see
 /// [`new`](Self::new)); every `d × d` diagonal block of `W` is positive definite; `μ_i ≥ 0`.
 /// Full positive definiteness of `W` is *not* checked (it would cost a factorisation, and
 /// the Delassus operators of multibody codes are often only semidefinite).
@@ -64,7 +64,7 @@ impl ReducedProblem {
     /// - [`SolverError::SizeMismatch`] if `q` has an odd length, or `W`, `μ` do not match it;
     /// - [`SolverError::NonFinite`] for a NaN or infinite entry;
     /// - [`SolverError::NotSymmetric`] if `|W_ij − W_ji| > 1e-6·max|W|`
-    ///   ([`DEFAULT_ASYMMETRY_TOL`]); between [`SYMMETRY_TOL`] and that, `W` is replaced by
+    ///   (`DEFAULT_ASYMMETRY_TOL`); between `SYMMETRY_TOL` and that, `W` is replaced by
     ///   `(W + Wᵀ)/2` and [`asymmetry`](Self::asymmetry) reports the relative asymmetry
     ///   removed (set the tolerance with
     ///   [`with_asymmetry_tolerance`](Self::with_asymmetry_tolerance));
@@ -122,7 +122,7 @@ impl ReducedProblem {
     }
 
     /// As [`with_dimension`](Self::with_dimension), repairing a relative asymmetry of `W` up
-    /// to `tolerance` (`0`: only round-off below [`SYMMETRY_TOL`] is accepted).
+    /// to `tolerance` (`0`: only round-off below `SYMMETRY_TOL` is accepted).
     ///
     /// # Errors
     /// As for [`new`](Self::new); [`SolverError::InvalidSetting`] if `tolerance` is negative or
@@ -263,7 +263,7 @@ impl ReducedProblem {
     ///   is not finite;
     /// - [`SolverError::NotSymmetric`], [`SolverError::NotPositiveDefinite`],
     ///   [`SolverError::InvalidLaw`] as for [`new`](Self::new) (asymmetry up to
-    ///   [`DEFAULT_ASYMMETRY_TOL`] is symmetrised and reported by
+    ///   `DEFAULT_ASYMMETRY_TOL` is symmetrised and reported by
     ///   [`asymmetry`](Self::asymmetry)).
     ///
     /// # Examples
@@ -354,7 +354,7 @@ impl ReducedProblem {
     }
 
     /// Relative asymmetry `max|W_ij − W_ji| / max|W|` of the `W` given, removed by
-    /// symmetrising it (0 when it was symmetric to [`SYMMETRY_TOL`]).
+    /// symmetrising it (0 when it was symmetric to `SYMMETRY_TOL`).
     pub fn asymmetry(&self) -> f64 {
         self.asymmetry
     }
@@ -432,10 +432,18 @@ impl ReducedProblem {
         &self.q
     }
 
-    /// The friction coefficients, one per contact.
+    /// The friction coefficients, one per contact: the laws of
+    /// [`coulomb_laws`](Self::coulomb_laws) and [`solve_coulomb`](crate::solve_coulomb);
+    /// a solve with other laws takes μ from them and refuses a problem that disagrees
+    /// ([`with_friction_of`](Self::with_friction_of)).
     #[inline]
     pub fn mu(&self) -> &[f64] {
         &self.mu
+    }
+
+    /// The friction coefficients to replace (`crate::local::friction`).
+    pub(crate) fn mu_mut(&mut self) -> &mut [f64] {
+        &mut self.mu
     }
 
     /// The `d × d` diagonal block of contact `i` (normal first), in the top-left corner of a

@@ -5,19 +5,20 @@ use super::stall::DEFAULT_STALL_WINDOW;
 use contact_laws::ContactStatus;
 
 /// Threshold ν of the self-adaptive rule: a step whose ratio exceeds it is redone with ρ/2.
-pub const ADAPT_SHRINK_ABOVE: f64 = 1.5;
-/// A step whose ratio is below this grows ρ by [`ADAPT_GROWTH`] for the next step.
-pub const ADAPT_GROW_BELOW: f64 = 0.3;
+pub(crate) const ADAPT_SHRINK_ABOVE: f64 = 1.5;
+/// A step whose ratio is below this grows ρ by `ADAPT_GROWTH` for the next step.
+pub(crate) const ADAPT_GROW_BELOW: f64 = 0.3;
 /// Growth factor of ρ after an easy step.
-pub const ADAPT_GROWTH: f64 = 1.5;
+pub(crate) const ADAPT_GROWTH: f64 = 1.5;
 
 /// Default over-relaxation factor of the classical solver's projected SOR sweeps (plain
 /// Gauss–Seidel; see [`classic`](crate::local::classic)).
-pub const DEFAULT_OMEGA: f64 = 1.0;
+pub(crate) const DEFAULT_OMEGA: f64 = 1.0;
 
 /// Which sweep the solver runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub enum Algorithm {
     /// Every contact from the same `x`, then `x = W r + q` (Jacobi / projected gradient).
     Uzawa,
@@ -28,8 +29,8 @@ pub enum Algorithm {
     /// on the threshold `s_i = μ̄_i r_n,i`. Needs
     /// [`ContactLaw::friction_coefficient`](contact_laws::ContactLaw::friction_coefficient); see [`classic`](crate::local::classic).
     ClassicRccm,
-    /// Anderson acceleration (memory [`ANDERSON_DEPTH`](crate::local::anderson::ANDERSON_DEPTH),
-    /// safeguarded) of the projected Gauss–Seidel sweep; see [`anderson`](crate::local::anderson).
+    /// Anderson acceleration (memory 5, safeguarded) of the projected Gauss–Seidel sweep; see
+    /// [`anderson`](crate::local::anderson).
     /// The default (chosen by measurement, see the [module docs](crate::local#which-algorithm)).
     #[default]
     AndersonGaussSeidel,
@@ -43,9 +44,9 @@ pub enum Algorithm {
     Newton,
     /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
     /// [`Newton`](Self::Newton) when every law has a friction coefficient and, for a dense `W`,
-    /// there are at most [`AUTO_NEWTON_MAX_CONTACTS`] contacts, for a sparse `W` at most
-    /// [`AUTO_SPARSE_NEWTON_MAX_CONTACTS`] contacts whose graph fills a factorisation by at
-    /// most [`AUTO_NEWTON_MAX_FILL`]; else [`AndersonGaussSeidel`](Self::AndersonGaussSeidel).
+    /// there are at most 1000 contacts, for a sparse `W` at most 20 000 contacts whose graph
+    /// fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel).
     /// The report names the one that ran.
     Auto,
 }
@@ -74,7 +75,7 @@ impl Algorithm {
 /// FE problem measured and on random problems up to `n_c` ≈ 1000, beyond which its dense
 /// factorisation (`n_c³`) loses to the accelerated sweep (4–5× slower at `n_c` = 5000,
 /// `docs/benchmarks.md`, "Local solver: work–precision").
-pub const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
+pub(crate) const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
 
 /// [`Algorithm::Auto`] on a sparse `W` picks Newton (faer's sparse LU) when the contact graph
 /// (a node per contact, an edge per stored block) fills its symbolic Cholesky factor by at
@@ -82,21 +83,26 @@ pub const AUTO_NEWTON_MAX_CONTACTS: usize = 1000;
 /// "Which algorithm, measured"): shaken sphere piles fill 3.3 (425 contacts) and 4.7 (805),
 /// and Newton is 1.3–1.9× faster than the accelerated sweep there; random block-sparse
 /// problems fill 27 (1000 contacts), 47 (2D, 2000) and 87 (4000), and Newton is 3–20× slower.
-pub const AUTO_NEWTON_MAX_FILL: f64 = 10.0;
+pub(crate) const AUTO_NEWTON_MAX_FILL: f64 = 10.0;
 
 /// [`Algorithm::Auto`] probes the fill of a sparse `W` (an AMD ordering and a symbolic
 /// factorisation of the contact graph: 0.3–1.2 ms at 425–1000 contacts, 24 ms at 4000) only up
 /// to this many contacts; beyond, it picks the accelerated sweep.
-pub const AUTO_SPARSE_NEWTON_MAX_CONTACTS: usize = 20_000;
+pub(crate) const AUTO_SPARSE_NEWTON_MAX_CONTACTS: usize = 20_000;
 
-/// Settings of the reduced solver: `Default` and the `with_*` setters (the struct is
-/// `#[non_exhaustive]`, so new settings do not break callers).
+/// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
+/// long, what to do when it fails), with the tuning of the iteration beside them in
+/// [`tuning`](Self::tuning). Build them from `Default` and the `with_*` setters (the struct is
+/// `#[non_exhaustive]`, so new settings do not break callers); every tuning value has its
+/// setter here too.
 ///
 /// # Examples
 /// ```
 /// use contact_solver::{Algorithm, UzawaSettings};
 /// let st = UzawaSettings::default().with_algorithm(Algorithm::Newton).with_tol(1e-12);
 /// assert_eq!((st.algorithm, st.tol, st.max_iterations), (Algorithm::Newton, 1e-12, 10_000));
+/// let tuned = st.with_rho_scale(1e-3);
+/// assert_eq!((tuned.tuning.rho_scale, tuned.tuning.stall_window), (1e-3, 5000));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -108,13 +114,6 @@ pub struct UzawaSettings {
     pub tol: f64,
     /// Maximum number of iterations (sweeps).
     pub max_iterations: usize,
-    /// Factor applied to the base `ρ⁰_i = 1/λ_max(W_ii)` at the start (adapted afterwards).
-    /// Not used by [`Algorithm::ClassicRccm`].
-    pub rho_scale: f64,
-    /// Over-relaxation factor `ω ∈ (0, 2)` of the projected SOR sweeps of
-    /// [`Algorithm::ClassicRccm`] (default [`DEFAULT_OMEGA`](DEFAULT_OMEGA));
-    /// not used by the bipotential sweeps.
-    pub omega: f64,
     /// Return `Ok` with `report.converged == false` instead of
     /// [`SolverError::NotConverged`](crate::SolverError::NotConverged).
     pub accept_non_converged: bool,
@@ -128,19 +127,48 @@ pub struct UzawaSettings {
     /// with `accept_non_converged`). The report's
     /// [`fallback_from`](UzawaReport::fallback_from) says it happened. Default `true`.
     pub fallback: bool,
+    /// How the iteration runs: the penalty's scale, the relaxation of the classical solver,
+    /// the stall window and the open-contact shortcut. The defaults are measured; most users
+    /// never change them.
+    #[cfg_attr(feature = "serde", serde(flatten))]
+    pub tuning: UzawaTuning,
+}
+
+/// The tuning of the reduced solver's iteration ([`UzawaSettings::tuning`]): values whose
+/// defaults were measured over the test suite and the benchmarks, for a user who studies one
+/// hard problem.
+///
+/// # Examples
+/// ```
+/// use contact_solver::{UzawaSettings, UzawaTuning};
+/// let tuning = UzawaTuning::default().with_stall_window(0).with_skip_open(false);
+/// let st = UzawaSettings::default().with_tuning(tuning);
+/// assert_eq!((st.tuning.stall_window, st.tuning.skip_open), (0, false));
+/// assert_eq!(st.tuning.rho_scale, 1.0); // the rest keeps its default
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
+pub struct UzawaTuning {
+    /// Factor applied to the base `ρ⁰_i = 1/λ_max(W_ii)` at the start (adapted afterwards).
+    /// Not used by [`Algorithm::ClassicRccm`]. Default 1.
+    pub rho_scale: f64,
+    /// Over-relaxation factor `ω ∈ (0, 2)` of the projected SOR sweeps of
+    /// [`Algorithm::ClassicRccm`] (default 1, plain Gauss–Seidel); not used by the
+    /// bipotential sweeps.
+    pub omega: f64,
     /// Window of the [stall detector](crate::local::stall): the run stops as stalled when
     /// its residual has not halved over the last `max(stall_window, k/2)` of its `k`
     /// iterations. `0` switches the detector off; otherwise at least
-    /// [`MIN_STALL_WINDOW`](crate::local::stall::MIN_STALL_WINDOW). Default
-    /// [`DEFAULT_STALL_WINDOW`](crate::local::stall::DEFAULT_STALL_WINDOW).
+    /// [`MIN_STALL_WINDOW`](crate::local::stall::MIN_STALL_WINDOW). Default 5000 (measured:
+    /// twice the longest plateau of any converging run, [`stall`](crate::local::stall)).
     pub stall_window: usize,
     /// Solve only on the contacts that may close (Coulomb-type laws): the iteration starts
     /// on the contacts with `q_n < 0` (or a non-zero starting reaction), and a contact left
     /// out joins when the answer would make it penetrate; the answer is exact (every contact
     /// left out is checked at the end to be a solution with `r_i = 0`). Tried on a dense `W`
-    /// (a sparse one gains nothing, measured) when at least
-    /// [`SKIP_OPEN_MIN_CONTACTS`](crate::local::SKIP_OPEN_MIN_CONTACTS) contacts and at most
-    /// half of them may close. Default `true`.
+    /// (a sparse one gains nothing, measured) of at least 64 contacts when at most half of
+    /// them may close. Default `true`.
     pub skip_open: bool,
 }
 
@@ -150,10 +178,18 @@ impl Default for UzawaSettings {
             algorithm: Algorithm::default(),
             tol: 1e-10,
             max_iterations: 10_000,
-            rho_scale: 1.0,
-            omega: DEFAULT_OMEGA,
             accept_non_converged: false,
             fallback: true,
+            tuning: UzawaTuning::default(),
+        }
+    }
+}
+
+impl Default for UzawaTuning {
+    fn default() -> Self {
+        Self {
+            rho_scale: 1.0,
+            omega: DEFAULT_OMEGA,
             stall_window: DEFAULT_STALL_WINDOW,
             skip_open: true,
         }
@@ -208,7 +244,7 @@ pub struct UzawaReport {
     /// magnitudes were outside `[1e-100, 1e100]`.
     pub rescaled: bool,
     /// Contacts the algorithm iterated on: `n_c`, or fewer when
-    /// [`skip_open`](UzawaSettings::skip_open) left out contacts that stay open; 0 when
+    /// [`skip_open`](UzawaTuning::skip_open) left out contacts that stay open; 0 when
     /// `r = 0` was the answer with no iteration.
     pub solved_contacts: usize,
 }
@@ -254,38 +290,92 @@ impl UzawaSettings {
         self
     }
 
-    /// These settings with [`rho_scale`](Self::rho_scale) replaced.
+    /// These settings with [`accept_non_converged`](Self::accept_non_converged) replaced.
+    #[must_use]
+    pub fn with_accept_non_converged(mut self, accept_non_converged: bool) -> Self {
+        self.accept_non_converged = accept_non_converged;
+        self
+    }
+
+    /// These settings with [`tuning`](Self::tuning) replaced.
+    #[must_use]
+    pub fn with_tuning(mut self, tuning: UzawaTuning) -> Self {
+        self.tuning = tuning;
+        self
+    }
+
+    /// These settings with [`UzawaTuning::rho_scale`] replaced.
+    #[must_use]
+    pub fn with_rho_scale(mut self, rho_scale: f64) -> Self {
+        self.tuning.rho_scale = rho_scale;
+        self
+    }
+
+    /// These settings with [`UzawaTuning::omega`] replaced.
+    #[must_use]
+    pub fn with_omega(mut self, omega: f64) -> Self {
+        self.tuning.omega = omega;
+        self
+    }
+
+    /// These settings with [`UzawaTuning::stall_window`] replaced.
+    #[must_use]
+    pub fn with_stall_window(mut self, stall_window: usize) -> Self {
+        self.tuning.stall_window = stall_window;
+        self
+    }
+
+    /// These settings with [`UzawaTuning::skip_open`] replaced.
+    #[must_use]
+    pub fn with_skip_open(mut self, skip_open: bool) -> Self {
+        self.tuning.skip_open = skip_open;
+        self
+    }
+}
+
+impl UzawaTuning {
+    /// This tuning with [`rho_scale`](Self::rho_scale) replaced.
     #[must_use]
     pub fn with_rho_scale(mut self, rho_scale: f64) -> Self {
         self.rho_scale = rho_scale;
         self
     }
 
-    /// These settings with [`omega`](Self::omega) replaced.
+    /// This tuning with [`omega`](Self::omega) replaced.
     #[must_use]
     pub fn with_omega(mut self, omega: f64) -> Self {
         self.omega = omega;
         self
     }
 
-    /// These settings with [`stall_window`](Self::stall_window) replaced.
+    /// This tuning with [`stall_window`](Self::stall_window) replaced.
     #[must_use]
     pub fn with_stall_window(mut self, stall_window: usize) -> Self {
         self.stall_window = stall_window;
         self
     }
 
-    /// These settings with [`skip_open`](Self::skip_open) replaced.
+    /// This tuning with [`skip_open`](Self::skip_open) replaced.
     #[must_use]
     pub fn with_skip_open(mut self, skip_open: bool) -> Self {
         self.skip_open = skip_open;
         self
     }
+}
 
-    /// These settings with [`accept_non_converged`](Self::accept_non_converged) replaced.
-    #[must_use]
-    pub fn with_accept_non_converged(mut self, accept_non_converged: bool) -> Self {
-        self.accept_non_converged = accept_non_converged;
-        self
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_35_defaults_are_kept_by_the_split() {
+        // the values before the split into settings and tuning (issue 35)
+        let st = UzawaSettings::default();
+        assert_eq!(st.algorithm, Algorithm::AndersonGaussSeidel);
+        assert_eq!((st.tol, st.max_iterations), (1e-10, 10_000));
+        assert!(!st.accept_non_converged && st.fallback);
+        let t = st.tuning;
+        assert_eq!((t.rho_scale, t.omega, t.stall_window), (1.0, 1.0, 5000));
+        assert!(t.skip_open);
     }
 }

@@ -20,7 +20,6 @@ use crate::error::SolverError;
 use contact_laws::ContactLaw;
 
 mod skip_open;
-pub use skip_open::{SKIP_OPEN_MAX_FRACTION, SKIP_OPEN_MIN_CONTACTS};
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
 /// checked without the modified velocity to this factor of the tolerance (relative), or it is
@@ -31,16 +30,16 @@ pub use skip_open::{SKIP_OPEN_MAX_FRACTION, SKIP_OPEN_MIN_CONTACTS};
 /// without bound (no solution) brings the relative residual to 0 while `x_n` stays at the
 /// scale of `q` (measured over the test suite: converged answers reach at most 74 × tol, the
 /// unsolvable problem of `tests/integration/stall.rs` 1e10 × tol).
-pub const CHECK_FACTOR: f64 = 1e3;
+pub(crate) const CHECK_FACTOR: f64 = 1e3;
 
 /// `W`, `q` or the reactions' scale `max|q|/max|W|` with magnitudes beyond
 /// `[1/RESCALE_ABOVE, RESCALE_ABOVE]` are rescaled internally (scale-invariant laws only).
-pub const RESCALE_ABOVE: f64 = 1e100;
+pub(crate) const RESCALE_ABOVE: f64 = 1e100;
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
-/// [`AUTO_NEWTON_MAX_FILL`]): Newton on a dense `W` up to [`AUTO_NEWTON_MAX_CONTACTS`]
-/// contacts, on a sparse `W` up to [`AUTO_SPARSE_NEWTON_MAX_CONTACTS`] contacts whose graph
-/// fills a factorisation by at most [`AUTO_NEWTON_MAX_FILL`].
+/// `AUTO_NEWTON_MAX_FILL`): Newton on a dense `W` up to `AUTO_NEWTON_MAX_CONTACTS`
+/// contacts, on a sparse `W` up to `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph
+/// fills a factorisation by at most `AUTO_NEWTON_MAX_FILL`.
 fn newton_pays(problem: &ReducedProblem) -> bool {
     let nc = problem.contact_count();
     match problem.w_sparse() {
@@ -125,7 +124,8 @@ impl UzawaSolver {
     ///
     /// # Errors
     /// [`SolverError::SizeMismatch`] if `laws` has neither 1 nor `n_c` entries;
-    /// [`SolverError::NotConverged`] unless `accept_non_converged`.
+    /// [`SolverError::FrictionMismatch`] if a law's friction coefficient disagrees with the
+    /// problem's `μ_i`; [`SolverError::NotConverged`] unless `accept_non_converged`.
     pub fn solve<L: ContactLaw>(
         &mut self,
         problem: &ReducedProblem,
@@ -140,6 +140,9 @@ impl UzawaSolver {
     ///
     /// # Errors
     /// [`SolverError::SizeMismatch`] if `laws`, `states` or `r_start` has the wrong length;
+    /// [`SolverError::FrictionMismatch`] if a law's friction coefficient in its state
+    /// disagrees with the problem's `μ_i` (μ has one owner, the law: build the problem with
+    /// [`ReducedProblem::with_friction_of`]);
     /// [`SolverError::NonFinite`] if `r_start` is not finite, or `tol` or `rho_scale` is not
     /// finite and positive; [`SolverError::InvalidSetting`] if `omega` is not in `(0, 2)` or
     /// `stall_window` is neither 0 nor at least
@@ -159,6 +162,8 @@ impl UzawaSolver {
     ) -> Result<Solution, SolverError> {
         let mut st = self.settings;
         let r = starting_reactions(&st, problem, laws.len(), states.len(), r_start)?;
+        // μ has one owner, the law: the problem's coefficients may not disagree (friction.rs)
+        problem.check_friction_of(laws, states)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
         if st.algorithm == Algorithm::Auto {
             st.algorithm = if mu.is_some() && newton_pays(problem) {
@@ -188,7 +193,7 @@ impl UzawaSolver {
         r: Vec<f64>,
         mu: Option<&[f64]>,
     ) -> Result<Solution, SolverError> {
-        self.sweeps.reset(problem, st.rho_scale);
+        self.sweeps.reset(problem, st.tuning.rho_scale);
         if r.iter().all(|&v| v == 0.0)
             && let Some(sol) = self.open_solution::<L, DT>(st.algorithm, problem, laws, states, mu)
         {
@@ -263,7 +268,7 @@ impl UzawaSolver {
     /// The independent check of a converged answer, for Coulomb-type laws (`mu`): the
     /// Signorini–Coulomb conditions without the modified velocity
     /// ([`coulomb_residual`](super::residual::coulomb_residual)), relative like the natural
-    /// residual, must be within [`CHECK_FACTOR`]` × tol`; else the answer is not converged.
+    /// residual, must be within `CHECK_FACTOR`` × tol`; else the answer is not converged.
     fn check<const DT: usize>(
         &self,
         problem: &ReducedProblem,
@@ -412,7 +417,7 @@ impl UzawaSolver {
         mut r: Vec<f64>,
     ) -> Result<Solution, SolverError> {
         let m = problem.size();
-        self.sweeps.reset(problem, st.rho_scale);
+        self.sweeps.reset(problem, st.tuning.rho_scale);
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
         if st.algorithm == Algorithm::Uzawa {
@@ -421,7 +426,7 @@ impl UzawaSolver {
         let mut history = Vec::with_capacity(st.max_iterations.min(100_000));
         let denom_q = self.sweeps.rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
         // Uzawa's global scale factor of ρ⁰ (Gauss–Seidel adapts `sweeps.rho` per contact).
-        let mut theta = st.rho_scale;
+        let mut theta = st.tuning.rho_scale;
         let (r_, x_, h_) = (&mut r, &mut x, &mut history);
         // (iterations, outer iterations, tangential sweeps, converged, residual, change)
         let stalled;
@@ -562,24 +567,24 @@ fn starting_reactions(
             value: st.tol,
         });
     }
-    if !(st.rho_scale.is_finite() && st.rho_scale > 0.0) {
+    if !(st.tuning.rho_scale.is_finite() && st.tuning.rho_scale > 0.0) {
         return Err(SolverError::NonFinite {
             what: "rho_scale",
             index: 0,
-            value: st.rho_scale,
+            value: st.tuning.rho_scale,
         });
     }
-    if !(st.omega > 0.0 && st.omega < 2.0) {
+    if !(st.tuning.omega > 0.0 && st.tuning.omega < 2.0) {
         return Err(SolverError::InvalidSetting {
             what: "omega",
-            value: st.omega,
+            value: st.tuning.omega,
             expected: "expected a value in (0, 2)",
         });
     }
-    if st.stall_window != 0 && st.stall_window < MIN_STALL_WINDOW {
+    if st.tuning.stall_window != 0 && st.tuning.stall_window < MIN_STALL_WINDOW {
         return Err(SolverError::InvalidSetting {
             what: "stall_window",
-            value: st.stall_window as f64,
+            value: st.tuning.stall_window as f64,
             expected: "expected 0 (detector off) or a window of at least 10 iterations",
         });
     }

@@ -4,7 +4,7 @@
 //! After each iteration the loop hands the detector the iterations done `k` and the relative
 //! natural residual `res_k` (the value it pushes to the history). The detector keeps a
 //! *reference* residual `ref`, set at the first finite residual and reset to `res_k` whenever
-//! `res_k ≤` [`STALL_FACTOR`]` · ref` (the residual has halved since the reference was set, at
+//! `res_k ≤` `STALL_FACTOR`` · ref` (the residual has halved since the reference was set, at
 //! iteration `j`):
 //!
 //! ```text
@@ -15,18 +15,22 @@
 //! that halves every `h` iterations is never cut once `k ≥ 2h`, however large `h`. What is cut
 //! is a plateau, or a decay slower than geometric (a residual `~ 1/k` halves only when `k`
 //! doubles, which is what an unsolvable problem gives as `r` grows without bound).
-//! `window` is [`UzawaSettings::stall_window`](crate::UzawaSettings::stall_window), `0` to
+//! `window` is [`UzawaTuning::stall_window`](crate::UzawaTuning::stall_window), `0` to
 //! switch the detector off.
 
 /// A residual at most this fraction of the reference counts as progress.
-pub const STALL_FACTOR: f64 = 0.5;
+pub(crate) const STALL_FACTOR: f64 = 0.5;
 
-/// The smallest non-zero [`UzawaSettings::stall_window`](crate::UzawaSettings::stall_window)
+/// The smallest non-zero [`UzawaTuning::stall_window`](crate::UzawaTuning::stall_window)
 /// accepted: a fixed-point iteration cannot be asked to halve its residual in fewer steps
 /// (Anderson's safeguard alone wastes a step per rejection, Newton warms up with sweeps).
+///
+/// Public because a user who sets the window must know the least value the solver accepts
+/// (a smaller one is [`SolverError::InvalidSetting`](crate::SolverError::InvalidSetting));
+/// the CLI checks its `[solver] stall_window` key against it.
 pub const MIN_STALL_WINDOW: usize = 10;
 
-/// The default [`UzawaSettings::stall_window`](crate::UzawaSettings::stall_window).
+/// The default [`UzawaTuning::stall_window`](crate::UzawaTuning::stall_window).
 ///
 /// Measured with the detector off over every solve of `cargo test -p contact-solver` (1620
 /// algorithm runs, 1437 of them converging, and 11 457 sub-problems of the classical solver):
@@ -37,7 +41,7 @@ pub const MIN_STALL_WINDOW: usize = 10;
 /// case. On a problem with no solution (residual `~ 1/k`) the detector then fires after about
 /// 15 000 iterations (`tests/integration/stall.rs`), so it saves nothing under the default
 /// `max_iterations` (10 000) but most of a larger one (hard problems are given 100 000).
-pub const DEFAULT_STALL_WINDOW: usize = 5000;
+pub(crate) const DEFAULT_STALL_WINDOW: usize = 5000;
 
 /// The state of the detector over one run of an algorithm.
 #[derive(Clone, Debug)]

@@ -31,8 +31,7 @@ use contact_laws::{Coulomb, StandardLaw};
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, SolverError, StepResult};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{
-    Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, RigidMotion,
-    Structure, Supports,
+    Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, RigidMotion, Supports,
 };
 
 const WEIGHT: f64 = 2.0;

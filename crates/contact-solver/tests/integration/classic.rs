@@ -105,7 +105,10 @@ fn classic_matches_gauss_seidel_with_rccm_states() {
         0.15,
         epsilon = 1e-15
     );
-    let p = random_problem(10, 4);
+    // μ has one owner, the law (issue 35): the problem carries the laws' μ̄ = 0.15
+    let p = random_problem(10, 4)
+        .with_friction_of(&[law], &[state])
+        .unwrap();
     let mut gs_solver = UzawaSolver::new(settings(Algorithm::GaussSeidel));
     let gs = gs_solver
         .solve_with_states(&p, &[law], &[state], None)

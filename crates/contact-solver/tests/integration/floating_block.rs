@@ -34,9 +34,7 @@ use contact_solver::{
     StepResult,
 };
 use fem_core::generate::{RectangleSpec, rectangle};
-use fem_core::{
-    ElementKind, Idealization, LinearElasticModel, Material, RigidMotion, Structure, Supports,
-};
+use fem_core::{ElementKind, Idealization, LinearElasticModel, Material, RigidMotion, Supports};
 
 const WEIGHT: f64 = 2.0;
 

@@ -22,7 +22,7 @@
 use contact_laws::Coulomb;
 use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
 use fem_core::generate::{RectangleSpec, rectangle};
-use fem_core::{ElementKind, Idealization, LinearElasticModel, Material, Mesh, Structure};
+use fem_core::{ElementKind, Idealization, LinearElasticModel, Material, Mesh};
 
 #[test]
 fn two_floating_blocks_stack_works() {

@@ -183,7 +183,7 @@ fn rho_scale_does_not_change_the_hertz_reactions() {
     settings.solver.tol = 1e-12;
     let reactions = |rho_scale: f64| {
         let mut s = settings;
-        s.solver.rho_scale = rho_scale;
+        s.solver.tuning.rho_scale = rho_scale;
         let (_, res, _) = run(Idealization::PlaneStrain, 4, s);
         eprintln!(
             "  rho_scale = {rho_scale:e}: {} sweeps",

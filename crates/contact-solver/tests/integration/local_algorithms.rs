@@ -176,7 +176,10 @@ fn local_algorithms_match_gauss_seidel_with_rccm_states() {
     })
     .unwrap();
     let state = RccmState::new(0.5).unwrap();
-    let p = random_problem(10, 4);
+    // μ has one owner, the law (issue 35): the problem carries the laws' μ̄ = 0.15
+    let p = random_problem(10, 4)
+        .with_friction_of(&[law], &[state])
+        .unwrap();
     let gs = UzawaSolver::new(settings(Algorithm::GaussSeidel))
         .solve_with_states(&p, &[law], &[state], None)
         .unwrap();

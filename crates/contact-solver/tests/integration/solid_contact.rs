@@ -349,19 +349,8 @@ impl fem_core::Structure<3> for DenseSolid {
     fn prescribed_displacement(&self, node: usize) -> [f64; 3] {
         self.prescribed[node]
     }
-    fn idealization(&self) -> fem_core::Idealization {
-        fem_core::Idealization::PlaneStrain
-    }
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], fem_core::FemError> {
-        Err(fem_core::FemError::UnknownSet {
-            kind: "node",
-            name: name.to_string(),
-        })
-    }
-    fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), fem_core::FemError> {
-        let n = rhs.len();
-        self.solve_many_in_place(faer::MatMut::from_column_major_slice_mut(rhs, n, 1))
-    }
+    // the required methods only: `solve_in_place` (asked by `free_response_into` below) is the
+    // trait's default, one column through `solve_many_in_place`
     fn solve_many_in_place(&self, rhs: faer::MatMut<'_, f64>) -> Result<(), fem_core::FemError> {
         use faer::linalg::solvers::SolveCore;
         self.chol.solve_in_place_with_conj(faer::Conj::No, rhs);

@@ -13,8 +13,15 @@
 //!   foundation (`K = tridiag(−1, 2 + ε, −1)`, condition number ≈ 160), every contact
 //!   closed: the detector must not change a single iteration of any algorithm.
 
-use contact_solver::local::stall::{DEFAULT_STALL_WINDOW, MIN_STALL_WINDOW};
-use contact_solver::{Algorithm, ReducedProblem, SolverError, UzawaSettings, UzawaSolver};
+use contact_solver::local::stall::MIN_STALL_WINDOW;
+use contact_solver::{
+    Algorithm, ReducedProblem, SolverError, UzawaSettings, UzawaSolver, UzawaTuning,
+};
+
+/// The default window of the stall detector (a tuning value, read from its `Default`).
+fn default_stall_window() -> usize {
+    UzawaTuning::default().stall_window
+}
 
 const ALL: [Algorithm; 6] = [
     Algorithm::Newton,
@@ -174,7 +181,7 @@ fn issue_14_unsolvable_problem_stalls_for_every_algorithm() {
                     };
                     // well before max_iterations: the detector fires after a few windows
                     assert!(
-                        iterations <= runs * 4 * DEFAULT_STALL_WINDOW,
+                        iterations <= runs * 4 * default_stall_window(),
                         "{algorithm:?} (fallback {fallback}): {iterations} iterations"
                     );
                     assert!(!history.is_empty() && history.len() <= iterations);
@@ -226,7 +233,7 @@ fn issue_14_slow_convergence_is_not_cut() {
                 .with_stall_window(window);
             UzawaSolver::new(st).solve(&p, &p.coulomb_laws()).unwrap()
         };
-        let (off, on) = (run(0), run(DEFAULT_STALL_WINDOW));
+        let (off, on) = (run(0), run(default_stall_window()));
         // 7 (Newton) to 693 (Uzawa) iterations: slow for the sweeps, steady
         assert!(off.report.iterations >= 7, "{algorithm:?}");
         assert!(on.report.converged && !on.report.stalled);
@@ -269,7 +276,7 @@ fn matrix_free_stalls_on_the_unsolvable_problem() {
     };
     let laws = [Coulomb::new(0.3).unwrap(), Coulomb::new(0.3).unwrap()];
     let st = UzawaSettings::default().with_max_iterations(100_000);
-    for window in [DEFAULT_STALL_WINDOW, 0] {
+    for window in [default_stall_window(), 0] {
         let (mut r, mut x) = (vec![0.0; 4], vec![0.0; 4]);
         let err = solve_matrix_free(
             apply,

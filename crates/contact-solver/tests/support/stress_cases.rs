@@ -1462,7 +1462,7 @@ pub fn rho_cases() -> Vec<Case> {
                 move |tally| {
                     let mut s = settings();
                     s.solver.algorithm = algorithm;
-                    s.solver.rho_scale = scale;
+                    s.solver.tuning.rho_scale = scale;
                     let steps = press_and_push(0.3, s, &[1e-4, PUSH], tally)?;
                     let mut reference_tally = Tally::default();
                     let reference =

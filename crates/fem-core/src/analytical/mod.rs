@@ -17,6 +17,7 @@ use crate::material::Material;
 
 /// Axial condition of a thick-walled cylinder (what is assumed along its axis `z`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum CylinderEnds {
     /// `ε_zz = 0`: a long cylinder between rigid smooth walls. It is both the plane-strain
     /// model of a cross-section and the axisymmetric `(r, z)` model of a slice with `u_z = 0`
@@ -31,6 +32,7 @@ pub enum CylinderEnds {
 
 /// Lamé's solution at one radius: radial displacement and stresses.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct LameCylinder {
     /// Radial displacement `u_r`.
     pub u_r: f64,
@@ -132,6 +134,7 @@ pub fn elastic_k0(poisson: f64) -> f64 {
 
 /// A laterally confined soil column at height `z`: vertical displacement and stress.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SoilColumn {
     /// Vertical displacement `u_z` (negative: settlement).
     pub u_z: f64,
@@ -226,6 +229,7 @@ pub fn cantilever_tip_deflection(
 /// How the clamped end of [`cantilever_exact`] is held. The exact solution cannot fix every
 /// point of the end section; it fixes the centroid and one rotation there.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Clamp {
     /// The beam axis is horizontal at the clamp: `∂v/∂x = 0` at the centroid. Tip deflection
     /// `P L³ / (3EI)` (no shear term).

@@ -16,7 +16,7 @@ use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::quadrature::GAUSS_3;
 use crate::rigid_modes::RigidBodyModes;
-use crate::structure::Structure;
+use crate::structure::{Floating, Structure};
 use faer::MatMut;
 use nalgebra::DMatrix;
 use std::collections::BTreeMap;
@@ -558,10 +558,6 @@ impl Structure for LinearElasticModel {
         self.idealization
     }
 
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
-        self.mesh.node_set(name)
-    }
-
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
         if self.pinned.is_empty() {
             self.solver.solve_in_place(rhs);
@@ -603,12 +599,8 @@ impl Structure for LinearElasticModel {
         self.check_finite("displacement", u)
     }
 
-    fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
-        (!self.modes.is_empty()).then_some(&self.modes)
-    }
-
-    fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
-        self.mode_load_into(load_factor, out)
+    fn floating(&self) -> Option<&dyn Floating> {
+        (!self.modes.is_empty()).then_some(self)
     }
 
     fn stiffness_version(&self) -> u64 {
@@ -617,6 +609,39 @@ impl Structure for LinearElasticModel {
 
     fn stiffness_matrix(&self) -> Option<faer::sparse::SparseColMatRef<'_, usize, f64>> {
         Some(self.stiffness())
+    }
+}
+
+/// Asked only through [`Structure::floating`], which offers the model when its supports leave
+/// modes ([`LinearElasticModel::floating`]).
+impl Floating for LinearElasticModel {
+    fn rigid_body_modes(&self) -> &RigidBodyModes {
+        &self.modes
+    }
+
+    fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
+        self.mode_load_into(load_factor, out)
+    }
+}
+
+impl LinearElasticModel {
+    /// The rigid-body modes the supports leave, or `None` when `K` is positive definite: the
+    /// modes of [`Structure::floating`].
+    pub fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
+        self.floating().map(Floating::rigid_body_modes)
+    }
+
+    /// The load along each rigid-body mode, `Rᵀ f` at `load_factor`, written into `out`
+    /// ([`Floating::rigid_body_load_into`]; nothing to write without modes).
+    ///
+    /// # Errors
+    /// [`FemError::NonFiniteSolve`] if the load is not finite.
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of modes.
+    #[track_caller]
+    pub fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
+        self.mode_load_into(load_factor, out)
     }
 }
 

@@ -10,7 +10,6 @@ use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
 use crate::element::{Element, Stress3};
 use crate::error::{FemError, finite};
-use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
 use crate::ordering::{FillOrdering, nested_dissection};
@@ -704,15 +703,6 @@ impl Structure<3> for SolidModel {
             Dof::Prescribed(_) => self.supports.value(node, c).unwrap_or(0.0),
             Dof::Free(_) => 0.0,
         })
-    }
-
-    /// Not used in 3D: the unit weight of plane strain.
-    fn idealization(&self) -> Idealization {
-        Idealization::PlaneStrain
-    }
-
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
-        self.mesh.node_set(name)
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {

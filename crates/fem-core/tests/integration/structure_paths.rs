@@ -122,12 +122,6 @@ impl Structure for DenseStructure {
     fn prescribed_displacement(&self, _node: usize) -> [f64; 2] {
         [0.0, 0.0] // every support of this structure is a fixed (zero) displacement
     }
-    fn idealization(&self) -> Idealization {
-        Idealization::PlaneStrain
-    }
-    fn boundary_nodes(&self, name: &str) -> Result<&[usize], FemError> {
-        self.mesh.node_set(name)
-    }
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
         let x = self.chol.solve(&DVector::from_column_slice(rhs));
         rhs.copy_from_slice(x.as_slice());

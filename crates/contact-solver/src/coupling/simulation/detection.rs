@@ -48,14 +48,17 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         self.counters.structure_solves += 1;
         // a floating structure: u_free = K⁺ f plus the rigid motion of the last step, and the
         // load along the modes that contact must balance
-        let count = self.structure.rigid_body_modes().map_or(0, |m| m.len());
+        let count = self
+            .structure
+            .floating()
+            .map_or(0, |f| f.rigid_body_modes().len());
         if self.alpha.len() != count {
             self.alpha = vec![0.0; count];
         }
         self.mode_load.resize(count, 0.0);
-        if let Some(modes) = self.structure.rigid_body_modes() {
-            self.structure
-                .rigid_body_load_into(force_factor, &mut self.mode_load)?;
+        if let Some(floating) = self.structure.floating() {
+            let modes = floating.rigid_body_modes();
+            floating.rigid_body_load_into(force_factor, &mut self.mode_load)?;
             for (j, &a) in self.alpha.iter().enumerate() {
                 if a != 0.0 {
                     for (u, r) in u_free.iter_mut().zip(modes.column(j)) {

@@ -33,7 +33,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             *a += b;
         }
         // a floating structure's rigid motion of the step, R Δα
-        if let Some(modes) = self.structure.rigid_body_modes() {
+        if let Some(modes) = self.structure.floating().map(|f| f.rigid_body_modes()) {
             for (j, &a) in solved.alpha.iter().enumerate() {
                 for (u, r) in u.iter_mut().zip(modes.column(j)) {
                     *u += a * r;

@@ -1,7 +1,7 @@
 //! Stage 3 for a floating structure: the reduced problem with the rigid-body amplitudes `α` as
 //! extra unknowns and the equilibrium of every body along its modes as their equation.
 //!
-//! With `R` the structure's modes ([`Structure::rigid_body_modes`]), `K⁺` its generalized
+//! With `R` the structure's modes ([`Floating::rigid_body_modes`](fem_core::Floating::rigid_body_modes)), `K⁺` its generalized
 //! inverse and `f` the load, the displacement is `u = K⁺(f + Hᵀ r) + R α` and
 //!
 //! ```text
@@ -73,7 +73,7 @@ struct Floating {
 impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// `G = H R` on every candidate row (row-major, `2 n_candidates × n_modes`).
     pub(super) fn mode_rows(&self) -> Vec<f64> {
-        let Some(modes) = self.structure.rigid_body_modes() else {
+        let Some(modes) = self.structure.floating().map(|f| f.rigid_body_modes()) else {
             return Vec::new();
         };
         let nm = modes.len();
@@ -100,7 +100,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let na = active.len();
         let m = 2 * na;
         let g_all = self.mode_rows();
-        let (nm, modes) = match self.structure.rigid_body_modes() {
+        let (nm, modes) = match self.structure.floating().map(|f| f.rigid_body_modes()) {
             Some(r) => (r.len(), r.modes().to_vec()),
             None => (0, Vec::new()),
         };

@@ -303,7 +303,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         &self.w_active
     }
 
-    /// Floating structures ([`Structure::rigid_body_modes`]): the amplitudes `α` of the
+    /// Floating structures ([`Structure::floating`]): the amplitudes `α` of the
     /// rigid-body modes in the displacement `u = K⁺(f + Hᵀ r) + R α` at the end of the last
     /// step, one per mode (empty for a supported structure).
     pub fn rigid_body_amplitudes(&self) -> &[f64] {

@@ -134,9 +134,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
 
     /// Whether the structure has rigid-body modes (a floating body).
     pub(super) fn floats(&self) -> bool {
-        self.structure
-            .rigid_body_modes()
-            .is_some_and(|m| !m.is_empty())
+        self.structure.floating().is_some()
     }
 
     /// The local frames of the primal active-set path, or why it does not apply.

@@ -37,7 +37,7 @@ pub struct SimulationSettings {
     pub skip: SkipRules,
     /// Dense `F*` or the matrix-free iteration ([`crate::local::matrix_free`]).
     pub flexibility: FlexibilityMode,
-    /// Floating structures ([`Structure::rigid_body_modes`](fem_core::Structure::rigid_body_modes)):
+    /// Floating structures ([`Structure::floating`](fem_core::Structure::floating)):
     /// the equilibrium of each body along its modes is met when the out-of-balance force
     /// along every mode is at most this fraction of the forces involved (load plus the absolute
     /// contact contributions). Default `1e-11`.

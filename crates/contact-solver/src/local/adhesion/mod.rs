@@ -107,7 +107,7 @@ pub struct AdhesiveStep<'a, L: ContactLaw, const D: usize = 2> {
 }
 
 /// Default [`AdhesionOptions::anderson_window`], chosen by measurement (module docs).
-pub const DEFAULT_ANDERSON_WINDOW: usize = 1;
+pub(crate) const DEFAULT_ANDERSON_WINDOW: usize = 1;
 
 /// Tolerance of the first reduced solve of [`AdhesionMethod::Newton`]: it only has to find
 /// the contact set Newton starts from.
@@ -130,6 +130,7 @@ const WARM_MAX_STATE_CHANGE: f64 = 0.5;
 
 /// Tolerance and cap of the adhesion fixed point.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct AdhesionOptions {
     /// Largest [`ContactLaw::state_change`] accepted between two iterations.
     pub tol: f64,
@@ -161,6 +162,7 @@ pub struct AdhesionOptions {
 /// How [`solve_adhesive`] couples the states to the contact problem.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub enum AdhesionMethod {
     /// The seed's fixed point: the reduced problem with the springs condensed at frozen
     /// states, solved by the configured algorithm; the states updated from its jumps

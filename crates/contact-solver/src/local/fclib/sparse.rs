@@ -53,6 +53,9 @@ pub(super) struct RawSparse {
 
 /// At most this many entries of a dense matrix are allocated when a file is decoded
 /// (`2^30`, 8 GiB of `f64`: `m ≤ 32768` for a square `W`).
+///
+/// Public because it is a limit on the user's input: a file beyond it is refused with an
+/// error, and a user converting a larger problem must know the bound.
 pub const MAX_DENSE_ENTRIES: usize = 1 << 30;
 
 /// A zeroed `rows × cols` buffer, refused (not aborted) when too large.

@@ -98,6 +98,7 @@ impl Default for HalfSpace {
 
 /// A generated half-space problem and its nodes.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct HalfSpaceProblem {
     /// The reduced problem `x = W r + q` (3D).
     pub problem: ReducedProblem,

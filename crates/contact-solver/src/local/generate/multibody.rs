@@ -59,6 +59,7 @@ pub enum ContactKind {
 
 /// Side walls around the pile.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Walls {
     /// Floor only.
     None,
@@ -68,6 +69,7 @@ pub enum Walls {
 
 /// One contact: what it touches, its frame `[n, t₁, t₂]` and its gap at the start of the step.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PileContact {
     /// What it touches.
     pub kind: ContactKind,
@@ -131,6 +133,7 @@ impl Default for SpherePile {
 
 /// A generated multibody problem and what it was built from.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct PileProblem {
     /// The reduced problem `x = W r + q` (3D, `μ` per contact).
     pub problem: ReducedProblem,

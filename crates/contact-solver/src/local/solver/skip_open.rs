@@ -1,4 +1,4 @@
-//! Contacts that stay open leave the iteration ([`UzawaSettings::skip_open`]).
+//! Contacts that stay open leave the iteration ([`crate::UzawaTuning::skip_open`]).
 //!
 //! A sweep costs little for a contact that stays open (one projection), but every closed
 //! contact's update moves `x` on all `m` rows of a dense `W`, and the accelerations and
@@ -34,10 +34,10 @@ use contact_laws::{ContactLaw, Coulomb};
 ///
 /// Below this many contacts the restriction is not tried (it costs a copy of `W_AA` and one
 /// product per round, and the sweeps of a small problem are cheap).
-pub const SKIP_OPEN_MIN_CONTACTS: usize = 64;
+pub(crate) const SKIP_OPEN_MIN_CONTACTS: usize = 64;
 
 /// The restriction is tried when the contacts that may close are at most this fraction.
-pub const SKIP_OPEN_MAX_FRACTION: f64 = 0.5;
+pub(crate) const SKIP_OPEN_MAX_FRACTION: f64 = 0.5;
 
 /// Rounds of joining before the whole problem is solved instead.
 const MAX_ROUNDS: usize = 8;
@@ -61,7 +61,7 @@ impl UzawaSolver {
             .map(|i| q[d * i] < 0.0 || r[d * i..d * (i + 1)].iter().any(|&v| v != 0.0))
             .collect();
         let count = keep.iter().filter(|&&k| k).count();
-        if !st.skip_open
+        if !st.tuning.skip_open
             || problem.is_sparse()
             || nc < SKIP_OPEN_MIN_CONTACTS
             || count == 0
@@ -97,10 +97,7 @@ impl UzawaSolver {
         // ρ⁰ of the whole problem (`solve_checked` reset the sweeps for it; the check below
         // and the statuses use it)
         let rho0 = self.sweeps.rho0.clone();
-        let sub_settings = UzawaSettings {
-            skip_open: false,
-            ..st
-        };
+        let sub_settings = st.with_skip_open(false);
         // the start, then each round's answer: a round starts where the last one ended
         let mut r_full = r.to_vec();
         let mut x_full = vec![0.0; problem.size()];
@@ -109,6 +106,8 @@ impl UzawaSolver {
         for _ in 0..MAX_ROUNDS {
             let idx: Vec<usize> = (0..nc).filter(|&i| keep[i]).collect();
             let sub = problem.restricted(&idx);
+            // the laws' coefficients (which the problem's agree with, friction.rs)
+            let mu_sub: Vec<f64> = idx.iter().map(|&i| mu[i]).collect();
             let laws_sub: Vec<Coulomb> = idx
                 .iter()
                 .map(|&i| {
@@ -126,7 +125,7 @@ impl UzawaSolver {
                 &laws_sub,
                 &[()],
                 r_sub,
-                Some(sub.mu()),
+                Some(&mu_sub),
             )?;
             let report = &sol.report;
             iterations += report.iterations;
@@ -160,7 +159,7 @@ impl UzawaSolver {
                 report.solved_contacts = idx.len();
                 report.asymmetry = problem.asymmetry();
                 report.statuses = contact_statuses::<L, DT>(laws, states, &rho0, &r_full, &x_full);
-                self.sweeps.reset(problem, st.rho_scale);
+                self.sweeps.reset(problem, st.tuning.rho_scale);
                 return Ok(Some(Solution {
                     r: r_full,
                     x: x_full,

@@ -108,7 +108,7 @@ impl<S: Structure<3>, L: ContactLaw + Clone> SolidContactSimulation<S, L> {
         settings: SolidSettings,
     ) -> Result<Self, SolverError> {
         check_settings(&settings)?;
-        if structure.rigid_body_modes().is_some_and(|m| !m.is_empty()) {
+        if structure.floating().is_some() {
             return Err(SolverError::Unsupported(
                 "a floating 3D structure (rigid-body modes): hold it with supports".into(),
             ));
