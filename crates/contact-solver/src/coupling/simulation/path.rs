@@ -8,9 +8,10 @@ use super::report::StepReport;
 use super::settings::{FALLBACK_DENSE_LIMIT, FlexibilityMode};
 use super::solve::Solved;
 use crate::coupling::primal::{LocalFrame, frames};
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
-use fem_core::Structure;
+use fem_core::{Dim, Structure};
 
 /// How one detection pass solves its active set.
 #[derive(Debug, PartialEq)]
@@ -20,13 +21,16 @@ pub(super) enum Path {
     ActiveSet(Vec<LocalFrame>),
 }
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// Chooses the path of `active`, builds its operator (`F*` when dense and changed) and
     /// solves the reduced problem (stage 3) on it.
     pub(super) fn solve_pass(
         &mut self,
         active: &[usize],
-        free: &[[f64; 2]],
+        free: &[[f64; D]],
         dt: f64,
         version: u64,
         report: &mut StepReport,
