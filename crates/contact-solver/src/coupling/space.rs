@@ -85,6 +85,9 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// The tangents of a frame `[n, t…]`.
     fn tangents_of(frame: [[f64; D]; D]) -> Self::Tangents;
 
+    /// The components `[n, t…]` of a typed local vector.
+    fn components(l: &Self::Local) -> [f64; D];
+
     /// The contact frame `[n, t…]` of the unit normal `n`: `t = (n_y, −n_x)` in 2D,
     /// [`tangent_frame`] in 3D.
     fn frame(normal: [f64; D]) -> [[f64; D]; D];
@@ -177,6 +180,11 @@ impl ContactSpace<2> for Dim<2> {
     }
 
     #[inline]
+    fn components(l: &LocalVec<1>) -> [f64; 2] {
+        [l.n, l.t[0]]
+    }
+
+    #[inline]
     fn frame(n: [f64; 2]) -> [[f64; 2]; 2] {
         [n, [n[1], -n[0]]]
     }
@@ -236,6 +244,11 @@ impl ContactSpace<3> for Dim<3> {
     #[inline]
     fn tangents_of(frame: [[f64; 3]; 3]) -> [[f64; 3]; 2] {
         [frame[1], frame[2]]
+    }
+
+    #[inline]
+    fn components(l: &LocalVec<2>) -> [f64; 3] {
+        [l.n, l.t[0], l.t[1]]
     }
 
     #[inline]

@@ -91,6 +91,16 @@ where
     pub r_adh: <Dim<D> as ContactSpace<D>>::Local,
 }
 
+impl<const D: usize> ContactRecord<D>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    /// The total reaction's local components `[r_n, r_t…]` (any dimension).
+    pub fn reaction(&self) -> [f64; D] {
+        <Dim<D> as ContactSpace<D>>::components(&self.r)
+    }
+}
+
 impl ContactRecord<2> {
     /// The total reaction on the contactor node in global axes, `r_n n + r_t t`.
     ///

@@ -1,6 +1,8 @@
 //! Settings of a simulation: the reduced solver, the adhesion loop, the flexibility path and the
 //! skip rules.
 
+use crate::coupling::space::ContactSpace;
+use fem_core::Dim;
 use crate::local::UzawaSettings;
 
 /// Settings of a simulation.
@@ -140,6 +142,17 @@ impl Default for SimulationSettings {
 }
 
 impl SimulationSettings {
+    /// The default settings of dimension `D`: [`Default`] with the `Auto` dense limit measured
+    /// for that dimension ([`ContactSpace::DENSE_LIMIT`]: 500 contacts in 2D, 3000 in 3D).
+    pub fn for_dimension<const D: usize>() -> Self
+    where
+        Dim<D>: ContactSpace<D>,
+    {
+        Self::default().with_flexibility(FlexibilityMode::Auto {
+            dense_limit: <Dim<D> as ContactSpace<D>>::DENSE_LIMIT,
+        })
+    }
+
     /// These settings with [`solver`](Self::solver) replaced.
     #[must_use]
     pub fn with_solver(mut self, solver: UzawaSettings) -> Self {
