@@ -10,11 +10,12 @@
 //!   steps, the primal active-set and the matrix-free paths) are run through
 //!   [`SolidContactSimulation`] and `ContactSimulation<_, _, 3>` and the reactions and
 //!   displacements compared. Both solve the same reduced problem to the solver's tolerance
-//!   (`UzawaSettings::tol`, 1e-10 relative on the natural-map residual) but by different
-//!   routes where the 3D copy had its own rules (a plain reduced solve instead of the adhesion
-//!   loop's single pass, a different initial active set): the answers agree to the solvers'
-//!   accuracy, so the tolerance is `1e-7` of the largest reaction (resp. displacement) of the
-//!   scene, three orders above the tolerance and far below any modelling difference.
+//!   (`UzawaSettings::tol`, 1e-10 relative on the natural-map residual), by different routes
+//!   where the 3D copy had its own rules (a plain reduced solve instead of the adhesion loop's
+//!   single pass, another initial active set): the tolerance is that `1e-10` of the largest
+//!   reaction (resp. displacement) of the scene. Measured: 0 on the frictionless scenes,
+//!   ≤ 6e-15 with friction (dense, active set, matrix-free), 9e-13 on the RCCM glue (its
+//!   adhesion fixed point stops at `adhesion_tol`).
 
 #![cfg(feature = "fe")]
 
@@ -22,17 +23,14 @@ use crate::solid_interfaces::{supports, two_blocks};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::coupling::obstacle::RigidLine;
 use contact_solver::coupling::solid::{
-    ContactZone3, RigidPlane, RigidSphere, Side3, SolidContactSimulation, SolidSettings,
-    TriSurface,
+    ContactZone3, RigidPlane, RigidSphere, Side3, SolidContactSimulation, SolidSettings, TriSurface,
 };
 use contact_solver::coupling::space::ContactSpace;
 use contact_solver::{ContactSimulation, ContactZone, FlexibilityMode, SimulationSettings};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidModel};
-use fem_core::{
-    Component, Dim, Idealization, LinearElasticModel, Material, Structure, Supports,
-};
+use fem_core::{Component, Dim, Idealization, LinearElasticModel, Material, Structure, Supports};
 
 /// Builds the simulation of `structure` and `zone`, steps it once and checks the patch: the
 /// total normal reaction is `expected`, every contact is closed and carries no tangential
@@ -56,8 +54,16 @@ where
     );
     for c in &res.contacts {
         let r = c.reaction();
-        assert!(c.gap.abs() < 1e-9, "D = {D}: node {} gap {:e}", c.node, c.gap);
-        assert!(r[1..].iter().all(|t| *t == 0.0), "D = {D}: frictionless {r:?}");
+        assert!(
+            c.gap.abs() < 1e-9,
+            "D = {D}: node {} gap {:e}",
+            c.node,
+            c.gap
+        );
+        assert!(
+            r[1..].iter().all(|t| *t == 0.0),
+            "D = {D}: frictionless {r:?}"
+        );
     }
     assert_eq!(sim.counters().steps, 1);
     total
@@ -149,7 +155,7 @@ fn parity(label: &str, make: impl Fn() -> Scene) -> (f64, f64) {
                 let diff = (ca.r[d] - rb[d]).abs() / r_scale;
                 worst_r = worst_r.max(diff);
                 assert!(
-                    diff < 1e-7,
+                    diff < 1e-10,
                     "{label}, step {}: node {} r {:?} vs {rb:?}",
                     k + 1,
                     ca.candidate.node,
@@ -168,7 +174,11 @@ fn parity(label: &str, make: impl Fn() -> Scene) -> (f64, f64) {
             for d in 0..3 {
                 let diff = (ua[d] - u[d]).abs() / u_scale;
                 worst_u = worst_u.max(diff);
-                assert!(diff < 1e-7, "{label}, step {}: node {n} u {ua:?} vs {u:?}", k + 1);
+                assert!(
+                    diff < 1e-10,
+                    "{label}, step {}: node {n} u {ua:?} vs {u:?}",
+                    k + 1
+                );
             }
         }
     }
@@ -234,10 +244,18 @@ fn issue_35_parity_with_the_3d_simulation_on_rigid_obstacles() {
         block(SolidKind::Tet10, Some(0.3), None)
     });
     parity("active set, Coulomb", || {
-        block(SolidKind::Tet10, Some(0.3), Some(FlexibilityMode::ActiveSet))
+        block(
+            SolidKind::Tet10,
+            Some(0.3),
+            Some(FlexibilityMode::ActiveSet),
+        )
     });
     parity("matrix-free, Coulomb", || {
-        block(SolidKind::Tet4, Some(0.3), Some(FlexibilityMode::MatrixFree))
+        block(
+            SolidKind::Tet4,
+            Some(0.3),
+            Some(FlexibilityMode::MatrixFree),
+        )
     });
     parity("rigid sphere (Hertz-like)", || {
         let m = Material::new(1000.0, 0.3, 0.0).unwrap();

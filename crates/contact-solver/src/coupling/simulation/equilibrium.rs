@@ -5,8 +5,8 @@
 use super::ContactSimulation;
 use super::report::{ContactRecord, InterfaceStatus, StepReport, StepResult};
 use super::solve::Solved;
-use crate::error::SolverError;
 use crate::coupling::space::ContactSpace;
+use crate::error::SolverError;
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::{Dim, Structure};
 use std::time::Instant;
@@ -50,9 +50,10 @@ where
         // large for stiff glue (C h / E ≫ 1); the next step starts from these jumps.
         for (k, &i) in self.w_active.iter().enumerate() {
             jumps[i][0] = solved.x[D * k];
-            for d in 1..D {
+            let (start, x) = (self.jumps[i], &solved.x[D * k..D * (k + 1)]);
+            for (d, jump) in jumps[i].iter_mut().enumerate().skip(1) {
                 if self.tangent_solved(i, d) {
-                    jumps[i][d] = self.jumps[i][d] + solved.x[D * k + d];
+                    *jump = start[d] + x[d];
                 }
             }
         }
@@ -105,9 +106,10 @@ where
             rec.beta = law.adhesion_intensity(&self.states[i]);
             rec.r_bar = <Dim<D> as ContactSpace<D>>::local_of(&rb);
             rec.r = <Dim<D> as ContactSpace<D>>::local_of(&r);
-            rec.r_adh = <Dim<D> as ContactSpace<D>>::local_of(&core::array::from_fn::<f64, D, _>(
-                |d| r[d] - rb[d],
-            ));
+            rec.r_adh =
+                <Dim<D> as ContactSpace<D>>::local_of(&core::array::from_fn::<f64, D, _>(|d| {
+                    r[d] - rb[d]
+                }));
             // named by what the law is: a frictionless law's closed contact neither sticks
             // nor slips
             rec.status = match solved.statuses[k] {

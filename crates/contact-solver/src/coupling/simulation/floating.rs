@@ -32,13 +32,13 @@ use super::ContactSimulation;
 use super::last_problem::AdhesiveInputs;
 use super::report::StepReport;
 use super::solve::Solved;
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
 use crate::local::norm;
 use contact_laws::{ContactLaw, ContactStatus};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
-use crate::coupling::space::ContactSpace;
 use fem_core::{Dim, RigidMode, RigidMotion, Structure};
 
 /// Singular values of `J` below this fraction of the largest count as directions no contact
@@ -679,9 +679,9 @@ impl Linearized {
                 // the slip shrinks along the ray: it reaches its closest to 0 at
                 // t = −(x_t · ẋ_t) / |ẋ_t|² (the rate named is the slip's speed)
                 let (mut along, mut speed2) = (0.0, 0.0);
-                for t in n + 1..n + D {
+                for (t, xt) in x.iter().enumerate().take(n + D).skip(n + 1) {
                     let rate = dx(t);
-                    along += rate * x[t];
+                    along += rate * xt;
                     speed2 += rate * rate;
                 }
                 let speed = speed2.sqrt();

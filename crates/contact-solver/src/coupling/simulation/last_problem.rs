@@ -50,7 +50,10 @@ impl<L: ContactLaw, const D: usize> LastProblem<L, D> {
     }
 }
 
-fn form<L: ContactLaw, const D: usize>(p: &Pending<L, D>, w: &[f64]) -> Result<ReducedProblem, SolverError> {
+fn form<L: ContactLaw, const D: usize>(
+    p: &Pending<L, D>,
+    w: &[f64],
+) -> Result<ReducedProblem, SolverError> {
     let step = AdhesiveStep::<L, D> {
         w,
         q: &p.inputs.q,

@@ -177,8 +177,8 @@ where
                 z.name
             )));
         }
-        let penetration_tol = <Dim<D> as ContactSpace<D>>::PENETRATION_TOL
-            * extent(&structure, &candidates);
+        let penetration_tol =
+            <Dim<D> as ContactSpace<D>>::PENETRATION_TOL * extent(&structure, &candidates);
         let h_rows = h_rows_of(&structure, &zones, &candidates)?;
         let states = candidates
             .iter()

@@ -2,8 +2,8 @@
 //! skip rules.
 
 use crate::coupling::space::ContactSpace;
-use fem_core::Dim;
 use crate::local::UzawaSettings;
+use fem_core::Dim;
 
 /// Settings of a simulation.
 #[derive(Clone, Copy, Debug, PartialEq)]
