@@ -156,6 +156,10 @@ where
             });
         }
         let candidates = recognize(&structure, &zones)?;
+        if D == 3 {
+            // the stricter checks 3D always ran (every zone has a candidate, none is held)
+            check_candidates(&structure, &zones, &candidates)?;
+        }
         if candidates.is_empty() {
             return Err(SolverError::InvalidGeometry(
                 "no contactor node projects on its target: the simulation has no contact candidate"
@@ -163,10 +167,6 @@ where
             ));
         }
         check_rigid_targets(&structure, &zones, &candidates)?;
-        if D == 3 {
-            // the stricter checks 3D always ran (every zone has a candidate, none is held)
-            check_candidates(&structure, &zones, &candidates)?;
-        }
         if let Some(z) = zones
             .iter()
             .find(|z| D == 3 && z.law.has_adhesion() && z.areas.is_none())
@@ -274,10 +274,21 @@ where
                     .join(", "),
             });
         };
+        if D == 3 && law.has_adhesion() && z.areas.is_none() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{zone}`: an adhesive law needs the contactor nodes' tributary areas"
+            )));
+        }
         z.law = law;
         self.w_version = None;
         self.primal = PrimalCache::default();
         Ok(())
+    }
+
+    /// Sets the penetration tolerance of the inactive candidates to `relative` × the
+    /// contactors' extent (the default is [`ContactSpace::PENETRATION_TOL`]).
+    pub(crate) fn set_relative_penetration_tol(&mut self, relative: f64) {
+        self.penetration_tol = relative * extent(&self.structure, &self.candidates);
     }
 
     /// The candidates found by recognition.
@@ -321,6 +332,16 @@ where
     /// step (prescribed components included).
     pub fn nodal_displacements(&self) -> Vec<[f64; D]> {
         self.nodal_u.clone()
+    }
+
+    /// The displacement of `node` at the end of the last step (prescribed components
+    /// included).
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    #[track_caller]
+    pub fn nodal_displacement(&self, node: usize) -> [f64; D] {
+        self.nodal_u[node]
     }
 
     /// The reduced problem of the last solve — after condensation of the adhesive springs,
