@@ -75,6 +75,10 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// of a dense `F*`, measured per dimension (`docs/benchmarks.md`): 500 contacts in 2D,
     /// 3000 in 3D.
     const DENSE_LIMIT: usize;
+    /// The largest active set that `Auto` solves with a dense `F*` when its active-set
+    /// iteration did not converge (matrix-free beyond): 8000 contacts in 2D (2 GiB), 3000 in
+    /// 3D (648 MB, as 3D always had it).
+    const FALLBACK_DENSE_LIMIT: usize;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.
     fn local_of(x: &[f64]) -> Self::Local;
@@ -163,6 +167,7 @@ impl ContactSpace<2> for Dim<2> {
     const PENETRATION_TOL: f64 = 0.0;
     const DECOUPLE_HELD_TANGENTS: bool = false;
     const DENSE_LIMIT: usize = 500;
+    const FALLBACK_DENSE_LIMIT: usize = 8000;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<1> {
@@ -230,6 +235,7 @@ impl ContactSpace<3> for Dim<3> {
     const PENETRATION_TOL: f64 = 1e-9;
     const DECOUPLE_HELD_TANGENTS: bool = true;
     const DENSE_LIMIT: usize = 3000;
+    const FALLBACK_DENSE_LIMIT: usize = 3000;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<2> {

@@ -5,7 +5,7 @@
 use super::ContactSimulation;
 use super::last_problem::LastProblem;
 use super::report::StepReport;
-use super::settings::{FALLBACK_DENSE_LIMIT, FlexibilityMode};
+use super::settings::FlexibilityMode;
 use super::solve::Solved;
 use crate::coupling::primal::{LocalFrame, frames};
 use crate::coupling::space::ContactSpace;
@@ -54,7 +54,7 @@ where
                     | SolverError::Unsupported(_),
                 ) if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) => {
                     self.counters.active_set_fallbacks += 1;
-                    path = if active.len() <= FALLBACK_DENSE_LIMIT {
+                    path = if active.len() <= <Dim<D> as ContactSpace<D>>::FALLBACK_DENSE_LIMIT {
                         Path::Dense
                     } else {
                         Path::MatrixFree
