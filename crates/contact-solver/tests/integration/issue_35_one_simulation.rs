@@ -15,7 +15,10 @@
 //!   single pass, another initial active set): the tolerance is that `1e-10` of the largest
 //!   reaction (resp. displacement) of the scene. Measured: 0 on the frictionless scenes,
 //!   ≤ 6e-15 with friction (dense, active set, matrix-free), 9e-13 on the RCCM glue (its
-//!   adhesion fixed point stops at `adhesion_tol`).
+//!   adhesion fixed point stops at `adhesion_tol`). Those figures were measured against the
+//!   former 3D copy (commit `05901b0`); `SolidContactSimulation` now wraps the generic
+//!   simulation, and the test guards its conversions (settings, results, `max_passes`, the
+//!   penetration tolerance) against the generic one built with `for_dimension::<3>()`.
 
 #![cfg(feature = "fe")]
 
