@@ -57,6 +57,40 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     type Local: Copy + Debug + PartialEq + Send + Sync + 'static;
     /// The surface of a deformable target: [`Polyline`] in 2D, [`TriSurface`] in 3D.
     type Surface: TargetSurface<D>;
+    /// A tangential quantity of one contact (`u_t`, a slip): `f64` in 2D, `[f64; 2]` in 3D.
+    type Tangential: Copy + Debug + PartialEq + Send + Sync + 'static;
+    /// The tangents of a contact frame: `[f64; 2]` (one tangent) in 2D, `[[f64; 3]; 2]` in 3D.
+    type Tangents: Copy + Debug + PartialEq + Send + Sync + 'static;
+    /// An inactive candidate outside the reduced problem penetrates when its gap is below
+    /// `−PENETRATION_TOL × extent` (`extent`: the largest side of the contactor nodes' box):
+    /// `0` in 2D (any negative gap, as 2D always tested), `1e-9` in 3D (round-off of the
+    /// nodes' positions on curved faces, as 3D always tested).
+    const PENETRATION_TOL: f64;
+    /// Whether a tangential direction that cannot move relative to the target (its `H` row is
+    /// empty: held on both sides, e.g. across a symmetry plane) is decoupled like a
+    /// frictionless one (`W_tt = W_nn`, `r_t = 0`): `false` in 2D (its column is solved, as
+    /// 2D always did), `true` in 3D.
+    const DECOUPLE_HELD_TANGENTS: bool;
+    /// The default [`FlexibilityMode::Auto`](super::simulation::FlexibilityMode::Auto) limit
+    /// of a dense `F*`, measured per dimension (`docs/benchmarks.md`): 500 contacts in 2D,
+    /// 3000 in 3D.
+    const DENSE_LIMIT: usize;
+    /// The largest active set that `Auto` solves with a dense `F*` when its active-set
+    /// iteration did not converge (matrix-free beyond): 8000 contacts in 2D (2 GiB), 3000 in
+    /// 3D (648 MB, as 3D always had it).
+    const FALLBACK_DENSE_LIMIT: usize;
+
+    /// The typed local vector of `D` consecutive components `[n, t…]`.
+    fn local_of(x: &[f64]) -> Self::Local;
+
+    /// The tangential part of `[n, t…]` (the components after the first).
+    fn tangential_of(x: &[f64]) -> Self::Tangential;
+
+    /// The tangents of a frame `[n, t…]`.
+    fn tangents_of(frame: [[f64; D]; D]) -> Self::Tangents;
+
+    /// The components `[n, t…]` of a typed local vector.
+    fn components(l: &Self::Local) -> [f64; D];
 
     /// The contact frame `[n, t…]` of the unit normal `n`: `t = (n_y, −n_x)` in 2D,
     /// [`tangent_frame`] in 3D.
@@ -128,6 +162,32 @@ impl ContactSpace<2> for Dim<2> {
     const HELD: f64 = 0.0;
     type Local = LocalVec<1>;
     type Surface = Polyline;
+    type Tangential = f64;
+    type Tangents = [f64; 2];
+    const PENETRATION_TOL: f64 = 0.0;
+    const DECOUPLE_HELD_TANGENTS: bool = false;
+    const DENSE_LIMIT: usize = 500;
+    const FALLBACK_DENSE_LIMIT: usize = 8000;
+
+    #[inline]
+    fn local_of(x: &[f64]) -> LocalVec<1> {
+        LocalVec::planar(x[0], x[1])
+    }
+
+    #[inline]
+    fn tangential_of(x: &[f64]) -> f64 {
+        x[1]
+    }
+
+    #[inline]
+    fn tangents_of(frame: [[f64; 2]; 2]) -> [f64; 2] {
+        frame[1]
+    }
+
+    #[inline]
+    fn components(l: &LocalVec<1>) -> [f64; 2] {
+        [l.n, l.t[0]]
+    }
 
     #[inline]
     fn frame(n: [f64; 2]) -> [[f64; 2]; 2] {
@@ -170,6 +230,32 @@ impl ContactSpace<3> for Dim<3> {
     const HELD: f64 = 1e-24;
     type Local = LocalVec<2>;
     type Surface = TriSurface;
+    type Tangential = [f64; 2];
+    type Tangents = [[f64; 3]; 2];
+    const PENETRATION_TOL: f64 = 1e-9;
+    const DECOUPLE_HELD_TANGENTS: bool = true;
+    const DENSE_LIMIT: usize = 3000;
+    const FALLBACK_DENSE_LIMIT: usize = 3000;
+
+    #[inline]
+    fn local_of(x: &[f64]) -> LocalVec<2> {
+        LocalVec::spatial(x[0], x[1], x[2])
+    }
+
+    #[inline]
+    fn tangential_of(x: &[f64]) -> [f64; 2] {
+        [x[1], x[2]]
+    }
+
+    #[inline]
+    fn tangents_of(frame: [[f64; 3]; 3]) -> [[f64; 3]; 2] {
+        [frame[1], frame[2]]
+    }
+
+    #[inline]
+    fn components(l: &LocalVec<2>) -> [f64; 3] {
+        [l.n, l.t[0], l.t[1]]
+    }
 
     #[inline]
     fn frame(n: [f64; 3]) -> [[f64; 3]; 3] {

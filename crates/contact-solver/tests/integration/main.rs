@@ -25,6 +25,7 @@ mod hertz_force;
 mod hertz_revolved;
 mod invalid_input;
 mod issue_35_generic_zones;
+mod issue_35_one_simulation;
 mod issue_35_penetration;
 mod issue_36_traps;
 mod local_algorithms;

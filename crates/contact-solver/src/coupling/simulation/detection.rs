@@ -4,11 +4,15 @@
 //! candidates that penetrate.
 
 use super::ContactSimulation;
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
-use fem_core::Structure;
+use fem_core::{Dim, Structure};
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// Checks `time` and `force_factor` and counts a change of the stiffness; returns the
     /// stiffness version of the step.
     pub(super) fn begin_step(&mut self, time: f64, force_factor: f64) -> Result<u64, SolverError> {
@@ -41,7 +45,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     pub(super) fn free_response(
         &mut self,
         force_factor: f64,
-    ) -> Result<(Vec<f64>, Vec<[f64; 2]>), SolverError> {
+    ) -> Result<(Vec<f64>, Vec<[f64; D]>), SolverError> {
         let mut u_free = vec![0.0; self.structure.dof_count()];
         self.structure
             .free_response_into(force_factor, &mut u_free)?;
@@ -74,7 +78,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// The candidates of the reduced problem: within the alert distance at the start of the
     /// step or under the free response (`free`), or adhesive; all of them without the
     /// alert-distance skip rule.
-    pub(super) fn initial_active_set(&self, free: &[[f64; 2]]) -> Vec<usize> {
+    pub(super) fn initial_active_set(&self, free: &[[f64; D]]) -> Vec<usize> {
         let all = !self.settings.skip.alert_distance;
         (0..self.candidates.len())
             .filter(|&i| {
@@ -87,10 +91,13 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             .collect()
     }
 
-    /// The candidates outside the solved active set whose gap under `jumps` is negative.
-    pub(super) fn penetrating(&self, jumps: &[[f64; 2]]) -> Vec<usize> {
+    /// The candidates outside the solved active set whose gap under `jumps` is below
+    /// `−penetration_tol` ([`ContactSpace::PENETRATION_TOL`]: 0 in 2D).
+    pub(super) fn penetrating(&self, jumps: &[[f64; D]]) -> Vec<usize> {
         (0..self.candidates.len())
-            .filter(|i| self.w_active.binary_search(i).is_err() && jumps[*i][0] < 0.0)
+            .filter(|i| {
+                self.w_active.binary_search(i).is_err() && jumps[*i][0] < -self.penetration_tol
+            })
             .collect()
     }
 }

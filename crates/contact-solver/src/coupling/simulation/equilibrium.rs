@@ -5,24 +5,28 @@
 use super::ContactSimulation;
 use super::report::{ContactRecord, InterfaceStatus, StepReport, StepResult};
 use super::solve::Solved;
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
-use contact_laws::{ContactLaw, ContactStatus, LocalVec2};
-use fem_core::Structure;
+use contact_laws::{ContactLaw, ContactStatus};
+use fem_core::{Dim, Structure};
 use std::time::Instant;
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// `u = u_free + K⁻¹ Hᵀ r` and the local jumps of every candidate under it (the active
     /// contacts keep the reduced solution's own jumps).
     pub(super) fn equilibrium(
         &mut self,
         u_free: &[f64],
         solved: &Solved<L::State>,
-    ) -> Result<(Vec<f64>, Vec<[f64; 2]>), SolverError> {
+    ) -> Result<(Vec<f64>, Vec<[f64; D]>), SolverError> {
         let mut u = vec![0.0; self.structure.dof_count()];
         for (k, &i) in self.w_active.iter().enumerate() {
-            for d in 0..2 {
-                let r = solved.r[2 * k + d];
-                for &(dof, a) in &self.h_rows[2 * i + d] {
+            for d in 0..D {
+                let r = solved.r[D * k + d];
+                for &(dof, a) in &self.h_rows[D * i + d] {
                     u[dof] += a * r;
                 }
             }
@@ -45,9 +49,12 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         // the rounding of `u` (an ulp of the load) times the stiffness contrast, which is
         // large for stiff glue (C h / E ≫ 1); the next step starts from these jumps.
         for (k, &i) in self.w_active.iter().enumerate() {
-            jumps[i][0] = solved.x[2 * k];
-            if self.tangent_needed(i) {
-                jumps[i][1] = self.jumps[i][1] + solved.x[2 * k + 1];
+            jumps[i][0] = solved.x[D * k];
+            let (start, x) = (self.jumps[i], &solved.x[D * k..D * (k + 1)]);
+            for (d, jump) in jumps[i].iter_mut().enumerate().skip(1) {
+                if self.tangent_solved(i, d) {
+                    *jump = start[d] + x[d];
+                }
             }
         }
         Ok((u, jumps))
@@ -57,12 +64,13 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         &mut self,
         time: f64,
         u: Vec<f64>,
-        jumps: Vec<[f64; 2]>,
+        jumps: Vec<[f64; D]>,
         solved: Solved<L::State>,
         mut report: StepReport,
         start: Instant,
-    ) -> StepResult {
-        let mut records: Vec<ContactRecord> = self
+    ) -> StepResult<D> {
+        let zero = <Dim<D> as ContactSpace<D>>::local_of(&[0.0; D]);
+        let mut records: Vec<ContactRecord<D>> = self
             .candidates
             .iter()
             .enumerate()
@@ -73,29 +81,35 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 area: c.area,
                 status: InterfaceStatus::Inactive,
                 gap: jumps[i][0],
-                u_t: jumps[i][1],
-                slip_increment: jumps[i][1] - self.jumps[i][1],
+                u_t: <Dim<D> as ContactSpace<D>>::tangential_of(&jumps[i]),
+                slip_increment: <Dim<D> as ContactSpace<D>>::tangential_of(
+                    &core::array::from_fn::<f64, D, _>(|d| jumps[i][d] - self.jumps[i][d]),
+                ),
                 beta: self.zones[c.zone].law.adhesion_intensity(&self.states[i]),
                 normal: c.normal(),
-                tangent: c.tangent(),
-                r: LocalVec2::zeros(),
-                r_bar: LocalVec2::zeros(),
-                r_adh: LocalVec2::zeros(),
+                tangent: <Dim<D> as ContactSpace<D>>::tangents_of(c.frame()),
+                r: zero,
+                r_bar: zero,
+                r_adh: zero,
             })
             .collect();
         for r in self.r_bar.iter_mut() {
-            *r = [0.0; 2];
+            *r = [0.0; D];
         }
         for (k, &i) in self.w_active.iter().enumerate() {
             let law = &self.zones[self.candidates[i].zone].law;
             self.states[i] = solved.states[k];
-            let rb = [solved.r_bar[2 * k], solved.r_bar[2 * k + 1]];
+            let rb: [f64; D] = core::array::from_fn(|d| solved.r_bar[D * k + d]);
+            let r: [f64; D] = core::array::from_fn(|d| solved.r[D * k + d]);
             self.r_bar[i] = rb;
             let rec = &mut records[i];
             rec.beta = law.adhesion_intensity(&self.states[i]);
-            rec.r_bar = LocalVec2::planar(rb[0], rb[1]);
-            rec.r = LocalVec2::planar(solved.r[2 * k], solved.r[2 * k + 1]);
-            rec.r_adh = LocalVec2::planar(rec.r.n - rb[0], rec.r.t[0] - rb[1]);
+            rec.r_bar = <Dim<D> as ContactSpace<D>>::local_of(&rb);
+            rec.r = <Dim<D> as ContactSpace<D>>::local_of(&r);
+            rec.r_adh =
+                <Dim<D> as ContactSpace<D>>::local_of(&core::array::from_fn::<f64, D, _>(|d| {
+                    r[d] - rb[d]
+                }));
             // named by what the law is: a frictionless law's closed contact neither sticks
             // nor slips
             rec.status = match solved.statuses[k] {

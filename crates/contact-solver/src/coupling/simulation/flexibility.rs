@@ -3,17 +3,22 @@
 //! matrix-free path from a few exact diagonal blocks.
 
 use super::ContactSimulation;
+use super::dispatch;
 use crate::coupling::flexibility::{
     Previous, build_dense, from_nearest_sample, sampled_diagonal_blocks,
 };
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
-use fem_core::Structure;
+use fem_core::{Dim, Structure};
 
 /// Contacts whose diagonal block of `F*` is computed exactly to set `ρ⁰` in matrix-free steps.
 const RHO_SAMPLES: usize = 16;
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// `F* = H K⁻¹ Hᵀ` on `active`, in chunks of right-hand sides. With `reuse` (the
     /// stiffness unchanged since the last build) only the columns of contacts the last active
     /// set did not have are solved.
@@ -22,7 +27,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         active: &[usize],
         reuse: bool,
     ) -> Result<(), SolverError> {
-        let m = 2 * active.len();
+        let m = D * active.len();
         let old = std::mem::take(&mut self.w);
         let previous = reuse.then_some(Previous {
             w: &old,
@@ -33,15 +38,19 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             &self.structure,
             &self.h_rows,
             active,
-            |j| j % 2 == 0 || self.tangent_needed(active[j / 2]),
+            |j| j % D == 0 || self.tangent_solved(active[j / D], j % D),
             previous,
             self.settings.columns_per_solve,
         )?;
         self.w = w;
-        // decoupled tangential unknowns of frictionless contacts: W_tt = W_nn, nothing else
+        // decoupled tangential unknowns of frictionless contacts (and, in 3D, of held
+        // directions): W_tt = W_nn, nothing else
         for (k, &i) in active.iter().enumerate() {
-            if !self.tangent_needed(i) {
-                self.w[(2 * k + 1) * m + 2 * k + 1] = self.w[2 * k * m + 2 * k];
+            let wnn = self.w[D * k * m + D * k];
+            for d in 1..D {
+                if !self.tangent_solved(i, d) {
+                    self.w[(D * k + d) * m + D * k + d] = wnn;
+                }
             }
         }
         self.w_active.clear();
@@ -56,16 +65,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// nearest sample in that order (interfaces are listed in order along them).
     pub(super) fn estimate_rho0(&mut self, active: &[usize]) -> Result<Vec<f64>, SolverError> {
         let (samples, blocks) =
-            sampled_diagonal_blocks(&self.structure, &self.h_rows, active, 2, RHO_SAMPLES)?;
-        self.counters.flexibility_columns += 2 * samples.len();
-        let rho: Vec<f64> = blocks
-            .iter()
-            .map(|w| {
-                let (a, b, d) = (w[0], 0.5 * (w[1] + w[2]), w[3]);
-                let h = 0.5 * (a - d);
-                1.0 / (0.5 * (a + d) + (h * h + b * b).sqrt())
-            })
-            .collect();
+            sampled_diagonal_blocks(&self.structure, &self.h_rows, active, D, RHO_SAMPLES)?;
+        self.counters.flexibility_columns += D * samples.len();
+        let rho: Vec<f64> = blocks.iter().map(|w| dispatch::rho0::<D>(w)).collect();
         Ok(from_nearest_sample(&samples, &rho, active.len()))
     }
 }

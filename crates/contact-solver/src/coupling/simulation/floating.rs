@@ -32,13 +32,14 @@ use super::ContactSimulation;
 use super::last_problem::AdhesiveInputs;
 use super::report::StepReport;
 use super::solve::Solved;
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
 use crate::local::norm;
 use contact_laws::{ContactLaw, ContactStatus};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
-use fem_core::{RigidMode, RigidMotion, Structure};
+use fem_core::{Dim, RigidMode, RigidMotion, Structure};
 
 /// Singular values of `J` below this fraction of the largest count as directions no contact
 /// resists.
@@ -70,8 +71,11 @@ struct Floating {
     modes: Vec<RigidMode>,
 }
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
-    /// `G = H R` on every candidate row (row-major, `2 n_candidates × n_modes`).
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    /// `G = H R` on every candidate row (row-major, `D n_candidates × n_modes`).
     pub(super) fn mode_rows(&self) -> Vec<f64> {
         let Some(modes) = self.structure.floating().map(|f| f.rigid_body_modes()) else {
             return Vec::new();
@@ -92,28 +96,34 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// motion would close a contact outside the active set.
     pub(super) fn solve_floating(
         &mut self,
-        free: &[[f64; 2]],
+        free: &[[f64; D]],
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
         let active = self.w_active.clone();
         let na = active.len();
-        let m = 2 * na;
+        let m = D * na;
         let g_all = self.mode_rows();
         let (nm, modes) = match self.structure.floating().map(|f| f.rigid_body_modes()) {
             Some(r) => (r.len(), r.modes().to_vec()),
             None => (0, Vec::new()),
         };
+        // per active row: whether it is solved (normals, needed tangents)
+        let this = &*self;
+        let solved_rows: Vec<bool> = active
+            .iter()
+            .flat_map(|&i| (0..D).map(move |d| d == 0 || this.tangent_solved(i, d)))
+            .collect();
         let tangent: Vec<bool> = active.iter().map(|&i| self.tangent_needed(i)).collect();
         let mut g = vec![0.0; m * nm];
         for (k, &i) in active.iter().enumerate() {
-            for d in 0..2 {
-                if d == 1 && !tangent[k] {
+            for d in 0..D {
+                let row = D * k + d;
+                if !solved_rows[row] {
                     continue;
                 }
-                let row = 2 * k + d;
                 g[row * nm..(row + 1) * nm]
-                    .copy_from_slice(&g_all[(2 * i + d) * nm..(2 * i + d + 1) * nm]);
+                    .copy_from_slice(&g_all[(D * i + d) * nm..(D * i + d + 1) * nm]);
             }
         }
         let fl = Floating {
@@ -130,15 +140,9 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         // Jacobian is then taken by finite differences (one extra reduced solve per mode)
         let adhesive = (0..na).any(|k| laws[k].adhesion_active(&self.states[active[k]]));
         let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+        let u_start: Vec<[f64; D]> = active.iter().map(|&i| self.jumps[i]).collect();
         let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
-        let mut q0 = vec![0.0; m];
-        for (k, &i) in active.iter().enumerate() {
-            q0[2 * k] = free[i][0];
-            if tangent[k] {
-                q0[2 * k + 1] = free[i][1] - self.jumps[i][1];
-            }
-        }
+        let q0 = self.q_of(&active, free);
         let options = AdhesionOptions {
             tol: self.settings.adhesion_tol,
             max_iterations: self.settings.max_adhesion_iterations,
@@ -211,7 +215,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 });
             }
             iterations += 1;
-            let mut lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+            let mut lin = Linearized::new::<_, D>(&self.w, m, &fl, &sol, &tangent)?;
             if adhesive {
                 // forward differences, step √ε of the amplitudes' scale
                 let size = alpha
@@ -271,7 +275,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                         f64::INFINITY
                     };
                     let t_event = lin
-                        .ray_length(&d, &sol.x, &res, &self.w, m)
+                        .ray_length::<D>(&d, &sol.x, &res, &self.w, m)
                         .unwrap_or(f64::INFINITY);
                     let step = t_root.min(t_event);
                     if !step.is_finite() {
@@ -279,7 +283,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                         let extend: Vec<usize> = (0..self.candidates.len())
                             .filter(|i| active.binary_search(i).is_err())
                             .filter(|&i| {
-                                (0..nm).map(|j| g_all[2 * i * nm + j] * d[j]).sum::<f64>() < 0.0
+                                (0..nm).map(|j| g_all[D * i * nm + j] * d[j]).sum::<f64>() < 0.0
                             })
                             .collect();
                         if !extend.is_empty() {
@@ -301,7 +305,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                         break;
                     }
                     (t_lo, phi_lo) = (t, phi_t);
-                    lin = Linearized::new(&self.w, m, &fl, &sol, &tangent)?;
+                    lin = Linearized::new::<_, D>(&self.w, m, &fl, &sol, &tangent)?;
                 }
                 if let Some(((mut ta, mut fa), (mut tb, mut fb))) = bracket {
                     // Illinois: regula falsi that halves the kept end's value
@@ -480,8 +484,8 @@ impl Floating {
 /// The reduced problem linearised at a solution, on its closed contacts (module docs).
 struct Linearized {
     nm: usize,
-    /// The reaction directions `E`: per column, up to two `(row, coefficient)`.
-    e_cols: Vec<[(usize, f64); 2]>,
+    /// The reaction directions `E`: per column, `(row, coefficient)` pairs.
+    e_cols: Vec<Vec<(usize, f64)>>,
     /// The rows `P` of the held gaps.
     p_rows: Vec<usize>,
     /// `Z = (Pᵀ F E)⁻¹ Pᵀ G` (`p × nm`).
@@ -497,40 +501,43 @@ struct Linearized {
 }
 
 impl Linearized {
-    fn new<T>(
+    fn new<T, const D: usize>(
         w: &[f64],
         m: usize,
         fl: &Floating,
         sol: &AdhesiveSolution<T>,
         tangent: &[bool],
     ) -> Result<Self, SolverError> {
-        let na = m / 2;
+        let na = m / D;
         let nm = fl.nm;
         let mut e_cols = Vec::with_capacity(m);
         let mut p_rows = Vec::with_capacity(m);
         let mut closed = vec![false; na];
         let mut slipping = vec![false; na];
         for k in 0..na {
-            let (rn, rt) = (sol.r[2 * k], sol.r[2 * k + 1]);
+            let n = D * k;
+            let rn = sol.r[n];
             let status = sol.report.statuses[k];
             if status == ContactStatus::Separation && rn <= 0.0 {
                 continue;
             }
             closed[k] = true;
-            let (n, t) = (2 * k, 2 * k + 1);
+            let ts = n + 1..n + D;
             if !tangent[k] {
-                e_cols.push([(n, 1.0), (t, 0.0)]);
+                e_cols.push(once(n, 1.0, ts.map(|t| (t, 0.0))));
                 p_rows.push(n);
             } else if status == ContactStatus::Slip {
                 slipping[k] = true;
-                let ratio = if rn > 0.0 { rt / rn } else { 0.0 };
-                e_cols.push([(n, 1.0), (t, ratio)]);
+                let ratio = |t: usize| if rn > 0.0 { sol.r[t] / rn } else { 0.0 };
+                e_cols.push(once(n, 1.0, ts.map(|t| (t, ratio(t)))));
                 p_rows.push(n);
             } else {
-                e_cols.push([(n, 1.0), (t, 0.0)]);
-                e_cols.push([(t, 1.0), (n, 0.0)]);
+                e_cols.push(once(n, 1.0, ts.clone().map(|t| (t, 0.0))));
                 p_rows.push(n);
-                p_rows.push(t);
+                for t in ts {
+                    e_cols.push(vec![(t, 1.0), (n, 0.0)]);
+                    p_rows.push(t);
+                }
             }
         }
         let p = p_rows.len();
@@ -624,7 +631,14 @@ impl Linearized {
     /// an open contact closes (its gap reaches 0) or a slipping one sticks (its slip increment
     /// returns to 0), plus the gap or slip a lone contact needs to carry the force; `None` if
     /// none does.
-    fn ray_length(&self, d: &[f64], x: &[f64], res: &[f64], w: &[f64], m: usize) -> Option<f64> {
+    fn ray_length<const D: usize>(
+        &self,
+        d: &[f64],
+        x: &[f64],
+        res: &[f64],
+        w: &[f64],
+        m: usize,
+    ) -> Option<f64> {
         let nm = self.nm;
         // dx = G d − F E Z d
         let zd: Vec<f64> = (0..self.p_rows.len())
@@ -650,15 +664,29 @@ impl Linearized {
             }
         };
         for k in 0..self.closed.len() {
+            let n = D * k;
             if !self.closed[k] {
-                let rate = dx(2 * k);
+                let rate = dx(n);
                 if rate < -tiny {
-                    consider(x[2 * k].max(0.0) / -rate, 2 * k, rate);
+                    consider(x[n].max(0.0) / -rate, n, rate);
+                }
+            } else if self.slipping[k] && D == 2 {
+                let rate = dx(n + 1);
+                if rate.abs() > tiny && rate * x[n + 1] < 0.0 {
+                    consider(x[n + 1].abs() / rate.abs(), n + 1, rate);
                 }
             } else if self.slipping[k] {
-                let rate = dx(2 * k + 1);
-                if rate.abs() > tiny && rate * x[2 * k + 1] < 0.0 {
-                    consider(x[2 * k + 1].abs() / rate.abs(), 2 * k + 1, rate);
+                // the slip shrinks along the ray: it reaches its closest to 0 at
+                // t = −(x_t · ẋ_t) / |ẋ_t|² (the rate named is the slip's speed)
+                let (mut along, mut speed2) = (0.0, 0.0);
+                for (t, xt) in x.iter().enumerate().take(n + D).skip(n + 1) {
+                    let rate = dx(t);
+                    along += rate * xt;
+                    speed2 += rate * rate;
+                }
+                let speed = speed2.sqrt();
+                if speed > tiny && along < 0.0 {
+                    consider(-along / speed2, n + 1, speed);
                 }
             }
         }
@@ -675,4 +703,9 @@ impl Linearized {
         };
         Some(t + extra)
     }
+}
+
+/// A reaction direction: `(first, a)` then the rest.
+fn once(first: usize, a: f64, rest: impl Iterator<Item = (usize, f64)>) -> Vec<(usize, f64)> {
+    std::iter::once((first, a)).chain(rest).collect()
 }

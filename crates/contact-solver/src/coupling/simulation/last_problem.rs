@@ -10,31 +10,31 @@ use contact_laws::ContactLaw;
 use std::sync::OnceLock;
 
 /// What an adhesive pass solved with besides `F*` and its final states.
-pub(super) struct AdhesiveInputs<L: ContactLaw> {
+pub(super) struct AdhesiveInputs<L: ContactLaw, const D: usize> {
     pub(super) q: Vec<f64>,
     pub(super) laws: Vec<L>,
-    pub(super) u_start: Vec<[f64; 2]>,
+    pub(super) u_start: Vec<[f64; D]>,
     pub(super) areas: Vec<f64>,
 }
 
 /// What an adhesive step solved by Newton needs to form its condensed problem besides `F*`.
-pub(super) struct Pending<L: ContactLaw> {
-    inputs: AdhesiveInputs<L>,
+pub(super) struct Pending<L: ContactLaw, const D: usize> {
+    inputs: AdhesiveInputs<L, D>,
     states: Vec<L::State>,
 }
 
 /// The last reduced problem, formed or pending.
-pub(super) enum LastProblem<L: ContactLaw> {
+pub(super) enum LastProblem<L: ContactLaw, const D: usize> {
     /// No dense reduced problem (matrix-free or active-set step, or no step yet).
     None,
     Formed(ReducedProblem),
     /// Formed from `F*` (the simulation's, unchanged until the next solve) on first request.
-    Pending(Box<Pending<L>>, OnceLock<Option<ReducedProblem>>),
+    Pending(Box<Pending<L, D>>, OnceLock<Option<ReducedProblem>>),
 }
 
-impl<L: ContactLaw> LastProblem<L> {
+impl<L: ContactLaw, const D: usize> LastProblem<L, D> {
     /// A problem to form from `F*`, `inputs` and the final `states` when asked.
-    pub(super) fn pending(inputs: AdhesiveInputs<L>, states: Vec<L::State>) -> Self {
+    pub(super) fn pending(inputs: AdhesiveInputs<L, D>, states: Vec<L::State>) -> Self {
         Self::Pending(Box::new(Pending { inputs, states }), OnceLock::new())
     }
 
@@ -50,8 +50,11 @@ impl<L: ContactLaw> LastProblem<L> {
     }
 }
 
-fn form<L: ContactLaw>(p: &Pending<L>, w: &[f64]) -> Result<ReducedProblem, SolverError> {
-    let step = AdhesiveStep::<L, 2> {
+fn form<L: ContactLaw, const D: usize>(
+    p: &Pending<L, D>,
+    w: &[f64],
+) -> Result<ReducedProblem, SolverError> {
+    let step = AdhesiveStep::<L, D> {
         w,
         q: &p.inputs.q,
         laws: &p.inputs.laws,

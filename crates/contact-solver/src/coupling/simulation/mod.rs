@@ -24,6 +24,7 @@
 //!    that ended up penetrating are added to the active set and the step is redone.
 
 mod detection;
+mod dispatch;
 mod equilibrium;
 mod flexibility;
 mod floating;
@@ -38,12 +39,15 @@ pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, Ski
 
 use crate::coupling::force_factor::ForceFactorCheck;
 use crate::coupling::primal::PrimalCache;
-use crate::coupling::zone::{Candidate, ContactZone, check_rigid_targets, recognize};
+use crate::coupling::space::ContactSpace;
+use crate::coupling::zone::{
+    Candidate, ContactZone, check_candidates, check_rigid_targets, recognize,
+};
 use crate::error::SolverError;
 use crate::local::adhesion::WarmStartPacing;
 use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::ContactLaw;
-use fem_core::Structure;
+use fem_core::{Dim, Structure};
 use last_problem::LastProblem;
 use std::time::Instant;
 
@@ -74,32 +78,39 @@ use std::time::Instant;
 /// assert!(res.contacts.iter().all(|c| c.gap.abs() < 1e-11)); // closed to 1e-9 of the 0.01 push
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub struct ContactSimulation<S: Structure, L: ContactLaw> {
+///
+/// The same simulation solves 3D problems as `ContactSimulation<S, L, 3>` (a
+/// [`Structure<3>`] and [`ContactZone<L, 3>`]): per contact the unknowns are `D` consecutive
+/// components `(n, t…)`, and what differs by dimension comes from [`ContactSpace`].
+pub struct ContactSimulation<S: Structure<D>, L: ContactLaw, const D: usize = 2>
+where
+    Dim<D>: ContactSpace<D>,
+{
     structure: S,
-    zones: Vec<ContactZone<L>>,
+    zones: Vec<ContactZone<L, D>>,
     settings: SimulationSettings,
-    candidates: Vec<Candidate>,
-    /// H rows (n then t per candidate) on free dofs: (dof, coefficient).
+    candidates: Vec<Candidate<D>>,
+    /// H rows (n then the tangents per candidate) on free dofs: (dof, coefficient).
     h_rows: Vec<Vec<(usize, f64)>>,
     /// Accepted state at the end of the last step.
     states: Vec<L::State>,
-    /// Accepted (gap, u_t) at the end of the last step.
-    jumps: Vec<[f64; 2]>,
+    /// Accepted (gap, u_t…) at the end of the last step.
+    jumps: Vec<[f64; D]>,
     /// Last accepted r̄ (warm start).
-    r_bar: Vec<[f64; 2]>,
+    r_bar: Vec<[f64; D]>,
     /// Active set of the cached W.
     w_active: Vec<usize>,
     w: Vec<f64>,
     w_version: Option<u64>,
     u: Vec<f64>,
     /// Nodal displacements at the end of the last step (numbering-free).
-    nodal_u: Vec<[f64; 2]>,
+    nodal_u: Vec<[f64; D]>,
     /// Stiffness version the rows of `H` (and `u`) were numbered for.
     rows_version: u64,
     time: f64,
     solver: UzawaSolver,
     counters: Counters,
-    last_problem: LastProblem<L>,
+    last_problem: LastProblem<L, D>,
     last_version: u64,
     primal: PrimalCache,
     /// When adhesive steps try Newton from the previous step's reactions.
@@ -110,9 +121,15 @@ pub struct ContactSimulation<S: Structure, L: ContactLaw> {
     mode_load: Vec<f64>,
     /// The check of `step`'s force factor (until the structure shows applied forces).
     force_check: ForceFactorCheck,
+    /// The penetration tolerance of the inactive candidates, a length
+    /// ([`ContactSpace::PENETRATION_TOL`] × the contactors' extent).
+    penetration_tol: f64,
 }
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// Recognises the candidates of `zones` on `structure` (reference configuration) and
     /// starts at time 0 with every law's initial state.
     ///
@@ -121,7 +138,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// [`SolverError::InvalidGeometry`] if no zone has a candidate.
     pub fn new(
         structure: S,
-        zones: Vec<ContactZone<L>>,
+        zones: Vec<ContactZone<L, D>>,
         settings: SimulationSettings,
     ) -> Result<Self, SolverError> {
         if !(settings.adhesion_tol > 0.0 && settings.adhesion_tol.is_finite()) {
@@ -139,6 +156,10 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             });
         }
         let candidates = recognize(&structure, &zones)?;
+        if D == 3 {
+            // the stricter checks 3D always ran (every zone has a candidate, none is held)
+            check_candidates(&structure, &zones, &candidates)?;
+        }
         if candidates.is_empty() {
             return Err(SolverError::InvalidGeometry(
                 "no contactor node projects on its target: the simulation has no contact candidate"
@@ -146,6 +167,18 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             ));
         }
         check_rigid_targets(&structure, &zones, &candidates)?;
+        if let Some(z) = zones
+            .iter()
+            .find(|z| D == 3 && z.law.has_adhesion() && z.areas.is_none())
+        {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{}`: an adhesive law needs the contactor nodes' tributary areas (its \
+                 springs are a stiffness per unit area): give them with `with_areas`",
+                z.name
+            )));
+        }
+        let penetration_tol =
+            <Dim<D> as ContactSpace<D>>::PENETRATION_TOL * extent(&structure, &candidates);
         let h_rows = h_rows_of(&structure, &zones, &candidates)?;
         let states = candidates
             .iter()
@@ -153,7 +186,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             .collect();
         let mut sim = Self {
             u: vec![0.0; structure.dof_count()],
-            nodal_u: vec![[0.0; 2]; structure.node_count()],
+            nodal_u: vec![[0.0; D]; structure.node_count()],
             rows_version: structure.stiffness_version(),
             last_version: structure.stiffness_version(),
             structure,
@@ -161,8 +194,8 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             settings,
             h_rows,
             states,
-            jumps: vec![[0.0; 2]; candidates.len()],
-            r_bar: vec![[0.0; 2]; candidates.len()],
+            jumps: vec![[0.0; D]; candidates.len()],
+            r_bar: vec![[0.0; D]; candidates.len()],
             candidates,
             w_active: Vec::new(),
             w: Vec::new(),
@@ -176,6 +209,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             alpha: Vec::new(),
             mode_load: Vec::new(),
             force_check: ForceFactorCheck::default(),
+            penetration_tol,
         };
         sim.jumps = sim.local_jumps_of(&sim.u);
         Ok(sim)
@@ -192,7 +226,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     }
 
     /// The zones.
-    pub fn zones(&self) -> &[ContactZone<L>] {
+    pub fn zones(&self) -> &[ContactZone<L, D>] {
         &self.zones
     }
 
@@ -240,14 +274,25 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                     .join(", "),
             });
         };
+        if D == 3 && law.has_adhesion() && z.areas.is_none() {
+            return Err(SolverError::InvalidGeometry(format!(
+                "zone `{zone}`: an adhesive law needs the contactor nodes' tributary areas"
+            )));
+        }
         z.law = law;
         self.w_version = None;
         self.primal = PrimalCache::default();
         Ok(())
     }
 
+    /// Sets the penetration tolerance of the inactive candidates to `relative` × the
+    /// contactors' extent (the default is [`ContactSpace::PENETRATION_TOL`]).
+    pub(crate) fn set_relative_penetration_tol(&mut self, relative: f64) {
+        self.penetration_tol = relative * extent(&self.structure, &self.candidates);
+    }
+
     /// The candidates found by recognition.
-    pub fn candidates(&self) -> &[Candidate] {
+    pub fn candidates(&self) -> &[Candidate<D>] {
         &self.candidates
     }
 
@@ -283,10 +328,20 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         &self.u
     }
 
-    /// Nodal displacements `[u_x, u_y]` at the end of the last step (prescribed components
-    /// included).
-    pub fn nodal_displacements(&self) -> Vec<[f64; 2]> {
+    /// Nodal displacements `[u_x, u_y]` (`[u_x, u_y, u_z]` in 3D) at the end of the last
+    /// step (prescribed components included).
+    pub fn nodal_displacements(&self) -> Vec<[f64; D]> {
         self.nodal_u.clone()
+    }
+
+    /// The displacement of `node` at the end of the last step (prescribed components
+    /// included).
+    ///
+    /// # Panics
+    /// If `node >= node_count()`.
+    #[track_caller]
+    pub fn nodal_displacement(&self, node: usize) -> [f64; D] {
+        self.nodal_u[node]
     }
 
     /// The reduced problem of the last solve — after condensation of the adhesive springs,
@@ -314,10 +369,10 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// states (e.g. after an installation phase whose displacements are discarded).
     pub fn reset_displacements(&mut self) {
         self.u.fill(0.0);
-        self.nodal_u.iter_mut().for_each(|v| *v = [0.0; 2]);
+        self.nodal_u.iter_mut().for_each(|v| *v = [0.0; D]);
         self.alpha.fill(0.0);
         self.jumps = self.local_jumps_of(&self.u);
-        self.r_bar.iter_mut().for_each(|r| *r = [0.0; 2]);
+        self.r_bar.iter_mut().for_each(|r| *r = [0.0; D]);
     }
 
     /// Follows a renumbering of the structure's dofs (supports added or released between
@@ -345,13 +400,13 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     }
 
     /// The nodal displacements of the free-dof vector `u` under the current numbering.
-    pub(super) fn nodal_of(&self, u: &[f64]) -> Vec<[f64; 2]> {
+    pub(super) fn nodal_of(&self, u: &[f64]) -> Vec<[f64; D]> {
         (0..self.structure.node_count())
             .map(|n| nodal(&self.structure, u, n))
             .collect()
     }
 
-    fn local_jumps_of(&self, u: &[f64]) -> Vec<[f64; 2]> {
+    fn local_jumps_of(&self, u: &[f64]) -> Vec<[f64; D]> {
         self.candidates
             .iter()
             .map(|c| c.local(c.relative(|n| nodal(&self.structure, u, n))))
@@ -407,7 +462,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// assert!(sim.step(3.0, 0.5).is_err());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn step(&mut self, time: f64, force_factor: f64) -> Result<StepResult, SolverError> {
+    pub fn step(&mut self, time: f64, force_factor: f64) -> Result<StepResult<D>, SolverError> {
         let start = Instant::now();
         let version = self.begin_step(time, force_factor)?;
         let dt = time - self.time;
@@ -462,6 +517,15 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         let law = &self.zones[self.candidates[i].zone].law;
         !self.settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
     }
+
+    /// Whether the tangential component `d` (`1..D`) of candidate `i` is solved: its tangent
+    /// is needed ([`Self::tangent_needed`]) and, in 3D
+    /// ([`ContactSpace::DECOUPLE_HELD_TANGENTS`]), the contact can move along it.
+    pub(super) fn tangent_solved(&self, i: usize, d: usize) -> bool {
+        self.tangent_needed(i)
+            && !(<Dim<D> as ContactSpace<D>>::DECOUPLE_HELD_TANGENTS
+                && self.h_rows[D * i + d].is_empty())
+    }
 }
 
 /// The rows of `H` (normal then tangent per candidate) on the structure's free dofs.
@@ -469,17 +533,20 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
 /// # Errors
 /// [`SolverError::InvalidGeometry`] for a candidate whose normal relative displacement is fully
 /// prescribed.
-fn h_rows_of<S: Structure + ?Sized, L>(
+fn h_rows_of<S: Structure<D> + ?Sized, L, const D: usize>(
     structure: &S,
-    zones: &[ContactZone<L>],
-    candidates: &[Candidate],
-) -> Result<Vec<Vec<(usize, f64)>>, SolverError> {
-    let mut h_rows = Vec::with_capacity(2 * candidates.len());
+    zones: &[ContactZone<L, D>],
+    candidates: &[Candidate<D>],
+) -> Result<Vec<Vec<(usize, f64)>>, SolverError>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    let mut h_rows = Vec::with_capacity(D * candidates.len());
     for c in candidates {
         for dir in c.frame() {
             h_rows.push(c.h_row(structure, dir));
         }
-        if h_rows[h_rows.len() - 2].is_empty() {
+        if h_rows[h_rows.len() - D].is_empty() {
             return Err(SolverError::InvalidGeometry(format!(
                 "zone `{}`: the normal displacement of contactor node {} relative to its \
                  target is fully prescribed, so it cannot take part in contact",
@@ -490,7 +557,21 @@ fn h_rows_of<S: Structure + ?Sized, L>(
     Ok(h_rows)
 }
 
-fn nodal<S: Structure + ?Sized>(s: &S, u: &[f64], node: usize) -> [f64; 2] {
+/// The largest side of the box of the candidates' contactor nodes (1 for a single point).
+fn extent<S: Structure<D> + ?Sized, const D: usize>(s: &S, candidates: &[Candidate<D>]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
+    for c in candidates {
+        let x = s.node_position(c.node);
+        for a in 0..D {
+            lo[a] = lo[a].min(x[a]);
+            hi[a] = hi[a].max(x[a]);
+        }
+    }
+    let e = (0..D).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+    if e > 0.0 { e } else { 1.0 }
+}
+
+fn nodal<S: Structure<D> + ?Sized, const D: usize>(s: &S, u: &[f64], node: usize) -> [f64; D] {
     let mut v = s.prescribed_displacement(node);
     for (c, d) in s.node_dofs(node).into_iter().enumerate() {
         if let Some(i) = d {

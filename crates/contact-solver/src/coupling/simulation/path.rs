@@ -5,12 +5,13 @@
 use super::ContactSimulation;
 use super::last_problem::LastProblem;
 use super::report::StepReport;
-use super::settings::{FALLBACK_DENSE_LIMIT, FlexibilityMode};
+use super::settings::FlexibilityMode;
 use super::solve::Solved;
 use crate::coupling::primal::{LocalFrame, frames};
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
-use fem_core::Structure;
+use fem_core::{Dim, Structure};
 
 /// How one detection pass solves its active set.
 #[derive(Debug, PartialEq)]
@@ -20,13 +21,16 @@ pub(super) enum Path {
     ActiveSet(Vec<LocalFrame>),
 }
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// Chooses the path of `active`, builds its operator (`F*` when dense and changed) and
     /// solves the reduced problem (stage 3) on it.
     pub(super) fn solve_pass(
         &mut self,
         active: &[usize],
-        free: &[[f64; 2]],
+        free: &[[f64; D]],
         dt: f64,
         version: u64,
         report: &mut StepReport,
@@ -50,7 +54,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                     | SolverError::Unsupported(_),
                 ) if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) => {
                     self.counters.active_set_fallbacks += 1;
-                    path = if active.len() <= FALLBACK_DENSE_LIMIT {
+                    path = if active.len() <= <Dim<D> as ContactSpace<D>>::FALLBACK_DENSE_LIMIT {
                         Path::Dense
                     } else {
                         Path::MatrixFree

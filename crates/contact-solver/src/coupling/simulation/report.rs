@@ -1,7 +1,8 @@
 //! What a step reports: per contact ([`ContactRecord`]), per step ([`StepReport`]) and over the
 //! whole simulation ([`Counters`]).
 
-use contact_laws::LocalVec2;
+use crate::coupling::space::ContactSpace;
+use fem_core::Dim;
 use std::time::Duration;
 
 /// What a contact is doing at the end of a step.
@@ -50,15 +51,20 @@ impl InterfaceStatus {
 }
 
 /// One contact candidate at the end of a step. Local vectors have named components: `r.n` (normal,
-/// `> 0` compression) and `r.t` (tangential).
+/// `> 0` compression) and `r.t` (tangential). In 2D (the default `D`) the tangential
+/// quantities are numbers and the local vectors [`LocalVec2`](contact_laws::LocalVec2); in 3D
+/// they are pairs and [`LocalVec3`](contact_laws::LocalVec3) ([`ContactSpace`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactRecord {
+pub struct ContactRecord<const D: usize = 2>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// Zone index.
     pub zone: usize,
     /// Contactor node.
     pub node: usize,
     /// Reference position of the contactor node.
-    pub position: [f64; 2],
+    pub position: [f64; D],
     /// Tributary area of the node: `r / area` is the interface stress.
     pub area: f64,
     /// Status.
@@ -67,24 +73,35 @@ pub struct ContactRecord {
     /// normal jump `u_n` of the RCCM law.
     pub gap: f64,
     /// Total tangential relative displacement `u_t`.
-    pub u_t: f64,
+    pub u_t: <Dim<D> as ContactSpace<D>>::Tangential,
     /// Tangential relative displacement of this step (the slip increment when sliding).
-    pub slip_increment: f64,
+    pub slip_increment: <Dim<D> as ContactSpace<D>>::Tangential,
     /// Adhesion intensity β ([`ContactLaw::adhesion_intensity`](contact_laws::ContactLaw::adhesion_intensity), 0 without adhesion).
     pub beta: f64,
     /// Unit normal of the contact, global axes, from the target towards the contactor.
-    pub normal: [f64; 2],
-    /// Unit tangent `t = (n_y, −n_x)`, global axes: `r.t` is along it.
-    pub tangent: [f64; 2],
+    pub normal: [f64; D],
+    /// Unit tangent `t = (n_y, −n_x)` (2D; the two tangents of the frame in 3D), global
+    /// axes: `r.t` is along it.
+    pub tangent: <Dim<D> as ContactSpace<D>>::Tangents,
     /// Total reaction `r = r̄ + r_adh` on the contactor (`r_n > 0` compression).
-    pub r: LocalVec2,
+    pub r: <Dim<D> as ContactSpace<D>>::Local,
     /// Reaction of the contact law proper, `r̄ ∈ K_μ̄`.
-    pub r_bar: LocalVec2,
+    pub r_bar: <Dim<D> as ContactSpace<D>>::Local,
     /// Adhesive reaction `r_adh`.
-    pub r_adh: LocalVec2,
+    pub r_adh: <Dim<D> as ContactSpace<D>>::Local,
 }
 
-impl ContactRecord {
+impl<const D: usize> ContactRecord<D>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    /// The total reaction's local components `[r_n, r_t…]` (any dimension).
+    pub fn reaction(&self) -> [f64; D] {
+        <Dim<D> as ContactSpace<D>>::components(&self.r)
+    }
+}
+
+impl ContactRecord<2> {
     /// The total reaction on the contactor node in global axes, `r_n n + r_t t`.
     ///
     /// # Examples
@@ -105,6 +122,14 @@ impl ContactRecord {
             self.r.n * n[0] + self.r.t[0] * t[0],
             self.r.n * n[1] + self.r.t[0] * t[1],
         ]
+    }
+}
+
+impl ContactRecord<3> {
+    /// The total reaction on the contactor node in global axes, `r_n n + r_t1 t1 + r_t2 t2`.
+    pub fn force(&self) -> [f64; 3] {
+        let (n, [t1, t2]) = (self.normal, self.tangent);
+        core::array::from_fn(|a| self.r.n * n[a] + self.r.t[0] * t1[a] + self.r.t[1] * t2[a])
     }
 }
 
@@ -219,11 +244,14 @@ impl Counters {
 /// The result of one step.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
-pub struct StepResult {
+pub struct StepResult<const D: usize = 2>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// Counters and timing.
     pub report: StepReport,
     /// Every candidate, in recognition order.
-    pub contacts: Vec<ContactRecord>,
+    pub contacts: Vec<ContactRecord<D>>,
 }
 
 impl StepReport {

@@ -1,7 +1,9 @@
 //! Settings of a simulation: the reduced solver, the adhesion loop, the flexibility path and the
 //! skip rules.
 
+use crate::coupling::space::ContactSpace;
 use crate::local::UzawaSettings;
+use fem_core::Dim;
 
 /// Settings of a simulation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,7 +58,8 @@ pub enum FlexibilityMode {
     /// and node-to-segment with every component of the contactors free, no active adhesion, a
     /// structure that exposes its stiffness), else matrix-free (when no active law is adhesive:
     /// the exact condensation of the springs needs the dense `F*`). A step whose active-set
-    /// iteration does not converge is solved again with a dense `F*` (up to 8000 contacts) or
+    /// iteration does not converge is solved again with a dense `F*` (up to 8000 contacts in 2D,
+    /// 3000 in 3D: `ContactSpace::FALLBACK_DENSE_LIMIT`) or
     /// matrix-free (`Counters::active_set_fallbacks`).
     Auto {
         /// Largest active set solved with a dense `F*`.
@@ -71,10 +74,6 @@ pub enum FlexibilityMode {
     /// ([`crate::coupling::primal`]). Steps outside its scope are refused with the reason.
     ActiveSet,
 }
-
-/// Largest active set that `Auto` solves with a dense `F*` when its active-set iteration did
-/// not converge (a dense `F*` of 8000 contacts takes 2 GiB); matrix-free beyond.
-pub(super) const FALLBACK_DENSE_LIMIT: usize = 8000;
 
 /// Default [`FlexibilityMode::Auto`] limit, measured (`docs/benchmarks.md`, "Scale"): the
 /// primal active set and the dense `F*` cost the same at about 100 contacts, and the active set
@@ -140,6 +139,17 @@ impl Default for SimulationSettings {
 }
 
 impl SimulationSettings {
+    /// The default settings of dimension `D`: [`Default`] with the `Auto` dense limit measured
+    /// for that dimension ([`ContactSpace::DENSE_LIMIT`]: 500 contacts in 2D, 3000 in 3D).
+    pub fn for_dimension<const D: usize>() -> Self
+    where
+        Dim<D>: ContactSpace<D>,
+    {
+        Self::default().with_flexibility(FlexibilityMode::Auto {
+            dense_limit: <Dim<D> as ContactSpace<D>>::DENSE_LIMIT,
+        })
+    }
+
     /// These settings with [`solver`](Self::solver) replaced.
     #[must_use]
     pub fn with_solver(mut self, solver: UzawaSettings) -> Self {

@@ -5,19 +5,19 @@
 //! gaps, solves, and returns the reactions on the active set.
 
 use super::ContactSimulation;
+use super::dispatch;
 use super::last_problem::{AdhesiveInputs, LastProblem};
 use super::report::StepReport;
-use crate::coupling::primal::adhesive::{AdhesiveData, solve_primal_adhesive};
-use crate::coupling::primal::{LocalFrame, PrimalStep, solve_primal};
+use crate::coupling::primal::adhesive::AdhesiveData;
+use crate::coupling::primal::{LocalFrame, PrimalStep};
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::ReducedProblem;
 use crate::local::adhesion::{
     AdhesionOptions, AdhesiveSolution, AdhesiveStep, any_adhesion_active, solve_adhesive,
 };
-use crate::local::contact_statuses;
-use crate::local::matrix_free::solve_matrix_free;
 use contact_laws::{ContactLaw, ContactStatus};
-use fem_core::Structure;
+use fem_core::{Dim, Structure};
 
 /// The solution of the reduced problem of a step, on the active set.
 pub(super) struct Solved<T> {
@@ -67,12 +67,15 @@ impl<T> Solved<T> {
     }
 }
 
-impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// The primal active-set solve of the step (no `F*`), with the adhesion fixed point
     /// around it when a law is adhesive ([`crate::coupling::primal::adhesive`]).
     pub(super) fn solve_active_set(
         &mut self,
-        free: &[[f64; 2]],
+        free: &[[f64; D]],
         frames: &[LocalFrame],
         dt: f64,
         report: &mut StepReport,
@@ -89,13 +92,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             .zip(&states)
             .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
             .collect();
-        let mut q = vec![0.0; 2 * active.len()];
-        for (k, &i) in active.iter().enumerate() {
-            q[2 * k] = free[i][0];
-            if tangent[k] {
-                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
-            }
-        }
+        let q = self.q_of(&active, free);
         let r0: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let step = PrimalStep {
             active: &active,
@@ -119,7 +116,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         };
         let before = self.primal.factorizations;
         if any_adhesion_active(&laws, &states) {
-            let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+            let u_start: Vec<[f64; D]> = active.iter().map(|&i| self.jumps[i]).collect();
             let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
             let data = AdhesiveData {
                 u_start: &u_start,
@@ -127,7 +124,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 dt,
             };
             let options = self.adhesion_options();
-            let sol = solve_primal_adhesive::<_, 2, _, 1, 2>(
+            let sol = dispatch::primal_adhesive(
                 &self.structure,
                 &mut self.primal,
                 &step,
@@ -152,7 +149,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
                 extend: Vec::new(),
             });
         }
-        let sol = solve_primal::<_, 2, _, 1>(&self.structure, &mut self.primal, &step)?;
+        let sol = dispatch::primal(&self.structure, &mut self.primal, &step)?;
         self.counters.active_set_steps += 1;
         self.counters.active_set_factorizations += self.primal.factorizations - before;
         self.counters.active_set_solves += sol.solves;
@@ -174,35 +171,45 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// The reduced solve without `F*`: one structure solve per product `F* r`.
     pub(super) fn solve_matrix_free_active(
         &mut self,
-        free: &[[f64; 2]],
+        free: &[[f64; D]],
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
         let active = self.w_active.clone();
         let na = active.len();
-        let m = 2 * na;
+        let m = D * na;
         let laws: Vec<L> = active
             .iter()
             .map(|&i| self.zones[self.candidates[i].zone].law.clone())
             .collect();
         let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let mut q = vec![0.0; m];
-        for (k, &i) in active.iter().enumerate() {
-            q[2 * k] = free[i][0];
-            if self.tangent_needed(i) {
-                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
-            }
-        }
+        let q = self.q_of(&active, free);
         let rho0 = self.estimate_rho0(&active)?;
         let mut r: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let mut x = vec![0.0; m];
-        let rows: Vec<usize> = active.iter().flat_map(|&i| [2 * i, 2 * i + 1]).collect();
+        let rows: Vec<usize> = active
+            .iter()
+            .flat_map(|&i| (0..D).map(move |d| D * i + d))
+            .collect();
+        // rows that carry the contact's response: in 3D a decoupled tangential row is
+        // `x = q + r/ρ⁰` (its `r_t` stays 0); 2D applies every row, as it always did
+        let this = &*self;
+        let applied: Vec<bool> = active
+            .iter()
+            .flat_map(|&i| {
+                (0..D).map(move |d| {
+                    d == 0
+                        || !<Dim<D> as ContactSpace<D>>::DECOUPLE_HELD_TANGENTS
+                        || this.tangent_solved(i, d)
+                })
+            })
+            .collect();
         let (structure, h_rows) = (&self.structure, &self.h_rows);
         let mut scratch = vec![0.0; structure.dof_count()];
         let mut applications = 0;
         let apply = |r: &[f64], x: &mut [f64]| -> Result<(), SolverError> {
             scratch.fill(0.0);
             for (j, &row) in rows.iter().enumerate() {
-                if r[j] != 0.0 {
+                if applied[j] && r[j] != 0.0 {
                     for &(dof, a) in &h_rows[row] {
                         scratch[dof] += a * r[j];
                     }
@@ -212,14 +219,18 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             applications += 1;
             for (j, &row) in rows.iter().enumerate() {
                 x[j] = q[j]
-                    + h_rows[row]
-                        .iter()
-                        .map(|&(dof, a)| a * scratch[dof])
-                        .sum::<f64>();
+                    + if applied[j] {
+                        h_rows[row]
+                            .iter()
+                            .map(|&(dof, a)| a * scratch[dof])
+                            .sum::<f64>()
+                    } else {
+                        r[j] / rho0[j / D]
+                    };
             }
             Ok(())
         };
-        let mf = solve_matrix_free(
+        let mf = dispatch::matrix_free::<_, D>(
             apply,
             &laws,
             &states,
@@ -234,7 +245,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         report.contact_iterations += mf.iterations;
         report.residual = mf.residual;
         report.converged &= mf.converged;
-        let statuses = contact_statuses::<_, 1>(&laws, &states, &rho0, &r, &x);
+        let statuses = dispatch::statuses::<_, D>(&laws, &states, &rho0, &r, &x);
         Ok(Solved {
             r: r.clone(),
             r_bar: r,
@@ -249,27 +260,19 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
     /// The adhesion fixed point around the reduced solve, on the cached active set.
     pub(super) fn solve_active(
         &mut self,
-        free: &[[f64; 2]],
+        free: &[[f64; D]],
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
         let active = &self.w_active;
-        let m = 2 * active.len();
         let laws: Vec<L> = active
             .iter()
             .map(|&i| self.zones[self.candidates[i].zone].law.clone())
             .collect();
         let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let u_start: Vec<[f64; 2]> = active.iter().map(|&i| self.jumps[i]).collect();
+        let u_start: Vec<[f64; D]> = active.iter().map(|&i| self.jumps[i]).collect();
         let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
-        // q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)
-        let mut q = vec![0.0; m];
-        for (k, &i) in active.iter().enumerate() {
-            q[2 * k] = free[i][0];
-            if self.tangent_needed(i) {
-                q[2 * k + 1] = free[i][1] - self.jumps[i][1];
-            }
-        }
+        let q = self.q_of(active, free);
         let r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let step = AdhesiveStep {
             w: &self.w,
@@ -292,6 +295,21 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
             areas,
         };
         Ok(self.finish_adhesive(sol, Vec::new(), inputs, report, false))
+    }
+
+    /// `q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)` per contact of `active`
+    /// (`free`: the jumps under `u_free`); `0` on the decoupled tangential rows.
+    pub(super) fn q_of(&self, active: &[usize], free: &[[f64; D]]) -> Vec<f64> {
+        let mut q = vec![0.0; D * active.len()];
+        for (k, &i) in active.iter().enumerate() {
+            q[D * k] = free[i][0];
+            for d in 1..D {
+                if self.tangent_solved(i, d) {
+                    q[D * k + d] = free[i][d] - self.jumps[i][d];
+                }
+            }
+        }
+        q
     }
 
     /// The adhesion loop's options from the settings (the primal path reads its tolerance,
@@ -317,7 +335,7 @@ impl<S: Structure, L: ContactLaw + Clone> ContactSimulation<S, L> {
         &mut self,
         sol: AdhesiveSolution<L::State>,
         alpha: Vec<f64>,
-        inputs: AdhesiveInputs<L>,
+        inputs: AdhesiveInputs<L, D>,
         report: &mut StepReport,
         counted: bool,
     ) -> Solved<L::State> {
