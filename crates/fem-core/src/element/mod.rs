@@ -53,8 +53,10 @@
 //! # Ok::<(), fem_core::FemError>(())
 //! ```
 
+mod by_region;
 pub mod hex20;
 pub mod hex8;
+pub(crate) use by_region::RegionElements;
 pub mod kernel;
 pub mod quad4;
 pub mod quad8;

@@ -64,21 +64,9 @@ impl LinearElasticModel {
         region: u32,
         element: Arc<dyn Element<2>>,
     ) -> Result<Self, FemError> {
-        if !self.mesh.regions().contains(&region) {
-            return Err(FemError::MissingMaterial {
-                region,
-                element: usize::MAX,
-            });
-        }
-        let expected = self.mesh.kind().node_count();
-        if element.node_count() != expected {
-            return Err(FemError::LengthMismatch {
-                what: "nodes of the region's element (the mesh kind's node count)",
-                expected,
-                got: element.node_count(),
-            });
-        }
-        self.elements.insert(region, element);
+        let nodes = self.mesh.kind().node_count();
+        self.elements
+            .insert(region, element, self.mesh.regions(), nodes)?;
         self.assemble_and_factor()?;
         Ok(self)
     }
@@ -86,9 +74,7 @@ impl LinearElasticModel {
     /// The element that computes element `e`: the user's for its region, else the built-in
     /// one of the mesh's kind.
     pub(crate) fn element_at(&self, e: usize) -> &dyn Element<2> {
-        let region = self.mesh.regions()[e];
         self.elements
-            .get(&region)
-            .map_or(self.mesh.kind().element(), |a| &**a)
+            .get(self.mesh.regions()[e], self.mesh.kind().element())
     }
 }

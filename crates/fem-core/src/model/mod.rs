@@ -8,7 +8,7 @@ mod post;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
-use crate::element::{Element, Stress};
+use crate::element::{Element, RegionElements, Stress};
 use crate::error::{FemError, finite};
 use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
@@ -78,7 +78,7 @@ pub struct LinearElasticModel {
     /// `K` with the pinned rows and columns decoupled (the matrix factorised when floating).
     pinned_values: Vec<f64>,
     /// Users' elements by region, in place of the mesh kind's ([`LinearElasticModel::with_element`]).
-    elements: BTreeMap<u32, Arc<dyn Element<2>>>,
+    elements: RegionElements<2>,
     /// An orthonormal basis of the modes (column-major), for the projection `P = I − Q Qᵀ`.
     mode_basis: Vec<f64>,
 }
@@ -169,7 +169,7 @@ impl LinearElasticModel {
             pinned: Vec::new(),
             pinned_values: Vec::new(),
             mode_basis: Vec::new(),
-            elements: BTreeMap::new(),
+            elements: RegionElements::default(),
         };
         model.find_modes()?;
         model.assemble_and_factor()?;
@@ -188,7 +188,7 @@ impl LinearElasticModel {
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
             let region = self.mesh.regions()[e];
             let material = &self.materials[&region];
-            let element = self.elements.get(&region).map_or(kind.element(), |a| &**a);
+            let element = self.elements.get(region, kind.element());
             element.stiffness_into(e, &coords, material, &self.idealization, &mut k_e)?;
             if k_e.iter().any(|v| !v.is_finite()) {
                 return Err(FemError::NonFiniteStiffness {

@@ -8,7 +8,7 @@ mod elements;
 use super::mesh::SolidMesh;
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
-use crate::element::{Element, Stress3};
+use crate::element::{Element, RegionElements, Stress3};
 use crate::error::{FemError, finite};
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
@@ -59,7 +59,7 @@ pub struct SolidModel {
     version: u64,
     ordering: FillOrdering,
     /// Users' elements by region ([`SolidModel::with_element`]).
-    elements: BTreeMap<u32, Arc<dyn Element<3>>>,
+    elements: RegionElements<3>,
 }
 
 impl core::fmt::Debug for SolidModel {
@@ -132,7 +132,7 @@ impl SolidModel {
             initial_force: vec![0.0; n3],
             version: 0,
             ordering,
-            elements: BTreeMap::new(),
+            elements: RegionElements::default(),
         };
         model.assemble_and_factor()?;
         Ok(model)
@@ -150,7 +150,7 @@ impl SolidModel {
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
             let region = self.mesh.regions()[e];
             let material = &self.materials[&region];
-            let element = self.elements.get(&region).map_or(kind.element(), |a| &**a);
+            let element = self.elements.get(region, kind.element());
             element.stiffness_into(e, &coords, material, &(), &mut k_e)?;
             if k_e.iter().any(|v| !v.is_finite()) {
                 return Err(FemError::NonFiniteStiffness {
