@@ -161,7 +161,7 @@ impl BoundaryMass {
     /// use fem_core::solid::{Face, SolidKind, SolidMesh};
     /// let nodes = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     /// let mesh = SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![])?;
-    /// let m = BoundaryMass::from_faces(&mesh, &[Face { element: 0, face: 0 }])?;
+    /// let m = BoundaryMass::from_faces(&mesh, &[Face { element: 0, side: 0 }])?;
     /// // a uniform unit pressure on the face z = 0 (area 1/2): a third of it at each corner
     /// let f = m.apply(&[1.0; 3]);
     /// assert!(f.iter().all(|v| (v - 1.0 / 6.0).abs() < 1e-15));
@@ -174,11 +174,11 @@ impl BoundaryMass {
             });
         }
         if let Some(f) = faces.iter().find(|f| {
-            f.element >= mesh.element_count() || f.face as usize >= mesh.kind().face_count()
+            f.element >= mesh.element_count() || f.side as usize >= mesh.kind().face_count()
         }) {
             return Err(FemError::InvalidSide {
                 element: f.element,
-                side: f.face,
+                side: f.side,
                 element_count: mesh.element_count(),
             });
         }
@@ -506,7 +506,7 @@ mod tests {
         let p2 = mesh.to_tet10(None).unwrap();
         let face = Face {
             element: 0,
-            face: 0,
+            side: 0,
         };
         let m = BoundaryMass::from_faces(&p2, &[face]).unwrap();
         assert_eq!(m.nodes().len(), 6);
@@ -525,7 +525,7 @@ mod tests {
                 &mesh,
                 &[Face {
                     element: 0,
-                    face: 4
+                    side: 4
                 }]
             ),
             Err(FemError::InvalidSide { side: 4, .. })

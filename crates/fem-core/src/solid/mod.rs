@@ -11,7 +11,8 @@
 
 pub mod generate;
 pub mod gmsh;
-pub mod mesh;
+/// The mesh of both dimensions ([`SolidMesh`] is `Mesh<3>`).
+pub use crate::mesh;
 mod model;
 mod modes;
 pub mod quadrature;

@@ -187,7 +187,7 @@ fn an_empty_mesh_is_refused() {
     )
     .unwrap_err();
     assert_eq!(e, FemError::EmptyMesh { node_count: 2 });
-    let e = Mesh::new(vec![], fem_core::ElementKind::Tri6, vec![], vec![]).unwrap_err();
+    let e = Mesh::<2>::new(vec![], fem_core::ElementKind::Tri6, vec![], vec![]).unwrap_err();
     assert_eq!(e, FemError::EmptyMesh { node_count: 0 });
 }
 

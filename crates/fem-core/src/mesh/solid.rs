@@ -1,116 +1,10 @@
-//! Meshes of 4-node (P1) and 10-node (P2) tetrahedra, with regions, node sets and face sets.
+//! What the 3D mesh has of its own: the names of its facets (faces, face sets), the nodal
+//! areas of a face set, `to_tet10`, and the corner check of its elements.
 
-use crate::element::{Element, Hex8, Hex20, Tet4, Tet10};
+use super::{Face, SolidKind, SolidMesh, TET_EDGES};
+use crate::element::Element;
 use crate::error::FemError;
 use std::collections::BTreeMap;
-
-/// The element family of a 3D mesh.
-///
-/// Node order: tetrahedra have corners `0, 1, 2, 3` with `(x₁ − x₀, x₂ − x₀, x₃ − x₀)` a
-/// right-handed triad (positive volume), then for P2 the mid-edge nodes `4` (edge 0–1), `5`
-/// (1–2), `6` (2–0), `7` (0–3), `8` (1–3), `9` (2–3): VTK's order. Gmsh numbers the last two the
-/// other way round; [`crate::solid::gmsh`] swaps them on reading. Hexahedra have corners
-/// `0..4` counter-clockwise seen from above, then `4..8` above them, then for Hex20 the
-/// mid-edge nodes in VTK's order ([`crate::element::hex20`]; Gmsh's order is mapped on reading).
-/// The element of each kind is [`SolidKind::element`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum SolidKind {
-    /// Linear 4-node tetrahedron.
-    Tet4,
-    /// Quadratic 10-node isoparametric tetrahedron.
-    Tet10,
-    /// Trilinear 8-node hexahedron.
-    Hex8,
-    /// Quadratic 20-node serendipity hexahedron.
-    Hex20,
-}
-
-pub use crate::element::tet10::TET_EDGES;
-
-impl SolidKind {
-    /// Every kind, for tests and messages.
-    pub const ALL: [SolidKind; 4] = [
-        SolidKind::Tet4,
-        SolidKind::Tet10,
-        SolidKind::Hex8,
-        SolidKind::Hex20,
-    ];
-
-    /// The built-in element of this kind.
-    #[inline]
-    pub fn element(self) -> &'static dyn Element<3> {
-        match self {
-            SolidKind::Tet4 => &Tet4,
-            SolidKind::Tet10 => &Tet10,
-            SolidKind::Hex8 => &Hex8,
-            SolidKind::Hex20 => &Hex20,
-        }
-    }
-
-    /// Nodes per element: 4, 10, 8 or 20.
-    #[inline]
-    pub fn node_count(self) -> usize {
-        match self {
-            SolidKind::Tet4 => 4,
-            SolidKind::Tet10 => 10,
-            SolidKind::Hex8 => 8,
-            SolidKind::Hex20 => 20,
-        }
-    }
-
-    /// Corners per element: 4 or 8.
-    #[inline]
-    pub fn corner_count(self) -> usize {
-        match self {
-            SolidKind::Tet4 | SolidKind::Tet10 => 4,
-            _ => 8,
-        }
-    }
-
-    /// Faces per element: 4 (triangles) or 6 (quadrilaterals).
-    #[inline]
-    pub fn face_count(self) -> usize {
-        match self {
-            SolidKind::Tet4 | SolidKind::Tet10 => 4,
-            _ => 6,
-        }
-    }
-
-    /// Corners per face: 3 or 4.
-    #[inline]
-    pub fn face_corner_count(self) -> usize {
-        match self {
-            SolidKind::Tet4 | SolidKind::Tet10 => 3,
-            _ => 4,
-        }
-    }
-
-    /// The local nodes of face `face ∈ 0..face_count()`, corners counter-clockwise seen from
-    /// outside, then for quadratic kinds the mid-edge nodes of the face's edges (c0–c1, c1–c2,
-    /// …): the node order of a 3/6-node triangle or a 4/8-node quadrilateral. Tetrahedra:
-    ///
-    /// ```text
-    /// face 0: 0 2 1 (opposite corner 3)    face 2: 1 2 3 (opposite corner 0)
-    /// face 1: 0 1 3 (opposite corner 2)    face 3: 0 3 2 (opposite corner 1)
-    /// ```
-    ///
-    /// hexahedra: faces `ζ = −1, η = −1, ξ = 1, η = 1, ξ = −1, ζ = 1`
-    /// ([`crate::element::hex8::FACES`]).
-    ///
-    /// # Panics
-    /// If `face >= self.face_count()`.
-    #[inline]
-    #[track_caller]
-    pub fn face_nodes(self, face: usize) -> &'static [usize] {
-        match self {
-            SolidKind::Tet4 => crate::element::tet4::FACES[face],
-            SolidKind::Tet10 => crate::element::tet10::FACES[face],
-            SolidKind::Hex8 => crate::element::hex8::FACES[face],
-            SolidKind::Hex20 => crate::element::hex20::FACES[face],
-        }
-    }
-}
 
 /// Where the mid-edge node of an edge `(a, b)` goes ([`SolidMesh::to_tet10`]).
 pub type MidpointFn<'a> = dyn Fn([f64; 3], [f64; 3]) -> [f64; 3] + 'a;
@@ -125,31 +19,6 @@ pub(crate) struct FacePoint {
     pub(crate) weight: f64,
     /// The face nodes' shape values (the first 3, 4, 6 or 8).
     pub(crate) n: [f64; 8],
-}
-
-/// A face of a tetrahedron: element index and local face `0..4` (see
-/// [`SolidKind::face_nodes`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Face {
-    /// Element index.
-    pub element: usize,
-    /// Local face index in `0..face_count()` of the element's kind.
-    pub face: u8,
-}
-
-/// A tetrahedral mesh: node coordinates `(x, y, z)`, connectivity, region ids, named node sets
-/// and named face sets (Gmsh's physical volumes and surfaces).
-///
-/// Built with [`SolidMesh::new`], which checks indices, finiteness and orientation (corner
-/// volume > 0), so every `SolidMesh` is valid.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SolidMesh {
-    nodes: Vec<[f64; 3]>,
-    kind: SolidKind,
-    connectivity: Vec<usize>,
-    regions: Vec<u32>,
-    node_sets: BTreeMap<String, Vec<usize>>,
-    face_sets: BTreeMap<String, Vec<Face>>,
 }
 
 /// `(b − a) · ((c − a) × (d − a)) / 6`.
@@ -181,75 +50,17 @@ pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 impl SolidMesh {
-    /// Builds and validates a mesh. `connectivity` is flat, `kind.node_count()` entries per
-    /// element; `regions` has one id per element (empty means all in region 0).
+    /// Adds (or replaces) a named face set ([`SolidMesh::add_facet_set`]), and the node set of
+    /// the same name (every node of its faces) unless one exists already.
     ///
     /// # Errors
-    /// - [`FemError::NonFiniteNode3`] for a NaN or infinite coordinate;
-    /// - [`FemError::EmptyMesh`] for a connectivity without a single element;
-    /// - [`FemError::BadConnectivity`], [`FemError::NodeOutOfRange`],
-    ///   [`FemError::LengthMismatch`] (regions) for inconsistent arrays;
-    /// - [`FemError::DegenerateSolid`] (corner volume below `1e-12` of the cubed longest edge)
-    ///   and [`FemError::InvertedElement`] (a left-handed corner triad) with the element index.
-    pub fn new(
-        nodes: Vec<[f64; 3]>,
-        kind: SolidKind,
-        connectivity: Vec<usize>,
-        regions: Vec<u32>,
-    ) -> Result<Self, FemError> {
-        for (node, p) in nodes.iter().enumerate() {
-            if !p.iter().all(|v| v.is_finite()) {
-                return Err(FemError::NonFiniteNode3 { node, coords: *p });
-            }
-        }
-        let npe = kind.node_count();
-        let regions = crate::mesh::checked_cells(nodes.len(), npe, &connectivity, regions)?;
-        for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
-            check_corners(element, &nodes, &cell[..kind.corner_count()])?;
-        }
-        Ok(Self {
-            nodes,
-            kind,
-            connectivity,
-            regions,
-            node_sets: BTreeMap::new(),
-            face_sets: BTreeMap::new(),
-        })
-    }
-
-    /// Adds (or replaces) a named node set (sorted, without repeats).
-    ///
-    /// # Errors
-    /// [`FemError::UnknownNode`] for an unknown node.
-    pub fn add_node_set(&mut self, name: &str, nodes: Vec<usize>) -> Result<(), FemError> {
-        let nodes = crate::mesh::checked_node_set(self.nodes.len(), nodes)?;
-        self.node_sets.insert(name.to_string(), nodes);
-        Ok(())
-    }
-
-    /// Adds (or replaces) a named face set, and the node set of the same name (every node of
-    /// its faces) unless one exists already.
-    ///
-    /// # Errors
-    /// [`FemError::InvalidSide`] for a face whose element or local index (`0..4`) is out of
-    /// range.
+    /// [`FemError::InvalidSide`] for a face whose element or local index is out of range.
     pub fn add_face_set(&mut self, name: &str, faces: Vec<Face>) -> Result<(), FemError> {
-        if let Some(f) = faces.iter().find(|f| {
-            f.element >= self.element_count() || f.face as usize >= self.kind.face_count()
-        }) {
-            return Err(FemError::InvalidSide {
-                element: f.element,
-                side: f.face,
-                element_count: self.element_count(),
-            });
-        }
+        self.add_facet_set(name, faces)?;
         if !self.node_sets.contains_key(name) {
-            let mut nodes: Vec<usize> = faces.iter().flat_map(|f| self.face_node_ids(*f)).collect();
-            nodes.sort_unstable();
-            nodes.dedup();
+            let nodes = self.facet_set_nodes(name)?;
             self.node_sets.insert(name.to_string(), nodes);
         }
-        self.face_sets.insert(name.to_string(), faces);
         Ok(())
     }
 
@@ -259,98 +70,26 @@ impl SolidMesh {
     /// If the face does not exist.
     #[track_caller]
     pub fn face_node_ids(&self, face: Face) -> impl Iterator<Item = usize> + '_ {
-        let cell = self.element(face.element);
-        self.kind
-            .face_nodes(face.face as usize)
-            .iter()
-            .map(move |&l| cell[l])
+        self.facet_nodes(face)
     }
 
-    /// Node coordinates.
-    #[inline]
-    pub fn nodes(&self) -> &[[f64; 3]] {
-        &self.nodes
-    }
-
-    /// Number of nodes.
-    #[inline]
-    pub fn node_count(&self) -> usize {
-        self.nodes.len()
-    }
-
-    /// Number of elements.
-    #[inline]
-    pub fn element_count(&self) -> usize {
-        self.connectivity.len() / self.kind.node_count()
-    }
-
-    /// The element family.
-    #[inline]
-    pub fn kind(&self) -> SolidKind {
-        self.kind
-    }
-
-    /// The nodes of element `e`.
-    ///
-    /// # Panics
-    /// If `e >= element_count()`.
-    #[inline]
-    #[track_caller]
-    pub fn element(&self, e: usize) -> &[usize] {
-        let npe = self.kind.node_count();
-        &self.connectivity[e * npe..(e + 1) * npe]
-    }
-
-    /// The flat connectivity.
-    #[inline]
-    pub fn connectivity(&self) -> &[usize] {
-        &self.connectivity
-    }
-
-    /// Region id of every element.
-    #[inline]
-    pub fn regions(&self) -> &[u32] {
-        &self.regions
-    }
-
-    /// A named node set.
-    ///
-    /// # Errors
-    /// [`FemError::UnknownSet`] if there is none of that name.
-    pub fn node_set(&self, name: &str) -> Result<&[usize], FemError> {
-        self.node_sets
-            .get(name)
-            .map(Vec::as_slice)
-            .ok_or_else(|| FemError::UnknownSet {
-                kind: "node",
-                name: name.to_string(),
-            })
-    }
-
-    /// A named face set.
+    /// A named face set ([`SolidMesh::facet_set`]).
     ///
     /// # Errors
     /// [`FemError::UnknownSet`] if there is none of that name.
     pub fn face_set(&self, name: &str) -> Result<&[Face], FemError> {
-        self.face_sets
-            .get(name)
-            .map(Vec::as_slice)
-            .ok_or_else(|| FemError::UnknownSet {
-                kind: "face",
-                name: name.to_string(),
-            })
-    }
-
-    /// All node sets, by name.
-    #[inline]
-    pub fn node_sets(&self) -> &BTreeMap<String, Vec<usize>> {
-        &self.node_sets
+        self.facet_set(name)
     }
 
     /// All face sets, by name.
     #[inline]
     pub fn face_sets(&self) -> &BTreeMap<String, Vec<Face>> {
-        &self.face_sets
+        self.facet_sets()
+    }
+
+    /// The faces that belong to one element only (the boundary), sorted.
+    pub fn boundary_faces(&self) -> Vec<Face> {
+        self.boundary_facets()
     }
 
     /// Calls `f(nodes, point)` at each point of a rule on `face` (degree 4 on a 3- or 6-node
@@ -435,34 +174,6 @@ impl SolidMesh {
             .unzip())
     }
 
-    /// The faces that belong to one element only (the boundary), in element order.
-    pub fn boundary_faces(&self) -> Vec<Face> {
-        let mut seen: std::collections::HashMap<[usize; 4], (Face, u32)> =
-            std::collections::HashMap::with_capacity(2 * self.element_count());
-        let corners = self.kind.face_corner_count();
-        for element in 0..self.element_count() {
-            let cell = self.element(element);
-            for face in 0..self.kind.face_count() as u8 {
-                let l = self.kind.face_nodes(face as usize);
-                let mut key = [usize::MAX; 4];
-                for (k, &i) in key.iter_mut().zip(&l[..corners]) {
-                    *k = cell[i];
-                }
-                key.sort_unstable();
-                seen.entry(key)
-                    .and_modify(|e| e.1 += 1)
-                    .or_insert((Face { element, face }, 1));
-            }
-        }
-        let mut out: Vec<Face> = seen
-            .into_values()
-            .filter(|(_, n)| *n == 1)
-            .map(|(f, _)| f)
-            .collect();
-        out.sort_unstable();
-        out
-    }
-
     /// The same mesh with P2 (10-node) tetrahedra: a mid-edge node is added on every edge at
     /// `midpoint(a, b)`, where `a, b` are the edge's end nodes. A P2 mesh is returned as is.
     /// Node and face sets carry over (a face set's node set gains its faces' new nodes).
@@ -509,14 +220,14 @@ impl SolidMesh {
         let mut out = Self::new(nodes, SolidKind::Tet10, connectivity, self.regions.clone())?;
         for (name, set) in &self.node_sets {
             let mut set = set.clone();
-            if let Some(faces) = self.face_sets.get(name) {
+            if let Some(faces) = self.facet_sets.get(name) {
                 for f in faces {
                     set.extend(out.face_node_ids(*f));
                 }
             }
             out.add_node_set(name, set)?;
         }
-        for (name, faces) in &self.face_sets {
+        for (name, faces) in &self.facet_sets {
             out.add_face_set(name, faces.clone())?;
         }
         Ok(out)
@@ -538,7 +249,7 @@ pub(crate) fn quadrilateral_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 8], [[f6
 /// Checks the corners of one element: finite products, not degenerate, right-handed. A
 /// tetrahedron's volume is tested; a hexahedron is tested at each corner (the tetrahedron of
 /// the corner and its three neighbours, as a right-handed triad).
-fn check_corners(element: usize, nodes: &[[f64; 3]], cell: &[usize]) -> Result<(), FemError> {
+pub(super) fn check_corners(element: usize, nodes: &[[f64; 3]], cell: &[usize]) -> Result<(), FemError> {
     let p = |k: usize| nodes[cell[k]];
     let mut tets: Vec<[usize; 4]> = Vec::with_capacity(8);
     if cell.len() == 4 {
