@@ -13,10 +13,10 @@ mod kind;
 pub mod plane;
 pub mod solid;
 
+pub use crate::element::tet10::TET_EDGES;
 pub use kind::{ElementKind, SolidKind};
 pub use solid::{MidpointFn, triangle_shape};
 pub(crate) use solid::{dot, signed_volume, sub};
-pub use crate::element::tet10::TET_EDGES;
 
 use crate::element::Element;
 use crate::error::FemError;

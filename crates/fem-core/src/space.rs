@@ -43,7 +43,9 @@ pub(crate) mod sealed {
 /// An element kind of a mesh, as the dimension-generic mesh sees it:
 /// [`ElementKind`](crate::ElementKind) in the plane, [`SolidKind`](crate::mesh::SolidKind)
 /// in 3D (sealed). A *facet* is a side of a 2D element or a face of a 3D one.
-pub trait CellKind: sealed::Sealed + Copy + Debug + PartialEq + Eq + std::hash::Hash + Send + Sync + 'static {
+pub trait CellKind:
+    sealed::Sealed + Copy + Debug + PartialEq + Eq + std::hash::Hash + Send + Sync + 'static
+{
     /// What a facet is called in messages: `"edge"` or `"face"`.
     const FACET: &'static str;
     /// Nodes per element.

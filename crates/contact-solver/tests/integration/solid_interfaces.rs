@@ -64,7 +64,7 @@ pub(crate) fn two_blocks(kind: SolidKind, na: usize, nb: usize) -> SolidMesh {
                 .iter()
                 .map(|f| Face {
                     element: f.element + eo,
-                    face: f.face,
+                    side: f.side,
                 })
                 .collect();
             mesh.add_face_set(&format!("{prefix}.{name}"), faces)

@@ -212,7 +212,6 @@ impl SolidKind {
     }
 }
 
-
 impl Sealed for ElementKind {}
 impl Sealed for SolidKind {}
 
@@ -243,7 +242,10 @@ impl CellKind for ElementKind {
     }
     fn element_any(self) -> &'static dyn Any {
         static ALL: [&dyn Element<2>; 5] = [&Tri3, &Tri6, &Quad4, &Quad8, &Quad9];
-        let k = ElementKind::ALL.iter().position(|&k| k == self).unwrap_or(0);
+        let k = ElementKind::ALL
+            .iter()
+            .position(|&k| k == self)
+            .unwrap_or(0);
         &ALL[k]
     }
 }

@@ -115,7 +115,11 @@ impl Mesh<2> {
 /// triangle's area is tested; a quadrilateral is tested at each corner (the triangle of the
 /// corner and its two neighbours), which accepts exactly the strictly convex quadrilaterals —
 /// those whose bilinear map has a positive Jacobian everywhere.
-pub(super) fn check_corners(element: usize, nodes: &[[f64; 2]], cell: &[usize]) -> Result<(), FemError> {
+pub(super) fn check_corners(
+    element: usize,
+    nodes: &[[f64; 2]],
+    cell: &[usize],
+) -> Result<(), FemError> {
     let c = cell.len();
     let corner_triangles = if c == 3 { 1 } else { c };
     let (mut area, mut l2) = (f64::INFINITY, 0.0_f64);

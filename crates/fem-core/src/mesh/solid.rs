@@ -249,7 +249,11 @@ pub(crate) fn quadrilateral_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 8], [[f6
 /// Checks the corners of one element: finite products, not degenerate, right-handed. A
 /// tetrahedron's volume is tested; a hexahedron is tested at each corner (the tetrahedron of
 /// the corner and its three neighbours, as a right-handed triad).
-pub(super) fn check_corners(element: usize, nodes: &[[f64; 3]], cell: &[usize]) -> Result<(), FemError> {
+pub(super) fn check_corners(
+    element: usize,
+    nodes: &[[f64; 3]],
+    cell: &[usize],
+) -> Result<(), FemError> {
     let p = |k: usize| nodes[cell[k]];
     let mut tets: Vec<[usize; 4]> = Vec::with_capacity(8);
     if cell.len() == 4 {

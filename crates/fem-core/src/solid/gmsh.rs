@@ -286,7 +286,10 @@ fn add_physical_sets(
         faces.reserve(mesh.kind().face_count() * mesh.element_count());
         for element in 0..mesh.element_count() {
             for face in 0..mesh.kind().face_count() as u8 {
-                let f = Face { element, side: face };
+                let f = Face {
+                    element,
+                    side: face,
+                };
                 faces.entry(sorted_corners(mesh, f)).or_default().push(f);
             }
         }

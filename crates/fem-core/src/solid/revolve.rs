@@ -138,12 +138,17 @@ pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemE
     let mut faces_of: HashMap<[usize; 3], Vec<Face>> = HashMap::new();
     for element in 0..p1.element_count() {
         for face in 0..4u8 {
-            let mut k: Vec<usize> = p1.face_node_ids(Face { element, side: face }).collect();
+            let mut k: Vec<usize> = p1
+                .face_node_ids(Face {
+                    element,
+                    side: face,
+                })
+                .collect();
             k.sort_unstable();
-            faces_of
-                .entry([k[0], k[1], k[2]])
-                .or_default()
-                .push(Face { element, side: face });
+            faces_of.entry([k[0], k[1], k[2]]).or_default().push(Face {
+                element,
+                side: face,
+            });
         }
     }
     let names: Vec<String> = mesh.edge_set_names().map(str::to_string).collect();
