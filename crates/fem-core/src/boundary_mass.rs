@@ -101,15 +101,7 @@ impl BoundaryMass {
                 what: "the sides of a 2D boundary",
             });
         }
-        for s in sides {
-            if s.element >= mesh.element_count() || s.side as usize >= mesh.kind().side_count() {
-                return Err(FemError::InvalidSide {
-                    element: s.element,
-                    side: s.side,
-                    element_count: mesh.element_count(),
-                });
-            }
-        }
+        mesh.check_facets(sides)?;
         let mut blocks = Vec::with_capacity(sides.len());
         let mut points = Vec::with_capacity(3 * sides.len());
         for &side in sides {
@@ -173,15 +165,7 @@ impl BoundaryMass {
                 what: "the faces of a 3D boundary",
             });
         }
-        if let Some(f) = faces.iter().find(|f| {
-            f.element >= mesh.element_count() || f.side as usize >= mesh.kind().face_count()
-        }) {
-            return Err(FemError::InvalidSide {
-                element: f.element,
-                side: f.side,
-                element_count: mesh.element_count(),
-            });
-        }
+        mesh.check_facets(faces)?;
         let mut blocks = Vec::with_capacity(faces.len());
         let mut points = Vec::with_capacity(6 * faces.len());
         for &face in faces {
@@ -217,7 +201,7 @@ impl BoundaryMass {
     ) -> Result<Self, FemError> {
         let set: std::collections::BTreeSet<usize> = nodes.iter().copied().collect();
         let sides: Vec<Side> = mesh
-            .boundary_sides()
+            .boundary_facets()
             .into_iter()
             .filter(|&s| {
                 // all the side's nodes in the set, or (P2) the mid-side node and one corner: a
@@ -248,7 +232,7 @@ impl BoundaryMass {
     pub fn on_nodes_3d(mesh: &SolidMesh, nodes: &[usize]) -> Result<Self, FemError> {
         let set: std::collections::BTreeSet<usize> = nodes.iter().copied().collect();
         let faces: Vec<Face> = mesh
-            .boundary_faces()
+            .boundary_facets()
             .into_iter()
             .filter(|&f| mesh.face_node_ids(f).all(|n| set.contains(&n)))
             .collect();

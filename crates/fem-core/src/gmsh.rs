@@ -529,12 +529,10 @@ fn add_physical_sets(
     };
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
-    for element in 0..mesh.element_count() {
-        for side in 0..mesh.kind().side_count() as u8 {
-            let mut it = mesh.side_nodes(Side { element, side });
-            if let (Some(a), Some(b)) = (it.next(), it.next()) {
-                sides.insert((a, b), Side { element, side });
-            }
+    for side in mesh.all_facets() {
+        let mut it = mesh.side_nodes(side);
+        if let (Some(a), Some(b)) = (it.next(), it.next()) {
+            sides.insert((a, b), side);
         }
     }
     let mut edge_sets: BTreeMap<String, Vec<Side>> = BTreeMap::new();
@@ -585,7 +583,7 @@ fn add_physical_sets(
         match node_sets.remove(name) {
             // a point group of the same name: one sorted set of both
             Some(points) => {
-                let mut all = mesh.edge_set_nodes(name)?;
+                let mut all = mesh.facet_set_nodes(name)?;
                 all.extend(points);
                 mesh.add_node_set(name, all)?;
             }

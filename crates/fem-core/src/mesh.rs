@@ -139,17 +139,25 @@ where
     /// # Errors
     /// [`FemError::InvalidSide`] for a facet whose element or local index is out of range.
     pub fn add_facet_set(&mut self, name: &str, facets: Vec<Facet>) -> Result<(), FemError> {
-        if let Some(f) = facets.iter().find(|f| {
+        self.check_facets(&facets)?;
+        self.facet_sets.insert(name.to_string(), facets);
+        Ok(())
+    }
+
+    /// [`FemError::InvalidSide`] for the first facet whose element or local index is out of
+    /// range.
+    pub(crate) fn check_facets(&self, facets: &[Facet]) -> Result<(), FemError> {
+        let bad = |f: &&Facet| {
             f.element >= self.element_count() || f.side as usize >= self.kind.facet_count()
-        }) {
-            return Err(FemError::InvalidSide {
+        };
+        match facets.iter().find(bad) {
+            Some(f) => Err(FemError::InvalidSide {
                 element: f.element,
                 side: f.side,
                 element_count: self.element_count(),
-            });
+            }),
+            None => Ok(()),
         }
-        self.facet_sets.insert(name.to_string(), facets);
-        Ok(())
     }
 
     /// Joins meshes into one with several bodies (e.g. two cylinders in contact): nodes,
@@ -383,20 +391,10 @@ where
     pub fn boundary_facets(&self) -> Vec<Facet> {
         let mut seen: HashMap<[usize; 4], (Facet, u32)> =
             HashMap::with_capacity(2 * self.element_count());
-        let corners = self.kind.facet_corner_count();
-        for element in 0..self.element_count() {
-            let cell = self.element(element);
-            for side in 0..self.kind.facet_count() as u8 {
-                let local = self.kind.facet_nodes(side as usize);
-                let mut key = [usize::MAX; 4];
-                for (k, &i) in key.iter_mut().zip(&local[..corners]) {
-                    *k = cell[i];
-                }
-                key.sort_unstable();
-                seen.entry(key)
-                    .and_modify(|e| e.1 += 1)
-                    .or_insert((Facet { element, side }, 1));
-            }
+        for f in self.all_facets() {
+            seen.entry(self.facet_key(f))
+                .and_modify(|e| e.1 += 1)
+                .or_insert((f, 1));
         }
         let mut out: Vec<Facet> = seen
             .into_values()
@@ -404,6 +402,30 @@ where
             .collect();
         out.sort_unstable();
         out
+    }
+}
+
+impl<const D: usize> Mesh<D>
+where
+    Dim<D>: Space,
+{
+    /// Every facet of every element, in element order.
+    pub(crate) fn all_facets(&self) -> impl Iterator<Item = Facet> + '_ {
+        let count = self.kind.facet_count() as u8;
+        (0..self.element_count())
+            .flat_map(move |element| (0..count).map(move |side| Facet { element, side }))
+    }
+
+    /// The corner nodes of a facet, sorted, padded with `usize::MAX`: the same key for the
+    /// two elements that share the facet.
+    pub(crate) fn facet_key(&self, facet: Facet) -> [usize; 4] {
+        let mut key = [usize::MAX; 4];
+        let corners = self.facet_nodes(facet).take(self.kind.facet_corner_count());
+        for (k, n) in key.iter_mut().zip(corners) {
+            *k = n;
+        }
+        key.sort_unstable();
+        key
     }
 }
 

@@ -11,9 +11,10 @@
 //! Every array is `Float64`, base64-encoded inline; the element regions are always written as
 //! the cell array `region` (`UInt32`).
 
+use crate::element::VoigtStress;
 use crate::error::FemError;
-use crate::mesh::{ElementKind, Mesh};
-use crate::solid::{SolidKind, SolidMesh};
+use crate::mesh::{Mesh, SolidMesh};
+use crate::space::{Dim, Space};
 use std::io::Write;
 use std::path::Path;
 use vtkio::model::{
@@ -21,19 +22,36 @@ use vtkio::model::{
     VertexNumbers, Vtk,
 };
 
-/// Values of one field, one entry per node (point data) or per element (cell data).
+/// Values of one field on a mesh of dimension `D`, one entry per node (point data) or per
+/// element (cell data).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Field<'a> {
+pub enum Field<'a, const D: usize = 2>
+where
+    Dim<D>: Space,
+{
     /// A scalar.
     Scalar(&'a [f64]),
-    /// An in-plane vector `(x, y)` (or `(r, z)`), written as a 3-vector with zero `z`.
-    Vector(&'a [[f64; 2]]),
-    /// A symmetric tensor `(xx, yy, xy, zz)` — the order of `element::Stress`, with `zz` the
-    /// out-of-plane (or hoop) component — written as a full 3×3 tensor (9 components).
-    SymTensor(&'a [[f64; 4]]),
+    /// A vector: in-plane `(x, y)` (or `(r, z)`), written as a 3-vector with zero `z`, or
+    /// `(x, y, z)`, e.g. a displacement.
+    Vector(&'a [[f64; D]]),
+    /// A symmetric tensor in the order of [`Space::Stress`] — `(xx, yy, xy, zz)` in 2D (`zz`
+    /// the out-of-plane or hoop component), `(xx, yy, zz, xy, yz, zx)` in 3D — written as a
+    /// full 3×3 tensor (9 components).
+    SymTensor(&'a [VoigtStress<D>]),
 }
 
-impl Field<'_> {
+/// A field on a 3D mesh ([`write_vtu_3d`]).
+pub type Field3<'a> = Field<'a, 3>;
+
+/// A point `[f64; D]` as `(x, y, z)`, `z = 0` in 2D.
+fn xyz<const D: usize>(p: &[f64; D]) -> [f64; 3] {
+    std::array::from_fn(|a| p.get(a).copied().unwrap_or(0.0))
+}
+
+impl<const D: usize> Field<'_, D>
+where
+    Dim<D>: Space,
+{
     fn len(&self) -> usize {
         match self {
             Field::Scalar(v) => v.len(),
@@ -45,50 +63,16 @@ impl Field<'_> {
     fn attribute(&self, name: &str) -> Attribute {
         match *self {
             Field::Scalar(v) => Attribute::scalars(name, 1).with_data(v.to_vec()),
-            Field::Vector(v) => Attribute::vectors(name).with_data(
-                v.iter()
-                    .flat_map(|&[x, y]| [x, y, 0.0])
-                    .collect::<Vec<f64>>(),
-            ),
+            Field::Vector(v) => {
+                Attribute::vectors(name).with_data(v.iter().flat_map(xyz).collect::<Vec<f64>>())
+            }
             Field::SymTensor(v) => Attribute::tensors(name).with_data(
                 v.iter()
-                    .flat_map(|&[xx, yy, xy, zz]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz])
-                    .collect::<Vec<f64>>(),
-            ),
-        }
-    }
-}
-
-/// Values of one field on a 3D mesh ([`write_vtu_3d`]), one entry per node (point data) or
-/// per element (cell data).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Field3<'a> {
-    /// A scalar.
-    Scalar(&'a [f64]),
-    /// A vector `(x, y, z)`, e.g. a displacement.
-    Vector(&'a [[f64; 3]]),
-    /// A symmetric tensor `(xx, yy, zz, xy, yz, zx)` — the order of
-    /// [`Stress3`](crate::solid::Stress3) — written as a full 3×3 tensor (9 components).
-    SymTensor(&'a [[f64; 6]]),
-}
-
-impl Field3<'_> {
-    fn len(&self) -> usize {
-        match self {
-            Field3::Scalar(v) => v.len(),
-            Field3::Vector(v) => v.len(),
-            Field3::SymTensor(v) => v.len(),
-        }
-    }
-
-    fn attribute(&self, name: &str) -> Attribute {
-        match *self {
-            Field3::Scalar(v) => Attribute::scalars(name, 1).with_data(v.to_vec()),
-            Field3::Vector(v) => Attribute::vectors(name)
-                .with_data(v.iter().flatten().copied().collect::<Vec<f64>>()),
-            Field3::SymTensor(v) => Attribute::tensors(name).with_data(
-                v.iter()
-                    .flat_map(|&[xx, yy, zz, xy, yz, zx]| [xx, xy, zx, xy, yy, yz, zx, yz, zz])
+                    .flat_map(|s| match *s.as_ref() {
+                        [xx, yy, xy, zz] => [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz],
+                        [xx, yy, zz, xy, yz, zx] => [xx, xy, zx, xy, yy, yz, zx, yz, zz],
+                        _ => unreachable!("a Voigt stress has 4 or 6 components"),
+                    })
                     .collect::<Vec<f64>>(),
             ),
         }
@@ -113,23 +97,23 @@ impl Field3<'_> {
 /// let path = std::env::temp_dir().join("fem_core_vtk_doc.vtu");
 /// write_vtu(&path, &mesh, &[("u", Field::Vector(&u))], &[]).unwrap();
 /// ```
-pub fn write_vtu(
+pub fn write_vtu<const D: usize>(
     path: &Path,
-    mesh: &Mesh,
-    point_data: &[(&str, Field<'_>)],
-    cell_data: &[(&str, Field<'_>)],
-) -> Result<(), FemError> {
+    mesh: &Mesh<D>,
+    point_data: &[(&str, Field<'_, D>)],
+    cell_data: &[(&str, Field<'_, D>)],
+) -> Result<(), FemError>
+where
+    Dim<D>: Space,
+{
     write_model(path, model(mesh, point_data, cell_data)?)
 }
 
-/// Writes the 3D `mesh` with nodal fields `point_data` (e.g. the displacement as a
-/// [`Field3::Vector`]) and element fields `cell_data` (e.g. a stress as a
-/// [`Field3::SymTensor`]) as a VTK XML unstructured grid, like [`write_vtu`] in 2D.
+/// [`write_vtu`] on a 3D mesh, e.g. with the displacement as a [`Field::Vector`] and a stress
+/// as a [`Field::SymTensor`].
 ///
 /// # Errors
-/// - [`FemError::LengthMismatch`] if a point field does not have one entry per node or a cell
-///   field one entry per element;
-/// - [`FemError::Io`] if the file cannot be written.
+/// As [`write_vtu`].
 ///
 /// # Examples
 /// ```
@@ -148,7 +132,7 @@ pub fn write_vtu_3d(
     point_data: &[(&str, Field3<'_>)],
     cell_data: &[(&str, Field3<'_>)],
 ) -> Result<(), FemError> {
-    write_model(path, model_3d(mesh, point_data, cell_data)?)
+    write_vtu(path, mesh, point_data, cell_data)
 }
 
 fn write_model(path: &Path, vtk: Vtk) -> Result<(), FemError> {
@@ -193,58 +177,37 @@ fn check_lengths(
     Ok(())
 }
 
-fn model(
-    mesh: &Mesh,
-    point_data: &[(&str, Field<'_>)],
-    cell_data: &[(&str, Field<'_>)],
-) -> Result<Vtk, FemError> {
+fn model<const D: usize>(
+    mesh: &Mesh<D>,
+    point_data: &[(&str, Field<'_, D>)],
+    cell_data: &[(&str, Field<'_, D>)],
+) -> Result<Vtk, FemError>
+where
+    Dim<D>: Space,
+{
     check_lengths(
         &point_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
         &cell_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
         mesh.node_count(),
         mesh.element_count(),
     )?;
-    let points: Vec<f64> = mesh
-        .nodes()
-        .iter()
-        .flat_map(|&[x, y]| [x, y, 0.0])
-        .collect();
-    let cell_type = match mesh.kind() {
-        ElementKind::Tri3 => CellType::Triangle,
-        ElementKind::Tri6 => CellType::QuadraticTriangle,
-        ElementKind::Quad4 => CellType::Quad,
-        ElementKind::Quad8 => CellType::QuadraticQuad,
-        ElementKind::Quad9 => CellType::BiquadraticQuad,
+    let points: Vec<f64> = mesh.nodes().iter().flat_map(xyz).collect();
+    let element = mesh.built_in_element();
+    let cell_type = match element.topology().vtk_cell {
+        5 => CellType::Triangle,
+        22 => CellType::QuadraticTriangle,
+        9 => CellType::Quad,
+        23 => CellType::QuadraticQuad,
+        28 => CellType::BiquadraticQuad,
+        10 => CellType::Tetra,
+        24 => CellType::QuadraticTetra,
+        12 => CellType::Hexahedron,
+        _ => CellType::QuadraticHexahedron, // 25, the last built-in kind (they are sealed)
     };
     let mut data = Attributes::new();
     data.point = point_data.iter().map(|(n, f)| f.attribute(n)).collect();
     data.cell = cell_data.iter().map(|(n, f)| f.attribute(n)).collect();
-    let cells = (mesh.connectivity(), mesh.kind().node_count(), cell_type);
-    Ok(grid(points, cells, mesh.regions(), data))
-}
-
-fn model_3d(
-    mesh: &SolidMesh,
-    point_data: &[(&str, Field3<'_>)],
-    cell_data: &[(&str, Field3<'_>)],
-) -> Result<Vtk, FemError> {
-    check_lengths(
-        &point_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
-        &cell_data.iter().map(|(_, f)| f.len()).collect::<Vec<_>>(),
-        mesh.node_count(),
-        mesh.element_count(),
-    )?;
-    let points: Vec<f64> = mesh.nodes().iter().flatten().copied().collect();
-    let cell_type = match mesh.kind() {
-        SolidKind::Tet4 => CellType::Tetra,
-        SolidKind::Tet10 => CellType::QuadraticTetra,
-        SolidKind::Hex8 => CellType::Hexahedron,
-        SolidKind::Hex20 => CellType::QuadraticHexahedron,
-    };
-    let mut data = Attributes::new();
-    data.point = point_data.iter().map(|(n, f)| f.attribute(n)).collect();
-    data.cell = cell_data.iter().map(|(n, f)| f.attribute(n)).collect();
-    let cells = (mesh.connectivity(), mesh.kind().node_count(), cell_type);
+    let cells = (mesh.connectivity(), element.node_count(), cell_type);
     Ok(grid(points, cells, mesh.regions(), data))
 }
 
@@ -341,6 +304,7 @@ fn escape(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::ElementKind;
 
     #[test]
     fn escape_works() {

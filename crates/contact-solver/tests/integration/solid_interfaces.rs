@@ -59,7 +59,7 @@ pub(crate) fn two_blocks(kind: SolidKind, na: usize, nb: usize) -> SolidMesh {
             let set = set.iter().map(|n| n + no).collect();
             mesh.add_node_set(&format!("{prefix}.{name}"), set).unwrap();
         }
-        for (name, faces) in m.face_sets() {
+        for (name, faces) in m.facet_sets() {
             let faces = faces
                 .iter()
                 .map(|f| Face {

@@ -198,6 +198,6 @@ pub(super) fn add_edge_and_node_set(
     sides: Vec<Side>,
 ) -> Result<(), FemError> {
     mesh.add_edge_set(name, sides)?;
-    let nodes = mesh.edge_set_nodes(name)?;
+    let nodes = mesh.facet_set_nodes(name)?;
     mesh.add_node_set(name, nodes)
 }

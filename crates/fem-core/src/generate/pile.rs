@@ -225,7 +225,7 @@ pub fn pile_in_soil(spec: &PileSpec) -> Result<Mesh, FemError> {
 
     let mut mesh = Mesh::new(nodes, spec.kind, connectivity, regions)?;
     let tol = 1e-12 * width.max(depth);
-    let boundary = mesh.boundary_sides();
+    let boundary = mesh.boundary_facets();
     let named = [
         ("axis", Line::x(0.0, tol), None),
         ("outer", Line::x(width, tol), None),
@@ -245,7 +245,7 @@ pub fn pile_in_soil(spec: &PileSpec) -> Result<Mesh, FemError> {
             p[1] >= -length - tol && region == side_region
         });
         mesh.add_edge_set(name, sides)?;
-        let mut nodes = mesh.edge_set_nodes(name)?;
+        let mut nodes = mesh.facet_set_nodes(name)?;
         if spec.tip_corner == TipCorner::Shared {
             let corner = grid.id(column, tip_row);
             nodes.retain(|&n| n != corner);

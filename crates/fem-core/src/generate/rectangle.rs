@@ -137,7 +137,7 @@ pub fn rectangle(spec: &RectangleSpec) -> Result<Mesh, FemError> {
     let [x0, x1] = [xs[0], xs[spec.nx]];
     let [y0, y1] = [ys[0], ys[ys.len() - 1]];
     let tol = 1e-12 * (x1 - x0).max(y1 - y0);
-    let boundary = mesh.boundary_sides();
+    let boundary = mesh.boundary_facets();
     let named = [
         ("bottom", Line::y(y0, tol)),
         ("top", Line::y(y1, tol)),

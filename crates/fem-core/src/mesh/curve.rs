@@ -224,7 +224,7 @@ mod tests {
     #[test]
     fn chain_sides_works_on_closed_curves() {
         let (mesh, _) = strip(2);
-        let boundary = mesh.boundary_sides();
+        let boundary = mesh.boundary_facets();
         let c = chain_sides(&mesh, &boundary).unwrap();
         assert!(c.closed);
         assert_eq!(c.nodes.len(), 6);

@@ -29,7 +29,7 @@ impl Mesh<2> {
         let (nodes, order) = match chain_sides(self, self.edge_set(name)?) {
             Ok(c) if c.closed => (c.nodes, CurveOrder::Closed),
             Ok(c) => (c.nodes, CurveOrder::Open),
-            Err(why) => (self.edge_set_nodes(name)?, CurveOrder::NotACurve(why)),
+            Err(why) => (self.facet_set_nodes(name)?, CurveOrder::NotACurve(why)),
         };
         self.node_sets.insert(name.to_string(), nodes);
         self.curves.insert(name.to_string(), order.clone());
@@ -69,21 +69,6 @@ impl Mesh<2> {
         self.facet_nodes(side)
     }
 
-    /// The sides that belong to one element only (the boundary of the body, holes included),
-    /// sorted.
-    pub fn boundary_sides(&self) -> Vec<Side> {
-        self.boundary_facets()
-    }
-
-    /// Nodes of the sides of an edge set (sorted by index, without duplicates; see
-    /// [`Mesh::add_curve_node_set`] for the order along the curve).
-    ///
-    /// # Errors
-    /// [`FemError::UnknownSet`] if there is no edge set of that name.
-    pub fn edge_set_nodes(&self, name: &str) -> Result<Vec<usize>, FemError> {
-        self.facet_set_nodes(name)
-    }
-
     /// The unit outward normal of the boundary at every node (`None` inside the body): the
     /// sum of the outward normals `(Δy, −Δx)` of the boundary sides through the node (elements
     /// are counter-clockwise, so the body lies left of each side), weighted by their lengths,
@@ -91,7 +76,7 @@ impl Mesh<2> {
     pub fn outward_normals(&self) -> Vec<Option<[f64; 2]>> {
         let mut sum = vec![[0.0_f64; 2]; self.node_count()];
         let mut on_boundary = vec![false; self.node_count()];
-        for side in self.boundary_sides() {
+        for side in self.boundary_facets() {
             let nodes: Vec<usize> = self.side_nodes(side).collect();
             let (a, b) = (self.nodes[nodes[0]], self.nodes[nodes[1]]);
             let n = [b[1] - a[1], a[0] - b[0]];
@@ -187,7 +172,7 @@ mod tests {
             vec![],
         )
         .unwrap();
-        assert_eq!(m.boundary_sides().len(), 4);
+        assert_eq!(m.boundary_facets().len(), 4);
         let n = m.outward_normals();
         let h = std::f64::consts::FRAC_1_SQRT_2;
         // corners bisect their two faces; the centre is inside
@@ -213,7 +198,7 @@ mod tests {
             }],
         )
         .unwrap();
-        assert_eq!(m.edge_set_nodes("bottom").unwrap(), vec![0, 1]);
+        assert_eq!(m.facet_set_nodes("bottom").unwrap(), vec![0, 1]);
         assert!(matches!(
             m.node_set("top"),
             Err(FemError::UnknownSet { .. })

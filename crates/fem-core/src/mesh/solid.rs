@@ -81,17 +81,6 @@ impl SolidMesh {
         self.facet_set(name)
     }
 
-    /// All face sets, by name.
-    #[inline]
-    pub fn face_sets(&self) -> &BTreeMap<String, Vec<Face>> {
-        self.facet_sets()
-    }
-
-    /// The faces that belong to one element only (the boundary), sorted.
-    pub fn boundary_faces(&self) -> Vec<Face> {
-        self.boundary_facets()
-    }
-
     /// Calls `f(nodes, point)` at each point of a rule on `face` (degree 4 on a 3- or 6-node
     /// triangle, curved P2 faces included; 3×3 Gauss on a 4- or 8-node quadrilateral), with the face's nodes in
     /// [`SolidKind::face_nodes`] order; stops at the first error.

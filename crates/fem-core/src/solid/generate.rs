@@ -46,7 +46,7 @@ fn name_planes(
     planes: &[(&str, usize, f64)],
     span: f64,
 ) -> Result<(), FemError> {
-    let boundary = mesh.boundary_faces();
+    let boundary = mesh.boundary_facets();
     for &(name, axis, value) in planes {
         let faces: Vec<Face> = boundary
             .iter()
@@ -297,7 +297,7 @@ pub fn sphere_shell_octant(
         }
     }
     let mut mesh = SolidMesh::new(nodes, SolidKind::Tet4, connectivity, Vec::new())?;
-    let boundary = mesh.boundary_faces();
+    let boundary = mesh.boundary_facets();
     let tol = 1e-9 * outer;
     let on = |mesh: &SolidMesh, f: &Face, test: &dyn Fn([f64; 3]) -> bool| {
         mesh.face_node_ids(*f)
@@ -371,12 +371,12 @@ mod tests {
         assert!((volume(&m) - 2.0 * 1.0 * 1.5).abs() < 1e-13);
         // boundary faces: 2 per cell face on the six sides (conforming: no inner face counted)
         let cells_on_sides = 2 * (3 * 2 + 3 * 2 + 2 * 2);
-        assert_eq!(m.boundary_faces().len(), 2 * cells_on_sides);
+        assert_eq!(m.boundary_facets().len(), 2 * cells_on_sides);
         let named: usize = ["x0", "x1", "y0", "y1", "z0", "z1"]
             .iter()
             .map(|s| m.face_set(s).unwrap().len())
             .sum();
-        assert_eq!(named, m.boundary_faces().len());
+        assert_eq!(named, m.boundary_facets().len());
         let p2 = box_mesh(
             &lines(0.0, 1.0, 2),
             &lines(0.0, 1.0, 2),
@@ -402,7 +402,7 @@ mod tests {
             .sum();
         assert_eq!(
             named,
-            m.boundary_faces().len(),
+            m.boundary_facets().len(),
             "every boundary face is named once"
         );
         assert_eq!(m.face_set("inner").unwrap().len(), 16);

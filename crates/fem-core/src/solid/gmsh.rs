@@ -284,14 +284,8 @@ fn add_physical_sets(
         .any(|l| matches!(l.shape, Shape::Triangle | Shape::Quadrangle))
     {
         faces.reserve(mesh.kind().face_count() * mesh.element_count());
-        for element in 0..mesh.element_count() {
-            for face in 0..mesh.kind().face_count() as u8 {
-                let f = Face {
-                    element,
-                    side: face,
-                };
-                faces.entry(sorted_corners(mesh, f)).or_default().push(f);
-            }
+        for f in mesh.all_facets() {
+            faces.entry(mesh.facet_key(f)).or_default().push(f);
         }
     }
     let mut face_sets: BTreeMap<String, BTreeSet<Face>> = BTreeMap::new();
@@ -355,19 +349,6 @@ fn add_physical_sets(
         mesh.add_node_set(&name, set)?;
     }
     Ok(())
-}
-
-/// The corner nodes of a face, sorted.
-fn sorted_corners(mesh: &SolidMesh, face: Face) -> [usize; 4] {
-    let mut it = mesh
-        .face_node_ids(face)
-        .take(mesh.kind().face_corner_count());
-    let mut key = [0; 4];
-    for k in &mut key {
-        *k = it.next().unwrap_or(usize::MAX);
-    }
-    key.sort_unstable();
-    key
 }
 
 /// The element face of a triangle or quadrangle element (node tags), if there is one.

@@ -184,7 +184,7 @@ pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemE
         }
         p1.add_face_set(name, faces)?;
     }
-    let boundary = p1.boundary_faces();
+    let boundary = p1.boundary_facets();
     for (plane, layer) in [("theta0", 0), ("theta1", sectors)] {
         let mut in_layer = vec![false; p1.node_count()];
         for list in &at {

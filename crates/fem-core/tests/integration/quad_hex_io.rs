@@ -130,7 +130,7 @@ fn issue_35_boundaries_of_quadrilateral_and_hexahedral_meshes_works() {
         };
         let mesh = rectangle(&spec).unwrap();
         assert_eq!(mesh.element_count(), 8);
-        assert_eq!(mesh.boundary_sides().len(), 12, "{kind:?}");
+        assert_eq!(mesh.boundary_facets().len(), 12, "{kind:?}");
         let per = if kind == ElementKind::Quad4 { 1 } else { 2 };
         assert_eq!(mesh.node_set("bottom").unwrap().len(), 4 * per + 1);
         let normals = mesh.outward_normals();
@@ -163,7 +163,7 @@ fn issue_35_boundaries_of_quadrilateral_and_hexahedral_meshes_works() {
             kind,
         )
         .unwrap();
-        assert_eq!(mesh.boundary_faces().len(), 2 * (2 + 2 + 1), "{kind:?}");
+        assert_eq!(mesh.boundary_facets().len(), 2 * (2 + 2 + 1), "{kind:?}");
         assert_eq!(mesh.face_set("z0").unwrap().len(), 2);
         let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
         let total: f64 = areas.iter().sum();

@@ -48,7 +48,7 @@ fn shaken(mesh: &SolidMesh, amp: f64, h: f64, from: usize, seed: &mut u64) -> So
         mesh.regions().to_vec(),
     )
     .unwrap();
-    for (name, faces) in mesh.face_sets() {
+    for (name, faces) in mesh.facet_sets() {
         out.add_face_set(name, faces.clone()).unwrap();
     }
     out

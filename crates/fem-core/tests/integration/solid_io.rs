@@ -361,7 +361,7 @@ fn assert_cube(mesh: &SolidMesh) {
     assert!((total - 1.0).abs() < 1e-14, "volume {total}");
     assert!((0..6).all(|e| volume(mesh, e) > 0.0));
     // Sets: one face set per physical surface, one node set per group.
-    let face_sets: Vec<&String> = mesh.face_sets().keys().collect();
+    let face_sets: Vec<&String> = mesh.facet_sets().keys().collect();
     assert_eq!(face_sets, ["bottom", "surface_2"]);
     let node_sets: Vec<&String> = mesh.node_sets().keys().collect();
     assert_eq!(node_sets, ["bottom", "edge", "point_4", "surface_2"]);

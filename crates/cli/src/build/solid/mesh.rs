@@ -145,7 +145,7 @@ pub(super) fn face_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResul
             format!(
                 "`{path}` = \"{name}\": the mesh has no face set of that name (face sets, the \
                  physical surfaces: {})",
-                super::super::checks::list_names(mesh.face_sets().keys().map(String::as_str))
+                super::super::checks::list_names(mesh.facet_sets().keys().map(String::as_str))
             ),
         )
     })

@@ -150,7 +150,7 @@ impl PulloutSpec {
             }
         }
         let tip_faces: Vec<Face> = mesh
-            .boundary_faces()
+            .boundary_facets()
             .into_iter()
             .filter(|f| mesh.face_node_ids(*f).all(|n| on_tip[n]))
             .collect();
