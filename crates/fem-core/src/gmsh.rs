@@ -31,8 +31,11 @@
 //! Lines and points outside physical groups are ignored. Any other element type (tetrahedra, higher orders, …) is [`FemError::Unsupported`]; tetrahedral volume meshes are
 //! read by [`crate::solid::gmsh`].
 
+mod build;
+
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh, Side};
+pub(crate) use build::{Lower, Reader, Shape, build};
 use mshio::error::MshParserErrorKind;
 use mshio::{ElementType, MshFile, MshParserError};
 use std::collections::{BTreeMap, HashMap};
@@ -81,11 +84,14 @@ pub fn parse_msh(bytes: &[u8]) -> Result<Mesh, FemError> {
 
 fn parse(bytes: &[u8], origin: &str) -> Result<Mesh, FemError> {
     let (file, names) = parse_file(bytes, origin)?;
-    build(file, &names, origin)
+    build(file, &names, origin, &PLANE)
 }
 
 /// The physical names (by `(dimension, tag)`) of a `.msh` file.
 pub(crate) type Names = HashMap<(i32, i32), String>;
+
+/// The physical tags of every entity `(dimension, tag)`.
+pub(crate) type Physical = HashMap<(i32, i32), Vec<i32>>;
 
 /// Parses a `.msh` 4.1 file with `mshio`, behind the checks that guard it (header, node
 /// tags, a panic inside the parser), and reads its `$PhysicalNames`. Shared with the 3D
@@ -341,7 +347,7 @@ pub(crate) fn unsupported_type(t: ElementType, dim: i32, tag: i32, read: &str) -
 }
 
 /// Physical tags by entity `(dimension, tag)`, for points, curves, surfaces and volumes.
-pub(crate) fn physical_tags(data: &mshio::MshData<u64, i32, f64>) -> HashMap<(i32, i32), Vec<i32>> {
+pub(crate) fn physical_tags(data: &mshio::MshData<u64, i32, f64>) -> Physical {
     let mut physical = HashMap::new();
     if let Some(entities) = &data.entities {
         for p in &entities.points {
@@ -365,7 +371,7 @@ pub(crate) fn physical_tags(data: &mshio::MshData<u64, i32, f64>) -> HashMap<(i3
 /// # Errors
 /// [`FemError::Unsupported`] for a negative physical tag.
 pub(crate) fn region_of(
-    physical: &HashMap<(i32, i32), Vec<i32>>,
+    physical: &Physical,
     dim: i32,
     tag: i32,
     origin: &str,
@@ -381,135 +387,37 @@ pub(crate) fn region_of(
     }
 }
 
-/// A line or point element of a physical group: entity tag and node tags.
-struct Lower {
-    entity: i32,
-    nodes: Vec<u64>,
-}
+/// The 2D reader's tables.
+const PLANE: Reader<2> = Reader {
+    kind_of,
+    read: "triangles (types 2, 9), quadrangles (3, 16, 10), lines (1, 8) and points (15) \
+           (volume meshes: `solid::gmsh`)",
+    none: "triangles or quadrangles (Gmsh types 2, 9, 3, 16, 10)",
+    orient,
+    sets: add_physical_sets,
+};
 
-fn build(
-    file: MshFile<u64, i32, f64>,
-    names: &HashMap<(i32, i32), String>,
-    origin: &str,
-) -> Result<Mesh, FemError> {
-    let io = |detail: String| FemError::invalid_file(origin, detail);
-    let data = file.data;
-
-    let physical = physical_tags(&data);
-    let tags_of = |dim: i32, tag: i32| physical.get(&(dim, tag)).map_or(&[][..], Vec::as_slice);
-
-    let nodes_section = data
-        .nodes
-        .ok_or_else(|| io("no $Nodes section".to_string()))?;
-    let coords = node_coordinates(&nodes_section, &io)?;
-
-    // Triangles (with their region) and the lines and points of physical groups.
-    let elements = data
-        .elements
-        .ok_or_else(|| io("no $Elements section".to_string()))?;
-    check_elements(&nodes_section, &elements, &coords).map_err(io)?;
-    let mut kind = None;
-    let mut triangles: Vec<&[u64]> = Vec::new();
-    let mut triangle_tags: Vec<u64> = Vec::new();
-    let mut regions = Vec::new();
-    let mut lines: Vec<Lower> = Vec::new();
-    let mut points: Vec<Lower> = Vec::new();
-    for block in &elements.element_blocks {
-        let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
-        if let Some(this) = kind_of(t) {
-            let first = *kind.get_or_insert(this);
-            if first != this {
-                let what = format!("mixed {first:?} and {this:?} elements in {origin}");
-                return Err(FemError::Unsupported { what });
-            }
-            let region = region_of(&physical, dim, tag, origin)?;
-            for e in &block.elements {
-                triangles.push(&e.nodes);
-                triangle_tags.push(e.element_tag);
-                regions.push(region);
-            }
-            continue;
-        }
-        match t {
-            ElementType::Lin2 | ElementType::Lin3 | ElementType::Pnt => {
-                if tags_of(dim, tag).is_empty() {
-                    continue;
-                }
-                let target = match t {
-                    ElementType::Pnt => &mut points,
-                    _ => &mut lines,
-                };
-                target.extend(block.elements.iter().map(|e| Lower {
-                    entity: tag,
-                    nodes: e.nodes.clone(),
-                }));
-            }
-            _ => {
-                return Err(unsupported_type(
-                    t,
-                    dim,
-                    tag,
-                    "triangles (types 2, 9), quadrangles (3, 16, 10), lines (1, 8) and \
-                     points (15) (volume meshes: `solid::gmsh`)",
-                ));
-            }
-        }
-    }
-    let Some(kind) = kind else {
-        return Err(FemError::Unsupported {
-            what: format!(
-                "{origin} holds no triangles or quadrangles (Gmsh types 2, 9, 3, 16, 10); \
-                 note that once physical groups exist Gmsh saves only their elements (add a \
-                 physical surface)"
-            ),
-        });
-    };
-
-    // Keep the nodes of triangles, in tag order.
-    let mut used: Vec<u64> = triangles.iter().flat_map(|t| t.iter().copied()).collect();
-    used.sort_unstable();
-    used.dedup();
-    let index: HashMap<u64, usize> = used.iter().enumerate().map(|(i, &t)| (t, i)).collect();
-    let nodes = used
-        .iter()
-        .map(|t| {
-            coords
-                .get(t)
-                .map(|&[x, y, _]| [x, y])
-                .ok_or_else(|| io(format!("an element refers to node tag {t}, never defined")))
+/// A 2D element counter-clockwise: the shoelace area of the corners; a clockwise element is
+/// mirrored: triangles 1 ↔ 2 (mid-sides 3 ↔ 5), quadrangles 1 ↔ 3 (mid-sides 4 ↔ 7, 5 ↔ 6;
+/// the centre stays).
+fn orient(kind: ElementKind, mut cell: Vec<usize>, nodes: &[[f64; 2]]) -> Vec<usize> {
+    let nc = kind.corner_count();
+    let area: f64 = (0..nc)
+        .map(|k| {
+            let (p, q) = (nodes[cell[k]], nodes[cell[(k + 1) % nc]]);
+            p[0] * q[1] - q[0] * p[1]
         })
-        .collect::<Result<Vec<_>, _>>()?;
-
-    // Connectivity, counter-clockwise.
-    let npe = kind.node_count();
-    let mut connectivity = Vec::with_capacity(npe * triangles.len());
-    for t in &triangles {
-        let mut cell: Vec<usize> = t.iter().map(|tag| index[tag]).collect();
-        // the shoelace area of the corners; a clockwise element is mirrored: triangles 1 ↔ 2
-        // (mid-sides 3 ↔ 5), quadrangles 1 ↔ 3 (mid-sides 4 ↔ 7, 5 ↔ 6; the centre stays)
-        let nc = kind.corner_count();
-        let area: f64 = (0..nc)
-            .map(|k| {
-                let (p, q) = (nodes[cell[k]], nodes[cell[(k + 1) % nc]]);
-                p[0] * q[1] - q[0] * p[1]
-            })
-            .sum();
-        if area < 0.0 {
-            let swaps: &[(usize, usize)] = match (nc, kind.is_quadratic()) {
-                (3, false) => &[(1, 2)],
-                (3, true) => &[(1, 2), (3, 5)],
-                (_, false) => &[(1, 3)],
-                (_, true) => &[(1, 3), (4, 7), (5, 6)],
-            };
-            swaps.iter().for_each(|&(a, b)| cell.swap(a, b));
-        }
-        connectivity.extend(cell);
+        .sum();
+    if area < 0.0 {
+        let swaps: &[(usize, usize)] = match (nc, kind.is_quadratic()) {
+            (3, false) => &[(1, 2)],
+            (3, true) => &[(1, 2), (3, 5)],
+            (_, false) => &[(1, 3)],
+            (_, true) => &[(1, 3), (4, 7), (5, 6)],
+        };
+        swaps.iter().for_each(|&(a, b)| cell.swap(a, b));
     }
-    let mut mesh = Mesh::new(nodes, kind, connectivity, regions)
-        .map_err(|e| with_tags(e, &used, &triangle_tags, origin))?;
-
-    add_physical_sets(&mut mesh, &lines, &points, &index, names, &physical, origin)?;
-    Ok(mesh)
+    cell
 }
 
 /// The physical curves and points as edge and node sets of `mesh`: line elements matched to
@@ -517,16 +425,14 @@ fn build(
 /// `curve_N` / `point_N`.
 fn add_physical_sets(
     mesh: &mut Mesh,
-    lines: &[Lower],
-    points: &[Lower],
+    lower: &[Lower],
     index: &HashMap<u64, usize>,
-    names: &HashMap<(i32, i32), String>,
-    physical: &HashMap<(i32, i32), Vec<i32>>,
+    names: &Names,
+    physical: &Physical,
     origin: &str,
 ) -> Result<(), FemError> {
-    let tags_of = |physical: &HashMap<(i32, i32), Vec<i32>>, dim: i32, tag: i32| {
-        physical.get(&(dim, tag)).map_or(Vec::new(), Clone::clone)
-    };
+    let tags_of = |dim: i32, tag: i32| physical.get(&(dim, tag)).map_or(&[][..], Vec::as_slice);
+    let of = |shape: Shape| lower.iter().filter(move |l| l.shape == shape);
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
     for side in mesh.all_facets() {
@@ -536,14 +442,14 @@ fn add_physical_sets(
         }
     }
     let mut edge_sets: BTreeMap<String, Vec<Side>> = BTreeMap::new();
-    for line in lines {
+    for line in of(Shape::Line) {
         let side = match_side(mesh, &sides, index, line).ok_or_else(|| FemError::Unsupported {
             what: format!(
                 "a line element of curve {} (nodes {:?}) in {origin} is not a triangle side",
-                line.entity, line.nodes
+                line.entity.1, line.nodes
             ),
         })?;
-        for p in tags_of(physical, 1, line.entity) {
+        for &p in tags_of(1, line.entity.1) {
             let name = names
                 .get(&(1, p))
                 .cloned()
@@ -559,7 +465,7 @@ fn add_physical_sets(
         mesh.add_edge_set(&name, set)?;
     }
     let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for point in points {
+    for point in of(Shape::Point) {
         let node = point
             .nodes
             .first()
@@ -568,10 +474,10 @@ fn add_physical_sets(
             .ok_or_else(|| FemError::Unsupported {
                 what: format!(
                     "physical point entity {} (nodes {:?}) in {origin} is not a node of a triangle",
-                    point.entity, point.nodes
+                    point.entity.1, point.nodes
                 ),
             })?;
-        for p in tags_of(physical, 0, point.entity) {
+        for &p in tags_of(0, point.entity.1) {
             let name = names
                 .get(&(0, p))
                 .cloned()

@@ -35,11 +35,7 @@
 use super::mesh::{Face, SolidKind, SolidMesh, signed_volume};
 use crate::element::hex20::GMSH_TO_LOCAL;
 use crate::error::FemError;
-use crate::gmsh::{
-    Names, check_elements, node_coordinates, parse_file, physical_tags, region_of,
-    unsupported_type, with_tags,
-};
-use mshio::{ElementType, MshFile};
+use crate::gmsh::{Lower, Names, Physical, Reader, Shape, build, parse_file};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
@@ -108,164 +104,54 @@ pub fn parse_msh_3d(bytes: &[u8]) -> Result<SolidMesh, FemError> {
 
 fn parse(bytes: &[u8], origin: &str) -> Result<SolidMesh, FemError> {
     let (file, names) = parse_file(bytes, origin)?;
-    build(file, &names, origin)
+    build(file, &names, origin, &SOLID)
 }
 
-/// The shapes of the elements of physical groups.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Shape {
-    Triangle,
-    Quadrangle,
-    Line,
-    Point,
-}
+/// The 3D reader's tables.
+const SOLID: Reader<3> = Reader {
+    kind_of: |t| {
+        SolidKind::ALL
+            .into_iter()
+            .find(|k| k.element().topology().gmsh_type == t as u32)
+    },
+    read: READ,
+    none: "tetrahedra or hexahedra (Gmsh types 4, 11, 5, 17)",
+    orient,
+    sets: add_physical_sets,
+};
 
-impl Shape {
-    /// The prefix of an unnamed group's name.
-    fn prefix(self) -> &'static str {
-        match self {
-            Shape::Triangle | Shape::Quadrangle => "surface",
-            Shape::Line => "curve",
-            Shape::Point => "point",
-        }
-    }
-}
-
-/// A triangle, line or point element of a physical group.
-struct Lower {
-    shape: Shape,
-    /// The entity `(dimension, tag)`.
-    entity: (i32, i32),
-    element_tag: u64,
-    nodes: Vec<u64>,
-}
-
-fn build(file: MshFile<u64, i32, f64>, names: &Names, origin: &str) -> Result<SolidMesh, FemError> {
-    let io = |detail: String| FemError::invalid_file(origin, detail);
-    let data = file.data;
-    let physical = physical_tags(&data);
-    let nodes_section = data
-        .nodes
-        .ok_or_else(|| io("no $Nodes section".to_string()))?;
-    let coords = node_coordinates(&nodes_section, &io)?;
-    let elements = data
-        .elements
-        .ok_or_else(|| io("no $Elements section".to_string()))?;
-    check_elements(&nodes_section, &elements, &coords).map_err(io)?;
-
-    // Tetrahedra (with their region) and the triangles, lines and points of physical groups.
-    let mut kind = None;
-    let mut tets: Vec<&[u64]> = Vec::new();
-    let mut tet_tags: Vec<u64> = Vec::new();
-    let mut regions = Vec::new();
-    let mut lower: Vec<Lower> = Vec::new();
-    for block in &elements.element_blocks {
-        let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
-        let shape = match t {
-            ElementType::Tet4 | ElementType::Tet10 | ElementType::Hex8 | ElementType::Hex20 => {
-                let this = match t {
-                    ElementType::Tet4 => SolidKind::Tet4,
-                    ElementType::Tet10 => SolidKind::Tet10,
-                    ElementType::Hex8 => SolidKind::Hex8,
-                    _ => SolidKind::Hex20,
-                };
-                let first = *kind.get_or_insert(this);
-                if first != this {
-                    return Err(FemError::Unsupported {
-                        what: format!(
-                            "mixed {}-node and {}-node elements ({first:?} and {this:?}) in \
-                             {origin} (volume {tag} holds {}-node ones): one kind per file",
-                            first.node_count(),
-                            this.node_count(),
-                            this.node_count()
-                        ),
-                    });
-                }
-                let region = region_of(&physical, dim, tag, origin)?;
-                for e in &block.elements {
-                    if e.nodes.len() != this.node_count() {
-                        return Err(io(format!(
-                            "element {} has {} nodes, not {}",
-                            e.element_tag,
-                            e.nodes.len(),
-                            this.node_count()
-                        )));
-                    }
-                    tets.push(&e.nodes);
-                    tet_tags.push(e.element_tag);
-                    regions.push(region);
-                }
-                continue;
+/// A 3D element in our node order (Gmsh's Tet10 and Hex20 mid-edge nodes mapped), right-handed:
+/// the triad at corner 0, `(1, 2, 3)` of a tetrahedron or `(1, 3, 4)` of a hexahedron, has a
+/// positive volume, else the element is mirrored.
+fn orient(kind: SolidKind, t: Vec<usize>, nodes: &[[f64; 3]]) -> Vec<usize> {
+    let cell: Vec<usize> = match kind {
+        SolidKind::Tet10 => FROM_GMSH_TET10.iter().map(|&k| t[k]).collect(),
+        SolidKind::Hex20 => {
+            let mut cell = vec![0; 20];
+            for (k, &local) in GMSH_TO_LOCAL.iter().enumerate() {
+                cell[local] = t[k];
             }
-            ElementType::Tri3 | ElementType::Tri6 => Shape::Triangle,
-            ElementType::Qua4 | ElementType::Qua8 | ElementType::Qua9 => Shape::Quadrangle,
-            ElementType::Lin2 | ElementType::Lin3 => Shape::Line,
-            ElementType::Pnt => Shape::Point,
-            _ => return Err(unsupported_type(t, dim, tag, READ)),
-        };
-        if physical.get(&(dim, tag)).is_none_or(Vec::is_empty) {
-            continue;
+            cell
         }
-        lower.extend(block.elements.iter().map(|e| Lower {
-            shape,
-            entity: (dim, tag),
-            element_tag: e.element_tag,
-            nodes: e.nodes.clone(),
-        }));
-    }
-    let Some(kind) = kind else {
-        return Err(FemError::Unsupported {
-            what: format!(
-                "{origin} holds no tetrahedra or hexahedra (Gmsh types 4, 11, 5, 17); note \
-                 that once physical groups exist Gmsh saves only their elements (add a \
-                 physical volume)"
-            ),
-        });
+        _ => t,
     };
-
-    // Keep the nodes of tetrahedra, in tag order.
-    let mut used: Vec<u64> = tets.iter().flat_map(|t| t.iter().copied()).collect();
-    used.sort_unstable();
-    used.dedup();
-    let index: HashMap<u64, usize> = used.iter().enumerate().map(|(i, &t)| (t, i)).collect();
-    // (every tag is defined: `check_elements` has seen to it)
-    let nodes: Vec<[f64; 3]> = used.iter().map(|t| coords[t]).collect();
-
-    // Connectivity in our node order, right-handed.
-    let npe = kind.node_count();
-    let mut connectivity = Vec::with_capacity(npe * tets.len());
-    for t in &tets {
-        let cell: Vec<usize> = match kind {
-            SolidKind::Tet10 => FROM_GMSH_TET10.iter().map(|&k| index[&t[k]]).collect(),
-            SolidKind::Hex20 => {
-                let mut cell = vec![0; 20];
-                for (k, &local) in GMSH_TO_LOCAL.iter().enumerate() {
-                    cell[local] = index[&t[k]];
-                }
-                cell
-            }
-            _ => t.iter().map(|tag| index[tag]).collect(),
-        };
-        // the triad at corner 0: (1, 2, 3) of a tetrahedron, (1, 3, 4) of a hexahedron
-        let hex = kind.corner_count() == 8;
-        let [i, j, k] = if hex { [1, 3, 4] } else { [1, 2, 3] };
-        let volume = signed_volume(
-            nodes[cell[0]],
-            nodes[cell[i]],
-            nodes[cell[j]],
-            nodes[cell[k]],
-        );
-        if volume < 0.0 {
-            let mirror: &[usize] = if hex { &HEX_MIRROR } else { &MIRROR };
-            connectivity.extend(mirror[..npe].iter().map(|&k| cell[k]));
-        } else {
-            connectivity.extend(cell);
-        }
+    let hex = kind.corner_count() == 8;
+    let [i, j, k] = if hex { [1, 3, 4] } else { [1, 2, 3] };
+    let volume = signed_volume(
+        nodes[cell[0]],
+        nodes[cell[i]],
+        nodes[cell[j]],
+        nodes[cell[k]],
+    );
+    if volume < 0.0 {
+        let mirror: &[usize] = if hex { &HEX_MIRROR } else { &MIRROR };
+        mirror[..kind.node_count()]
+            .iter()
+            .map(|&k| cell[k])
+            .collect()
+    } else {
+        cell
     }
-    let mut mesh = SolidMesh::new(nodes, kind, connectivity, regions)
-        .map_err(|e| with_tags(e, &used, &tet_tags, origin))?;
-    add_physical_sets(&mut mesh, &lower, &index, names, &physical, origin)?;
-    Ok(mesh)
 }
 
 /// The physical surfaces, curves and points as face and node sets of `mesh`.
@@ -274,7 +160,7 @@ fn add_physical_sets(
     lower: &[Lower],
     index: &HashMap<u64, usize>,
     names: &Names,
-    physical: &HashMap<(i32, i32), Vec<i32>>,
+    physical: &Physical,
     origin: &str,
 ) -> Result<(), FemError> {
     // The faces of every tetrahedron, by their sorted corners (two for an interior face).
