@@ -1,8 +1,9 @@
 //! Finite-element core of `bipotential`: linear elasticity on 2D and 3D meshes.
 //!
 //! What the crate holds:
-//! - **Meshes** ([`mesh`]): 3-node (P1) and 6-node (P2) triangles with regions, node sets and
-//!   edge sets; structured generators ([`generate`]: graded rectangles, the axisymmetric
+//! - **Meshes** ([`mesh`]): one [`Mesh<D>`](Mesh) for 2D (triangles, quadrilaterals) and 3D
+//!   ([`mesh::SolidMesh`]: tetrahedra, hexahedra) with regions, node sets and facet sets (edge
+//!   or face sets); structured generators ([`generate`]: graded rectangles, the axisymmetric
 //!   pile-in-soil domain); a Gmsh `.msh` 4.1 reader ([`gmsh`]); VTK `.vtu`/`.pvd` output for
 //!   ParaView ([`vtk`]).
 //! - **Elements** ([`element`]): one isoparametric [`Element`] trait for 2D and 3D with its

@@ -483,3 +483,105 @@ fn checked_node_set(node_count: usize, mut nodes: Vec<usize>) -> Result<Vec<usiz
     nodes.dedup();
     Ok(nodes)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Mesh {
+        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        Mesh::new(nodes, ElementKind::Tri3, vec![0, 1, 2, 0, 2, 3], vec![]).unwrap()
+    }
+
+    fn tetrahedron() -> SolidMesh {
+        let nodes = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![]).unwrap()
+    }
+
+    /// One generic function on a mesh of either dimension: its boundary facets, the node count
+    /// of its built-in element, and the error of an unknown facet set.
+    fn summary<const D: usize>(mesh: &Mesh<D>) -> (usize, usize, FemError)
+    where
+        Dim<D>: Space,
+    {
+        let boundary = mesh.boundary_facets().len();
+        (
+            boundary,
+            mesh.built_in_element().node_count(),
+            mesh.facet_set("top").unwrap_err(),
+        )
+    }
+
+    #[test]
+    fn issue_35_one_generic_function_serves_both_dimensions() {
+        // two triangles share the diagonal: 4 boundary sides; a tetrahedron has 4 faces
+        let unknown = |kind| FemError::UnknownSet {
+            kind,
+            name: "top".to_string(),
+        };
+        assert_eq!(summary(&square()), (4, 3, unknown("edge")));
+        assert_eq!(summary(&tetrahedron()), (4, 4, unknown("face")));
+    }
+
+    #[test]
+    fn issue_35_the_built_in_element_of_every_kind_works() {
+        fn check<const D: usize>(kind: Kind<D>)
+        where
+            Dim<D>: Space,
+        {
+            let any = kind.element_any();
+            let element = any.downcast_ref::<&'static dyn Element<D>>().unwrap();
+            let topology = element.topology();
+            assert_eq!(element.node_count(), kind.node_count(), "{kind:?}");
+            assert_eq!(topology.corners, kind.corner_count(), "{kind:?}");
+            assert_eq!(topology.sides.len(), kind.facet_count(), "{kind:?}");
+            for (f, nodes) in topology.sides.iter().enumerate() {
+                assert_eq!(*nodes, kind.facet_nodes(f), "{kind:?} facet {f}");
+            }
+        }
+        ElementKind::ALL.into_iter().for_each(check::<2>);
+        SolidKind::ALL.into_iter().for_each(check::<3>);
+    }
+
+    #[test]
+    fn issue_35_join_works_in_3d() {
+        let mut a = tetrahedron();
+        a.add_face_set(
+            "base",
+            vec![Face {
+                element: 0,
+                side: 0,
+            }],
+        )
+        .unwrap();
+        let both = SolidMesh::join(&[("a.", &a), ("b.", &a)]).unwrap();
+        assert_eq!((both.node_count(), both.element_count()), (8, 2));
+        assert_eq!(
+            both.face_set("b.base").unwrap(),
+            &[Face {
+                element: 1,
+                side: 0
+            }]
+        );
+        // the face set's node set came along, shifted to the second part's nodes
+        assert_eq!(both.node_set("b.base").unwrap(), &[4, 5, 6]);
+        assert!(matches!(
+            SolidMesh::join(&[("a.", &a), ("a.", &a)]),
+            Err(FemError::Unsupported { .. })
+        ));
+    }
+
+    #[test]
+    fn new_rejects_non_finite_nodes_in_both_dimensions() {
+        let mut nodes = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        nodes[3][2] = f64::INFINITY;
+        assert!(matches!(
+            SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![]),
+            Err(FemError::NonFiniteNode3 { node: 3, coords }) if coords[2] == f64::INFINITY
+        ));
+        assert!(matches!(
+            SolidMesh::new(vec![[0.0; 3]], SolidKind::Tet4, vec![0, 0, 0, 9], vec![]),
+            Err(FemError::NodeOutOfRange { node: 9, .. })
+        ));
+    }
+}

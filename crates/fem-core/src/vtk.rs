@@ -6,7 +6,7 @@
 //! `VTK_QUADRATIC_TRIANGLE` (22), whose node order is ours.
 //!
 //! 3D meshes ([`write_vtu_3d`]): P1 tetrahedra are `VTK_TETRA` (10), P2 tetrahedra
-//! `VTK_QUADRATIC_TETRA` (24), whose node order is ours too (see [`SolidKind`]).
+//! `VTK_QUADRATIC_TETRA` (24), whose node order is ours too (see [`SolidKind`](crate::mesh::SolidKind)).
 //!
 //! Every array is `Float64`, base64-encoded inline; the element regions are always written as
 //! the cell array `region` (`UInt32`).

@@ -24,10 +24,13 @@ where
     /// What the file lacks when it holds no element of the dimension.
     pub(crate) none: &'static str,
     /// An element's nodes (0-based, in Gmsh's order) in our order and orientation.
-    pub(crate) orient: fn(Kind<D>, Vec<usize>, &[[f64; D]]) -> Vec<usize>,
+    pub(crate) orient: Orient<D>,
     /// Adds the sets of the physical groups (`lower`; node tags by `index`).
     pub(crate) sets: Sets<D>,
 }
+
+/// An element's nodes (0-based, Gmsh's order) in our order and orientation, given the nodes.
+pub(crate) type Orient<const D: usize> = fn(Kind<D>, Vec<usize>, &[[f64; D]]) -> Vec<usize>;
 
 /// The physical groups' elements made into sets of the mesh.
 pub(crate) type Sets<const D: usize> = fn(

@@ -1,7 +1,7 @@
 //! Reading 3D tetrahedral and hexahedral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
 //!
-//! The 3D counterpart of [`crate::gmsh`], whose checks around the [`mshio`] parser it shares;
-//! this module turns the file into a [`SolidMesh`]:
+//! The 3D tables of [`crate::gmsh`], whose checks around the [`mshio`] parser and whose build
+//! it shares; the file becomes a [`SolidMesh`]:
 //!
 //! - **Nodes.** Only the nodes used by tetrahedra are kept, numbered `0..n` in increasing Gmsh
 //!   tag order.
