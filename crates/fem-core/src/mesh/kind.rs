@@ -1,10 +1,7 @@
 //! The element kinds of a mesh: [`ElementKind`] in the plane, [`SolidKind`] in 3D, and what
 //! the dimension-generic [`Mesh`](super::Mesh) needs of them ([`CellKind`], [`Kinds`]).
 
-use crate::element::{
-    Element, Hex8, Hex20, Quad4, Quad8, Quad9, Tet4, Tet10, Tri3, Tri6, hex8, hex20, quad4, quad8,
-    tet4, tet10, tri3, tri6,
-};
+use crate::element::{Element, Hex8, Hex20, Quad4, Quad8, Quad9, Tet4, Tet10, Tri3, Tri6};
 use crate::space::{CellKind, Dim, Kinds, sealed::Sealed};
 use std::any::Any;
 
@@ -43,13 +40,7 @@ impl ElementKind {
     /// The built-in element of this kind.
     #[inline]
     pub fn element(self) -> &'static dyn Element<2> {
-        match self {
-            ElementKind::Tri3 => &Tri3,
-            ElementKind::Tri6 => &Tri6,
-            ElementKind::Quad4 => &Quad4,
-            ElementKind::Quad8 => &Quad8,
-            ElementKind::Quad9 => &Quad9,
-        }
+        PLANE[self as usize]
     }
 
     /// Nodes per element: 3, 6, 4, 8 or 9.
@@ -97,12 +88,7 @@ impl ElementKind {
     #[inline]
     #[track_caller]
     pub fn side_nodes(self, side: usize) -> &'static [usize] {
-        match self {
-            ElementKind::Tri3 => tri3::SIDES[side],
-            ElementKind::Tri6 => tri6::SIDES[side],
-            ElementKind::Quad4 => quad4::SIDES[side],
-            ElementKind::Quad8 | ElementKind::Quad9 => quad8::SIDES[side],
-        }
+        self.element().topology().sides[side]
     }
 }
 
@@ -140,12 +126,7 @@ impl SolidKind {
     /// The built-in element of this kind.
     #[inline]
     pub fn element(self) -> &'static dyn Element<3> {
-        match self {
-            SolidKind::Tet4 => &Tet4,
-            SolidKind::Tet10 => &Tet10,
-            SolidKind::Hex8 => &Hex8,
-            SolidKind::Hex20 => &Hex20,
-        }
+        SOLID[self as usize]
     }
 
     /// Nodes per element: 4, 10, 8 or 20.
@@ -196,21 +177,20 @@ impl SolidKind {
     /// ```
     ///
     /// hexahedra: faces `ζ = −1, η = −1, ξ = 1, η = 1, ξ = −1, ζ = 1`
-    /// ([`hex8::FACES`]).
+    /// ([`crate::element::hex8::FACES`]).
     ///
     /// # Panics
     /// If `face >= self.face_count()`.
     #[inline]
     #[track_caller]
     pub fn face_nodes(self, face: usize) -> &'static [usize] {
-        match self {
-            SolidKind::Tet4 => tet4::FACES[face],
-            SolidKind::Tet10 => tet10::FACES[face],
-            SolidKind::Hex8 => hex8::FACES[face],
-            SolidKind::Hex20 => hex20::FACES[face],
-        }
+        self.element().topology().sides[face]
     }
 }
+
+/// The built-in elements, in the order of the kinds ([`ElementKind::ALL`], [`SolidKind::ALL`]).
+static PLANE: [&dyn Element<2>; 5] = [&Tri3, &Tri6, &Quad4, &Quad8, &Quad9];
+static SOLID: [&dyn Element<3>; 4] = [&Tet4, &Tet10, &Hex8, &Hex20];
 
 impl Sealed for ElementKind {}
 impl Sealed for SolidKind {}
@@ -241,12 +221,7 @@ impl CellKind for ElementKind {
         self.side_nodes(facet)
     }
     fn element_any(self) -> &'static dyn Any {
-        static ALL: [&dyn Element<2>; 5] = [&Tri3, &Tri6, &Quad4, &Quad8, &Quad9];
-        let k = ElementKind::ALL
-            .iter()
-            .position(|&k| k == self)
-            .unwrap_or(0);
-        &ALL[k]
+        &PLANE[self as usize]
     }
 }
 
@@ -268,8 +243,6 @@ impl CellKind for SolidKind {
         self.face_nodes(facet)
     }
     fn element_any(self) -> &'static dyn Any {
-        static ALL: [&dyn Element<3>; 4] = [&Tet4, &Tet10, &Hex8, &Hex20];
-        let k = SolidKind::ALL.iter().position(|&k| k == self).unwrap_or(0);
-        &ALL[k]
+        &SOLID[self as usize]
     }
 }
