@@ -431,7 +431,6 @@ fn add_physical_sets(
     physical: &Physical,
     origin: &str,
 ) -> Result<(), FemError> {
-    let tags_of = |dim: i32, tag: i32| physical.get(&(dim, tag)).map_or(&[][..], Vec::as_slice);
     let of = |shape: Shape| lower.iter().filter(move |l| l.shape == shape);
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
@@ -449,11 +448,7 @@ fn add_physical_sets(
                 line.entity.1, line.nodes
             ),
         })?;
-        for &p in tags_of(1, line.entity.1) {
-            let name = names
-                .get(&(1, p))
-                .cloned()
-                .unwrap_or_else(|| format!("curve_{p}"));
+        for name in line.groups(names, physical) {
             let set = edge_sets.entry(name).or_default();
             if !set.contains(&side) {
                 set.push(side);
@@ -477,11 +472,7 @@ fn add_physical_sets(
                     point.entity.1, point.nodes
                 ),
             })?;
-        for &p in tags_of(0, point.entity.1) {
-            let name = names
-                .get(&(0, p))
-                .cloned()
-                .unwrap_or_else(|| format!("point_{p}"));
+        for name in point.groups(names, physical) {
             node_sets.entry(name).or_default().push(node);
         }
     }

@@ -102,14 +102,8 @@ where
         }
         let npe = kind.node_count();
         let regions = checked_cells(nodes.len(), npe, &connectivity, regions)?;
-        let flat = nodes.as_flattened();
         for (element, cell) in connectivity.chunks_exact(npe).enumerate() {
-            let corners = &cell[..kind.corner_count()];
-            if D == 2 {
-                plane::check_corners(element, flat.as_chunks().0, corners)?;
-            } else {
-                solid::check_corners(element, flat.as_chunks().0, corners)?;
-            }
+            check_corners(element, &nodes, &cell[..kind.corner_count()])?;
         }
         Ok(Self {
             nodes,
@@ -427,6 +421,77 @@ where
         key.sort_unstable();
         key
     }
+}
+
+/// Checks the corners of one element: finite products, not degenerate, positively oriented.
+/// A triangle or tetrahedron is tested whole, a quadrilateral or hexahedron on the simplex of
+/// each corner and its neighbours ([`plane::corner_simplices`], [`solid::corner_simplices`]):
+/// its signed area or volume against `1e-12` of its longest edge to the power `D`.
+fn check_corners<const D: usize>(
+    element: usize,
+    nodes: &[[f64; D]],
+    cell: &[usize],
+) -> Result<(), FemError>
+where
+    Dim<D>: Space,
+{
+    let simplices = match D {
+        2 => plane::corner_simplices(cell.len()),
+        _ => solid::corner_simplices(cell.len()),
+    };
+    let (mut measure, mut l2) = (f64::INFINITY, 0.0_f64);
+    for s in &simplices {
+        let p: Vec<[f64; D]> = s[..=D].iter().map(|&k| nodes[cell[k]]).collect();
+        let q = p.as_flattened();
+        let m = match D {
+            2 => plane::signed_area(*q.as_chunks().0.first_chunk().expect("3 points")),
+            _ => match *q.as_chunks().0 {
+                [a, b, c, d] => signed_volume(a, b, c, d),
+                _ => f64::NAN,
+            },
+        };
+        let mut lk = 0.0_f64;
+        for (i, a) in p.iter().enumerate() {
+            for b in &p[i + 1..] {
+                lk = lk.max((0..D).map(|k| (a[k] - b[k]).powi(2)).sum());
+            }
+        }
+        if !(m.is_finite() && lk.is_finite()) {
+            // the coordinates are finite, but their products overflow
+            let value = cell
+                .iter()
+                .flat_map(|&n| nodes[n].iter())
+                .fold(0.0_f64, |m, v| m.max(v.abs()));
+            return Err(FemError::InvalidParameter {
+                name: "node coordinates",
+                value,
+                expected: match D {
+                    2 => "magnitudes whose products stay finite (below about 1e150)",
+                    _ => "magnitudes whose products stay finite (below about 1e100)",
+                },
+            });
+        }
+        measure = measure.min(m);
+        l2 = l2.max(lk);
+    }
+    let small = if D == 2 { 1e-12 * l2 } else { 1e-12 * l2 * l2.sqrt() };
+    if measure.abs() <= small || l2 == 0.0 {
+        return Err(match D {
+            2 => FemError::DegenerateElement {
+                element,
+                area: measure,
+            },
+            _ => FemError::DegenerateSolid {
+                element,
+                volume: measure,
+            },
+        });
+    }
+    if measure < 0.0 {
+        let det_j = if D == 2 { 2.0 } else { 6.0 } * measure;
+        return Err(FemError::InvertedElement { element, det_j });
+    }
+    Ok(())
 }
 
 /// Checks a flat connectivity of `npe` nodes per element against `node_count` nodes and returns

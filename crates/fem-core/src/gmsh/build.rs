@@ -81,6 +81,21 @@ pub(crate) struct Lower {
     pub(crate) nodes: Vec<u64>,
 }
 
+impl Lower {
+    /// The names of the element's physical groups: from `$PhysicalNames`, else
+    /// `surface_<tag>`, `curve_<tag>` or `point_<tag>`.
+    pub(crate) fn groups(&self, names: &Names, physical: &Physical) -> Vec<String> {
+        let dim = self.entity.0;
+        let tags = physical.get(&self.entity).map_or(&[][..], Vec::as_slice);
+        tags.iter()
+            .map(|&p| {
+                let name = names.get(&(dim, p)).cloned();
+                name.unwrap_or_else(|| format!("{}_{p}", self.shape.prefix()))
+            })
+            .collect()
+    }
+}
+
 /// The mesh of a parsed file (see the [module docs](self)).
 pub(crate) fn build<const D: usize>(
     file: MshFile<u64, i32, f64>,

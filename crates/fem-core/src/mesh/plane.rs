@@ -96,59 +96,22 @@ impl Mesh<2> {
     }
 }
 
-/// Checks the corners of one element: finite products, not degenerate, counter-clockwise. A
-/// triangle's area is tested; a quadrilateral is tested at each corner (the triangle of the
-/// corner and its two neighbours), which accepts exactly the strictly convex quadrilaterals —
-/// those whose bilinear map has a positive Jacobian everywhere.
-pub(super) fn check_corners(
-    element: usize,
-    nodes: &[[f64; 2]],
-    cell: &[usize],
-) -> Result<(), FemError> {
-    let c = cell.len();
-    let corner_triangles = if c == 3 { 1 } else { c };
-    let (mut area, mut l2) = (f64::INFINITY, 0.0_f64);
-    for k in 0..corner_triangles {
-        // for a triangle: (0, 1, 2); for a quadrilateral: (k, k + 1, k − 1)
-        let [a, b, cc] = if c == 3 {
-            [nodes[cell[0]], nodes[cell[1]], nodes[cell[2]]]
-        } else {
-            [
-                nodes[cell[k]],
-                nodes[cell[(k + 1) % c]],
-                nodes[cell[(k + c - 1) % c]],
-            ]
-        };
-        let ak = 0.5 * ((b[0] - a[0]) * (cc[1] - a[1]) - (cc[0] - a[0]) * (b[1] - a[1]));
-        let lk = [(a, b), (b, cc), (cc, a)]
-            .iter()
-            .map(|(p, q)| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2))
-            .fold(0.0, f64::max);
-        if !(ak.is_finite() && lk.is_finite()) {
-            // the coordinates are finite, but their products overflow
-            let value = cell
-                .iter()
-                .flat_map(|&n| nodes[n].iter())
-                .fold(0.0_f64, |m, v| m.max(v.abs()));
-            return Err(FemError::InvalidParameter {
-                name: "node coordinates",
-                value,
-                expected: "magnitudes whose products stay finite (below about 1e150)",
-            });
-        }
-        area = area.min(ak);
-        l2 = l2.max(lk);
+/// The corner triangles of a triangle (itself) or a quadrilateral (at each corner `k`, the
+/// corners `k, k + 1, k − 1`), counter-clockwise when the element is: they test a
+/// quadrilateral exactly for strict convexity, i.e. a positive Jacobian of its bilinear map
+/// everywhere ([`Mesh::new`]).
+pub(super) fn corner_simplices(corners: usize) -> Vec<[usize; 4]> {
+    match corners {
+        3 => vec![[0, 1, 2, 0]],
+        c => (0..c)
+            .map(|k| [k, (k + 1) % c, (k + c - 1) % c, 0])
+            .collect(),
     }
-    if area.abs() <= 1e-12 * l2 || l2 == 0.0 {
-        return Err(FemError::DegenerateElement { element, area });
-    }
-    if area < 0.0 {
-        return Err(FemError::InvertedElement {
-            element,
-            det_j: 2.0 * area,
-        });
-    }
-    Ok(())
+}
+
+/// The signed area of the triangle `(a, b, c)`, positive counter-clockwise.
+pub(super) fn signed_area([a, b, c]: [[f64; 2]; 3]) -> f64 {
+    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
 }
 
 #[cfg(test)]

@@ -235,70 +235,29 @@ pub(crate) fn quadrilateral_shape(nodes: usize, xi: [f64; 2]) -> ([f64; 8], [[f6
     (n, dn)
 }
 
-/// Checks the corners of one element: finite products, not degenerate, right-handed. A
-/// tetrahedron's volume is tested; a hexahedron is tested at each corner (the tetrahedron of
-/// the corner and its three neighbours, as a right-handed triad).
-pub(super) fn check_corners(
-    element: usize,
-    nodes: &[[f64; 3]],
-    cell: &[usize],
-) -> Result<(), FemError> {
-    let p = |k: usize| nodes[cell[k]];
-    let mut tets: Vec<[usize; 4]> = Vec::with_capacity(8);
-    if cell.len() == 4 {
-        tets.push([0, 1, 2, 3]);
-    } else {
-        let corners = &crate::element::hex8::CORNERS;
-        for (i, c) in corners.iter().enumerate() {
-            let flip = |a: usize| {
-                let mut d = *c;
-                d[a] = -d[a];
-                corners.iter().position(|q| *q == d).unwrap_or(i)
-            };
-            let (jx, jy, jz) = (flip(0), flip(1), flip(2));
-            // the triad (x, y, z) of neighbours is right-handed where c_x c_y c_z < 0
-            tets.push(if c[0] * c[1] * c[2] < 0.0 {
-                [i, jx, jy, jz]
-            } else {
-                [i, jy, jx, jz]
-            });
-        }
+/// The corner tetrahedra of a tetrahedron (itself) or a hexahedron (at each corner, the corner
+/// and its three neighbours as a right-handed triad) ([`SolidMesh::new`]).
+pub(super) fn corner_simplices(corners: usize) -> Vec<[usize; 4]> {
+    if corners == 4 {
+        return vec![[0, 1, 2, 3]];
     }
-    let (mut volume, mut l2) = (f64::INFINITY, 0.0_f64);
-    for t in &tets {
-        let c = t.map(p);
-        let v = signed_volume(c[0], c[1], c[2], c[3]);
-        let lk = TET_EDGES
-            .iter()
-            .map(|&[i, j]| {
-                let d = sub(c[i], c[j]);
-                dot(d, d)
-            })
-            .fold(0.0, f64::max);
-        if !(v.is_finite() && lk.is_finite()) {
-            let value = c
-                .iter()
-                .flat_map(|p| p.iter())
-                .fold(0.0_f64, |m, v| m.max(v.abs()));
-            return Err(FemError::InvalidParameter {
-                name: "node coordinates",
-                value,
-                expected: "magnitudes whose products stay finite (below about 1e100)",
-            });
-        }
-        volume = volume.min(v);
-        l2 = l2.max(lk);
-    }
-    if volume.abs() <= 1e-12 * l2 * l2.sqrt() || l2 == 0.0 {
-        return Err(FemError::DegenerateSolid { element, volume });
-    }
-    if volume < 0.0 {
-        return Err(FemError::InvertedElement {
-            element,
-            det_j: 6.0 * volume,
+    let corners = &crate::element::hex8::CORNERS;
+    let mut tets = Vec::with_capacity(8);
+    for (i, c) in corners.iter().enumerate() {
+        let flip = |a: usize| {
+            let mut d = *c;
+            d[a] = -d[a];
+            corners.iter().position(|q| *q == d).unwrap_or(i)
+        };
+        let (jx, jy, jz) = (flip(0), flip(1), flip(2));
+        // the triad (x, y, z) of neighbours is right-handed where c_x c_y c_z < 0
+        tets.push(if c[0] * c[1] * c[2] < 0.0 {
+            [i, jx, jy, jz]
+        } else {
+            [i, jy, jx, jz]
         });
     }
-    Ok(())
+    tets
 }
 
 /// Shape values and reference derivatives `(∂/∂ξ, ∂/∂η)` of a 3- or 6-node triangle at

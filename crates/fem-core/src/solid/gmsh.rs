@@ -177,16 +177,8 @@ fn add_physical_sets(
     let mut face_sets: BTreeMap<String, BTreeSet<Face>> = BTreeMap::new();
     let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for l in lower {
-        let (dim, entity) = l.entity;
-        let groups: Vec<String> = physical[&l.entity]
-            .iter()
-            .map(|&p| {
-                names
-                    .get(&(dim, p))
-                    .cloned()
-                    .unwrap_or_else(|| format!("{}_{p}", l.shape.prefix()))
-            })
-            .collect();
+        let entity = l.entity.1;
+        let groups = l.groups(names, physical);
         if matches!(l.shape, Shape::Triangle | Shape::Quadrangle) {
             let (what, of) = match l.shape {
                 Shape::Triangle => ("triangle", "a tetrahedron"),
