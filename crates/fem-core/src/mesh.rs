@@ -474,7 +474,11 @@ where
         measure = measure.min(m);
         l2 = l2.max(lk);
     }
-    let small = if D == 2 { 1e-12 * l2 } else { 1e-12 * l2 * l2.sqrt() };
+    let small = if D == 2 {
+        1e-12 * l2
+    } else {
+        1e-12 * l2 * l2.sqrt()
+    };
     if measure.abs() <= small || l2 == 0.0 {
         return Err(match D {
             2 => FemError::DegenerateElement {
