@@ -51,6 +51,26 @@ pub type SolidMesh = Mesh<3>;
 ///
 /// Coordinates are `(x, y)` (`(r, z)` in axisymmetry) or `(x, y, z)`. Built with
 /// [`Mesh::new`], which checks indices, finiteness and orientation, so every `Mesh` is valid.
+///
+/// # Examples
+/// One function for both dimensions:
+/// ```
+/// use fem_core::generate::{RectangleSpec, rectangle};
+/// use fem_core::solid::{SolidKind, generate::{box_mesh, lines}};
+/// use fem_core::{Dim, Mesh, Space};
+///
+/// fn boundary<const D: usize>(mesh: &Mesh<D>) -> usize
+/// where
+///     Dim<D>: Space,
+/// {
+///     mesh.boundary_facets().len()
+/// }
+/// let square = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+/// let l = lines(0.0, 1.0, 1);
+/// let cube = box_mesh(&l, &l, &l, SolidKind::Hex8)?;
+/// assert_eq!((boundary(&square), boundary(&cube)), (8, 6));
+/// # Ok::<(), fem_core::FemError>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh<const D: usize = 2>
 where
