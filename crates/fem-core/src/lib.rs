@@ -43,7 +43,7 @@ pub use error::FemError;
 pub use idealization::Idealization;
 pub use material::{Material, MaterialParams};
 pub use mesh::curve;
-pub use mesh::{ElementKind, Mesh, Side};
+pub use mesh::{ElementKind, Facet, Mesh, Side};
 pub mod element;
 pub mod quadrature;
 pub use element::{Element, Quad4, Quad8, Quad9, Stress, Tri3, Tri6};
@@ -60,7 +60,7 @@ pub use dirichlet::{Component, DofMap, Supports};
 pub use linear_solver::SpdSolver;
 pub use model::{LinearElasticModel, Reaction, StressField, StressPoint, geostatic};
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
-pub use space::{Dim, Plane, Solid, Space};
+pub use space::{CellKind, Dim, Plane, Solid, Space};
 pub use structure::{Floating, Structure};
 
 /// The `faer` this crate is built with (its sparse matrices and `MatMut` are in

@@ -57,18 +57,19 @@ pub type SolidMesh = Mesh<3>;
 /// ```
 /// use fem_core::generate::{RectangleSpec, rectangle};
 /// use fem_core::solid::{SolidKind, generate::{box_mesh, lines}};
-/// use fem_core::{Dim, Mesh, Space};
+/// use fem_core::{CellKind, Dim, Mesh, Space};
 ///
-/// fn boundary<const D: usize>(mesh: &Mesh<D>) -> usize
+/// /// The boundary facets, and the facets of one element.
+/// fn facets<const D: usize>(mesh: &Mesh<D>) -> (usize, usize)
 /// where
 ///     Dim<D>: Space,
 /// {
-///     mesh.boundary_facets().len()
+///     (mesh.boundary_facets().len(), mesh.kind().facet_count())
 /// }
 /// let square = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
 /// let l = lines(0.0, 1.0, 1);
 /// let cube = box_mesh(&l, &l, &l, SolidKind::Hex8)?;
-/// assert_eq!((boundary(&square), boundary(&cube)), (8, 6));
+/// assert_eq!((facets(&square), facets(&cube)), ((8, 3), (6, 6)));
 /// # Ok::<(), fem_core::FemError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]

@@ -42,7 +42,9 @@ pub(crate) mod sealed {
 
 /// An element kind of a mesh, as the dimension-generic mesh sees it:
 /// [`ElementKind`](crate::ElementKind) in the plane, [`SolidKind`](crate::mesh::SolidKind)
-/// in 3D (sealed). A *facet* is a side of a 2D element or a face of a 3D one.
+/// in 3D (sealed). A *facet* is a side of a 2D element or a face of a 3D one. Code generic
+/// over `D` brings it into scope (`use fem_core::CellKind;`) to call these on
+/// [`Mesh::kind`](crate::Mesh::kind); the kinds' own methods of the same names need no import.
 pub trait CellKind:
     sealed::Sealed + Copy + Debug + PartialEq + Eq + std::hash::Hash + Send + Sync + 'static
 {
