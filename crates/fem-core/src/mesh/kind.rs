@@ -205,21 +205,27 @@ impl Kinds for Dim<3> {
 
 impl CellKind for ElementKind {
     const FACET: &'static str = "edge";
+    #[inline]
     fn node_count(self) -> usize {
         ElementKind::node_count(self)
     }
+    #[inline]
     fn corner_count(self) -> usize {
         ElementKind::corner_count(self)
     }
+    #[inline]
     fn facet_count(self) -> usize {
         self.side_count()
     }
+    #[inline]
     fn facet_corner_count(self) -> usize {
         2
     }
+    #[inline]
     fn facet_nodes(self, facet: usize) -> &'static [usize] {
         self.side_nodes(facet)
     }
+    #[inline]
     fn element_any(self) -> &'static dyn Any {
         &PLANE[self as usize]
     }
@@ -227,21 +233,27 @@ impl CellKind for ElementKind {
 
 impl CellKind for SolidKind {
     const FACET: &'static str = "face";
+    #[inline]
     fn node_count(self) -> usize {
         SolidKind::node_count(self)
     }
+    #[inline]
     fn corner_count(self) -> usize {
         SolidKind::corner_count(self)
     }
+    #[inline]
     fn facet_count(self) -> usize {
         self.face_count()
     }
+    #[inline]
     fn facet_corner_count(self) -> usize {
         self.face_corner_count()
     }
+    #[inline]
     fn facet_nodes(self, facet: usize) -> &'static [usize] {
         self.face_nodes(facet)
     }
+    #[inline]
     fn element_any(self) -> &'static dyn Any {
         &SOLID[self as usize]
     }
