@@ -28,7 +28,9 @@ use std::collections::{BTreeMap, HashMap};
 pub type Kind<const D: usize> = <Dim<D> as Kinds>::Kind;
 
 /// A facet of an element: element index and local facet — a side of a 2D element (see
-/// [`ElementKind::side_nodes`]) or a face of a 3D one (see [`SolidKind::face_nodes`]).
+/// [`ElementKind::side_nodes`]) or a face of a 3D one (see [`SolidKind::face_nodes`]). The
+/// local index is called `side` in both dimensions (a face is a 3D element's side), so that
+/// 2D code reads `Side { element, side }` and 3D code `Face { element, side }`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Facet {
     /// Element index.
