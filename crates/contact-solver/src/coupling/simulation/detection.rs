@@ -79,7 +79,9 @@ where
         let fresh = if reset { vec![0.0; count] } else { Vec::new() };
         let alpha = if reset { &fresh } else { &self.accepted.alpha };
         let step = SchemeStep::new(
-            (clock.time, clock.dt, clock.force_factor),
+            clock.time,
+            clock.dt,
+            clock.force_factor,
             &self.accepted.u,
             alpha,
         );

@@ -2,9 +2,26 @@
 //! [`ContactSimulation::step`] per load increment.
 //!
 //! # One step (`docs/theory.md` §13), stage by stage
-//! [`ContactSimulation::step`] is the list of the stages, one file each: `detection` (1–2 and
-//! the penetration check), `path` and `flexibility` (3), `solve` (4–5), `equilibrium` (6 and
-//! the report); `settings` and `report` hold the public data types.
+//! [`ContactSimulation::step`] is the list of the stages; each takes what it reads and returns
+//! what it makes, one file each: `detection` (the inputs, the renumbering, 1–2, the
+//! penetration check), `path` and `flexibility` (3), `solve` and `floating` (4–5),
+//! `equilibrium` (6, the acceptance and the report). The state they read and write is in three
+//! parts (`parts`): the interface (zones, candidates, `H`), the accepted state carried between
+//! steps, and the operator cache. What the time discretisation decides (the free response,
+//! `q`, the acceptance) goes through the [`TimeScheme`] seam (`scheme`), quasi-static below;
+//! `settings` and `report` hold the public data types.
+//!
+//! ```text
+//! check_step(time, force_factor, now)                        -> Result<()>
+//! follow_structure()                                         -> stiffness version
+//! free_response(clock)             [scheme: free response]   -> FreeResponse { y, jumps, mode_load }
+//! Interface::initial_active_set(settings, accepted, jumps)   -> active
+//! loop:
+//!   solve_pass(active, free, dt, version)  [scheme: q]       -> Pass::Solved(Solved { active, r, x, … }) | Pass::Extend
+//!   equilibrium(clock, free, solved)  [scheme: displacement] -> Equilibrium { solution, jumps }
+//!   Interface::penetrating(solved.active, jumps)             -> penetrating candidates
+//!   accept(clock, equilibrium, solved)  [scheme: accept]     -> StepResult (once none penetrates)
+//! ```
 //!
 //! 1. Free response `u_free` of the structure to the current loads and prescribed values.
 //! 2. Active set: candidates whose gap at the start of the step or under `u_free` is within
@@ -469,7 +486,9 @@ impl Clock {
     /// What the time scheme is told, with the accepted state `accepted` of the last step.
     fn scheme_step<'a, T, const D: usize>(self, accepted: &'a Accepted<T, D>) -> SchemeStep<'a> {
         SchemeStep::new(
-            (self.time, self.dt, self.force_factor),
+            self.time,
+            self.dt,
+            self.force_factor,
             &accepted.u,
             &accepted.alpha,
         )

@@ -52,7 +52,9 @@ pub struct SchemeStep<'a> {
 impl<'a> SchemeStep<'a> {
     /// The step ending at `time` after `dt`, from the accepted `displacement` and amplitudes.
     pub(super) fn new(
-        (time, dt, force_factor): (f64, f64, f64),
+        time: f64,
+        dt: f64,
+        force_factor: f64,
         displacement: &'a [f64],
         rigid_body_amplitudes: &'a [f64],
     ) -> Self {
