@@ -154,7 +154,8 @@ impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>
 where
     Dim<D>: ContactSpace<D>,
 {
-    /// As [`ContactSimulation::new`], stepping with the time scheme `scheme`.
+    /// As [`ContactSimulation::new`], stepping with the time scheme `scheme` (the example of
+    /// [`TimeScheme`] plugs one).
     ///
     /// # Errors
     /// As [`ContactSimulation::new`].

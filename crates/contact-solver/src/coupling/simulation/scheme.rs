@@ -118,8 +118,29 @@ impl<'a> SchemeStep<'a> {
 ///         TimeScheme::<S, D>::accept(&mut self.inner, step, y, u)
 ///     }
 /// }
+///
+/// // plugged into a simulation (a block pressed on a rigid line) with `with_scheme`
+/// use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
+/// use contact_laws::Signorini;
+/// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+/// use fem_core::generate::{RectangleSpec, rectangle};
+///
+/// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+/// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+/// let mut supports = Supports::new();
+/// supports.prescribe(&top, Component::Y, -0.01)?.fix(&top, Component::X);
+/// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
+///     &[(0, Material::new(100.0, 0.0, 0.0)?)], supports)?;
+/// let zone = ContactZone::rigid("base", bottom, RigidLine::new([-1.0, 0.0], [2.0, 0.0])?,
+///     Signorini, 0.1);
+/// let mut sim = ContactSimulation::with_scheme(model, vec![zone],
+///     SimulationSettings::default(), Counted::default())?;
+/// let res = sim.step(1.0, 1.0)?;
+/// assert_eq!(sim.scheme().accepted, 1);
+/// let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
+/// assert!((total - 1.0).abs() < 1e-9); // E δ / H over a width of 1, as quasi-static
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-/// and [`ContactSimulation::with_scheme`](super::ContactSimulation::with_scheme) runs it.
 pub trait TimeScheme<S: ?Sized, const D: usize> {
     /// Writes the free response `y_free` (the response without contact) into `free`, on the
     /// structure's free dofs (`free` is zeroed, [`Structure::dof_count`] long), in the
