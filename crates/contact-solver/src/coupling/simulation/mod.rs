@@ -1,5 +1,6 @@
-//! The quasi-static contact simulation (seed 5.3–5.5): a [`Structure`], contact zones, and one
-//! [`ContactSimulation::step`] per load increment.
+//! The contact simulation (seed 5.3–5.5): a [`Structure`], contact zones, and one
+//! [`ContactSimulation::step`] per load increment ([`QuasiStatic`]) or per time step of another
+//! [`TimeScheme`].
 //!
 //! # One step (`docs/theory.md` §13), stage by stage
 //! [`ContactSimulation::step`] is the list of the stages; each takes what it reads and returns
@@ -198,6 +199,11 @@ where
     /// The time scheme.
     pub fn scheme(&self) -> &T {
         &self.scheme
+    }
+
+    /// The time scheme, to change its parameters between steps.
+    pub fn scheme_mut(&mut self) -> &mut T {
+        &mut self.scheme
     }
 
     /// The structure.

@@ -88,6 +88,11 @@ impl<'a> SchemeStep<'a> {
 /// `S` is the structure type, so that a scheme may ask more of it than [`Structure`] (a mass,
 /// a damping) through its own bounds.
 ///
+/// The simulation's own check of the force factor (a factor other than 1 on a structure with
+/// no applied force is refused, issue 36) compares the free response with the structure's
+/// [`Structure::free_response_into`] at factor 1: a displacement-level check, which a scheme
+/// of another unit meets by stepping with the factor 1.
+///
 /// # Examples
 /// A scheme that counts the steps it accepts and is otherwise [`QuasiStatic`]:
 /// ```
