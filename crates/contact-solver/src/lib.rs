@@ -63,6 +63,8 @@ pub use coupling::simulation::{
     InterfaceStatus, SimulationSettings, SkipRules, StepReport, StepResult,
 };
 #[cfg(feature = "fe")]
+pub use coupling::simulation::{QuasiStatic, SchemeStep, TimeScheme};
+#[cfg(feature = "fe")]
 pub use coupling::zone::{
     Candidate, ContactZone, PairNormals, Polyline, Target, check_rigid_targets, recognize,
     supported_contactors,

@@ -14,6 +14,9 @@
 //!    penetration check (back to 2 if an inactive candidate penetrates), the accepted state and
 //!    the [`StepResult`](simulation::StepResult); [`output`] writes it, and [`traction`]
 //!    recovers the continuous contact pressure from its reactions.
+//!
+//! The free response, `q` and the acceptance are the time scheme's
+//! ([`TimeScheme`](simulation::TimeScheme): quasi-static load steps by default).
 
 mod flexibility;
 mod force_factor;

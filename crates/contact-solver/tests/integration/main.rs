@@ -27,6 +27,7 @@ mod invalid_input;
 mod issue_35_generic_zones;
 mod issue_35_one_simulation;
 mod issue_35_penetration;
+mod issue_35_time_scheme;
 mod issue_36_traps;
 mod local_algorithms;
 mod matrix_free;

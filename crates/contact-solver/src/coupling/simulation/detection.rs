@@ -1,103 +1,171 @@
-//! Stage 1, detection: the step's inputs checked, the free response `u_free` of the structure
-//! to the loads, the active set (candidates within their alert distance at the start of the
-//! step or under `u_free`, plus every adhesive one), and after the solve the inactive
-//! candidates that penetrate.
+//! Stage 1, detection: the step's inputs checked, the structure's renumbering followed, the
+//! free response (the [`TimeScheme`]'s) and the jumps it predicts, the active set (candidates
+//! within their alert distance at the start of the step or under the free response, plus every
+//! adhesive one), and after the solve the inactive candidates that penetrate.
 
-use super::ContactSimulation;
+use super::parts::{Accepted, Interface, nodal};
+use super::scheme::{SchemeStep, TimeScheme};
+use super::settings::SimulationSettings;
+use super::{Clock, ContactSimulation};
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
 use fem_core::{Dim, Structure};
 
-impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+/// The free response of a step: what the scheme predicts without contact.
+pub(super) struct FreeResponse<const D: usize> {
+    /// `y_free` on the free dofs, in the scheme's unknown (the displacement `u_free` when
+    /// quasi-static).
+    pub(super) y: Vec<f64>,
+    /// Per candidate, the jump `[gap, u_t…]` it predicts ([`TimeScheme::free_jump`]).
+    pub(super) jumps: Vec<[f64; D]>,
+    /// Floating structures: the load along every mode at the step's force factor, `Rᵀ f`
+    /// (empty otherwise).
+    pub(super) mode_load: Vec<f64>,
+}
+
+/// Checks the step's `time` (not before `now`, the time of the last step) and `force_factor`.
+///
+/// # Errors
+/// [`SolverError::InvalidSetting`] naming `time` or `force_factor`.
+pub(super) fn check_step(time: f64, force_factor: f64, now: f64) -> Result<(), SolverError> {
+    if !(time.is_finite() && time >= now) {
+        return Err(SolverError::InvalidSetting {
+            what: "time",
+            value: time,
+            expected: "a finite time not before the current time",
+        });
+    }
+    if !force_factor.is_finite() {
+        return Err(SolverError::InvalidSetting {
+            what: "force_factor",
+            value: force_factor,
+            expected: "a finite number",
+        });
+    }
+    Ok(())
+}
+
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>>
+    ContactSimulation<S, L, D, T>
 where
     Dim<D>: ContactSpace<D>,
 {
-    /// Checks `time` and `force_factor` and counts a change of the stiffness; returns the
-    /// stiffness version of the step.
-    pub(super) fn begin_step(&mut self, time: f64, force_factor: f64) -> Result<u64, SolverError> {
-        if !(time.is_finite() && time >= self.time) {
-            return Err(SolverError::InvalidSetting {
-                what: "time",
-                value: time,
-                expected: "a finite time not before the current time",
-            });
-        }
-        if !force_factor.is_finite() {
-            return Err(SolverError::InvalidSetting {
-                what: "force_factor",
-                value: force_factor,
-                expected: "a finite number",
-            });
-        }
-        self.follow_numbering()?;
-        let version = self.structure.stiffness_version();
-        if version != self.last_version {
+    /// Follows a renumbering of the structure's dofs (supports added or released between
+    /// steps change the numbering and the stiffness version): the rows of `H` are rebuilt
+    /// from the candidates and `u` from the nodal displacements of the last step, the cached
+    /// operators are dropped, and the change is counted. Returns the stiffness version of the
+    /// step.
+    pub(super) fn follow_structure(&mut self) -> Result<u64, SolverError> {
+        if self.interface.follow_numbering(&self.structure)? {
+            self.accepted.renumber(&self.structure);
+            self.cache.invalidate();
             self.counters.stiffness_changes += 1;
-            self.last_version = version;
         }
-        Ok(version)
+        Ok(self.interface.rows_version)
     }
 
-    /// `u_free`, the response to the applied forces scaled by `force_factor` (prescribed
-    /// displacements at their values) without contact, and the
-    /// candidates' local jumps under it.
-    pub(super) fn free_response(
-        &mut self,
-        force_factor: f64,
-    ) -> Result<(Vec<f64>, Vec<[f64; D]>), SolverError> {
-        let mut u_free = vec![0.0; self.structure.dof_count()];
-        self.structure
-            .free_response_into(force_factor, &mut u_free)?;
-        self.counters.structure_solves += 1;
-        // a floating structure: u_free = K⁺ f plus the rigid motion of the last step, and the
-        // load along the modes that contact must balance
+    /// The scheme's free response at `clock` ([`TimeScheme::free_response`], one structure
+    /// solve), the load along a floating structure's modes, and the jumps the response
+    /// predicts for every candidate ([`TimeScheme::free_jump`]).
+    pub(super) fn free_response(&mut self, clock: Clock) -> Result<FreeResponse<D>, SolverError> {
+        let mut y = vec![0.0; self.structure.dof_count()];
+        // a floating structure: its modes' amplitudes (reset when their number changed)
         let count = self
             .structure
             .floating()
             .map_or(0, |f| f.rigid_body_modes().len());
-        if self.alpha.len() != count {
-            self.alpha = vec![0.0; count];
+        let reset = self.accepted.alpha.len() != count;
+        let fresh = if reset { vec![0.0; count] } else { Vec::new() };
+        let alpha = if reset { &fresh } else { &self.accepted.alpha };
+        let step = SchemeStep::new(
+            clock.time,
+            clock.dt,
+            clock.force_factor,
+            &self.accepted.u,
+            alpha,
+        );
+        self.scheme.free_response(&self.structure, &step, &mut y)?;
+        self.counters.structure_solves += 1;
+        if reset {
+            self.accepted.alpha = fresh;
         }
-        self.mode_load.resize(count, 0.0);
+        let mut mode_load = vec![0.0; count];
         if let Some(floating) = self.structure.floating() {
-            let modes = floating.rigid_body_modes();
-            floating.rigid_body_load_into(force_factor, &mut self.mode_load)?;
-            for (j, &a) in self.alpha.iter().enumerate() {
-                if a != 0.0 {
-                    for (u, r) in u_free.iter_mut().zip(modes.column(j)) {
-                        *u += a * r;
-                    }
-                }
-            }
+            floating.rigid_body_load_into(clock.force_factor, &mut mode_load)?;
         }
-        let free = self.local_jumps_of(&u_free);
-        Ok((u_free, free))
+        let jumps = self
+            .interface
+            .candidates
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let u_rel = c.relative(|n| nodal(&self.structure, &y, n));
+                self.scheme.free_jump(i, c, u_rel, &self.accepted.jumps[i])
+            })
+            .collect();
+        Ok(FreeResponse {
+            y,
+            jumps,
+            mode_load,
+        })
     }
+}
 
+impl<L: ContactLaw, const D: usize> Interface<L, D>
+where
+    Dim<D>: ContactSpace<D>,
+{
     /// The candidates of the reduced problem: within the alert distance at the start of the
-    /// step or under the free response (`free`), or adhesive; all of them without the
-    /// alert-distance skip rule.
-    pub(super) fn initial_active_set(&self, free: &[[f64; D]]) -> Vec<usize> {
-        let all = !self.settings.skip.alert_distance;
+    /// step (`accepted`) or under the free response (`free`), or adhesive; all of them without
+    /// the alert-distance skip rule.
+    pub(super) fn initial_active_set(
+        &self,
+        settings: &SimulationSettings,
+        accepted: &Accepted<L::State, D>,
+        free: &[[f64; D]],
+    ) -> Vec<usize> {
+        let all = !settings.skip.alert_distance;
         (0..self.candidates.len())
             .filter(|&i| {
                 let c = &self.candidates[i];
                 let zone = &self.zones[c.zone];
-                all || zone.law.adhesion_active(&self.states[i])
-                    || self.jumps[i][0] <= zone.alert_distance
+                all || zone.law.adhesion_active(&accepted.states[i])
+                    || accepted.jumps[i][0] <= zone.alert_distance
                     || free[i][0] <= zone.alert_distance
             })
             .collect()
     }
 
-    /// The candidates outside the solved active set whose gap under `jumps` is below
-    /// `−penetration_tol` ([`ContactSpace::PENETRATION_TOL`]: 0 in 2D).
-    pub(super) fn penetrating(&self, jumps: &[[f64; D]]) -> Vec<usize> {
+    /// The candidates outside the solved active set `active` (sorted) whose gap under `jumps`
+    /// is below `−penetration_tol` ([`ContactSpace::PENETRATION_TOL`]: 0 in 2D).
+    pub(super) fn penetrating(&self, active: &[usize], jumps: &[[f64; D]]) -> Vec<usize> {
         (0..self.candidates.len())
-            .filter(|i| {
-                self.w_active.binary_search(i).is_err() && jumps[*i][0] < -self.penetration_tol
-            })
+            .filter(|i| active.binary_search(i).is_err() && jumps[*i][0] < -self.penetration_tol)
             .collect()
+    }
+
+    /// The error of a step whose `penetrating` candidates still penetrate after `passes`
+    /// passes: it names the deepest one.
+    pub(super) fn still_penetrating(
+        &self,
+        penetrating: &[usize],
+        jumps: &[[f64; D]],
+        passes: usize,
+    ) -> SolverError {
+        let deepest = penetrating
+            .iter()
+            .copied()
+            .min_by(|&a, &b| jumps[a][0].total_cmp(&jumps[b][0]))
+            .unwrap_or(penetrating[0]);
+        let c = &self.candidates[deepest];
+        SolverError::StillPenetrating {
+            passes,
+            count: penetrating.len(),
+            zone: self.zones[c.zone].name.clone(),
+            node: c.node,
+            gap: jumps[deepest][0],
+            setting: "max_detection_passes",
+        }
     }
 }

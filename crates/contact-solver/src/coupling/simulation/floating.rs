@@ -29,9 +29,11 @@
 //! [`SimulationSettings::equilibrium_tol`](super::SimulationSettings::equilibrium_tol).
 
 use super::ContactSimulation;
+use super::detection::FreeResponse;
 use super::last_problem::AdhesiveInputs;
 use super::report::StepReport;
-use super::solve::Solved;
+use super::scheme::TimeScheme;
+use super::solve::Pass;
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
@@ -71,7 +73,8 @@ struct Floating {
     modes: Vec<RigidMode>,
 }
 
-impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>>
+    ContactSimulation<S, L, D, T>
 where
     Dim<D>: ContactSpace<D>,
 {
@@ -81,8 +84,9 @@ where
             return Vec::new();
         };
         let nm = modes.len();
-        let mut g = vec![0.0; self.h_rows.len() * nm];
-        for (row, h) in self.h_rows.iter().enumerate() {
+        let h_rows = &self.interface.h_rows;
+        let mut g = vec![0.0; h_rows.len() * nm];
+        for (row, h) in h_rows.iter().enumerate() {
             for j in 0..nm {
                 let col = modes.column(j);
                 g[row * nm + j] = h.iter().map(|&(dof, a)| a * col[dof]).sum();
@@ -91,16 +95,16 @@ where
         g
     }
 
-    /// The reduced solve of a floating structure on the cached active set (module docs).
-    /// Returns the solution with `alpha` set, or the candidates to add (`extend`) when a rigid
-    /// motion would close a contact outside the active set.
+    /// The reduced solve of a floating structure on `active`, the active set of the cached
+    /// `F*` (module docs). Returns the solution with `alpha` set, or the candidates to add
+    /// when a rigid motion would close a contact outside the active set.
     pub(super) fn solve_floating(
         &mut self,
-        free: &[[f64; D]],
+        active: &[usize],
+        free: &FreeResponse<D>,
         dt: f64,
         report: &mut StepReport,
-    ) -> Result<Solved<L::State>, SolverError> {
-        let active = self.w_active.clone();
+    ) -> Result<Pass<L::State>, SolverError> {
         let na = active.len();
         let m = D * na;
         let g_all = self.mode_rows();
@@ -129,20 +133,17 @@ where
         let fl = Floating {
             nm,
             g,
-            e: self.mode_load.iter().map(|v| -v).collect(),
+            e: free.mode_load.iter().map(|v| -v).collect(),
             modes,
         };
-        let laws: Vec<L> = active
-            .iter()
-            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
-            .collect();
+        let laws = self.laws_of(active);
         // adhesive springs resist the rigid motions too, which the statuses do not see: the
         // Jacobian is then taken by finite differences (one extra reduced solve per mode)
-        let adhesive = (0..na).any(|k| laws[k].adhesion_active(&self.states[active[k]]));
-        let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let u_start: Vec<[f64; D]> = active.iter().map(|&i| self.jumps[i]).collect();
-        let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
-        let q0 = self.q_of(&active, free);
+        let adhesive = (0..na).any(|k| laws[k].adhesion_active(&self.accepted.states[active[k]]));
+        let start_states = self.states_of(active);
+        let u_start = self.jumps_of(active);
+        let areas = self.areas_of(active);
+        let q0 = self.q_of(active, &free.jumps);
         let options = AdhesionOptions {
             tol: self.settings.adhesion_tol,
             max_iterations: self.settings.max_adhesion_iterations,
@@ -152,7 +153,10 @@ where
             method: self.settings.adhesion_method,
             warm_start: self.settings.adhesion_warm_start && self.warm.enabled(),
         };
-        let mut r_warm: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let mut r_warm: Vec<f64> = active
+            .iter()
+            .flat_map(|&i| self.accepted.r_bar[i])
+            .collect();
         let mut q = q0.clone();
         // one reduced solve at α, warm started from the last reactions
         let mut solve_at = |alpha: &[f64],
@@ -163,7 +167,7 @@ where
                 *qi = q0[row] + (0..nm).map(|j| fl.g[row * nm + j] * alpha[j]).sum::<f64>();
             }
             let step = AdhesiveStep {
-                w: &self.w,
+                w: &self.cache.w,
                 q: &q,
                 laws: &laws,
                 start_states: &start_states,
@@ -215,7 +219,7 @@ where
                 });
             }
             iterations += 1;
-            let mut lin = Linearized::new::<_, D>(&self.w, m, &fl, &sol, &tangent)?;
+            let mut lin = Linearized::new::<_, D>(&self.cache.w, m, &fl, &sol, &tangent)?;
             if adhesive {
                 // forward differences, step √ε of the amplitudes' scale
                 let size = alpha
@@ -275,19 +279,19 @@ where
                         f64::INFINITY
                     };
                     let t_event = lin
-                        .ray_length::<D>(&d, &sol.x, &res, &self.w, m)
+                        .ray_length::<D>(&d, &sol.x, &res, &self.cache.w, m)
                         .unwrap_or(f64::INFINITY);
                     let step = t_root.min(t_event);
                     if !step.is_finite() {
                         // contacts outside the active set that this motion would close
-                        let extend: Vec<usize> = (0..self.candidates.len())
+                        let extend: Vec<usize> = (0..self.interface.candidates.len())
                             .filter(|i| active.binary_search(i).is_err())
                             .filter(|&i| {
                                 (0..nm).map(|j| g_all[D * i * nm + j] * d[j]).sum::<f64>() < 0.0
                             })
                             .collect();
                         if !extend.is_empty() {
-                            return Ok(Solved::extend(extend));
+                            return Ok(Pass::Extend(extend));
                         }
                         return Err(fl.unbalanced(&res, &d));
                     }
@@ -305,7 +309,7 @@ where
                         break;
                     }
                     (t_lo, phi_lo) = (t, phi_t);
-                    lin = Linearized::new::<_, D>(&self.w, m, &fl, &sol, &tangent)?;
+                    lin = Linearized::new::<_, D>(&self.cache.w, m, &fl, &sol, &tangent)?;
                 }
                 if let Some(((mut ta, mut fa), (mut tb, mut fb))) = bracket {
                     // Illinois: regula falsi that halves the kept end's value
@@ -360,7 +364,8 @@ where
             u_start,
             areas,
         };
-        Ok(self.finish_adhesive(sol, alpha, inputs, report, true))
+        let solved = self.finish_adhesive(active, sol, alpha, inputs, report, true);
+        Ok(Pass::Solved(solved))
     }
 }
 

@@ -1,10 +1,28 @@
-//! The quasi-static contact simulation (seed 5.3–5.5): a [`Structure`], contact zones, and one
-//! [`ContactSimulation::step`] per load increment.
+//! The contact simulation (seed 5.3–5.5): a [`Structure`], contact zones, and one
+//! [`ContactSimulation::step`] per load increment ([`QuasiStatic`]) or per time step of another
+//! [`TimeScheme`].
 //!
 //! # One step (`docs/theory.md` §13), stage by stage
-//! [`ContactSimulation::step`] is the list of the stages, one file each: `detection` (1–2 and
-//! the penetration check), `path` and `flexibility` (3), `solve` (4–5), `equilibrium` (6 and
-//! the report); `settings` and `report` hold the public data types.
+//! [`ContactSimulation::step`] is the list of the stages; each takes what it reads and returns
+//! what it makes, one file each: `detection` (the inputs, the renumbering, 1–2, the
+//! penetration check), `path` and `flexibility` (3), `solve` and `floating` (4–5),
+//! `equilibrium` (6, the acceptance and the report). The state they read and write is in three
+//! parts (`parts`): the interface (zones, candidates, `H`), the accepted state carried between
+//! steps, and the operator cache. What the time discretisation decides (the free response,
+//! `q`, the acceptance) goes through the [`TimeScheme`] seam (`scheme`), quasi-static below;
+//! `settings` and `report` hold the public data types.
+//!
+//! ```text
+//! check_step(time, force_factor, now)                        -> Result<()>
+//! follow_structure()                                         -> stiffness version
+//! free_response(clock)             [scheme: free response]   -> FreeResponse { y, jumps, mode_load }
+//! Interface::initial_active_set(settings, accepted, jumps)   -> active
+//! loop:
+//!   solve_pass(active, free, dt, version)  [scheme: q]       -> Pass::Solved(Solved { active, r, x, … }) | Pass::Extend
+//!   equilibrium(clock, free, solved)  [scheme: displacement] -> Equilibrium { solution, jumps }
+//!   Interface::penetrating(solved.active, jumps)             -> penetrating candidates
+//!   accept(clock, equilibrium, solved)  [scheme: accept]     -> StepResult (once none penetrates)
+//! ```
 //!
 //! 1. Free response `u_free` of the structure to the current loads and prescribed values.
 //! 2. Active set: candidates whose gap at the start of the step or under `u_free` is within
@@ -29,26 +47,28 @@ mod equilibrium;
 mod flexibility;
 mod floating;
 mod last_problem;
+mod parts;
 mod path;
 mod report;
+mod scheme;
 mod settings;
 mod solve;
 
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
+pub use scheme::{QuasiStatic, SchemeStep, TimeScheme};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
 
 use crate::coupling::force_factor::ForceFactorCheck;
-use crate::coupling::primal::PrimalCache;
 use crate::coupling::space::ContactSpace;
-use crate::coupling::zone::{
-    Candidate, ContactZone, check_candidates, check_rigid_targets, recognize,
-};
+use crate::coupling::zone::{Candidate, ContactZone};
 use crate::error::SolverError;
 use crate::local::adhesion::WarmStartPacing;
 use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::ContactLaw;
+use detection::check_step;
 use fem_core::{Dim, Structure};
-use last_problem::LastProblem;
+use parts::{Accepted, Interface, OperatorCache};
+use solve::Pass;
 use std::time::Instant;
 
 /// A quasi-static contact simulation: structure, zones, per-contact state and the cached `F*`.
@@ -82,48 +102,32 @@ use std::time::Instant;
 /// The same simulation solves 3D problems as `ContactSimulation<S, L, 3>` (a
 /// [`Structure<3>`] and [`ContactZone<L, 3>`]): per contact the unknowns are `D` consecutive
 /// components `(n, t…)`, and what differs by dimension comes from [`ContactSpace`].
-pub struct ContactSimulation<S: Structure<D>, L: ContactLaw, const D: usize = 2>
+///
+/// The time discretisation is the type parameter `T`, a [`TimeScheme`]: [`QuasiStatic`] (load
+/// steps) unless built by [`Self::with_scheme`].
+///
+/// # The state, in parts
+/// Besides the structure and the settings, a simulation holds three parts, each written by the
+/// stages that own it: `Interface` (zones, candidates, the rows of `H`), `Accepted` (what a
+/// step carries to the next: law states, jumps, reactions, displacements, time) and
+/// `OperatorCache` (the dense `F*`, the primal factorisations, their active set, the last
+/// reduced problem).
+pub struct ContactSimulation<S: Structure<D>, L: ContactLaw, const D: usize = 2, T = QuasiStatic>
 where
     Dim<D>: ContactSpace<D>,
 {
     structure: S,
-    zones: Vec<ContactZone<L, D>>,
     settings: SimulationSettings,
-    candidates: Vec<Candidate<D>>,
-    /// H rows (n then the tangents per candidate) on free dofs: (dof, coefficient).
-    h_rows: Vec<Vec<(usize, f64)>>,
-    /// Accepted state at the end of the last step.
-    states: Vec<L::State>,
-    /// Accepted (gap, u_t…) at the end of the last step.
-    jumps: Vec<[f64; D]>,
-    /// Last accepted r̄ (warm start).
-    r_bar: Vec<[f64; D]>,
-    /// Active set of the cached W.
-    w_active: Vec<usize>,
-    w: Vec<f64>,
-    w_version: Option<u64>,
-    u: Vec<f64>,
-    /// Nodal displacements at the end of the last step (numbering-free).
-    nodal_u: Vec<[f64; D]>,
-    /// Stiffness version the rows of `H` (and `u`) were numbered for.
-    rows_version: u64,
-    time: f64,
+    scheme: T,
+    interface: Interface<L, D>,
+    accepted: Accepted<L::State, D>,
+    cache: OperatorCache<L, D>,
     solver: UzawaSolver,
-    counters: Counters,
-    last_problem: LastProblem<L, D>,
-    last_version: u64,
-    primal: PrimalCache,
     /// When adhesive steps try Newton from the previous step's reactions.
     warm: WarmStartPacing,
-    /// Floating structures: the accepted rigid-body amplitudes `α` (one per mode).
-    alpha: Vec<f64>,
-    /// Floating structures: the load along every mode at this step's load factor, `Rᵀ f`.
-    mode_load: Vec<f64>,
+    counters: Counters,
     /// The check of `step`'s force factor (until the structure shows applied forces).
     force_check: ForceFactorCheck,
-    /// The penetration tolerance of the inactive candidates, a length
-    /// ([`ContactSpace::PENETRATION_TOL`] × the contactors' extent).
-    penetration_tol: f64,
 }
 
 impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
@@ -131,15 +135,36 @@ where
     Dim<D>: ContactSpace<D>,
 {
     /// Recognises the candidates of `zones` on `structure` (reference configuration) and
-    /// starts at time 0 with every law's initial state.
+    /// starts at time 0 with every law's initial state, stepping quasi-statically
+    /// ([`QuasiStatic`]; another scheme: [`Self::with_scheme`]).
     ///
     /// # Errors
-    /// As for [`recognize`]; [`SolverError::InvalidSetting`] for bad settings;
-    /// [`SolverError::InvalidGeometry`] if no zone has a candidate.
+    /// As for [`recognize`](crate::coupling::zone::recognize); [`SolverError::InvalidSetting`]
+    /// for bad settings; [`SolverError::InvalidGeometry`] if no zone has a candidate.
     pub fn new(
         structure: S,
         zones: Vec<ContactZone<L, D>>,
         settings: SimulationSettings,
+    ) -> Result<Self, SolverError> {
+        Self::with_scheme(structure, zones, settings, QuasiStatic)
+    }
+}
+
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>>
+    ContactSimulation<S, L, D, T>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    /// As [`ContactSimulation::new`], stepping with the time scheme `scheme` (the example of
+    /// [`TimeScheme`] plugs one).
+    ///
+    /// # Errors
+    /// As [`ContactSimulation::new`].
+    pub fn with_scheme(
+        structure: S,
+        zones: Vec<ContactZone<L, D>>,
+        settings: SimulationSettings,
+        scheme: T,
     ) -> Result<Self, SolverError> {
         if !(settings.adhesion_tol > 0.0 && settings.adhesion_tol.is_finite()) {
             return Err(SolverError::InvalidSetting {
@@ -155,64 +180,30 @@ where
                 expected: "at least 1",
             });
         }
-        let candidates = recognize(&structure, &zones)?;
-        if D == 3 {
-            // the stricter checks 3D always ran (every zone has a candidate, none is held)
-            check_candidates(&structure, &zones, &candidates)?;
-        }
-        if candidates.is_empty() {
-            return Err(SolverError::InvalidGeometry(
-                "no contactor node projects on its target: the simulation has no contact candidate"
-                    .into(),
-            ));
-        }
-        check_rigid_targets(&structure, &zones, &candidates)?;
-        if let Some(z) = zones
-            .iter()
-            .find(|z| D == 3 && z.law.has_adhesion() && z.areas.is_none())
-        {
-            return Err(SolverError::InvalidGeometry(format!(
-                "zone `{}`: an adhesive law needs the contactor nodes' tributary areas (its \
-                 springs are a stiffness per unit area): give them with `with_areas`",
-                z.name
-            )));
-        }
-        let penetration_tol =
-            <Dim<D> as ContactSpace<D>>::PENETRATION_TOL * extent(&structure, &candidates);
-        let h_rows = h_rows_of(&structure, &zones, &candidates)?;
-        let states = candidates
-            .iter()
-            .map(|c| zones[c.zone].law.initial_state())
-            .collect();
-        let mut sim = Self {
-            u: vec![0.0; structure.dof_count()],
-            nodal_u: vec![[0.0; D]; structure.node_count()],
-            rows_version: structure.stiffness_version(),
-            last_version: structure.stiffness_version(),
+        let interface = Interface::recognize(&structure, zones)?;
+        let accepted = Accepted::start(&structure, &interface);
+        Ok(Self {
             structure,
-            zones,
             settings,
-            h_rows,
-            states,
-            jumps: vec![[0.0; D]; candidates.len()],
-            r_bar: vec![[0.0; D]; candidates.len()],
-            candidates,
-            w_active: Vec::new(),
-            w: Vec::new(),
-            w_version: None,
-            time: 0.0,
+            scheme,
+            interface,
+            accepted,
+            cache: OperatorCache::new(),
             solver: UzawaSolver::new(settings.solver),
-            counters: Counters::default(),
-            last_problem: LastProblem::None,
-            primal: PrimalCache::default(),
             warm: WarmStartPacing::default(),
-            alpha: Vec::new(),
-            mode_load: Vec::new(),
+            counters: Counters::default(),
             force_check: ForceFactorCheck::default(),
-            penetration_tol,
-        };
-        sim.jumps = sim.local_jumps_of(&sim.u);
-        Ok(sim)
+        })
+    }
+
+    /// The time scheme.
+    pub fn scheme(&self) -> &T {
+        &self.scheme
+    }
+
+    /// The time scheme, to change its parameters between steps.
+    pub fn scheme_mut(&mut self) -> &mut T {
+        &mut self.scheme
     }
 
     /// The structure.
@@ -227,7 +218,7 @@ where
 
     /// The zones.
     pub fn zones(&self) -> &[ContactZone<L, D>] {
-        &self.zones
+        &self.interface.zones
     }
 
     /// Replaces the law of the zone named `zone` from the next step on: laws and parameters
@@ -263,10 +254,11 @@ where
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn set_law(&mut self, zone: &str, law: L) -> Result<(), SolverError> {
-        let Some(z) = self.zones.iter_mut().find(|z| z.name == zone) else {
+        let Some(z) = self.interface.zones.iter_mut().find(|z| z.name == zone) else {
             return Err(SolverError::UnknownZone {
                 name: zone.to_string(),
                 known: self
+                    .interface
                     .zones
                     .iter()
                     .map(|z| format!("`{}`", z.name))
@@ -280,20 +272,20 @@ where
             )));
         }
         z.law = law;
-        self.w_version = None;
-        self.primal = PrimalCache::default();
+        self.cache.invalidate();
         Ok(())
     }
 
     /// Sets the penetration tolerance of the inactive candidates to `relative` × the
     /// contactors' extent (the default is [`ContactSpace::PENETRATION_TOL`]).
     pub(crate) fn set_relative_penetration_tol(&mut self, relative: f64) {
-        self.penetration_tol = relative * extent(&self.structure, &self.candidates);
+        self.interface
+            .set_relative_penetration_tol(&self.structure, relative);
     }
 
     /// The candidates found by recognition.
     pub fn candidates(&self) -> &[Candidate<D>] {
-        &self.candidates
+        &self.interface.candidates
     }
 
     /// The settings.
@@ -309,12 +301,12 @@ where
 
     /// Current time.
     pub fn time(&self) -> f64 {
-        self.time
+        self.accepted.time
     }
 
     /// Per-candidate law states at the end of the last step.
     pub fn states(&self) -> &[L::State] {
-        &self.states
+        &self.accepted.states
     }
 
     /// Counters since the start.
@@ -325,13 +317,13 @@ where
     /// The free-dof displacements at the end of the last step, in the dof numbering of that
     /// step (a change of supports since renumbers the structure's dofs; the next step follows).
     pub fn displacement(&self) -> &[f64] {
-        &self.u
+        &self.accepted.u
     }
 
     /// Nodal displacements `[u_x, u_y]` (`[u_x, u_y, u_z]` in 3D) at the end of the last
     /// step (prescribed components included).
     pub fn nodal_displacements(&self) -> Vec<[f64; D]> {
-        self.nodal_u.clone()
+        self.accepted.nodal_u.clone()
     }
 
     /// The displacement of `node` at the end of the last step (prescribed components
@@ -341,7 +333,7 @@ where
     /// If `node >= node_count()`.
     #[track_caller]
     pub fn nodal_displacement(&self, node: usize) -> [f64; D] {
-        self.nodal_u[node]
+        self.accepted.nodal_u[node]
     }
 
     /// The reduced problem of the last solve — after condensation of the adhesive springs,
@@ -350,67 +342,26 @@ where
     /// last step was solved without a dense `F*` (matrix-free or active set; force
     /// `FlexibilityMode::Dense` to export a large step).
     pub fn last_reduced_problem(&self) -> Option<&ReducedProblem> {
-        self.last_problem.get(&self.w)
+        self.cache.last_problem.get(&self.cache.w)
     }
 
     /// Candidate indices of the contacts of the last reduced problem, in its order.
     pub fn last_active(&self) -> &[usize] {
-        &self.w_active
+        &self.cache.active
     }
 
     /// Floating structures ([`Structure::floating`]): the amplitudes `α` of the
     /// rigid-body modes in the displacement `u = K⁺(f + Hᵀ r) + R α` at the end of the last
     /// step, one per mode (empty for a supported structure).
     pub fn rigid_body_amplitudes(&self) -> &[f64] {
-        &self.alpha
+        &self.accepted.alpha
     }
 
     /// Resets the displacement and the tangential reference to zero while keeping the law
     /// states (e.g. after an installation phase whose displacements are discarded).
     pub fn reset_displacements(&mut self) {
-        self.u.fill(0.0);
-        self.nodal_u.iter_mut().for_each(|v| *v = [0.0; D]);
-        self.alpha.fill(0.0);
-        self.jumps = self.local_jumps_of(&self.u);
-        self.r_bar.iter_mut().for_each(|r| *r = [0.0; D]);
-    }
-
-    /// Follows a renumbering of the structure's dofs (supports added or released between
-    /// steps change the numbering and the stiffness version): the rows of `H` are rebuilt
-    /// from the candidates and `u` from the nodal displacements of the last step; the caches
-    /// keyed on the version rebuild themselves.
-    pub(super) fn follow_numbering(&mut self) -> Result<(), SolverError> {
-        let version = self.structure.stiffness_version();
-        if version == self.rows_version {
-            return Ok(());
-        }
-        self.h_rows = h_rows_of(&self.structure, &self.zones, &self.candidates)?;
-        self.u = vec![0.0; self.structure.dof_count()];
-        for (n, v) in self.nodal_u.iter().enumerate() {
-            for (c, d) in self.structure.node_dofs(n).into_iter().enumerate() {
-                if let Some(i) = d {
-                    self.u[i] = v[c];
-                }
-            }
-        }
-        self.primal = PrimalCache::default();
-        self.w_version = None;
-        self.rows_version = version;
-        Ok(())
-    }
-
-    /// The nodal displacements of the free-dof vector `u` under the current numbering.
-    pub(super) fn nodal_of(&self, u: &[f64]) -> Vec<[f64; D]> {
-        (0..self.structure.node_count())
-            .map(|n| nodal(&self.structure, u, n))
-            .collect()
-    }
-
-    fn local_jumps_of(&self, u: &[f64]) -> Vec<[f64; D]> {
-        self.candidates
-            .iter()
-            .map(|c| c.local(c.relative(|n| nodal(&self.structure, u, n))))
-            .collect()
+        self.accepted
+            .reset_displacements(&self.structure, &self.interface);
     }
 
     /// Solves one load step ending at `time` (`≥` the current time) with the structure's
@@ -464,47 +415,50 @@ where
     /// ```
     pub fn step(&mut self, time: f64, force_factor: f64) -> Result<StepResult<D>, SolverError> {
         let start = Instant::now();
-        let version = self.begin_step(time, force_factor)?;
-        let dt = time - self.time;
-        // 1. detection: the free response and the active set
-        let (u_free, free) = self.free_response(force_factor)?;
+        check_step(time, force_factor, self.accepted.time)?;
+        let version = self.follow_structure()?;
+        let clock = Clock {
+            time,
+            dt: time - self.accepted.time,
+            force_factor,
+        };
+        // 1. detection: the free response (the scheme's) and the active set
+        let free = self.free_response(clock)?;
         self.force_check
-            .check(&self.structure, force_factor, &u_free)?;
-        let mut active = self.initial_active_set(&free);
+            .check(&self.structure, force_factor, &free.y)?;
+        let mut active =
+            self.interface
+                .initial_active_set(&self.settings, &self.accepted, &free.jumps);
         let mut report = StepReport::start(self.counters.steps + 1, time, force_factor);
         loop {
             report.detection_passes += 1;
             // 2–3. the path and its operator, then the local solve (with the adhesion loop)
-            let solved = self.solve_pass(&active, &free, dt, version, &mut report)?;
-            if !solved.extend.is_empty() {
-                // a rigid motion of a floating body closes candidates outside the set
-                active.extend(solved.extend);
-                active.sort_unstable();
-                active.dedup();
-                continue;
-            }
-            // 4. equilibrium, then the penetration check and the report
-            let (u, jumps) = self.equilibrium(&u_free, &solved)?;
-            let penetrating = self.penetrating(&jumps);
+            let solved = match self.solve_pass(&active, &free, clock.dt, version, &mut report)? {
+                Pass::Solved(solved) => solved,
+                Pass::Extend(more) => {
+                    // a rigid motion of a floating body closes candidates outside the set
+                    active.extend(more);
+                    active.sort_unstable();
+                    active.dedup();
+                    continue;
+                }
+            };
+            // 4. equilibrium (the scheme's displacement), then the penetration check
+            let equilibrium = self.equilibrium(clock, &free, &solved)?;
+            let penetrating = self
+                .interface
+                .penetrating(&solved.active, &equilibrium.jumps);
             if penetrating.is_empty() {
-                return Ok(self.accept(time, u, jumps, solved, report, start));
+                // 5. acceptance (the scheme's, then the carried state) and the report
+                return Ok(self.accept(clock, equilibrium, solved, report, start));
             }
             if report.detection_passes >= self.settings.max_detection_passes {
                 // issue 35: accepting the step would return contacts that penetrate
-                let deepest = penetrating
-                    .iter()
-                    .copied()
-                    .min_by(|&a, &b| jumps[a][0].total_cmp(&jumps[b][0]))
-                    .unwrap_or(penetrating[0]);
-                let c = &self.candidates[deepest];
-                return Err(SolverError::StillPenetrating {
-                    passes: report.detection_passes,
-                    count: penetrating.len(),
-                    zone: self.zones[c.zone].name.clone(),
-                    node: c.node,
-                    gap: jumps[deepest][0],
-                    setting: "max_detection_passes",
-                });
+                return Err(self.interface.still_penetrating(
+                    &penetrating,
+                    &equilibrium.jumps,
+                    report.detection_passes,
+                ));
             }
             active.extend(penetrating);
             active.sort_unstable();
@@ -512,71 +466,38 @@ where
     }
 
     /// Whether candidate `i`'s tangential unknown takes part (friction or adhesion), under the
-    /// skip rules.
-    fn tangent_needed(&self, i: usize) -> bool {
-        let law = &self.zones[self.candidates[i].zone].law;
-        !self.settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
+    /// skip rules ([`Interface::tangent_needed`]).
+    pub(super) fn tangent_needed(&self, i: usize) -> bool {
+        self.interface.tangent_needed(i, &self.settings)
     }
 
-    /// Whether the tangential component `d` (`1..D`) of candidate `i` is solved: its tangent
-    /// is needed ([`Self::tangent_needed`]) and, in 3D
-    /// ([`ContactSpace::DECOUPLE_HELD_TANGENTS`]), the contact can move along it.
+    /// Whether the tangential component `d` (`1..D`) of candidate `i` is solved
+    /// ([`Interface::tangent_solved`]).
     pub(super) fn tangent_solved(&self, i: usize, d: usize) -> bool {
-        self.tangent_needed(i)
-            && !(<Dim<D> as ContactSpace<D>>::DECOUPLE_HELD_TANGENTS
-                && self.h_rows[D * i + d].is_empty())
+        self.interface.tangent_solved(i, d, &self.settings)
     }
 }
 
-/// The rows of `H` (normal then tangent per candidate) on the structure's free dofs.
-///
-/// # Errors
-/// [`SolverError::InvalidGeometry`] for a candidate whose normal relative displacement is fully
-/// prescribed.
-fn h_rows_of<S: Structure<D> + ?Sized, L, const D: usize>(
-    structure: &S,
-    zones: &[ContactZone<L, D>],
-    candidates: &[Candidate<D>],
-) -> Result<Vec<Vec<(usize, f64)>>, SolverError>
-where
-    Dim<D>: ContactSpace<D>,
-{
-    let mut h_rows = Vec::with_capacity(D * candidates.len());
-    for c in candidates {
-        for dir in c.frame() {
-            h_rows.push(c.h_row(structure, dir));
-        }
-        if h_rows[h_rows.len() - D].is_empty() {
-            return Err(SolverError::InvalidGeometry(format!(
-                "zone `{}`: the normal displacement of contactor node {} relative to its \
-                 target is fully prescribed, so it cannot take part in contact",
-                zones[c.zone].name, c.node
-            )));
-        }
-    }
-    Ok(h_rows)
+/// The step's times and force factor, as the stages pass them on.
+#[derive(Clone, Copy, Debug)]
+struct Clock {
+    /// Time at the end of the step.
+    time: f64,
+    /// Length of the step.
+    dt: f64,
+    /// Factor on the applied forces.
+    force_factor: f64,
 }
 
-/// The largest side of the box of the candidates' contactor nodes (1 for a single point).
-fn extent<S: Structure<D> + ?Sized, const D: usize>(s: &S, candidates: &[Candidate<D>]) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
-    for c in candidates {
-        let x = s.node_position(c.node);
-        for a in 0..D {
-            lo[a] = lo[a].min(x[a]);
-            hi[a] = hi[a].max(x[a]);
-        }
+impl Clock {
+    /// What the time scheme is told, with the accepted state `accepted` of the last step.
+    fn scheme_step<'a, T, const D: usize>(self, accepted: &'a Accepted<T, D>) -> SchemeStep<'a> {
+        SchemeStep::new(
+            self.time,
+            self.dt,
+            self.force_factor,
+            &accepted.u,
+            &accepted.alpha,
+        )
     }
-    let e = (0..D).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
-    if e > 0.0 { e } else { 1.0 }
-}
-
-fn nodal<S: Structure<D> + ?Sized, const D: usize>(s: &S, u: &[f64], node: usize) -> [f64; D] {
-    let mut v = s.prescribed_displacement(node);
-    for (c, d) in s.node_dofs(node).into_iter().enumerate() {
-        if let Some(i) = d {
-            v[c] = u[i];
-        }
-    }
-    v
 }

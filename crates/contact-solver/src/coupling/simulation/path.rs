@@ -3,10 +3,11 @@
 //! and the fallback when `Auto`'s active-set iteration does not converge.
 
 use super::ContactSimulation;
-use super::last_problem::LastProblem;
+use super::detection::FreeResponse;
 use super::report::StepReport;
+use super::scheme::TimeScheme;
 use super::settings::FlexibilityMode;
-use super::solve::Solved;
+use super::solve::Pass;
 use crate::coupling::primal::{LocalFrame, frames};
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
@@ -21,30 +22,30 @@ pub(super) enum Path {
     ActiveSet(Vec<LocalFrame>),
 }
 
-impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>>
+    ContactSimulation<S, L, D, T>
 where
     Dim<D>: ContactSpace<D>,
 {
-    /// Chooses the path of `active`, builds its operator (`F*` when dense and changed) and
-    /// solves the reduced problem (stage 3) on it.
+    /// Chooses the path of `active`, builds its operator (`F*` when dense and changed, kept in
+    /// the operator cache with `active`) and solves the reduced problem (stage 3) on it, from
+    /// the step's `free` response: the solution on `active`, or the candidates a floating
+    /// body's rigid motion closes.
     pub(super) fn solve_pass(
         &mut self,
         active: &[usize],
-        free: &[[f64; D]],
+        free: &FreeResponse<D>,
         dt: f64,
         version: u64,
         report: &mut StepReport,
-    ) -> Result<Solved<L::State>, SolverError> {
+    ) -> Result<Pass<L::State>, SolverError> {
         let mut path = self.path(active)?;
         if let Path::ActiveSet(frames) = &path {
-            self.w_active = active.to_vec();
-            self.w.clear();
-            self.w_version = None;
-            self.last_problem = LastProblem::None;
-            match self.solve_active_set(free, frames, dt, report) {
+            self.cache.without_dense(active);
+            match self.solve_active_set(active, &free.jumps, frames, dt, report) {
                 Ok(solved) => {
                     report.active_set = true;
-                    return Ok(solved);
+                    return Ok(Pass::Solved(solved));
                 }
                 // Auto chose this path: fall back to one that converges more surely (the
                 // lagged friction coupling of the active set fails for large μ)
@@ -64,37 +65,35 @@ where
             }
         }
         if path == Path::MatrixFree {
-            if active != self.w_active {
-                self.w_active = active.to_vec();
-            }
-            self.w.clear();
-            self.w_version = None;
-            self.last_problem = LastProblem::None;
+            self.cache.without_dense(active);
             report.matrix_free = true;
-            return self.solve_matrix_free_active(free, report);
+            return self
+                .solve_matrix_free_active(active, &free.jumps, report)
+                .map(Pass::Solved);
         }
-        let same_stiffness = self.w_version == Some(version);
-        if active != self.w_active
+        let same_stiffness = self.cache.version == Some(version);
+        if active != self.cache.active
             || !same_stiffness
             || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
         {
             // the columns of contacts already in F* are kept while the stiffness is the same
             let reuse = same_stiffness && self.settings.skip.reuse_flexibility;
             self.build_flexibility(active, reuse)?;
-            self.w_version = Some(version);
+            self.cache.version = Some(version);
             report.flexibility_rebuilt = true;
         }
         if self.floats() {
-            return self.solve_floating(free, dt, report);
+            return self.solve_floating(active, free, dt, report);
         }
-        self.solve_active(free, dt, report)
+        self.solve_active(active, &free.jumps, dt, report)
+            .map(Pass::Solved)
     }
 
     /// How this step's active set is solved.
     fn path(&self, active: &[usize]) -> Result<Path, SolverError> {
         let adhesive = active.iter().any(|&i| {
-            let law = &self.zones[self.candidates[i].zone].law;
-            law.has_adhesion() && law.adhesion_active(&self.states[i])
+            let law = self.interface.law(i);
+            law.has_adhesion() && law.adhesion_active(&self.accepted.states[i])
         });
         if self.floats() {
             // the rigid-body amplitudes are solved for on a dense F* only
@@ -146,16 +145,20 @@ where
         if self.structure.stiffness_matrix().is_none() {
             return Err("the structure does not expose its stiffness matrix".into());
         }
+        let interface = &self.interface;
         for &i in active {
-            let law = &self.zones[self.candidates[i].zone].law;
-            if law.friction_coefficient(&self.states[i]).is_none() {
+            if interface
+                .law(i)
+                .friction_coefficient(&self.accepted.states[i])
+                .is_none()
+            {
                 return Err(format!(
                     "zone `{}`: its law has no friction coefficient (not a Coulomb-cone law)",
-                    self.zones[self.candidates[i].zone].name
+                    interface.zones[interface.candidates[i].zone].name
                 ));
             }
         }
-        let node_of = |i: usize| self.candidates[i].node;
-        frames(&self.structure, &self.h_rows, active, &node_of)
+        let node_of = |i: usize| interface.candidates[i].node;
+        frames(&self.structure, &interface.h_rows, active, &node_of)
     }
 }

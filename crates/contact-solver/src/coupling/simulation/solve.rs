@@ -8,6 +8,7 @@ use super::ContactSimulation;
 use super::dispatch;
 use super::last_problem::{AdhesiveInputs, LastProblem};
 use super::report::StepReport;
+use super::scheme::TimeScheme;
 use crate::coupling::primal::adhesive::AdhesiveData;
 use crate::coupling::primal::{LocalFrame, PrimalStep};
 use crate::coupling::space::ContactSpace;
@@ -19,8 +20,17 @@ use crate::local::adhesion::{
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::{Dim, Structure};
 
+/// What a pass of the local solve produces: the solution on its active set, or the candidates
+/// to add to the active set before solving again (a floating body's rigid motion closes them).
+pub(super) enum Pass<T> {
+    Solved(Solved<T>),
+    Extend(Vec<usize>),
+}
+
 /// The solution of the reduced problem of a step, on the active set.
 pub(super) struct Solved<T> {
+    /// The active set solved (candidate indices, sorted).
+    pub(super) active: Vec<usize>,
     pub(super) r: Vec<f64>,
     pub(super) r_bar: Vec<f64>,
     /// `x = (gap, slip increment)` of the reduced solution.
@@ -29,45 +39,31 @@ pub(super) struct Solved<T> {
     pub(super) states: Vec<T>,
     /// Floating structures: the change `Δα` of the rigid-body amplitudes (empty otherwise).
     pub(super) alpha: Vec<f64>,
-    /// Candidates to add to the active set before solving again (a rigid motion closes them);
-    /// when not empty the rest is meaningless.
-    pub(super) extend: Vec<usize>,
 }
 
 impl<T> Solved<T> {
-    /// A pass that asks for `candidates` to be added to the active set.
-    pub(super) fn extend(candidates: Vec<usize>) -> Self {
-        Self {
-            r: Vec::new(),
-            r_bar: Vec::new(),
-            x: Vec::new(),
-            statuses: Vec::new(),
-            states: Vec::new(),
-            alpha: Vec::new(),
-            extend: candidates,
-        }
-    }
-
-    /// The pass's answer from the adhesive solve, and the condensed problem it solved (`None`
-    /// after Newton: formed when asked, [`LastProblem`]).
+    /// The pass's answer on `active` from the adhesive solve, and the condensed problem it
+    /// solved (`None` after Newton: formed when asked, [`LastProblem`]).
     pub(super) fn from_adhesive(
+        active: &[usize],
         sol: AdhesiveSolution<T>,
         alpha: Vec<f64>,
     ) -> (Self, Option<ReducedProblem>) {
         let solved = Self {
+            active: active.to_vec(),
             r: sol.r,
             r_bar: sol.r_bar,
             x: sol.x,
             statuses: sol.report.statuses,
             states: sol.states,
             alpha,
-            extend: Vec::new(),
         };
         (solved, sol.condensed)
     }
 }
 
-impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
+impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>>
+    ContactSimulation<S, L, D, T>
 where
     Dim<D>: ContactSpace<D>,
 {
@@ -75,27 +71,27 @@ where
     /// around it when a law is adhesive ([`crate::coupling::primal::adhesive`]).
     pub(super) fn solve_active_set(
         &mut self,
+        active: &[usize],
         free: &[[f64; D]],
         frames: &[LocalFrame],
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
-        let active = self.w_active.clone();
-        let laws: Vec<L> = active
-            .iter()
-            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
-            .collect();
-        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
+        let laws = self.laws_of(active);
+        let states = self.states_of(active);
         let tangent: Vec<bool> = active.iter().map(|&i| self.tangent_needed(i)).collect();
         let mu: Vec<f64> = laws
             .iter()
             .zip(&states)
             .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
             .collect();
-        let q = self.q_of(&active, free);
-        let r0: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let q = self.q_of(active, free);
+        let r0: Vec<f64> = active
+            .iter()
+            .flat_map(|&i| self.accepted.r_bar[i])
+            .collect();
         let step = PrimalStep {
-            active: &active,
+            active,
             frames,
             laws: &laws,
             states: &states,
@@ -114,10 +110,10 @@ where
                 .min(crate::coupling::primal::PRIMAL_MAX_ITERATIONS),
             accept_non_converged: self.settings.solver.accept_non_converged,
         };
-        let before = self.primal.factorizations;
+        let before = self.cache.primal.factorizations;
         if any_adhesion_active(&laws, &states) {
-            let u_start: Vec<[f64; D]> = active.iter().map(|&i| self.jumps[i]).collect();
-            let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+            let u_start = self.jumps_of(active);
+            let areas = self.areas_of(active);
             let data = AdhesiveData {
                 u_start: &u_start,
                 areas: &areas,
@@ -126,13 +122,13 @@ where
             let options = self.adhesion_options();
             let sol = dispatch::primal_adhesive(
                 &self.structure,
-                &mut self.primal,
+                &mut self.cache.primal,
                 &step,
                 &data,
                 &options,
             )?;
             self.counters.active_set_steps += 1;
-            self.counters.active_set_factorizations += self.primal.factorizations - before;
+            self.counters.active_set_factorizations += self.cache.primal.factorizations - before;
             self.counters.active_set_solves += sol.solves;
             self.counters.active_set_inner_iterations += sol.inner_iterations;
             report.contact_iterations += sol.iterations;
@@ -140,51 +136,51 @@ where
             report.residual = sol.residual;
             report.converged &= sol.converged;
             return Ok(Solved {
+                active: active.to_vec(),
                 r: sol.r,
                 r_bar: sol.r_bar,
                 x: sol.x,
                 statuses: sol.statuses,
                 states: sol.states,
                 alpha: Vec::new(),
-                extend: Vec::new(),
             });
         }
-        let sol = dispatch::primal(&self.structure, &mut self.primal, &step)?;
+        let sol = dispatch::primal(&self.structure, &mut self.cache.primal, &step)?;
         self.counters.active_set_steps += 1;
-        self.counters.active_set_factorizations += self.primal.factorizations - before;
+        self.counters.active_set_factorizations += self.cache.primal.factorizations - before;
         self.counters.active_set_solves += sol.solves;
         self.counters.active_set_inner_iterations += sol.inner_iterations;
         report.contact_iterations += sol.iterations;
         report.residual = sol.residual;
         report.converged &= sol.converged;
         Ok(Solved {
+            active: active.to_vec(),
             r: sol.r.clone(),
             r_bar: sol.r,
             x: sol.x,
             statuses: sol.statuses,
             states,
             alpha: Vec::new(),
-            extend: Vec::new(),
         })
     }
 
     /// The reduced solve without `F*`: one structure solve per product `F* r`.
     pub(super) fn solve_matrix_free_active(
         &mut self,
+        active: &[usize],
         free: &[[f64; D]],
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
-        let active = self.w_active.clone();
         let na = active.len();
         let m = D * na;
-        let laws: Vec<L> = active
+        let laws = self.laws_of(active);
+        let states = self.states_of(active);
+        let q = self.q_of(active, free);
+        let rho0 = self.estimate_rho0(active)?;
+        let mut r: Vec<f64> = active
             .iter()
-            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
+            .flat_map(|&i| self.accepted.r_bar[i])
             .collect();
-        let states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let q = self.q_of(&active, free);
-        let rho0 = self.estimate_rho0(&active)?;
-        let mut r: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
         let mut x = vec![0.0; m];
         let rows: Vec<usize> = active
             .iter()
@@ -203,7 +199,7 @@ where
                 })
             })
             .collect();
-        let (structure, h_rows) = (&self.structure, &self.h_rows);
+        let (structure, h_rows) = (&self.structure, &self.interface.h_rows);
         let mut scratch = vec![0.0; structure.dof_count()];
         let mut applications = 0;
         let apply = |r: &[f64], x: &mut [f64]| -> Result<(), SolverError> {
@@ -247,35 +243,35 @@ where
         report.converged &= mf.converged;
         let statuses = dispatch::statuses::<_, D>(&laws, &states, &rho0, &r, &x);
         Ok(Solved {
+            active: active.to_vec(),
             r: r.clone(),
             r_bar: r,
             x,
             statuses,
             states,
             alpha: Vec::new(),
-            extend: Vec::new(),
         })
     }
 
     /// The adhesion fixed point around the reduced solve, on the cached active set.
     pub(super) fn solve_active(
         &mut self,
+        active: &[usize],
         free: &[[f64; D]],
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
-        let active = &self.w_active;
-        let laws: Vec<L> = active
-            .iter()
-            .map(|&i| self.zones[self.candidates[i].zone].law.clone())
-            .collect();
-        let start_states: Vec<L::State> = active.iter().map(|&i| self.states[i]).collect();
-        let u_start: Vec<[f64; D]> = active.iter().map(|&i| self.jumps[i]).collect();
-        let areas: Vec<f64> = active.iter().map(|&i| self.candidates[i].area).collect();
+        let laws = self.laws_of(active);
+        let start_states = self.states_of(active);
+        let u_start = self.jumps_of(active);
+        let areas = self.areas_of(active);
         let q = self.q_of(active, free);
-        let r_bar: Vec<f64> = active.iter().flat_map(|&i| self.r_bar[i]).collect();
+        let r_bar: Vec<f64> = active
+            .iter()
+            .flat_map(|&i| self.accepted.r_bar[i])
+            .collect();
         let step = AdhesiveStep {
-            w: &self.w,
+            w: &self.cache.w,
             q: &q,
             laws: &laws,
             start_states: &start_states,
@@ -294,22 +290,51 @@ where
             u_start,
             areas,
         };
-        Ok(self.finish_adhesive(sol, Vec::new(), inputs, report, false))
+        Ok(self.finish_adhesive(active, sol, Vec::new(), inputs, report, false))
     }
 
-    /// `q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)` per contact of `active`
-    /// (`free`: the jumps under `u_free`); `0` on the decoupled tangential rows.
+    /// `q` of the reduced problem on `active`, per contact the scheme's
+    /// ([`TimeScheme::rhs`]) from the jumps `free` the free response predicts and the accepted
+    /// ones: quasi-static, `q = (g₀ + n·u_rel(u_free), t·u_rel(u_free) − u_t,start)`; `0` on the
+    /// decoupled tangential rows.
     pub(super) fn q_of(&self, active: &[usize], free: &[[f64; D]]) -> Vec<f64> {
         let mut q = vec![0.0; D * active.len()];
         for (k, &i) in active.iter().enumerate() {
-            q[D * k] = free[i][0];
+            let qi = self.scheme.rhs(i, &free[i], &self.accepted.jumps[i]);
+            q[D * k] = qi[0];
             for d in 1..D {
                 if self.tangent_solved(i, d) {
-                    q[D * k + d] = free[i][d] - self.jumps[i][d];
+                    q[D * k + d] = qi[d];
                 }
             }
         }
         q
+    }
+
+    /// The laws of the contacts of `active`.
+    pub(super) fn laws_of(&self, active: &[usize]) -> Vec<L> {
+        active
+            .iter()
+            .map(|&i| self.interface.law(i).clone())
+            .collect()
+    }
+
+    /// The accepted law states of the contacts of `active`.
+    pub(super) fn states_of(&self, active: &[usize]) -> Vec<L::State> {
+        active.iter().map(|&i| self.accepted.states[i]).collect()
+    }
+
+    /// The accepted jumps of the contacts of `active`.
+    pub(super) fn jumps_of(&self, active: &[usize]) -> Vec<[f64; D]> {
+        active.iter().map(|&i| self.accepted.jumps[i]).collect()
+    }
+
+    /// The tributary areas of the contacts of `active`.
+    pub(super) fn areas_of(&self, active: &[usize]) -> Vec<f64> {
+        active
+            .iter()
+            .map(|&i| self.interface.candidates[i].area)
+            .collect()
     }
 
     /// The adhesion loop's options from the settings (the primal path reads its tolerance,
@@ -333,6 +358,7 @@ where
     /// formed on request from `F*`, `inputs` and the final states).
     pub(super) fn finish_adhesive(
         &mut self,
+        active: &[usize],
         sol: AdhesiveSolution<L::State>,
         alpha: Vec<f64>,
         inputs: AdhesiveInputs<L, D>,
@@ -345,8 +371,8 @@ where
         }
         report.residual = sol.report.residual;
         report.converged &= sol.converged;
-        let (solved, condensed) = Solved::from_adhesive(sol, alpha);
-        self.last_problem = match condensed {
+        let (solved, condensed) = Solved::from_adhesive(active, sol, alpha);
+        self.cache.last_problem = match condensed {
             Some(p) => LastProblem::Formed(p),
             None => LastProblem::pending(inputs, solved.states.clone()),
         };
