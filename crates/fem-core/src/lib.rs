@@ -60,6 +60,7 @@ pub use dirichlet::{Component, DofMap, Supports};
 pub use linear_solver::SpdSolver;
 pub use model::{
     ElasticModel, LinearElasticModel, Reaction, SolidModel, StressField, StressPoint, geostatic,
+    geostatic_3d,
 };
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
 pub use space::{Dim, Plane, Solid, Space};

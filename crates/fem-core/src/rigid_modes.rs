@@ -4,16 +4,18 @@
 //! A body that its supports do not hold has a stiffness `K` (over the free dofs) with a kernel
 //! spanned by rigid-body motions. In the plane they are the two translations and the rotation
 //! `(−y, x)`; in axisymmetry only the axial translation (a radial translation strains the hoop
-//! direction). Each connected component of the mesh (nodes joined by elements) is a body of its
-//! own. The modes a body keeps are those its prescribed dofs do not see and that move the nodes
-//! of a tie ([`Supports::tie`](crate::Supports::tie)) alike: with `C` the matrix of the body's
+//! direction); in 3D the three translations and the three rotations `e_a × x`. Each connected
+//! component of the mesh (nodes joined by elements) is a body of its own. The modes a body
+//! keeps are those its prescribed dofs do not see and that move the nodes of a tie
+//! ([`Supports::tie`](crate::Supports::tie)) alike: with `C` the matrix of the body's
 //! candidate modes at its prescribed dofs, and of their differences between tied nodes
-//! (`p × k`, `k ≤ 3`), they are `null(C)`.
+//! (`p × k`, `k ≤ 6`), they are `null(C)`.
 //!
 //! ```text
 //! plane:        R_body = [ t_x  t_y  ω ],  t_x = (1, 0),  t_y = (0, 1),
 //!               ω(x) = (−(y − c_y), x − c_x) / ρ     (c the centroid, ρ the largest distance to it)
 //! axisymmetric: R_body = [ t_z ]
+//! 3D:           R_body = [ t_x  t_y  t_z  ω_x  ω_y  ω_z ],  ω_a(x) = e_a × (x − c) / ρ
 //! modes kept:   R_body N,   N a basis of null(C),   restricted to the free dofs
 //! ```
 //!
@@ -36,7 +38,6 @@ use crate::dirichlet::{Component, Dof, DofMap};
 use crate::element::Setting;
 use crate::error::FemError;
 use crate::idealization::Idealization;
-use crate::model::ModelMesh;
 use crate::space::{Dim, Space};
 use nalgebra::DMatrix;
 
@@ -299,15 +300,16 @@ const NULL_TOL: f64 = 1e-12;
 /// # Errors
 /// [`FemError::NotPositiveDefinite`] for a node with a free dof that no element connects (its
 /// kernel is not a rigid-body mode).
-pub(crate) fn mesh_modes<const D: usize>(
-    mesh: &impl ModelMesh<D>,
+pub(crate) fn mesh_modes<'a, const D: usize>(
+    nodes: &[[f64; D]],
+    cells: impl IntoIterator<Item = &'a [usize]>,
     setting: Setting<D>,
     dofs: &DofMap<D>,
 ) -> Result<RigidBodyModes, FemError>
 where
     Dim<D>: Space,
 {
-    let n = mesh.node_count();
+    let n = nodes.len();
     // connected components by union–find over the elements' nodes
     let mut parent: Vec<usize> = (0..n).collect();
     fn root(parent: &mut [usize], mut i: usize) -> usize {
@@ -318,8 +320,7 @@ where
         i
     }
     let mut used = vec![false; n];
-    for e in 0..mesh.element_count() {
-        let cell = mesh.element(e);
+    for cell in cells {
         for &node in cell {
             used[node] = true;
             let (a, b) = (root(&mut parent, cell[0]), root(&mut parent, node));
@@ -379,7 +380,6 @@ where
             }
         }
     }
-    let nodes = mesh.nodes();
     let plane = !matches!(
         <Dim<D> as Space>::idealization(&setting),
         Some(Idealization::Axisymmetric)
@@ -397,7 +397,10 @@ where
         });
         let distance = |x: [f64; D]| match D {
             2 => (x[0] - centre[0]).hypot(x[1] - centre[1]),
-            _ => (0..D).map(|a| (x[a] - centre[a]).powi(2)).sum::<f64>().sqrt(),
+            _ => (0..D)
+                .map(|a| (x[a] - centre[a]).powi(2))
+                .sum::<f64>()
+                .sqrt(),
         };
         let radius = members
             .iter()
@@ -416,7 +419,11 @@ where
             let x = nodes[node];
             for r in 0..k - D {
                 // rotation in the plane (i, j): u_i = −(x_j − c_j)/ρ, u_j = (x_i − c_i)/ρ
-                let (i, j) = if D == 2 { (0, 1) } else { ((r + 1) % 3, (r + 2) % 3) };
+                let (i, j) = if D == 2 {
+                    (0, 1)
+                } else {
+                    ((r + 1) % 3, (r + 2) % 3)
+                };
                 if c == i {
                     row[D + r] = -(x[j] - centre[j]) / radius;
                 } else if c == j {
@@ -467,7 +474,12 @@ where
         let coefs: Vec<(Vec<f64>, RigidMotion)> = if D == 2 {
             canonical(&null, plane)
                 .into_iter()
-                .map(|coef| (coef[..k].to_vec(), plane_motion(coef, plane, centre, radius)))
+                .map(|coef| {
+                    (
+                        coef[..k].to_vec(),
+                        plane_motion(coef, plane, centre, radius),
+                    )
+                })
                 .collect()
         } else {
             null.into_iter().map(|v| (v, RigidMotion::Other)).collect()
@@ -575,6 +587,15 @@ mod tests {
     use crate::dirichlet::Supports;
     use crate::generate::{RectangleSpec, rectangle};
     use crate::mesh::Mesh;
+
+    fn mesh_modes(
+        mesh: &Mesh,
+        idealization: Idealization,
+        dofs: &DofMap,
+    ) -> Result<RigidBodyModes, FemError> {
+        let cells = (0..mesh.element_count()).map(|e| mesh.element(e));
+        super::mesh_modes(mesh.nodes(), cells, idealization, dofs)
+    }
 
     #[test]
     fn rigid_modes_of_a_free_block_works() {

@@ -2,7 +2,7 @@
 //! (`crate::rigid_modes`) and the generalized inverse `K⁺` factorised with one pinned dof per
 //! mode.
 
-use super::{ElasticModel, ModelSpace};
+use super::{ElasticModel, ModelMesh, ModelSpace};
 use crate::Supports;
 use crate::error::FemError;
 use crate::idealization::Idealization;
@@ -45,7 +45,14 @@ impl ElasticModel<2> {
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<Self, FemError> {
-        Self::build(mesh, idealization, materials, supports, true, FillOrdering::Amd)
+        Self::build(
+            mesh,
+            idealization,
+            materials,
+            supports,
+            true,
+            FillOrdering::Amd,
+        )
     }
 }
 
@@ -86,7 +93,9 @@ where
     /// modes is refused with [`FemError::NotPositiveDefinite`] at the first dof that would be
     /// pinned (a dof the mode moves).
     pub(super) fn find_modes(&mut self) -> Result<(), FemError> {
-        let modes = mesh_modes(&self.mesh, self.setting, &self.dofs)?;
+        let mesh = &self.mesh;
+        let cells = (0..mesh.element_count()).map(|e| mesh.element(e));
+        let modes = mesh_modes(mesh.nodes(), cells, self.setting, &self.dofs)?;
         let pinned = modes.pinned_dofs();
         if !self.may_float
             && let Some(&row) = pinned.first()
@@ -376,7 +385,10 @@ mod tests {
             let mut f = vec![0.0; model.dof_count()];
             model.rhs_into(1.0, &mut f);
             let ku = k_times(&model, &u);
-            let err = ku.iter().zip(&f).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            let err = ku
+                .iter()
+                .zip(&f)
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
             // a sparse Cholesky solve: round-off times a modest condition number
             assert!(err <= 1e-9, "{kind:?}: {err:e}");
             // the same block held at one end is not floating

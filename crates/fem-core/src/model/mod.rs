@@ -157,7 +157,14 @@ impl ElasticModel<2> {
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<Self, FemError> {
-        Self::build(mesh, idealization, materials, supports, false, FillOrdering::Amd)
+        Self::build(
+            mesh,
+            idealization,
+            materials,
+            supports,
+            false,
+            FillOrdering::Amd,
+        )
     }
 }
 

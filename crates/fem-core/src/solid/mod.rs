@@ -16,8 +16,8 @@ pub mod quadrature;
 pub mod revolve;
 
 pub use crate::element::{Stress3, Tet4, Tet10};
+pub use crate::{SolidModel, geostatic_3d};
 pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES, triangle_shape};
-pub use crate::model::{SolidModel, geostatic_3d};
 
 /// An initial stress field `σ₀(x)` in 3D: [`crate::StressField`] with `D = 3`.
 pub type StressField3 = crate::StressField<3>;
