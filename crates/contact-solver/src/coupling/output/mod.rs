@@ -3,9 +3,9 @@
 //! - [`HistoryWriter`] writes one CSV row per (step, contact candidate), columns
 //!   [`CONTACT_COLUMNS`]; [`ReportWriter`] one CSV row per step of the [`StepReport`]
 //!   counters, columns [`REPORT_COLUMNS`]. Both write to any [`std::io::Write`].
-//! - [`write_interface_vtu`] writes the candidates of one step as a point cloud (one
-//!   `VTK_VERTEX` cell per candidate) in a VTK XML unstructured grid (`.vtu`), through
-//!   [`vtkio`]; [`InterfaceSeries`] writes one `.vtu` per step and keeps a `.pvd` collection
+//! - [`write_interface_vtu`] (2D) and [`write_interface_vtu_3d`] write the candidates of one
+//!   step as a point cloud (one `VTK_VERTEX` cell per candidate) in a VTK XML unstructured
+//!   grid (`.vtu`), through [`vtkio`]; [`InterfaceSeries`] writes one `.vtu` per step and keeps a `.pvd` collection
 //!   of them up to date.
 //!
 //! Reactions are written in the local frame of each contact, `[n, t]` (the global components
@@ -26,8 +26,8 @@ use std::io::Write;
 
 mod vtk;
 
-pub use vtk::{InterfaceSeries, status_code, write_interface_vtu};
-pub(crate) use vtk::{interface_model, vertex_cloud, write_vtk};
+pub use vtk::{InterfaceSeries, status_code, write_interface_vtu, write_interface_vtu_3d};
+pub(crate) use vtk::{interface_model, interface_model_3d, write_vtk};
 
 /// Columns of [`HistoryWriter`], in order. `x, y` is the reference position of the contactor
 /// node, `status` its [`InterfaceStatus::name`](crate::InterfaceStatus::name), `r_*_n, r_*_t`

@@ -122,7 +122,7 @@ where
     /// The check of `step`'s force factor (until the structure shows applied forces).
     force_check: ForceFactorCheck,
     /// The penetration tolerance of the inactive candidates, a length
-    /// ([`ContactSpace::PENETRATION_TOL`] × the contactors' extent).
+    /// ([`SimulationSettings::penetration_tol`] × the contactors' extent).
     penetration_tol: f64,
 }
 
@@ -134,27 +134,15 @@ where
     /// starts at time 0 with every law's initial state.
     ///
     /// # Errors
-    /// As for [`recognize`]; [`SolverError::InvalidSetting`] for bad settings;
+    /// As for [`recognize`]; [`SolverError::InvalidSetting`] naming the setting for bad
+    /// settings (a tolerance that is not finite and positive, a zero count);
     /// [`SolverError::InvalidGeometry`] if no zone has a candidate.
     pub fn new(
         structure: S,
         zones: Vec<ContactZone<L, D>>,
         settings: SimulationSettings,
     ) -> Result<Self, SolverError> {
-        if !(settings.adhesion_tol > 0.0 && settings.adhesion_tol.is_finite()) {
-            return Err(SolverError::InvalidSetting {
-                what: "adhesion_tol",
-                value: settings.adhesion_tol,
-                expected: "a finite tolerance > 0",
-            });
-        }
-        if settings.columns_per_solve == 0 {
-            return Err(SolverError::InvalidSetting {
-                what: "columns_per_solve",
-                value: 0.0,
-                expected: "at least 1",
-            });
-        }
+        settings.check()?;
         let candidates = recognize(&structure, &zones)?;
         if D == 3 {
             // the stricter checks 3D always ran (every zone has a candidate, none is held)
@@ -178,7 +166,7 @@ where
             )));
         }
         let penetration_tol =
-            <Dim<D> as ContactSpace<D>>::PENETRATION_TOL * extent(&structure, &candidates);
+            settings.relative_penetration_tol::<D>() * extent(&structure, &candidates);
         let h_rows = h_rows_of(&structure, &zones, &candidates)?;
         let states = candidates
             .iter()
@@ -285,12 +273,6 @@ where
         Ok(())
     }
 
-    /// Sets the penetration tolerance of the inactive candidates to `relative` × the
-    /// contactors' extent (the default is [`ContactSpace::PENETRATION_TOL`]).
-    pub(crate) fn set_relative_penetration_tol(&mut self, relative: f64) {
-        self.penetration_tol = relative * extent(&self.structure, &self.candidates);
-    }
-
     /// The candidates found by recognition.
     pub fn candidates(&self) -> &[Candidate<D>] {
         &self.candidates
@@ -301,10 +283,17 @@ where
         &self.settings
     }
 
-    /// Replaces the settings (e.g. to switch algorithm between steps).
-    pub fn set_settings(&mut self, settings: SimulationSettings) {
+    /// Replaces the settings from the next step on (e.g. to switch algorithm between steps).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] as [`Self::new`] (nothing changes then).
+    pub fn set_settings(&mut self, settings: SimulationSettings) -> Result<(), SolverError> {
+        settings.check()?;
         self.settings = settings;
         self.solver = UzawaSolver::new(settings.solver);
+        self.penetration_tol =
+            settings.relative_penetration_tol::<D>() * extent(&self.structure, &self.candidates);
+        Ok(())
     }
 
     /// Current time.

@@ -99,10 +99,16 @@ where
     pub fn reaction(&self) -> [f64; D] {
         <Dim<D> as ContactSpace<D>>::components(&self.r)
     }
-}
 
-impl ContactRecord<2> {
-    /// The total reaction on the contactor node in global axes, `r_n n + r_t t`.
+    /// The contact frame `[n, t…]` in global axes: [`normal`](Self::normal), then the
+    /// [`tangent`](Self::tangent)s.
+    pub fn frame(&self) -> [[f64; D]; D] {
+        <Dim<D> as ContactSpace<D>>::frame_of(self.normal, &self.tangent)
+    }
+
+    /// The total reaction on the contactor node in global axes, `r_n n + r_t t` (2D),
+    /// `r_n n + r_t1 t1 + r_t2 t2` (3D); its target nodes carry the opposite, split by their
+    /// weights.
     ///
     /// # Examples
     /// ```
@@ -115,21 +121,33 @@ impl ContactRecord<2> {
     ///     r_adh: LocalVec2::zeros(),
     /// };
     /// assert_eq!(c.force(), [-0.5, 2.0]);
+    /// assert_eq!(c.pressure(), 2.0);
+    /// assert!(c.is_active() && c.is_closed());
     /// ```
-    pub fn force(&self) -> [f64; 2] {
-        let (n, t) = (self.normal, self.tangent);
-        [
-            self.r.n * n[0] + self.r.t[0] * t[0],
-            self.r.n * n[1] + self.r.t[0] * t[1],
-        ]
+    pub fn force(&self) -> [f64; D] {
+        let (r, frame) = (self.reaction(), self.frame());
+        core::array::from_fn(|a| (1..D).fold(r[0] * frame[0][a], |f, k| f + r[k] * frame[k][a]))
     }
-}
 
-impl ContactRecord<3> {
-    /// The total reaction on the contactor node in global axes, `r_n n + r_t1 t1 + r_t2 t2`.
-    pub fn force(&self) -> [f64; 3] {
-        let (n, [t1, t2]) = (self.normal, self.tangent);
-        core::array::from_fn(|a| self.r.n * n[a] + self.r.t[0] * t1[a] + self.r.t[1] * t2[a])
+    /// The contact pressure `r_n / area` (0 for a node without area).
+    pub fn pressure(&self) -> f64 {
+        if self.area > 0.0 {
+            self.reaction()[0] / self.area
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether the contact was in the step's reduced problem (a candidate within its alert
+    /// distance, maybe open): its status is not [`InterfaceStatus::Inactive`].
+    pub fn is_active(&self) -> bool {
+        self.status != InterfaceStatus::Inactive
+    }
+
+    /// Whether the contact is closed at the end of the step: the law's reaction `r̄` is not
+    /// zero ([`InterfaceStatus::is_closed`]).
+    pub fn is_closed(&self) -> bool {
+        self.status.is_closed()
     }
 }
 

@@ -2,6 +2,7 @@
 //! skip rules.
 
 use crate::coupling::space::ContactSpace;
+use crate::error::SolverError;
 use crate::local::UzawaSettings;
 use fem_core::Dim;
 
@@ -29,10 +30,17 @@ pub struct SimulationSettings {
     /// paced by [`WarmStartPacing`](crate::local::adhesion::WarmStartPacing).
     pub adhesion_warm_start: bool,
     /// Maximum passes of the penetration check per step (each adds the penetrating inactive
-    /// candidates and redoes the step).
+    /// candidates and redoes the step): 5 in 2D, 20 in 3D
+    /// ([`for_dimension`](Self::for_dimension)).
     pub max_detection_passes: usize,
+    /// An inactive candidate penetrates when its gap is below `−penetration_tol × extent`
+    /// (`extent`: the largest side of the box of the contactor nodes). `None` (the default):
+    /// the dimension's [`ContactSpace::PENETRATION_TOL`], 0 in 2D and `1e-9` in 3D (round-off
+    /// of the nodes' positions on curved faces).
+    pub penetration_tol: Option<f64>,
     /// Right-hand sides per `solve_many_in_place` call when building `F*` (bounds the memory
-    /// to `dof_count × columns` values).
+    /// to `dof_count × columns` values): 64 in 2D, 96 in 3D
+    /// ([`for_dimension`](Self::for_dimension)).
     pub columns_per_solve: usize,
     /// What the simulation skips when a scene does not need it (all on by default; turn one
     /// off to measure what it saves).
@@ -120,7 +128,28 @@ impl Default for SkipRules {
 }
 
 impl Default for SimulationSettings {
+    /// The settings of a 2D simulation ([`SimulationSettings::for_dimension`]`::<2>()`).
     fn default() -> Self {
+        Self::for_dimension::<2>()
+    }
+}
+
+impl SimulationSettings {
+    /// The default settings of dimension `D`: the defaults measured for that dimension
+    /// ([`ContactSpace`]) of the `Auto` dense limit (500 contacts in 2D, 3000 in 3D), the
+    /// right-hand sides per solve (64, 96) and the detection passes (5, 20); the rest alike.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{FlexibilityMode, SimulationSettings};
+    /// let s = SimulationSettings::for_dimension::<3>();
+    /// assert_eq!(s.flexibility, FlexibilityMode::Auto { dense_limit: 3000 });
+    /// assert_eq!(SimulationSettings::for_dimension::<2>(), SimulationSettings::default());
+    /// ```
+    pub fn for_dimension<const D: usize>() -> Self
+    where
+        Dim<D>: ContactSpace<D>,
+    {
         Self {
             solver: UzawaSettings::default(),
             adhesion_tol: 1e-8,
@@ -128,26 +157,65 @@ impl Default for SimulationSettings {
             adhesion_anderson_window: crate::local::adhesion::DEFAULT_ANDERSON_WINDOW,
             adhesion_method: crate::local::adhesion::AdhesionMethod::Newton,
             adhesion_warm_start: true,
-            max_detection_passes: 5,
-            columns_per_solve: 64,
+            max_detection_passes: <Dim<D> as ContactSpace<D>>::MAX_DETECTION_PASSES,
+            penetration_tol: None,
+            columns_per_solve: <Dim<D> as ContactSpace<D>>::COLUMNS_PER_SOLVE,
             skip: SkipRules::default(),
-            flexibility: FlexibilityMode::default(),
+            flexibility: FlexibilityMode::Auto {
+                dense_limit: <Dim<D> as ContactSpace<D>>::DENSE_LIMIT,
+            },
             equilibrium_tol: 1e-11,
             max_equilibrium_iterations: 50,
         }
     }
-}
 
-impl SimulationSettings {
-    /// The default settings of dimension `D`: [`Default`] with the `Auto` dense limit measured
-    /// for that dimension ([`ContactSpace::DENSE_LIMIT`]: 500 contacts in 2D, 3000 in 3D).
-    pub fn for_dimension<const D: usize>() -> Self
+    /// The checks of [`ContactSimulation::new`](crate::ContactSimulation::new) and
+    /// [`set_settings`](crate::ContactSimulation::set_settings).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] naming the setting: an `adhesion_tol` that is not
+    /// finite and positive, a zero `columns_per_solve` or `max_detection_passes`, a
+    /// `penetration_tol` that is not finite and non-negative.
+    pub(crate) fn check(&self) -> Result<(), SolverError> {
+        if !(self.adhesion_tol > 0.0 && self.adhesion_tol.is_finite()) {
+            return Err(SolverError::InvalidSetting {
+                what: "adhesion_tol",
+                value: self.adhesion_tol,
+                expected: "a finite tolerance > 0",
+            });
+        }
+        for (what, n) in [
+            ("columns_per_solve", self.columns_per_solve),
+            ("max_detection_passes", self.max_detection_passes),
+        ] {
+            if n == 0 {
+                return Err(SolverError::InvalidSetting {
+                    what,
+                    value: 0.0,
+                    expected: "at least 1",
+                });
+            }
+        }
+        if let Some(tol) = self.penetration_tol
+            && !(tol >= 0.0 && tol.is_finite())
+        {
+            return Err(SolverError::InvalidSetting {
+                what: "penetration_tol",
+                value: tol,
+                expected: "a finite tolerance >= 0",
+            });
+        }
+        Ok(())
+    }
+
+    /// The relative penetration tolerance in dimension `D`: [`Self::penetration_tol`] or the
+    /// dimension's default.
+    pub(crate) fn relative_penetration_tol<const D: usize>(&self) -> f64
     where
         Dim<D>: ContactSpace<D>,
     {
-        Self::default().with_flexibility(FlexibilityMode::Auto {
-            dense_limit: <Dim<D> as ContactSpace<D>>::DENSE_LIMIT,
-        })
+        self.penetration_tol
+            .unwrap_or(<Dim<D> as ContactSpace<D>>::PENETRATION_TOL)
     }
 
     /// These settings with [`solver`](Self::solver) replaced.
@@ -199,6 +267,13 @@ impl SimulationSettings {
     #[must_use]
     pub fn with_max_detection_passes(mut self, max_detection_passes: usize) -> Self {
         self.max_detection_passes = max_detection_passes;
+        self
+    }
+
+    /// These settings with [`penetration_tol`](Self::penetration_tol) set to `relative`.
+    #[must_use]
+    pub fn with_penetration_tol(mut self, relative: f64) -> Self {
+        self.penetration_tol = Some(relative);
         self
     }
 
