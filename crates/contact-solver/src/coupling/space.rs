@@ -84,7 +84,7 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// 64 in 2D, 96 in 3D (as each dimension always had it).
     const COLUMNS_PER_SOLVE: usize;
     /// The default cap on the penetration-check passes of a step
-    /// ([`SimulationSettings::max_detection_passes`](super::simulation::SimulationSettings::max_detection_passes)):
+    /// ([`SimulationTuning::max_detection_passes`](super::simulation::SimulationTuning::max_detection_passes)):
     /// 5 in 2D, 20 in 3D (as each dimension always had it).
     const MAX_DETECTION_PASSES: usize;
 

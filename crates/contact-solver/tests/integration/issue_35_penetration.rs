@@ -108,7 +108,7 @@ fn issue_35_a_2d_step_that_still_penetrates_is_an_error() {
     check_refusal(&e, "max_detection_passes");
     // with the default passes the floor joins the reduced problem and nothing penetrates
     // (tolerance: the local solver's 1e-9 relative to the 0.05 push, with margin)
-    let mut sim = block_2d(SimulationSettings::default().max_detection_passes);
+    let mut sim = block_2d(SimulationSettings::default().tuning.max_detection_passes);
     let res = sim.step(1.0, 1.0).unwrap();
     assert!(
         res.contacts.iter().all(|c| c.gap > -1e-9),
@@ -131,7 +131,11 @@ fn issue_35_a_3d_step_that_still_penetrates_is_the_same_error() {
     let e = block_3d(1).step(1.0, 1.0).unwrap_err();
     // one setting, one name, in both dimensions
     check_refusal(&e, "max_detection_passes");
-    let mut sim = block_3d(SimulationSettings::for_dimension::<3>().max_detection_passes);
+    let mut sim = block_3d(
+        SimulationSettings::for_dimension::<3>()
+            .tuning
+            .max_detection_passes,
+    );
     let res = sim.step(1.0, 1.0).unwrap();
     assert!(
         res.contacts.iter().all(|c| c.gap > -1e-9),

@@ -69,7 +69,7 @@ fn settings_3d(s: &SolverSpec) -> CliResult<SimulationSettings> {
         out.flexibility = solid.flexibility;
     }
     if s.max_detection_passes.is_none() {
-        out.max_detection_passes = solid.max_detection_passes;
+        out.tuning.max_detection_passes = solid.tuning.max_detection_passes;
     }
     out.columns_per_solve = solid.columns_per_solve;
     Ok(out)
@@ -413,7 +413,7 @@ mod tests {
             ..SolverSpec::default()
         };
         let out = settings_3d(&s).unwrap();
-        assert_eq!(out.max_detection_passes, 7);
+        assert_eq!(out.tuning.max_detection_passes, 7);
         assert_eq!(out.flexibility, FlexibilityMode::Dense);
         let auto = settings_3d(&SolverSpec::default()).unwrap().flexibility;
         assert_eq!(auto, FlexibilityMode::Auto { dense_limit: 3000 });

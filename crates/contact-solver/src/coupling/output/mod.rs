@@ -98,13 +98,10 @@ pub const REPORT_COLUMNS: [&str; 14] = [
 /// ```
 /// use contact_solver::coupling::output::HistoryWriter;
 /// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-/// let c = ContactRecord {
-///     zone: 0, node: 7, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Stick,
-///     gap: 0.0, u_t: 1e-3, slip_increment: 0.0, beta: 1.0,
-///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
-///     r: LocalVec2::planar(2.0, -0.1), r_bar: LocalVec2::planar(2.0, -0.1),
-///     r_adh: LocalVec2::zeros(),
-/// };
+/// let mut c: ContactRecord = ContactRecord::default();
+/// (c.node, c.position, c.area, c.status) = (7, [0.5, 0.0], 0.25, InterfaceStatus::Stick);
+/// (c.u_t, c.beta, c.normal, c.tangent) = (1e-3, 1.0, [0.0, 1.0], [1.0, 0.0]);
+/// (c.r, c.r_bar) = (LocalVec2::planar(2.0, -0.1), LocalVec2::planar(2.0, -0.1));
 /// let mut history = HistoryWriter::new(Vec::new())?;
 /// history.write_contacts(1, 0.5, 1.0, &[c])?;
 /// let text = String::from_utf8(history.finish()?).unwrap();

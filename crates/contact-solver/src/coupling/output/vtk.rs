@@ -54,13 +54,10 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 /// # Examples
 /// ```
 /// use contact_solver::coupling::output::write_interface_vtu;
-/// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-/// let c = ContactRecord {
-///     zone: 0, node: 1, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Open,
-///     gap: 1e-3, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
-///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
-///     r: LocalVec2::zeros(), r_bar: LocalVec2::zeros(), r_adh: LocalVec2::zeros(),
-/// };
+/// use contact_solver::{ContactRecord, InterfaceStatus};
+/// let mut c: ContactRecord = ContactRecord::default();
+/// (c.node, c.position, c.area, c.status) = (1, [0.5, 0.0], 0.25, InterfaceStatus::Open);
+/// (c.gap, c.normal, c.tangent) = (1e-3, [0.0, 1.0], [1.0, 0.0]);
 /// let u = [[0.0, 0.0], [1e-4, -2e-4]];
 /// let path = std::env::temp_dir().join("contact_solver_output_doc.vtu");
 /// write_interface_vtu(&path, &[c], Some(&u))?;

@@ -79,7 +79,7 @@ where
     /// step or under the free response (`free`), or adhesive; all of them without the
     /// alert-distance skip rule.
     pub(super) fn initial_active_set(&self, free: &[[f64; D]]) -> Vec<usize> {
-        let all = !self.settings.skip.alert_distance;
+        let all = !self.settings.tuning.skip.alert_distance;
         (0..self.candidates.len())
             .filter(|&i| {
                 let c = &self.candidates[i];

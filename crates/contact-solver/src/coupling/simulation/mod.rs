@@ -33,9 +33,11 @@ mod path;
 mod report;
 mod settings;
 mod solve;
+mod tuning;
 
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
-pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
+pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings};
+pub use tuning::{SimulationTuning, SkipRules};
 
 use crate::coupling::force_factor::ForceFactorCheck;
 use crate::coupling::primal::PrimalCache;
@@ -122,7 +124,7 @@ where
     /// The check of `step`'s force factor (until the structure shows applied forces).
     force_check: ForceFactorCheck,
     /// The penetration tolerance of the inactive candidates, a length
-    /// ([`SimulationSettings::penetration_tol`] × the contactors' extent).
+    /// ([`SimulationTuning::penetration_tol`] × the contactors' extent).
     penetration_tol: f64,
 }
 
@@ -419,7 +421,7 @@ where
     /// [`SolverError::NotConverged`] or [`SolverError::AdhesionNotConverged`] unless the
     /// settings accept non-converged results; [`SolverError::StillPenetrating`] if candidates
     /// outside the reduced problem still penetrate after
-    /// [`max_detection_passes`](SimulationSettings::max_detection_passes) passes. On error the simulation keeps the state of the
+    /// [`max_detection_passes`](SimulationTuning::max_detection_passes) passes. On error the simulation keeps the state of the
     /// previous step.
     ///
     /// # Examples
@@ -478,7 +480,7 @@ where
             if penetrating.is_empty() {
                 return Ok(self.accept(time, u, jumps, solved, report, start));
             }
-            if report.detection_passes >= self.settings.max_detection_passes {
+            if report.detection_passes >= self.settings.tuning.max_detection_passes {
                 // issue 35: accepting the step would return contacts that penetrate
                 let deepest = penetrating
                     .iter()
@@ -504,7 +506,9 @@ where
     /// skip rules.
     fn tangent_needed(&self, i: usize) -> bool {
         let law = &self.zones[self.candidates[i].zone].law;
-        !self.settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
+        !self.settings.tuning.skip.frictionless_normal_only
+            || law.has_friction()
+            || law.has_adhesion()
     }
 
     /// Whether the tangential component `d` (`1..D`) of candidate `i` is solved: its tangent

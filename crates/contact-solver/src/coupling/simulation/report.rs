@@ -8,6 +8,7 @@ use std::time::Duration;
 /// What a contact is doing at the end of a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub enum InterfaceStatus {
     /// Outside the alert distance: not in the reduced problem.
     Inactive,
@@ -55,6 +56,7 @@ impl InterfaceStatus {
 /// quantities are numbers and the local vectors [`LocalVec2`](contact_laws::LocalVec2); in 3D
 /// they are pairs and [`LocalVec3`](contact_laws::LocalVec3) ([`ContactSpace`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ContactRecord<const D: usize = 2>
 where
     Dim<D>: ContactSpace<D>,
@@ -91,6 +93,34 @@ where
     pub r_adh: <Dim<D> as ContactSpace<D>>::Local,
 }
 
+impl<const D: usize> Default for ContactRecord<D>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    /// An inactive record of zone 0, node 0: every number 0 (the frame too), to fill in field
+    /// by field (the struct is `#[non_exhaustive]`).
+    fn default() -> Self {
+        let zero = <Dim<D> as ContactSpace<D>>::local_of(&[0.0; D]);
+        let tangential = <Dim<D> as ContactSpace<D>>::tangential_of(&[0.0; D]);
+        Self {
+            zone: 0,
+            node: 0,
+            position: [0.0; D],
+            area: 0.0,
+            status: InterfaceStatus::Inactive,
+            gap: 0.0,
+            u_t: tangential,
+            slip_increment: tangential,
+            beta: 0.0,
+            normal: [0.0; D],
+            tangent: <Dim<D> as ContactSpace<D>>::tangents_of([[0.0; D]; D]),
+            r: zero,
+            r_bar: zero,
+            r_adh: zero,
+        }
+    }
+}
+
 impl<const D: usize> ContactRecord<D>
 where
     Dim<D>: ContactSpace<D>,
@@ -113,13 +143,10 @@ where
     /// # Examples
     /// ```
     /// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-    /// let c = ContactRecord {
-    ///     zone: 0, node: 3, position: [0.0, 0.0], area: 1.0, status: InterfaceStatus::Slip,
-    ///     gap: 0.0, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
-    ///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
-    ///     r: LocalVec2::planar(2.0, -0.5), r_bar: LocalVec2::planar(2.0, -0.5),
-    ///     r_adh: LocalVec2::zeros(),
-    /// };
+    /// let mut c: ContactRecord = ContactRecord::default();
+    /// (c.node, c.area, c.status) = (3, 1.0, InterfaceStatus::Slip);
+    /// (c.normal, c.tangent) = ([0.0, 1.0], [1.0, 0.0]);
+    /// (c.r, c.r_bar) = (LocalVec2::planar(2.0, -0.5), LocalVec2::planar(2.0, -0.5));
     /// assert_eq!(c.force(), [-0.5, 2.0]);
     /// assert_eq!(c.pressure(), 2.0);
     /// assert!(c.is_active() && c.is_closed());

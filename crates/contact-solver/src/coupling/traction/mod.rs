@@ -30,6 +30,7 @@ use fem_core::boundary_mass::BoundaryMass;
 
 /// The traction recovered on one zone's contactor surface (module docs).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct TractionField {
     /// The zone.
     pub zone: usize,
