@@ -277,3 +277,93 @@ impl SimulationSettings {
         self
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_35_for_dimension_keeps_each_dimensions_defaults() {
+        // the values the 2D settings and the former 3D `SolidSettings` had
+        let plane = SimulationSettings::default();
+        assert_eq!(plane, SimulationSettings::for_dimension::<2>());
+        assert_eq!(
+            plane.flexibility,
+            FlexibilityMode::Auto { dense_limit: 500 }
+        );
+        assert_eq!(
+            (plane.columns_per_solve, plane.tuning.max_detection_passes),
+            (64, 5)
+        );
+        assert_eq!(plane.relative_penetration_tol::<2>(), 0.0);
+        let solid = SimulationSettings::for_dimension::<3>();
+        assert_eq!(
+            solid.flexibility,
+            FlexibilityMode::Auto { dense_limit: 3000 }
+        );
+        assert_eq!(
+            (solid.columns_per_solve, solid.tuning.max_detection_passes),
+            (96, 20)
+        );
+        assert_eq!(solid.relative_penetration_tol::<3>(), 1e-9);
+        // the rest alike
+        assert_eq!(solid.solver, plane.solver);
+        assert_eq!(solid.tuning.skip, plane.tuning.skip);
+        assert_eq!(
+            (solid.adhesion_tol, solid.max_adhesion_iterations),
+            (plane.adhesion_tol, plane.max_adhesion_iterations)
+        );
+        // a tolerance given holds in both dimensions
+        let given = plane.with_penetration_tol(1e-6);
+        assert_eq!(given.relative_penetration_tol::<2>(), 1e-6);
+        assert_eq!(given.relative_penetration_tol::<3>(), 1e-6);
+    }
+
+    #[test]
+    fn check_rejects_each_bad_setting_by_name() {
+        let ok = SimulationSettings::default();
+        assert_eq!(ok.check(), Ok(()));
+        let bad = [
+            ("adhesion_tol", ok.with_adhesion_tol(f64::NAN)),
+            ("adhesion_tol", ok.with_adhesion_tol(0.0)),
+            ("columns_per_solve", ok.with_columns_per_solve(0)),
+            ("max_detection_passes", ok.with_max_detection_passes(0)),
+            ("penetration_tol", ok.with_penetration_tol(-1e-9)),
+            ("penetration_tol", ok.with_penetration_tol(f64::INFINITY)),
+        ];
+        for (name, s) in bad {
+            match s.check() {
+                Err(SolverError::InvalidSetting { what, .. }) => assert_eq!(what, name),
+                other => panic!("{name}: {other:?}"),
+            }
+        }
+        // 0 is 2D's own tolerance
+        assert_eq!(ok.with_penetration_tol(0.0).check(), Ok(()));
+    }
+
+    #[test]
+    fn builders_set_the_tuning_fields() {
+        let s = SimulationSettings::default()
+            .with_adhesion_anderson_window(3)
+            .with_adhesion_warm_start(false)
+            .with_adhesion_method(crate::local::adhesion::AdhesionMethod::FixedPoint)
+            .with_max_detection_passes(7)
+            .with_equilibrium_tol(1e-9)
+            .with_max_equilibrium_iterations(9)
+            .with_skip(SkipRules::none());
+        let t = s.tuning;
+        assert_eq!(t.adhesion_anderson_window, 3);
+        assert!(!t.adhesion_warm_start);
+        assert_eq!(
+            t.adhesion_method,
+            crate::local::adhesion::AdhesionMethod::FixedPoint
+        );
+        assert_eq!(
+            (t.max_detection_passes, t.max_equilibrium_iterations),
+            (7, 9)
+        );
+        assert_eq!(t.equilibrium_tol, 1e-9);
+        assert_eq!(t.skip, SkipRules::none());
+        assert_eq!(SimulationSettings::default().with_tuning(t).tuning, t);
+    }
+}
