@@ -330,12 +330,14 @@ mod tests {
     #[test]
     fn issue_35_record_force_is_one_formula_in_both_dimensions() {
         // 3D: a frame turned about z by 90°, n = e_z, t1 = e_y, t2 = −e_x; r = (2, 0.5, −0.25)
-        let mut c: ContactRecord<3> = ContactRecord::default();
-        c.normal = [0.0, 0.0, 1.0];
-        c.tangent = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]];
-        c.r = <Dim<3> as ContactSpace<3>>::local_of(&[2.0, 0.5, -0.25]);
-        c.area = 0.5;
-        c.status = InterfaceStatus::Slip;
+        let c = ContactRecord::<3> {
+            normal: [0.0, 0.0, 1.0],
+            tangent: [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
+            r: <Dim<3> as ContactSpace<3>>::local_of(&[2.0, 0.5, -0.25]),
+            area: 0.5,
+            status: InterfaceStatus::Slip,
+            ..Default::default()
+        };
         assert_eq!(
             c.frame(),
             [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]
@@ -344,10 +346,13 @@ mod tests {
         assert_eq!(c.pressure(), 4.0);
         assert!(c.is_active() && c.is_closed());
         // 2D: n = e_y, t = e_x; r = (3, −1)
-        let mut p: ContactRecord = ContactRecord::default();
-        (p.normal, p.tangent) = ([0.0, 1.0], [1.0, 0.0]);
-        p.r = <Dim<2> as ContactSpace<2>>::local_of(&[3.0, -1.0]);
-        p.status = InterfaceStatus::Open;
+        let p = ContactRecord::<2> {
+            normal: [0.0, 1.0],
+            tangent: [1.0, 0.0],
+            r: <Dim<2> as ContactSpace<2>>::local_of(&[3.0, -1.0]),
+            status: InterfaceStatus::Open,
+            ..Default::default()
+        };
         assert_eq!(p.force(), [-1.0, 3.0]);
         assert_eq!(p.pressure(), 0.0); // no area
         assert!(p.is_active() && !p.is_closed());
