@@ -18,11 +18,11 @@
 //! d = 0.04; symmetry on x = 0 and y = 0; frictionless.
 
 use bipotential::contact_laws::Signorini;
-use bipotential::contact_solver::FlexibilityMode;
 use bipotential::contact_solver::coupling::solid::{
-    ContactZone3, RigidSphere, Side3, SolidContactSimulation, SolidSettings,
+    ContactZone3, RigidSphere, Side3, SolidContactSimulation,
 };
 use bipotential::contact_solver::coupling::traction::TractionField;
+use bipotential::contact_solver::{FlexibilityMode, SimulationSettings};
 use bipotential::fem_core::boundary_mass::BoundaryMass;
 use bipotential::fem_core::solid::generate::{box_mesh, lines};
 use bipotential::fem_core::solid::{SolidKind, SolidModel};
@@ -55,7 +55,7 @@ fn refine(v: &[f64], times: usize) -> Vec<f64> {
 
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut settings = SolidSettings::default();
+    let mut settings = SimulationSettings::for_dimension::<3>();
     if args.iter().any(|a| a == "--matrix-free") {
         settings.flexibility = FlexibilityMode::MatrixFree;
     } else if args.iter().any(|a| a == "--active-set") {
@@ -111,14 +111,14 @@ fn main() -> Result<(), Box<dyn Error>> {
         let t = Instant::now();
         let res = sim.step(1.0, 1.0)?;
         let t_step = t.elapsed().as_secs_f64();
-        let p: f64 = 4.0 * res.contacts.iter().map(|c| c.r[0]).sum::<f64>();
+        let p: f64 = 4.0 * res.contacts.iter().map(|c| c.r.n).sum::<f64>();
         let a_h = (3.0 * p * radius / (4.0 * e_star)).cbrt();
         let (mut inside, mut outside) = (0.0_f64, f64::INFINITY);
         for (c, x) in res.contacts.iter().zip(&positions) {
             let r = x[0].hypot(x[1]);
-            if c.r[0] > 1e-9 * p {
+            if c.r.n > 1e-9 * p {
                 inside = inside.max(r);
-            } else if c.candidate.area > 0.0 && c.gap > 0.0 {
+            } else if c.area > 0.0 && c.gap > 0.0 {
                 outside = outside.min(r);
             }
         }
@@ -128,13 +128,13 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .iter()
                 .zip(&positions)
                 .filter(|(_, x)| x[0].hypot(x[1]) < 0.5 * a_h)
-                .map(|(c, _)| c.r[0])
+                .map(|(c, _)| c.r.n)
                 .sum::<f64>();
         let hertz_half = p * (1.0 - 0.75_f64.powf(1.5));
         // the pressure field: M p = r_n on the top face, against p0 √(1 − r²/a²)
         let mesh = sim.structure().mesh();
         let mass = BoundaryMass::from_faces(mesh, mesh.face_set("z1")?)?;
-        let field = TractionField::from_records_3d(&mass, 0, &res.contacts)?;
+        let field = TractionField::from_records(&mass, 0, &res.contacts)?;
         let p0 = 3.0 * p / (2.0 * std::f64::consts::PI * a_h * a_h);
         let ellipse = |r: f64| p0 * (1.0 - (r / a_h).powi(2)).max(0.0).sqrt();
         // the node at the first point of contact, the origin
@@ -173,14 +173,15 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
         println!(
             "| {level} | {dofs} | {} | {p:.4} | {inside:.4} ({:+.2} %) | {outside:.4} | {a_h:.4} | {:.4} | {t_build:.2} | {t_step:.2} | {}{} | {centre:.4} | {:.2} % |",
-            res.active,
+            res.report.active_contacts,
             100.0 * (inside / a_h - 1.0),
             half / hertz_half,
-            res.contact_iterations,
-            if res.matrix_free {
+            res.report.contact_iterations,
+            if res.report.matrix_free {
                 " (matrix-free)".to_string()
-            } else if res.active_set {
-                format!(" (active set, {} factorisations)", res.factorizations)
+            } else if res.report.active_set {
+                let factorizations = sim.counters().active_set_factorizations;
+                format!(" (active set, {factorizations} factorisations)")
             } else {
                 String::new()
             },

@@ -13,7 +13,6 @@
 //! and 5 increments. Ends in an error when the curves differ by more than 3 % of the peak.
 
 use bipo::presets::{Installation, PulloutSpec};
-use bipotential::contact_solver::coupling::solid::SolidSettings;
 use bipotential::contact_solver::{FlexibilityMode, SimulationSettings};
 use std::error::Error;
 use std::time::Instant;
@@ -53,7 +52,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let dofs2 = 2 * axi.simulation.structure().mesh().node_count();
     spec.installation = Installation::RadialDisplacement(axi.installation_displacement);
     let t = Instant::now();
-    let mut settings = SolidSettings::default();
+    let mut settings = SimulationSettings::for_dimension::<3>();
     if args.iter().any(|a| a == "--active-set") {
         settings.flexibility = FlexibilityMode::ActiveSet;
     }

@@ -10,17 +10,29 @@
 //! symmetry on x = 0 and y = 0, bottom pushed up by 0.03; ball R = 1 centred at (0, 0, 1);
 //! E = 1000, ν = 0.3; the alert distance (1) makes all `(n + 1)²` top nodes active.
 
+use bipotential::contact_laws::ContactLaw;
 use bipotential::contact_laws::{Coulomb, Signorini};
-use bipotential::contact_solver::FlexibilityMode;
 use bipotential::contact_solver::coupling::solid::{
-    ContactZone3, RigidSphere, Side3, SolidContactSimulation, SolidSettings, SolidStepResult,
+    ContactZone3, RigidSphere, Side3, SolidContactSimulation, SolidStepResult,
 };
+use bipotential::contact_solver::{FlexibilityMode, SimulationSettings};
 use bipotential::fem_core::solid::generate::{box_mesh, lines};
 use bipotential::fem_core::solid::{SolidKind, SolidModel};
 use bipotential::fem_core::{Component, Material, Structure, Supports};
 use std::error::Error;
 use std::time::Instant;
 
+/// One step of the simulation of `model` and `zone`; the step and the active set's
+/// factorisations.
+fn step<L: ContactLaw + Clone>(
+    model: SolidModel,
+    zone: ContactZone3<L>,
+    settings: SimulationSettings,
+) -> Result<(SolidStepResult, usize), Box<dyn Error>> {
+    let mut sim = SolidContactSimulation::new(model, vec![zone], settings)?;
+    let res = sim.step(1.0, 1.0)?;
+    Ok((res, sim.counters().active_set_factorizations))
+}
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let n: usize = args.iter().find(|a| !a.starts_with("--")).map_or(
@@ -40,10 +52,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     } else {
         FlexibilityMode::Dense
     };
-    let settings = SolidSettings {
-        flexibility,
-        ..SolidSettings::default()
-    };
+    let settings = SimulationSettings::for_dimension::<3>().with_flexibility(flexibility);
     let coulomb = args.iter().any(|a| a == "--coulomb");
     let start = Instant::now();
     let mesh = box_mesh(
@@ -62,20 +71,23 @@ fn main() -> Result<(), Box<dyn Error>> {
     let ball = RigidSphere::new([0.0, 0.0, 1.0], 1.0, Side3::Outside)?;
     let t_build = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let res: SolidStepResult = if coulomb {
+    let (res, factorizations) = if coulomb {
         let zone =
             ContactZone3::rigid("top", nodes, ball, Coulomb::new(0.3)?, 1.0).with_areas(areas);
-        SolidContactSimulation::new(model, vec![zone], settings)?.step(1.0, 1.0)?
+        step(model, zone, settings)?
     } else {
         let zone = ContactZone3::rigid("top", nodes, ball, Signorini, 1.0).with_areas(areas);
-        SolidContactSimulation::new(model, vec![zone], settings)?.step(1.0, 1.0)?
+        step(model, zone, settings)?
     };
     let t_step = start.elapsed().as_secs_f64();
-    let force: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
-    let closed = res.contacts.iter().filter(|c| c.r[0] > 0.0).count();
+    let force: f64 = res.contacts.iter().map(|c| c.r.n).sum();
+    let closed = res.contacts.iter().filter(|c| c.r.n > 0.0).count();
     println!(
         "| {n} | {dofs} | {} | {closed} | {:?} | {force:.6} | {t_build:.2} | {t_step:.2} | {} | {} |",
-        res.active, settings.flexibility, res.contact_iterations, res.factorizations
+        res.report.active_contacts,
+        settings.flexibility,
+        res.report.contact_iterations,
+        factorizations
     );
     Ok(())
 }

@@ -60,7 +60,7 @@ pub use coupling::output::{HistoryWriter, InterfaceSeries, ReportWriter, write_i
 #[cfg(feature = "fe")]
 pub use coupling::simulation::{
     ContactRecord, ContactSimulation, Counters, DEFAULT_DENSE_LIMIT, FlexibilityMode,
-    InterfaceStatus, SimulationSettings, SkipRules, StepReport, StepResult,
+    InterfaceStatus, SimulationSettings, SimulationTuning, SkipRules, StepReport, StepResult,
 };
 #[cfg(feature = "fe")]
 pub use coupling::simulation::{QuasiStatic, SchemeStep, TimeScheme};

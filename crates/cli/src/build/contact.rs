@@ -121,7 +121,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     }
     if let Some(m) = s.adhesion_method {
         let p = root.key("adhesion_method");
-        out.adhesion_method = match m {
+        out.tuning.adhesion_method = match m {
             AdhesionMethodSpec::FixedPoint => AdhesionMethod::FixedPoint,
             AdhesionMethodSpec::Newton if s.algorithm == Some(AlgorithmSpec::RccmClassic) => {
                 return Err(CliError::at(
@@ -138,7 +138,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     }
     if let Some(w) = s.adhesion_warm_start {
         let p = root.key("adhesion_warm_start");
-        if w && out.adhesion_method == AdhesionMethod::FixedPoint {
+        if w && out.tuning.adhesion_method == AdhesionMethod::FixedPoint {
             return Err(CliError::at(
                 &p,
                 format!(
@@ -147,7 +147,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
                 ),
             ));
         }
-        out.adhesion_warm_start = w;
+        out.tuning.adhesion_warm_start = w;
     }
     if let Some(n) = s.max_adhesion_iterations {
         out.max_adhesion_iterations = count(
@@ -157,7 +157,7 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
         )?;
     }
     if let Some(n) = s.max_detection_passes {
-        out.max_detection_passes =
+        out.tuning.max_detection_passes =
             count(&root.key("max_detection_passes"), n, MAX_DETECTION_PASSES)?;
     }
     if let Some(b) = s.accept_non_converged {

@@ -197,6 +197,8 @@ pub(super) fn check_facing(
             }
             Target::NodePairs { .. } => "the zone's `normal`",
             Target::Surface(_) => "the target polyline's normal (contactor on its left)",
+            // a target kind the library adds later: nothing to check yet
+            _ => continue,
         };
         let Some(out) = model.outward_normal(c.node) else {
             continue;

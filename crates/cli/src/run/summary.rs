@@ -278,6 +278,8 @@ impl Tally {
                     InterfaceStatus::Stick => st.stick += 1,
                     InterfaceStatus::Slip => st.slip += 1,
                     InterfaceStatus::Closed => st.closed += 1,
+                    // a status the library adds later has no column yet
+                    _ => {}
                 }
             }
             keep(&mut zs.max_force_n, fn_, global, t, true);

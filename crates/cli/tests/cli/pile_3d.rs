@@ -19,7 +19,6 @@
 
 use bipo::presets::{Installation, PulloutSpec};
 use contact_solver::SimulationSettings;
-use contact_solver::coupling::solid::SolidSettings;
 
 /// The coarse Plancoët scene of `pile.rs`: 8 shaft cells.
 fn coarse() -> PulloutSpec {
@@ -39,7 +38,9 @@ fn pile_3d_follows_the_axisymmetric_curve() {
     let mut axi = spec.build(SimulationSettings::default()).unwrap();
     let curve2 = axi.run().unwrap().curve();
     spec.installation = Installation::RadialDisplacement(axi.installation_displacement);
-    let mut solid = spec.build_3d(2, SolidSettings::default()).unwrap();
+    let mut solid = spec
+        .build_3d(2, SimulationSettings::for_dimension::<3>())
+        .unwrap();
     let geo = solid.geostatic().unwrap();
     let q0 = solid.head_load(&geo).unwrap();
     assert!(
@@ -90,10 +91,7 @@ fn the_active_set_pulls_the_3d_pile_out_on_the_dense_curve() {
     use contact_solver::FlexibilityMode;
     let spec = coarse();
     let curve = |mode: FlexibilityMode| {
-        let settings = SolidSettings {
-            flexibility: mode,
-            ..SolidSettings::default()
-        };
+        let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
         let mut solid = spec.build_3d(2, settings).unwrap();
         solid.run().unwrap()
     };

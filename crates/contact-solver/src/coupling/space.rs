@@ -79,6 +79,14 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// iteration did not converge (matrix-free beyond): 8000 contacts in 2D (2 GiB), 3000 in
     /// 3D (648 MB, as 3D always had it).
     const FALLBACK_DENSE_LIMIT: usize;
+    /// The default right-hand sides per solve when building `F*`
+    /// ([`SimulationSettings::columns_per_solve`](super::simulation::SimulationSettings::columns_per_solve)):
+    /// 64 in 2D, 96 in 3D (as each dimension always had it).
+    const COLUMNS_PER_SOLVE: usize;
+    /// The default cap on the penetration-check passes of a step
+    /// ([`SimulationTuning::max_detection_passes`](super::simulation::SimulationTuning::max_detection_passes)):
+    /// 5 in 2D, 20 in 3D (as each dimension always had it).
+    const MAX_DETECTION_PASSES: usize;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.
     fn local_of(x: &[f64]) -> Self::Local;
@@ -88,6 +96,10 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
 
     /// The tangents of a frame `[n, t…]`.
     fn tangents_of(frame: [[f64; D]; D]) -> Self::Tangents;
+
+    /// The frame `[n, t…]` of a normal and its tangents (the inverse of
+    /// [`tangents_of`](Self::tangents_of)).
+    fn frame_of(normal: [f64; D], tangents: &Self::Tangents) -> [[f64; D]; D];
 
     /// The components `[n, t…]` of a typed local vector.
     fn components(l: &Self::Local) -> [f64; D];
@@ -168,6 +180,8 @@ impl ContactSpace<2> for Dim<2> {
     const DECOUPLE_HELD_TANGENTS: bool = false;
     const DENSE_LIMIT: usize = 500;
     const FALLBACK_DENSE_LIMIT: usize = 8000;
+    const COLUMNS_PER_SOLVE: usize = 64;
+    const MAX_DETECTION_PASSES: usize = 5;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<1> {
@@ -182,6 +196,11 @@ impl ContactSpace<2> for Dim<2> {
     #[inline]
     fn tangents_of(frame: [[f64; 2]; 2]) -> [f64; 2] {
         frame[1]
+    }
+
+    #[inline]
+    fn frame_of(normal: [f64; 2], tangent: &[f64; 2]) -> [[f64; 2]; 2] {
+        [normal, *tangent]
     }
 
     #[inline]
@@ -236,6 +255,8 @@ impl ContactSpace<3> for Dim<3> {
     const DECOUPLE_HELD_TANGENTS: bool = true;
     const DENSE_LIMIT: usize = 3000;
     const FALLBACK_DENSE_LIMIT: usize = 3000;
+    const COLUMNS_PER_SOLVE: usize = 96;
+    const MAX_DETECTION_PASSES: usize = 20;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<2> {
@@ -250,6 +271,11 @@ impl ContactSpace<3> for Dim<3> {
     #[inline]
     fn tangents_of(frame: [[f64; 3]; 3]) -> [[f64; 3]; 2] {
         [frame[1], frame[2]]
+    }
+
+    #[inline]
+    fn frame_of(normal: [f64; 3], [t1, t2]: &[[f64; 3]; 2]) -> [[f64; 3]; 3] {
+        [normal, *t1, *t2]
     }
 
     #[inline]

@@ -20,9 +20,7 @@
 #![cfg(feature = "fe")]
 
 use contact_laws::Signorini;
-use contact_solver::coupling::solid::{
-    ContactZone3, RigidPlane, SolidContactSimulation, SolidSettings,
-};
+use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
 use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings, SolverError};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::solid::generate::{box_mesh, lines};
@@ -77,10 +75,7 @@ fn block_3d(passes: usize) -> SolidContactSimulation<SolidModel, Signorini> {
         ContactZone3::rigid("wall", left, wall, Signorini, 0.06),
         ContactZone3::rigid("floor", bottom, floor, Signorini, 1e-4),
     ];
-    let settings = SolidSettings {
-        max_passes: passes,
-        ..SolidSettings::default()
-    };
+    let settings = SimulationSettings::for_dimension::<3>().with_max_detection_passes(passes);
     SolidContactSimulation::new(model, zones, settings).unwrap()
 }
 
@@ -113,7 +108,7 @@ fn issue_35_a_2d_step_that_still_penetrates_is_an_error() {
     check_refusal(&e, "max_detection_passes");
     // with the default passes the floor joins the reduced problem and nothing penetrates
     // (tolerance: the local solver's 1e-9 relative to the 0.05 push, with margin)
-    let mut sim = block_2d(SimulationSettings::default().max_detection_passes);
+    let mut sim = block_2d(SimulationSettings::default().tuning.max_detection_passes);
     let res = sim.step(1.0, 1.0).unwrap();
     assert!(
         res.contacts.iter().all(|c| c.gap > -1e-9),
@@ -134,8 +129,13 @@ fn issue_35_a_2d_step_that_still_penetrates_is_an_error() {
 #[test]
 fn issue_35_a_3d_step_that_still_penetrates_is_the_same_error() {
     let e = block_3d(1).step(1.0, 1.0).unwrap_err();
-    check_refusal(&e, "max_passes");
-    let mut sim = block_3d(SolidSettings::default().max_passes);
+    // one setting, one name, in both dimensions
+    check_refusal(&e, "max_detection_passes");
+    let mut sim = block_3d(
+        SimulationSettings::for_dimension::<3>()
+            .tuning
+            .max_detection_passes,
+    );
     let res = sim.step(1.0, 1.0).unwrap();
     assert!(
         res.contacts.iter().all(|c| c.gap > -1e-9),
@@ -144,8 +144,8 @@ fn issue_35_a_3d_step_that_still_penetrates_is_the_same_error() {
     let floor_force: f64 = res
         .contacts
         .iter()
-        .filter(|c| c.candidate.zone == 1)
-        .map(|c| c.r[0])
+        .filter(|c| c.zone == 1)
+        .map(|c| c.r.n)
         .sum();
     assert!(
         floor_force > 0.0,

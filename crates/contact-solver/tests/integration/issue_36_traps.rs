@@ -24,9 +24,7 @@
 
 use contact_laws::{Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::coupling::output::{HistoryWriter, status_code};
-use contact_solver::coupling::solid::{
-    ContactZone3, RigidPlane, SolidContactSimulation, SolidSettings,
-};
+use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
 use contact_solver::{
     ContactSimulation, ContactZone, InterfaceStatus, RigidLine, SimulationSettings, SolverError,
 };
@@ -139,7 +137,9 @@ fn issue_36_force_factor_does_not_scale_prescribed_displacements_3d() {
     let model = SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.0, 0.0).unwrap())], s).unwrap();
     let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let zone = ContactZone3::rigid("base", nodes, floor, Signorini, 0.1).with_areas(areas);
-    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let mut sim =
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap();
     let err = sim.step(1.0, 0.25).unwrap_err();
     assert!(
         matches!(
@@ -151,14 +151,14 @@ fn issue_36_force_factor_does_not_scale_prescribed_displacements_3d() {
         ),
         "{err:?}"
     );
-    assert_eq!(sim.steps(), 0);
+    assert_eq!(sim.counters().steps, 0);
     for k in 1..=2 {
         let delta = 1e-3 * k as f64;
         sim.structure_mut()
             .set_prescribed(&top, Component::Z, -delta)
             .unwrap();
         let res = sim.step(k as f64, 1.0).unwrap();
-        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
         // σ = E δ / H on a unit area (ν = 0); 1e-8 of the solver's tolerance on a force ~2
         assert!((total - 2000.0 * delta).abs() < 1e-8, "step {k}: {total}");
     }

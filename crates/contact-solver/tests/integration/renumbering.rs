@@ -9,9 +9,7 @@
 #![cfg(feature = "fe")]
 
 use contact_laws::Signorini;
-use contact_solver::coupling::solid::{
-    ContactZone3, RigidPlane, SolidContactSimulation, SolidSettings,
-};
+use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
 use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::solid::generate::{box_mesh, lines};
@@ -87,7 +85,8 @@ fn renumbered_supports_are_followed_in_3d() {
         let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
         let zone = ContactZone3::rigid("floor", nodes.clone(), floor, Signorini, 0.1)
             .with_areas(areas.clone());
-        SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap()
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap()
     };
     let mut a = build();
     a.step(1.0, 1.0).unwrap();
@@ -107,11 +106,12 @@ fn renumbered_supports_are_followed_in_3d() {
         let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
         let zone = ContactZone3::rigid("floor", nodes.clone(), floor, Signorini, 0.1)
             .with_areas(areas.clone());
-        SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap()
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap()
     };
     let rf = fresh.step(1.0, 1.0).unwrap();
     for (x, y) in ra.contacts.iter().zip(&rf.contacts) {
-        assert!((x.r[0] - y.r[0]).abs() < 1e-8, "{:?} vs {:?}", x.r, y.r);
+        assert!((x.r.n - y.r.n).abs() < 1e-8, "{:?} vs {:?}", x.r, y.r);
     }
     for n in 0..mesh.node_count() {
         let (x, y) = (a.nodal_displacement(n), fresh.nodal_displacement(n));
@@ -150,7 +150,8 @@ fn released_supports_are_followed_in_3d() {
         let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
         let zone = ContactZone3::rigid("floor", nodes.clone(), floor, Signorini, 0.1)
             .with_areas(areas.clone());
-        SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap()
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap()
     };
     let mut a = build(true);
     a.step(1.0, 1.0).unwrap();
@@ -159,7 +160,7 @@ fn released_supports_are_followed_in_3d() {
     let mut fresh = build(false);
     let rf = fresh.step(1.0, 1.0).unwrap();
     for (x, y) in ra.contacts.iter().zip(&rf.contacts) {
-        assert!((x.r[0] - y.r[0]).abs() < 1e-8, "{:?} vs {:?}", x.r, y.r);
+        assert!((x.r.n - y.r.n).abs() < 1e-8, "{:?} vs {:?}", x.r, y.r);
     }
     for n in 0..mesh.node_count() {
         let (x, y) = (a.nodal_displacement(n), fresh.nodal_displacement(n));

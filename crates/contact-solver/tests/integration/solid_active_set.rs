@@ -16,20 +16,17 @@
 
 use crate::solid_interfaces::{matching, supports, two_blocks};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini};
-use contact_solver::FlexibilityMode;
 use contact_solver::coupling::solid::{
     ContactZone3, PairNormals3, RigidPlane, RigidSphere, Side3, SolidContactSimulation,
-    SolidSettings, SolidStepResult,
+    SolidStepResult,
 };
+use contact_solver::{FlexibilityMode, SimulationSettings};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidModel};
 use fem_core::{Component, Material, Supports};
 
-fn settings(mode: FlexibilityMode) -> SolidSettings {
-    SolidSettings {
-        flexibility: mode,
-        ..SolidSettings::default()
-    }
+fn settings(mode: FlexibilityMode) -> SimulationSettings {
+    SimulationSettings::for_dimension::<3>().with_flexibility(mode)
 }
 
 /// Largest difference of the reactions of two runs, relative to the largest normal reaction.
@@ -39,9 +36,10 @@ fn max_difference(a: &[SolidStepResult], b: &[SolidStepResult]) -> f64 {
     for (sa, sb) in a.iter().zip(b) {
         assert_eq!(sa.contacts.len(), sb.contacts.len());
         for (ca, cb) in sa.contacts.iter().zip(&sb.contacts) {
-            scale = scale.max(ca.r[0].abs());
+            let (ra, rb) = (ca.reaction(), cb.reaction());
+            scale = scale.max(ra[0].abs());
             for d in 0..3 {
-                diff = diff.max((ca.r[d] - cb.r[d]).abs());
+                diff = diff.max((ra[d] - rb[d]).abs());
             }
         }
     }
@@ -97,12 +95,12 @@ fn signorini_patch_is_exact_with_rollers() {
     for kind in [SolidKind::Tet4, SolidKind::Tet10] {
         let res = pressed_block(kind, Signorini, true, None, FlexibilityMode::ActiveSet);
         let res = &res[0];
-        assert!(res.active_set && !res.matrix_free);
+        assert!(res.report.active_set && !res.report.matrix_free);
         // σ = E δ / H = 1 on an area of 3, to the solver's tolerance (1e-10 relative)
-        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
         assert!((total - 3.0).abs() < 1e-8, "{kind:?}: {total}");
         for c in &res.contacts {
-            if c.candidate.area > 0.0 {
+            if c.area > 0.0 {
                 assert!(
                     (c.pressure() - 1.0).abs() < 1e-7,
                     "{kind:?}: {}",
@@ -110,11 +108,11 @@ fn signorini_patch_is_exact_with_rollers() {
                 );
             }
             assert!(c.gap.abs() < 1e-12, "closed: {}", c.gap);
-            assert!(c.r[1] == 0.0 && c.r[2] == 0.0, "frictionless");
+            assert!(c.r.t[0] == 0.0 && c.r.t[1] == 0.0, "frictionless");
         }
         eprintln!(
-            "{kind:?} patch: {} iterations, {} factorisations",
-            res.contact_iterations, res.factorizations
+            "{kind:?} patch: {} iterations",
+            res.report.contact_iterations
         );
     }
 }
@@ -129,7 +127,7 @@ fn coulomb_with_rollers_matches_dense() {
         let dense = pressed_block(kind, law, true, None, FlexibilityMode::Dense);
         let diff = max_difference(&active, &dense);
         eprintln!("{kind:?} rollers, μ = 0.1: difference {diff:e}");
-        assert!(active[0].active_set);
+        assert!(active[0].report.active_set);
         // both paths to the solver's tolerance (1e-10 on the natural-map residual)
         assert!(diff < 1e-7, "{kind:?}: {diff:e}");
     }
@@ -151,15 +149,15 @@ fn sheared_block_matches_dense_in_full_and_partial_slip() {
             let sliding = last
                 .contacts
                 .iter()
-                .filter(|c| c.r[0] > 1e-9 && c.slip[0].hypot(c.slip[1]) > 1e-12)
+                .filter(|c| c.r.n > 1e-9 && c.slip_increment[0].hypot(c.slip_increment[1]) > 1e-12)
                 .count();
-            let closed = last.contacts.iter().filter(|c| c.r[0] > 1e-9).count();
+            let closed = last.contacts.iter().filter(|c| c.r.n > 1e-9).count();
             eprintln!(
-                "{kind:?} {label}: {sliding}/{closed} sliding, {} iterations, {} \
-                 factorisations, difference {diff:e}",
-                last.contact_iterations, last.factorizations
+                "{kind:?} {label}: {sliding}/{closed} sliding, {} iterations, \
+                 difference {diff:e}",
+                last.report.contact_iterations
             );
-            assert!(last.active_set);
+            assert!(last.report.active_set);
             assert!(diff < 1e-6, "{kind:?} {label}: {diff:e}");
             if label == "full slip" {
                 assert_eq!(sliding, closed);
@@ -168,15 +166,16 @@ fn sheared_block_matches_dense_in_full_and_partial_slip() {
             }
             // the solver's tolerance is relative to the whole reaction: checked against the
             // largest one (a P2 corner node carries a small force)
-            let rmax = last.contacts.iter().fold(0.0_f64, |m, c| m.max(c.r[0]));
-            for c in last.contacts.iter().filter(|c| c.r[0] > 1e-9) {
-                let rt = c.r[1].hypot(c.r[2]);
-                let s = c.slip[0].hypot(c.slip[1]);
-                assert!(rt <= mu * c.r[0] + 1e-6 * rmax, "inside the cone");
+            let rmax = last.contacts.iter().fold(0.0_f64, |m, c| m.max(c.r.n));
+            for c in last.contacts.iter().filter(|c| c.r.n > 1e-9) {
+                let rt = c.r.t[0].hypot(c.r.t[1]);
+                let s = c.slip_increment[0].hypot(c.slip_increment[1]);
+                assert!(rt <= mu * c.r.n + 1e-6 * rmax, "inside the cone");
                 if s > 1e-6 * d {
                     // sliding: on the cone, the force opposite to the slip
-                    assert!((rt - mu * c.r[0]).abs() < 1e-6 * rmax, "{rt}");
-                    let opposed = (c.r[1] * c.slip[0] + c.r[2] * c.slip[1]) / (rt * s);
+                    assert!((rt - mu * c.r.n).abs() < 1e-6 * rmax, "{rt}");
+                    let opposed = (c.r.t[0] * c.slip_increment[0] + c.r.t[1] * c.slip_increment[1])
+                        / (rt * s);
                     assert!((opposed + 1.0).abs() < 1e-4, "{opposed}");
                 }
             }
@@ -223,25 +222,19 @@ fn hertz_quarter_matches_dense_with_and_without_friction() {
     ];
     for (label, [a, d]) in [("frictionless", frictionless), ("μ = 0.2", frictional)] {
         let diff = max_difference(std::slice::from_ref(&a), std::slice::from_ref(&d));
-        let closed = a.contacts.iter().filter(|c| c.r[0] > 0.0).count();
+        let closed = a.contacts.iter().filter(|c| c.r.n > 0.0).count();
         eprintln!(
-            "Hertz quarter {label}: {closed} closed of {}, {} iterations, {} factorisations, \
-             difference {diff:e}",
-            a.active, a.contact_iterations, a.factorizations
+            "Hertz quarter {label}: {closed} closed of {}, {} iterations, difference {diff:e}",
+            a.report.active_contacts, a.report.contact_iterations
         );
-        assert!(a.active_set);
+        assert!(a.report.active_set);
         // both paths stop at the natural-map residual 1e-10 relative; with friction the
         // contacts near the stick/slip border amplify it in the reactions (8.5e-7 measured)
         let tol = if label == "frictionless" { 1e-7 } else { 1e-5 };
         assert!(diff < tol, "{label}: {diff:e}");
         // the same contact set
         for (ca, cd) in a.contacts.iter().zip(&d.contacts) {
-            assert_eq!(
-                ca.r[0] > 1e-9,
-                cd.r[0] > 1e-9,
-                "{label}: node {}",
-                ca.candidate.node
-            );
+            assert_eq!(ca.r.n > 1e-9, cd.r.n > 1e-9, "{label}: node {}", ca.node);
         }
     }
 }
@@ -267,12 +260,12 @@ fn scope_is_enforced_and_auto_falls_back() {
     // carries the jump in the directions it moves; the dense answer
     let active = pairs(FlexibilityMode::ActiveSet).unwrap();
     let dense = pairs(FlexibilityMode::Dense).unwrap();
-    assert!(active.active_set);
+    assert!(active.report.active_set);
     let diff = max_difference(&[active], std::slice::from_ref(&dense));
     assert!(diff < 1e-9, "{diff:e}");
     // Auto past its limit takes the active set for them
     let auto = pairs(FlexibilityMode::Auto { dense_limit: 0 }).unwrap();
-    assert!(auto.active_set && !auto.matrix_free);
+    assert!(auto.report.active_set && !auto.report.matrix_free);
     let diff = max_difference(&[auto], &[dense]);
     assert!(diff < 1e-9, "{diff:e}");
     // adhesion: the active set when asked, the dense F* under Auto
@@ -310,9 +303,9 @@ fn scope_is_enforced_and_auto_falls_back() {
     // adhesion: the active set when asked (the springs on the stiffness), the dense F* under
     // Auto, the same answer
     let active = glued(FlexibilityMode::ActiveSet).unwrap();
-    assert!(active.active_set);
+    assert!(active.report.active_set);
     let auto = glued(FlexibilityMode::Auto { dense_limit: 0 }).unwrap();
-    assert!(!auto.active_set && !auto.matrix_free);
+    assert!(!auto.report.active_set && !auto.report.matrix_free);
     let diff = max_difference(&[active], &[auto]);
     assert!(diff < 1e-7, "{diff:e}");
     // rigid obstacles past the limit: the active set, with the dense answer
@@ -325,6 +318,6 @@ fn scope_is_enforced_and_auto_falls_back() {
         FlexibilityMode::Auto { dense_limit: 0 },
     );
     let dense = pressed_block(SolidKind::Tet10, law, true, None, FlexibilityMode::Dense);
-    assert!(auto[0].active_set);
+    assert!(auto[0].report.active_set);
     assert!(max_difference(&auto, &dense) < 1e-7);
 }

@@ -16,8 +16,9 @@
 #![cfg(feature = "fe")]
 
 use contact_laws::{Coulomb, Signorini};
+use contact_solver::SimulationSettings;
 use contact_solver::coupling::solid::{
-    ContactZone3, RigidPlane, RigidSphere, Side3, SolidContactSimulation, SolidSettings,
+    ContactZone3, RigidPlane, RigidSphere, Side3, SolidContactSimulation,
 };
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidModel};
@@ -44,25 +45,29 @@ fn signorini_patch_3d_works() {
         let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
         let plane = RigidPlane::new([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
         let zone = ContactZone3::rigid("base", nodes, plane, Signorini, 0.1).with_areas(areas);
-        let mut sim =
-            SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+        let mut sim = SolidContactSimulation::new(
+            model,
+            vec![zone],
+            SimulationSettings::for_dimension::<3>(),
+        )
+        .unwrap();
         let res = sim.step(1.0, 1.0).unwrap();
         let p = e * delta / h;
-        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
         // the solver's tolerance (1e-10 relative) on a force of p · 3
         assert!(
             (total - p * 3.0).abs() < 1e-8 * p * 3.0,
             "{kind:?}: {total}"
         );
         for c in &res.contacts {
-            if c.candidate.area > 0.0 {
+            if c.area > 0.0 {
                 assert!(
                     (c.pressure() - p).abs() < 1e-7 * p,
                     "{kind:?}: {}",
                     c.pressure()
                 );
             } else {
-                assert!(c.r[0].abs() < 1e-9 * p, "a P2 corner carries no force");
+                assert!(c.r.n.abs() < 1e-9 * p, "a P2 corner carries no force");
             }
             // closed to the solver's tolerance (P2 corners touch with no force: 1.5e-10 δ seen)
             assert!(
@@ -71,7 +76,7 @@ fn signorini_patch_3d_works() {
                 c.gap,
                 c.r
             );
-            assert!(c.r[1] == 0.0 && c.r[2] == 0.0, "frictionless");
+            assert!(c.r.t[0] == 0.0 && c.r.t[1] == 0.0, "frictionless");
         }
         // the displacement of the contact nodes' plane: the lateral expansion ν δ / H x
         let corner = sim.candidates().iter().find(|c| c.node != 0).unwrap().node;
@@ -105,7 +110,9 @@ fn sliding_block_follows_the_load_direction_works() {
     let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let zone =
         ContactZone3::rigid("base", nodes, plane, Coulomb::new(mu).unwrap(), 0.1).with_areas(areas);
-    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let mut sim =
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap();
     sim.step(1.0, 1.0).unwrap();
     // shear the top far beyond the stick limit
     let d = 0.05;
@@ -122,25 +129,26 @@ fn sliding_block_follows_the_load_direction_works() {
         let f = c.force();
         fx += f[0];
         fy += f[1];
-        fn_ += c.r[0];
-        rt_sum += c.r[1].hypot(c.r[2]);
-        if c.r[0] > 1e-9 {
+        fn_ += c.r.n;
+        rt_sum += c.r.t[0].hypot(c.r.t[1]);
+        if c.r.n > 1e-9 {
             closed += 1;
-            let rt = c.r[1].hypot(c.r[2]);
+            let rt = c.r.t[0].hypot(c.r.t[1]);
             // on the cone's surface, to the solver's tolerance
             assert!(
-                (rt - mu * c.r[0]).abs() < 1e-6 * c.r[0],
+                (rt - mu * c.r.n).abs() < 1e-6 * c.r.n,
                 "{rt} vs {}",
-                mu * c.r[0]
+                mu * c.r.n
             );
             // the reaction opposes the node's own slip (the law, to the solver's tolerance),
             // and the slip follows the load's direction (to 1e-4: the Kuhn mesh is not
             // isotropic, so the elastic field has a small transverse part)
-            let s = c.slip[0].hypot(c.slip[1]);
+            let s = c.slip_increment[0].hypot(c.slip_increment[1]);
             assert!(s > 0.0);
-            let opposed = (c.r[1] * c.slip[0] + c.r[2] * c.slip[1]) / (rt * s);
+            let opposed =
+                (c.r.t[0] * c.slip_increment[0] + c.r.t[1] * c.slip_increment[1]) / (rt * s);
             assert!((opposed + 1.0).abs() < 1e-6, "{opposed}");
-            let cos = (c.slip[0] * dir[0] + c.slip[1] * dir[1]) / s;
+            let cos = (c.slip_increment[0] * dir[0] + c.slip_increment[1] * dir[1]) / s;
             assert!((cos - 1.0).abs() < 1e-4, "slip direction {cos}");
         }
     }
@@ -186,10 +194,12 @@ fn rigid_sphere_on_block_hertz_coarse_works() {
     let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
     let ball = RigidSphere::new([0.0, 0.0, radius], radius, Side3::Outside).unwrap();
     let zone = ContactZone3::rigid("top", nodes, ball, Signorini, 0.5).with_areas(areas);
-    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let mut sim =
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap();
     let res = sim.step(1.0, 1.0).unwrap();
     // the quarter carries a quarter of the force
-    let p_total: f64 = 4.0 * res.contacts.iter().map(|c| c.r[0]).sum::<f64>();
+    let p_total: f64 = 4.0 * res.contacts.iter().map(|c| c.r.n).sum::<f64>();
     let e_star = e / (1.0 - nu * nu);
     let a_hertz = (3.0 * p_total * radius / (4.0 * e_star)).cbrt();
     // the contact radius: the farthest node that carries force, and the nearest one that does not
@@ -197,9 +207,9 @@ fn rigid_sphere_on_block_hertz_coarse_works() {
     let mut outside = f64::INFINITY;
     for (c, x) in res.contacts.iter().zip(&positions) {
         let r = x[0].hypot(x[1]);
-        if c.r[0] > 1e-9 * p_total {
+        if c.r.n > 1e-9 * p_total {
             inside = inside.max(r);
-        } else if c.candidate.area > 0.0 && c.gap > 0.0 {
+        } else if c.area > 0.0 && c.gap > 0.0 {
             outside = outside.min(r);
         }
     }
@@ -219,7 +229,7 @@ fn rigid_sphere_on_block_hertz_coarse_works() {
             .iter()
             .zip(&positions)
             .filter(|(_, x)| x[0].hypot(x[1]) < 0.5 * a_hertz)
-            .map(|(c, _)| c.r[0])
+            .map(|(c, _)| c.r.n)
             .sum::<f64>();
     let want = p_total * (1.0 - 0.75_f64.powf(1.5));
     eprintln!("force inside a/2: {half:.4} against Hertz {want:.4}");
@@ -246,7 +256,12 @@ fn solid_contact_captures_errors() {
     let model = || SolidModel::new(mesh.clone(), &[(0, m)], s.clone()).unwrap();
     let floor = || RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let run = |zone: ContactZone3<Signorini>| {
-        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).err()
+        SolidContactSimulation::new(
+            model(),
+            vec![zone],
+            SimulationSettings::for_dimension::<3>(),
+        )
+        .err()
     };
     // an unknown node, a negative alert distance, areas of the wrong length or NaN
     assert!(matches!(
@@ -305,18 +320,19 @@ fn solid_contact_captures_errors() {
     .unwrap();
     let zone = ContactZone3::rigid("glue", bottom.clone(), floor(), rccm, 0.1);
     assert!(matches!(
-        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).err(),
+        SolidContactSimulation::new(model(), vec![zone], SimulationSettings::for_dimension::<3>()).err(),
         Some(SolverError::InvalidGeometry(msg)) if msg.contains("glue") && msg.contains("areas")
     ));
     // bad settings and a bad step length
     let zone = ContactZone3::rigid("z", bottom, floor(), Signorini, 0.1);
-    let bad = SolidSettings {
-        penetration_tol: f64::NAN,
-        ..SolidSettings::default()
-    };
+    let bad = SimulationSettings::for_dimension::<3>().with_penetration_tol(f64::NAN);
     assert!(SolidContactSimulation::new(model(), vec![zone.clone()], bad).is_err());
-    let mut sim =
-        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).unwrap();
+    let mut sim = SolidContactSimulation::new(
+        model(),
+        vec![zone],
+        SimulationSettings::for_dimension::<3>(),
+    )
+    .unwrap();
     sim.step(1.0, 1.0).unwrap();
     assert!(sim.step(0.5, 1.0).is_err()); // time goes backwards
     assert!(sim.step(2.0, f64::INFINITY).is_err());
@@ -420,28 +436,33 @@ fn user_structure_3d_gives_the_same_contact_works() {
     let law = Coulomb::new(0.2).unwrap();
     let zone =
         || ContactZone3::rigid("base", nodes.clone(), plane(), law, 0.1).with_areas(areas.clone());
-    let a = SolidContactSimulation::new(model, vec![zone()], SolidSettings::default())
-        .unwrap()
-        .step(1.0, 1.0)
-        .unwrap();
-    let b = SolidContactSimulation::new(user, vec![zone()], SolidSettings::default())
-        .unwrap()
-        .step(1.0, 1.0)
-        .unwrap();
-    let scale = a.contacts.iter().map(|c| c.r[0]).fold(0.0, f64::max);
+    let a = SolidContactSimulation::new(
+        model,
+        vec![zone()],
+        SimulationSettings::for_dimension::<3>(),
+    )
+    .unwrap()
+    .step(1.0, 1.0)
+    .unwrap();
+    let b =
+        SolidContactSimulation::new(user, vec![zone()], SimulationSettings::for_dimension::<3>())
+            .unwrap()
+            .step(1.0, 1.0)
+            .unwrap();
+    let scale = a.contacts.iter().map(|c| c.r.n).fold(0.0, f64::max);
     let (mut stick, mut slip) = (0, 0);
     for (x, y) in a.contacts.iter().zip(&b.contacts) {
         for d in 0..3 {
             // two factorisations, one solver tolerance (1e-10): 1e-8 of the largest reaction
             assert!(
-                (x.r[d] - y.r[d]).abs() < 1e-8 * scale,
+                (x.reaction()[d] - y.reaction()[d]).abs() < 1e-8 * scale,
                 "{:?} vs {:?}",
                 x.r,
                 y.r
             );
         }
-        if x.r[0] > 1e-9 * scale {
-            if x.slip[0].hypot(x.slip[1]) > 1e-9 {
+        if x.r.n > 1e-9 * scale {
+            if x.slip_increment[0].hypot(x.slip_increment[1]) > 1e-9 {
                 slip += 1
             } else {
                 stick += 1

@@ -21,10 +21,10 @@
 #![cfg(feature = "fe")]
 
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini};
-use contact_solver::FlexibilityMode;
 use contact_solver::coupling::solid::{
-    ContactZone3, PairNormals3, RigidPlane, SolidContactSimulation, SolidSettings, TriSurface,
+    ContactZone3, PairNormals3, RigidPlane, SolidContactSimulation, TriSurface,
 };
+use contact_solver::{FlexibilityMode, SimulationSettings};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{Face, SolidKind, SolidMesh, SolidModel};
 use fem_core::{Component, Material, Supports};
@@ -136,8 +136,12 @@ fn two_block_patch_is_exact_for_pairs_and_faces() {
             .with_areas(areas);
             let s = supports(&mesh, &[(Component::Z, -delta)]);
             let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
-            let mut sim =
-                SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+            let mut sim = SolidContactSimulation::new(
+                model,
+                vec![zone],
+                SimulationSettings::for_dimension::<3>(),
+            )
+            .unwrap();
             let res = sim.step(1.0, 1.0).unwrap();
             check_uniform(&res.contacts, sigma, &format!("{kind:?} {label}"));
             // the interface's displacement: uniform strain δ / 2 over the height
@@ -153,22 +157,22 @@ fn check_uniform(
     sigma: f64,
     label: &str,
 ) {
-    let total: f64 = contacts.iter().map(|c| c.r[0]).sum();
+    let total: f64 = contacts.iter().map(|c| c.r.n).sum();
     // the solver's tolerance (1e-10 relative) on a unit area
     assert!(
         (total - sigma).abs() < 1e-8 * sigma,
         "{label}: {total} vs {sigma}"
     );
     for c in contacts {
-        let want = sigma * c.candidate.area;
+        let want = sigma * c.area;
         assert!(
-            (c.r[0] - want).abs() < 1e-7 * sigma,
+            (c.r.n - want).abs() < 1e-7 * sigma,
             "{label}: node {} r_n {} vs {want}",
-            c.candidate.node,
-            c.r[0]
+            c.node,
+            c.r.n
         );
         assert!(c.gap.abs() < 1e-12, "{label}: gap {}", c.gap);
-        assert!((c.candidate.normal()[2] - 1.0).abs() < 1e-12);
+        assert!((c.normal[2] - 1.0).abs() < 1e-12);
     }
 }
 
@@ -212,9 +216,12 @@ fn non_matching_faces_are_exact_on_a_moving_target() {
                 .unwrap();
         }
         let model = SolidModel::new(mesh.clone(), &[(0, m), (1, m)], s).unwrap();
-        let mut sim =
-            SolidContactSimulation::new(model, vec![zone.clone()], SolidSettings::default())
-                .unwrap();
+        let mut sim = SolidContactSimulation::new(
+            model,
+            vec![zone.clone()],
+            SimulationSettings::for_dimension::<3>(),
+        )
+        .unwrap();
         let res = sim.step(1.0, 1.0).unwrap();
         check_uniform(
             &res.contacts,
@@ -224,14 +231,18 @@ fn non_matching_faces_are_exact_on_a_moving_target() {
         // the same interface on a deformable bottom block
         let s = supports(&mesh, &[(Component::Z, -delta)]);
         let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
-        let mut sim =
-            SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+        let mut sim = SolidContactSimulation::new(
+            model,
+            vec![zone],
+            SimulationSettings::for_dimension::<3>(),
+        )
+        .unwrap();
         let res = sim.step(1.0, 1.0).unwrap();
-        let total: f64 = res.contacts.iter().map(|c| c.r[0]).sum();
+        let total: f64 = res.contacts.iter().map(|c| c.r.n).sum();
         let sigma = e * delta / 2.0;
         eprintln!("{kind:?} deformable target: total {total} vs uniform {sigma}");
         assert!((total / sigma - 1.0).abs() < 0.01, "{kind:?}: {total}");
-        assert!(res.contacts.iter().all(|c| c.r[0] >= -1e-12));
+        assert!(res.contacts.iter().all(|c| c.r.n >= -1e-12));
     }
 }
 
@@ -255,20 +266,22 @@ fn sliding_blocks_obey_coulomb_between_bodies() {
         .unwrap()
         .fix(mesh.node_set("b.z1").unwrap(), Component::Y);
     let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
-    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let mut sim =
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap();
     let res = sim.step(1.0, 1.0).unwrap();
     let (mut fn_, mut fx) = (0.0, 0.0);
-    for c in res.contacts.iter().filter(|c| c.r[0] > 1e-9) {
-        let rt = c.r[1].hypot(c.r[2]);
+    for c in res.contacts.iter().filter(|c| c.r.n > 1e-9) {
+        let rt = c.r.t[0].hypot(c.r.t[1]);
         assert!(
-            (rt - mu * c.r[0]).abs() < 1e-6 * c.r[0].max(1e-3),
+            (rt - mu * c.r.n).abs() < 1e-6 * c.r.n.max(1e-3),
             "node {}: |r_t| {rt} vs μ r_n {}",
-            c.candidate.node,
-            mu * c.r[0]
+            c.node,
+            mu * c.r.n
         );
         // the force on the top block opposes its motion (+x)
         let f = c.force();
-        assert!(f[0] < 0.0, "node {}: {f:?}", c.candidate.node);
+        assert!(f[0] < 0.0, "node {}: {f:?}", c.node);
         fn_ += f[2];
         fx += f[0];
     }
@@ -354,7 +367,7 @@ fn glued_block_pulled_off_follows_rccm() {
             (zone, 2.0, supports(&mesh, &[(Component::Z, 0.0)]))
         };
         let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
-        let mut settings = SolidSettings::default();
+        let mut settings = SimulationSettings::for_dimension::<3>();
         if active_set {
             settings.flexibility = FlexibilityMode::ActiveSet;
         }
@@ -368,11 +381,11 @@ fn glued_block_pulled_off_follows_rccm() {
                 .set_prescribed(&top, Component::Z, delta)
                 .unwrap();
             let res = sim.step(f64::from(k), 1.0).unwrap();
-            assert_eq!(res.active_set, active_set);
+            assert_eq!(res.report.active_set, active_set);
             let (u, beta) = pulled(e, h, c, w, delta, beta_prev);
             beta_prev = beta;
             damaged |= beta < 0.999;
-            let total: f64 = res.contacts.iter().map(|r| r.r[0]).sum();
+            let total: f64 = res.contacts.iter().map(|r| r.r.n).sum();
             let want = -beta * beta * c * u; // tension on a unit area
             assert!(
                 (total - want).abs() < 1e-6 * want.abs(),
@@ -384,7 +397,7 @@ fn glued_block_pulled_off_follows_rccm() {
                     "{label} step {k}: u {} vs {u}",
                     r.gap
                 );
-                if r.candidate.area > 0.0 {
+                if r.area > 0.0 {
                     assert!(
                         (r.beta - beta).abs() < 1e-6,
                         "{label} step {k}: β {}",
@@ -414,7 +427,12 @@ fn interface_zones_refuse_bad_input() {
     let nodes = mesh.node_set("b.z0").unwrap().to_vec();
     let targets = matching(&mesh, &nodes, mesh.node_set("a.z1").unwrap());
     let run = |zone: ContactZone3<Signorini>| {
-        SolidContactSimulation::new(model(), vec![zone], SolidSettings::default()).err()
+        SolidContactSimulation::new(
+            model(),
+            vec![zone],
+            SimulationSettings::for_dimension::<3>(),
+        )
+        .err()
     };
     let geometry = |e: Option<SolverError>, what: &str| {
         assert!(
@@ -538,15 +556,15 @@ fn matrix_free_and_active_set_3d_match_dense() {
             ContactZone3::node_pairs("i", nodes, targets, n, law, 0.1).with_areas(areas)
         };
         let model = SolidModel::new(mesh, &[(0, m), (1, m)], s).unwrap();
-        let settings = SolidSettings {
-            flexibility: mode,
-            ..SolidSettings::default()
-        };
+        let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
         let mut sim = SolidContactSimulation::new(model, vec![zone], settings).unwrap();
         let res = sim.step(1.0, 1.0).unwrap();
-        assert_eq!(res.matrix_free, mode == FlexibilityMode::MatrixFree);
-        assert_eq!(res.active_set, mode == FlexibilityMode::ActiveSet);
-        res.contacts.iter().map(|c| c.r).collect::<Vec<_>>()
+        assert_eq!(res.report.matrix_free, mode == FlexibilityMode::MatrixFree);
+        assert_eq!(res.report.active_set, mode == FlexibilityMode::ActiveSet);
+        res.contacts
+            .iter()
+            .map(|c| c.reaction())
+            .collect::<Vec<_>>()
     };
     for friction in [false, true] {
         let dense = run(FlexibilityMode::Dense, friction);
@@ -609,13 +627,15 @@ fn laws_by_phase_in_3d() {
     );
     let zone = bare.clone().with_areas(areas);
     let model = SolidModel::new(mesh.clone(), &[(0, m)], s.clone()).unwrap();
-    let mut sim = SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).unwrap();
+    let mut sim =
+        SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap();
     let first = sim.step(1.0, 1.0).unwrap();
     assert!(
         first
             .contacts
             .iter()
-            .all(|c| c.r[1] == 0.0 && c.r[2] == 0.0)
+            .all(|c| c.r.t[0] == 0.0 && c.r.t[1] == 0.0)
     );
     let mu = 0.3;
     sim.set_law("floor", StandardLaw::Coulomb(Coulomb::new(mu).unwrap()))
@@ -627,7 +647,7 @@ fn laws_by_phase_in_3d() {
     let (fn_, ft): (f64, f64) = second
         .contacts
         .iter()
-        .fold((0.0, 0.0), |(a, b), c| (a + c.r[0], b + c.force()[0]));
+        .fold((0.0, 0.0), |(a, b), c| (a + c.r.n, b + c.force()[0]));
     assert!((ft.abs() / fn_ - mu).abs() < 1e-6, "{ft} {fn_}");
     assert!(matches!(
         sim.set_law("nowhere", StandardLaw::Signorini(Signorini)),
@@ -638,7 +658,8 @@ fn laws_by_phase_in_3d() {
     // a zone without areas cannot take an adhesive law
     let model = SolidModel::new(mesh, &[(0, m)], s).unwrap();
     let mut plain =
-        SolidContactSimulation::new(model, vec![bare], SolidSettings::default()).unwrap();
+        SolidContactSimulation::new(model, vec![bare], SimulationSettings::for_dimension::<3>())
+            .unwrap();
     assert!(matches!(
         plain.set_law("floor", StandardLaw::Rccm(rccm(100.0, 1e-4))),
         Err(SolverError::InvalidGeometry(m)) if m.contains("areas")

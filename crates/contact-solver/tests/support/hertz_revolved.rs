@@ -12,8 +12,9 @@
 #![allow(dead_code)]
 
 use contact_laws::Signorini;
+use contact_solver::SimulationSettings;
 use contact_solver::coupling::solid::{
-    ContactZone3, RigidPlane, SolidContactSimulation, SolidSettings, SolidStepResult,
+    ContactZone3, RigidPlane, SolidContactSimulation, SolidStepResult,
 };
 use fem_core::solid::{SolidModel, revolve};
 use fem_core::{Component, Material, Mesh, Supports};
@@ -52,16 +53,17 @@ pub fn quarter(
     let model = SolidModel::new(mesh, &[(0, material)], s).expect("a supported quarter");
     let ground = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let zone = ContactZone3::rigid("arc", nodes, ground, Signorini, scene.alert).with_areas(areas);
-    SolidContactSimulation::new(model, vec![zone], SolidSettings::default()).expect("valid scene")
+    SolidContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+        .expect("valid scene")
 }
 
 /// `(P, a)` of a step of the quarter: the total force and the second-moment contact radius.
 pub fn measure(res: &SolidStepResult) -> (f64, f64) {
     let (mut s0, mut s2) = (0.0, 0.0);
     for c in &res.contacts {
-        let p = c.candidate.point;
-        s0 += c.r[0];
-        s2 += c.r[0] * (p[0] * p[0] + p[1] * p[1]);
+        let p = c.position; // on the plane z = 0: the target point's x, y
+        s0 += c.r.n;
+        s2 += c.r.n * (p[0] * p[0] + p[1] * p[1]);
     }
     (4.0 * s0, (2.5 * s2 / s0).sqrt())
 }

@@ -14,10 +14,10 @@ use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
 use contact_solver::coupling::solid::{
-    Candidate3, ContactZone3, DEFAULT_DENSE_LIMIT_3D, PairNormals3, RigidCylinder, RigidPlane,
-    RigidSphere, Side3, SolidContactSimulation, SolidSettings, TriSurface, supported_contactors_3d,
+    Candidate3, ContactZone3, PairNormals3, RigidCylinder, RigidPlane, RigidSphere, Side3,
+    SolidContactSimulation, TriSurface, supported_contactors_3d,
 };
-use contact_solver::{FlexibilityMode, SolverError};
+use contact_solver::{FlexibilityMode, SimulationSettings, SolverError};
 use fem_core::solid::{SolidMesh, SolidModel};
 use std::collections::BTreeSet;
 
@@ -54,37 +54,24 @@ pub(super) struct ContactPlan3 {
     /// Law name of each zone.
     pub(super) laws: Vec<String>,
     /// `[solver]`.
-    pub(super) settings: SolidSettings,
+    pub(super) settings: SimulationSettings,
     /// Per phase (in order), the laws it sets: `(zone, law)`.
     pub(super) phase_laws: Vec<Vec<(String, StandardLaw)>>,
 }
 
-/// `[solver]` for the 3D simulation: the local solver's and the adhesion loop's keys as in 2D;
-/// `max_detection_passes` bounds the active-set passes; `flexibility` and `dense_limit` as in
-/// 2D, with the 3D default limit ([`DEFAULT_DENSE_LIMIT_3D`]).
-fn settings_3d(s: &SolverSpec) -> CliResult<SolidSettings> {
-    let plane = settings(s)?;
-    let flexibility = match plane.flexibility {
-        FlexibilityMode::Auto { .. } if s.dense_limit.is_none() => FlexibilityMode::Auto {
-            dense_limit: DEFAULT_DENSE_LIMIT_3D,
-        },
-        other => other,
-    };
-    let mut out = SolidSettings {
-        solver: plane.solver,
-        flexibility,
-        ..SolidSettings::default()
-    };
-    if s.max_detection_passes.is_some() {
-        out.max_passes = plane.max_detection_passes;
+/// `[solver]` for the 3D simulation: the keys read as in 2D, over the 3D defaults
+/// ([`SimulationSettings::for_dimension`]`::<3>()`: the `Auto` dense limit, the right-hand
+/// sides per solve and the detection passes measured for 3D) where the scene leaves them out.
+fn settings_3d(s: &SolverSpec) -> CliResult<SimulationSettings> {
+    let mut out = settings(s)?;
+    let solid = SimulationSettings::for_dimension::<3>();
+    if matches!(out.flexibility, FlexibilityMode::Auto { .. }) && s.dense_limit.is_none() {
+        out.flexibility = solid.flexibility;
     }
-    // the adhesion fixed point: the 2D keys, read and checked by `settings`
-    out.adhesion.tol = plane.adhesion_tol;
-    out.adhesion.max_iterations = plane.max_adhesion_iterations;
-    out.adhesion.anderson_window = plane.adhesion_anderson_window;
-    out.adhesion.method = plane.adhesion_method;
-    out.adhesion.warm_start = plane.adhesion_warm_start;
-    out.adhesion.accept_non_converged = plane.solver.accept_non_converged;
+    if s.max_detection_passes.is_none() {
+        out.tuning.max_detection_passes = solid.tuning.max_detection_passes;
+    }
+    out.columns_per_solve = solid.columns_per_solve;
     Ok(out)
 }
 
@@ -318,7 +305,7 @@ fn pair_by_position(
 pub(super) fn build(
     model: SolidModel,
     plans: &[ZonePlan3],
-    settings: SolidSettings,
+    settings: SimulationSettings,
 ) -> CliResult<(SolidContactSimulation<SolidModel, StandardLaw>, Vec<String>)> {
     let contact = KeyPath::root().key("contact");
     let zones = zones(model.mesh(), plans)?;
@@ -426,15 +413,10 @@ mod tests {
             ..SolverSpec::default()
         };
         let out = settings_3d(&s).unwrap();
-        assert_eq!(out.max_passes, 7);
+        assert_eq!(out.tuning.max_detection_passes, 7);
         assert_eq!(out.flexibility, FlexibilityMode::Dense);
         let auto = settings_3d(&SolverSpec::default()).unwrap().flexibility;
-        assert_eq!(
-            auto,
-            FlexibilityMode::Auto {
-                dense_limit: DEFAULT_DENSE_LIMIT_3D
-            }
-        );
+        assert_eq!(auto, FlexibilityMode::Auto { dense_limit: 3000 });
         let s = SolverSpec {
             dense_limit: Some(10),
             ..SolverSpec::default()

@@ -23,10 +23,10 @@
 
 use super::{Installation, PulloutSpec, detach_tip};
 use contact_laws::Rccm;
-use contact_solver::SolverError;
 use contact_solver::coupling::solid::{
-    ContactZone3, PairNormals3, SolidContactSimulation, SolidSettings, SolidStepResult,
+    ContactZone3, PairNormals3, SolidContactSimulation, SolidStepResult,
 };
+use contact_solver::{SimulationSettings, SolverError};
 use fem_core::generate::{PILE, SOIL, pile_in_soil};
 use fem_core::solid::{Face, SolidMesh, SolidModel, Stress3, StressField3, revolve};
 use fem_core::{Component, Material, Supports};
@@ -120,7 +120,7 @@ impl PulloutSpec {
     pub fn build_3d(
         &self,
         sectors: usize,
-        settings: SolidSettings,
+        settings: SimulationSettings,
     ) -> Result<SolidPulloutScene, SolverError> {
         self.check()?;
         if self.head_force.is_some() {
@@ -401,12 +401,12 @@ impl SolidPulloutScene {
             .filter(|((n, c), _)| *c == Component::Z && self.head.binary_search(n).is_ok())
             .map(|(_, r)| r)
             .sum();
-        for rec in &result.contacts {
+        for (rec, candidate) in result.contacts.iter().zip(self.simulation.candidates()) {
             let f_z = rec.force()[2];
-            if self.head.binary_search(&rec.candidate.node).is_ok() {
+            if self.head.binary_search(&rec.node).is_ok() {
                 q -= f_z;
             }
-            for &(t, w) in rec.candidate.targets.iter().flatten() {
+            for &(t, w) in candidate.targets.iter().flatten() {
                 if self.head.binary_search(&t).is_ok() {
                     q += w * f_z;
                 }

@@ -235,6 +235,7 @@ fn drive(
             let t = phase.time(k);
             let t_step = Instant::now();
             let k0 = study.sim.structure().factorizations();
+            let a0 = study.sim.counters().active_set_factorizations;
             let res = apply(study, p, t, &mut last_loads).and_then(|()| {
                 let at = t.max(study.sim.time());
                 study
@@ -251,31 +252,33 @@ fn drive(
             };
             *global += 1;
             *time = t;
-            iterations += res.contact_iterations;
-            passes += res.passes;
-            adhesion += res.adhesion_iterations;
+            let r = &res.report;
+            iterations += r.contact_iterations;
+            passes += r.detection_passes;
+            adhesion += r.adhesion_iterations;
             let k_step = study.sim.structure().factorizations() - k0;
-            factorizations += k_step + res.factorizations;
+            let a_step = study.sim.counters().active_set_factorizations - a0;
+            factorizations += k_step + a_step;
             counters.steps += 1;
-            counters.contact_iterations += res.contact_iterations;
-            counters.adhesion_iterations += res.adhesion_iterations;
-            counters.passes += res.passes;
+            counters.contact_iterations += r.contact_iterations;
+            counters.adhesion_iterations += r.adhesion_iterations;
+            counters.passes += r.detection_passes;
             counters.stiffness_factorizations += k_step;
-            counters.matrix_free_steps += usize::from(res.matrix_free);
-            counters.active_set_steps += usize::from(res.active_set);
-            counters.active_set_factorizations += res.factorizations;
+            counters.matrix_free_steps += usize::from(r.matrix_free);
+            counters.active_set_steps += usize::from(r.active_set);
+            counters.active_set_factorizations += a_step;
             let row = StepRow {
                 step: *global,
                 phase: &phase.name,
                 time: t,
                 wall_time_s: t_step.elapsed().as_secs_f64(),
-                factorizations: k_step + res.factorizations,
+                factorizations: k_step + a_step,
             };
             let write = written(study, *global, k == phase.steps);
             if let Err(e) = rec.record(&study.sim, &res, &row, write) {
                 return (out, Some(e));
             }
-            progress.step(t, res.contact_iterations, path_name(&res));
+            progress.step(t, res.report.contact_iterations, path_name(&res));
         }
         if phase.reset_displacements {
             study.sim.reset_displacements();
@@ -311,9 +314,9 @@ fn drive(
 
 /// How a step was solved, for the progress lines.
 fn path_name(res: &contact_solver::coupling::solid::SolidStepResult) -> &'static str {
-    if res.active_set {
+    if res.report.active_set {
         "active set"
-    } else if res.matrix_free {
+    } else if res.report.matrix_free {
         "matrix-free"
     } else {
         "dense"

@@ -211,14 +211,14 @@ impl SolidRecorder {
         let mut total_n = 0.0;
         let mut total = [0.0; 3];
         for (z, zs) in self.zones.iter_mut().enumerate() {
-            let mine = res.contacts.iter().filter(|c| c.candidate.zone == z);
+            let mine = res.contacts.iter().filter(|c| c.zone == z);
             let (mut f_n, mut f, mut closed, mut within) = (0.0, [0.0; 3], 0, 0);
             for c in mine {
-                f_n += c.r[0];
+                f_n += c.r.n;
                 let g = c.force();
                 (0..3).for_each(|a| f[a] += g[a]);
-                closed += usize::from(c.closed);
-                within += usize::from(c.active);
+                closed += usize::from(c.is_closed());
+                within += usize::from(c.is_active());
             }
             keep(&mut zs.max_force_n, f_n, step, t, true);
             zs.final_force_n = f_n;
@@ -240,10 +240,10 @@ impl SolidRecorder {
             let mut text = format!(
                 "{step},{},{t},1,{},{},{},{:e},{:e},{total_n:e},{:e},{:e},{:e}",
                 field(row.phase),
-                res.closed,
-                res.contact_iterations,
-                res.passes,
-                res.residual,
+                res.report.closed_contacts,
+                res.report.contact_iterations,
+                res.report.detection_passes,
+                res.report.residual,
                 row.wall_time_s,
                 total[0],
                 total[1],
@@ -255,10 +255,10 @@ impl SolidRecorder {
             let r = self.reaction;
             text.push_str(&format!(
                 ",{},{},{},{},{},{:e},{:e},{:e}",
-                res.active,
-                res.adhesion_iterations,
-                u8::from(res.matrix_free),
-                u8::from(res.active_set),
+                res.report.active_contacts,
+                res.report.adhesion_iterations,
+                u8::from(res.report.matrix_free),
+                u8::from(res.report.active_set),
                 row.factorizations,
                 r[0],
                 r[1],
@@ -275,14 +275,14 @@ impl SolidRecorder {
             .filter(|c| {
                 self.zones_filter
                     .as_ref()
-                    .is_none_or(|z| z.contains(&c.candidate.zone))
+                    .is_none_or(|z| z.contains(&c.zone))
             })
             .collect();
         if let Some(w) = &mut self.contacts {
             let model = sim.structure();
             let model_zones = sim.zones();
             for c in &selected {
-                let cand = &c.candidate;
+                let cand = c;
                 if self
                     .nodes_filter
                     .as_ref()
@@ -299,21 +299,21 @@ impl SolidRecorder {
                     x[0],
                     x[1],
                     x[2],
-                    u8::from(c.closed),
+                    u8::from(c.is_closed()),
                     c.gap,
-                    c.r[0],
-                    c.r[1],
-                    c.r[2],
+                    c.r.n,
+                    c.r.t[0],
+                    c.r.t[1],
                     cand.area,
                     c.pressure(),
-                    c.slip[0],
-                    c.slip[1],
+                    c.slip_increment[0],
+                    c.slip_increment[1],
                     f[0],
                     f[1],
                     f[2],
                     c.beta
                 );
-                text.push_str(&format!(",{}", u8::from(c.active)));
+                text.push_str(&format!(",{}", u8::from(c.is_active())));
                 for v in cand.frame().iter().flatten() {
                     text.push_str(&format!(",{v:e}"));
                 }
@@ -326,12 +326,12 @@ impl SolidRecorder {
             self.pressure.record(
                 step,
                 t,
-                |mass, zone| TractionField::from_records_3d(mass, zone, &res.contacts),
+                |mass, zone| TractionField::from_records(mass, zone, &res.contacts),
                 |zone| {
                     res.contacts
                         .iter()
-                        .filter(|c| c.candidate.zone == zone)
-                        .map(|c| c.r[0])
+                        .filter(|c| c.zone == zone)
+                        .map(|c| c.r.n)
                         .sum()
                 },
                 |node| mesh.nodes()[node].to_vec(),
@@ -382,7 +382,7 @@ impl SolidRecorder {
         let mut force = vec![[0.0; 3]; mesh.node_count()];
         let mut pressure = vec![0.0; mesh.node_count()];
         for c in selected {
-            let n = c.candidate.node;
+            let n = c.node;
             let f = c.force();
             (0..3).for_each(|a| force[n][a] += f[a]);
             pressure[n] += c.pressure();
@@ -470,17 +470,17 @@ fn plot_value(res: &SolidStepResult, quantity: &str, zone: Option<usize>) -> f64
     let mine = || {
         res.contacts
             .iter()
-            .filter(move |c| zone.is_none_or(|z| c.candidate.zone == z))
+            .filter(move |c| zone.is_none_or(|z| c.zone == z))
     };
     match quantity {
-        "contact_iterations" => res.contact_iterations as f64,
-        "adhesion_iterations" => res.adhesion_iterations as f64,
+        "contact_iterations" => res.report.contact_iterations as f64,
+        "adhesion_iterations" => res.report.adhesion_iterations as f64,
         // closed, as steps.csv's column; the reduced problem's size is `candidates`
-        "active_contacts" => res.closed as f64,
-        "candidates" => res.active as f64,
-        "residual" => res.residual,
-        "force_n" => mine().map(|c| c.r[0]).sum(),
-        "closed" => mine().filter(|c| c.closed).count() as f64,
+        "active_contacts" => res.report.closed_contacts as f64,
+        "candidates" => res.report.active_contacts as f64,
+        "residual" => res.report.residual,
+        "force_n" => mine().map(|c| c.r.n).sum(),
+        "closed" => mine().filter(|c| c.is_closed()).count() as f64,
         "beta_mean" | "beta_min" => {
             let b: Vec<f64> = mine().map(|c| c.beta).collect();
             if b.is_empty() {
@@ -501,10 +501,10 @@ fn plot_value(res: &SolidStepResult, quantity: &str, zone: Option<usize>) -> f64
 /// is on the Coulomb cone `|r_t| = μ r_n`, to a relative 1e-6). With adhesion the reaction is
 /// the total one (`r̄` plus the springs') and the cone the law's `μ f(β)`.
 fn status(law: &StandardLaw, c: &SolidContactRecord) -> &'static str {
-    if !c.active {
+    if !c.is_active() {
         return "inactive";
     }
-    if !c.closed {
+    if !c.is_closed() {
         return "open";
     }
     if !law.has_friction() {
@@ -512,8 +512,8 @@ fn status(law: &StandardLaw, c: &SolidContactRecord) -> &'static str {
     }
     let state = RccmState::new(c.beta.clamp(0.0, 1.0)).unwrap_or(RccmState::ZERO);
     let mu = law.friction_coefficient(&state).unwrap_or(0.0);
-    let r_t = c.r[1].hypot(c.r[2]);
-    if r_t >= (1.0 - 1e-6) * mu * c.r[0] {
+    let r_t = c.r.t[0].hypot(c.r.t[1]);
+    if r_t >= (1.0 - 1e-6) * mu * c.r.n {
         "slip"
     } else {
         "stick"

@@ -3,9 +3,9 @@
 //! - [`HistoryWriter`] writes one CSV row per (step, contact candidate), columns
 //!   [`CONTACT_COLUMNS`]; [`ReportWriter`] one CSV row per step of the [`StepReport`]
 //!   counters, columns [`REPORT_COLUMNS`]. Both write to any [`std::io::Write`].
-//! - [`write_interface_vtu`] writes the candidates of one step as a point cloud (one
-//!   `VTK_VERTEX` cell per candidate) in a VTK XML unstructured grid (`.vtu`), through
-//!   [`vtkio`]; [`InterfaceSeries`] writes one `.vtu` per step and keeps a `.pvd` collection
+//! - [`write_interface_vtu`] (2D) and [`write_interface_vtu_3d`] write the candidates of one
+//!   step as a point cloud (one `VTK_VERTEX` cell per candidate) in a VTK XML unstructured
+//!   grid (`.vtu`), through [`vtkio`]; [`InterfaceSeries`] writes one `.vtu` per step and keeps a `.pvd` collection
 //!   of them up to date.
 //!
 //! Reactions are written in the local frame of each contact, `[n, t]` (the global components
@@ -26,8 +26,8 @@ use std::io::Write;
 
 mod vtk;
 
-pub use vtk::{InterfaceSeries, status_code, write_interface_vtu};
-pub(crate) use vtk::{interface_model, vertex_cloud, write_vtk};
+pub use vtk::{InterfaceSeries, status_code, write_interface_vtu, write_interface_vtu_3d};
+pub(crate) use vtk::{interface_model, interface_model_3d, write_vtk};
 
 /// Columns of [`HistoryWriter`], in order. `x, y` is the reference position of the contactor
 /// node, `status` its [`InterfaceStatus::name`](crate::InterfaceStatus::name), `r_*_n, r_*_t`
@@ -98,13 +98,10 @@ pub const REPORT_COLUMNS: [&str; 14] = [
 /// ```
 /// use contact_solver::coupling::output::HistoryWriter;
 /// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-/// let c = ContactRecord {
-///     zone: 0, node: 7, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Stick,
-///     gap: 0.0, u_t: 1e-3, slip_increment: 0.0, beta: 1.0,
-///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
-///     r: LocalVec2::planar(2.0, -0.1), r_bar: LocalVec2::planar(2.0, -0.1),
-///     r_adh: LocalVec2::zeros(),
-/// };
+/// let mut c: ContactRecord = ContactRecord::default();
+/// (c.node, c.position, c.area, c.status) = (7, [0.5, 0.0], 0.25, InterfaceStatus::Stick);
+/// (c.u_t, c.beta, c.normal, c.tangent) = (1e-3, 1.0, [0.0, 1.0], [1.0, 0.0]);
+/// (c.r, c.r_bar) = (LocalVec2::planar(2.0, -0.1), LocalVec2::planar(2.0, -0.1));
 /// let mut history = HistoryWriter::new(Vec::new())?;
 /// history.write_contacts(1, 0.5, 1.0, &[c])?;
 /// let text = String::from_utf8(history.finish()?).unwrap();

@@ -1,5 +1,6 @@
-//! The interface of a 2D step as a VTK point cloud ([`write_interface_vtu`]) and a time series
-//! of them ([`InterfaceSeries`]).
+//! The interface of a step as a VTK point cloud ([`write_interface_vtu`] in 2D,
+//! [`write_interface_vtu_3d`] in 3D, whose columns differ: the 3D file also carries the force
+//! and the frame) and a time series of them ([`InterfaceSeries`]).
 
 use crate::coupling::simulation::{ContactRecord, InterfaceStatus};
 use crate::error::{Cause, SolverError};
@@ -53,13 +54,10 @@ pub fn status_code(status: InterfaceStatus) -> u8 {
 /// # Examples
 /// ```
 /// use contact_solver::coupling::output::write_interface_vtu;
-/// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-/// let c = ContactRecord {
-///     zone: 0, node: 1, position: [0.5, 0.0], area: 0.25, status: InterfaceStatus::Open,
-///     gap: 1e-3, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
-///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
-///     r: LocalVec2::zeros(), r_bar: LocalVec2::zeros(), r_adh: LocalVec2::zeros(),
-/// };
+/// use contact_solver::{ContactRecord, InterfaceStatus};
+/// let mut c: ContactRecord = ContactRecord::default();
+/// (c.node, c.position, c.area, c.status) = (1, [0.5, 0.0], 0.25, InterfaceStatus::Open);
+/// (c.gap, c.normal, c.tangent) = (1e-3, [0.0, 1.0], [1.0, 0.0]);
 /// let u = [[0.0, 0.0], [1e-4, -2e-4]];
 /// let path = std::env::temp_dir().join("contact_solver_output_doc.vtu");
 /// write_interface_vtu(&path, &[c], Some(&u))?;
@@ -176,6 +174,101 @@ pub(crate) fn interface_model(
     Ok(vertex_cloud(points, data))
 }
 
+/// Writes the contact records of a 3D step as a VTK unstructured grid of vertices (`.vtu`,
+/// ASCII XML). `positions[n]` is node `n`'s position, `displacements[n]` its displacement (the
+/// points are then at the deformed positions, and `u` is written).
+///
+/// Point data:
+///
+/// | name | type | content |
+/// |---|---|---|
+/// | `active` | `UInt8` | 1 if the contact is closed ([`ContactRecord::is_closed`], as the CSV outputs) |
+/// | `zone`, `node` | `UInt64` | zone index, contactor node |
+/// | `area`, `gap`, `pressure`, `beta` | scalar | as in [`ContactRecord`] |
+/// | `r_local` | vector | `[r_n, r_t1, r_t2]` |
+/// | `slip` | vector | `[slip_t1, slip_t2, 0]`, the step's slip increment |
+/// | `force` | vector | the contact force on the contactor node, global axes |
+/// | `candidate` | `UInt8` | 1 if the contact was in the step's reduced problem |
+/// | `normal`, `t1`, `t2` | vector | the contact's frame |
+/// | `u` | vector | the node's displacement (only with `displacements`) |
+///
+/// # Errors
+/// - [`SolverError::SizeMismatch`] if a record's node has no entry in `positions` or
+///   `displacements`;
+/// - [`SolverError::Io`] if the file cannot be written.
+pub fn write_interface_vtu_3d(
+    path: &Path,
+    records: &[ContactRecord<3>],
+    positions: &[[f64; 3]],
+    displacements: Option<&[[f64; 3]]>,
+) -> Result<(), SolverError> {
+    write_vtk(path, interface_model_3d(records, positions, displacements)?)
+}
+
+/// The VTK model of [`write_interface_vtu_3d`].
+pub(crate) fn interface_model_3d(
+    records: &[ContactRecord<3>],
+    positions: &[[f64; 3]],
+    displacements: Option<&[[f64; 3]]>,
+) -> Result<Vtk, SolverError> {
+    let max_node = records.iter().map(|c| c.node).max();
+    for (what, len) in [
+        ("positions", Some(positions.len())),
+        ("displacements", displacements.map(<[_]>::len)),
+    ] {
+        if let (Some(len), Some(max_node)) = (len, max_node)
+            && max_node >= len
+        {
+            return Err(SolverError::SizeMismatch {
+                what,
+                expected: max_node + 1,
+                found: len,
+            });
+        }
+    }
+    let u = |node: usize| displacements.map_or([0.0; 3], |u| u[node]);
+    let points: Vec<f64> = records
+        .iter()
+        .flat_map(|c| {
+            let (x, d) = (positions[c.node], u(c.node));
+            [x[0] + d[0], x[1] + d[1], x[2] + d[2]]
+        })
+        .collect();
+    let scalar = |name: &str, f: &dyn Fn(&ContactRecord<3>) -> f64| {
+        Attribute::scalars(name, 1).with_data(records.iter().map(f).collect::<Vec<f64>>())
+    };
+    let vector = |name: &str, f: &dyn Fn(&ContactRecord<3>) -> [f64; 3]| {
+        Attribute::vectors(name).with_data(records.iter().flat_map(f).collect::<Vec<f64>>())
+    };
+    let flag = |name: &str, f: fn(&ContactRecord<3>) -> bool| {
+        Attribute::scalars(name, 1)
+            .with_data(records.iter().map(|c| u8::from(f(c))).collect::<Vec<u8>>())
+    };
+    let mut data = Attributes::new();
+    data.point = vec![
+        flag("active", ContactRecord::is_closed),
+        Attribute::scalars("zone", 1)
+            .with_data(records.iter().map(|c| c.zone as u64).collect::<Vec<u64>>()),
+        Attribute::scalars("node", 1)
+            .with_data(records.iter().map(|c| c.node as u64).collect::<Vec<u64>>()),
+        scalar("area", &|c| c.area),
+        scalar("gap", &|c| c.gap),
+        scalar("pressure", &|c| c.pressure()),
+        scalar("beta", &|c| c.beta),
+        vector("r_local", &|c| c.reaction()),
+        vector("slip", &|c| [c.slip_increment[0], c.slip_increment[1], 0.0]),
+        vector("force", &|c| c.force()),
+        flag("candidate", ContactRecord::is_active),
+        vector("normal", &|c| c.normal),
+        vector("t1", &|c| c.tangent[0]),
+        vector("t2", &|c| c.tangent[1]),
+    ];
+    if displacements.is_some() {
+        data.point.push(vector("u", &|c| u(c.node)));
+    }
+    Ok(vertex_cloud(points, data))
+}
+
 /// A time series of interface files for ParaView: `<stem>_<k>.vtu` (k = 0, 1, … on 4 digits)
 /// in a directory, and `<stem>.pvd` listing them with their times, rewritten after every step
 /// so that a run stopped half-way can still be opened.
@@ -257,8 +350,7 @@ impl InterfaceSeries {
     }
 
     /// Writes the next file of the series at `time` with `write` (given its path, e.g.
-    /// [`write_interface_vtu_3d`](crate::coupling::solid::write_interface_vtu_3d) for a 3D
-    /// step), then rewrites the `.pvd` collection; returns the path of the `.vtu` file.
+    /// [`write_interface_vtu_3d`] for a 3D step), then rewrites the `.pvd` collection; returns the path of the `.vtu` file.
     ///
     /// # Errors
     /// As [`InterfaceSeries::write_step`], with `write`'s errors.

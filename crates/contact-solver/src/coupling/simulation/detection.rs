@@ -125,7 +125,7 @@ where
         accepted: &Accepted<L::State, D>,
         free: &[[f64; D]],
     ) -> Vec<usize> {
-        let all = !settings.skip.alert_distance;
+        let all = !settings.tuning.skip.alert_distance;
         (0..self.candidates.len())
             .filter(|&i| {
                 let c = &self.candidates[i];

@@ -26,7 +26,7 @@
 //! needs to carry the out-of-balance force). If no contact closes that way (or the closed
 //! ones slip), contact cannot hold the body: [`SolverError::Unbalanced`] names the mode and
 //! the force left over. No penalty: the answer meets `Gᵀ r = e` to
-//! [`SimulationSettings::equilibrium_tol`](super::SimulationSettings::equilibrium_tol).
+//! [`SimulationTuning::equilibrium_tol`](super::SimulationTuning::equilibrium_tol).
 
 use super::ContactSimulation;
 use super::detection::FreeResponse;
@@ -149,9 +149,9 @@ where
             max_iterations: self.settings.max_adhesion_iterations,
             accept_non_converged: self.settings.solver.accept_non_converged,
             always_iterate: false,
-            anderson_window: self.settings.adhesion_anderson_window,
-            method: self.settings.adhesion_method,
-            warm_start: self.settings.adhesion_warm_start && self.warm.enabled(),
+            anderson_window: self.settings.tuning.adhesion_anderson_window,
+            method: self.settings.tuning.adhesion_method,
+            warm_start: self.settings.tuning.adhesion_warm_start && self.warm.enabled(),
         };
         let mut r_warm: Vec<f64> = active
             .iter()
@@ -194,10 +194,10 @@ where
             let scale = fl.scale(&sol.r);
             let worst = res.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
             history.push(if scale > 0.0 { worst / scale } else { 0.0 });
-            if worst <= self.settings.equilibrium_tol * scale || scale == 0.0 {
+            if worst <= self.settings.tuning.equilibrium_tol * scale || scale == 0.0 {
                 break;
             }
-            if iterations >= self.settings.max_equilibrium_iterations {
+            if iterations >= self.settings.tuning.max_equilibrium_iterations {
                 if self.settings.solver.accept_non_converged {
                     report.converged = false;
                     break;
@@ -245,7 +245,7 @@ where
                     .sum::<f64>()
                     .sqrt()
             };
-            let tol = self.settings.equilibrium_tol * scale;
+            let tol = self.settings.tuning.equilibrium_tol * scale;
             let merit = along(&res);
             // the free directions are examined once the resisted ones balance to this (the
             // reduced solves' own accuracy may not reach `tol` while a force is left over)

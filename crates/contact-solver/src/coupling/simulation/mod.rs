@@ -53,10 +53,12 @@ mod report;
 mod scheme;
 mod settings;
 mod solve;
+mod tuning;
 
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
 pub use scheme::{QuasiStatic, SchemeStep, TimeScheme};
-pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings, SkipRules};
+pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings};
+pub use tuning::{SimulationTuning, SkipRules};
 
 use crate::coupling::force_factor::ForceFactorCheck;
 use crate::coupling::space::ContactSpace;
@@ -139,8 +141,9 @@ where
     /// ([`QuasiStatic`]; another scheme: [`Self::with_scheme`]).
     ///
     /// # Errors
-    /// As for [`recognize`](crate::coupling::zone::recognize); [`SolverError::InvalidSetting`]
-    /// for bad settings; [`SolverError::InvalidGeometry`] if no zone has a candidate.
+    /// As for [`recognize`](crate::coupling::zone::recognize); [`SolverError::InvalidSetting`] naming the setting for bad
+    /// settings (a tolerance that is not finite and positive, a zero count);
+    /// [`SolverError::InvalidGeometry`] if no zone has a candidate.
     pub fn new(
         structure: S,
         zones: Vec<ContactZone<L, D>>,
@@ -166,21 +169,9 @@ where
         settings: SimulationSettings,
         scheme: T,
     ) -> Result<Self, SolverError> {
-        if !(settings.adhesion_tol > 0.0 && settings.adhesion_tol.is_finite()) {
-            return Err(SolverError::InvalidSetting {
-                what: "adhesion_tol",
-                value: settings.adhesion_tol,
-                expected: "a finite tolerance > 0",
-            });
-        }
-        if settings.columns_per_solve == 0 {
-            return Err(SolverError::InvalidSetting {
-                what: "columns_per_solve",
-                value: 0.0,
-                expected: "at least 1",
-            });
-        }
-        let interface = Interface::recognize(&structure, zones)?;
+        settings.check()?;
+        let interface =
+            Interface::recognize(&structure, zones, settings.relative_penetration_tol::<D>())?;
         let accepted = Accepted::start(&structure, &interface);
         Ok(Self {
             structure,
@@ -276,13 +267,6 @@ where
         Ok(())
     }
 
-    /// Sets the penetration tolerance of the inactive candidates to `relative` × the
-    /// contactors' extent (the default is [`ContactSpace::PENETRATION_TOL`]).
-    pub(crate) fn set_relative_penetration_tol(&mut self, relative: f64) {
-        self.interface
-            .set_relative_penetration_tol(&self.structure, relative);
-    }
-
     /// The candidates found by recognition.
     pub fn candidates(&self) -> &[Candidate<D>] {
         &self.interface.candidates
@@ -293,10 +277,19 @@ where
         &self.settings
     }
 
-    /// Replaces the settings (e.g. to switch algorithm between steps).
-    pub fn set_settings(&mut self, settings: SimulationSettings) {
+    /// Replaces the settings from the next step on (e.g. to switch algorithm between steps).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] as [`Self::new`] (nothing changes then).
+    pub fn set_settings(&mut self, settings: SimulationSettings) -> Result<(), SolverError> {
+        settings.check()?;
         self.settings = settings;
         self.solver = UzawaSolver::new(settings.solver);
+        self.interface.set_relative_penetration_tol(
+            &self.structure,
+            settings.relative_penetration_tol::<D>(),
+        );
+        Ok(())
     }
 
     /// Current time.
@@ -381,7 +374,7 @@ where
     /// [`SolverError::NotConverged`] or [`SolverError::AdhesionNotConverged`] unless the
     /// settings accept non-converged results; [`SolverError::StillPenetrating`] if candidates
     /// outside the reduced problem still penetrate after
-    /// [`max_detection_passes`](SimulationSettings::max_detection_passes) passes. On error the simulation keeps the state of the
+    /// [`max_detection_passes`](SimulationTuning::max_detection_passes) passes. On error the simulation keeps the state of the
     /// previous step.
     ///
     /// # Examples
@@ -452,7 +445,7 @@ where
                 // 5. acceptance (the scheme's, then the carried state) and the report
                 return Ok(self.accept(clock, equilibrium, solved, report, start));
             }
-            if report.detection_passes >= self.settings.max_detection_passes {
+            if report.detection_passes >= self.settings.tuning.max_detection_passes {
                 // issue 35: accepting the step would return contacts that penetrate
                 return Err(self.interface.still_penetrating(
                     &penetrating,

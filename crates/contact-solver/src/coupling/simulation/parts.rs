@@ -45,6 +45,7 @@ where
     pub(super) fn recognize<S: Structure<D>>(
         structure: &S,
         zones: Vec<ContactZone<L, D>>,
+        relative_penetration_tol: f64,
     ) -> Result<Self, SolverError> {
         let candidates = recognize(structure, &zones)?;
         if D == 3 {
@@ -68,8 +69,7 @@ where
                 z.name
             )));
         }
-        let penetration_tol =
-            <Dim<D> as ContactSpace<D>>::PENETRATION_TOL * extent(structure, &candidates);
+        let penetration_tol = relative_penetration_tol * extent(structure, &candidates);
         let h_rows = h_rows_of(structure, &zones, &candidates)?;
         Ok(Self {
             zones,
@@ -130,7 +130,7 @@ where
     /// skip rules.
     pub(super) fn tangent_needed(&self, i: usize, settings: &SimulationSettings) -> bool {
         let law = self.law(i);
-        !settings.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
+        !settings.tuning.skip.frictionless_normal_only || law.has_friction() || law.has_adhesion()
     }
 
     /// Whether the tangential component `d` (`1..D`) of candidate `i` is solved: its tangent

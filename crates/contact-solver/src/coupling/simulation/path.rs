@@ -74,10 +74,10 @@ where
         let same_stiffness = self.cache.version == Some(version);
         if active != self.cache.active
             || !same_stiffness
-            || (!self.settings.skip.reuse_flexibility && report.detection_passes == 1)
+            || (!self.settings.tuning.skip.reuse_flexibility && report.detection_passes == 1)
         {
             // the columns of contacts already in F* are kept while the stiffness is the same
-            let reuse = same_stiffness && self.settings.skip.reuse_flexibility;
+            let reuse = same_stiffness && self.settings.tuning.skip.reuse_flexibility;
             self.build_flexibility(active, reuse)?;
             self.cache.version = Some(version);
             report.flexibility_rebuilt = true;

@@ -8,6 +8,7 @@ use std::time::Duration;
 /// What a contact is doing at the end of a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub enum InterfaceStatus {
     /// Outside the alert distance: not in the reduced problem.
     Inactive,
@@ -55,6 +56,7 @@ impl InterfaceStatus {
 /// quantities are numbers and the local vectors [`LocalVec2`](contact_laws::LocalVec2); in 3D
 /// they are pairs and [`LocalVec3`](contact_laws::LocalVec3) ([`ContactSpace`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ContactRecord<const D: usize = 2>
 where
     Dim<D>: ContactSpace<D>,
@@ -91,6 +93,34 @@ where
     pub r_adh: <Dim<D> as ContactSpace<D>>::Local,
 }
 
+impl<const D: usize> Default for ContactRecord<D>
+where
+    Dim<D>: ContactSpace<D>,
+{
+    /// An inactive record of zone 0, node 0: every number 0 (the frame too), to fill in field
+    /// by field (the struct is `#[non_exhaustive]`).
+    fn default() -> Self {
+        let zero = <Dim<D> as ContactSpace<D>>::local_of(&[0.0; D]);
+        let tangential = <Dim<D> as ContactSpace<D>>::tangential_of(&[0.0; D]);
+        Self {
+            zone: 0,
+            node: 0,
+            position: [0.0; D],
+            area: 0.0,
+            status: InterfaceStatus::Inactive,
+            gap: 0.0,
+            u_t: tangential,
+            slip_increment: tangential,
+            beta: 0.0,
+            normal: [0.0; D],
+            tangent: <Dim<D> as ContactSpace<D>>::tangents_of([[0.0; D]; D]),
+            r: zero,
+            r_bar: zero,
+            r_adh: zero,
+        }
+    }
+}
+
 impl<const D: usize> ContactRecord<D>
 where
     Dim<D>: ContactSpace<D>,
@@ -99,37 +129,52 @@ where
     pub fn reaction(&self) -> [f64; D] {
         <Dim<D> as ContactSpace<D>>::components(&self.r)
     }
-}
 
-impl ContactRecord<2> {
-    /// The total reaction on the contactor node in global axes, `r_n n + r_t t`.
+    /// The contact frame `[n, t…]` in global axes: [`normal`](Self::normal), then the
+    /// [`tangent`](Self::tangent)s.
+    pub fn frame(&self) -> [[f64; D]; D] {
+        <Dim<D> as ContactSpace<D>>::frame_of(self.normal, &self.tangent)
+    }
+
+    /// The total reaction on the contactor node in global axes, `r_n n + r_t t` (2D),
+    /// `r_n n + r_t1 t1 + r_t2 t2` (3D); its target nodes carry the opposite, split by their
+    /// weights.
     ///
     /// # Examples
     /// ```
     /// use contact_solver::{ContactRecord, InterfaceStatus, contact_laws::LocalVec2};
-    /// let c = ContactRecord {
-    ///     zone: 0, node: 3, position: [0.0, 0.0], area: 1.0, status: InterfaceStatus::Slip,
-    ///     gap: 0.0, u_t: 0.0, slip_increment: 0.0, beta: 0.0,
-    ///     normal: [0.0, 1.0], tangent: [1.0, 0.0],
-    ///     r: LocalVec2::planar(2.0, -0.5), r_bar: LocalVec2::planar(2.0, -0.5),
-    ///     r_adh: LocalVec2::zeros(),
-    /// };
+    /// let mut c: ContactRecord = ContactRecord::default();
+    /// (c.node, c.area, c.status) = (3, 1.0, InterfaceStatus::Slip);
+    /// (c.normal, c.tangent) = ([0.0, 1.0], [1.0, 0.0]);
+    /// (c.r, c.r_bar) = (LocalVec2::planar(2.0, -0.5), LocalVec2::planar(2.0, -0.5));
     /// assert_eq!(c.force(), [-0.5, 2.0]);
+    /// assert_eq!(c.pressure(), 2.0);
+    /// assert!(c.is_active() && c.is_closed());
     /// ```
-    pub fn force(&self) -> [f64; 2] {
-        let (n, t) = (self.normal, self.tangent);
-        [
-            self.r.n * n[0] + self.r.t[0] * t[0],
-            self.r.n * n[1] + self.r.t[0] * t[1],
-        ]
+    pub fn force(&self) -> [f64; D] {
+        let (r, frame) = (self.reaction(), self.frame());
+        core::array::from_fn(|a| (1..D).fold(r[0] * frame[0][a], |f, k| f + r[k] * frame[k][a]))
     }
-}
 
-impl ContactRecord<3> {
-    /// The total reaction on the contactor node in global axes, `r_n n + r_t1 t1 + r_t2 t2`.
-    pub fn force(&self) -> [f64; 3] {
-        let (n, [t1, t2]) = (self.normal, self.tangent);
-        core::array::from_fn(|a| self.r.n * n[a] + self.r.t[0] * t1[a] + self.r.t[1] * t2[a])
+    /// The contact pressure `r_n / area` (0 for a node without area).
+    pub fn pressure(&self) -> f64 {
+        if self.area > 0.0 {
+            self.reaction()[0] / self.area
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether the contact was in the step's reduced problem (a candidate within its alert
+    /// distance, maybe open): its status is not [`InterfaceStatus::Inactive`].
+    pub fn is_active(&self) -> bool {
+        self.status != InterfaceStatus::Inactive
+    }
+
+    /// Whether the contact is closed at the end of the step: the law's reaction `r̄` is not
+    /// zero ([`InterfaceStatus::is_closed`]).
+    pub fn is_closed(&self) -> bool {
+        self.status.is_closed()
     }
 }
 
@@ -275,5 +320,42 @@ impl StepReport {
             converged: true,
             wall_time: Duration::ZERO,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_35_record_force_is_one_formula_in_both_dimensions() {
+        // 3D: a frame turned about z by 90°, n = e_z, t1 = e_y, t2 = −e_x; r = (2, 0.5, −0.25)
+        let c = ContactRecord::<3> {
+            normal: [0.0, 0.0, 1.0],
+            tangent: [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
+            r: <Dim<3> as ContactSpace<3>>::local_of(&[2.0, 0.5, -0.25]),
+            area: 0.5,
+            status: InterfaceStatus::Slip,
+            ..Default::default()
+        };
+        assert_eq!(
+            c.frame(),
+            [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]
+        );
+        assert_eq!(c.force(), [0.25, 0.5, 2.0]);
+        assert_eq!(c.pressure(), 4.0);
+        assert!(c.is_active() && c.is_closed());
+        // 2D: n = e_y, t = e_x; r = (3, −1)
+        let p = ContactRecord::<2> {
+            normal: [0.0, 1.0],
+            tangent: [1.0, 0.0],
+            r: <Dim<2> as ContactSpace<2>>::local_of(&[3.0, -1.0]),
+            status: InterfaceStatus::Open,
+            ..Default::default()
+        };
+        assert_eq!(p.force(), [-1.0, 3.0]);
+        assert_eq!(p.pressure(), 0.0); // no area
+        assert!(p.is_active() && !p.is_closed());
+        assert!(!ContactRecord::<3>::default().is_active());
     }
 }

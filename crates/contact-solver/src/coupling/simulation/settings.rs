@@ -1,57 +1,56 @@
-//! Settings of a simulation: the reduced solver, the adhesion loop, the flexibility path and the
-//! skip rules.
+//! Settings of a simulation: the knobs a user sets (the reduced solver, the adhesion loop's
+//! tolerance and limit, the flexibility path, the right-hand sides per solve) and the
+//! [`SimulationTuning`] beside them.
 
+use super::tuning::{SimulationTuning, SkipRules};
 use crate::coupling::space::ContactSpace;
+use crate::error::SolverError;
 use crate::local::UzawaSettings;
 use fem_core::Dim;
 
-/// Settings of a simulation.
+/// Settings of a simulation: the knobs a user sets (the reduced solver's algorithm, tolerance
+/// and iteration limit in [`solver`](Self::solver), the adhesion loop's tolerance and
+/// iteration limit, how the reduced problem is held, the right-hand sides per solve), and the
+/// rest in [`tuning`](Self::tuning) ([`SimulationTuning`]), whose defaults rarely need a
+/// change. Build it with [`Default`] (2D) or [`for_dimension`](Self::for_dimension) and the
+/// `with_*` methods.
+///
+/// # Examples
+/// ```
+/// use contact_solver::{FlexibilityMode, SimulationSettings};
+/// let s = SimulationSettings::for_dimension::<3>()
+///     .with_flexibility(FlexibilityMode::ActiveSet)
+///     .with_max_detection_passes(8); // a tuning knob, through the same builder
+/// assert_eq!(s.tuning.max_detection_passes, 8);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[non_exhaustive]
 pub struct SimulationSettings {
-    /// The reduced solver (algorithm, tolerance, ρ scale, …).
+    /// The reduced solver (algorithm, tolerance, iteration limit, acceptance of non-converged
+    /// results; its own tuning inside).
     pub solver: UzawaSettings,
-    /// Tolerance of the adhesion fixed point: largest [`ContactLaw::state_change`](contact_laws::ContactLaw::state_change) (for RCCM,
-    /// `|Δβ|`) between two iterations.
+    /// Tolerance of the adhesion loop: largest [`ContactLaw::state_change`](contact_laws::ContactLaw::state_change)
+    /// (for RCCM, `|Δβ|`) between two iterations.
     pub adhesion_tol: f64,
-    /// Maximum adhesion fixed-point iterations per step.
+    /// Maximum adhesion iterations per step.
     pub max_adhesion_iterations: usize,
-    /// Anderson window of the adhesion fixed point (`0`: the seed's plain fixed point); see
-    /// [`AdhesionOptions::anderson_window`](crate::local::adhesion::AdhesionOptions::anderson_window).
-    pub adhesion_anderson_window: usize,
-    /// How adhesion and contact are solved together: the seed's fixed point or Newton with
-    /// the states eliminated (the default); see
-    /// [`AdhesionMethod`](crate::local::adhesion::AdhesionMethod).
-    pub adhesion_method: crate::local::adhesion::AdhesionMethod,
-    /// Newton adhesion: try Newton from the previous step's reactions before the loose start
-    /// ([`AdhesionOptions::warm_start`](crate::local::adhesion::AdhesionOptions::warm_start)),
-    /// paced by [`WarmStartPacing`](crate::local::adhesion::WarmStartPacing).
-    pub adhesion_warm_start: bool,
-    /// Maximum passes of the penetration check per step (each adds the penetrating inactive
-    /// candidates and redoes the step).
-    pub max_detection_passes: usize,
-    /// Right-hand sides per `solve_many_in_place` call when building `F*` (bounds the memory
-    /// to `dof_count × columns` values).
-    pub columns_per_solve: usize,
-    /// What the simulation skips when a scene does not need it (all on by default; turn one
-    /// off to measure what it saves).
-    pub skip: SkipRules,
-    /// Dense `F*` or the matrix-free iteration ([`crate::local::matrix_free`]).
+    /// How the reduced problem is held: a dense `F*`, matrix-free, the primal active set, or
+    /// `Auto` (the default) choosing by the size of the active set.
     pub flexibility: FlexibilityMode,
-    /// Floating structures ([`Structure::floating`](fem_core::Structure::floating)):
-    /// the equilibrium of each body along its modes is met when the out-of-balance force
-    /// along every mode is at most this fraction of the forces involved (load plus the absolute
-    /// contact contributions). Default `1e-11`.
-    pub equilibrium_tol: f64,
-    /// Floating structures: the cap on the Newton iterations on the rigid-body amplitudes
-    /// (each one reduced solve, plus line-search trials). Default 50.
-    pub max_equilibrium_iterations: usize,
+    /// Right-hand sides per `solve_many_in_place` call when building `F*` (bounds the memory
+    /// to `dof_count × columns` values): 64 in 2D, 96 in 3D
+    /// ([`for_dimension`](Self::for_dimension)).
+    pub columns_per_solve: usize,
+    /// What rarely needs a change: the adhesion loop's method and acceleration, the detection
+    /// passes and penetration tolerance, the skip rules, the floating bodies' equilibrium.
+    pub tuning: SimulationTuning,
 }
 
 /// How the reduced problem is held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
 pub enum FlexibilityMode {
     /// Dense `F*` up to `dense_limit` active contacts; beyond, the primal active-set solve
     /// when the step is in its scope ([`crate::coupling::primal`]: rigid obstacles, node pairs
@@ -89,65 +88,89 @@ impl Default for FlexibilityMode {
     }
 }
 
-/// "Skip what a scene does not need": each rule is on by default and only exists as a switch
-/// so that its saving can be measured (`docs/benchmarks.md`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
-#[non_exhaustive]
-pub struct SkipRules {
-    /// Reuse `F*` while the active set and the stiffness are unchanged (off: rebuild it every
-    /// step).
-    pub reuse_flexibility: bool,
-    /// Leave candidates outside their alert distance out of the reduced problem (off: every
-    /// candidate is active in every step).
-    pub alert_distance: bool,
-    /// For frictionless, non-adhesive laws, skip the tangential columns of `F*` (half the
-    /// structure solves) and decouple the tangential unknowns (`r_t = 0` exactly).
-    pub frictionless_normal_only: bool,
-    /// Run no adhesion fixed point when no active law is adhesive (off: iterate anyway).
-    pub adhesion_loop_only_when_adhesive: bool,
-}
-
-impl Default for SkipRules {
-    fn default() -> Self {
-        Self {
-            reuse_flexibility: true,
-            alert_distance: true,
-            frictionless_normal_only: true,
-            adhesion_loop_only_when_adhesive: true,
-        }
-    }
-}
-
 impl Default for SimulationSettings {
+    /// The settings of a 2D simulation ([`SimulationSettings::for_dimension`]`::<2>()`).
     fn default() -> Self {
-        Self {
-            solver: UzawaSettings::default(),
-            adhesion_tol: 1e-8,
-            max_adhesion_iterations: 200,
-            adhesion_anderson_window: crate::local::adhesion::DEFAULT_ANDERSON_WINDOW,
-            adhesion_method: crate::local::adhesion::AdhesionMethod::Newton,
-            adhesion_warm_start: true,
-            max_detection_passes: 5,
-            columns_per_solve: 64,
-            skip: SkipRules::default(),
-            flexibility: FlexibilityMode::default(),
-            equilibrium_tol: 1e-11,
-            max_equilibrium_iterations: 50,
-        }
+        Self::for_dimension::<2>()
     }
 }
 
 impl SimulationSettings {
-    /// The default settings of dimension `D`: [`Default`] with the `Auto` dense limit measured
-    /// for that dimension ([`ContactSpace::DENSE_LIMIT`]: 500 contacts in 2D, 3000 in 3D).
+    /// The default settings of dimension `D`: the defaults measured for that dimension
+    /// ([`ContactSpace`]) of the `Auto` dense limit (500 contacts in 2D, 3000 in 3D), the
+    /// right-hand sides per solve (64, 96) and the detection passes (5, 20); the rest alike.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{FlexibilityMode, SimulationSettings};
+    /// let s = SimulationSettings::for_dimension::<3>();
+    /// assert_eq!(s.flexibility, FlexibilityMode::Auto { dense_limit: 3000 });
+    /// assert_eq!(SimulationSettings::for_dimension::<2>(), SimulationSettings::default());
+    /// ```
     pub fn for_dimension<const D: usize>() -> Self
     where
         Dim<D>: ContactSpace<D>,
     {
-        Self::default().with_flexibility(FlexibilityMode::Auto {
-            dense_limit: <Dim<D> as ContactSpace<D>>::DENSE_LIMIT,
-        })
+        Self {
+            solver: UzawaSettings::default(),
+            adhesion_tol: 1e-8,
+            max_adhesion_iterations: 200,
+            flexibility: FlexibilityMode::Auto {
+                dense_limit: <Dim<D> as ContactSpace<D>>::DENSE_LIMIT,
+            },
+            columns_per_solve: <Dim<D> as ContactSpace<D>>::COLUMNS_PER_SOLVE,
+            tuning: SimulationTuning::for_dimension::<D>(),
+        }
+    }
+
+    /// The checks of [`ContactSimulation::new`](crate::ContactSimulation::new) and
+    /// [`set_settings`](crate::ContactSimulation::set_settings).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] naming the setting: an `adhesion_tol` that is not
+    /// finite and positive, a zero `columns_per_solve` or `max_detection_passes`, a
+    /// `penetration_tol` that is not finite and non-negative.
+    pub(crate) fn check(&self) -> Result<(), SolverError> {
+        if !(self.adhesion_tol > 0.0 && self.adhesion_tol.is_finite()) {
+            return Err(SolverError::InvalidSetting {
+                what: "adhesion_tol",
+                value: self.adhesion_tol,
+                expected: "a finite tolerance > 0",
+            });
+        }
+        for (what, n) in [
+            ("columns_per_solve", self.columns_per_solve),
+            ("max_detection_passes", self.tuning.max_detection_passes),
+        ] {
+            if n == 0 {
+                return Err(SolverError::InvalidSetting {
+                    what,
+                    value: 0.0,
+                    expected: "at least 1",
+                });
+            }
+        }
+        if let Some(tol) = self.tuning.penetration_tol
+            && !(tol >= 0.0 && tol.is_finite())
+        {
+            return Err(SolverError::InvalidSetting {
+                what: "penetration_tol",
+                value: tol,
+                expected: "a finite tolerance >= 0",
+            });
+        }
+        Ok(())
+    }
+
+    /// The relative penetration tolerance in dimension `D`:
+    /// [`SimulationTuning::penetration_tol`] or the dimension's default.
+    pub(crate) fn relative_penetration_tol<const D: usize>(&self) -> f64
+    where
+        Dim<D>: ContactSpace<D>,
+    {
+        self.tuning
+            .penetration_tol
+            .unwrap_or(<Dim<D> as ContactSpace<D>>::PENETRATION_TOL)
     }
 
     /// These settings with [`solver`](Self::solver) replaced.
@@ -171,34 +194,42 @@ impl SimulationSettings {
         self
     }
 
-    /// These settings with [`adhesion_anderson_window`](Self::adhesion_anderson_window) replaced.
+    /// These settings with [`tuning.adhesion_anderson_window`](SimulationTuning::adhesion_anderson_window) replaced.
     #[must_use]
     pub fn with_adhesion_anderson_window(mut self, adhesion_anderson_window: usize) -> Self {
-        self.adhesion_anderson_window = adhesion_anderson_window;
+        self.tuning.adhesion_anderson_window = adhesion_anderson_window;
         self
     }
 
-    /// These settings with [`adhesion_warm_start`](Self::adhesion_warm_start) replaced.
+    /// These settings with [`tuning.adhesion_warm_start`](SimulationTuning::adhesion_warm_start) replaced.
     #[must_use]
     pub fn with_adhesion_warm_start(mut self, warm_start: bool) -> Self {
-        self.adhesion_warm_start = warm_start;
+        self.tuning.adhesion_warm_start = warm_start;
         self
     }
 
-    /// These settings with [`adhesion_method`](Self::adhesion_method) replaced.
+    /// These settings with [`tuning.adhesion_method`](SimulationTuning::adhesion_method) replaced.
     #[must_use]
     pub fn with_adhesion_method(
         mut self,
         adhesion_method: crate::local::adhesion::AdhesionMethod,
     ) -> Self {
-        self.adhesion_method = adhesion_method;
+        self.tuning.adhesion_method = adhesion_method;
         self
     }
 
-    /// These settings with [`max_detection_passes`](Self::max_detection_passes) replaced.
+    /// These settings with [`tuning.max_detection_passes`](SimulationTuning::max_detection_passes) replaced.
     #[must_use]
     pub fn with_max_detection_passes(mut self, max_detection_passes: usize) -> Self {
-        self.max_detection_passes = max_detection_passes;
+        self.tuning.max_detection_passes = max_detection_passes;
+        self
+    }
+
+    /// These settings with [`tuning.penetration_tol`](SimulationTuning::penetration_tol) set to
+    /// `relative`.
+    #[must_use]
+    pub fn with_penetration_tol(mut self, relative: f64) -> Self {
+        self.tuning.penetration_tol = Some(relative);
         self
     }
 
@@ -209,25 +240,33 @@ impl SimulationSettings {
         self
     }
 
-    /// These settings with [`equilibrium_tol`](Self::equilibrium_tol) replaced.
+    /// These settings with [`tuning.equilibrium_tol`](SimulationTuning::equilibrium_tol) replaced.
     #[must_use]
     pub fn with_equilibrium_tol(mut self, equilibrium_tol: f64) -> Self {
-        self.equilibrium_tol = equilibrium_tol;
+        self.tuning.equilibrium_tol = equilibrium_tol;
         self
     }
 
-    /// These settings with [`max_equilibrium_iterations`](Self::max_equilibrium_iterations)
+    /// These settings with
+    /// [`tuning.max_equilibrium_iterations`](SimulationTuning::max_equilibrium_iterations)
     /// replaced.
     #[must_use]
     pub fn with_max_equilibrium_iterations(mut self, max_equilibrium_iterations: usize) -> Self {
-        self.max_equilibrium_iterations = max_equilibrium_iterations;
+        self.tuning.max_equilibrium_iterations = max_equilibrium_iterations;
         self
     }
 
-    /// These settings with [`skip`](Self::skip) replaced.
+    /// These settings with [`tuning.skip`](SimulationTuning::skip) replaced.
     #[must_use]
     pub fn with_skip(mut self, skip: SkipRules) -> Self {
-        self.skip = skip;
+        self.tuning.skip = skip;
+        self
+    }
+
+    /// These settings with [`tuning`](Self::tuning) replaced.
+    #[must_use]
+    pub fn with_tuning(mut self, tuning: SimulationTuning) -> Self {
+        self.tuning = tuning;
         self
     }
 
@@ -239,46 +278,92 @@ impl SimulationSettings {
     }
 }
 
-impl SkipRules {
-    /// Every rule off: the simulation does all the work a scene could need (to measure what
-    /// the rules save).
-    pub const fn none() -> Self {
-        Self {
-            reuse_flexibility: false,
-            alert_distance: false,
-            frictionless_normal_only: false,
-            adhesion_loop_only_when_adhesive: false,
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_35_for_dimension_keeps_each_dimensions_defaults() {
+        // the values the 2D settings and the former 3D `SolidSettings` had
+        let plane = SimulationSettings::default();
+        assert_eq!(plane, SimulationSettings::for_dimension::<2>());
+        assert_eq!(
+            plane.flexibility,
+            FlexibilityMode::Auto { dense_limit: 500 }
+        );
+        assert_eq!(
+            (plane.columns_per_solve, plane.tuning.max_detection_passes),
+            (64, 5)
+        );
+        assert_eq!(plane.relative_penetration_tol::<2>(), 0.0);
+        let solid = SimulationSettings::for_dimension::<3>();
+        assert_eq!(
+            solid.flexibility,
+            FlexibilityMode::Auto { dense_limit: 3000 }
+        );
+        assert_eq!(
+            (solid.columns_per_solve, solid.tuning.max_detection_passes),
+            (96, 20)
+        );
+        assert_eq!(solid.relative_penetration_tol::<3>(), 1e-9);
+        // the rest alike
+        assert_eq!(solid.solver, plane.solver);
+        assert_eq!(solid.tuning.skip, plane.tuning.skip);
+        assert_eq!(
+            (solid.adhesion_tol, solid.max_adhesion_iterations),
+            (plane.adhesion_tol, plane.max_adhesion_iterations)
+        );
+        // a tolerance given holds in both dimensions
+        let given = plane.with_penetration_tol(1e-6);
+        assert_eq!(given.relative_penetration_tol::<2>(), 1e-6);
+        assert_eq!(given.relative_penetration_tol::<3>(), 1e-6);
+    }
+
+    #[test]
+    fn check_rejects_each_bad_setting_by_name() {
+        let ok = SimulationSettings::default();
+        assert_eq!(ok.check(), Ok(()));
+        let bad = [
+            ("adhesion_tol", ok.with_adhesion_tol(f64::NAN)),
+            ("adhesion_tol", ok.with_adhesion_tol(0.0)),
+            ("columns_per_solve", ok.with_columns_per_solve(0)),
+            ("max_detection_passes", ok.with_max_detection_passes(0)),
+            ("penetration_tol", ok.with_penetration_tol(-1e-9)),
+            ("penetration_tol", ok.with_penetration_tol(f64::INFINITY)),
+        ];
+        for (name, s) in bad {
+            match s.check() {
+                Err(SolverError::InvalidSetting { what, .. }) => assert_eq!(what, name),
+                other => panic!("{name}: {other:?}"),
+            }
         }
+        // 0 is 2D's own tolerance
+        assert_eq!(ok.with_penetration_tol(0.0).check(), Ok(()));
     }
 
-    /// These settings with [`reuse_flexibility`](Self::reuse_flexibility) replaced.
-    #[must_use]
-    pub fn with_reuse_flexibility(mut self, reuse_flexibility: bool) -> Self {
-        self.reuse_flexibility = reuse_flexibility;
-        self
-    }
-
-    /// These settings with [`alert_distance`](Self::alert_distance) replaced.
-    #[must_use]
-    pub fn with_alert_distance(mut self, alert_distance: bool) -> Self {
-        self.alert_distance = alert_distance;
-        self
-    }
-
-    /// These settings with [`frictionless_normal_only`](Self::frictionless_normal_only) replaced.
-    #[must_use]
-    pub fn with_frictionless_normal_only(mut self, frictionless_normal_only: bool) -> Self {
-        self.frictionless_normal_only = frictionless_normal_only;
-        self
-    }
-
-    /// These settings with [`adhesion_loop_only_when_adhesive`](Self::adhesion_loop_only_when_adhesive) replaced.
-    #[must_use]
-    pub fn with_adhesion_loop_only_when_adhesive(
-        mut self,
-        adhesion_loop_only_when_adhesive: bool,
-    ) -> Self {
-        self.adhesion_loop_only_when_adhesive = adhesion_loop_only_when_adhesive;
-        self
+    #[test]
+    fn builders_set_the_tuning_fields() {
+        let s = SimulationSettings::default()
+            .with_adhesion_anderson_window(3)
+            .with_adhesion_warm_start(false)
+            .with_adhesion_method(crate::local::adhesion::AdhesionMethod::FixedPoint)
+            .with_max_detection_passes(7)
+            .with_equilibrium_tol(1e-9)
+            .with_max_equilibrium_iterations(9)
+            .with_skip(SkipRules::none());
+        let t = s.tuning;
+        assert_eq!(t.adhesion_anderson_window, 3);
+        assert!(!t.adhesion_warm_start);
+        assert_eq!(
+            t.adhesion_method,
+            crate::local::adhesion::AdhesionMethod::FixedPoint
+        );
+        assert_eq!(
+            (t.max_detection_passes, t.max_equilibrium_iterations),
+            (7, 9)
+        );
+        assert_eq!(t.equilibrium_tol, 1e-9);
+        assert_eq!(t.skip, SkipRules::none());
+        assert_eq!(SimulationSettings::default().with_tuning(t).tuning, t);
     }
 }

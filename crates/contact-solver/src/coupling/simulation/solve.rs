@@ -345,10 +345,10 @@ where
             tol: self.settings.adhesion_tol,
             max_iterations: self.settings.max_adhesion_iterations,
             accept_non_converged: self.settings.solver.accept_non_converged,
-            always_iterate: !self.settings.skip.adhesion_loop_only_when_adhesive,
-            anderson_window: self.settings.adhesion_anderson_window,
-            method: self.settings.adhesion_method,
-            warm_start: self.settings.adhesion_warm_start,
+            always_iterate: !self.settings.tuning.skip.adhesion_loop_only_when_adhesive,
+            anderson_window: self.settings.tuning.adhesion_anderson_window,
+            method: self.settings.tuning.adhesion_method,
+            warm_start: self.settings.tuning.adhesion_warm_start,
         }
     }
 

@@ -24,12 +24,13 @@ mod vtk;
 pub use vtk::{write_interface_vtu_3d_with_traction, write_interface_vtu_with_traction};
 
 use crate::coupling::simulation::ContactRecord;
-use crate::coupling::solid::SolidContactRecord;
+use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use fem_core::boundary_mass::BoundaryMass;
 
 /// The traction recovered on one zone's contactor surface (module docs).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct TractionField {
     /// The zone.
     pub zone: usize,
@@ -105,35 +106,24 @@ impl TractionField {
         })
     }
 
-    /// The field of zone `zone` from a 2D step's records (those of other zones are skipped).
+    /// The field of zone `zone` from a step's records, 2D or 3D (those of other zones are
+    /// skipped; in 2D the second tangential component is 0).
     ///
     /// # Errors
     /// As [`TractionField::recover`].
-    pub fn from_records(
+    pub fn from_records<const D: usize>(
         mass: &BoundaryMass,
         zone: usize,
-        records: &[ContactRecord],
-    ) -> Result<Self, SolverError> {
-        let mine = records
-            .iter()
-            .filter(|c| c.zone == zone)
-            .map(|c| (c.node, [c.r.n, c.r.t[0], 0.0]));
-        Self::recover(mass, zone, mine)
-    }
-
-    /// The field of zone `zone` from a 3D step's records (those of other zones are skipped).
-    ///
-    /// # Errors
-    /// As [`TractionField::recover`].
-    pub fn from_records_3d(
-        mass: &BoundaryMass,
-        zone: usize,
-        records: &[SolidContactRecord],
-    ) -> Result<Self, SolverError> {
-        let mine = records
-            .iter()
-            .filter(|c| c.candidate.zone == zone)
-            .map(|c| (c.candidate.node, c.r));
+        records: &[ContactRecord<D>],
+    ) -> Result<Self, SolverError>
+    where
+        fem_core::Dim<D>: ContactSpace<D>,
+    {
+        let mine = records.iter().filter(|c| c.zone == zone).map(|c| {
+            let mut r = [0.0; 3];
+            r[..D].copy_from_slice(&c.reaction());
+            (c.node, r)
+        });
         Self::recover(mass, zone, mine)
     }
 

@@ -1,6 +1,6 @@
 //! The interface files with the recovered traction: the point clouds of
 //! [`write_interface_vtu`](crate::coupling::output::write_interface_vtu) (2D) and
-//! [`write_interface_vtu_3d`](crate::coupling::solid::write_interface_vtu_3d) (3D), each
+//! [`write_interface_vtu_3d`](crate::coupling::output::write_interface_vtu_3d) (3D), each
 //! point also carrying the [`TractionField`] of its zone at its node:
 //!
 //! | name | type | content |
@@ -9,10 +9,8 @@
 //! | `shear_field` | vector | the recovered tangential traction `[t₁, t₂, 0]` (`[t, 0, 0]` in 2D), local frame |
 
 use super::TractionField;
-use crate::coupling::output::{interface_model, write_vtk};
+use crate::coupling::output::{interface_model, interface_model_3d, write_vtk};
 use crate::coupling::simulation::ContactRecord;
-use crate::coupling::solid::SolidContactRecord;
-use crate::coupling::solid::output::interface_model_3d;
 use crate::error::SolverError;
 use std::path::Path;
 use vtkio::model::{Attribute, DataSet, Piece, Vtk};
@@ -64,23 +62,20 @@ pub fn write_interface_vtu_with_traction(
     write_vtk(path, vtk)
 }
 
-/// [`write_interface_vtu_3d`](crate::coupling::solid::write_interface_vtu_3d) with the
+/// [`write_interface_vtu_3d`](crate::coupling::output::write_interface_vtu_3d) with the
 /// recovered traction of each record's zone (module docs).
 ///
 /// # Errors
-/// As [`write_interface_vtu_3d`](crate::coupling::solid::write_interface_vtu_3d).
+/// As [`write_interface_vtu_3d`](crate::coupling::output::write_interface_vtu_3d).
 pub fn write_interface_vtu_3d_with_traction(
     path: &Path,
-    records: &[SolidContactRecord],
+    records: &[ContactRecord<3>],
     positions: &[[f64; 3]],
     displacements: Option<&[[f64; 3]]>,
     fields: &[TractionField],
 ) -> Result<(), SolverError> {
     let mut vtk = interface_model_3d(records, positions, displacements)?;
-    let points: Vec<(usize, usize)> = records
-        .iter()
-        .map(|c| (c.candidate.zone, c.candidate.node))
-        .collect();
+    let points: Vec<(usize, usize)> = records.iter().map(|c| (c.zone, c.node)).collect();
     push_fields(&mut vtk, fields, &points);
     write_vtk(path, vtk)
 }

@@ -84,6 +84,7 @@ pub trait TargetSurface<const D: usize>: Clone + Debug + Send + Sync + 'static {
 
 /// The normals of a node-pair zone.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub enum PairNormals<const D: usize = 2>
 where
     Dim<D>: ContactSpace<D>,
@@ -110,6 +111,7 @@ impl From<Option<[f64; 2]>> for PairNormals<2> {
 
 /// What the contactor nodes of a zone face.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub enum Target<const D: usize = 2>
 where
     Dim<D>: ContactSpace<D>,
@@ -130,6 +132,7 @@ where
 
 /// One contact zone: contactor nodes, target, law and alert distance.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct ContactZone<L, const D: usize = 2>
 where
     Dim<D>: ContactSpace<D>,
