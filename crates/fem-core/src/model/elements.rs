@@ -1,7 +1,7 @@
 //! Users' elements in a model: a region's elements computed by the user's [`Element`]
 //! implementation in place of the built-in one of the mesh's kind.
 
-use super::{ElasticModel, ModelMesh, ModelSpace};
+use super::{ElasticModel, ModelSpace};
 use crate::element::Element;
 use crate::error::FemError;
 use crate::space::Dim;
@@ -110,7 +110,7 @@ where
         region: u32,
         element: Arc<dyn Element<D>>,
     ) -> Result<Self, FemError> {
-        let nodes = self.mesh.built_in().node_count();
+        let nodes = self.mesh.built_in_element().node_count();
         self.elements
             .insert(region, element, self.mesh.regions(), nodes)?;
         self.assemble_and_factor()?;
@@ -121,6 +121,6 @@ where
     /// one of the mesh's kind.
     pub(crate) fn element_at(&self, e: usize) -> &dyn Element<D> {
         self.elements
-            .get(self.mesh.regions()[e], self.mesh.built_in())
+            .get(self.mesh.regions()[e], self.mesh.built_in_element())
     }
 }

@@ -2,7 +2,7 @@
 //! (`crate::rigid_modes`) and the generalized inverse `K⁺` factorised with one pinned dof per
 //! mode.
 
-use super::{ElasticModel, ModelMesh, ModelSpace};
+use super::{ElasticModel, ModelSpace};
 use crate::Supports;
 use crate::error::FemError;
 use crate::idealization::Idealization;

@@ -1,7 +1,7 @@
 //! The loads of an [`ElasticModel`]: reference nodal forces, tractions on a boundary set, body
 //! forces and self-weight (scaled by the load factor), and the initial stress (not scaled).
 
-use super::{ElasticModel, ModelMesh, ModelSpace, StressField};
+use super::{ElasticModel, ModelSpace, StressField};
 use crate::element::{Element, Setting};
 use crate::error::{FemError, finite};
 use crate::quadrature::GAUSS_3;
@@ -131,7 +131,7 @@ where
         ) -> Result<(), FemError>,
     ) -> Result<Vec<f64>, FemError> {
         let mut force = vec![0.0; D * self.mesh.node_count()];
-        let mut coords = Vec::with_capacity(self.mesh.built_in().node_count());
+        let mut coords = Vec::with_capacity(self.mesh.built_in_element().node_count());
         let mut f_e = Vec::new();
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);

@@ -7,10 +7,10 @@
 mod elements;
 mod floating;
 mod loads;
-mod mesh_bridge;
+mod normals;
 mod post;
 
-pub use mesh_bridge::{ModelMesh, ModelSpace};
+pub use normals::ModelSpace;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
@@ -45,9 +45,6 @@ pub type Reaction = ((usize, Component), f64);
 
 /// An initial stress field `σ₀(x)` (components as [`Space::Stress`]).
 pub type StressField<const D: usize = 2> = Arc<dyn Fn([f64; D]) -> VoigtStress<D> + Send + Sync>;
-
-/// The mesh type of dimension `D`.
-type MeshOf<const D: usize> = <Dim<D> as ModelSpace<D>>::Mesh;
 
 /// The geostatic initial stress of seed eq. 6.1 for a ground surface at `z = z_surface`
 /// (second coordinate upwards) and unit weight `gamma`:
@@ -85,7 +82,7 @@ pub struct ElasticModel<const D: usize>
 where
     Dim<D>: ModelSpace<D>,
 {
-    mesh: MeshOf<D>,
+    mesh: Mesh<D>,
     setting: Setting<D>,
     materials: BTreeMap<u32, Material>,
     supports: Supports,
@@ -206,7 +203,7 @@ where
     Dim<D>: ModelSpace<D>,
 {
     fn build(
-        mesh: MeshOf<D>,
+        mesh: Mesh<D>,
         setting: Setting<D>,
         materials: &[(u32, Material)],
         supports: Supports,
@@ -265,7 +262,7 @@ where
 
     fn assemble_and_factor(&mut self) -> Result<(), FemError> {
         self.values.fill(0.0);
-        let built_in = self.mesh.built_in();
+        let built_in = self.mesh.built_in_element();
         let mut k_e = DMatrix::zeros(0, 0);
         let mut coords = Vec::with_capacity(built_in.node_count());
         let mut coupling = Vec::new();
@@ -346,7 +343,7 @@ where
 
     /// The mesh.
     #[inline]
-    pub fn mesh(&self) -> &<Dim<D> as ModelSpace<D>>::Mesh {
+    pub fn mesh(&self) -> &Mesh<D> {
         &self.mesh
     }
 
@@ -543,7 +540,7 @@ where
 /// The symbolic factorisation of `pattern` with `ordering` (nested dissection on the position
 /// of each free dof's first node).
 fn solver_for<const D: usize>(
-    mesh: &MeshOf<D>,
+    mesh: &Mesh<D>,
     dofs: &DofMap<D>,
     pattern: &Pattern,
     ordering: FillOrdering,
@@ -577,7 +574,8 @@ where
     Dim<D>: ModelSpace<D>,
 {
     fn outward_normal(&self, node: usize) -> Option<[f64; D]> {
-        self.normals.get_or_init(|| self.mesh.outward_normals())[node]
+        self.normals
+            .get_or_init(|| <Dim<D> as ModelSpace<D>>::outward_normals(&self.mesh))[node]
     }
 
     fn dof_count(&self) -> usize {

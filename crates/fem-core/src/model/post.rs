@@ -1,7 +1,7 @@
 //! Recovery from a solution: stresses at the quadrature points, smoothed nodal stresses and
 //! support reactions; strains in 2D, error norms against an exact solution in 3D.
 
-use super::{ElasticModel, ModelMesh, ModelSpace, Reaction, StressPoint};
+use super::{ElasticModel, ModelSpace, Reaction, StressPoint};
 use crate::element::kernel::{field_at3, hooke, lame};
 use crate::element::{Stress3, VoigtStress};
 use crate::error::FemError;
