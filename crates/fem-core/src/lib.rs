@@ -16,8 +16,9 @@
 //!   ([`dirichlet`]), the sparsity pattern built once and refilled in place ([`assembly`]),
 //!   and a sparse Cholesky solver whose symbolic analysis is done once per pattern
 //!   ([`linear_solver`], [`SpdSolver`]).
-//! - **The model** ([`model`]): [`LinearElasticModel`] assembles and factors the reduced
-//!   stiffness, applies loads, solves, and recovers stresses, strains and reactions.
+//! - **The model** ([`model`]): one [`ElasticModel`] for both dimensions
+//!   ([`LinearElasticModel`] in the plane, [`SolidModel`] in space) assembles and factors the
+//!   reduced stiffness, applies loads, solves, and recovers stresses, strains and reactions.
 //! - **Boundary fields** ([`boundary_mass`]): the consistent mass of a boundary's sides or
 //!   faces, to recover a continuous traction from nodal forces.
 //! - **The seam to the contact solver**: the [`Structure`] trait, implemented by
@@ -58,7 +59,10 @@ pub mod space;
 pub mod structure;
 pub use dirichlet::{Component, DofMap, Supports};
 pub use linear_solver::SpdSolver;
-pub use model::{LinearElasticModel, Reaction, StressField, StressPoint, geostatic};
+pub use model::{
+    ElasticModel, LinearElasticModel, Reaction, SolidModel, StressField, StressPoint, geostatic,
+    geostatic_3d,
+};
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
 pub use space::{CellKind, Dim, Plane, Solid, Space};
 pub use structure::{Floating, Structure};

@@ -4,16 +4,18 @@
 //! A body that its supports do not hold has a stiffness `K` (over the free dofs) with a kernel
 //! spanned by rigid-body motions. In the plane they are the two translations and the rotation
 //! `(−y, x)`; in axisymmetry only the axial translation (a radial translation strains the hoop
-//! direction). Each connected component of the mesh (nodes joined by elements) is a body of its
-//! own. The modes a body keeps are those its prescribed dofs do not see and that move the nodes
-//! of a tie ([`Supports::tie`](crate::Supports::tie)) alike: with `C` the matrix of the body's
+//! direction); in 3D the three translations and the three rotations `e_a × x`. Each connected
+//! component of the mesh (nodes joined by elements) is a body of its own. The modes a body
+//! keeps are those its prescribed dofs do not see and that move the nodes of a tie
+//! ([`Supports::tie`](crate::Supports::tie)) alike: with `C` the matrix of the body's
 //! candidate modes at its prescribed dofs, and of their differences between tied nodes
-//! (`p × k`, `k ≤ 3`), they are `null(C)`.
+//! (`p × k`, `k ≤ 6`), they are `null(C)`.
 //!
 //! ```text
 //! plane:        R_body = [ t_x  t_y  ω ],  t_x = (1, 0),  t_y = (0, 1),
 //!               ω(x) = (−(y − c_y), x − c_x) / ρ     (c the centroid, ρ the largest distance to it)
 //! axisymmetric: R_body = [ t_z ]
+//! 3D:           R_body = [ t_x  t_y  t_z  ω_x  ω_y  ω_z ],  ω_a(x) = e_a × (x − c) / ρ
 //! modes kept:   R_body N,   N a basis of null(C),   restricted to the free dofs
 //! ```
 //!
@@ -33,9 +35,10 @@
 //! rigidly tied to the pins.
 
 use crate::dirichlet::{Component, Dof, DofMap};
+use crate::element::Setting;
 use crate::error::FemError;
 use crate::idealization::Idealization;
-use crate::mesh::Mesh;
+use crate::space::{Dim, Space};
 use nalgebra::DMatrix;
 
 /// The geometric meaning of a rigid-body mode (its nodal displacement field).
@@ -289,17 +292,24 @@ pub fn project_out(q: &[f64], b: &mut [f64]) {
 /// Relative size below which an eigenvalue of `CᵀC` counts as zero (a mode the supports leave).
 const NULL_TOL: f64 = 1e-12;
 
-/// The rigid-body modes that the supports of `dofs` leave on `mesh`, per connected component.
+/// The rigid-body modes that the supports of `dofs` leave on `mesh`, per connected component:
+/// among the `D` translations and the `D(D−1)/2` rotations (the axial translation alone in
+/// axisymmetry). In 3D the rotation `a` turns the plane `(a+1, a+2)` (mod 3), i.e. about the
+/// axis `e_a`; the modes kept are described as [`RigidMotion::Other`].
 ///
 /// # Errors
 /// [`FemError::NotPositiveDefinite`] for a node with a free dof that no element connects (its
 /// kernel is not a rigid-body mode).
-pub(crate) fn mesh_modes(
-    mesh: &Mesh,
-    idealization: Idealization,
-    dofs: &DofMap,
-) -> Result<RigidBodyModes, FemError> {
-    let n = mesh.node_count();
+pub(crate) fn mesh_modes<'a, const D: usize>(
+    nodes: &[[f64; D]],
+    cells: impl IntoIterator<Item = &'a [usize]>,
+    setting: Setting<D>,
+    dofs: &DofMap<D>,
+) -> Result<RigidBodyModes, FemError>
+where
+    Dim<D>: Space,
+{
+    let n = nodes.len();
     // connected components by union–find over the elements' nodes
     let mut parent: Vec<usize> = (0..n).collect();
     fn root(parent: &mut [usize], mut i: usize) -> usize {
@@ -310,8 +320,7 @@ pub(crate) fn mesh_modes(
         i
     }
     let mut used = vec![false; n];
-    for e in 0..mesh.element_count() {
-        let cell = mesh.element(e);
+    for cell in cells {
         for &node in cell {
             used[node] = true;
             let (a, b) = (root(&mut parent, cell[0]), root(&mut parent, node));
@@ -330,7 +339,7 @@ pub(crate) fn mesh_modes(
             .expect("a free dof");
         return Err(FemError::NotPositiveDefinite {
             node,
-            component: [Component::X, Component::Y][c],
+            component: Component::all::<D>()[c],
             row,
         });
     }
@@ -361,7 +370,7 @@ pub(crate) fn mesh_modes(
                 first_owner[i] = (node, c);
             } else if body_of[first] != body_of[node] {
                 return Err(FemError::InvalidTie {
-                    component: [Component::X, Component::Y][c],
+                    component: Component::all::<D>()[c],
                     node: Some(node),
                     reason: "the tie joins two bodies (parts of the mesh no element connects): \
                              tie nodes of one body only",
@@ -371,32 +380,57 @@ pub(crate) fn mesh_modes(
             }
         }
     }
-    let nodes = mesh.nodes();
+    let plane = !matches!(
+        <Dim<D> as Space>::idealization(&setting),
+        Some(Idealization::Axisymmetric)
+    );
+    let k = if plane { D + D * (D - 1) / 2 } else { 1 };
     let mut values = Vec::new();
     let mut modes = Vec::new();
     for (body, members) in bodies.iter().enumerate() {
         let count = members.len() as f64;
-        let centre = members.iter().fold([0.0; 2], |c, &i| {
-            [c[0] + nodes[i][0] / count, c[1] + nodes[i][1] / count]
+        let centre = members.iter().fold([0.0; D], |mut c, &i| {
+            for a in 0..D {
+                c[a] += nodes[i][a] / count;
+            }
+            c
         });
+        let distance = |x: [f64; D]| match D {
+            2 => (x[0] - centre[0]).hypot(x[1] - centre[1]),
+            _ => (0..D)
+                .map(|a| (x[a] - centre[a]).powi(2))
+                .sum::<f64>()
+                .sqrt(),
+        };
         let radius = members
             .iter()
-            .map(|&i| (nodes[i][0] - centre[0]).hypot(nodes[i][1] - centre[1]))
+            .map(|&i| distance(nodes[i]))
             .fold(0.0, f64::max)
             .max(f64::MIN_POSITIVE);
-        let plane = !matches!(idealization, Idealization::Axisymmetric);
-        let k = if plane { 3 } else { 1 };
-        // the candidate modes' value at (node, component): coefficients (t_x, t_y, ω) or (t_z)
-        let base = |node: usize, c: usize| -> [f64; 3] {
-            let [x, y] = nodes[node];
+        // the candidate modes' value at (node, component): coefficients (t_x, t_y, ω) in the
+        // plane, (t_x, t_y, t_z, ω_x, ω_y, ω_z) in 3D, (t_z) in axisymmetry
+        let base = |node: usize, c: usize| -> [f64; 6] {
+            let mut row = [0.0; 6];
             if !plane {
-                return [if c == 1 { 1.0 } else { 0.0 }, 0.0, 0.0];
+                row[0] = if c == 1 { 1.0 } else { 0.0 };
+                return row;
             }
-            if c == 0 {
-                [1.0, 0.0, -(y - centre[1]) / radius]
-            } else {
-                [0.0, 1.0, (x - centre[0]) / radius]
+            row[c] = 1.0;
+            let x = nodes[node];
+            for r in 0..k - D {
+                // rotation in the plane (i, j): u_i = −(x_j − c_j)/ρ, u_j = (x_i − c_i)/ρ
+                let (i, j) = if D == 2 {
+                    (0, 1)
+                } else {
+                    ((r + 1) % 3, (r + 2) % 3)
+                };
+                if c == i {
+                    row[D + r] = -(x[j] - centre[j]) / radius;
+                } else if c == j {
+                    row[D + r] = (x[i] - centre[i]) / radius;
+                }
             }
+            row
         };
         let mut ctc = DMatrix::<f64>::zeros(k, k);
         let mut rows = 0usize;
@@ -415,7 +449,7 @@ pub(crate) fn mesh_modes(
         }
         for &[(a, ca), (b, cb)] in &tie_pairs[body] {
             let (ra, rb) = (base(a, ca), base(b, cb));
-            let row: Vec<f64> = (0..3).map(|m| rb[m] - ra[m]).collect();
+            let row: Vec<f64> = (0..k).map(|m| rb[m] - ra[m]).collect();
             if row.iter().any(|v| *v != 0.0) {
                 rows += 1;
                 for a in 0..k {
@@ -437,22 +471,20 @@ pub(crate) fn mesh_modes(
                 .map(|a| eig.eigenvectors.column(a).iter().copied().collect())
                 .collect()
         };
-        for coef in canonical(&null, plane) {
-            let motion = if !plane {
-                RigidMotion::Translation {
-                    direction: [0.0, 1.0],
-                }
-            } else if coef[2] == 0.0 {
-                RigidMotion::Translation {
-                    direction: [coef[0], coef[1]],
-                }
-            } else {
-                // u = (a − θ(y − c_y)/ρ, b + θ(x − c_x)/ρ), θ = 1: a rotation about x₀
-                RigidMotion::Rotation {
-                    centre: [centre[0] - coef[1] * radius, centre[1] + coef[0] * radius],
-                    radius,
-                }
-            };
+        let coefs: Vec<(Vec<f64>, RigidMotion)> = if D == 2 {
+            canonical(&null, plane)
+                .into_iter()
+                .map(|coef| {
+                    (
+                        coef[..k].to_vec(),
+                        plane_motion(coef, plane, centre, radius),
+                    )
+                })
+                .collect()
+        } else {
+            null.into_iter().map(|v| (v, RigidMotion::Other)).collect()
+        };
+        for (coef, motion) in coefs {
             let start = values.len();
             values.resize(start + ndof, 0.0);
             for &node in members {
@@ -467,6 +499,31 @@ pub(crate) fn mesh_modes(
         }
     }
     RigidBodyModes::new(ndof, values, modes)
+}
+
+/// The meaning of a plane mode with coefficients `coef` on `(t_x, t_y, ω)` (`centre` and
+/// `radius` of the body's rotation; only the axial translation in axisymmetry).
+fn plane_motion<const D: usize>(
+    coef: [f64; 3],
+    plane: bool,
+    centre: [f64; D],
+    radius: f64,
+) -> RigidMotion {
+    if !plane {
+        RigidMotion::Translation {
+            direction: [0.0, 1.0],
+        }
+    } else if coef[2] == 0.0 {
+        RigidMotion::Translation {
+            direction: [coef[0], coef[1]],
+        }
+    } else {
+        // u = (a − θ(y − c_y)/ρ, b + θ(x − c_x)/ρ), θ = 1: a rotation about x₀
+        RigidMotion::Rotation {
+            centre: [centre[0] - coef[1] * radius, centre[1] + coef[0] * radius],
+            radius,
+        }
+    }
 }
 
 /// A unit direction with a positive first non-zero component, snapped onto an axis when it is
@@ -529,6 +586,16 @@ mod tests {
     use super::*;
     use crate::dirichlet::Supports;
     use crate::generate::{RectangleSpec, rectangle};
+    use crate::mesh::Mesh;
+
+    fn mesh_modes(
+        mesh: &Mesh,
+        idealization: Idealization,
+        dofs: &DofMap,
+    ) -> Result<RigidBodyModes, FemError> {
+        let cells = (0..mesh.element_count()).map(|e| mesh.element(e));
+        super::mesh_modes(mesh.nodes(), cells, idealization, dofs)
+    }
 
     #[test]
     fn rigid_modes_of_a_free_block_works() {

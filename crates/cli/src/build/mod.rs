@@ -33,7 +33,7 @@ pub use phases::{
     Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
 };
 pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
-pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study};
+pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study, released_at};
 
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;

@@ -25,6 +25,37 @@ pub struct SupportRt {
     pub phases: Vec<bool>,
 }
 
+/// The dofs released when phase `p > 0` starts: those of the supports that acted in phase
+/// `p − 1` and not in `p`, less those a support of phase `p` prescribes. Those stay
+/// constrained and only take their new value, so the body is never left without them in
+/// between (a model that may not float refuses a release that leaves a rigid-body mode).
+pub fn released_at(supports: &[SupportRt], p: usize) -> Vec<(Vec<usize>, Component)> {
+    let held: std::collections::BTreeSet<(usize, Component)> = supports
+        .iter()
+        .filter(|s| s.phases[p])
+        .flat_map(|s| {
+            s.components
+                .iter()
+                .flat_map(|&c| s.nodes.iter().map(move |&n| (n, c)))
+        })
+        .collect();
+    let mut out = Vec::new();
+    for s in supports.iter().filter(|s| s.phases[p - 1] && !s.phases[p]) {
+        for &c in &s.components {
+            let nodes: Vec<usize> = s
+                .nodes
+                .iter()
+                .copied()
+                .filter(|&n| !held.contains(&(n, c)))
+                .collect();
+            if !nodes.is_empty() {
+                out.push((nodes, c));
+            }
+        }
+    }
+    out
+}
+
 /// What a load is.
 #[derive(Clone, Debug)]
 pub enum LoadKind {

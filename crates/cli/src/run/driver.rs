@@ -2,7 +2,7 @@
 //! scaled by their time functions) or a library preset (its own step functions).
 
 use super::errors::{fem_failed, step_error};
-use crate::build::{Custom, Library, LoadKind, Phase, PresetStudy, function_value};
+use crate::build::{Custom, Library, LoadKind, Phase, PresetStudy, function_value, released_at};
 use crate::error::{CliError, CliResult};
 use crate::presets::ShaftPoint;
 use contact_laws::ContactLaw;
@@ -79,24 +79,17 @@ impl Driver for CustomDriver<'_> {
             return Ok(());
         }
         let model = c.sim.structure_mut();
-        let mut changed = false;
-        for s in c
-            .supports
-            .iter()
-            .filter(|s| s.phases[p - 1] && !s.phases[p])
-        {
-            for &comp in &s.components {
-                model.release(&s.nodes, comp).map_err(|e| {
-                    fem_failed(
-                        &format!(
-                            "phase `{}`: releasing the supports that end",
-                            phases[p].name
-                        ),
-                        e,
-                    )
-                })?;
-            }
-            changed = true;
+        let changed = c.supports.iter().any(|s| s.phases[p - 1] && !s.phases[p]);
+        for (nodes, comp) in released_at(&c.supports, p) {
+            model.release(&nodes, comp).map_err(|e| {
+                fem_failed(
+                    &format!(
+                        "phase `{}`: releasing the supports that end",
+                        phases[p].name
+                    ),
+                    e,
+                )
+            })?;
         }
         let t = phases[p].t0;
         for s in c

@@ -1,6 +1,5 @@
 //! A model's elements by region: the built-in element of the mesh's kind, or a user's element
-//! in its place for a region (`LinearElasticModel::with_element`, `SolidModel::with_element`).
-//! One implementation for both dimensions.
+//! in its place for a region (`ElasticModel::with_element`).
 
 use super::Element;
 use crate::error::FemError;

@@ -1,29 +1,32 @@
-//! Floating bodies: a [`LinearElasticModel`] whose supports may leave rigid-body modes, its
-//! modes (`crate::rigid_modes`) and the generalized inverse `K⁺` factorised with one pinned
-//! dof per mode.
+//! Floating bodies: an [`ElasticModel`] whose supports may leave rigid-body modes, its modes
+//! (`crate::rigid_modes`) and the generalized inverse `K⁺` factorised with one pinned dof per
+//! mode.
 
-use super::LinearElasticModel;
+use super::{ElasticModel, ModelMesh, ModelSpace};
 use crate::Supports;
 use crate::error::FemError;
 use crate::idealization::Idealization;
 use crate::material::Material;
 use crate::mesh::Mesh;
+use crate::ordering::FillOrdering;
 use crate::rigid_modes::{mesh_modes, project_out};
+use crate::solid::SolidMesh;
+use crate::space::Dim;
 use faer::ColMut;
 
-impl LinearElasticModel {
+impl ElasticModel<2> {
     /// Builds a model whose supports may leave rigid-body modes: a body (or several, one per
     /// connected component of the mesh) that contact holds. The modes are found from the mesh
     /// and the supports (plane: the two translations and the rotation; axisymmetric: the axial
     /// translation; those the prescribed dofs do not see), and the solves of
     /// [`Structure`](crate::Structure) apply the generalized inverse `K⁺` (`K` factorised with
     /// one dof per mode pinned, `crate::rigid_modes`). Without modes this is
-    /// [`LinearElasticModel::new`].
+    /// [`LinearElasticModel::new`](super::LinearElasticModel::new).
     ///
     /// # Errors
-    /// As [`LinearElasticModel::new`], except that rigid-body modes are accepted;
-    /// [`FemError::NotPositiveDefinite`] remains for a kernel that is not a rigid-body mode
-    /// (a node no element connects, a mechanism).
+    /// As [`LinearElasticModel::new`](super::LinearElasticModel::new), except that rigid-body
+    /// modes are accepted; [`FemError::NotPositiveDefinite`] remains for a kernel that is not
+    /// a rigid-body mode (a node no element connects, a mechanism).
     ///
     /// # Examples
     /// A block with no support at all: three modes, and `K K⁺ b = b` for a balanced `b`.
@@ -42,10 +45,39 @@ impl LinearElasticModel {
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<Self, FemError> {
-        Self::build(mesh, idealization, materials, supports, true)
+        Self::build(
+            mesh,
+            idealization,
+            materials,
+            supports,
+            true,
+            FillOrdering::Amd,
+        )
     }
+}
 
-    /// Whether the model was built to float ([`LinearElasticModel::floating`]).
+impl ElasticModel<3> {
+    /// As [`LinearElasticModel::floating`](super::LinearElasticModel::floating) in 3D: the
+    /// modes a body keeps are among its three translations and three rotations (about its
+    /// centroid), those its supports do not see.
+    ///
+    /// # Errors
+    /// As [`SolidModel::new`](super::SolidModel::new), except that rigid-body modes are
+    /// accepted.
+    pub fn floating(
+        mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<Self, FemError> {
+        Self::build(mesh, (), materials, supports, true, FillOrdering::default())
+    }
+}
+
+impl<const D: usize> ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    /// Whether the model was built to float (the `floating` constructors).
     #[inline]
     pub fn may_float(&self) -> bool {
         self.may_float
@@ -61,7 +93,9 @@ impl LinearElasticModel {
     /// modes is refused with [`FemError::NotPositiveDefinite`] at the first dof that would be
     /// pinned (a dof the mode moves).
     pub(super) fn find_modes(&mut self) -> Result<(), FemError> {
-        let modes = mesh_modes(&self.mesh, self.idealization, &self.dofs)?;
+        let mesh = &self.mesh;
+        let cells = (0..mesh.element_count()).map(|e| mesh.element(e));
+        let modes = mesh_modes(mesh.nodes(), cells, self.setting, &self.dofs)?;
         let pinned = modes.pinned_dofs();
         if !self.may_float
             && let Some(&row) = pinned.first()
@@ -154,6 +188,7 @@ mod tests {
     use super::*;
     use crate::generate::{RectangleSpec, rectangle};
     use crate::mesh::ElementKind;
+    use crate::model::{LinearElasticModel, SolidModel};
     use crate::{Component, Structure};
 
     fn block(kind: ElementKind, idealization: Idealization) -> LinearElasticModel {
@@ -167,7 +202,10 @@ mod tests {
     }
 
     /// `K x` for the full lower-triangular `K` of the model.
-    fn k_times(model: &LinearElasticModel, x: &[f64]) -> Vec<f64> {
+    fn k_times<const D: usize>(model: &ElasticModel<D>, x: &[f64]) -> Vec<f64>
+    where
+        Dim<D>: ModelSpace<D>,
+    {
         let k = model.stiffness();
         let mut y = vec![0.0; x.len()];
         for j in 0..k.ncols() {
@@ -305,5 +343,62 @@ mod tests {
         let mut load = vec![0.0; 4];
         model.rigid_body_load_into(1.0, &mut load).unwrap();
         assert_eq!(load, vec![0.0; 4]);
+    }
+
+    /// A free 3D block floats with the six rigid-body modes (three translations, three
+    /// rotations): `K R = 0` to round-off, and `K⁺` solves a balanced load.
+    #[test]
+    fn issue_35_a_solid_floats_with_six_modes_works() {
+        use crate::solid::SolidKind;
+        use crate::solid::generate::{box_mesh, lines};
+        for kind in [SolidKind::Tet4, SolidKind::Hex8] {
+            let mesh = box_mesh(
+                &lines(0.0, 2.0, 3),
+                &lines(0.0, 1.0, 2),
+                &lines(0.0, 1.0, 2),
+                kind,
+            )
+            .unwrap();
+            let m = Material::new(1e3, 0.3, 0.0).unwrap();
+            let mut model = SolidModel::floating(mesh, &[(0, m)], Supports::new()).unwrap();
+            let modes = model.rigid_body_modes().unwrap().clone();
+            assert_eq!(modes.len(), 6, "{kind:?}");
+            let k_max = model.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            for j in 0..6 {
+                let worst = k_times(&model, modes.column(j))
+                    .iter()
+                    .fold(0.0_f64, |m, v| m.max(v.abs()));
+                // round-off of a sum of O(80) entries of size ‖K‖ per row
+                assert!(worst <= 1e-11 * k_max, "{kind:?} mode {j}: {worst:e}");
+            }
+            // equal and opposite forces along the edge y = z = 0: balanced, so K K⁺ f = f
+            let at = |x: [f64; 3]| model.mesh().nodes().iter().position(|p| *p == x).unwrap();
+            let ends = [at([0.0, 0.0, 0.0]), at([2.0, 0.0, 0.0])];
+            model.add_nodal_force(ends[0], [-1.0, 0.0, 0.0]).unwrap();
+            model.add_nodal_force(ends[1], [1.0, 0.0, 0.0]).unwrap();
+            let mut load = vec![0.0; 6];
+            model.rigid_body_load_into(1.0, &mut load).unwrap();
+            // R^T f: translations see 0 exactly, rotations a sum of two opposite terms
+            assert!(load.iter().all(|v| v.abs() < 1e-12), "{load:?}");
+            let mut u = vec![0.0; model.dof_count()];
+            model.free_response_into(1.0, &mut u).unwrap();
+            let mut f = vec![0.0; model.dof_count()];
+            model.rhs_into(1.0, &mut f);
+            let ku = k_times(&model, &u);
+            let err = ku
+                .iter()
+                .zip(&f)
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            // a sparse Cholesky solve: round-off times a modest condition number
+            assert!(err <= 1e-9, "{kind:?}: {err:e}");
+            // the same block held at one end is not floating
+            let held = model.mesh().node_set("x0").unwrap().to_vec();
+            let mut s = Supports::new();
+            for c in Component::all::<3>() {
+                s.fix(&held, c);
+            }
+            let fixed = SolidModel::floating(model.mesh().clone(), &[(0, m)], s).unwrap();
+            assert!(fixed.floating().is_none());
+        }
     }
 }

@@ -1,42 +1,60 @@
-//! [`LinearElasticModel`]: a linear-elastic body on a triangle mesh, assembled and factored
-//! once, that implements [`Structure`]. Recovery from a solution (stresses, strains, nodal
-//! stresses, reactions) is in `post.rs`.
+//! [`ElasticModel`]: a linear-elastic body on a mesh of either dimension, assembled and
+//! factored once, that implements [`Structure`]: [`LinearElasticModel`] in the plane (plane
+//! strain, plane stress or axisymmetry) and [`SolidModel`] in space are its two dimensions.
+//! Loads are in `loads.rs`, recovery from a solution (stresses, strains, reactions, error
+//! norms) in `post.rs`, floating bodies in `floating.rs`, users' elements in `elements.rs`.
 
 mod elements;
 mod floating;
+mod loads;
+mod mesh_bridge;
 mod post;
+
+pub use mesh_bridge::{ModelMesh, ModelSpace};
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
 use crate::dirichlet::{Component, Dof, DofMap, Supports};
-use crate::element::{Element, RegionElements, Stress};
-use crate::error::{FemError, finite};
+use crate::element::{RegionElements, Setting, VoigtStress};
+use crate::error::FemError;
 use crate::idealization::Idealization;
 use crate::linear_solver::SpdSolver;
 use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::quadrature::GAUSS_3;
+use crate::ordering::{FillOrdering, nested_dissection};
 use crate::rigid_modes::RigidBodyModes;
+use crate::solid::SolidMesh;
+use crate::space::{Dim, Space};
 use crate::structure::{Floating, Structure};
 use faer::MatMut;
 use nalgebra::DMatrix;
 use std::collections::BTreeMap;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
-/// A stress at a quadrature point: its position and the stress components.
-pub type StressPoint = ([f64; 2], Stress);
+/// The linear-elastic model in the plane: [`ElasticModel`] with `D = 2`.
+pub type LinearElasticModel = ElasticModel<2>;
+
+/// The linear-elastic model in space: [`ElasticModel`] with `D = 3`.
+pub type SolidModel = ElasticModel<3>;
+
+/// A stress at a quadrature point: its position and the stress components
+/// ([`Space::Stress`]).
+pub type StressPoint<const D: usize = 2> = ([f64; D], VoigtStress<D>);
 
 /// A support reaction: the constrained dof `(node, component)` and the force on it.
 pub type Reaction = ((usize, Component), f64);
 
-/// An initial stress field `σ₀(x)` (components as [`Stress`]).
-pub type StressField = Arc<dyn Fn([f64; 2]) -> Stress + Send + Sync>;
+/// An initial stress field `σ₀(x)` (components as [`Space::Stress`]).
+pub type StressField<const D: usize = 2> = Arc<dyn Fn([f64; D]) -> VoigtStress<D> + Send + Sync>;
+
+/// The mesh type of dimension `D`.
+type MeshOf<const D: usize> = <Dim<D> as ModelSpace<D>>::Mesh;
 
 /// The geostatic initial stress of seed eq. 6.1 for a ground surface at `z = z_surface`
 /// (second coordinate upwards) and unit weight `gamma`:
 /// `σ_zz = −γ (z_surface − z)` (compression negative), `σ_rr = σ_θθ = K0 σ_zz`, `σ_rz = 0`.
 ///
-/// Returned in [`Stress`] order `(rr, zz, rz, θθ)` — also valid in plane strain, where the 4th
-/// component is `σ_zz` out of plane.
+/// Returned in [`crate::Stress`] order `(rr, zz, rz, θθ)` — also valid in plane strain,
+/// where the 4th component is `σ_zz` out of plane.
 pub fn geostatic(gamma: f64, k0: f64, z_surface: f64) -> StressField {
     Arc::new(move |x: [f64; 2]| {
         let s_v = -gamma * (z_surface - x[1]).max(0.0);
@@ -44,32 +62,49 @@ pub fn geostatic(gamma: f64, k0: f64, z_surface: f64) -> StressField {
     })
 }
 
-/// A linear-elastic body: mesh, idealisation, materials per region, supports and loads, with
-/// its reduced stiffness assembled and factored.
+/// The geostatic initial stress in 3D for a ground surface at `z = z_surface` (`z` upwards)
+/// and unit weight `gamma`: `σ_zz = −γ (z_surface − z)` (compression negative),
+/// `σ_xx = σ_yy = K0 σ_zz`, no shear.
+pub fn geostatic_3d(gamma: f64, k0: f64, z_surface: f64) -> StressField<3> {
+    Arc::new(move |x: [f64; 3]| {
+        let s_v = -gamma * (z_surface - x[2]).max(0.0);
+        [k0 * s_v, k0 * s_v, s_v, 0.0, 0.0, 0.0]
+    })
+}
+
+/// A linear-elastic body in dimension `D`: mesh, kinematic setting (the [`Idealization`] in
+/// 2D), materials per region, supports and loads, with its reduced stiffness assembled and
+/// factored. Built with [`LinearElasticModel::new`] or [`SolidModel::new`] (or their
+/// `floating` twins for a body that contact holds).
 ///
 /// Loads are kept as a reference load vector scaled by the load factor of
 /// [`Structure::free_response_into`]; prescribed displacements and the initial stress are not
-/// scaled. Changing a prescribed *value* ([`LinearElasticModel::set_prescribed`] on a
-/// constrained dof) never refactors; constraining or releasing dofs does.
-pub struct LinearElasticModel {
-    mesh: Mesh,
-    idealization: Idealization,
+/// scaled. Changing a prescribed *value* ([`ElasticModel::set_prescribed`] on a constrained
+/// dof) never refactors; constraining or releasing dofs does.
+pub struct ElasticModel<const D: usize>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    mesh: MeshOf<D>,
+    setting: Setting<D>,
     materials: BTreeMap<u32, Material>,
     supports: Supports,
-    dofs: DofMap,
+    dofs: DofMap<D>,
     pattern: Pattern,
     values: Vec<f64>,
     coupling: PrescribedCoupling,
     solver: SpdSolver,
-    /// Reference external loads per node component (`2 × node_count`).
+    ordering: FillOrdering,
+    /// Reference external loads per node component (`D × node_count`).
     load: Vec<f64>,
     /// Internal forces of the initial stress per node component.
     initial_force: Vec<f64>,
-    initial_stress: Option<StressField>,
+    /// The initial stress field of each region that has one.
+    initial_stress: Vec<(u32, StressField<D>)>,
     version: u64,
     /// Outward normals of the boundary nodes, computed at the first request.
-    normals: std::sync::OnceLock<Vec<Option<[f64; 2]>>>,
-    /// Whether the supports may leave rigid-body modes ([`LinearElasticModel::floating`]).
+    normals: OnceLock<Vec<Option<[f64; D]>>>,
+    /// Whether the supports may leave rigid-body modes (`floating` constructors).
     may_float: bool,
     /// The rigid-body modes the supports leave (empty unless `may_float`).
     modes: RigidBodyModes,
@@ -77,18 +112,22 @@ pub struct LinearElasticModel {
     pinned: Vec<usize>,
     /// `K` with the pinned rows and columns decoupled (the matrix factorised when floating).
     pinned_values: Vec<f64>,
-    /// Users' elements by region, in place of the mesh kind's ([`LinearElasticModel::with_element`]).
-    elements: RegionElements<2>,
     /// An orthonormal basis of the modes (column-major), for the projection `P = I − Q Qᵀ`.
     mode_basis: Vec<f64>,
+    /// Users' elements by region, in place of the mesh kind's ([`ElasticModel::with_element`]).
+    elements: RegionElements<D>,
 }
 
-impl core::fmt::Debug for LinearElasticModel {
+impl<const D: usize> core::fmt::Debug for ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("LinearElasticModel")
+        f.debug_struct("ElasticModel")
+            .field("dimension", &<Dim<D> as Space>::NAME)
             .field("nodes", &self.mesh.node_count())
             .field("elements", &self.mesh.element_count())
-            .field("idealization", &self.idealization)
+            .field("setting", &self.setting)
             .field("free_dofs", &self.dofs.free_count())
             .field("nnz", &self.pattern.nnz())
             .field("version", &self.version)
@@ -96,7 +135,7 @@ impl core::fmt::Debug for LinearElasticModel {
     }
 }
 
-impl LinearElasticModel {
+impl ElasticModel<2> {
     /// Builds the model: checks the data, numbers the dofs, builds the sparsity pattern,
     /// assembles and factors `K`.
     ///
@@ -118,17 +157,64 @@ impl LinearElasticModel {
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<Self, FemError> {
-        Self::build(mesh, idealization, materials, supports, false)
+        Self::build(
+            mesh,
+            idealization,
+            materials,
+            supports,
+            false,
+            FillOrdering::Amd,
+        )
+    }
+}
+
+impl ElasticModel<3> {
+    /// Builds the 3D model: checks the data, numbers the dofs, builds the sparsity pattern
+    /// (and the fill-reducing ordering, once), assembles and factors `K`.
+    ///
+    /// # Errors
+    /// As [`LinearElasticModel::new`] (without the 2D idealisation's): a region without
+    /// material, a support on a missing node, an inverted element, a stiffness that
+    /// overflows, and [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body
+    /// mode of some body of the mesh (a body that contact holds is built with
+    /// [`SolidModel::floating`]) or `K` is singular otherwise.
+    pub fn new(
+        mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<Self, FemError> {
+        Self::with_ordering(mesh, materials, supports, FillOrdering::default())
     }
 
+    /// As [`SolidModel::new`], with the fill-reducing ordering of the factorisation chosen
+    /// (the default, nested dissection, leaves less fill on 3D meshes: `docs/benchmarks.md`).
+    ///
+    /// # Errors
+    /// As [`SolidModel::new`].
+    pub fn with_ordering(
+        mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        ordering: FillOrdering,
+    ) -> Result<Self, FemError> {
+        Self::build(mesh, (), materials, supports, false, ordering)
+    }
+}
+
+impl<const D: usize> ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
     fn build(
-        mesh: Mesh,
-        idealization: Idealization,
+        mesh: MeshOf<D>,
+        setting: Setting<D>,
         materials: &[(u32, Material)],
         supports: Supports,
         may_float: bool,
+        ordering: FillOrdering,
     ) -> Result<Self, FemError> {
-        if let Idealization::PlaneStress { thickness } = idealization {
+        let idealization = <Dim<D> as Space>::idealization(&setting).copied();
+        if let Some(Idealization::PlaneStress { thickness }) = idealization {
             crate::error::positive("thickness", thickness)?;
         }
         let materials: BTreeMap<u32, Material> = materials.iter().copied().collect();
@@ -140,30 +226,31 @@ impl LinearElasticModel {
                 });
             }
         }
-        if let Idealization::Axisymmetric = idealization
+        if let Some(Idealization::Axisymmetric) = idealization
             && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)
         {
             return Err(FemError::NegativeRadius { node, r: p[0] });
         }
-        let dofs = DofMap::new(mesh.node_count(), &supports)?;
+        let dofs = DofMap::<D>::numbered(mesh.node_count(), &supports)?;
         let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
-        let solver = SpdSolver::new(pattern.symbolic().as_ref())?;
-        let n2 = 2 * mesh.node_count();
+        let solver = solver_for(&mesh, &dofs, &pattern, ordering)?;
+        let n = D * mesh.node_count();
         let mut model = Self {
             values: vec![0.0; pattern.nnz()],
             mesh,
-            idealization,
+            setting,
             materials,
             supports,
             dofs,
             pattern,
             coupling: PrescribedCoupling::default(),
             solver,
-            load: vec![0.0; n2],
-            initial_force: vec![0.0; n2],
-            initial_stress: None,
+            ordering,
+            load: vec![0.0; n],
+            initial_force: vec![0.0; n],
+            initial_stress: Vec::new(),
             version: 0,
-            normals: std::sync::OnceLock::new(),
+            normals: OnceLock::new(),
             may_float,
             modes: RigidBodyModes::default(),
             pinned: Vec::new(),
@@ -178,9 +265,9 @@ impl LinearElasticModel {
 
     fn assemble_and_factor(&mut self) -> Result<(), FemError> {
         self.values.fill(0.0);
-        let kind = self.mesh.kind();
+        let built_in = self.mesh.built_in();
         let mut k_e = DMatrix::zeros(0, 0);
-        let mut coords = Vec::with_capacity(6);
+        let mut coords = Vec::with_capacity(built_in.node_count());
         let mut coupling = Vec::new();
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
@@ -188,12 +275,12 @@ impl LinearElasticModel {
             coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
             let region = self.mesh.regions()[e];
             let material = &self.materials[&region];
-            let element = self.elements.get(region, kind.element());
-            element.stiffness_into(e, &coords, material, &self.idealization, &mut k_e)?;
+            let element = self.elements.get(region, built_in);
+            element.stiffness_into(e, &coords, material, &self.setting, &mut k_e)?;
             if k_e.iter().any(|v| !v.is_finite()) {
                 return Err(FemError::NonFiniteStiffness {
                     element: e,
-                    region: self.mesh.regions()[e],
+                    region,
                     young: material.young(),
                 });
             }
@@ -248,15 +335,30 @@ impl LinearElasticModel {
         }
     }
 
+    /// Reassembles and refactors `K` with the same pattern and ordering (what a change of
+    /// material costs; the benchmarks time it).
+    ///
+    /// # Errors
+    /// As the constructors.
+    pub fn refactor(&mut self) -> Result<(), FemError> {
+        self.assemble_and_factor()
+    }
+
     /// The mesh.
     #[inline]
-    pub fn mesh(&self) -> &Mesh {
+    pub fn mesh(&self) -> &<Dim<D> as ModelSpace<D>>::Mesh {
         &self.mesh
+    }
+
+    /// The kinematic setting: the [`Idealization`] in 2D, `()` in 3D.
+    #[inline]
+    pub fn setting(&self) -> &Setting<D> {
+        &self.setting
     }
 
     /// The dof numbering.
     #[inline]
-    pub fn dof_map(&self) -> &DofMap {
+    pub fn dof_map(&self) -> &DofMap<D> {
         &self.dofs
     }
 
@@ -278,10 +380,25 @@ impl LinearElasticModel {
         self.pattern.nnz()
     }
 
+    /// Stored entries of the Cholesky factor of `K` (its fill with the model's ordering).
+    #[inline]
+    pub fn factor_nnz(&self) -> usize {
+        self.solver.factor_nnz()
+    }
+
     /// The reduced stiffness `K` (lower triangle, free dofs), as a faer view.
     #[inline]
     pub fn stiffness(&self) -> faer::sparse::SparseColMatRef<'_, usize, f64> {
         self.pattern.view(&self.values)
+    }
+
+    /// The material of element `e`'s region.
+    ///
+    /// # Panics
+    /// If `e` is not an element of the mesh.
+    #[track_caller]
+    pub fn material(&self, e: usize) -> &Material {
+        &self.materials[&self.mesh.regions()[e]]
     }
 
     /// Sets the prescribed value of `component` on `nodes`. If every such dof is already
@@ -289,202 +406,81 @@ impl LinearElasticModel {
     /// constrained, renumbered, and `K` is reassembled and refactored.
     ///
     /// # Errors
-    /// [`FemError::InvalidParameter`] for a non-finite value; factorisation errors.
+    /// [`FemError::InvalidParameter`] for a non-finite value; [`FemError::UnknownNode`];
+    /// factorisation errors (the supports are then restored).
     pub fn set_prescribed(
         &mut self,
         nodes: &[usize],
         component: Component,
         value: f64,
     ) -> Result<(), FemError> {
+        self.check_nodes(nodes, "a prescribed displacement")?;
         let renumber = nodes
             .iter()
             .any(|&n| self.supports.value(n, component).is_none());
+        let before = self.supports.clone();
         self.supports.update(nodes, component, value)?;
         if renumber {
-            self.rebuild()?;
+            self.renumber(before)?;
         }
         Ok(())
     }
 
-    /// Removes the supports of `component` on `nodes`, then renumbers and refactors.
+    /// Removes the supports of `component` on `nodes` (those nodes move freely along it from
+    /// the next solve on), then renumbers and refactors. A contact simulation holding the
+    /// model follows the new numbering at its next step.
     ///
     /// # Errors
-    /// [`FemError::NotPositiveDefinite`] if the body is left without enough supports.
+    /// [`FemError::UnknownNode`]; [`FemError::NotPositiveDefinite`] if the body is left
+    /// without enough supports (the supports are then restored).
     pub fn release(&mut self, nodes: &[usize], component: Component) -> Result<(), FemError> {
+        self.check_nodes(nodes, "a released support")?;
+        if nodes
+            .iter()
+            .all(|&n| self.supports.value(n, component).is_none())
+        {
+            return Ok(());
+        }
+        let before = self.supports.clone();
         self.supports.release(nodes, component);
-        self.rebuild()
+        self.renumber(before)
     }
 
-    fn rebuild(&mut self) -> Result<(), FemError> {
-        self.dofs = DofMap::new(self.mesh.node_count(), &self.supports)?;
+    fn check_nodes(&self, nodes: &[usize], what: &'static str) -> Result<(), FemError> {
+        let node_count = self.mesh.node_count();
+        match nodes.iter().find(|&&n| n >= node_count) {
+            Some(&node) => Err(FemError::UnknownNode {
+                what,
+                node,
+                node_count,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Numbers the dofs for the current supports, rebuilds the pattern, the solver and the
+    /// modes, and reassembles and refactors; on failure the supports `before` are restored
+    /// (and the model with them).
+    fn renumber(&mut self, before: Supports) -> Result<(), FemError> {
+        let rebuilt = self.rebuild_numbering();
+        if rebuilt.is_err() {
+            self.supports = before;
+            self.rebuild_numbering()?;
+        }
+        rebuilt
+    }
+
+    fn rebuild_numbering(&mut self) -> Result<(), FemError> {
+        self.dofs = DofMap::<D>::numbered(self.mesh.node_count(), &self.supports)?;
         let mesh = &self.mesh;
         self.pattern = Pattern::new(
             &self.dofs,
             (0..mesh.element_count()).map(|e| mesh.element(e)),
         )?;
-        self.solver = SpdSolver::new(self.pattern.symbolic().as_ref())?;
+        self.solver = solver_for(&self.mesh, &self.dofs, &self.pattern, self.ordering)?;
         self.values = vec![0.0; self.pattern.nnz()];
         self.find_modes()?;
         self.assemble_and_factor()
-    }
-
-    /// Adds a reference nodal force `[f_x, f_y]` (per unit thickness, thickness, or radian as
-    /// the idealisation says).
-    ///
-    /// # Errors
-    /// [`FemError::UnknownNode`] or [`FemError::InvalidParameter`] for non-finite values.
-    pub fn add_nodal_force(&mut self, node: usize, force: [f64; 2]) -> Result<(), FemError> {
-        if node >= self.mesh.node_count() {
-            return Err(FemError::UnknownNode {
-                what: "a nodal force",
-                node,
-                node_count: self.mesh.node_count(),
-            });
-        }
-        finite("nodal force", force[0])?;
-        finite("nodal force", force[1])?;
-        self.load[2 * node] += force[0];
-        self.load[2 * node + 1] += force[1];
-        Ok(())
-    }
-
-    /// Adds a reference traction `t(x)` (force per area, global frame) on the sides of an edge
-    /// set, integrated with 3 Gauss points per side (exact for P2 sides in axisymmetry).
-    ///
-    /// # Errors
-    /// [`FemError::UnknownSet`]; [`FemError::InvalidParameter`] if `t` returns a non-finite
-    /// value.
-    pub fn add_edge_traction(
-        &mut self,
-        edge_set: &str,
-        traction: impl Fn([f64; 2]) -> [f64; 2],
-    ) -> Result<(), FemError> {
-        let sides = self.mesh.edge_set(edge_set)?.to_vec();
-        for side in sides {
-            let nodes: Vec<usize> = self.mesh.side_nodes(side).collect();
-            let xs: Vec<[f64; 2]> = nodes.iter().map(|&n| self.mesh.nodes()[n]).collect();
-            for &(s, w) in &GAUSS_3 {
-                // 1D shapes on [−1, 1]: P1 (a, b); P2 (a, b, mid).
-                let (n, dn): (Vec<f64>, Vec<f64>) = if nodes.len() == 2 {
-                    (vec![(1.0 - s) / 2.0, (1.0 + s) / 2.0], vec![-0.5, 0.5])
-                } else {
-                    (
-                        vec![s * (s - 1.0) / 2.0, s * (s + 1.0) / 2.0, 1.0 - s * s],
-                        vec![s - 0.5, s + 0.5, -2.0 * s],
-                    )
-                };
-                let mut x = [0.0; 2];
-                let mut dx = [0.0; 2];
-                for i in 0..nodes.len() {
-                    for a in 0..2 {
-                        x[a] += n[i] * xs[i][a];
-                        dx[a] += dn[i] * xs[i][a];
-                    }
-                }
-                let jac = dx[0].hypot(dx[1]);
-                let t = traction(x);
-                finite("traction", t[0])?;
-                finite("traction", t[1])?;
-                let wt = w * jac * self.idealization.weight(x[0]);
-                for i in 0..nodes.len() {
-                    self.load[2 * nodes[i]] += n[i] * t[0] * wt;
-                    self.load[2 * nodes[i] + 1] += n[i] * t[1] * wt;
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Adds the self-weight of every region (unit weight of its material, along `−y`/`−z`) to
-    /// the reference loads.
-    ///
-    /// # Errors
-    /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian.
-    pub fn add_self_weight(&mut self) -> Result<(), FemError> {
-        let force = self.element_forces(|element, e, coords, idealization, f_e| {
-            let gamma = self.materials[&self.mesh.regions()[e]].unit_weight();
-            element.body_force_into(e, coords, idealization, &|_| [0.0, -gamma], f_e)
-        })?;
-        self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
-        Ok(())
-    }
-
-    /// Integrates an element-level force over every element and scatters it into a vector of
-    /// nodal components (`2 × node_count`); `f_e` is zeroed before each element.
-    fn element_forces(
-        &self,
-        integrate: impl Fn(
-            &dyn Element<2>,
-            usize,
-            &[[f64; 2]],
-            &Idealization,
-            &mut [f64],
-        ) -> Result<(), FemError>,
-    ) -> Result<Vec<f64>, FemError> {
-        let mut force = vec![0.0; 2 * self.mesh.node_count()];
-        let mut coords = Vec::with_capacity(6);
-        let mut f_e = vec![0.0; 12];
-        for e in 0..self.mesh.element_count() {
-            let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
-            f_e.resize(2 * cell.len(), 0.0);
-            f_e.fill(0.0);
-            integrate(self.element_at(e), e, &coords, &self.idealization, &mut f_e)?;
-            for (a, &n) in cell.iter().enumerate() {
-                force[2 * n] += f_e[2 * a];
-                force[2 * n + 1] += f_e[2 * a + 1];
-            }
-        }
-        Ok(force)
-    }
-
-    /// Adds a body force `b(x)` (force per volume, global frame) over the whole mesh to the
-    /// reference loads, integrated with the element's load rule (degree 2 for P1, 4 for P2).
-    ///
-    /// # Errors
-    /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian;
-    /// [`FemError::InvalidParameter`] if `b` returns a non-finite value.
-    pub fn add_body_force(&mut self, b: impl Fn([f64; 2]) -> [f64; 2]) -> Result<(), FemError> {
-        let force = self.element_forces(|element, e, coords, idealization, f_e| {
-            element.body_force_into(e, coords, idealization, &b, f_e)
-        })?;
-        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
-            return Err(FemError::InvalidParameter {
-                name: "body force",
-                value,
-                expected: "a finite body force",
-            });
-        }
-        self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
-        Ok(())
-    }
-
-    /// Sets the initial stress field `σ₀` (replacing any previous one) and its internal forces
-    /// `−∫ Bᵀ σ₀ w dA`, which enter every free response.
-    ///
-    /// # Errors
-    /// [`FemError::InvertedElement`]; [`FemError::InvalidParameter`] if `σ₀` is not finite at
-    /// a quadrature point.
-    pub fn set_initial_stress(&mut self, sigma_0: StressField) -> Result<(), FemError> {
-        let force = self.element_forces(|element, e, coords, idealization, f_e| {
-            element.initial_stress_force_into(e, coords, idealization, &*sigma_0, f_e)
-        })?;
-        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
-            return Err(FemError::InvalidParameter {
-                name: "initial stress",
-                value,
-                expected: "a finite stress field",
-            });
-        }
-        self.initial_force = force;
-        self.initial_stress = Some(sigma_0);
-        Ok(())
-    }
-
-    /// Removes every reference load (nodal forces, tractions, self-weight).
-    pub fn clear_loads(&mut self) {
-        self.load.fill(0.0);
     }
 
     /// The right-hand side of the reduced system at `load_factor`:
@@ -502,13 +498,13 @@ impl LinearElasticModel {
             .subtract_into(&self.dofs.prescribed_values(&self.supports), rhs);
     }
 
-    /// Nodal displacements `[u_x, u_y]` from the free-dof solution `u_free` and the prescribed
-    /// values.
+    /// Nodal displacements (`D` components per node) from the free-dof solution `u_free` and
+    /// the prescribed values.
     ///
     /// # Panics
     /// If `u_free.len() != dof_count()`.
     #[track_caller]
-    pub fn nodal_displacements(&self, u_free: &[f64]) -> Vec<[f64; 2]> {
+    pub fn nodal_displacements(&self, u_free: &[f64]) -> Vec<[f64; D]> {
         assert_eq!(u_free.len(), self.dofs.free_count(), "solution length");
         self.dofs
             .expand(u_free, &self.dofs.prescribed_values(&self.supports))
@@ -518,15 +514,69 @@ impl LinearElasticModel {
     ///
     /// # Errors
     /// As for [`Structure::free_response_into`].
-    pub fn solve(&self, load_factor: f64) -> Result<Vec<[f64; 2]>, FemError> {
+    pub fn solve(&self, load_factor: f64) -> Result<Vec<[f64; D]>, FemError> {
         let mut u = vec![0.0; self.dofs.free_count()];
         self.free_response_into(load_factor, &mut u)?;
         Ok(self.nodal_displacements(&u))
     }
+
+    /// The rigid-body modes the supports leave, or `None` when `K` is positive definite: the
+    /// modes of [`Structure::floating`].
+    pub fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
+        self.floating().map(Floating::rigid_body_modes)
+    }
+
+    /// The load along each rigid-body mode, `Rᵀ f` at `load_factor`, written into `out`
+    /// ([`Floating::rigid_body_load_into`]; nothing to write without modes).
+    ///
+    /// # Errors
+    /// [`FemError::NonFiniteSolve`] if the load is not finite.
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of modes.
+    #[track_caller]
+    pub fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
+        self.mode_load_into(load_factor, out)
+    }
 }
 
-impl Structure for LinearElasticModel {
-    fn outward_normal(&self, node: usize) -> Option<[f64; 2]> {
+/// The symbolic factorisation of `pattern` with `ordering` (nested dissection on the position
+/// of each free dof's first node).
+fn solver_for<const D: usize>(
+    mesh: &MeshOf<D>,
+    dofs: &DofMap<D>,
+    pattern: &Pattern,
+    ordering: FillOrdering,
+) -> Result<SpdSolver, FemError>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    match ordering {
+        FillOrdering::Amd => SpdSolver::new(pattern.symbolic().as_ref()),
+        FillOrdering::NestedDissection => {
+            let mut coords = vec![[f64::NAN; 3]; dofs.free_count()];
+            for node in (0..mesh.node_count()).rev() {
+                for d in dofs.free_dofs(node).into_iter().flatten() {
+                    coords[d] = [0.0; 3];
+                    coords[d][..D].copy_from_slice(&mesh.nodes()[node]);
+                }
+            }
+            // a dof no node owns cannot happen (numbered from the nodes); keep it finite
+            coords
+                .iter_mut()
+                .filter(|c| c[0].is_nan())
+                .for_each(|c| *c = [0.0; 3]);
+            let order = nested_dissection(pattern.symbolic().as_ref(), &coords);
+            SpdSolver::with_order(pattern.symbolic().as_ref(), &order)
+        }
+    }
+}
+
+impl<const D: usize> Structure<D> for ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    fn outward_normal(&self, node: usize) -> Option<[f64; D]> {
         self.normals.get_or_init(|| self.mesh.outward_normals())[node]
     }
 
@@ -538,24 +588,26 @@ impl Structure for LinearElasticModel {
         self.mesh.node_count()
     }
 
-    fn node_position(&self, node: usize) -> [f64; 2] {
+    fn node_position(&self, node: usize) -> [f64; D] {
         self.mesh.nodes()[node]
     }
 
-    fn node_dofs(&self, node: usize) -> [Option<usize>; 2] {
+    fn node_dofs(&self, node: usize) -> [Option<usize>; D] {
         self.dofs.free_dofs(node)
     }
 
-    fn prescribed_displacement(&self, node: usize) -> [f64; 2] {
+    fn prescribed_displacement(&self, node: usize) -> [f64; D] {
         let d = self.dofs.dofs(node);
-        [Component::X, Component::Y].map(|c| match d[c as usize] {
+        Component::all::<D>().map(|c| match d[c as usize] {
             Dof::Prescribed(_) => self.supports.value(node, c).unwrap_or(0.0),
             Dof::Free(_) => 0.0,
         })
     }
 
     fn idealization(&self) -> Idealization {
-        self.idealization
+        <Dim<D> as Space>::idealization(&self.setting)
+            .copied()
+            .unwrap_or(Idealization::PlaneStrain)
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
@@ -613,34 +665,16 @@ impl Structure for LinearElasticModel {
 }
 
 /// Asked only through [`Structure::floating`], which offers the model when its supports leave
-/// modes ([`LinearElasticModel::floating`]).
-impl Floating for LinearElasticModel {
+/// modes (the `floating` constructors).
+impl<const D: usize> Floating for ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
     fn rigid_body_modes(&self) -> &RigidBodyModes {
         &self.modes
     }
 
     fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
-        self.mode_load_into(load_factor, out)
-    }
-}
-
-impl LinearElasticModel {
-    /// The rigid-body modes the supports leave, or `None` when `K` is positive definite: the
-    /// modes of [`Structure::floating`].
-    pub fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
-        self.floating().map(Floating::rigid_body_modes)
-    }
-
-    /// The load along each rigid-body mode, `Rᵀ f` at `load_factor`, written into `out`
-    /// ([`Floating::rigid_body_load_into`]; nothing to write without modes).
-    ///
-    /// # Errors
-    /// [`FemError::NonFiniteSolve`] if the load is not finite.
-    ///
-    /// # Panics
-    /// If `out.len()` is not the number of modes.
-    #[track_caller]
-    pub fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError> {
         self.mode_load_into(load_factor, out)
     }
 }

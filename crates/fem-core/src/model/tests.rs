@@ -262,3 +262,45 @@ fn ties_that_contradict_the_supports_are_refused() {
     let u = model.solve(1.0).unwrap();
     assert!(top.iter().all(|&n| u[n][1] == -0.1));
 }
+
+/// One generic function run on a 2D and a 3D model: a nodal force is balanced by the support
+/// reactions, component by component.
+fn reactions_balance<const D: usize>(mut model: ElasticModel<D>, node: usize)
+where
+    Dim<D>: ModelSpace<D>,
+{
+    let force: [f64; D] = std::array::from_fn(|c| 1.0 + c as f64);
+    model.add_nodal_force(node, force).unwrap();
+    let u = model.solve(1.0).unwrap();
+    let reactions = model.reactions(&u, 1.0).unwrap();
+    for (c, f) in force.iter().enumerate() {
+        let sum: f64 = reactions
+            .iter()
+            .filter(|((_, component), _)| *component as usize == c)
+            .map(|(_, r)| r)
+            .sum();
+        // equilibrium, to the round-off of a solve with entries of size E = 100
+        assert!(
+            (sum + f).abs() < 1e-10,
+            "{}: Σ R_{c} = {sum}",
+            <Dim<D> as Space>::NAME
+        );
+    }
+}
+
+#[test]
+fn issue_35_one_model_for_both_dimensions_works() {
+    use crate::solid::SolidKind;
+    use crate::solid::generate::{box_mesh, lines};
+    reactions_balance(square_model(Idealization::PlaneStrain), 2);
+    let unit = lines(0.0, 1.0, 1);
+    let mesh = box_mesh(&unit, &unit, &unit, SolidKind::Tet4).unwrap();
+    let top = mesh.nodes().iter().position(|p| *p == [1.0; 3]).unwrap();
+    let mut supports = Supports::new();
+    let bottom = mesh.node_set("z0").unwrap().to_vec();
+    for c in Component::all::<3>() {
+        supports.fix(&bottom, c);
+    }
+    let m = Material::new(100.0, 0.25, 0.0).unwrap();
+    reactions_balance(SolidModel::new(mesh, &[(0, m)], supports).unwrap(), top);
+}

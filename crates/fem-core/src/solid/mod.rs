@@ -1,8 +1,8 @@
 //! 3D linear elasticity on tetrahedral meshes: the mesh ([`SolidMesh`]), the P1 and P2
 //! tetrahedra ([`Tet4`], [`Tet10`]), their quadrature, structured generators
 //! ([`generate`]), a Gmsh `.msh` 4.1 reader ([`gmsh`]; VTK output is
-//! [`crate::vtk::write_vtu_3d`]), and the model [`SolidModel`], which implements
-//! [`Structure<3>`](crate::Structure).
+//! [`crate::vtk::write_vtu_3d`]), and the name [`SolidModel`] of the one model
+//! ([`crate::model::ElasticModel`]) in 3D, which implements [`Structure<3>`](crate::Structure).
 //!
 //! The pieces follow the 2D ones: the sparsity pattern and the fill-reducing ordering are
 //! computed once per dof numbering ([`crate::assembly::Pattern`], [`crate::SpdSolver`]), the
@@ -13,12 +13,16 @@ pub mod generate;
 pub mod gmsh;
 /// The mesh of both dimensions ([`SolidMesh`] is `Mesh<3>`).
 pub use crate::mesh;
-mod model;
-mod modes;
 pub mod quadrature;
 pub mod revolve;
 
 pub use crate::element::{Stress3, Tet4, Tet10};
+pub use crate::{SolidModel, geostatic_3d};
 pub use mesh::{Face, SolidKind, SolidMesh, TET_EDGES, triangle_shape};
-pub use model::{SolidModel, StressField3, StressPoint3, geostatic_3d};
+
+/// An initial stress field `σ₀(x)` in 3D: [`crate::StressField`] with `D = 3`.
+pub type StressField3 = crate::StressField<3>;
+
+/// A stress at a point in 3D: [`crate::StressPoint`] with `D = 3`.
+pub type StressPoint3 = crate::StressPoint<3>;
 pub use revolve::{Revolved, revolve};

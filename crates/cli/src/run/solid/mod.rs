@@ -9,7 +9,7 @@ use super::RunOptions;
 use super::errors::{fem_failed, io, step_error};
 use super::progress::Progress;
 use super::summary::{BTreeUnits, CurveSummary, MeshFacts};
-use crate::build::{LoadKind3, Phase, SolidStudy, function_value};
+use crate::build::{LoadKind3, Phase, SolidStudy, function_value, released_at};
 use crate::error::{CliError, CliResult};
 use fem_core::Structure;
 use output::{SolidRecorder, StepRow};
@@ -125,28 +125,22 @@ fn begin_phase(study: &mut SolidStudy, p: usize) -> CliResult<()> {
 }
 
 /// Releases, when phase `p > 0` starts, the supports that acted in the phase before and not in
-/// this one (the simulation follows the new dof numbering at its next step).
+/// this one ([`released_at`]; the simulation follows the new dof numbering at its next step).
 fn release_ending(study: &mut SolidStudy, p: usize) -> CliResult<()> {
     if p == 0 {
         return Ok(());
     }
     let model = study.sim.structure_mut();
-    for s in study
-        .supports
-        .iter()
-        .filter(|s| s.phases[p - 1] && !s.phases[p])
-    {
-        for &c in &s.components {
-            model.release(&s.nodes, c).map_err(|e| {
-                fem_failed(
-                    &format!(
-                        "phase `{}`: releasing the supports that end",
-                        study.phases[p].name
-                    ),
-                    e,
-                )
-            })?;
-        }
+    for (nodes, c) in released_at(&study.supports, p) {
+        model.release(&nodes, c).map_err(|e| {
+            fem_failed(
+                &format!(
+                    "phase `{}`: releasing the supports that end",
+                    study.phases[p].name
+                ),
+                e,
+            )
+        })?;
     }
     Ok(())
 }

@@ -388,7 +388,7 @@ impl SolidRecorder {
             pressure[n] += c.pressure();
         }
         let stress: Vec<[f64; 6]> = model
-            .stresses(u)
+            .elastic_stresses(u)
             .map_err(|e| fem_failed("stresses", e))?
             .iter()
             .map(|points| {
