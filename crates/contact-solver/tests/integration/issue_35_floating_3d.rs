@@ -33,11 +33,11 @@
 #![cfg(feature = "fe")]
 
 use contact_laws::Signorini;
-use contact_solver::coupling::solid::{RigidSphere, Side3};
-use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, StepResult};
+use contact_solver::coupling::solid::{RigidPlane, RigidSphere, Side3};
+use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, SolverError, StepResult};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidMesh, SolidModel};
-use fem_core::{Component, Material, Supports};
+use fem_core::{Component, Material, RigidMotion, Supports};
 use std::time::Instant;
 
 const E: f64 = 1000.0;
@@ -146,9 +146,16 @@ fn issue_35_floating_3d() {
         "a_Hertz {a_hertz} outside [{inside}, {outside}]"
     );
     assert!((inside / a_hertz - 1.0).abs() < 0.05, "{inside} {a_hertz}");
-    // the block moved up: its amplitude is the only one, positive
+    // the one mode is the vertical translation, named so; the block moved up
+    let modes = sim.structure().rigid_body_modes().unwrap().modes().to_vec();
+    assert_eq!(
+        modes[0].motion,
+        RigidMotion::SpaceTranslation {
+            direction: [0.0, 0.0, 1.0]
+        }
+    );
     let alpha = sim.rigid_body_amplitudes().to_vec();
-    assert_eq!(alpha.len(), 1);
+    assert!(alpha.len() == 1 && alpha[0] > 0.0, "{alpha:?}");
     // counters: one step, the reduced solves and the equilibrium iterations counted
     assert_eq!(counters.steps, 1);
     assert!(counters.contact_iterations > 0 && res.report.contact_iterations > 0);
@@ -195,4 +202,70 @@ fn issue_35_floating_3d() {
     );
     assert!(worst <= 1e-8 * scale, "{worst} vs {scale}");
     assert_eq!(fixed.counters().equilibrium_solves, 0);
+}
+
+/// A free block (no support at all: six rigid-body modes) on a frictionless rigid plane,
+/// pressed down and pushed sideways by a uniform traction on its top: contact resists the
+/// vertical translation and the two tilts, nothing resists the slide, and the step fails with
+/// [`SolverError::Unbalanced`] naming the body, the direction of the slide and the load (the
+/// top's area `2 × 1.5` times the sideways traction; nothing balances it, so the imbalance is
+/// the whole load).
+#[test]
+fn issue_35_floating_3d_unbalanced_names_the_direction() {
+    for (t, want) in [
+        ([0.2, 0.0], [1.0, 0.0, 0.0]),
+        ([0.2, 0.2], [0.5_f64.sqrt(), 0.5_f64.sqrt(), 0.0]),
+        ([0.0, -0.3], [0.0, 1.0, 0.0]),
+    ] {
+        let mesh = box_mesh(
+            &lines(0.0, 2.0, 2),
+            &lines(0.0, 1.5, 2),
+            &lines(0.0, 1.0, 1),
+            SolidKind::Tet10,
+        )
+        .unwrap();
+        let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+        let m = Material::new(E, NU, 0.0).unwrap();
+        let mut model = SolidModel::floating(mesh, &[(0, m)], Supports::new()).unwrap();
+        assert_eq!(model.rigid_body_modes().map(|m| m.len()), Some(6));
+        model
+            .add_face_traction("z1", |_, _| [t[0], t[1], -1.0])
+            .unwrap();
+        let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+        let zone =
+            ContactZone::<_, 3>::rigid("base", nodes, plane, Signorini, 0.1).with_areas(areas);
+        let mut sim =
+            ContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+                .unwrap();
+        let err = sim.step(1.0, 1.0).unwrap_err();
+        eprintln!("push {t:?}: {err}");
+        let SolverError::Unbalanced {
+            body,
+            motion: RigidMotion::SpaceTranslation { direction },
+            imbalance,
+            load,
+        } = err
+        else {
+            panic!("push {t:?}: {err:?}");
+        };
+        assert_eq!(body, 0);
+        // the load along the direction named (along a mode's own axis it keeps the mode's
+        // sign, as in 2D; a slanted direction is oriented along the force)
+        let force = 3.0 * (t[0] * want[0] + t[1] * want[1]);
+        for a in 0..3 {
+            assert!(
+                (direction[a] - want[a]).abs() < 1e-9,
+                "{direction:?} vs {want:?}"
+            );
+        }
+        // the sideways load is the whole imbalance (the traction is integrated exactly)
+        assert!(
+            (load - force).abs() < 1e-12 * force.abs(),
+            "{load} vs {force}"
+        );
+        assert!(
+            (imbalance - force).abs() < 1e-9 * force.abs(),
+            "{imbalance} vs {force}"
+        );
+    }
 }
