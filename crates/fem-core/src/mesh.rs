@@ -16,7 +16,7 @@ pub mod solid;
 pub use crate::element::tet10::TET_EDGES;
 pub use kind::{ElementKind, SolidKind};
 pub use solid::{MidpointFn, triangle_shape};
-pub(crate) use solid::{dot, signed_volume, sub};
+pub(crate) use solid::{dot, signed_volume};
 
 use crate::element::Element;
 use crate::error::FemError;

@@ -550,7 +550,7 @@ fn space_motion(v: Vec<f64>) -> (Vec<f64>, RigidMotion) {
     let norm = |w: &[f64]| w.iter().map(|x| x * x).sum::<f64>().sqrt();
     let (t, w) = v.split_at(3.min(v.len()));
     let size = norm(t);
-    if v.len() != 6 || !(size > 0.0) || norm(w) > tiny * size {
+    if v.len() != 6 || !(size > 0.0 && size.is_finite()) || norm(w) > tiny * size {
         return (v, RigidMotion::Other);
     }
     let mut d = [t[0] / size, t[1] / size, t[2] / size];
