@@ -32,7 +32,7 @@
 
 #![cfg(feature = "fe")]
 
-use contact_laws::Signorini;
+use contact_laws::{Coulomb, Signorini};
 use contact_solver::coupling::solid::{RigidPlane, RigidSphere, Side3};
 use contact_solver::{ContactSimulation, ContactZone, SimulationSettings, SolverError, StepResult};
 use fem_core::solid::generate::{box_mesh, lines};
@@ -268,4 +268,95 @@ fn issue_35_floating_3d_unbalanced_names_the_direction() {
             "{imbalance} vs {force}"
         );
     }
+}
+
+/// The free block of [`issue_35_floating_3d_unbalanced_names_the_direction`] on a plane with
+/// Coulomb friction `μ = 0.3` (the 3D form of `floating_block.rs`), pressed by `N = 3` (a unit
+/// downward traction on the `2 × 1.5` top) and pushed slantwise along `(0.6, 0.8)` by `T`.
+/// Returns the step's outcome: the total contact force, or the error.
+fn coulomb_block(push: f64) -> Result<[f64; 3], SolverError> {
+    let mesh = box_mesh(
+        &lines(0.0, 2.0, 2),
+        &lines(0.0, 1.5, 2),
+        &lines(0.0, 1.0, 1),
+        SolidKind::Tet10,
+    )
+    .unwrap();
+    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
+    let m = Material::new(E, NU, 0.0).unwrap();
+    let mut model = SolidModel::floating(mesh, &[(0, m)], Supports::new()).unwrap();
+    model
+        .add_face_traction("z1", |_, _| [0.6 * push, 0.8 * push, -1.0])
+        .unwrap();
+    let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let law = Coulomb::new(MU).unwrap();
+    let zone = ContactZone::<_, 3>::rigid("base", nodes, plane, law, 0.1).with_areas(areas);
+    let mut sim =
+        ContactSimulation::new(model, vec![zone], SimulationSettings::for_dimension::<3>())
+            .unwrap();
+    let res = sim.step(1.0, 1.0)?;
+    assert!(sim.counters().equilibrium_solves > 0);
+    eprintln!(
+        "T = {}: {} equilibrium iterations, {} solves",
+        3.0 * push,
+        res.report.equilibrium_iterations,
+        res.report.equilibrium_solves
+    );
+    Ok(res.contacts.iter().fold([0.0; 3], |s, c| {
+        let f = c.force();
+        [s[0] + f[0], s[1] + f[1], s[2] + f[2]]
+    }))
+}
+
+const MU: f64 = 0.3;
+
+/// Below `μ N` the block sticks and the contact force balances the load exactly: `N` and the
+/// push `T` to `1e-10` of `N` (the equilibrium is solved to `1e-11` of the forces, the reduced
+/// problem to `1e-10`). Pressed alone (`T = 0`) and pushed by `T = 0.06 = μN/15`.
+#[test]
+fn issue_35_floating_3d_coulomb_sticks() {
+    let n = 3.0;
+    for push in [0.0, 0.02] {
+        let t = 3.0 * push;
+        let f = coulomb_block(push).unwrap_or_else(|e| panic!("T = {t}: {e}"));
+        eprintln!("T = {t}: Σ f = {f:?}");
+        assert!((f[2] - n).abs() < 1e-10 * n, "{f:?}");
+        assert!((f[0] + 0.6 * t).abs() < 1e-10 * n, "{f:?}");
+        assert!((f[1] + 0.8 * t).abs() < 1e-10 * n, "{f:?}");
+    }
+}
+
+/// Known bug (issue 35, found by this test): a 3D floating block with Coulomb friction pushed
+/// by `T = 0.6 = 2μN/3` fails with `Unbalanced` along a rotation mode (imbalance −0.128, load
+/// 0) instead of sticking, and pushed by `T = 1.5 > μN` reports the slide along
+/// `(0.286, 0.958, 0)` with imbalance 0.672 instead of along the push `(0.6, 0.8, 0)` with
+/// `T − μN = 0.6`. Small pushes stick (above) but take 25–34 equilibrium iterations where the
+/// 2D block takes 2–3: the floating stage's linearisation of sticking/slipping contacts in 3D
+/// (`Linearized::new`, the slip direction fixed by `r_t/r_n`) needs a look.
+#[test]
+#[ignore = "known bug: 3D floating with Coulomb friction under a large push (see the doc)"]
+fn issue_35_floating_3d_coulomb_sticks_then_slides() {
+    let n = 3.0;
+    let f = coulomb_block(0.2).unwrap_or_else(|e| panic!("T = 0.6 < μN should stick: {e}"));
+    assert!(
+        (f[0] + 0.36).abs() < 1e-10 * n && (f[1] + 0.48).abs() < 1e-10 * n,
+        "{f:?}"
+    );
+    let err = coulomb_block(0.5).unwrap_err();
+    let SolverError::Unbalanced {
+        body,
+        motion: RigidMotion::SpaceTranslation { direction },
+        imbalance,
+        load,
+    } = err
+    else {
+        panic!("{err:?}");
+    };
+    assert_eq!(body, 0);
+    assert!(
+        (direction[0] - 0.6).abs() < 1e-6 && (direction[1] - 0.8).abs() < 1e-6,
+        "{direction:?}"
+    );
+    assert!((load - 1.5).abs() < 1e-12, "{load}");
+    assert!((imbalance - (1.5 - MU * n)).abs() < 1e-8, "{imbalance}");
 }
