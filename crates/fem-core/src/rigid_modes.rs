@@ -60,7 +60,14 @@ pub enum RigidMotion {
         /// The scale `ρ` (the body's size).
         radius: f64,
     },
-    /// A mode given by a structure without a geometric description.
+    /// `u = d` at every node of a 3D body, `d` a unit vector in space (`(0, 0, 1)`: along z).
+    /// The plane's translations are [`Translation`](Self::Translation).
+    SpaceTranslation {
+        /// The unit direction.
+        direction: [f64; 3],
+    },
+    /// A mode given by a structure without a geometric description (in 3D: a rotation, or a
+    /// mode that mixes rotation and translation).
     Other,
 }
 
@@ -83,6 +90,12 @@ impl core::fmt::Display for RigidMotion {
             RigidMotion::Rotation { centre, .. } => {
                 write!(f, "rotation about ({:.4e}, {:.4e})", centre[0], centre[1])
             }
+            RigidMotion::SpaceTranslation { direction } => match direction {
+                [1.0, 0.0, 0.0] => f.write_str("translation x"),
+                [0.0, 1.0, 0.0] => f.write_str("translation y"),
+                [0.0, 0.0, 1.0] => f.write_str("translation z"),
+                [x, y, z] => write!(f, "translation along ({x:.3}, {y:.3}, {z:.3})"),
+            },
             RigidMotion::Other => f.write_str("rigid-body mode"),
         }
     }
@@ -295,7 +308,9 @@ const NULL_TOL: f64 = 1e-12;
 /// The rigid-body modes that the supports of `dofs` leave on `mesh`, per connected component:
 /// among the `D` translations and the `D(D−1)/2` rotations (the axial translation alone in
 /// axisymmetry). In 3D the rotation `a` turns the plane `(a+1, a+2)` (mod 3), i.e. about the
-/// axis `e_a`; the modes kept are described as [`RigidMotion::Other`].
+/// axis `e_a`; a mode kept that is a pure translation is described as
+/// [`RigidMotion::SpaceTranslation`] (its direction with a positive first non-zero component,
+/// snapped onto an axis to round-off), any other as [`RigidMotion::Other`].
 ///
 /// # Errors
 /// [`FemError::NotPositiveDefinite`] for a node with a free dof that no element connects (its
@@ -482,7 +497,7 @@ where
                 })
                 .collect()
         } else {
-            null.into_iter().map(|v| (v, RigidMotion::Other)).collect()
+            null.into_iter().map(space_motion).collect()
         };
         for (coef, motion) in coefs {
             let start = values.len();
@@ -524,6 +539,32 @@ fn plane_motion<const D: usize>(
             radius,
         }
     }
+}
+
+/// The meaning of a 3D null vector `v` on `(t_x, t_y, t_z, ω_x, ω_y, ω_z)`: a translation when
+/// its rotation part vanishes (to round-off), the vector then made the unit direction with a
+/// positive first non-zero component, snapped onto an axis; otherwise [`RigidMotion::Other`]
+/// and `v` unchanged.
+fn space_motion(v: Vec<f64>) -> (Vec<f64>, RigidMotion) {
+    let tiny = 1e-12;
+    let norm = |w: &[f64]| w.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (t, w) = v.split_at(3.min(v.len()));
+    let size = norm(t);
+    if v.len() != 6 || !(size > 0.0 && size.is_finite()) || norm(w) > tiny * size {
+        return (v, RigidMotion::Other);
+    }
+    let mut d = [t[0] / size, t[1] / size, t[2] / size];
+    if let Some(first) = d.iter().find(|x| x.abs() > tiny)
+        && *first < 0.0
+    {
+        d = d.map(|x| -x);
+    }
+    if let Some(axis) = (0..3).find(|&a| (0..3).all(|b| b == a || d[b].abs() <= tiny)) {
+        d = [0.0; 3];
+        d[axis] = 1.0;
+    }
+    let coef = vec![d[0], d[1], d[2], 0.0, 0.0, 0.0];
+    (coef, RigidMotion::SpaceTranslation { direction: d })
 }
 
 /// A unit direction with a positive first non-zero component, snapped onto an axis when it is

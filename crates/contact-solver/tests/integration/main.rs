@@ -24,6 +24,7 @@ mod hertz;
 mod hertz_force;
 mod hertz_revolved;
 mod invalid_input;
+mod issue_35_floating_3d;
 mod issue_35_generic_zones;
 mod issue_35_one_simulation;
 mod issue_35_penetration;

@@ -9,7 +9,7 @@
 //! Gᵀ r = e,            e = −Rᵀ f          (the reactions balance the load along every mode)
 //! ```
 //! (the floating-subdomain form of FETI, Farhat & Roux 1991). Modes are few (at most 3 per
-//! body), so the equation `Gᵀ r(α) = e` is solved by a semismooth Newton method on `α`, where
+//! body in the plane, 6 in 3D), so the equation `Gᵀ r(α) = e` is solved by a semismooth Newton method on `α`, where
 //! `r(α)` is the ordinary reduced problem with `q + G α`, solved by [`UzawaSolver`] and warm
 //! started. Its Jacobian comes from the contacts' statuses: with `E` the directions the
 //! closed contacts' reactions may take (stick: `e_n`, `e_t`; slip: `e_n + (r_t/r_n) e_t`;
@@ -397,15 +397,15 @@ impl Floating {
     }
 
     /// The error for an out-of-balance force `res` along the free direction `d`: the mode
-    /// that `d` moves most, or, when that is a translation, the direction in the plane along
-    /// which the body's translations move (a block sliding down an incline moves along the
-    /// slope, not along x).
+    /// that `d` moves most, or, when that is a translation, the direction (in the plane or in
+    /// space) along which the body's translations move (a block sliding down an incline moves
+    /// along the slope, not along x).
     fn unbalanced(&self, res: &[f64], d: &[f64]) -> SolverError {
         let j = (0..self.nm)
             .max_by(|&a, &b| d[a].abs().total_cmp(&d[b].abs()))
             .unwrap_or(0);
         let mode = self.modes[j];
-        if matches!(mode.motion, RigidMotion::Translation { .. })
+        if translation(mode.motion).is_some()
             && let Some(e) = self.unbalanced_translation(mode.body, res, d)
         {
             return e;
@@ -424,23 +424,35 @@ impl Floating {
     }
 }
 
+/// A translation's unit direction in space (a plane one with `z = 0`) and whether it is a
+/// plane one; `None` for any other motion.
+fn translation(motion: RigidMotion) -> Option<([f64; 3], bool)> {
+    match motion {
+        RigidMotion::Translation { direction: [x, y] } => Some(([x, y, 0.0], true)),
+        RigidMotion::SpaceTranslation { direction } => Some((direction, false)),
+        _ => None,
+    }
+}
+
 impl Floating {
     /// [`SolverError::Unbalanced`] along the translation `Σ d_k e_k` of `body`'s translation
-    /// modes `e_k` (orthonormal), oriented so that the force left over pushes along it: that
-    /// force `Σ res_k (e_k · dir)` and the load's own `Σ −e_k (e_k · dir)`. `None` (the mode is
-    /// reported as it is) when the direction is one of the modes' own, when the body's
-    /// translation directions are not orthonormal (a user's modes), or when `d` has no
-    /// translation part.
+    /// modes `e_k` (orthonormal, in the plane or in space), oriented so that the force left
+    /// over pushes along it: that force `Σ res_k (e_k · dir)` and the load's own
+    /// `Σ −e_k (e_k · dir)`. `None` (the mode is reported as it is) when the direction is one
+    /// of the modes' own, when the body's translation directions are not orthonormal (a user's
+    /// modes), or when `d` has no translation part.
     fn unbalanced_translation(&self, body: usize, res: &[f64], d: &[f64]) -> Option<SolverError> {
-        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
-        let translations: Vec<(usize, [f64; 2])> = self
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let mut plane = true;
+        let translations: Vec<(usize, [f64; 3])> = self
             .modes
             .iter()
             .enumerate()
             .filter(|(_, m)| m.body == body)
-            .filter_map(|(k, m)| match m.motion {
-                RigidMotion::Translation { direction } => Some((k, direction)),
-                _ => None,
+            .filter_map(|(k, m)| {
+                let (e, in_plane) = translation(m.motion)?;
+                plane &= in_plane;
+                Some((k, e))
             })
             .collect();
         for (a, &(_, ea)) in translations.iter().enumerate() {
@@ -451,16 +463,21 @@ impl Floating {
                 }
             }
         }
-        let mut dir = [0.0; 2];
+        let mut dir = [0.0; 3];
         for &(k, e) in &translations {
-            dir[0] += d[k] * e[0];
-            dir[1] += d[k] * e[1];
+            for (da, ea) in dir.iter_mut().zip(e) {
+                *da += d[k] * ea;
+            }
         }
-        let length = dir[0].hypot(dir[1]);
+        let length = if plane {
+            dir[0].hypot(dir[1])
+        } else {
+            dot(dir, dir).sqrt()
+        };
         if !(length > 0.0 && length.is_finite()) {
             return None;
         }
-        dir = [dir[0] / length, dir[1] / length];
+        dir = dir.map(|v| v / length);
         // an axis direction (to round-off) is the mode itself, reported as before
         if translations
             .iter()
@@ -473,13 +490,20 @@ impl Floating {
         };
         let (mut imbalance, mut load) = (along(&|k| res[k]), along(&|k| -self.e[k]));
         if imbalance < 0.0 {
-            dir = [-dir[0], -dir[1]];
+            dir = dir.map(|v| -v);
             imbalance = -imbalance;
             load = -load;
         }
+        let motion = if plane {
+            RigidMotion::Translation {
+                direction: [dir[0], dir[1]],
+            }
+        } else {
+            RigidMotion::SpaceTranslation { direction: dir }
+        };
         Some(SolverError::Unbalanced {
             body,
-            motion: RigidMotion::Translation { direction: dir },
+            motion,
             imbalance,
             load,
         })
