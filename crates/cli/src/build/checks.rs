@@ -8,7 +8,7 @@ use contact_laws::LawError;
 use contact_solver::SolverError;
 use contact_solver::error::chain;
 use fem_core::generate::Grading;
-use fem_core::{ElementKind, FemError, Mesh};
+use fem_core::{Dim, ElementKind, FemError, Mesh, Space};
 use std::collections::BTreeSet;
 
 /// `value`, or the error "`path` = value: expected `expected`" when not `ok`.
@@ -168,7 +168,14 @@ pub(super) fn join(s: &BTreeSet<u32>) -> String {
 }
 
 /// The nodes of a node set of the mesh, or an error naming the sets there are.
-pub(super) fn node_set(path: &KeyPath, mesh: &Mesh, name: &str) -> CliResult<Vec<usize>> {
+pub(super) fn node_set<const D: usize>(
+    path: &KeyPath,
+    mesh: &Mesh<D>,
+    name: &str,
+) -> CliResult<Vec<usize>>
+where
+    Dim<D>: Space,
+{
     mesh.node_set(name).map(|s| s.to_vec()).map_err(|_| {
         CliError::at(
             path,

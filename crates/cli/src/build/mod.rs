@@ -32,7 +32,7 @@ pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{
     Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
 };
-pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
+pub use solid::{SolidStudy, solid_kind_name};
 pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study, released_at};
 
 use crate::error::{CliError, CliResult, KeyPath};
@@ -109,7 +109,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         model,
         contact,
     } = plan;
-    let idealization = model.idealization;
+    let (idealization, _) = model.options;
     let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, idealization)?;
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
     let (sim, zone_laws, warnings) = contact::build(model, contact.zones, contact.settings)?;

@@ -1,6 +1,7 @@
-//! The model: materials, supports, loads and the initial stress, their values checked first
-//! (with the time functions and phases they name), then applied to the mesh (regions, node and
-//! edge sets) to build the [`LinearElasticModel`] with the supports of the first phase at t = 0.
+//! The model of a 2D or 3D scene: materials, supports, loads and the initial stress, their
+//! values checked first (with the time functions and phases they name), then applied to the
+//! mesh (regions, node sets, edge or face sets) to build the [`ElasticModel`] with the supports
+//! of the first phase at t = 0. What the dimension reads differently is [`ModelDim`]'s.
 
 use super::checks::{
     expect, fem, finite, finite2, join, list_names, node_set, non_negative, positive,
@@ -8,9 +9,16 @@ use super::checks::{
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::study::{LoadKind, LoadRt, SupportRt};
 use crate::error::{CliError, CliResult, KeyPath};
+use crate::raw::{RawLoad, triple};
 use crate::scene::{ComponentSpec, Scene};
 use crate::spec::{InitialStress, LoadSpec};
-use fem_core::{Component, FemError, Idealization, LinearElasticModel, Material, Mesh, Supports};
+use crate::spec3::{Coords, LoadSpec3};
+use fem_core::model::ModelSpace;
+use fem_core::solid::{SolidMesh, SolidModel, geostatic_3d};
+use fem_core::{
+    Component, Dim, ElasticModel, FemError, Idealization, LinearElasticModel, Material, Mesh,
+    StressField, Supports,
+};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A material, checked, and the regions it is given to (with their key paths).
@@ -28,22 +36,13 @@ pub(super) struct SupportPlan {
     pub(super) rt: SupportRt,
 }
 
-/// What a load is, checked; its set is looked up in the mesh at build.
-enum LoadPlanKind {
-    Traction(String, [f64; 2]),
-    Nodal(String, [f64; 2]),
-    Resultant(String, [f64; 2]),
-    Body([f64; 2]),
-    Gravity,
-}
-
-/// A load, checked.
-pub(super) struct LoadPlan {
+/// A load, checked; its set (if it has one) is looked up in the mesh at build, where the
+/// kind's set or node is filled in.
+pub(super) struct LoadPlan<const D: usize> {
     path: KeyPath,
-    pub(super) name: Option<String>,
-    kind: LoadPlanKind,
-    function: Option<String>,
-    phases: Vec<bool>,
+    set: Option<String>,
+    /// The load, its set not yet looked up.
+    pub(super) rt: LoadRt<D>,
 }
 
 /// Geostatic initial stress: (gamma, k0, z_surface), checked.
@@ -205,82 +204,37 @@ pub(super) fn validate_supports(
 
 /// Checks `[[loads]]`: their `type` and keys, values, function names and phase lists (a gravity
 /// load needs a unit weight).
-pub(super) fn validate_loads(
+pub(super) fn validate_loads<const D: usize>(
     scene: &Scene,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
     any_weight: bool,
-) -> CliResult<Vec<LoadPlan>> {
+) -> CliResult<Vec<LoadPlan<D>>>
+where
+    Dim<D>: ModelDim<D>,
+{
     let root = KeyPath::root();
     let mut loads = Vec::new();
     for (i, l) in scene.loads.iter().enumerate() {
         let p = root.key("loads").index(i);
-        let l = &l.resolve(&p)?;
-        let (name, kind, function, ph) = match l {
-            LoadSpec::Traction {
-                name,
-                set,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Traction(set.clone(), finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::NodalForce {
-                name,
-                set,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Nodal(set.clone(), finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::Resultant {
-                name,
-                set,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Resultant(set.clone(), finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::BodyForce {
-                name,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Body(finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::Gravity { name, phases } => {
-                if !any_weight {
-                    return Err(CliError::at(
-                        &p,
-                        "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
-                    ));
-                }
-                (name, LoadPlanKind::Gravity, &None, phases)
-            }
-        };
-        check_function(&p.key("function"), function, functions)?;
+        let (set, kind) = Dim::<D>::load(l, &p)?;
+        if matches!(kind, LoadKind::Gravity) && !any_weight {
+            return Err(CliError::at(
+                &p,
+                "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
+            ));
+        }
+        let (name, function, ph) = l.common();
+        check_function(&p.key("function"), &function, functions)?;
         loads.push(LoadPlan {
+            rt: LoadRt {
+                name,
+                kind,
+                function,
+                phases: phase_mask(&p.key("phases"), &ph, phases)?,
+            },
             path: p,
-            name: name.clone(),
-            kind,
-            function: function.clone(),
-            phases: phase_mask(&root.key("loads").index(i).key("phases"), ph, phases)?,
+            set,
         });
     }
     Ok(loads)
@@ -358,21 +312,22 @@ pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressP
 }
 
 /// What the model is built from.
-pub(super) struct ModelPlan {
-    /// The idealisation.
-    pub(super) idealization: Idealization,
+pub(super) struct ModelPlan<const D: usize>
+where
+    Dim<D>: ModelDim<D>,
+{
+    /// What the dimension builds the model in (2D: the idealisation and `floating`).
+    pub(super) options: <Dim<D> as ModelDim<D>>::Options,
     /// Materials.
     pub(super) materials: Vec<MaterialPlan>,
     /// Supports.
     pub(super) supports: Vec<SupportPlan>,
     /// Loads.
-    pub(super) loads: Vec<LoadPlan>,
+    pub(super) loads: Vec<LoadPlan<D>>,
     /// Initial stress.
     pub(super) initial_stress: InitialStressPlan,
-    /// `[[ties]]`: (key path of the set, set, components).
-    pub(super) ties: Vec<(KeyPath, String, Vec<Component>)>,
-    /// `[analysis] floating`.
-    pub(super) floating: bool,
+    /// `[[ties]]`.
+    pub(super) ties: Ties,
 }
 
 /// `[[ties]]`: (key path of the set, set, components).
@@ -431,13 +386,17 @@ pub(super) fn components(
 }
 
 /// The materials on the mesh's regions (every region exactly one), the supports' and loads'
-/// sets, and the model with the supports of the first phase at t = 0.
-pub(super) fn build(
-    mesh: Mesh,
-    plan: ModelPlan,
+/// sets, and the model with the supports of the first phase at t = 0 (the others are added and
+/// released between phases by the run).
+pub(super) fn build<const D: usize>(
+    mesh: Mesh<D>,
+    plan: ModelPlan<D>,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
-) -> CliResult<(LinearElasticModel, Vec<SupportRt>, Vec<LoadRt>)> {
+) -> CliResult<(ElasticModel<D>, Vec<SupportRt>, Vec<LoadRt<D>>)>
+where
+    Dim<D>: ModelDim<D>,
+{
     let root = KeyPath::root();
     // An element stiffness that overflows is the material's fault, not the supports'.
     let young_keys = young_keys(&plan.materials);
@@ -462,51 +421,41 @@ pub(super) fn build(
     }
     let mut loads = Vec::new();
     for l in plan.loads {
-        let p = &l.path;
-        let kind = match l.kind {
-            LoadPlanKind::Traction(set, value) => {
-                if mesh.edge_set(&set).is_err() {
-                    return Err(CliError::at(
-                        &p.key("set"),
-                        format!(
-                            "`{}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
-                            p.key("set"),
-                            list_names(mesh.edge_set_names())
-                        ),
-                    ));
-                }
-                LoadKind::Traction(set, value)
+        let (sp, mut rt) = (l.path.key("set"), l.rt);
+        let set = l.set.unwrap_or_default();
+        rt.kind = match rt.kind {
+            LoadKind::Traction(_, v) => {
+                Dim::<D>::boundary_set(&sp, &mesh, &set)?;
+                LoadKind::Traction(set, v)
             }
-            LoadPlanKind::Nodal(set, value) => {
-                LoadKind::Nodal(node_set(&p.key("set"), &mesh, &set)?, value)
+            LoadKind::Pressure(_, v) => {
+                Dim::<D>::boundary_set(&sp, &mesh, &set)?;
+                LoadKind::Pressure(set, v)
             }
-            LoadPlanKind::Resultant(set, value) => {
-                let nodes = node_set(&p.key("set"), &mesh, &set)?;
-                for (c, comp) in [Component::X, Component::Y].into_iter().enumerate() {
-                    if value[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
+            LoadKind::Nodal(_, v) => LoadKind::Nodal(node_set(&sp, &mesh, &set)?, v),
+            LoadKind::Resultant(_, v) => {
+                let nodes = node_set(&sp, &mesh, &set)?;
+                for (c, comp) in Component::all::<D>().into_iter().enumerate() {
+                    if v[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
                         return Err(CliError::at(
-                            &p.key("set"),
+                            &sp,
                             format!(
-                                "`{}` = \"{set}\": a resultant force along {comp} needs the set \
+                                "`{sp}` = \"{set}\": a resultant force along {comp} needs the set \
                                  tied along {comp} (a [[ties]] entry with set = \"{set}\"), so \
                                  that it has one point of application; for a force on each node \
-                                 use type = \"nodal_force\"",
-                                p.key("set")
+                                 use type = \"nodal_force\""
                             ),
                         ));
                     }
                 }
-                LoadKind::Resultant(nodes[0], value)
+                let Some(&first) = nodes.first() else {
+                    return Err(CliError::at(&sp, format!("`{sp}` = \"{set}\" is empty")));
+                };
+                LoadKind::Resultant(first, v)
             }
-            LoadPlanKind::Body(value) => LoadKind::Body(value),
-            LoadPlanKind::Gravity => LoadKind::Gravity,
+            kind => kind,
         };
-        loads.push(LoadRt {
-            name: l.name,
-            kind,
-            function: l.function,
-            phases: l.phases,
-        });
+        loads.push(rt);
     }
     for s in supports.iter().filter(|s| s.phases[0]) {
         let f = function_value(&phases[0], &s.name, &s.function, functions, 0.0);
@@ -515,12 +464,7 @@ pub(super) fn build(
                 .map_err(|e| fem(&root.key("supports"), e))?;
         }
     }
-    let build = if plan.floating {
-        LinearElasticModel::floating
-    } else {
-        LinearElasticModel::new
-    };
-    let mut model = build(mesh, plan.idealization, &materials, sup).map_err(|e| {
+    let mut model = Dim::<D>::model(mesh, &plan.options, &materials, sup).map_err(|e| {
         let at = match &e {
             FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
             FemError::InvalidParameter {
@@ -532,12 +476,145 @@ pub(super) fn build(
         fem(&at.unwrap_or_else(|| root.key("supports")), e)
     })?;
     if let Some((gamma, k0, z)) = plan.initial_stress {
-        let p = root.key("initial_stress");
         model
-            .set_initial_stress(fem_core::geostatic(gamma, k0, z))
-            .map_err(|e| fem(&p, e))?;
+            .set_initial_stress(Dim::<D>::geostatic(gamma, k0, z))
+            .map_err(|e| fem(&root.key("initial_stress"), e))?;
     }
     Ok((model, supports, loads))
+}
+
+/// What the model build reads differently in each dimension: a load's vectors (two numbers or
+/// three, pressures in 3D), the boundary sets tractions name (edge sets, face sets), the
+/// model's constructor (the 2D idealisation, `floating`) and the geostatic stress.
+pub(super) trait ModelDim<const D: usize>: ModelSpace<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    /// What the model is built in besides its mesh, materials and supports.
+    type Options;
+    /// A load's set (where it has one) and kind (its set or node not yet looked up), its type,
+    /// keys and values checked.
+    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<D>)>;
+    /// Checks that the boundary set a traction or pressure names exists.
+    fn boundary_set(path: &KeyPath, mesh: &Mesh<D>, set: &str) -> CliResult<()>;
+    /// The model.
+    fn model(
+        mesh: Mesh<D>,
+        options: &Self::Options,
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<ElasticModel<D>, FemError>;
+    /// The geostatic initial stress (`gamma`, `k0`, the surface's height).
+    fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<D>;
+}
+
+impl ModelDim<2> for Dim<2> {
+    /// The idealisation and `[analysis] floating`.
+    type Options = (Idealization, bool);
+
+    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<2>)> {
+        let vp = p.key("value");
+        Ok(match l.resolve(p)? {
+            LoadSpec::Traction { set, value } => (
+                Some(set),
+                LoadKind::Traction(String::new(), finite2(&vp, value)?),
+            ),
+            LoadSpec::NodalForce { set, value } => {
+                (Some(set), LoadKind::Nodal(Vec::new(), finite2(&vp, value)?))
+            }
+            LoadSpec::Resultant { set, value } => {
+                (Some(set), LoadKind::Resultant(0, finite2(&vp, value)?))
+            }
+            LoadSpec::BodyForce { value } => (None, LoadKind::Body(finite2(&vp, value)?)),
+            LoadSpec::Gravity => (None, LoadKind::Gravity),
+        })
+    }
+
+    fn boundary_set(path: &KeyPath, mesh: &Mesh, set: &str) -> CliResult<()> {
+        mesh.edge_set(set).map(|_| ()).map_err(|_| {
+            CliError::at(
+                path,
+                format!(
+                    "`{path}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
+                    list_names(mesh.edge_set_names())
+                ),
+            )
+        })
+    }
+
+    fn model(
+        mesh: Mesh,
+        &(idealization, floating): &Self::Options,
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<LinearElasticModel, FemError> {
+        if floating {
+            LinearElasticModel::floating(mesh, idealization, materials, supports)
+        } else {
+            LinearElasticModel::new(mesh, idealization, materials, supports)
+        }
+    }
+
+    fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<2> {
+        fem_core::geostatic(gamma, k0, z)
+    }
+}
+
+impl ModelDim<3> for Dim<3> {
+    /// Nothing: a 3D scene has no idealisation and does not float yet.
+    type Options = ();
+
+    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<3>)> {
+        let vp = p.key("value");
+        let v3 = |c: &Coords| -> CliResult<[f64; 3]> {
+            let v = triple(&vp, c)?;
+            for (k, x) in v.iter().enumerate() {
+                finite(&vp.index(k), *x)?;
+            }
+            Ok(v)
+        };
+        Ok(match l.resolve_3d(p)? {
+            LoadSpec3::Traction { set, value } => {
+                (Some(set), LoadKind::Traction(String::new(), v3(&value)?))
+            }
+            LoadSpec3::Pressure { set, value } => (
+                Some(set),
+                LoadKind::Pressure(String::new(), finite(&vp, value)?),
+            ),
+            LoadSpec3::NodalForce { set, value } => {
+                (Some(set), LoadKind::Nodal(Vec::new(), v3(&value)?))
+            }
+            LoadSpec3::Resultant { set, value } => (Some(set), LoadKind::Resultant(0, v3(&value)?)),
+            LoadSpec3::BodyForce { value } => (None, LoadKind::Body(v3(&value)?)),
+            LoadSpec3::Gravity => (None, LoadKind::Gravity),
+        })
+    }
+
+    fn boundary_set(path: &KeyPath, mesh: &SolidMesh, set: &str) -> CliResult<()> {
+        mesh.face_set(set).map(|_| ()).map_err(|_| {
+            CliError::at(
+                path,
+                format!(
+                    "`{path}` = \"{set}\": the mesh has no face set of that name (face sets, the \
+                     physical surfaces: {})",
+                    list_names(mesh.facet_set_names())
+                ),
+            )
+        })
+    }
+
+    fn model(
+        mesh: SolidMesh,
+        _: &(),
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<SolidModel, FemError> {
+        SolidModel::new(mesh, materials, supports)
+    }
+
+    fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<3> {
+        geostatic_3d(gamma, k0, z)
+    }
 }
 
 /// Each material on its regions: every region must exist in the mesh, have one material only,

@@ -34,7 +34,7 @@ pub(super) struct Plan {
     /// The mesh to generate or read.
     pub(super) mesh: MeshPlan,
     /// Materials, supports, loads, initial stress.
-    pub(super) model: ModelPlan,
+    pub(super) model: ModelPlan<2>,
     /// Contact zones and solver settings.
     pub(super) contact: ContactPlan,
 }
@@ -99,7 +99,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     model::check_section(&materials, idealization)?;
     let supports = model::validate_supports(scene, &functions, &phases, 2)?;
     let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
-    let load_names: Vec<Option<String>> = loads.iter().map(|l| l.name.clone()).collect();
+    let load_names: Vec<Option<String>> = loads.iter().map(|l| l.rt.name.clone()).collect();
     model::validate_names(scene, &load_names, &functions, &phases)?;
     let initial_stress = model::validate_initial_stress(scene)?;
     let ties = model::validate_ties(scene, 2)?;
@@ -112,13 +112,12 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
         phases,
         mesh,
         model: ModelPlan {
-            idealization,
+            options: (idealization, floating),
             materials,
             supports,
             loads,
             initial_stress,
             ties,
-            floating,
         },
         contact,
     })))

@@ -162,6 +162,12 @@ impl Driver for CustomDriver<'_> {
                         model.add_body_force(|_| v)
                     }
                     LoadKind::Gravity => model.add_self_weight(),
+                    // refused when a 2D scene is read: a pressure is a load of a 3D scene
+                    LoadKind::Pressure(_, p) => Err(fem_core::FemError::InvalidParameter {
+                        name: "pressure",
+                        value: *p,
+                        expected: "no pressure in a 2D scene (a traction on an edge set)",
+                    }),
                 }
                 .map_err(|e| fem_failed("load", e))?;
             }

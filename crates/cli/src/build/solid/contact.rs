@@ -3,10 +3,9 @@
 //! their tributary areas ([`zones`], the one place where a zone is made, so that node pairs and
 //! node-to-face zones plug in there), their candidates checked, and the simulation made.
 
-use super::super::checks::{finite, non_negative, positive, solver_error};
+use super::super::checks::{finite, node_set, non_negative, positive, solver_error};
 use super::super::contact::{law, phase_laws, settings, zone_name};
 use super::super::supported::{Policy, point as position_text, resolve};
-use super::mesh::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::triple;
 use crate::scene::{Scene, SolverSpec, SupportedContactors};

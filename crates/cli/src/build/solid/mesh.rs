@@ -123,30 +123,3 @@ pub(super) fn build(mp: &KeyPath, plan: MeshPlan3) -> CliResult<SolidMesh> {
         }
     }
 }
-
-/// The nodes of a node set of a 3D mesh, or an error naming the sets there are.
-pub(super) fn node_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResult<Vec<usize>> {
-    mesh.node_set(name).map(<[usize]>::to_vec).map_err(|_| {
-        CliError::at(
-            path,
-            format!(
-                "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
-                super::super::checks::list_names(mesh.node_sets().keys().map(String::as_str))
-            ),
-        )
-    })
-}
-
-/// Checks that a face set exists (tractions, pressures), or names the face sets there are.
-pub(super) fn face_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResult<()> {
-    mesh.face_set(name).map(|_| ()).map_err(|_| {
-        CliError::at(
-            path,
-            format!(
-                "`{path}` = \"{name}\": the mesh has no face set of that name (face sets, the \
-                 physical surfaces: {})",
-                super::super::checks::list_names(mesh.facet_sets().keys().map(String::as_str))
-            ),
-        )
-    })
-}

@@ -9,7 +9,7 @@ use super::RunOptions;
 use super::errors::{fem_failed, io, step_error};
 use super::progress::Progress;
 use super::summary::{BTreeUnits, CurveSummary, MeshFacts};
-use crate::build::{LoadKind3, Phase, SolidStudy, function_value, released_at};
+use crate::build::{LoadKind, Phase, SolidStudy, function_value, released_at};
 use crate::error::{CliError, CliResult};
 use fem_core::Structure;
 use output::{SolidRecorder, StepRow};
@@ -179,23 +179,23 @@ fn apply(study: &mut SolidStudy, p: usize, t: f64, last: &mut Option<Vec<f64>>) 
         }
         let scaled = |v: &[f64; 3]| v.map(|x| x * f);
         match &l.kind {
-            LoadKind3::Traction(set, v) => {
+            LoadKind::Traction(set, v) => {
                 let v = scaled(v);
                 model.add_face_traction(set, |_, _| v)
             }
-            LoadKind3::Pressure(set, p) => {
+            LoadKind::Pressure(set, p) => {
                 let p = p * f;
                 model.add_face_traction(set, |_, n| n.map(|c| -p * c))
             }
-            LoadKind3::Nodal(nodes, v) => nodes
+            LoadKind::Nodal(nodes, v) => nodes
                 .iter()
                 .try_for_each(|&n| model.add_nodal_force(n, scaled(v))),
-            LoadKind3::Resultant(node, v) => model.add_nodal_force(*node, scaled(v)),
-            LoadKind3::Body(v) => {
+            LoadKind::Resultant(node, v) => model.add_nodal_force(*node, scaled(v)),
+            LoadKind::Body(v) => {
                 let v = scaled(v);
                 model.add_body_force(|_| v)
             }
-            LoadKind3::Gravity => model.add_self_weight(),
+            LoadKind::Gravity => model.add_self_weight(),
         }
         .map_err(|e| fem_failed("load", e))?;
     }
