@@ -98,19 +98,6 @@ pub fn kind_name(k: ElementKind) -> &'static str {
     }
 }
 
-/// Whether a mesh of kind `k` has the order of the scene's element name (`P1`: linear
-/// triangles or quadrilaterals, `P2`: quadratic ones): `mesh.element` of a Gmsh file names
-/// the order, the file the shape.
-pub(super) fn has_order(e: Element, k: ElementKind) -> bool {
-    match e {
-        Element::P1 => matches!(k, ElementKind::Tri3 | ElementKind::Quad4),
-        Element::P2 => matches!(
-            k,
-            ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9
-        ),
-    }
-}
-
 /// A `FemError` at `path`, with a hint for a singular stiffness.
 pub(super) fn fem(path: &KeyPath, e: FemError) -> CliError {
     let hint = match e {

@@ -16,6 +16,7 @@
 mod checks;
 mod contact;
 mod curves;
+mod dim;
 mod hertz;
 mod mesh;
 mod model;

@@ -1,24 +1,16 @@
 //! The model of a 2D or 3D scene: materials, supports, loads and the initial stress, their
 //! values checked first (with the time functions and phases they name), then applied to the
 //! mesh (regions, node sets, edge or face sets) to build the [`ElasticModel`] with the supports
-//! of the first phase at t = 0. What the dimension reads differently is [`ModelDim`]'s.
+//! of the first phase at t = 0. What the dimension reads differently is [`SceneDim`]'s.
 
-use super::checks::{
-    expect, fem, finite, finite2, join, list_names, node_set, non_negative, positive,
-};
+use super::checks::{expect, fem, finite, join, list_names, node_set, non_negative, positive};
+use super::dim::SceneDim;
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::study::{LoadKind, LoadRt, SupportRt};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::raw::{RawLoad, triple};
 use crate::scene::{ComponentSpec, Scene};
-use crate::spec::{InitialStress, LoadSpec};
-use crate::spec3::{Coords, LoadSpec3};
-use fem_core::model::ModelSpace;
-use fem_core::solid::{SolidMesh, SolidModel, geostatic_3d};
-use fem_core::{
-    Component, Dim, ElasticModel, FemError, Idealization, LinearElasticModel, Material, Mesh,
-    StressField, Supports,
-};
+use crate::spec::InitialStress;
+use fem_core::{Component, Dim, ElasticModel, FemError, Idealization, Material, Mesh, Supports};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A material, checked, and the regions it is given to (with their key paths).
@@ -211,7 +203,7 @@ pub(super) fn validate_loads<const D: usize>(
     any_weight: bool,
 ) -> CliResult<Vec<LoadPlan<D>>>
 where
-    Dim<D>: ModelDim<D>,
+    Dim<D>: SceneDim<D>,
 {
     let root = KeyPath::root();
     let mut loads = Vec::new();
@@ -314,10 +306,10 @@ pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressP
 /// What the model is built from.
 pub(super) struct ModelPlan<const D: usize>
 where
-    Dim<D>: ModelDim<D>,
+    Dim<D>: SceneDim<D>,
 {
     /// What the dimension builds the model in (2D: the idealisation and `floating`).
-    pub(super) options: <Dim<D> as ModelDim<D>>::Options,
+    pub(super) options: <Dim<D> as SceneDim<D>>::Options,
     /// Materials.
     pub(super) materials: Vec<MaterialPlan>,
     /// Supports.
@@ -395,7 +387,7 @@ pub(super) fn build<const D: usize>(
     phases: &[Phase],
 ) -> CliResult<(ElasticModel<D>, Vec<SupportRt>, Vec<LoadRt<D>>)>
 where
-    Dim<D>: ModelDim<D>,
+    Dim<D>: SceneDim<D>,
 {
     let root = KeyPath::root();
     // An element stiffness that overflows is the material's fault, not the supports'.
@@ -481,140 +473,6 @@ where
             .map_err(|e| fem(&root.key("initial_stress"), e))?;
     }
     Ok((model, supports, loads))
-}
-
-/// What the model build reads differently in each dimension: a load's vectors (two numbers or
-/// three, pressures in 3D), the boundary sets tractions name (edge sets, face sets), the
-/// model's constructor (the 2D idealisation, `floating`) and the geostatic stress.
-pub(super) trait ModelDim<const D: usize>: ModelSpace<D>
-where
-    Dim<D>: ModelSpace<D>,
-{
-    /// What the model is built in besides its mesh, materials and supports.
-    type Options;
-    /// A load's set (where it has one) and kind (its set or node not yet looked up), its type,
-    /// keys and values checked.
-    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<D>)>;
-    /// Checks that the boundary set a traction or pressure names exists.
-    fn boundary_set(path: &KeyPath, mesh: &Mesh<D>, set: &str) -> CliResult<()>;
-    /// The model.
-    fn model(
-        mesh: Mesh<D>,
-        options: &Self::Options,
-        materials: &[(u32, Material)],
-        supports: Supports,
-    ) -> Result<ElasticModel<D>, FemError>;
-    /// The geostatic initial stress (`gamma`, `k0`, the surface's height).
-    fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<D>;
-}
-
-impl ModelDim<2> for Dim<2> {
-    /// The idealisation and `[analysis] floating`.
-    type Options = (Idealization, bool);
-
-    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<2>)> {
-        let vp = p.key("value");
-        Ok(match l.resolve(p)? {
-            LoadSpec::Traction { set, value } => (
-                Some(set),
-                LoadKind::Traction(String::new(), finite2(&vp, value)?),
-            ),
-            LoadSpec::NodalForce { set, value } => {
-                (Some(set), LoadKind::Nodal(Vec::new(), finite2(&vp, value)?))
-            }
-            LoadSpec::Resultant { set, value } => {
-                (Some(set), LoadKind::Resultant(0, finite2(&vp, value)?))
-            }
-            LoadSpec::BodyForce { value } => (None, LoadKind::Body(finite2(&vp, value)?)),
-            LoadSpec::Gravity => (None, LoadKind::Gravity),
-        })
-    }
-
-    fn boundary_set(path: &KeyPath, mesh: &Mesh, set: &str) -> CliResult<()> {
-        mesh.edge_set(set).map(|_| ()).map_err(|_| {
-            CliError::at(
-                path,
-                format!(
-                    "`{path}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
-                    list_names(mesh.edge_set_names())
-                ),
-            )
-        })
-    }
-
-    fn model(
-        mesh: Mesh,
-        &(idealization, floating): &Self::Options,
-        materials: &[(u32, Material)],
-        supports: Supports,
-    ) -> Result<LinearElasticModel, FemError> {
-        if floating {
-            LinearElasticModel::floating(mesh, idealization, materials, supports)
-        } else {
-            LinearElasticModel::new(mesh, idealization, materials, supports)
-        }
-    }
-
-    fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<2> {
-        fem_core::geostatic(gamma, k0, z)
-    }
-}
-
-impl ModelDim<3> for Dim<3> {
-    /// Nothing: a 3D scene has no idealisation and does not float yet.
-    type Options = ();
-
-    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<3>)> {
-        let vp = p.key("value");
-        let v3 = |c: &Coords| -> CliResult<[f64; 3]> {
-            let v = triple(&vp, c)?;
-            for (k, x) in v.iter().enumerate() {
-                finite(&vp.index(k), *x)?;
-            }
-            Ok(v)
-        };
-        Ok(match l.resolve_3d(p)? {
-            LoadSpec3::Traction { set, value } => {
-                (Some(set), LoadKind::Traction(String::new(), v3(&value)?))
-            }
-            LoadSpec3::Pressure { set, value } => (
-                Some(set),
-                LoadKind::Pressure(String::new(), finite(&vp, value)?),
-            ),
-            LoadSpec3::NodalForce { set, value } => {
-                (Some(set), LoadKind::Nodal(Vec::new(), v3(&value)?))
-            }
-            LoadSpec3::Resultant { set, value } => (Some(set), LoadKind::Resultant(0, v3(&value)?)),
-            LoadSpec3::BodyForce { value } => (None, LoadKind::Body(v3(&value)?)),
-            LoadSpec3::Gravity => (None, LoadKind::Gravity),
-        })
-    }
-
-    fn boundary_set(path: &KeyPath, mesh: &SolidMesh, set: &str) -> CliResult<()> {
-        mesh.face_set(set).map(|_| ()).map_err(|_| {
-            CliError::at(
-                path,
-                format!(
-                    "`{path}` = \"{set}\": the mesh has no face set of that name (face sets, the \
-                     physical surfaces: {})",
-                    list_names(mesh.facet_set_names())
-                ),
-            )
-        })
-    }
-
-    fn model(
-        mesh: SolidMesh,
-        _: &(),
-        materials: &[(u32, Material)],
-        supports: Supports,
-    ) -> Result<SolidModel, FemError> {
-        SolidModel::new(mesh, materials, supports)
-    }
-
-    fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<3> {
-        geostatic_3d(gamma, k0, z)
-    }
 }
 
 /// Each material on its regions: every region must exist in the mesh, have one material only,
