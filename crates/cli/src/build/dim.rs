@@ -18,7 +18,7 @@ use fem_core::{Material, Mesh, StressField, Supports};
 use std::path::Path;
 
 /// What a scene reads differently in each dimension (see the module docs).
-pub(super) trait SceneDim<const D: usize>: ModelSpace<D>
+pub(crate) trait SceneDim<const D: usize>: ModelSpace<D>
 where
     Dim<D>: ModelSpace<D>,
 {
@@ -43,6 +43,16 @@ where
     /// Whether `mesh`'s elements have the order `e` names (`mesh.element` of a Gmsh file names
     /// the order, the file the shape), and their name for messages.
     fn element_order(e: Element, mesh: &Mesh<D>) -> (bool, &'static str);
+    /// Adds a uniform traction on the boundary set `set` (edges, faces) to the model's loads.
+    ///
+    /// # Errors
+    /// The model's, for a set it does not have.
+    fn traction(model: &mut ElasticModel<D>, set: &str, t: [f64; D]) -> Result<(), FemError>;
+    /// Adds a pressure `p` (positive into the body) on the face set `set`.
+    ///
+    /// # Errors
+    /// The model's, for a set it does not have; in 2D, always (a 2D scene has no pressure).
+    fn pressure(model: &mut ElasticModel<D>, set: &str, p: f64) -> Result<(), FemError>;
 }
 
 impl SceneDim<2> for Dim<2> {
@@ -111,6 +121,19 @@ impl SceneDim<2> for Dim<2> {
             ),
         };
         (order, kind_name(k))
+    }
+
+    fn traction(model: &mut LinearElasticModel, set: &str, t: [f64; 2]) -> Result<(), FemError> {
+        model.add_edge_traction(set, |_| t)
+    }
+
+    /// Refused when a 2D scene is read: a pressure is a load of a 3D scene.
+    fn pressure(_: &mut LinearElasticModel, _: &str, p: f64) -> Result<(), FemError> {
+        Err(FemError::InvalidParameter {
+            name: "pressure",
+            value: p,
+            expected: "no pressure in a 2D scene (a traction on an edge set)",
+        })
     }
 }
 
@@ -182,5 +205,13 @@ impl SceneDim<3> for Dim<3> {
             Element::P2 => matches!(k, SolidKind::Tet10 | SolidKind::Hex20),
         };
         (order, solid_kind_name(k))
+    }
+
+    fn traction(model: &mut SolidModel, set: &str, t: [f64; 3]) -> Result<(), FemError> {
+        model.add_face_traction(set, |_, _| t)
+    }
+
+    fn pressure(model: &mut SolidModel, set: &str, p: f64) -> Result<(), FemError> {
+        model.add_face_traction(set, |_, n| n.map(|c| -p * c))
     }
 }

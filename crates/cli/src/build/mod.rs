@@ -29,12 +29,16 @@ mod supported;
 mod validate;
 
 pub use checks::kind_name;
+pub(crate) use dim::SceneDim;
 pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{
-    Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
+    Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
+    phase_law_names,
 };
 pub use solid::{SolidStudy, solid_kind_name};
-pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study, released_at};
+pub use study::{
+    Body, Custom, Library, LoadKind, LoadRt, PresetStudy, Study, SupportRt, released_at,
+};
 
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
