@@ -14,13 +14,14 @@ use crate::scene::{
 };
 use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::coupling::space::ContactSpace;
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
 use contact_solver::{
-    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
-    FlexibilityMode, RigidArc, RigidLine, SimulationSettings, recognize, supported_contactors,
+    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, FlexibilityMode, RigidArc,
+    RigidLine, SimulationSettings, recognize, supported_contactors,
 };
-use fem_core::LinearElasticModel;
+use fem_core::{Dim, LinearElasticModel};
 use std::collections::BTreeSet;
 use std::f64::consts::TAU;
 
@@ -86,10 +87,15 @@ fn count(path: &KeyPath, n: usize, max: usize) -> CliResult<usize> {
     Ok(n)
 }
 
-/// `[solver]`, checked, as the library's settings.
-pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
+/// `[solver]`, checked, as the library's settings of dimension `D`: the keys the scene gives
+/// over [`SimulationSettings::for_dimension`]`::<D>()` (the `Auto` dense limit, the right-hand
+/// sides per solve and the detection passes measured for each dimension).
+pub(super) fn settings<const D: usize>(s: &SolverSpec) -> CliResult<SimulationSettings>
+where
+    Dim<D>: ContactSpace<D>,
+{
     let root = KeyPath::root().key("solver");
-    let mut out = SimulationSettings::default();
+    let mut out = SimulationSettings::for_dimension::<D>();
     if let Some(a) = s.algorithm {
         out.solver.algorithm = match a {
             AlgorithmSpec::Bipotential => Algorithm::default(),
@@ -179,7 +185,9 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     if let Some(b) = s.fallback {
         out.solver.fallback = b;
     }
-    let dense_limit = s.dense_limit.unwrap_or(DEFAULT_DENSE_LIMIT);
+    let dense_limit = s
+        .dense_limit
+        .unwrap_or(<Dim<D> as ContactSpace<D>>::DENSE_LIMIT);
     out.flexibility = match s.flexibility.unwrap_or(FlexibilitySpec::Auto) {
         FlexibilitySpec::Auto => FlexibilityMode::Auto { dense_limit },
         other if s.dense_limit.is_some() => {
@@ -264,7 +272,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
             "the scene has no [[contact]] zone (bipo solves contact problems)",
         ));
     }
-    let settings = settings(&scene.solver)?;
+    let settings = settings::<2>(&scene.solver)?;
     let mut zones = Vec::new();
     let mut names = BTreeSet::new();
     let (mut adhesive, mut friction) = (0, 0);

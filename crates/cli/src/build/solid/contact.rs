@@ -8,7 +8,7 @@ use super::super::contact::{law, phase_laws, settings, zone_name};
 use super::super::supported::{Policy, point as position_text, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::triple;
-use crate::scene::{Scene, SolverSpec, SupportedContactors};
+use crate::scene::{Scene, SupportedContactors};
 use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
@@ -16,7 +16,7 @@ use contact_solver::coupling::solid::{
     Candidate3, ContactZone3, PairNormals3, RigidCylinder, RigidPlane, RigidSphere, Side3,
     SolidContactSimulation, TriSurface, supported_contactors_3d,
 };
-use contact_solver::{FlexibilityMode, SimulationSettings, SolverError};
+use contact_solver::{SimulationSettings, SolverError};
 use fem_core::solid::{SolidMesh, SolidModel};
 use std::collections::BTreeSet;
 
@@ -56,22 +56,6 @@ pub(super) struct ContactPlan3 {
     pub(super) settings: SimulationSettings,
     /// Per phase (in order), the laws it sets: `(zone, law)`.
     pub(super) phase_laws: Vec<Vec<(String, StandardLaw)>>,
-}
-
-/// `[solver]` for the 3D simulation: the keys read as in 2D, over the 3D defaults
-/// ([`SimulationSettings::for_dimension`]`::<3>()`: the `Auto` dense limit, the right-hand
-/// sides per solve and the detection passes measured for 3D) where the scene leaves them out.
-fn settings_3d(s: &SolverSpec) -> CliResult<SimulationSettings> {
-    let mut out = settings(s)?;
-    let solid = SimulationSettings::for_dimension::<3>();
-    if matches!(out.flexibility, FlexibilityMode::Auto { .. }) && s.dense_limit.is_none() {
-        out.flexibility = solid.flexibility;
-    }
-    if s.max_detection_passes.is_none() {
-        out.tuning.max_detection_passes = solid.tuning.max_detection_passes;
-    }
-    out.columns_per_solve = solid.columns_per_solve;
-    Ok(out)
 }
 
 /// Three finite numbers at `p`.
@@ -163,7 +147,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
             "the scene has no [[contact]] zone (bipo solves contact problems)",
         ));
     }
-    let settings = settings_3d(&scene.solver)?;
+    let settings = settings::<3>(&scene.solver)?;
     let mut zones = Vec::new();
     let mut laws = Vec::new();
     let mut names = BTreeSet::new();
@@ -405,29 +389,30 @@ mod tests {
 
     #[test]
     fn settings_3d_reads_the_paths_with_the_3d_default() {
-        use crate::scene::FlexibilitySpec;
+        use crate::scene::{FlexibilitySpec, SolverSpec};
+        use contact_solver::FlexibilityMode;
         let s = SolverSpec {
             max_detection_passes: Some(7),
             flexibility: Some(FlexibilitySpec::Dense),
             ..SolverSpec::default()
         };
-        let out = settings_3d(&s).unwrap();
+        let out = settings::<3>(&s).unwrap();
         assert_eq!(out.tuning.max_detection_passes, 7);
         assert_eq!(out.flexibility, FlexibilityMode::Dense);
-        let auto = settings_3d(&SolverSpec::default()).unwrap().flexibility;
+        let auto = settings::<3>(&SolverSpec::default()).unwrap().flexibility;
         assert_eq!(auto, FlexibilityMode::Auto { dense_limit: 3000 });
         let s = SolverSpec {
             dense_limit: Some(10),
             ..SolverSpec::default()
         };
-        let limited = settings_3d(&s).unwrap().flexibility;
+        let limited = settings::<3>(&s).unwrap().flexibility;
         assert_eq!(limited, FlexibilityMode::Auto { dense_limit: 10 });
         let s = SolverSpec {
             flexibility: Some(FlexibilitySpec::ActiveSet),
             ..SolverSpec::default()
         };
         assert_eq!(
-            settings_3d(&s).unwrap().flexibility,
+            settings::<3>(&s).unwrap().flexibility,
             FlexibilityMode::ActiveSet
         );
         // dense_limit with another path is refused at its key, as in 2D
@@ -436,7 +421,7 @@ mod tests {
             dense_limit: Some(10),
             ..SolverSpec::default()
         };
-        let e = settings_3d(&s).unwrap_err();
+        let e = settings::<3>(&s).unwrap_err();
         assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
     }
 }
