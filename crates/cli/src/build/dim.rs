@@ -24,6 +24,8 @@ where
 {
     /// What the model is built in besides its mesh, materials and supports.
     type Options;
+    /// The 2D idealisation among the options (none in 3D).
+    fn idealization(options: &Self::Options) -> Option<Idealization>;
     /// A load's set (where it has one) and kind (its set or node not yet looked up), its type,
     /// keys and values checked.
     fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<D>)>;
@@ -58,6 +60,10 @@ where
 impl SceneDim<2> for Dim<2> {
     /// The idealisation and `[analysis] floating`.
     type Options = (Idealization, bool);
+
+    fn idealization(options: &Self::Options) -> Option<Idealization> {
+        Some(options.0)
+    }
 
     fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<2>)> {
         let vp = p.key("value");
@@ -140,6 +146,10 @@ impl SceneDim<2> for Dim<2> {
 impl SceneDim<3> for Dim<3> {
     /// Nothing: a 3D scene has no idealisation and does not float yet.
     type Options = ();
+
+    fn idealization(_: &()) -> Option<Idealization> {
+        None
+    }
 
     fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<3>)> {
         let vp = p.key("value");

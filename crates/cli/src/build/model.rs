@@ -43,10 +43,7 @@ pub(super) type InitialStressPlan = Option<(f64, f64, f64)>;
 /// In plane stress, the section stiffness `E·h` of every material must stay finite: a
 /// thickness whose product with a Young modulus overflows is named here, not as an element
 /// whose stiffness is not finite.
-pub(super) fn check_section(
-    materials: &[MaterialPlan],
-    idealization: Idealization,
-) -> CliResult<()> {
+fn check_section(materials: &[MaterialPlan], idealization: Idealization) -> CliResult<()> {
     let Idealization::PlaneStress { thickness } = idealization else {
         return Ok(());
     };
@@ -108,7 +105,7 @@ pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> 
 
 /// Checks `[[materials]]`: moduli, unit weights and the form of `region` / `regions`. Also
 /// says whether any material has a unit weight (for gravity loads).
-pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
+fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
     let root = KeyPath::root();
     if scene.materials.is_empty() {
         return Err(CliError::at(
@@ -157,7 +154,7 @@ pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>,
 }
 
 /// Checks `[[supports]]`: values, function names and phase lists (one support at least).
-pub(super) fn validate_supports(
+fn validate_supports(
     scene: &Scene,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
@@ -196,7 +193,7 @@ pub(super) fn validate_supports(
 
 /// Checks `[[loads]]`: their `type` and keys, values, function names and phase lists (a gravity
 /// load needs a unit weight).
-pub(super) fn validate_loads<const D: usize>(
+fn validate_loads<const D: usize>(
     scene: &Scene,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
@@ -234,7 +231,7 @@ where
 
 /// Checks the names of supports and loads (unique) and the phases' function overrides, which
 /// name them.
-pub(super) fn validate_names(
+fn validate_names(
     scene: &Scene,
     load_names: &[Option<String>],
     functions: &BTreeMap<String, TimeFunction>,
@@ -281,7 +278,7 @@ pub(super) fn validate_names(
 }
 
 /// Checks `[initial_stress]`.
-pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
+fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
     let root = KeyPath::root();
     let initial = scene
         .initial_stress
@@ -300,6 +297,35 @@ pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressP
             Some((gamma, k0, z))
         }
         None => None,
+    })
+}
+
+/// Checks what the model is built from, in the order of the scene's sections: materials (and
+/// the 2D section stiffness), supports, loads, their names, the initial stress and the ties.
+pub(super) fn validate<const D: usize>(
+    scene: &Scene,
+    functions: &BTreeMap<String, TimeFunction>,
+    phases: &[Phase],
+    options: <Dim<D> as SceneDim<D>>::Options,
+) -> CliResult<ModelPlan<D>>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let (materials, any_weight) = validate_materials(scene)?;
+    if let Some(idealization) = Dim::<D>::idealization(&options) {
+        check_section(&materials, idealization)?;
+    }
+    let supports = validate_supports(scene, functions, phases, D)?;
+    let loads = validate_loads::<D>(scene, functions, phases, any_weight)?;
+    let names: Vec<Option<String>> = loads.iter().map(|l| l.rt.name.clone()).collect();
+    validate_names(scene, &names, functions, phases)?;
+    Ok(ModelPlan {
+        options,
+        materials,
+        supports,
+        loads,
+        initial_stress: validate_initial_stress(scene)?,
+        ties: validate_ties(scene, D)?,
     })
 }
 
@@ -326,7 +352,7 @@ where
 pub(super) type Ties = Vec<(KeyPath, String, Vec<Component>)>;
 
 /// Checks `[[ties]]` (the sets are looked up in the mesh at build).
-pub(super) fn validate_ties(scene: &Scene, dim: usize) -> CliResult<Ties> {
+fn validate_ties(scene: &Scene, dim: usize) -> CliResult<Ties> {
     scene
         .ties
         .iter()

@@ -8,7 +8,7 @@ use super::checks::positive;
 use super::contact::{self, ContactPlan};
 use super::mesh::{self, MeshPlan};
 use super::model::{self, ModelPlan};
-use super::phases::{Phase, TimeFunction, phases_of, time_function};
+use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::presets::{self, PresetPlan};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
@@ -53,13 +53,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
 
     // time functions and phases first: supports and loads refer to them
-    let mut functions = BTreeMap::new();
-    for (name, pts) in &scene.functions {
-        functions.insert(
-            name.clone(),
-            time_function(&root.key("functions").key(name), pts)?,
-        );
-    }
+    let functions = time_functions(scene)?;
     let phases = phases_of(scene, None)?;
 
     // mesh and analysis
@@ -94,16 +88,8 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     };
     let mesh = mesh::validate(&mp, mesh_spec, idealization, &base_dir)?;
 
-    // the model
-    let (materials, any_weight) = model::validate_materials(scene)?;
-    model::check_section(&materials, idealization)?;
-    let supports = model::validate_supports(scene, &functions, &phases, 2)?;
-    let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
-    let load_names: Vec<Option<String>> = loads.iter().map(|l| l.rt.name.clone()).collect();
-    model::validate_names(scene, &load_names, &functions, &phases)?;
-    let initial_stress = model::validate_initial_stress(scene)?;
-    let ties = model::validate_ties(scene, 2)?;
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
+    let model = model::validate(scene, &functions, &phases, (idealization, floating))?;
 
     // contact (the solver settings with it)
     let contact = contact::validate(scene)?;
@@ -111,14 +97,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
         functions,
         phases,
         mesh,
-        model: ModelPlan {
-            options: (idealization, floating),
-            materials,
-            supports,
-            loads,
-            initial_stress,
-            ties,
-        },
+        model,
         contact,
     })))
 }

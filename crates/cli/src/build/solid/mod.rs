@@ -18,12 +18,9 @@ mod plots;
 pub use mesh::solid_kind_name;
 
 use super::Loaded;
-use super::model::{
-    self, validate_initial_stress, validate_materials, validate_names, validate_supports,
-    validate_ties,
-};
+use super::model;
 use super::outputs::{MAX_OUTPUT_FILES, check_output_table};
-use super::phases::{Phase, TimeFunction, phases_of, time_function};
+use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::study::{LoadRt, SupportRt, written_steps};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{OutputSpec, PlotSpec, Scene, Units};
@@ -126,13 +123,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let mut functions = BTreeMap::new();
-    for (name, pts) in &scene.functions {
-        functions.insert(
-            name.clone(),
-            time_function(&root.key("functions").key(name), pts)?,
-        );
-    }
+    let functions = time_functions(scene)?;
     let phases = phases_of(scene, None)?;
     let mp = root.key("mesh");
     let mesh_raw = scene.mesh.as_ref().ok_or_else(|| {
@@ -145,25 +136,11 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
     if let Some(a) = &scene.analysis {
         a.resolve(&root.key("analysis"))?;
     }
-    let (materials, any_weight) = validate_materials(scene)?;
-    let supports = validate_supports(scene, &functions, &phases, 3)?;
-    let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
-    let names: Vec<Option<String>> = loads.iter().map(|l| l.rt.name.clone()).collect();
-    validate_names(scene, &names, &functions, &phases)?;
-    let initial_stress = validate_initial_stress(scene)?;
-    let ties = validate_ties(scene, 3)?;
+    let plan = model::validate(scene, &functions, &phases, ())?;
     let contact = contact::validate(scene)?;
     refuse_unsupported(scene)?;
 
     let mesh = mesh::build(&mp, mesh_plan)?;
-    let plan = model::ModelPlan {
-        options: (),
-        materials,
-        supports,
-        loads,
-        ties,
-        initial_stress,
-    };
     let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
     let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
