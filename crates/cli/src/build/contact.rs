@@ -9,6 +9,7 @@ use super::checks::{
 use super::curves;
 use super::supported::{Policy, point, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
+use crate::raw::RawTarget;
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
 };
@@ -26,7 +27,7 @@ use std::collections::BTreeSet;
 use std::f64::consts::TAU;
 
 /// What a zone faces, checked; node sets are looked up in the mesh at build.
-enum TargetPlan {
+pub(super) enum TargetPlan {
     Line(RigidLine),
     Arc(RigidArc),
     NodePairs {
@@ -38,22 +39,23 @@ enum TargetPlan {
     },
 }
 
-/// A contact zone, checked.
-pub(super) struct ZonePlan {
-    path: KeyPath,
-    name: String,
-    contactor: String,
-    law: StandardLaw,
-    law_name: &'static str,
-    alert: f64,
-    target: TargetPlan,
-    supported: SupportedContactors,
+/// A contact zone, checked, against a target of type `T` (2D: [`TargetPlan`], 3D: the solid
+/// obstacle).
+pub(super) struct ZonePlan<T> {
+    pub(super) path: KeyPath,
+    pub(super) name: String,
+    pub(super) contactor: String,
+    pub(super) law: StandardLaw,
+    pub(super) law_name: &'static str,
+    pub(super) alert: f64,
+    pub(super) target: T,
+    pub(super) supported: SupportedContactors,
 }
 
 /// The zones of a scene, checked, how many have adhesion and friction, and the solver settings.
-pub(super) struct ContactPlan {
+pub(super) struct ContactPlan<T> {
     /// Zones, in the scene's order.
-    pub(super) zones: Vec<ZonePlan>,
+    pub(super) zones: Vec<ZonePlan<T>>,
     /// Zones whose law has adhesion.
     pub(super) adhesive: usize,
     /// Zones whose law has friction.
@@ -262,9 +264,15 @@ pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'stat
     })
 }
 
-/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry) and
-/// `[solver]`.
-pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
+/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry, read by
+/// `target` at each zone's `target` key) and `[solver]`, in a scene of dimension `D`.
+pub(super) fn validate<const D: usize, T>(
+    scene: &Scene,
+    target: impl Fn(&KeyPath, &RawTarget) -> CliResult<T>,
+) -> CliResult<ContactPlan<T>>
+where
+    Dim<D>: ContactSpace<D>,
+{
     let root = KeyPath::root();
     if scene.contact.is_empty() {
         return Err(CliError::at(
@@ -272,7 +280,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
             "the scene has no [[contact]] zone (bipo solves contact problems)",
         ));
     }
-    let settings = settings::<2>(&scene.solver)?;
+    let settings = settings::<D>(&scene.solver)?;
     let mut zones = Vec::new();
     let mut names = BTreeSet::new();
     let (mut adhesive, mut friction) = (0, 0);
@@ -287,7 +295,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
         if l.has_friction() {
             friction += 1;
         }
-        let target = target(&p.key("target"), &z.target.resolve(&p.key("target"))?)?;
+        let target = target(&p.key("target"), &z.target)?;
         zones.push(ZonePlan {
             path: p,
             name: z.name.clone(),
@@ -342,9 +350,9 @@ pub(super) fn phase_laws(
     Ok(out)
 }
 
-/// The geometry of a target at `tp`, checked (rigid lines and arcs are built here).
-fn target(tp: &KeyPath, t: &TargetSpec) -> CliResult<TargetPlan> {
-    Ok(match t {
+/// The target of a 2D zone at `tp`, its geometry checked (rigid lines and arcs are built here).
+pub(super) fn target(tp: &KeyPath, t: &RawTarget) -> CliResult<TargetPlan> {
+    Ok(match &t.resolve(tp)? {
         TargetSpec::Line { a, b } => {
             let a = finite2(&tp.key("a"), *a)?;
             let b = finite2(&tp.key("b"), *b)?;
@@ -418,7 +426,7 @@ pub(super) type BuiltContact = (
 /// each zone's law name, and the warnings (contactor nodes held by a support, left out).
 pub(super) fn build(
     model: LinearElasticModel,
-    plan: Vec<ZonePlan>,
+    plan: Vec<ZonePlan<TargetPlan>>,
     settings: SimulationSettings,
 ) -> CliResult<BuiltContact> {
     let root = KeyPath::root();

@@ -5,7 +5,7 @@
 //! regions, candidates, the plots' nodes) is checked by the build that follows.
 
 use super::checks::positive;
-use super::contact::{self, ContactPlan};
+use super::contact::{self, ContactPlan, TargetPlan};
 use super::mesh::{self, MeshPlan};
 use super::model::{self, ModelPlan};
 use super::phases::{Phase, TimeFunction, phases_of, time_functions};
@@ -36,7 +36,7 @@ pub(super) struct Plan {
     /// Materials, supports, loads, initial stress.
     pub(super) model: ModelPlan<2>,
     /// Contact zones and solver settings.
-    pub(super) contact: ContactPlan,
+    pub(super) contact: ContactPlan<TargetPlan>,
 }
 
 /// Checks every value of the scene that does not need the mesh, in the order of the file's
@@ -92,7 +92,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     let model = model::validate(scene, &functions, &phases, (idealization, floating))?;
 
     // contact (the solver settings with it)
-    let contact = contact::validate(scene)?;
+    let contact = contact::validate::<2, _>(scene, contact::target)?;
     Ok(Validated::Custom(Box::new(Plan {
         functions,
         phases,

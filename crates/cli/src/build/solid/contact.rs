@@ -3,12 +3,11 @@
 //! their tributary areas ([`zones`], the one place where a zone is made, so that node pairs and
 //! node-to-face zones plug in there), their candidates checked, and the simulation made.
 
-use super::super::checks::{finite, node_set, non_negative, positive, solver_error};
-use super::super::contact::{law, phase_laws, settings, zone_name};
+use super::super::checks::{finite, node_set, positive, solver_error};
+use super::super::contact::ZonePlan;
 use super::super::supported::{Policy, point as position_text, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::raw::triple;
-use crate::scene::{Scene, SupportedContactors};
+use crate::raw::{RawTarget, triple};
 use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
@@ -18,11 +17,10 @@ use contact_solver::coupling::solid::{
 };
 use contact_solver::{SimulationSettings, SolverError};
 use fem_core::solid::{SolidMesh, SolidModel};
-use std::collections::BTreeSet;
 
 /// A target, checked: rigid (built), or another body's nodes or faces (looked up in the mesh
 /// at build).
-enum Obstacle {
+pub(super) enum Obstacle {
     Plane(RigidPlane),
     Sphere(RigidSphere),
     Cylinder(RigidCylinder),
@@ -33,29 +31,6 @@ enum Obstacle {
     },
     /// Node-to-face on a face set.
     Faces(String),
-}
-
-/// A 3D contact zone, checked; its contactor set is looked up in the mesh at build.
-pub(super) struct ZonePlan3 {
-    path: KeyPath,
-    name: String,
-    contactor: String,
-    law: StandardLaw,
-    alert: f64,
-    target: Obstacle,
-    supported: SupportedContactors,
-}
-
-/// The zones of a 3D scene, checked, with their law names, and the settings.
-pub(super) struct ContactPlan3 {
-    /// Zones, in the scene's order.
-    pub(super) zones: Vec<ZonePlan3>,
-    /// Law name of each zone.
-    pub(super) laws: Vec<String>,
-    /// `[solver]`.
-    pub(super) settings: SimulationSettings,
-    /// Per phase (in order), the laws it sets: `(zone, law)`.
-    pub(super) phase_laws: Vec<Vec<(String, StandardLaw)>>,
 }
 
 /// Three finite numbers at `p`.
@@ -90,10 +65,10 @@ fn side(s: ArcSideSpec) -> Side3 {
     }
 }
 
-/// The rigid target at `tp`, checked and built.
-fn target(tp: &KeyPath, t: &TargetSpec3) -> CliResult<Obstacle> {
+/// The target of a 3D zone at `tp`, checked and built.
+pub(super) fn target(tp: &KeyPath, t: &RawTarget) -> CliResult<Obstacle> {
     let err = |e: SolverError| solver_error(tp, e);
-    Ok(match t {
+    Ok(match &t.resolve_3d(tp)? {
         TargetSpec3::Plane { point: x, normal } => Obstacle::Plane(
             RigidPlane::new(
                 point(&tp.key("point"), x)?,
@@ -138,51 +113,12 @@ fn target(tp: &KeyPath, t: &TargetSpec3) -> CliResult<Obstacle> {
     })
 }
 
-/// Checks `[[contact]]` of a 3D scene (names, alert distances, laws, targets) and `[solver]`.
-pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
-    let root = KeyPath::root();
-    if scene.contact.is_empty() {
-        return Err(CliError::at(
-            &root,
-            "the scene has no [[contact]] zone (bipo solves contact problems)",
-        ));
-    }
-    let settings = settings::<3>(&scene.solver)?;
-    let mut zones = Vec::new();
-    let mut laws = Vec::new();
-    let mut names = BTreeSet::new();
-    for (i, z) in scene.contact.iter().enumerate() {
-        let p = root.key("contact").index(i);
-        zone_name(&p, &z.name, &mut names)?;
-        let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
-        let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
-        let target = target(&p.key("target"), &z.target.resolve_3d(&p.key("target"))?)?;
-        laws.push(law_name.to_string());
-        zones.push(ZonePlan3 {
-            path: p,
-            name: z.name.clone(),
-            contactor: z.contactor.clone(),
-            law: l,
-            alert,
-            target,
-            supported: z.supported_contactors,
-        });
-    }
-    let phase_laws = phase_laws(scene, &names)?;
-    Ok(ContactPlan3 {
-        zones,
-        laws,
-        settings,
-        phase_laws,
-    })
-}
-
 /// The contact zones on the mesh: each contactor set's nodes, with the consistent nodal areas
 /// of its faces when it is a face set (a physical surface; the reports' pressures are then
 /// `r_n / A_i`), against its target (rigid, node pairs by position, or faces).
 pub(super) fn zones(
     mesh: &SolidMesh,
-    plans: &[ZonePlan3],
+    plans: &[ZonePlan<Obstacle>],
 ) -> CliResult<Vec<ContactZone3<StandardLaw>>> {
     let mut out = Vec::with_capacity(plans.len());
     for z in plans {
@@ -287,7 +223,7 @@ fn pair_by_position(
 /// than the alert distance, one within it). A library refusal is told at the `contact` key.
 pub(super) fn build(
     model: SolidModel,
-    plans: &[ZonePlan3],
+    plans: &[ZonePlan<Obstacle>],
     settings: SimulationSettings,
 ) -> CliResult<(SolidContactSimulation<SolidModel, StandardLaw>, Vec<String>)> {
     let contact = KeyPath::root().key("contact");
@@ -325,7 +261,7 @@ pub(super) fn build(
 /// and one within the alert distance.
 fn check_candidates(
     candidates: &[Candidate3],
-    plans: &[ZonePlan3],
+    plans: &[ZonePlan<Obstacle>],
     nodes: &[[f64; 3]],
 ) -> CliResult<()> {
     for (z, zone) in plans.iter().enumerate() {
@@ -389,6 +325,7 @@ mod tests {
 
     #[test]
     fn settings_3d_reads_the_paths_with_the_3d_default() {
+        use super::super::super::contact::settings;
         use crate::scene::{FlexibilitySpec, SolverSpec};
         use contact_solver::FlexibilityMode;
         let s = SolverSpec {

@@ -137,7 +137,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         a.resolve(&root.key("analysis"))?;
     }
     let plan = model::validate(scene, &functions, &phases, ())?;
-    let contact = contact::validate(scene)?;
+    let contact = super::contact::validate::<3, _>(scene, contact::target)?;
     refuse_unsupported(scene)?;
 
     let mesh = mesh::build(&mp, mesh_plan)?;
@@ -162,7 +162,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         phases,
         output: scene.output.clone(),
         zone_names,
-        zone_laws: contact.laws,
+        zone_laws: contact.zones.iter().map(|z| z.law_name.into()).collect(),
         phase_laws: contact.phase_laws,
         warnings,
         hertz,
