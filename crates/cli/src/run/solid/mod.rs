@@ -9,7 +9,7 @@ use super::RunOptions;
 use super::driver::apply_step;
 use super::errors::{fem_failed, io, step_error};
 use super::progress::Progress;
-use super::summary::{BTreeUnits, CurveSummary, MeshFacts};
+use super::summary::{BTreeUnits, CurveSummary, MeshFacts, status};
 use crate::build::{Phase, SolidStudy, released_at};
 use crate::error::{CliError, CliResult};
 use fem_core::Structure;
@@ -314,18 +314,8 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
         scene: opts.scene_file.display().to_string(),
         title: study.title.clone(),
         dimension: 3,
-        units: BTreeUnits {
-            length: study.units.length.clone(),
-            force: study.units.force.clone(),
-            time: study.units.time.clone(),
-            stress: study.units.stress.clone(),
-        },
-        status: if error.is_some() {
-            "failed"
-        } else {
-            "completed"
-        }
-        .into(),
+        units: BTreeUnits::of(&study.units),
+        status: status(error.as_ref()),
         error: error.as_ref().map(|e| e.message.clone()),
         steps,
         time,
