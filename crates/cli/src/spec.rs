@@ -179,66 +179,37 @@ pub enum InitialStress {
     },
 }
 
-/// A load.
+/// A load of a 2D scene (its name, function and phases are `RawLoad::common`'s).
 #[derive(Debug, Clone)]
 pub enum LoadSpec {
     /// Traction (force per area, global frame) on an edge set.
     Traction {
-        /// A name.
-        name: Option<String>,
         /// Edge set.
         set: String,
         /// `[t_x, t_y]`.
         value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
     },
     /// A force on every node of a node set.
     NodalForce {
-        /// A name.
-        name: Option<String>,
         /// Node set.
         set: String,
         /// `[f_x, f_y]` per node.
         value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
     },
     /// One force on a node set tied along its non-zero components (a rigid cap's resultant).
     Resultant {
-        /// A name.
-        name: Option<String>,
         /// Node set.
         set: String,
         /// `[F_x, F_y]` on the whole set.
         value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
     },
     /// A uniform body force (force per volume) over the whole mesh.
     BodyForce {
-        /// A name.
-        name: Option<String>,
         /// `[b_x, b_y]`.
         value: Pair,
-        /// Time function.
-        function: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
     },
     /// The self-weight of every region (its material's `unit_weight`, along −y), in full.
-    Gravity {
-        /// A name.
-        name: Option<String>,
-        /// Phases (default: all).
-        phases: Option<Vec<String>>,
-    },
+    Gravity,
 }
 
 /// Side of an ARC.

@@ -8,7 +8,7 @@ use contact_laws::LawError;
 use contact_solver::SolverError;
 use contact_solver::error::chain;
 use fem_core::generate::Grading;
-use fem_core::{ElementKind, FemError, Mesh};
+use fem_core::{Dim, ElementKind, FemError, Mesh, Space};
 use std::collections::BTreeSet;
 
 /// `value`, or the error "`path` = value: expected `expected`" when not `ok`.
@@ -98,19 +98,6 @@ pub fn kind_name(k: ElementKind) -> &'static str {
     }
 }
 
-/// Whether a mesh of kind `k` has the order of the scene's element name (`P1`: linear
-/// triangles or quadrilaterals, `P2`: quadratic ones): `mesh.element` of a Gmsh file names
-/// the order, the file the shape.
-pub(super) fn has_order(e: Element, k: ElementKind) -> bool {
-    match e {
-        Element::P1 => matches!(k, ElementKind::Tri3 | ElementKind::Quad4),
-        Element::P2 => matches!(
-            k,
-            ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9
-        ),
-    }
-}
-
 /// A `FemError` at `path`, with a hint for a singular stiffness.
 pub(super) fn fem(path: &KeyPath, e: FemError) -> CliError {
     let hint = match e {
@@ -168,7 +155,14 @@ pub(super) fn join(s: &BTreeSet<u32>) -> String {
 }
 
 /// The nodes of a node set of the mesh, or an error naming the sets there are.
-pub(super) fn node_set(path: &KeyPath, mesh: &Mesh, name: &str) -> CliResult<Vec<usize>> {
+pub(super) fn node_set<const D: usize>(
+    path: &KeyPath,
+    mesh: &Mesh<D>,
+    name: &str,
+) -> CliResult<Vec<usize>>
+where
+    Dim<D>: Space,
+{
     mesh.node_set(name).map(|s| s.to_vec()).map_err(|_| {
         CliError::at(
             path,

@@ -9,23 +9,25 @@ use super::checks::{
 use super::curves;
 use super::supported::{Policy, point, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
+use crate::raw::RawTarget;
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
 };
 use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::coupling::space::ContactSpace;
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
 use contact_solver::{
-    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, DEFAULT_DENSE_LIMIT,
-    FlexibilityMode, RigidArc, RigidLine, SimulationSettings, recognize, supported_contactors,
+    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, FlexibilityMode, RigidArc,
+    RigidLine, SimulationSettings, recognize, supported_contactors,
 };
-use fem_core::LinearElasticModel;
+use fem_core::{Dim, LinearElasticModel};
 use std::collections::BTreeSet;
 use std::f64::consts::TAU;
 
 /// What a zone faces, checked; node sets are looked up in the mesh at build.
-enum TargetPlan {
+pub(super) enum TargetPlan {
     Line(RigidLine),
     Arc(RigidArc),
     NodePairs {
@@ -37,22 +39,23 @@ enum TargetPlan {
     },
 }
 
-/// A contact zone, checked.
-pub(super) struct ZonePlan {
-    path: KeyPath,
-    name: String,
-    contactor: String,
-    law: StandardLaw,
-    law_name: &'static str,
-    alert: f64,
-    target: TargetPlan,
-    supported: SupportedContactors,
+/// A contact zone, checked, against a target of type `T` (2D: [`TargetPlan`], 3D: the solid
+/// obstacle).
+pub(super) struct ZonePlan<T> {
+    pub(super) path: KeyPath,
+    pub(super) name: String,
+    pub(super) contactor: String,
+    pub(super) law: StandardLaw,
+    pub(super) law_name: &'static str,
+    pub(super) alert: f64,
+    pub(super) target: T,
+    pub(super) supported: SupportedContactors,
 }
 
 /// The zones of a scene, checked, how many have adhesion and friction, and the solver settings.
-pub(super) struct ContactPlan {
+pub(super) struct ContactPlan<T> {
     /// Zones, in the scene's order.
-    pub(super) zones: Vec<ZonePlan>,
+    pub(super) zones: Vec<ZonePlan<T>>,
     /// Zones whose law has adhesion.
     pub(super) adhesive: usize,
     /// Zones whose law has friction.
@@ -86,10 +89,15 @@ fn count(path: &KeyPath, n: usize, max: usize) -> CliResult<usize> {
     Ok(n)
 }
 
-/// `[solver]`, checked, as the library's settings.
-pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
+/// `[solver]`, checked, as the library's settings of dimension `D`: the keys the scene gives
+/// over [`SimulationSettings::for_dimension`]`::<D>()` (the `Auto` dense limit, the right-hand
+/// sides per solve and the detection passes measured for each dimension).
+pub(super) fn settings<const D: usize>(s: &SolverSpec) -> CliResult<SimulationSettings>
+where
+    Dim<D>: ContactSpace<D>,
+{
     let root = KeyPath::root().key("solver");
-    let mut out = SimulationSettings::default();
+    let mut out = SimulationSettings::for_dimension::<D>();
     if let Some(a) = s.algorithm {
         out.solver.algorithm = match a {
             AlgorithmSpec::Bipotential => Algorithm::default(),
@@ -179,7 +187,9 @@ pub(super) fn settings(s: &SolverSpec) -> CliResult<SimulationSettings> {
     if let Some(b) = s.fallback {
         out.solver.fallback = b;
     }
-    let dense_limit = s.dense_limit.unwrap_or(DEFAULT_DENSE_LIMIT);
+    let dense_limit = s
+        .dense_limit
+        .unwrap_or(<Dim<D> as ContactSpace<D>>::DENSE_LIMIT);
     out.flexibility = match s.flexibility.unwrap_or(FlexibilitySpec::Auto) {
         FlexibilitySpec::Auto => FlexibilityMode::Auto { dense_limit },
         other if s.dense_limit.is_some() => {
@@ -254,9 +264,15 @@ pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'stat
     })
 }
 
-/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry) and
-/// `[solver]`.
-pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
+/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry, read by
+/// `target` at each zone's `target` key) and `[solver]`, in a scene of dimension `D`.
+pub(super) fn validate<const D: usize, T>(
+    scene: &Scene,
+    target: impl Fn(&KeyPath, &RawTarget) -> CliResult<T>,
+) -> CliResult<ContactPlan<T>>
+where
+    Dim<D>: ContactSpace<D>,
+{
     let root = KeyPath::root();
     if scene.contact.is_empty() {
         return Err(CliError::at(
@@ -264,7 +280,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
             "the scene has no [[contact]] zone (bipo solves contact problems)",
         ));
     }
-    let settings = settings(&scene.solver)?;
+    let settings = settings::<D>(&scene.solver)?;
     let mut zones = Vec::new();
     let mut names = BTreeSet::new();
     let (mut adhesive, mut friction) = (0, 0);
@@ -279,7 +295,7 @@ pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan> {
         if l.has_friction() {
             friction += 1;
         }
-        let target = target(&p.key("target"), &z.target.resolve(&p.key("target"))?)?;
+        let target = target(&p.key("target"), &z.target)?;
         zones.push(ZonePlan {
             path: p,
             name: z.name.clone(),
@@ -334,9 +350,9 @@ pub(super) fn phase_laws(
     Ok(out)
 }
 
-/// The geometry of a target at `tp`, checked (rigid lines and arcs are built here).
-fn target(tp: &KeyPath, t: &TargetSpec) -> CliResult<TargetPlan> {
-    Ok(match t {
+/// The target of a 2D zone at `tp`, its geometry checked (rigid lines and arcs are built here).
+pub(super) fn target(tp: &KeyPath, t: &RawTarget) -> CliResult<TargetPlan> {
+    Ok(match &t.resolve(tp)? {
         TargetSpec::Line { a, b } => {
             let a = finite2(&tp.key("a"), *a)?;
             let b = finite2(&tp.key("b"), *b)?;
@@ -410,7 +426,7 @@ pub(super) type BuiltContact = (
 /// each zone's law name, and the warnings (contactor nodes held by a support, left out).
 pub(super) fn build(
     model: LinearElasticModel,
-    plan: Vec<ZonePlan>,
+    plan: Vec<ZonePlan<TargetPlan>>,
     settings: SimulationSettings,
 ) -> CliResult<BuiltContact> {
     let root = KeyPath::root();

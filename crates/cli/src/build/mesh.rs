@@ -1,13 +1,12 @@
 //! The mesh: `[mesh]`'s values checked into a generator's spec (or a Gmsh file to read), then
 //! the mesh generated or read, and the axisymmetric mesh checked to lie right of the axis.
 
-use super::checks::{
-    at_least, fem, finite, finite2, grading, has_order, kind, kind_name, positive,
-};
+use super::checks::{at_least, fem, finite, finite2, grading, kind, positive};
+use super::dim::SceneDim;
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::{Element, MeshSpec, Pair, TipCornerSpec};
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner};
-use fem_core::{FemError, Idealization, Mesh};
+use fem_core::{Dim, FemError, Idealization, Mesh};
 use std::path::{Path, PathBuf};
 
 /// A mesh to build, its values checked.
@@ -17,14 +16,56 @@ pub(super) enum MeshPlan {
     /// `fem_core::generate::pile_in_soil`.
     Pile(PileSpec),
     /// An existing Gmsh file and the element order it must hold.
-    Gmsh {
-        /// As written in the scene (relative to the scene file).
-        file: String,
-        /// Its path.
-        path: PathBuf,
-        /// `mesh.element`, if given.
+    Gmsh(GmshPlan),
+}
+
+/// A Gmsh file of `[mesh]` (in either dimension), which exists, and the element order it must
+/// hold.
+pub(super) struct GmshPlan {
+    /// As written in the scene (relative to the scene file).
+    file: String,
+    /// Its path.
+    path: PathBuf,
+    /// `mesh.element`, if given.
+    element: Option<Element>,
+}
+
+impl GmshPlan {
+    /// The file `file` of `[mesh]` (at `mp`), which must exist (`base_dir` is the scene file's
+    /// folder), and `mesh.element`.
+    pub(super) fn new(
+        mp: &KeyPath,
+        file: &str,
         element: Option<Element>,
-    },
+        base_dir: &Path,
+    ) -> CliResult<Self> {
+        Ok(Self {
+            file: file.to_owned(),
+            path: gmsh_file(mp, file, base_dir)?,
+            element,
+        })
+    }
+
+    /// Reads the mesh and checks that its elements have the order `mesh.element` names.
+    pub(super) fn read<const D: usize>(self, mp: &KeyPath) -> CliResult<Mesh<D>>
+    where
+        Dim<D>: SceneDim<D>,
+    {
+        let mesh = Dim::<D>::read_msh(&self.path).map_err(|e| fem(&mp.key("file"), e))?;
+        if let Some(e) = self.element {
+            let (order, name) = Dim::<D>::element_order(e, &mesh);
+            if !order {
+                return Err(CliError::at(
+                    &mp.key("element"),
+                    format!(
+                        "`mesh.element` = \"{e:?}\" but `{}` holds {name}",
+                        self.file
+                    ),
+                ));
+            }
+        }
+        Ok(mesh)
+    }
 }
 
 /// Checks the values of `[mesh]` (at `mp`) and gives the generator's spec, or the file to read
@@ -38,17 +79,15 @@ pub(super) fn validate(
     match spec {
         MeshSpec::Rectangle { .. } => rectangle(mp, spec),
         MeshSpec::Pile { .. } => pile(mp, spec, idealization),
-        MeshSpec::Gmsh { file, element } => Ok(MeshPlan::Gmsh {
-            file: file.clone(),
-            path: gmsh_file(mp, file, base_dir)?,
-            element: *element,
-        }),
+        MeshSpec::Gmsh { file, element } => {
+            Ok(MeshPlan::Gmsh(GmshPlan::new(mp, file, *element, base_dir)?))
+        }
     }
 }
 
 /// The path of the Gmsh file `file` of `[mesh]` (at `mp`), which must exist (`base_dir` is the
 /// scene file's folder).
-pub(super) fn gmsh_file(mp: &KeyPath, file: &str, base_dir: &Path) -> CliResult<PathBuf> {
+fn gmsh_file(mp: &KeyPath, file: &str, base_dir: &Path) -> CliResult<PathBuf> {
     let path = base_dir.join(file);
     let fp = mp.key("file");
     let what = if file.trim().is_empty() {
@@ -324,25 +363,7 @@ pub(super) fn build(mp: &KeyPath, plan: MeshPlan, idealization: Idealization) ->
             fem_core::generate::rectangle(&spec).map_err(|e| fem(mp, e))?
         }
         MeshPlan::Pile(s) => fem_core::generate::pile_in_soil(&s).map_err(|e| fem(mp, e))?,
-        MeshPlan::Gmsh {
-            file,
-            path,
-            element,
-        } => {
-            let mesh = fem_core::gmsh::read_msh(&path).map_err(|e| fem(&mp.key("file"), e))?;
-            if let Some(e) = element
-                && !has_order(e, mesh.kind())
-            {
-                return Err(CliError::at(
-                    &mp.key("element"),
-                    format!(
-                        "`mesh.element` = \"{e:?}\" but `{file}` holds {}",
-                        kind_name(mesh.kind())
-                    ),
-                ));
-            }
-            mesh
-        }
+        MeshPlan::Gmsh(g) => g.read(mp)?,
     };
     if let Idealization::Axisymmetric = idealization
         && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)

@@ -16,6 +16,7 @@
 mod checks;
 mod contact;
 mod curves;
+mod dim;
 mod hertz;
 mod mesh;
 mod model;
@@ -28,12 +29,16 @@ mod supported;
 mod validate;
 
 pub use checks::kind_name;
+pub(crate) use dim::SceneDim;
 pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{
-    Phase, PhaseLaw, describe_laws, final_law, function_value, laws_by_phase, phase_law_names,
+    Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
+    phase_law_names,
 };
-pub use solid::{LoadKind3, SolidStudy, solid_kind_name};
-pub use study::{Body, Custom, Library, LoadKind, PresetStudy, Study, released_at};
+pub use solid::{SolidStudy, solid_kind_name};
+pub use study::{
+    Body, Custom, Library, LoadKind, LoadRt, PresetStudy, Study, SupportRt, released_at,
+};
 
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
@@ -109,7 +114,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         model,
         contact,
     } = plan;
-    let idealization = model.idealization;
+    let (idealization, _) = model.options;
     let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, idealization)?;
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
     let (sim, zone_laws, warnings) = contact::build(model, contact.zones, contact.settings)?;

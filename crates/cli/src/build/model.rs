@@ -1,16 +1,16 @@
-//! The model: materials, supports, loads and the initial stress, their values checked first
-//! (with the time functions and phases they name), then applied to the mesh (regions, node and
-//! edge sets) to build the [`LinearElasticModel`] with the supports of the first phase at t = 0.
+//! The model of a 2D or 3D scene: materials, supports, loads and the initial stress, their
+//! values checked first (with the time functions and phases they name), then applied to the
+//! mesh (regions, node sets, edge or face sets) to build the [`ElasticModel`] with the supports
+//! of the first phase at t = 0. What the dimension reads differently is [`SceneDim`]'s.
 
-use super::checks::{
-    expect, fem, finite, finite2, join, list_names, node_set, non_negative, positive,
-};
+use super::checks::{expect, fem, finite, join, list_names, node_set, non_negative, positive};
+use super::dim::SceneDim;
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::study::{LoadKind, LoadRt, SupportRt};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{ComponentSpec, Scene};
-use crate::spec::{InitialStress, LoadSpec};
-use fem_core::{Component, FemError, Idealization, LinearElasticModel, Material, Mesh, Supports};
+use crate::spec::InitialStress;
+use fem_core::{Component, Dim, ElasticModel, FemError, Idealization, Material, Mesh, Supports};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A material, checked, and the regions it is given to (with their key paths).
@@ -28,22 +28,13 @@ pub(super) struct SupportPlan {
     pub(super) rt: SupportRt,
 }
 
-/// What a load is, checked; its set is looked up in the mesh at build.
-enum LoadPlanKind {
-    Traction(String, [f64; 2]),
-    Nodal(String, [f64; 2]),
-    Resultant(String, [f64; 2]),
-    Body([f64; 2]),
-    Gravity,
-}
-
-/// A load, checked.
-pub(super) struct LoadPlan {
+/// A load, checked; its set (if it has one) is looked up in the mesh at build, where the
+/// kind's set or node is filled in.
+pub(super) struct LoadPlan<const D: usize> {
     path: KeyPath,
-    pub(super) name: Option<String>,
-    kind: LoadPlanKind,
-    function: Option<String>,
-    phases: Vec<bool>,
+    set: Option<String>,
+    /// The load, its set not yet looked up.
+    pub(super) rt: LoadRt<D>,
 }
 
 /// Geostatic initial stress: (gamma, k0, z_surface), checked.
@@ -52,10 +43,7 @@ pub(super) type InitialStressPlan = Option<(f64, f64, f64)>;
 /// In plane stress, the section stiffness `E·h` of every material must stay finite: a
 /// thickness whose product with a Young modulus overflows is named here, not as an element
 /// whose stiffness is not finite.
-pub(super) fn check_section(
-    materials: &[MaterialPlan],
-    idealization: Idealization,
-) -> CliResult<()> {
+fn check_section(materials: &[MaterialPlan], idealization: Idealization) -> CliResult<()> {
     let Idealization::PlaneStress { thickness } = idealization else {
         return Ok(());
     };
@@ -117,7 +105,7 @@ pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> 
 
 /// Checks `[[materials]]`: moduli, unit weights and the form of `region` / `regions`. Also
 /// says whether any material has a unit weight (for gravity loads).
-pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
+fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
     let root = KeyPath::root();
     if scene.materials.is_empty() {
         return Err(CliError::at(
@@ -166,7 +154,7 @@ pub(super) fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>,
 }
 
 /// Checks `[[supports]]`: values, function names and phase lists (one support at least).
-pub(super) fn validate_supports(
+fn validate_supports(
     scene: &Scene,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
@@ -205,82 +193,37 @@ pub(super) fn validate_supports(
 
 /// Checks `[[loads]]`: their `type` and keys, values, function names and phase lists (a gravity
 /// load needs a unit weight).
-pub(super) fn validate_loads(
+fn validate_loads<const D: usize>(
     scene: &Scene,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
     any_weight: bool,
-) -> CliResult<Vec<LoadPlan>> {
+) -> CliResult<Vec<LoadPlan<D>>>
+where
+    Dim<D>: SceneDim<D>,
+{
     let root = KeyPath::root();
     let mut loads = Vec::new();
     for (i, l) in scene.loads.iter().enumerate() {
         let p = root.key("loads").index(i);
-        let l = &l.resolve(&p)?;
-        let (name, kind, function, ph) = match l {
-            LoadSpec::Traction {
-                name,
-                set,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Traction(set.clone(), finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::NodalForce {
-                name,
-                set,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Nodal(set.clone(), finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::Resultant {
-                name,
-                set,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Resultant(set.clone(), finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::BodyForce {
-                name,
-                value,
-                function,
-                phases,
-            } => (
-                name,
-                LoadPlanKind::Body(finite2(&p.key("value"), *value)?),
-                function,
-                phases,
-            ),
-            LoadSpec::Gravity { name, phases } => {
-                if !any_weight {
-                    return Err(CliError::at(
-                        &p,
-                        "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
-                    ));
-                }
-                (name, LoadPlanKind::Gravity, &None, phases)
-            }
-        };
-        check_function(&p.key("function"), function, functions)?;
+        let (set, kind) = Dim::<D>::load(l, &p)?;
+        if matches!(kind, LoadKind::Gravity) && !any_weight {
+            return Err(CliError::at(
+                &p,
+                "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
+            ));
+        }
+        let (name, function, ph) = l.common();
+        check_function(&p.key("function"), &function, functions)?;
         loads.push(LoadPlan {
+            rt: LoadRt {
+                name,
+                kind,
+                function,
+                phases: phase_mask(&p.key("phases"), &ph, phases)?,
+            },
             path: p,
-            name: name.clone(),
-            kind,
-            function: function.clone(),
-            phases: phase_mask(&root.key("loads").index(i).key("phases"), ph, phases)?,
+            set,
         });
     }
     Ok(loads)
@@ -288,7 +231,7 @@ pub(super) fn validate_loads(
 
 /// Checks the names of supports and loads (unique) and the phases' function overrides, which
 /// name them.
-pub(super) fn validate_names(
+fn validate_names(
     scene: &Scene,
     load_names: &[Option<String>],
     functions: &BTreeMap<String, TimeFunction>,
@@ -335,7 +278,7 @@ pub(super) fn validate_names(
 }
 
 /// Checks `[initial_stress]`.
-pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
+fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
     let root = KeyPath::root();
     let initial = scene
         .initial_stress
@@ -357,29 +300,59 @@ pub(super) fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressP
     })
 }
 
+/// Checks what the model is built from, in the order of the scene's sections: materials (and
+/// the 2D section stiffness), supports, loads, their names, the initial stress and the ties.
+pub(super) fn validate<const D: usize>(
+    scene: &Scene,
+    functions: &BTreeMap<String, TimeFunction>,
+    phases: &[Phase],
+    options: <Dim<D> as SceneDim<D>>::Options,
+) -> CliResult<ModelPlan<D>>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let (materials, any_weight) = validate_materials(scene)?;
+    if let Some(idealization) = Dim::<D>::idealization(&options) {
+        check_section(&materials, idealization)?;
+    }
+    let supports = validate_supports(scene, functions, phases, D)?;
+    let loads = validate_loads::<D>(scene, functions, phases, any_weight)?;
+    let names: Vec<Option<String>> = loads.iter().map(|l| l.rt.name.clone()).collect();
+    validate_names(scene, &names, functions, phases)?;
+    Ok(ModelPlan {
+        options,
+        materials,
+        supports,
+        loads,
+        initial_stress: validate_initial_stress(scene)?,
+        ties: validate_ties(scene, D)?,
+    })
+}
+
 /// What the model is built from.
-pub(super) struct ModelPlan {
-    /// The idealisation.
-    pub(super) idealization: Idealization,
+pub(super) struct ModelPlan<const D: usize>
+where
+    Dim<D>: SceneDim<D>,
+{
+    /// What the dimension builds the model in (2D: the idealisation and `floating`).
+    pub(super) options: <Dim<D> as SceneDim<D>>::Options,
     /// Materials.
     pub(super) materials: Vec<MaterialPlan>,
     /// Supports.
     pub(super) supports: Vec<SupportPlan>,
     /// Loads.
-    pub(super) loads: Vec<LoadPlan>,
+    pub(super) loads: Vec<LoadPlan<D>>,
     /// Initial stress.
     pub(super) initial_stress: InitialStressPlan,
-    /// `[[ties]]`: (key path of the set, set, components).
-    pub(super) ties: Vec<(KeyPath, String, Vec<Component>)>,
-    /// `[analysis] floating`.
-    pub(super) floating: bool,
+    /// `[[ties]]`.
+    pub(super) ties: Ties,
 }
 
 /// `[[ties]]`: (key path of the set, set, components).
 pub(super) type Ties = Vec<(KeyPath, String, Vec<Component>)>;
 
 /// Checks `[[ties]]` (the sets are looked up in the mesh at build).
-pub(super) fn validate_ties(scene: &Scene, dim: usize) -> CliResult<Ties> {
+fn validate_ties(scene: &Scene, dim: usize) -> CliResult<Ties> {
     scene
         .ties
         .iter()
@@ -431,13 +404,17 @@ pub(super) fn components(
 }
 
 /// The materials on the mesh's regions (every region exactly one), the supports' and loads'
-/// sets, and the model with the supports of the first phase at t = 0.
-pub(super) fn build(
-    mesh: Mesh,
-    plan: ModelPlan,
+/// sets, and the model with the supports of the first phase at t = 0 (the others are added and
+/// released between phases by the run).
+pub(super) fn build<const D: usize>(
+    mesh: Mesh<D>,
+    plan: ModelPlan<D>,
     functions: &BTreeMap<String, TimeFunction>,
     phases: &[Phase],
-) -> CliResult<(LinearElasticModel, Vec<SupportRt>, Vec<LoadRt>)> {
+) -> CliResult<(ElasticModel<D>, Vec<SupportRt>, Vec<LoadRt<D>>)>
+where
+    Dim<D>: SceneDim<D>,
+{
     let root = KeyPath::root();
     // An element stiffness that overflows is the material's fault, not the supports'.
     let young_keys = young_keys(&plan.materials);
@@ -462,51 +439,41 @@ pub(super) fn build(
     }
     let mut loads = Vec::new();
     for l in plan.loads {
-        let p = &l.path;
-        let kind = match l.kind {
-            LoadPlanKind::Traction(set, value) => {
-                if mesh.edge_set(&set).is_err() {
-                    return Err(CliError::at(
-                        &p.key("set"),
-                        format!(
-                            "`{}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
-                            p.key("set"),
-                            list_names(mesh.edge_set_names())
-                        ),
-                    ));
-                }
-                LoadKind::Traction(set, value)
+        let (sp, mut rt) = (l.path.key("set"), l.rt);
+        let set = l.set.unwrap_or_default();
+        rt.kind = match rt.kind {
+            LoadKind::Traction(_, v) => {
+                Dim::<D>::boundary_set(&sp, &mesh, &set)?;
+                LoadKind::Traction(set, v)
             }
-            LoadPlanKind::Nodal(set, value) => {
-                LoadKind::Nodal(node_set(&p.key("set"), &mesh, &set)?, value)
+            LoadKind::Pressure(_, v) => {
+                Dim::<D>::boundary_set(&sp, &mesh, &set)?;
+                LoadKind::Pressure(set, v)
             }
-            LoadPlanKind::Resultant(set, value) => {
-                let nodes = node_set(&p.key("set"), &mesh, &set)?;
-                for (c, comp) in [Component::X, Component::Y].into_iter().enumerate() {
-                    if value[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
+            LoadKind::Nodal(_, v) => LoadKind::Nodal(node_set(&sp, &mesh, &set)?, v),
+            LoadKind::Resultant(_, v) => {
+                let nodes = node_set(&sp, &mesh, &set)?;
+                for (c, comp) in Component::all::<D>().into_iter().enumerate() {
+                    if v[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
                         return Err(CliError::at(
-                            &p.key("set"),
+                            &sp,
                             format!(
-                                "`{}` = \"{set}\": a resultant force along {comp} needs the set \
+                                "`{sp}` = \"{set}\": a resultant force along {comp} needs the set \
                                  tied along {comp} (a [[ties]] entry with set = \"{set}\"), so \
                                  that it has one point of application; for a force on each node \
-                                 use type = \"nodal_force\"",
-                                p.key("set")
+                                 use type = \"nodal_force\""
                             ),
                         ));
                     }
                 }
-                LoadKind::Resultant(nodes[0], value)
+                let Some(&first) = nodes.first() else {
+                    return Err(CliError::at(&sp, format!("`{sp}` = \"{set}\" is empty")));
+                };
+                LoadKind::Resultant(first, v)
             }
-            LoadPlanKind::Body(value) => LoadKind::Body(value),
-            LoadPlanKind::Gravity => LoadKind::Gravity,
+            kind => kind,
         };
-        loads.push(LoadRt {
-            name: l.name,
-            kind,
-            function: l.function,
-            phases: l.phases,
-        });
+        loads.push(rt);
     }
     for s in supports.iter().filter(|s| s.phases[0]) {
         let f = function_value(&phases[0], &s.name, &s.function, functions, 0.0);
@@ -515,12 +482,7 @@ pub(super) fn build(
                 .map_err(|e| fem(&root.key("supports"), e))?;
         }
     }
-    let build = if plan.floating {
-        LinearElasticModel::floating
-    } else {
-        LinearElasticModel::new
-    };
-    let mut model = build(mesh, plan.idealization, &materials, sup).map_err(|e| {
+    let mut model = Dim::<D>::model(mesh, &plan.options, &materials, sup).map_err(|e| {
         let at = match &e {
             FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
             FemError::InvalidParameter {
@@ -532,10 +494,9 @@ pub(super) fn build(
         fem(&at.unwrap_or_else(|| root.key("supports")), e)
     })?;
     if let Some((gamma, k0, z)) = plan.initial_stress {
-        let p = root.key("initial_stress");
         model
-            .set_initial_stress(fem_core::geostatic(gamma, k0, z))
-            .map_err(|e| fem(&p, e))?;
+            .set_initial_stress(Dim::<D>::geostatic(gamma, k0, z))
+            .map_err(|e| fem(&root.key("initial_stress"), e))?;
     }
     Ok((model, supports, loads))
 }

@@ -33,6 +33,14 @@ impl TimeFunction {
     }
 }
 
+/// Checks `[functions]`: each table of points as a [`TimeFunction`], by name.
+pub(super) fn time_functions(scene: &Scene) -> CliResult<BTreeMap<String, TimeFunction>> {
+    let p = KeyPath::root().key("functions");
+    (scene.functions.iter())
+        .map(|(name, pts)| Ok((name.clone(), time_function(&p.key(name), pts)?)))
+        .collect()
+}
+
 /// The function of the `[time, value]` points at `path` (times increasing strictly).
 pub(super) fn time_function(path: &KeyPath, pts: &[Pair]) -> CliResult<TimeFunction> {
     let pts: Vec<[f64; 2]> = pts.iter().map(|p| p.0).collect();

@@ -116,7 +116,7 @@ pub(super) fn validate(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> 
     if let Preset::Pile { .. } = preset {
         return validate_pile(scene, preset);
     }
-    let settings = settings(&scene.solver)?;
+    let settings = settings::<2>(&scene.solver)?;
     let p = KeyPath::root().key("preset");
     macro_rules! set {
         ($spec:ident, $field:ident, positive) => {
@@ -240,7 +240,7 @@ fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
     else {
         unreachable!("called for the pile preset")
     };
-    let settings = settings(&scene.solver)?;
+    let settings = settings::<2>(&scene.solver)?;
     let p = KeyPath::root().key("preset");
     let mut spec = match site {
         Some(Site::Cran) => PulloutSpec::cran(),

@@ -56,28 +56,31 @@ pub fn released_at(supports: &[SupportRt], p: usize) -> Vec<(Vec<usize>, Compone
     out
 }
 
-/// What a load is.
+/// What a load is, in a scene of dimension `D` (2 or 3).
 #[derive(Clone, Debug)]
-pub enum LoadKind {
-    /// Edge traction.
-    Traction(String, [f64; 2]),
+pub enum LoadKind<const D: usize = 2> {
+    /// Traction on a boundary set (an edge set in 2D, a face set in 3D).
+    Traction(String, [f64; D]),
+    /// Pressure on a face set, positive into the body (3D scenes only: a 2D scene refuses
+    /// `type = "pressure"` when it is read).
+    Pressure(String, f64),
     /// Force on each node.
-    Nodal(Vec<usize>, [f64; 2]),
+    Nodal(Vec<usize>, [f64; D]),
     /// One force on a tied set, applied at this node of it.
-    Resultant(usize, [f64; 2]),
+    Resultant(usize, [f64; D]),
     /// Body force.
-    Body([f64; 2]),
-    /// Self-weight.
+    Body([f64; D]),
+    /// Self-weight (along −y in 2D, −z in 3D).
     Gravity,
 }
 
 /// A load ready to apply.
 #[derive(Clone, Debug)]
-pub struct LoadRt {
+pub struct LoadRt<const D: usize = 2> {
     /// Name.
     pub name: Option<String>,
     /// Kind.
-    pub kind: LoadKind,
+    pub kind: LoadKind<D>,
     /// Function name.
     pub function: Option<String>,
     /// Phase mask.

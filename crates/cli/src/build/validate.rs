@@ -5,10 +5,10 @@
 //! regions, candidates, the plots' nodes) is checked by the build that follows.
 
 use super::checks::positive;
-use super::contact::{self, ContactPlan};
+use super::contact::{self, ContactPlan, TargetPlan};
 use super::mesh::{self, MeshPlan};
 use super::model::{self, ModelPlan};
-use super::phases::{Phase, TimeFunction, phases_of, time_function};
+use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::presets::{self, PresetPlan};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
@@ -34,9 +34,9 @@ pub(super) struct Plan {
     /// The mesh to generate or read.
     pub(super) mesh: MeshPlan,
     /// Materials, supports, loads, initial stress.
-    pub(super) model: ModelPlan,
+    pub(super) model: ModelPlan<2>,
     /// Contact zones and solver settings.
-    pub(super) contact: ContactPlan,
+    pub(super) contact: ContactPlan<TargetPlan>,
 }
 
 /// Checks every value of the scene that does not need the mesh, in the order of the file's
@@ -53,13 +53,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
 
     // time functions and phases first: supports and loads refer to them
-    let mut functions = BTreeMap::new();
-    for (name, pts) in &scene.functions {
-        functions.insert(
-            name.clone(),
-            time_function(&root.key("functions").key(name), pts)?,
-        );
-    }
+    let functions = time_functions(scene)?;
     let phases = phases_of(scene, None)?;
 
     // mesh and analysis
@@ -94,32 +88,16 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     };
     let mesh = mesh::validate(&mp, mesh_spec, idealization, &base_dir)?;
 
-    // the model
-    let (materials, any_weight) = model::validate_materials(scene)?;
-    model::check_section(&materials, idealization)?;
-    let supports = model::validate_supports(scene, &functions, &phases, 2)?;
-    let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
-    let load_names: Vec<Option<String>> = loads.iter().map(|l| l.name.clone()).collect();
-    model::validate_names(scene, &load_names, &functions, &phases)?;
-    let initial_stress = model::validate_initial_stress(scene)?;
-    let ties = model::validate_ties(scene, 2)?;
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
+    let model = model::validate(scene, &functions, &phases, (idealization, floating))?;
 
     // contact (the solver settings with it)
-    let contact = contact::validate(scene)?;
+    let contact = contact::validate::<2, _>(scene, contact::target)?;
     Ok(Validated::Custom(Box::new(Plan {
         functions,
         phases,
         mesh,
-        model: ModelPlan {
-            idealization,
-            materials,
-            supports,
-            loads,
-            initial_stress,
-            ties,
-            floating,
-        },
+        model,
         contact,
     })))
 }

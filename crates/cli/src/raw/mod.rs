@@ -196,6 +196,15 @@ fn load_pair(p: &KeyPath, v: &Option<LoadValue>, what: &str) -> CliResult<Pair> 
 }
 
 impl RawLoad {
+    /// `name`, `function` and `phases`, as written (the same in both dimensions).
+    pub fn common(&self) -> (Option<String>, Option<String>, Option<Vec<String>>) {
+        (
+            self.name.clone(),
+            self.function.clone(),
+            self.phases.clone(),
+        )
+    }
+
     /// The load of a 2D scene.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<LoadSpec> {
         let present = [
@@ -203,40 +212,23 @@ impl RawLoad {
             ("value", self.value.is_some()),
             ("function", self.function.is_some()),
         ];
-        let (name, function, phases) = (
-            self.name.clone(),
-            self.function.clone(),
-            self.phases.clone(),
-        );
         Ok(match self.kind {
             LoadKindSpec::Traction => LoadSpec::Traction {
                 set: need(p, &self.set, "set", "a traction (an edge set)")?,
                 value: load_pair(p, &self.value, "a traction")?,
-                name,
-                function,
-                phases,
             },
             LoadKindSpec::NodalForce => LoadSpec::NodalForce {
                 set: need(p, &self.set, "set", "a nodal force (a node set)")?,
                 value: load_pair(p, &self.value, "a nodal force")?,
-                name,
-                function,
-                phases,
             },
             LoadKindSpec::Resultant => LoadSpec::Resultant {
                 set: need(p, &self.set, "set", "a resultant force (a tied node set)")?,
                 value: load_pair(p, &self.value, "a resultant force")?,
-                name,
-                function,
-                phases,
             },
             LoadKindSpec::BodyForce => {
                 only(p, "a body force", &present, &["value", "function"])?;
                 LoadSpec::BodyForce {
                     value: load_pair(p, &self.value, "a body force")?,
-                    name,
-                    function,
-                    phases,
                 }
             }
             LoadKindSpec::Gravity => {
@@ -246,7 +238,7 @@ impl RawLoad {
                     &present,
                     &[],
                 )?;
-                LoadSpec::Gravity { name, phases }
+                LoadSpec::Gravity
             }
             LoadKindSpec::Pressure => {
                 let tp = p.key("type");

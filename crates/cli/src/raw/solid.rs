@@ -158,17 +158,6 @@ impl RawTarget {
     }
 }
 
-impl RawLoad {
-    /// `name`, `function` and `phases`, as written.
-    pub fn common(&self) -> (Option<String>, Option<String>, Option<Vec<String>>) {
-        (
-            self.name.clone(),
-            self.function.clone(),
-            self.phases.clone(),
-        )
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

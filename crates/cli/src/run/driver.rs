@@ -1,13 +1,18 @@
 //! What steps a study: the scene-file driver (supports released and applied per phase, loads
-//! scaled by their time functions) or a library preset (its own step functions).
+//! scaled by their time functions, [`apply_step`] in either dimension) or a library preset (its
+//! own step functions).
 
 use super::errors::{fem_failed, step_error};
-use crate::build::{Custom, Library, LoadKind, Phase, PresetStudy, function_value, released_at};
+use crate::build::{
+    Custom, Library, LoadKind, LoadRt, Phase, PresetStudy, SceneDim, SupportRt, TimeFunction,
+    function_value, released_at,
+};
 use crate::error::{CliError, CliResult};
 use crate::presets::ShaftPoint;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, StepResult};
-use fem_core::LinearElasticModel;
+use fem_core::{Dim, ElasticModel, LinearElasticModel};
+use std::collections::BTreeMap;
 
 /// What steps the simulation: the scene-file driver or a library preset.
 pub(super) trait Driver {
@@ -120,53 +125,15 @@ impl Driver for CustomDriver<'_> {
     ) -> Result<StepResult, CliError> {
         let c = &mut *self.c;
         let phase = &phases[p];
-        let model = c.sim.structure_mut();
-        for s in c.supports.iter().filter(|s| s.phases[p]) {
-            let v = s.value * function_value(phase, &s.name, &s.function, &c.functions, t);
-            for &comp in &s.components {
-                model
-                    .set_prescribed(&s.nodes, comp, v)
-                    .map_err(|e| fem_failed("prescribed displacement", e))?;
-            }
-        }
-        let factors: Vec<f64> = c
-            .loads
-            .iter()
-            .map(|l| {
-                if l.phases[p] {
-                    function_value(phase, &l.name, &l.function, &c.functions, t)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        if self.last_loads.as_ref() != Some(&factors) {
-            model.clear_loads();
-            for (l, &f) in c.loads.iter().zip(&factors) {
-                if !l.phases[p] {
-                    continue;
-                }
-                match &l.kind {
-                    LoadKind::Traction(set, v) => {
-                        let v = [v[0] * f, v[1] * f];
-                        model.add_edge_traction(set, |_| v)
-                    }
-                    LoadKind::Nodal(nodes, v) => nodes
-                        .iter()
-                        .try_for_each(|&n| model.add_nodal_force(n, [v[0] * f, v[1] * f])),
-                    LoadKind::Resultant(node, v) => {
-                        model.add_nodal_force(*node, [v[0] * f, v[1] * f])
-                    }
-                    LoadKind::Body(v) => {
-                        let v = [v[0] * f, v[1] * f];
-                        model.add_body_force(|_| v)
-                    }
-                    LoadKind::Gravity => model.add_self_weight(),
-                }
-                .map_err(|e| fem_failed("load", e))?;
-            }
-            self.last_loads = Some(factors);
-        }
+        apply_step(
+            c.sim.structure_mut(),
+            &c.supports,
+            &c.loads,
+            &c.functions,
+            (phase, p),
+            t,
+            &mut self.last_loads,
+        )?;
         c.sim.step(t, 1.0).map_err(|e| step_error(e, phase, t))
     }
 
@@ -244,4 +211,65 @@ impl Driver for PresetDriver<'_> {
             Library::Seed(_) => None,
         }
     }
+}
+
+/// The supports and loads of phase `p` (`phase`) at time `t`, on the model of either
+/// dimension: each load scaled by its function, the loads rebuilt only when a factor changed
+/// since `last` (the factors last applied; none: rebuild them).
+pub(super) fn apply_step<const D: usize>(
+    model: &mut ElasticModel<D>,
+    supports: &[SupportRt],
+    loads: &[LoadRt<D>],
+    functions: &BTreeMap<String, TimeFunction>,
+    (phase, p): (&Phase, usize),
+    t: f64,
+    last: &mut Option<Vec<f64>>,
+) -> CliResult<()>
+where
+    Dim<D>: SceneDim<D>,
+{
+    for s in supports.iter().filter(|s| s.phases[p]) {
+        let v = s.value * function_value(phase, &s.name, &s.function, functions, t);
+        for &c in &s.components {
+            model
+                .set_prescribed(&s.nodes, c, v)
+                .map_err(|e| fem_failed("prescribed displacement", e))?;
+        }
+    }
+    let factors: Vec<f64> = loads
+        .iter()
+        .map(|l| {
+            if l.phases[p] {
+                function_value(phase, &l.name, &l.function, functions, t)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    if last.as_ref() == Some(&factors) {
+        return Ok(());
+    }
+    model.clear_loads();
+    for (l, &f) in loads.iter().zip(&factors) {
+        if !l.phases[p] {
+            continue;
+        }
+        let scaled = |v: &[f64; D]| v.map(|x| x * f);
+        match &l.kind {
+            LoadKind::Traction(set, v) => Dim::<D>::traction(model, set, scaled(v)),
+            LoadKind::Pressure(set, p) => Dim::<D>::pressure(model, set, p * f),
+            LoadKind::Nodal(nodes, v) => nodes
+                .iter()
+                .try_for_each(|&n| model.add_nodal_force(n, scaled(v))),
+            LoadKind::Resultant(node, v) => model.add_nodal_force(*node, scaled(v)),
+            LoadKind::Body(v) => {
+                let v = scaled(v);
+                model.add_body_force(|_| v)
+            }
+            LoadKind::Gravity => model.add_self_weight(),
+        }
+        .map_err(|e| fem_failed("load", e))?;
+    }
+    *last = Some(factors);
+    Ok(())
 }

@@ -31,7 +31,7 @@ use progress::Progress;
 use recorder::Recorder;
 use std::path::PathBuf;
 use std::time::Instant;
-use summary::{BTreeUnits, PhaseSummary, Stages, facts, since};
+use summary::{BTreeUnits, PhaseSummary, Stages, facts, since, status};
 
 /// Options of `bipo run`.
 pub struct RunOptions {
@@ -98,18 +98,8 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
         bipo_version: env!("CARGO_PKG_VERSION"),
         scene: opts.scene_file.display().to_string(),
         title: study.title.clone(),
-        units: BTreeUnits {
-            length: study.units.length.clone(),
-            force: study.units.force.clone(),
-            time: study.units.time.clone(),
-            stress: study.units.stress.clone(),
-        },
-        status: if error.is_some() {
-            "failed"
-        } else {
-            "completed"
-        }
-        .into(),
+        units: BTreeUnits::of(&study.units),
+        status: status(error.as_ref()),
         error: error.as_ref().map(|e| e.message.clone()),
         steps: steps_done,
         time,

@@ -3,7 +3,8 @@
 
 use super::errors::io;
 use crate::build::PhaseLaw;
-use crate::error::CliResult;
+use crate::error::{CliError, CliResult};
+use crate::scene::Units;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, Counters, InterfaceStatus, StepResult};
 use fem_core::{LinearElasticModel, Structure};
@@ -196,6 +197,28 @@ pub struct BTreeUnits {
     pub time: Option<String>,
     /// Stress.
     pub stress: Option<String>,
+}
+
+impl BTreeUnits {
+    /// The scene's `[units]`.
+    pub(super) fn of(u: &Units) -> Self {
+        Self {
+            length: u.length.clone(),
+            force: u.force.clone(),
+            time: u.time.clone(),
+            stress: u.stress.clone(),
+        }
+    }
+}
+
+/// A run's status: "failed" when it stopped on `error`, else "completed".
+pub(super) fn status(error: Option<&CliError>) -> String {
+    if error.is_some() {
+        "failed"
+    } else {
+        "completed"
+    }
+    .into()
 }
 
 /// Mesh facts.

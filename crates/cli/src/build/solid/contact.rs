@@ -3,13 +3,11 @@
 //! their tributary areas ([`zones`], the one place where a zone is made, so that node pairs and
 //! node-to-face zones plug in there), their candidates checked, and the simulation made.
 
-use super::super::checks::{finite, non_negative, positive, solver_error};
-use super::super::contact::{law, phase_laws, settings, zone_name};
+use super::super::checks::{finite, node_set, positive, solver_error};
+use super::super::contact::ZonePlan;
 use super::super::supported::{Policy, point as position_text, resolve};
-use super::mesh::node_set;
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::raw::triple;
-use crate::scene::{Scene, SolverSpec, SupportedContactors};
+use crate::raw::{RawTarget, triple};
 use crate::spec::ArcSideSpec;
 use crate::spec3::{Coords, TargetSpec3};
 use contact_laws::StandardLaw;
@@ -17,13 +15,12 @@ use contact_solver::coupling::solid::{
     Candidate3, ContactZone3, PairNormals3, RigidCylinder, RigidPlane, RigidSphere, Side3,
     SolidContactSimulation, TriSurface, supported_contactors_3d,
 };
-use contact_solver::{FlexibilityMode, SimulationSettings, SolverError};
+use contact_solver::{SimulationSettings, SolverError};
 use fem_core::solid::{SolidMesh, SolidModel};
-use std::collections::BTreeSet;
 
 /// A target, checked: rigid (built), or another body's nodes or faces (looked up in the mesh
 /// at build).
-enum Obstacle {
+pub(super) enum Obstacle {
     Plane(RigidPlane),
     Sphere(RigidSphere),
     Cylinder(RigidCylinder),
@@ -34,45 +31,6 @@ enum Obstacle {
     },
     /// Node-to-face on a face set.
     Faces(String),
-}
-
-/// A 3D contact zone, checked; its contactor set is looked up in the mesh at build.
-pub(super) struct ZonePlan3 {
-    path: KeyPath,
-    name: String,
-    contactor: String,
-    law: StandardLaw,
-    alert: f64,
-    target: Obstacle,
-    supported: SupportedContactors,
-}
-
-/// The zones of a 3D scene, checked, with their law names, and the settings.
-pub(super) struct ContactPlan3 {
-    /// Zones, in the scene's order.
-    pub(super) zones: Vec<ZonePlan3>,
-    /// Law name of each zone.
-    pub(super) laws: Vec<String>,
-    /// `[solver]`.
-    pub(super) settings: SimulationSettings,
-    /// Per phase (in order), the laws it sets: `(zone, law)`.
-    pub(super) phase_laws: Vec<Vec<(String, StandardLaw)>>,
-}
-
-/// `[solver]` for the 3D simulation: the keys read as in 2D, over the 3D defaults
-/// ([`SimulationSettings::for_dimension`]`::<3>()`: the `Auto` dense limit, the right-hand
-/// sides per solve and the detection passes measured for 3D) where the scene leaves them out.
-fn settings_3d(s: &SolverSpec) -> CliResult<SimulationSettings> {
-    let mut out = settings(s)?;
-    let solid = SimulationSettings::for_dimension::<3>();
-    if matches!(out.flexibility, FlexibilityMode::Auto { .. }) && s.dense_limit.is_none() {
-        out.flexibility = solid.flexibility;
-    }
-    if s.max_detection_passes.is_none() {
-        out.tuning.max_detection_passes = solid.tuning.max_detection_passes;
-    }
-    out.columns_per_solve = solid.columns_per_solve;
-    Ok(out)
 }
 
 /// Three finite numbers at `p`.
@@ -107,10 +65,10 @@ fn side(s: ArcSideSpec) -> Side3 {
     }
 }
 
-/// The rigid target at `tp`, checked and built.
-fn target(tp: &KeyPath, t: &TargetSpec3) -> CliResult<Obstacle> {
+/// The target of a 3D zone at `tp`, checked and built.
+pub(super) fn target(tp: &KeyPath, t: &RawTarget) -> CliResult<Obstacle> {
     let err = |e: SolverError| solver_error(tp, e);
-    Ok(match t {
+    Ok(match &t.resolve_3d(tp)? {
         TargetSpec3::Plane { point: x, normal } => Obstacle::Plane(
             RigidPlane::new(
                 point(&tp.key("point"), x)?,
@@ -155,51 +113,12 @@ fn target(tp: &KeyPath, t: &TargetSpec3) -> CliResult<Obstacle> {
     })
 }
 
-/// Checks `[[contact]]` of a 3D scene (names, alert distances, laws, targets) and `[solver]`.
-pub(super) fn validate(scene: &Scene) -> CliResult<ContactPlan3> {
-    let root = KeyPath::root();
-    if scene.contact.is_empty() {
-        return Err(CliError::at(
-            &root,
-            "the scene has no [[contact]] zone (bipo solves contact problems)",
-        ));
-    }
-    let settings = settings_3d(&scene.solver)?;
-    let mut zones = Vec::new();
-    let mut laws = Vec::new();
-    let mut names = BTreeSet::new();
-    for (i, z) in scene.contact.iter().enumerate() {
-        let p = root.key("contact").index(i);
-        zone_name(&p, &z.name, &mut names)?;
-        let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
-        let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
-        let target = target(&p.key("target"), &z.target.resolve_3d(&p.key("target"))?)?;
-        laws.push(law_name.to_string());
-        zones.push(ZonePlan3 {
-            path: p,
-            name: z.name.clone(),
-            contactor: z.contactor.clone(),
-            law: l,
-            alert,
-            target,
-            supported: z.supported_contactors,
-        });
-    }
-    let phase_laws = phase_laws(scene, &names)?;
-    Ok(ContactPlan3 {
-        zones,
-        laws,
-        settings,
-        phase_laws,
-    })
-}
-
 /// The contact zones on the mesh: each contactor set's nodes, with the consistent nodal areas
 /// of its faces when it is a face set (a physical surface; the reports' pressures are then
 /// `r_n / A_i`), against its target (rigid, node pairs by position, or faces).
 pub(super) fn zones(
     mesh: &SolidMesh,
-    plans: &[ZonePlan3],
+    plans: &[ZonePlan<Obstacle>],
 ) -> CliResult<Vec<ContactZone3<StandardLaw>>> {
     let mut out = Vec::with_capacity(plans.len());
     for z in plans {
@@ -304,7 +223,7 @@ fn pair_by_position(
 /// than the alert distance, one within it). A library refusal is told at the `contact` key.
 pub(super) fn build(
     model: SolidModel,
-    plans: &[ZonePlan3],
+    plans: &[ZonePlan<Obstacle>],
     settings: SimulationSettings,
 ) -> CliResult<(SolidContactSimulation<SolidModel, StandardLaw>, Vec<String>)> {
     let contact = KeyPath::root().key("contact");
@@ -342,7 +261,7 @@ pub(super) fn build(
 /// and one within the alert distance.
 fn check_candidates(
     candidates: &[Candidate3],
-    plans: &[ZonePlan3],
+    plans: &[ZonePlan<Obstacle>],
     nodes: &[[f64; 3]],
 ) -> CliResult<()> {
     for (z, zone) in plans.iter().enumerate() {
@@ -406,29 +325,31 @@ mod tests {
 
     #[test]
     fn settings_3d_reads_the_paths_with_the_3d_default() {
-        use crate::scene::FlexibilitySpec;
+        use super::super::super::contact::settings;
+        use crate::scene::{FlexibilitySpec, SolverSpec};
+        use contact_solver::FlexibilityMode;
         let s = SolverSpec {
             max_detection_passes: Some(7),
             flexibility: Some(FlexibilitySpec::Dense),
             ..SolverSpec::default()
         };
-        let out = settings_3d(&s).unwrap();
+        let out = settings::<3>(&s).unwrap();
         assert_eq!(out.tuning.max_detection_passes, 7);
         assert_eq!(out.flexibility, FlexibilityMode::Dense);
-        let auto = settings_3d(&SolverSpec::default()).unwrap().flexibility;
+        let auto = settings::<3>(&SolverSpec::default()).unwrap().flexibility;
         assert_eq!(auto, FlexibilityMode::Auto { dense_limit: 3000 });
         let s = SolverSpec {
             dense_limit: Some(10),
             ..SolverSpec::default()
         };
-        let limited = settings_3d(&s).unwrap().flexibility;
+        let limited = settings::<3>(&s).unwrap().flexibility;
         assert_eq!(limited, FlexibilityMode::Auto { dense_limit: 10 });
         let s = SolverSpec {
             flexibility: Some(FlexibilitySpec::ActiveSet),
             ..SolverSpec::default()
         };
         assert_eq!(
-            settings_3d(&s).unwrap().flexibility,
+            settings::<3>(&s).unwrap().flexibility,
             FlexibilityMode::ActiveSet
         );
         // dense_limit with another path is refused at its key, as in 2D
@@ -437,7 +358,7 @@ mod tests {
             dense_limit: Some(10),
             ..SolverSpec::default()
         };
-        let e = settings_3d(&s).unwrap_err();
+        let e = settings::<3>(&s).unwrap_err();
         assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
     }
 }

@@ -3,7 +3,7 @@
 //! surfaces as face and node sets).
 
 use super::super::checks::{at_least, fem, grading};
-use super::super::mesh::{gmsh_file, interval};
+use super::super::mesh::{GmshPlan, interval};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::Element;
 use crate::spec3::MeshSpec3;
@@ -11,7 +11,7 @@ use fem_core::FemError;
 use fem_core::generate::graded_points;
 use fem_core::solid::generate::box_mesh;
 use fem_core::solid::{SolidKind, SolidMesh};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The most cells of a box (six tetrahedra each): 2e5 cells are 1.2e6 tetrahedra, beyond what a
 /// scene run on a workstation solves in a useful time with a dense contact flexibility.
@@ -21,15 +21,8 @@ pub const MAX_BOX_CELLS: usize = 200_000;
 pub(super) enum MeshPlan3 {
     /// The grid lines of a box and its element.
     Box([Vec<f64>; 3], SolidKind),
-    /// A Gmsh file and the element it must hold.
-    Gmsh {
-        /// As written in the scene.
-        file: String,
-        /// Its path.
-        path: PathBuf,
-        /// `mesh.element`, if given.
-        element: Option<Element>,
-    },
+    /// A Gmsh file and the element order it must hold.
+    Gmsh(GmshPlan),
 }
 
 /// The tetrahedron of a scene's element name.
@@ -48,15 +41,6 @@ pub fn solid_kind_name(k: SolidKind) -> &'static str {
         SolidKind::Hex8 => "P1 (8-node hexahedra)",
         SolidKind::Hex20 => "P2 (20-node serendipity hexahedra)",
         _ => "elements of a kind this version of bipo does not name",
-    }
-}
-
-/// Whether a 3D mesh of kind `k` has the order of the scene's element name (`P1`: Tet4 or
-/// Hex8, `P2`: Tet10 or Hex20).
-fn has_order(e: Element, k: SolidKind) -> bool {
-    match e {
-        Element::P1 => matches!(k, SolidKind::Tet4 | SolidKind::Hex8),
-        Element::P2 => matches!(k, SolidKind::Tet10 | SolidKind::Hex20),
     }
 }
 
@@ -89,11 +73,9 @@ pub(super) fn validate(mp: &KeyPath, spec: &MeshSpec3, base_dir: &Path) -> CliRe
             }
             Ok(MeshPlan3::Box(lines, solid_kind(b.element)))
         }
-        MeshSpec3::Gmsh { file, element } => Ok(MeshPlan3::Gmsh {
-            file: file.clone(),
-            path: gmsh_file(mp, file, base_dir)?,
-            element: *element,
-        }),
+        MeshSpec3::Gmsh { file, element } => Ok(MeshPlan3::Gmsh(GmshPlan::new(
+            mp, file, *element, base_dir,
+        )?)),
     }
 }
 
@@ -101,52 +83,6 @@ pub(super) fn validate(mp: &KeyPath, spec: &MeshSpec3, base_dir: &Path) -> CliRe
 pub(super) fn build(mp: &KeyPath, plan: MeshPlan3) -> CliResult<SolidMesh> {
     match plan {
         MeshPlan3::Box([xs, ys, zs], kind) => box_mesh(&xs, &ys, &zs, kind).map_err(|e| fem(mp, e)),
-        MeshPlan3::Gmsh {
-            file,
-            path,
-            element,
-        } => {
-            let mesh =
-                fem_core::solid::gmsh::read_msh_3d(&path).map_err(|e| fem(&mp.key("file"), e))?;
-            if let Some(e) = element
-                && !has_order(e, mesh.kind())
-            {
-                return Err(CliError::at(
-                    &mp.key("element"),
-                    format!(
-                        "`mesh.element` = \"{e:?}\" but `{file}` holds {}",
-                        solid_kind_name(mesh.kind())
-                    ),
-                ));
-            }
-            Ok(mesh)
-        }
+        MeshPlan3::Gmsh(g) => g.read(mp),
     }
-}
-
-/// The nodes of a node set of a 3D mesh, or an error naming the sets there are.
-pub(super) fn node_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResult<Vec<usize>> {
-    mesh.node_set(name).map(<[usize]>::to_vec).map_err(|_| {
-        CliError::at(
-            path,
-            format!(
-                "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
-                super::super::checks::list_names(mesh.node_sets().keys().map(String::as_str))
-            ),
-        )
-    })
-}
-
-/// Checks that a face set exists (tractions, pressures), or names the face sets there are.
-pub(super) fn face_set(path: &KeyPath, mesh: &SolidMesh, name: &str) -> CliResult<()> {
-    mesh.face_set(name).map(|_| ()).map_err(|_| {
-        CliError::at(
-            path,
-            format!(
-                "`{path}` = \"{name}\": the mesh has no face set of that name (face sets, the \
-                 physical surfaces: {})",
-                super::super::checks::list_names(mesh.facet_sets().keys().map(String::as_str))
-            ),
-        )
-    })
 }

@@ -4,28 +4,24 @@
 //!
 //! The passes are those of the 2D scene ([`super::validate`], then the build): what does not
 //! depend on the dimension is the 2D code (time functions, phases, materials, supports' values
-//! and names, the law of a zone, `[solver]`'s local keys, `[output]`); [`mesh`], [`model`] and
-//! [`contact`] hold what 3D reads differently: the box generator and Gmsh volume files, loads
-//! with three components and pressures on face sets, rigid planes, spheres and cylinders.
+//! and names, the law of a zone, `[solver]`'s local keys, `[output]`); the model (loads with
+//! three components, pressures on face sets) is built by the one generic
+//! [`super::model::build`]; [`mesh`] and [`contact`] hold what 3D reads differently: the box
+//! generator and Gmsh volume files, rigid planes, spheres and cylinders.
 //! [`plots`] checks `[[plots]]` (the quantities a 3D run records). What 3D scenes do not have
 //! yet (floating bodies, shaft profiles) is refused with its key path.
 
 mod contact;
 mod mesh;
-mod model;
 mod plots;
 
 pub use mesh::solid_kind_name;
-pub use model::{LoadKind3, LoadRt3};
 
 use super::Loaded;
-use super::model::validate_ties;
-use super::model::{
-    validate_initial_stress, validate_materials, validate_names, validate_supports,
-};
+use super::model;
 use super::outputs::{MAX_OUTPUT_FILES, check_output_table};
-use super::phases::{Phase, TimeFunction, phases_of, time_function};
-use super::study::{SupportRt, written_steps};
+use super::phases::{Phase, TimeFunction, phases_of, time_functions};
+use super::study::{LoadRt, SupportRt, written_steps};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{OutputSpec, PlotSpec, Scene, Units};
 use contact_laws::StandardLaw;
@@ -45,7 +41,7 @@ pub struct SolidStudy {
     /// Supports (each in its phases).
     pub supports: Vec<SupportRt>,
     /// Loads.
-    pub loads: Vec<LoadRt3>,
+    pub loads: Vec<LoadRt<3>>,
     /// Time functions.
     pub functions: BTreeMap<String, TimeFunction>,
     /// Phases.
@@ -127,13 +123,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let mut functions = BTreeMap::new();
-    for (name, pts) in &scene.functions {
-        functions.insert(
-            name.clone(),
-            time_function(&root.key("functions").key(name), pts)?,
-        );
-    }
+    let functions = time_functions(scene)?;
     let phases = phases_of(scene, None)?;
     let mp = root.key("mesh");
     let mesh_raw = scene.mesh.as_ref().ok_or_else(|| {
@@ -146,24 +136,11 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
     if let Some(a) = &scene.analysis {
         a.resolve(&root.key("analysis"))?;
     }
-    let (materials, any_weight) = validate_materials(scene)?;
-    let supports = validate_supports(scene, &functions, &phases, 3)?;
-    let loads = model::validate_loads(scene, &functions, &phases, any_weight)?;
-    let names: Vec<Option<String>> = loads.iter().map(model::LoadPlan3::name).collect();
-    validate_names(scene, &names, &functions, &phases)?;
-    let initial_stress = validate_initial_stress(scene)?;
-    let ties = validate_ties(scene, 3)?;
-    let contact = contact::validate(scene)?;
+    let plan = model::validate(scene, &functions, &phases, ())?;
+    let contact = super::contact::validate::<3, _>(scene, contact::target)?;
     refuse_unsupported(scene)?;
 
     let mesh = mesh::build(&mp, mesh_plan)?;
-    let plan = model::ModelPlan3 {
-        materials,
-        supports,
-        loads,
-        ties,
-        initial_stress,
-    };
     let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
     let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
@@ -185,7 +162,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
         phases,
         output: scene.output.clone(),
         zone_names,
-        zone_laws: contact.laws,
+        zone_laws: contact.zones.iter().map(|z| z.law_name.into()).collect(),
         phase_laws: contact.phase_laws,
         warnings,
         hertz,

@@ -6,10 +6,11 @@ mod output;
 pub use output::SolidZoneSummary;
 
 use super::RunOptions;
+use super::driver::apply_step;
 use super::errors::{fem_failed, io, step_error};
 use super::progress::Progress;
-use super::summary::{BTreeUnits, CurveSummary, MeshFacts};
-use crate::build::{LoadKind3, Phase, SolidStudy, function_value, released_at};
+use super::summary::{BTreeUnits, CurveSummary, MeshFacts, status};
+use crate::build::{Phase, SolidStudy, released_at};
 use crate::error::{CliError, CliResult};
 use fem_core::Structure;
 use output::{SolidRecorder, StepRow};
@@ -145,64 +146,6 @@ fn release_ending(study: &mut SolidStudy, p: usize) -> CliResult<()> {
     Ok(())
 }
 
-/// The supports (those of phase `p`) and the loads at time `t` (the loads are rebuilt only
-/// when a factor changed since `last`).
-fn apply(study: &mut SolidStudy, p: usize, t: f64, last: &mut Option<Vec<f64>>) -> CliResult<()> {
-    let phase = &study.phases[p];
-    let model = study.sim.structure_mut();
-    for s in study.supports.iter().filter(|s| s.phases[p]) {
-        let v = s.value * function_value(phase, &s.name, &s.function, &study.functions, t);
-        for &c in &s.components {
-            model
-                .set_prescribed(&s.nodes, c, v)
-                .map_err(|e| fem_failed("prescribed displacement", e))?;
-        }
-    }
-    let factors: Vec<f64> = study
-        .loads
-        .iter()
-        .map(|l| {
-            if l.phases[p] {
-                function_value(phase, &l.name, &l.function, &study.functions, t)
-            } else {
-                0.0
-            }
-        })
-        .collect();
-    if last.as_ref() == Some(&factors) {
-        return Ok(());
-    }
-    model.clear_loads();
-    for (l, &f) in study.loads.iter().zip(&factors) {
-        if !l.phases[p] {
-            continue;
-        }
-        let scaled = |v: &[f64; 3]| v.map(|x| x * f);
-        match &l.kind {
-            LoadKind3::Traction(set, v) => {
-                let v = scaled(v);
-                model.add_face_traction(set, |_, _| v)
-            }
-            LoadKind3::Pressure(set, p) => {
-                let p = p * f;
-                model.add_face_traction(set, |_, n| n.map(|c| -p * c))
-            }
-            LoadKind3::Nodal(nodes, v) => nodes
-                .iter()
-                .try_for_each(|&n| model.add_nodal_force(n, scaled(v))),
-            LoadKind3::Resultant(node, v) => model.add_nodal_force(*node, scaled(v)),
-            LoadKind3::Body(v) => {
-                let v = scaled(v);
-                model.add_body_force(|_| v)
-            }
-            LoadKind3::Gravity => model.add_self_weight(),
-        }
-        .map_err(|e| fem_failed("load", e))?;
-    }
-    *last = Some(factors);
-    Ok(())
-}
-
 /// Whether global step `global` (the last of its phase when `last`) is written.
 fn written(study: &SolidStudy, global: usize, last: bool) -> bool {
     match &study.output.steps {
@@ -236,7 +179,18 @@ fn drive(
             let t_step = Instant::now();
             let k0 = study.sim.structure().factorizations();
             let a0 = study.sim.counters().active_set_factorizations;
-            let res = apply(study, p, t, &mut last_loads).and_then(|()| {
+            let model = study.sim.structure_mut();
+            let (supports, loads, functions) = (&study.supports, &study.loads, &study.functions);
+            let res = apply_step(
+                model,
+                supports,
+                loads,
+                functions,
+                (&phase, p),
+                t,
+                &mut last_loads,
+            );
+            let res = res.and_then(|()| {
                 let at = t.max(study.sim.time());
                 study
                     .sim
@@ -360,18 +314,8 @@ pub fn run_solid(mut study: SolidStudy, opts: &RunOptions) -> CliResult<SolidSum
         scene: opts.scene_file.display().to_string(),
         title: study.title.clone(),
         dimension: 3,
-        units: BTreeUnits {
-            length: study.units.length.clone(),
-            force: study.units.force.clone(),
-            time: study.units.time.clone(),
-            stress: study.units.stress.clone(),
-        },
-        status: if error.is_some() {
-            "failed"
-        } else {
-            "completed"
-        }
-        .into(),
+        units: BTreeUnits::of(&study.units),
+        status: status(error.as_ref()),
         error: error.as_ref().map(|e| e.message.clone()),
         steps,
         time,
