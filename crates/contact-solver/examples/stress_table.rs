@@ -11,7 +11,7 @@
 
 #[path = "../tests/support/hertz_scene.rs"]
 mod hertz_scene;
-#[path = "../tests/support/stress_cases.rs"]
+#[path = "../tests/support/stress_cases/mod.rs"]
 mod stress_cases;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};

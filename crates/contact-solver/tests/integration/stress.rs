@@ -1,7 +1,7 @@
 //! Numerical stability under stress (issue 8): every case must converge to the solver's
 //! tolerance (`1e-10`) and pass its physics checks, or end in a typed error it declares —
 //! never a NaN, a panic or a silent wrong answer. The cases are in
-//! `tests/support/stress_cases.rs`; `cargo run --release -p contact-solver --example
+//! `tests/support/stress_cases/`; `cargo run --release -p contact-solver --example
 //! stress_table` prints the table of `docs/validation.md` ("Numerical stability under stress").
 //!
 //! References for the checks: series springs for stacked blocks; uniaxial plane strain
