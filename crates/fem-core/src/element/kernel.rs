@@ -54,30 +54,14 @@ fn cofactor<const D: usize>(j: &[[f64; D]; D]) -> ([[f64; D]; D], f64) {
             cof[1][1] = j[0][0];
         }
         _ => {
-            cof[0] = [
-                j[1][1] * j[2][2] - j[1][2] * j[2][1],
-                j[1][2] * j[2][0] - j[1][0] * j[2][2],
-                j[1][0] * j[2][1] - j[1][1] * j[2][0],
-            ]
-            .as_slice()
-            .try_into()
-            .expect("D = 3");
-            cof[1] = [
-                j[0][2] * j[2][1] - j[0][1] * j[2][2],
-                j[0][0] * j[2][2] - j[0][2] * j[2][0],
-                j[0][1] * j[2][0] - j[0][0] * j[2][1],
-            ]
-            .as_slice()
-            .try_into()
-            .expect("D = 3");
-            cof[2] = [
-                j[0][1] * j[1][2] - j[0][2] * j[1][1],
-                j[0][2] * j[1][0] - j[0][0] * j[1][2],
-                j[0][0] * j[1][1] - j[0][1] * j[1][0],
-            ]
-            .as_slice()
-            .try_into()
-            .expect("D = 3");
+            // cof[i][k] = j[i+1][k+1] j[i+2][k+2] − j[i+1][k+2] j[i+2][k+1], indices mod 3
+            for (i, row) in cof.iter_mut().enumerate() {
+                let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+                for (k, c) in row.iter_mut().enumerate() {
+                    let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+                    *c = j[i1][k1] * j[i2][k2] - j[i1][k2] * j[i2][k1];
+                }
+            }
         }
     }
     let det = if D == 2 {
