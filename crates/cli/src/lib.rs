@@ -18,5 +18,4 @@ mod raw;
 mod run;
 mod scene;
 mod spec;
-mod spec3;
 mod templates;

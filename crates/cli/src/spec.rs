@@ -1,12 +1,17 @@
-//! The typed values of a scene: what each tagged table (`[mesh]`, `[analysis]`, `[[loads]]`,
-//! `target`, `law`, `[preset]`, …) means once [`crate::raw`] has resolved its `type`, and the small
-//! value types (`Pair`, `Element`, grading and scheme names, the preset overrides) that both the
-//! flat tables of [`crate::raw`] and the tables of [`crate::scene`] read.
+//! The typed values of a scene, 2D and 3D alike: what each tagged table (`[mesh]`,
+//! `[analysis]`, `[[loads]]`, `target`, `law`, `[preset]`, …) means once [`crate::raw`] has
+//! resolved its `type` for the scene's dimension, and the small value types (`Pair`, [`Coords`],
+//! `Element`, grading and scheme names, the preset overrides) that both the flat tables of
+//! [`crate::raw`] and the tables of [`crate::scene`] read. A load's vectors have the scene's
+//! dimension ([`LoadSpec<D>`]); the rigid shapes of a target are those of one dimension each
+//! (a LINE and an ARC in 2D, a plane, a sphere and a cylinder in 3D) in one [`TargetSpec`].
 //!
 //! This module depends on no other module of the crate: [`crate::raw`] resolves into it and
 //! [`crate::scene`] holds the raw tables, so the imports go `scene → raw → spec`.
 
+use serde::de::{self, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer};
+use std::fmt;
 
 /// Two numbers `[a, b]` (a point, a vector, a `[time, value]` row): exactly two, so that a
 /// third value is an error rather than silently dropped.
@@ -26,7 +31,69 @@ impl<'de> Deserialize<'de> for Pair {
     }
 }
 
-/// P1 or P2 triangles.
+/// A point or a vector: two numbers `[x, y]` (a 2D scene) or three `[x, y, z]` (a 3D scene).
+/// Which length a key takes is checked when the table is resolved, with its key path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coords(pub Vec<f64>);
+
+impl<'de> Deserialize<'de> for Coords {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        match v.len() {
+            2 | 3 => Ok(Coords(v)),
+            n => Err(de::Error::invalid_length(
+                n,
+                &"two numbers [x, y] (2D) or three [x, y, z] (3D)",
+            )),
+        }
+    }
+}
+
+/// A load's `value`: one number (a pressure) or a vector ([`Coords`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoadValue {
+    /// `value = 2.0`.
+    Scalar(f64),
+    /// `value = [0.0, 0.0, -1.0]`.
+    Vector(Coords),
+}
+
+impl<'de> Deserialize<'de> for LoadValue {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = LoadValue;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a number (a pressure) or a vector [x, y] (2D) or [x, y, z] (3D)")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<LoadValue, E> {
+                Ok(LoadValue::Scalar(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<LoadValue, E> {
+                Ok(LoadValue::Scalar(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<LoadValue, E> {
+                Ok(LoadValue::Scalar(v as f64))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<LoadValue, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = seq.next_element::<f64>()? {
+                    v.push(x);
+                }
+                match v.len() {
+                    2 | 3 => Ok(LoadValue::Vector(Coords(v))),
+                    n => Err(de::Error::invalid_length(
+                        n,
+                        &"two numbers [x, y] (2D) or three [x, y, z] (3D)",
+                    )),
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// P1 or P2 elements (triangles or quadrilaterals in 2D, tetrahedra or hexahedra in 3D).
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 pub enum Element {
     /// 3-node triangles.
@@ -71,6 +138,20 @@ pub struct LayerSpec {
     pub grading: GradingSpec,
     /// Region id.
     pub region: u32,
+}
+
+/// The box generator (`fem_core::solid::generate::box_mesh`; every element in region 0), its
+/// values checked later.
+#[derive(Debug, Clone)]
+pub struct BoxSpec {
+    /// P1 (4-node) or P2 (10-node) tetrahedra.
+    pub element: Element,
+    /// `[x0, x1]`, `[y0, y1]`, `[z0, z1]`.
+    pub ranges: [Pair; 3],
+    /// Cells along x, y, z.
+    pub cells: [usize; 3],
+    /// Gradings along x, y, z.
+    pub gradings: [GradingSpec; 3],
 }
 
 /// The mesh: a generator or a Gmsh file.
@@ -130,7 +211,9 @@ pub enum MeshSpec {
         /// `split` or `shared`.
         tip_corner: Option<TipCornerSpec>,
     },
-    /// A Gmsh `.msh` 4.1 file.
+    /// `fem_core::solid::generate::box_mesh` (3D).
+    Box(BoxSpec),
+    /// A Gmsh `.msh` 4.1 file (of the scene's dimension).
     Gmsh {
         /// Path, relative to the scene file.
         file: String,
@@ -179,36 +262,44 @@ pub enum InitialStress {
     },
 }
 
-/// A load of a 2D scene (its name, function and phases are `RawLoad::common`'s).
+/// A load of a scene of dimension `D` (its name, function and phases are `RawLoad::common`'s).
 #[derive(Debug, Clone)]
-pub enum LoadSpec {
-    /// Traction (force per area, global frame) on an edge set.
+pub enum LoadSpec<const D: usize> {
+    /// Traction (force per area, global frame) on an edge set (2D) or a face set (3D).
     Traction {
-        /// Edge set.
+        /// Edge or face set.
         set: String,
-        /// `[t_x, t_y]`.
-        value: Pair,
+        /// `[t_x, t_y]` or `[t_x, t_y, t_z]`.
+        value: [f64; D],
+    },
+    /// A pressure on a face set, positive into the body (3D only).
+    Pressure {
+        /// Face set.
+        set: String,
+        /// The pressure.
+        value: f64,
     },
     /// A force on every node of a node set.
     NodalForce {
         /// Node set.
         set: String,
-        /// `[f_x, f_y]` per node.
-        value: Pair,
+        /// The force per node.
+        value: [f64; D],
     },
     /// One force on a node set tied along its non-zero components (a rigid cap's resultant).
     Resultant {
         /// Node set.
         set: String,
-        /// `[F_x, F_y]` on the whole set.
-        value: Pair,
+        /// The force on the whole set.
+        value: [f64; D],
     },
     /// A uniform body force (force per volume) over the whole mesh.
     BodyForce {
-        /// `[b_x, b_y]`.
-        value: Pair,
+        /// The force per volume.
+        value: [f64; D],
     },
-    /// The self-weight of every region (its material's `unit_weight`, along −y), in full.
+    /// The self-weight of every region (its material's `unit_weight`, along −y in 2D, −z in
+    /// 3D), in full.
     Gravity,
 }
 
@@ -222,17 +313,19 @@ pub enum ArcSideSpec {
     Inside,
 }
 
-/// Target of a zone.
+/// Target of a zone: a rigid shape of the scene's dimension (LINE, ARC in 2D; plane, sphere,
+/// cylinder in 3D), node pairs, or another body's surface. Vectors are as written (their length
+/// and values are checked when the target is built).
 #[derive(Debug, Clone)]
 pub enum TargetSpec {
-    /// Rigid segment a → b, contactor on its left.
+    /// Rigid segment a → b, contactor on its left (2D).
     Line {
         /// Start.
         a: Pair,
         /// End.
         b: Pair,
     },
-    /// Rigid circular arc.
+    /// Rigid circular arc (2D).
     Arc {
         /// Centre.
         center: Pair,
@@ -245,16 +338,46 @@ pub enum TargetSpec {
         /// `outside` or `inside`.
         side: ArcSideSpec,
     },
-    /// Node-to-node pairs with a node set of the same length.
-    NodePairs {
-        /// Target node set.
-        set: String,
-        /// Fixed normal.
-        normal: Option<Pair>,
+    /// The rigid plane through `point`, the contactor on the side `normal` points to (3D).
+    Plane {
+        /// A point of the plane.
+        point: Coords,
+        /// Its normal, towards the contactor.
+        normal: Coords,
     },
-    /// Node-to-segment on the polyline of a node set.
-    Segments {
-        /// Target node set (in order).
+    /// A rigid sphere (3D).
+    Sphere {
+        /// Centre.
+        center: Coords,
+        /// Radius.
+        radius: f64,
+        /// The contactor's side (default outside).
+        side: ArcSideSpec,
+    },
+    /// An infinite rigid circular cylinder (3D).
+    Cylinder {
+        /// A point of the axis.
+        point: Coords,
+        /// The axis direction.
+        axis: Coords,
+        /// Radius.
+        radius: f64,
+        /// The contactor's side (default outside).
+        side: ArcSideSpec,
+    },
+    /// Node pairs: each contactor node with a node of `set` (2D: in the set's order, 3D: at
+    /// its position).
+    NodePairs {
+        /// The target node set.
+        set: String,
+        /// A fixed normal from the target to the contactor; absent: from the target nodes in
+        /// order (2D) or the target body's faces (3D).
+        normal: Option<Coords>,
+    },
+    /// Another body's surface: the polyline through a node set in order (2D `segments`), the
+    /// faces of a face set (3D `faces`).
+    Surface {
+        /// The target set.
         set: String,
     },
 }
@@ -473,4 +596,54 @@ pub struct RccmOverride {
     pub scheme: Option<SchemeSpec>,
     /// θ.
     pub theta: Option<f64>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Deserialize)]
+    struct T {
+        c: Option<Coords>,
+        v: Option<LoadValue>,
+    }
+
+    fn parse(s: &str) -> Result<T, String> {
+        toml::from_str(s).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn coords_take_two_or_three_numbers_works() {
+        assert_eq!(parse("c = [1, 2]").unwrap().c, Some(Coords(vec![1.0, 2.0])));
+        assert_eq!(
+            parse("c = [1.0, 2.0, 3.5]").unwrap().c,
+            Some(Coords(vec![1.0, 2.0, 3.5]))
+        );
+    }
+
+    #[test]
+    fn coords_rejects_other_lengths() {
+        let e = parse("c = [1.0]").unwrap_err();
+        assert!(e.contains("invalid length 1"), "{e}");
+        let e = parse("c = [1.0, 2.0, 3.0, 4.0]").unwrap_err();
+        assert!(e.contains("three [x, y, z]"), "{e}");
+    }
+
+    #[test]
+    fn load_values_are_numbers_or_vectors_works() {
+        assert_eq!(parse("v = 2").unwrap().v, Some(LoadValue::Scalar(2.0)));
+        assert_eq!(parse("v = -1.5").unwrap().v, Some(LoadValue::Scalar(-1.5)));
+        assert_eq!(
+            parse("v = [0, 0, -1]").unwrap().v,
+            Some(LoadValue::Vector(Coords(vec![0.0, 0.0, -1.0])))
+        );
+    }
+
+    #[test]
+    fn load_values_rejects_text_and_bad_lengths() {
+        let e = parse("v = \"up\"").unwrap_err();
+        assert!(e.contains("a number (a pressure) or a vector"), "{e}");
+        let e = parse("v = [1.0]").unwrap_err();
+        assert!(e.contains("invalid length 1"), "{e}");
+    }
 }

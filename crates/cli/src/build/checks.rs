@@ -8,6 +8,7 @@ use contact_laws::LawError;
 use contact_solver::SolverError;
 use contact_solver::error::chain;
 use fem_core::generate::Grading;
+use fem_core::solid::SolidKind;
 use fem_core::{Dim, ElementKind, FemError, Mesh, Space};
 use std::collections::BTreeSet;
 
@@ -47,9 +48,14 @@ pub(super) fn finite(path: &KeyPath, v: f64) -> CliResult<f64> {
 
 /// Two finite numbers (the error names the index).
 pub(super) fn finite2(path: &KeyPath, v: Pair) -> CliResult<[f64; 2]> {
-    let v = v.0;
-    finite(&path.index(0), v[0])?;
-    finite(&path.index(1), v[1])?;
+    finite_all(path, v.0)
+}
+
+/// `D` finite numbers (the error names the index).
+pub(super) fn finite_all<const D: usize>(path: &KeyPath, v: [f64; D]) -> CliResult<[f64; D]> {
+    for (k, x) in v.iter().enumerate() {
+        finite(&path.index(k), *x)?;
+    }
     Ok(v)
 }
 
@@ -83,6 +89,25 @@ pub(super) fn kind(e: Element) -> ElementKind {
     match e {
         Element::P1 => ElementKind::Tri3,
         Element::P2 => ElementKind::Tri6,
+    }
+}
+
+/// The tetrahedron of a scene's element name (the box generator's).
+pub(super) fn solid_kind(e: Element) -> SolidKind {
+    match e {
+        Element::P1 => SolidKind::Tet4,
+        Element::P2 => SolidKind::Tet10,
+    }
+}
+
+/// Name of a 3D element kind for messages.
+pub fn solid_kind_name(k: SolidKind) -> &'static str {
+    match k {
+        SolidKind::Tet4 => "P1 (4-node tetrahedra)",
+        SolidKind::Tet10 => "P2 (10-node tetrahedra)",
+        SolidKind::Hex8 => "P1 (8-node hexahedra)",
+        SolidKind::Hex20 => "P2 (20-node serendipity hexahedra)",
+        _ => "elements of a kind this version of bipo does not name",
     }
 }
 

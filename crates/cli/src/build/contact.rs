@@ -1,61 +1,62 @@
-//! Contact: the solver settings, the laws and the targets of the zones checked first, then the
-//! zones built on the model's node sets, recognised (every zone must have a candidate within its
-//! alert distance at the start), and the simulation made.
+//! Contact, in both dimensions: the solver settings, the laws and the targets of the zones
+//! checked first, then the zones built on the model's sets, recognised (every zone must have a
+//! candidate within its alert distance at the start), and the simulation made. What a zone reads
+//! differently per dimension (rigid shapes, node pairs, target surfaces, contactor areas) is
+//! [`SceneDim`]'s.
 
 use super::checks::{
-    at_least, expect, finite, finite2, law_error, list_names, node_set, non_negative, positive,
-    solver_error,
+    at_least, expect, law_error, list_names, non_negative, positive, solver_error,
 };
-use super::curves;
+use super::dim::SceneDim;
 use super::supported::{Policy, point, resolve};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::raw::RawTarget;
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
 };
-use crate::spec::{ArcSideSpec, LawSpec, RccmSpec, SchemeSpec, TargetSpec};
+use crate::spec::{LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
 use contact_solver::coupling::space::ContactSpace;
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
 use contact_solver::{
-    Algorithm, ArcSide, Candidate, ContactSimulation, ContactZone, FlexibilityMode, RigidArc,
-    RigidLine, SimulationSettings, recognize, supported_contactors,
+    Algorithm, Candidate, ContactSimulation, ContactZone, FlexibilityMode, Obstacle,
+    SimulationSettings, Target, recognize, supported_contactors,
 };
-use fem_core::{Dim, LinearElasticModel};
+use fem_core::{Dim, ElasticModel, Structure};
 use std::collections::BTreeSet;
-use std::f64::consts::TAU;
+use std::sync::Arc;
 
-/// What a zone faces, checked; node sets are looked up in the mesh at build.
-pub(super) enum TargetPlan {
-    Line(RigidLine),
-    Arc(RigidArc),
+/// What a zone faces, checked: a rigid shape (built), node pairs or another body's surface
+/// (their sets are looked up in the mesh at build).
+pub(super) enum TargetPlan<const D: usize> {
+    /// A LINE or an ARC (2D); a plane, a sphere or a cylinder (3D).
+    Rigid(Arc<dyn Obstacle<D>>),
+    /// Node pairs with the nodes of `set`, and a fixed normal if given.
     NodePairs {
         set: String,
-        normal: Option<[f64; 2]>,
+        normal: Option<[f64; D]>,
     },
-    Segments {
-        set: String,
-    },
+    /// The polyline of a node set (2D `segments`), the faces of a face set (3D `faces`).
+    Surface(String),
 }
 
-/// A contact zone, checked, against a target of type `T` (2D: [`TargetPlan`], 3D: the solid
-/// obstacle).
-pub(super) struct ZonePlan<T> {
+/// A contact zone of a scene of dimension `D`, checked.
+pub(super) struct ZonePlan<const D: usize> {
     pub(super) path: KeyPath,
     pub(super) name: String,
     pub(super) contactor: String,
     pub(super) law: StandardLaw,
     pub(super) law_name: &'static str,
     pub(super) alert: f64,
-    pub(super) target: T,
+    pub(super) target: TargetPlan<D>,
     pub(super) supported: SupportedContactors,
 }
 
 /// The zones of a scene, checked, how many have adhesion and friction, and the solver settings.
-pub(super) struct ContactPlan<T> {
+pub(super) struct ContactPlan<const D: usize> {
     /// Zones, in the scene's order.
-    pub(super) zones: Vec<ZonePlan<T>>,
+    pub(super) zones: Vec<ZonePlan<D>>,
     /// Zones whose law has adhesion.
     pub(super) adhesive: usize,
     /// Zones whose law has friction.
@@ -264,14 +265,11 @@ pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'stat
     })
 }
 
-/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry, read by
-/// `target` at each zone's `target` key) and `[solver]`, in a scene of dimension `D`.
-pub(super) fn validate<const D: usize, T>(
-    scene: &Scene,
-    target: impl Fn(&KeyPath, &RawTarget) -> CliResult<T>,
-) -> CliResult<ContactPlan<T>>
+/// Checks `[[contact]]` (unique names, alert distances, laws and the targets' geometry) and
+/// `[solver]`, in a scene of dimension `D`.
+pub(super) fn validate<const D: usize>(scene: &Scene) -> CliResult<ContactPlan<D>>
 where
-    Dim<D>: ContactSpace<D>,
+    Dim<D>: SceneDim<D>,
 {
     let root = KeyPath::root();
     if scene.contact.is_empty() {
@@ -295,7 +293,7 @@ where
         if l.has_friction() {
             friction += 1;
         }
-        let target = target(&p.key("target"), &z.target)?;
+        let target = target::<D>(&p.key("target"), &z.target)?;
         zones.push(ZonePlan {
             path: p,
             name: z.name.clone(),
@@ -350,176 +348,96 @@ pub(super) fn phase_laws(
     Ok(out)
 }
 
-/// The target of a 2D zone at `tp`, its geometry checked (rigid lines and arcs are built here).
-pub(super) fn target(tp: &KeyPath, t: &RawTarget) -> CliResult<TargetPlan> {
-    Ok(match &t.resolve(tp)? {
-        TargetSpec::Line { a, b } => {
-            let a = finite2(&tp.key("a"), *a)?;
-            let b = finite2(&tp.key("b"), *b)?;
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            if !(dx.is_finite() && dy.is_finite() && dx.hypot(dy).is_finite()) {
-                return Err(CliError::at(
-                    tp,
-                    format!(
-                        "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows (expected \
-                         end points whose distance stays finite)"
-                    ),
-                ));
-            }
-            TargetPlan::Line(RigidLine::new(a, b).map_err(|e| solver_error(tp, e))?)
-        }
-        TargetSpec::Arc {
-            center,
-            radius,
-            start_angle,
-            sweep,
-            side,
-        } => {
-            let center = finite2(&tp.key("center"), *center)?;
-            let radius = positive(&tp.key("radius"), *radius)?;
-            let start = finite(&tp.key("start_angle"), *start_angle)?;
-            let sweep = match sweep {
-                Some(s) => expect(
-                    &tp.key("sweep"),
-                    *s,
-                    *s > 0.0 && *s <= TAU * (1.0 + 1e-12),
-                    "an angle in (0, 2π] radians",
-                )?,
-                None => TAU,
-            };
-            let side = match side {
-                ArcSideSpec::Outside => ArcSide::Outside,
-                ArcSideSpec::Inside => ArcSide::Inside,
-            };
-            TargetPlan::Arc(
-                RigidArc::new(center, radius, start, sweep, side)
-                    .map_err(|e| solver_error(tp, e))?,
-            )
-        }
-        TargetSpec::NodePairs { set, normal } => {
-            if let Some(n) = normal {
-                let n = finite2(&tp.key("normal"), *n)?;
-                if n[0] == 0.0 && n[1] == 0.0 {
-                    return Err(CliError::at(
-                        &tp.key("normal"),
-                        "the normal [0, 0] has no direction",
-                    ));
-                }
-            }
-            TargetPlan::NodePairs {
-                set: set.clone(),
-                normal: normal.map(|n| n.0),
-            }
-        }
-        TargetSpec::Segments { set } => TargetPlan::Segments { set: set.clone() },
+/// The target of a zone at `tp` in a scene of dimension `D`, its geometry checked (rigid
+/// shapes are built here).
+pub(super) fn target<const D: usize>(tp: &KeyPath, t: &RawTarget) -> CliResult<TargetPlan<D>>
+where
+    Dim<D>: SceneDim<D>,
+{
+    Ok(match t.resolve::<D>(tp)? {
+        TargetSpec::NodePairs { set, normal } => TargetPlan::NodePairs {
+            set,
+            normal: normal
+                .map(|n| Dim::<D>::pair_normal(&tp.key("normal"), &n))
+                .transpose()?,
+        },
+        TargetSpec::Surface { set } => TargetPlan::Surface(set),
+        rigid => TargetPlan::Rigid(Dim::<D>::obstacle(tp, &rigid)?),
     })
 }
 
-/// The simulation, each zone's law name, and the warnings of [`build`].
-pub(super) type BuiltContact = (
-    ContactSimulation<LinearElasticModel, StandardLaw>,
-    Vec<String>,
-    Vec<String>,
-);
+/// The simulation of a scene of dimension `D`.
+pub(super) type Simulation<const D: usize> = ContactSimulation<ElasticModel<D>, StandardLaw, D>;
 
-/// The zones on the model's node sets, recognised and checked, and the simulation; also gives
-/// each zone's law name, and the warnings (contactor nodes held by a support, left out).
-pub(super) fn build(
-    model: LinearElasticModel,
-    plan: Vec<ZonePlan<TargetPlan>>,
-    settings: SimulationSettings,
-) -> CliResult<BuiltContact> {
-    let root = KeyPath::root();
-    let mut zones = Vec::new();
-    let mut zone_laws = Vec::new();
-    let mut policies = Vec::new();
-    for z in plan {
-        policies.push((
-            z.path.clone(),
-            z.name.clone(),
-            z.contactor.clone(),
-            z.supported,
-        ));
-        let p = &z.path;
-        let mesh = model.mesh();
-        let mut contactor = node_set(&p.key("contactor"), mesh, &z.contactor)?;
-        zone_laws.push(z.law_name.to_string());
-        let tp = p.key("target");
-        let (l, alert) = (z.law, z.alert);
-        let zone = match z.target {
-            TargetPlan::Line(line) => ContactZone::rigid(&z.name, contactor, line, l, alert),
-            TargetPlan::Arc(arc) => ContactZone::rigid(&z.name, contactor, arc, l, alert),
-            TargetPlan::NodePairs { set, normal } => {
-                let targets = match normal {
-                    Some(_) => node_set(&tp.key("set"), mesh, &set)?,
-                    None => curves::target_nodes(&tp.key("set"), mesh, &set)?.0,
-                };
-                curves::match_pairs(
-                    mesh,
-                    (z.contactor.as_str(), contactor.as_mut_slice()),
-                    (set.as_str(), targets.as_slice()),
-                );
-                if targets.len() != contactor.len() {
-                    return Err(CliError::at(
-                        &tp.key("set"),
-                        format!(
-                            "node set `{set}` has {} nodes but the contactor set `{}` has {}: \
-                             node pairs need sets of the same length, in matching order",
-                            targets.len(),
-                            z.contactor,
-                            contactor.len()
-                        ),
-                    ));
-                }
-                if let Some((c, _)) = contactor.iter().zip(&targets).find(|(c, t)| c == t) {
-                    return Err(CliError::at(
-                        &tp.key("set"),
-                        format!(
-                            "`{}` = \"{set}\": node {c} of the contactor set `{}` is paired \
-                             with itself (a node cannot touch itself; pair two distinct surfaces)",
-                            tp.key("set"),
-                            z.contactor
-                        ),
-                    ));
-                }
-                ContactZone::node_pairs(&z.name, contactor, targets, normal, l, alert)
-            }
-            TargetPlan::Segments { set } => {
-                let (mut surface, closed) = curves::target_nodes(&tp.key("set"), mesh, &set)?;
-                if closed {
-                    surface.push(surface[0]);
-                }
-                if surface.len() < 2 {
-                    return Err(CliError::at(
-                        &tp.key("set"),
-                        format!(
-                            "node set `{set}` has {} node: a target polyline needs at least two",
-                            surface.len()
-                        ),
-                    ));
-                }
-                curves::check_polyline(&tp.key("set"), &set, &model, &surface)?;
-                ContactZone::node_to_segment(&z.name, contactor, surface, l, alert)
-            }
-        };
-        let zone = match curves::contactor_areas(&model, &z.contactor, &zone.contactor) {
-            Some(areas) => zone.with_areas(areas),
+/// The simulation, each zone's law name, and the warnings of [`build`].
+pub(super) type BuiltContact<const D: usize> = (Simulation<D>, Vec<String>, Vec<String>);
+
+/// One zone on the model's sets: its contactor nodes (with their tributary areas where the
+/// set gives them or the zone's own lumping would be wrong) against its target.
+fn zone<const D: usize>(
+    model: &ElasticModel<D>,
+    z: &ZonePlan<D>,
+) -> CliResult<ContactZone<StandardLaw, D>>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let cp = z.path.key("contactor");
+    let (mut contactor, areas) = Dim::<D>::contactor(model.mesh(), &cp, &z.contactor)?;
+    let tp = z.path.key("target");
+    let (name, l, alert) = (z.name.as_str(), z.law, z.alert);
+    let zone = match &z.target {
+        TargetPlan::Rigid(o) => {
+            ContactZone::new(name, contactor, Target::Rigid(o.clone()), l, alert)
+        }
+        TargetPlan::NodePairs { set, normal } => {
+            let (targets, normals) =
+                Dim::<D>::pairs(model, &tp, &z.contactor, set, *normal, &mut contactor)?;
+            ContactZone::node_pairs(name, contactor, targets, normals, l, alert)
+        }
+        TargetPlan::Surface(set) => {
+            let surface = Dim::<D>::surface(model, &tp.key("set"), set)?;
+            ContactZone::on_surface(name, contactor, surface, l, alert)
+        }
+    };
+    Ok(
+        match areas.or_else(|| Dim::<D>::areas(model, &z.contactor, &zone.contactor)) {
+            Some(a) => zone.with_areas(a),
             None => zone,
-        };
-        zones.push(zone);
-    }
-    let held =
-        supported_contactors(&model, &zones).map_err(|e| solver_error(&root.key("contact"), e))?;
-    let policies: Vec<Policy<'_>> = policies
+        },
+    )
+}
+
+/// The simulation of `model` with the zones of `plans`: zones built ([`zone`]), contactor nodes
+/// held by a support refused or left out (`supported_contactors`; the warnings are returned),
+/// candidates recognised and checked (each zone has one, none deeper in its target than the
+/// alert distance, one within it; before the simulation is made in 2D, with the facing check,
+/// after in 3D). Also gives each zone's law name. A library refusal is told at the `contact`
+/// key.
+pub(super) fn build<const D: usize>(
+    model: ElasticModel<D>,
+    plans: &[ZonePlan<D>],
+    settings: SimulationSettings,
+) -> CliResult<BuiltContact<D>>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let contact = KeyPath::root().key("contact");
+    let zones = plans
         .iter()
-        .map(|(path, name, contactor, choice)| Policy {
-            path: path.clone(),
-            name,
-            contactor,
-            choice: *choice,
+        .map(|z| zone(&model, z))
+        .collect::<CliResult<Vec<_>>>()?;
+    let zone_laws = plans.iter().map(|z| z.law_name.to_string()).collect();
+    let held = supported_contactors(&model, &zones).map_err(|e| solver_error(&contact, e))?;
+    let policies: Vec<Policy<'_>> = plans
+        .iter()
+        .map(|z| Policy {
+            path: z.path.clone(),
+            name: &z.name,
+            contactor: &z.contactor,
+            choice: z.supported,
         })
         .collect();
-    let position = |n: usize| point(&fem_core::Structure::node_position(&model, n));
+    let position = |n: usize| point(&model.node_position(n));
     let (leave_out, warnings) = resolve(&held, &policies, &position)?;
     let zones: Vec<_> = zones
         .into_iter()
@@ -532,66 +450,70 @@ pub(super) fn build(
             }
         })
         .collect();
-    let candidates =
-        recognize(&model, &zones).map_err(|e| solver_error(&root.key("contact"), e))?;
-    check_candidates(&candidates, &zones, &model)?;
-    curves::check_facing(&candidates, &zones, &model)?;
-    let sim = ContactSimulation::new(model, zones, settings)
-        .map_err(|e| solver_error(&root.key("contact"), e))?;
+    let sim = if <Dim<D> as SceneDim<D>>::CANDIDATES_FIRST {
+        let candidates = recognize(&model, &zones).map_err(|e| solver_error(&contact, e))?;
+        check_candidates(&candidates, plans, &zones, &model)?;
+        Dim::<D>::check_facing(&candidates, &zones, &model)?;
+        ContactSimulation::new(model, zones, settings).map_err(|e| solver_error(&contact, e))?
+    } else {
+        let sim = ContactSimulation::new(model, zones, settings)
+            .map_err(|e| solver_error(&contact, e))?;
+        check_candidates(sim.candidates(), plans, sim.zones(), sim.structure())?;
+        sim
+    };
     Ok((sim, zone_laws, warnings))
 }
 
 /// Every zone must have a candidate, none deeper inside its target than the alert distance, and
 /// one within the alert distance.
-fn check_candidates(
-    candidates: &[Candidate],
-    zones: &[ContactZone<StandardLaw>],
-    model: &LinearElasticModel,
-) -> CliResult<()> {
-    use fem_core::Structure;
-    for (z, zone) in zones.iter().enumerate() {
-        let p = KeyPath::root().key("contact").index(z);
-        let mine: Vec<&Candidate> = candidates.iter().filter(|c| c.zone == z).collect();
-        if mine.is_empty() {
+fn check_candidates<const D: usize>(
+    candidates: &[Candidate<D>],
+    plans: &[ZonePlan<D>],
+    zones: &[ContactZone<StandardLaw, D>],
+    model: &ElasticModel<D>,
+) -> CliResult<()>
+where
+    Dim<D>: SceneDim<D>,
+{
+    for (z, (plan, zone)) in plans.iter().zip(zones).enumerate() {
+        let p = &plan.path;
+        let Some(closest) = candidates
+            .iter()
+            .filter(|c| c.zone == z)
+            .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
+        else {
             return Err(CliError::at(
                 &p.key("target"),
                 format!(
-                    "zone `{}`: none of its {} contactor nodes projects onto the target \
-                     (a LINE or ARC must face the nodes; check its ends and its side)",
-                    zone.name,
-                    zone.contactor.len()
+                    "zone `{}`: {}",
+                    plan.name,
+                    Dim::<D>::no_projection(&plan.contactor, zone.contactor.len())
                 ),
             ));
-        }
-        let closest = mine
-            .iter()
-            .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
-            .expect("non-empty");
-        let deepest = mine
-            .iter()
-            .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
-            .expect("non-empty");
-        if deepest.gap0 < -zone.alert_distance {
-            let x = model.node_position(deepest.node);
+        };
+        let x = point(&model.node_position(closest.node));
+        if closest.gap0 < -plan.alert {
             return Err(CliError::at(
                 &p.key("target"),
                 format!(
-                    "zone `{}`: contactor node {} at ({}, {}) starts inside the target by {}, more \
-                     than the alert distance {}: is the target on the right side (a LINE has the \
-                     contactor on its left, from a to b; an ARC has `side`)?",
-                    zone.name, deepest.node, x[0], x[1], -deepest.gap0, zone.alert_distance
+                    "zone `{}`: contactor node {} at {x} starts inside the target by {}, more \
+                     than the alert distance {}: {}",
+                    plan.name,
+                    closest.node,
+                    -closest.gap0,
+                    plan.alert,
+                    <Dim<D> as SceneDim<D>>::INSIDE_HINT
                 ),
             ));
         }
-        if closest.gap0 > zone.alert_distance {
-            let x = model.node_position(closest.node);
+        if closest.gap0 > plan.alert {
             return Err(CliError::at(
                 &p.key("alert_distance"),
                 format!(
                     "zone `{}`: every contactor node is outside the alert distance {} at the start \
-                     (the closest, node {} at ({}, {}), has a gap of {}); move the target closer \
+                     (the closest, node {} at {x}, has a gap of {}); move the target closer \
                      or raise `alert_distance`",
-                    zone.name, zone.alert_distance, closest.node, x[0], x[1], closest.gap0
+                    plan.name, plan.alert, closest.node, closest.gap0
                 ),
             ));
         }
@@ -614,4 +536,46 @@ pub(super) fn zone_name(p: &KeyPath, name: &str, names: &mut BTreeSet<String>) -
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_3d_reads_the_paths_with_the_3d_default() {
+        use contact_solver::FlexibilityMode;
+        let s = SolverSpec {
+            max_detection_passes: Some(7),
+            flexibility: Some(FlexibilitySpec::Dense),
+            ..SolverSpec::default()
+        };
+        let out = settings::<3>(&s).unwrap();
+        assert_eq!(out.tuning.max_detection_passes, 7);
+        assert_eq!(out.flexibility, FlexibilityMode::Dense);
+        let auto = settings::<3>(&SolverSpec::default()).unwrap().flexibility;
+        assert_eq!(auto, FlexibilityMode::Auto { dense_limit: 3000 });
+        let s = SolverSpec {
+            dense_limit: Some(10),
+            ..SolverSpec::default()
+        };
+        let limited = settings::<3>(&s).unwrap().flexibility;
+        assert_eq!(limited, FlexibilityMode::Auto { dense_limit: 10 });
+        let s = SolverSpec {
+            flexibility: Some(FlexibilitySpec::ActiveSet),
+            ..SolverSpec::default()
+        };
+        assert_eq!(
+            settings::<3>(&s).unwrap().flexibility,
+            FlexibilityMode::ActiveSet
+        );
+        // dense_limit with another path is refused at its key, as in 2D
+        let s = SolverSpec {
+            flexibility: Some(FlexibilitySpec::MatrixFree),
+            dense_limit: Some(10),
+            ..SolverSpec::default()
+        };
+        let e = settings::<3>(&s).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "solver.dense_limit");
+    }
 }

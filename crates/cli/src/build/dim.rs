@@ -1,34 +1,43 @@
 //! What a scene reads differently in 2D and 3D, in one place: the trait [`SceneDim`], for
 //! `Dim<2>` and `Dim<3>`. The passes are written once over the dimension `D` and ask it for
-//! a load's vectors (two numbers or three; pressures in 3D), the boundary sets tractions name
-//! (edge sets, face sets), the Gmsh reader and element names, the model's constructor (the 2D
-//! idealisation and `floating`) and the geostatic stress.
+//! the boundary sets tractions name (edge sets, face sets), the Gmsh reader and element names,
+//! the generators (rectangle and pile, box), the model's constructor (the 2D idealisation and
+//! `floating`) and the geostatic stress; and, for contact, the rigid shapes (LINE and ARC;
+//! plane, sphere and cylinder), node pairs (by the sets' order, by position), target surfaces
+//! (a node set's polyline, a face set's triangles), the contactor's areas and the wording and
+//! order of the candidates' checks.
 
-use super::checks::{finite, finite2, kind_name, list_names};
-use super::solid::solid_kind_name;
-use super::study::LoadKind;
+use super::checks::{expect, solid_kind_name, solver_error};
+use super::checks::{fem, finite, finite_all, kind_name, list_names, node_set, positive};
+use super::curves;
+use super::mesh::MeshPlan;
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::raw::{RawLoad, triple};
-use crate::spec::{Element, LoadSpec};
-use crate::spec3::{Coords, LoadSpec3};
+use crate::raw::vector;
+use crate::spec::{ArcSideSpec, Coords, Element, TargetSpec};
+use contact_laws::StandardLaw;
+use contact_solver::SolverError;
+use contact_solver::coupling::solid::{RigidCylinder, RigidPlane, RigidSphere, Side3, TriSurface};
+use contact_solver::coupling::space::ContactSpace;
+use contact_solver::coupling::zone::Polyline;
+use contact_solver::{ArcSide, Candidate, ContactZone, Obstacle, PairNormals, RigidArc, RigidLine};
 use fem_core::model::ModelSpace;
 use fem_core::solid::{SolidKind, SolidMesh, SolidModel, geostatic_3d};
 use fem_core::{Dim, ElasticModel, ElementKind, FemError, Idealization, LinearElasticModel};
 use fem_core::{Material, Mesh, StressField, Supports};
+use std::collections::HashMap;
+use std::f64::consts::TAU;
 use std::path::Path;
+use std::sync::Arc;
 
 /// What a scene reads differently in each dimension (see the module docs).
-pub(crate) trait SceneDim<const D: usize>: ModelSpace<D>
+pub(crate) trait SceneDim<const D: usize>: ModelSpace<D> + ContactSpace<D>
 where
-    Dim<D>: ModelSpace<D>,
+    Dim<D>: ModelSpace<D> + ContactSpace<D>,
 {
     /// What the model is built in besides its mesh, materials and supports.
     type Options;
     /// The 2D idealisation among the options (none in 3D).
     fn idealization(options: &Self::Options) -> Option<Idealization>;
-    /// A load's set (where it has one) and kind (its set or node not yet looked up), its type,
-    /// keys and values checked.
-    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<D>)>;
     /// Checks that the boundary set a traction or pressure names exists.
     fn boundary_set(path: &KeyPath, mesh: &Mesh<D>, set: &str) -> CliResult<()>;
     /// The model.
@@ -55,6 +64,63 @@ where
     /// # Errors
     /// The model's, for a set it does not have; in 2D, always (a 2D scene has no pressure).
     fn pressure(model: &mut ElasticModel<D>, set: &str, p: f64) -> Result<(), FemError>;
+    /// Generates the mesh of one of this dimension's generators (`[mesh]` at `mp`).
+    fn generate(mp: &KeyPath, plan: MeshPlan) -> CliResult<Mesh<D>>;
+
+    /// Whether the scene checks the candidates before the simulation is made, with
+    /// [`check_facing`](Self::check_facing) (2D), or after, behind the simulation's own checks
+    /// (3D).
+    const CANDIDATES_FIRST: bool;
+    /// What an error says to do when a zone's contactor starts too deep in its target.
+    const INSIDE_HINT: &'static str;
+    /// A rigid target of this dimension's shapes (at `tp`), its geometry checked, built.
+    fn obstacle(tp: &KeyPath, t: &TargetSpec) -> CliResult<Arc<dyn Obstacle<D>>>;
+    /// A node-pair zone's fixed normal at `p`, checked.
+    fn pair_normal(p: &KeyPath, n: &Coords) -> CliResult<[f64; D]>;
+    /// The nodes of the contactor set `set` (at `p`), and their tributary areas where the set
+    /// gives them (a face set in 3D).
+    fn contactor(
+        mesh: &Mesh<D>,
+        p: &KeyPath,
+        set: &str,
+    ) -> CliResult<(Vec<usize>, Option<Vec<f64>>)>;
+    /// The target node of each contactor node (of the set `contactor_set`) of a node-pair zone
+    /// against the set `set`, and the pairs' normals (the contactor may be reordered to pair
+    /// better).
+    fn pairs(
+        model: &ElasticModel<D>,
+        tp: &KeyPath,
+        contactor_set: &str,
+        set: &str,
+        normal: Option<[f64; D]>,
+        contactor: &mut Vec<usize>,
+    ) -> CliResult<(Vec<usize>, PairNormals<D>)>;
+    /// The target surface of the set `set` (at `sp`) of a node-to-surface zone.
+    fn surface(
+        model: &ElasticModel<D>,
+        sp: &KeyPath,
+        set: &str,
+    ) -> CliResult<<Dim<D> as ContactSpace<D>>::Surface>;
+    /// The tributary areas of the contactor set `set` (its nodes `nodes`, as the zone holds
+    /// them) where the zone's own would be wrong; `None`: the zone's.
+    fn areas(model: &ElasticModel<D>, set: &str, nodes: &[usize]) -> Option<Vec<f64>>;
+    /// The checks of candidates only this dimension makes (2D: that node pairs and segments
+    /// face their targets).
+    fn check_facing(
+        candidates: &[Candidate<D>],
+        zones: &[ContactZone<StandardLaw, D>],
+        model: &ElasticModel<D>,
+    ) -> CliResult<()>;
+    /// Why a zone whose contactor set is `set` (of `nodes` nodes) has no candidate.
+    fn no_projection(set: &str, nodes: usize) -> String;
+}
+
+/// The error of a value of the other dimension that the resolve should have refused.
+fn routing(p: &KeyPath) -> CliError {
+    CliError::at(
+        p,
+        "a value of the other dimension reached this scene's builder (internal routing error)",
+    )
 }
 
 impl SceneDim<2> for Dim<2> {
@@ -63,24 +129,6 @@ impl SceneDim<2> for Dim<2> {
 
     fn idealization(options: &Self::Options) -> Option<Idealization> {
         Some(options.0)
-    }
-
-    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<2>)> {
-        let vp = p.key("value");
-        Ok(match l.resolve(p)? {
-            LoadSpec::Traction { set, value } => (
-                Some(set),
-                LoadKind::Traction(String::new(), finite2(&vp, value)?),
-            ),
-            LoadSpec::NodalForce { set, value } => {
-                (Some(set), LoadKind::Nodal(Vec::new(), finite2(&vp, value)?))
-            }
-            LoadSpec::Resultant { set, value } => {
-                (Some(set), LoadKind::Resultant(0, finite2(&vp, value)?))
-            }
-            LoadSpec::BodyForce { value } => (None, LoadKind::Body(finite2(&vp, value)?)),
-            LoadSpec::Gravity => (None, LoadKind::Gravity),
-        })
     }
 
     fn boundary_set(path: &KeyPath, mesh: &Mesh, set: &str) -> CliResult<()> {
@@ -141,6 +189,166 @@ impl SceneDim<2> for Dim<2> {
             expected: "no pressure in a 2D scene (a traction on an edge set)",
         })
     }
+
+    fn generate(mp: &KeyPath, plan: MeshPlan) -> CliResult<Mesh> {
+        match plan {
+            MeshPlan::Rectangle(spec) => fem_core::generate::rectangle(&spec),
+            MeshPlan::Pile(s) => fem_core::generate::pile_in_soil(&s),
+            _ => return Err(routing(mp)),
+        }
+        .map_err(|e| fem(mp, e))
+    }
+
+    const CANDIDATES_FIRST: bool = true;
+    const INSIDE_HINT: &'static str = "is the target on the right side (a LINE has the \
+        contactor on its left, from a to b; an ARC has `side`)?";
+
+    /// A LINE or an ARC.
+    fn obstacle(tp: &KeyPath, t: &TargetSpec) -> CliResult<Arc<dyn Obstacle<2>>> {
+        Ok(match t {
+            TargetSpec::Line { a, b } => {
+                let a = finite_all(&tp.key("a"), a.0)?;
+                let b = finite_all(&tp.key("b"), b.0)?;
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                if !(dx.is_finite() && dy.is_finite() && dx.hypot(dy).is_finite()) {
+                    return Err(CliError::at(
+                        tp,
+                        format!(
+                            "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows \
+                             (expected end points whose distance stays finite)"
+                        ),
+                    ));
+                }
+                Arc::new(RigidLine::new(a, b).map_err(|e| solver_error(tp, e))?)
+            }
+            TargetSpec::Arc {
+                center,
+                radius,
+                start_angle,
+                sweep,
+                side,
+            } => {
+                let center = finite_all(&tp.key("center"), center.0)?;
+                let radius = positive(&tp.key("radius"), *radius)?;
+                let start = finite(&tp.key("start_angle"), *start_angle)?;
+                let sweep = match sweep {
+                    Some(s) => expect(
+                        &tp.key("sweep"),
+                        *s,
+                        *s > 0.0 && *s <= TAU * (1.0 + 1e-12),
+                        "an angle in (0, 2π] radians",
+                    )?,
+                    None => TAU,
+                };
+                let side = match side {
+                    ArcSideSpec::Outside => ArcSide::Outside,
+                    ArcSideSpec::Inside => ArcSide::Inside,
+                };
+                Arc::new(
+                    RigidArc::new(center, radius, start, sweep, side)
+                        .map_err(|e| solver_error(tp, e))?,
+                )
+            }
+            _ => return Err(routing(tp)),
+        })
+    }
+
+    fn pair_normal(p: &KeyPath, n: &Coords) -> CliResult<[f64; 2]> {
+        let n = finite_all(p, vector::<2>(p, n)?)?;
+        if n == [0.0, 0.0] {
+            return Err(CliError::at(p, "the normal [0, 0] has no direction"));
+        }
+        Ok(n)
+    }
+
+    fn contactor(mesh: &Mesh, p: &KeyPath, set: &str) -> CliResult<(Vec<usize>, Option<Vec<f64>>)> {
+        Ok((node_set(p, mesh, set)?, None))
+    }
+
+    /// With the nodes of `set` in order (a fixed normal: as listed, or else along the curve),
+    /// of the contactor's length; no node paired with itself. Without a normal, the normals
+    /// come from the target nodes in order.
+    fn pairs(
+        model: &LinearElasticModel,
+        tp: &KeyPath,
+        contactor_set: &str,
+        set: &str,
+        normal: Option<[f64; 2]>,
+        contactor: &mut Vec<usize>,
+    ) -> CliResult<(Vec<usize>, PairNormals<2>)> {
+        let mesh = model.mesh();
+        let sp = tp.key("set");
+        let targets = match normal {
+            Some(_) => node_set(&sp, mesh, set)?,
+            None => curves::target_nodes(&sp, mesh, set)?.0,
+        };
+        curves::match_pairs(
+            mesh,
+            (contactor_set, contactor.as_mut_slice()),
+            (set, targets.as_slice()),
+        );
+        if targets.len() != contactor.len() {
+            return Err(CliError::at(
+                &sp,
+                format!(
+                    "node set `{set}` has {} nodes but the contactor set `{}` has {}: node pairs \
+                     need sets of the same length, in matching order",
+                    targets.len(),
+                    contactor_set,
+                    contactor.len()
+                ),
+            ));
+        }
+        if let Some((c, _)) = contactor.iter().zip(&targets).find(|(c, t)| c == t) {
+            return Err(CliError::at(
+                &sp,
+                format!(
+                    "`{sp}` = \"{set}\": node {c} of the contactor set `{}` is paired with \
+                     itself (a node cannot touch itself; pair two distinct surfaces)",
+                    contactor_set
+                ),
+            ));
+        }
+        Ok((targets, normal.into()))
+    }
+
+    /// The polyline through the set's nodes in order (closed when its curve is).
+    fn surface(model: &LinearElasticModel, sp: &KeyPath, set: &str) -> CliResult<Polyline> {
+        let (mut surface, closed) = curves::target_nodes(sp, model.mesh(), set)?;
+        if closed {
+            surface.push(surface[0]);
+        }
+        if surface.len() < 2 {
+            return Err(CliError::at(
+                sp,
+                format!(
+                    "node set `{set}` has {} node: a target polyline needs at least two",
+                    surface.len()
+                ),
+            ));
+        }
+        curves::check_polyline(sp, set, model, &surface)?;
+        Ok(Polyline::new(surface))
+    }
+
+    fn areas(model: &LinearElasticModel, set: &str, nodes: &[usize]) -> Option<Vec<f64>> {
+        curves::contactor_areas(model, set, nodes)
+    }
+
+    fn check_facing(
+        candidates: &[Candidate],
+        zones: &[ContactZone<StandardLaw>],
+        model: &LinearElasticModel,
+    ) -> CliResult<()> {
+        curves::check_facing(candidates, zones, model)
+    }
+
+    fn no_projection(_: &str, nodes: usize) -> String {
+        format!(
+            "none of its {nodes} contactor nodes projects onto the target (a LINE or ARC must \
+             face the nodes; check its ends and its side)"
+        )
+    }
 }
 
 impl SceneDim<3> for Dim<3> {
@@ -149,32 +357,6 @@ impl SceneDim<3> for Dim<3> {
 
     fn idealization(_: &()) -> Option<Idealization> {
         None
-    }
-
-    fn load(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<3>)> {
-        let vp = p.key("value");
-        let v3 = |c: &Coords| -> CliResult<[f64; 3]> {
-            let v = triple(&vp, c)?;
-            for (k, x) in v.iter().enumerate() {
-                finite(&vp.index(k), *x)?;
-            }
-            Ok(v)
-        };
-        Ok(match l.resolve_3d(p)? {
-            LoadSpec3::Traction { set, value } => {
-                (Some(set), LoadKind::Traction(String::new(), v3(&value)?))
-            }
-            LoadSpec3::Pressure { set, value } => (
-                Some(set),
-                LoadKind::Pressure(String::new(), finite(&vp, value)?),
-            ),
-            LoadSpec3::NodalForce { set, value } => {
-                (Some(set), LoadKind::Nodal(Vec::new(), v3(&value)?))
-            }
-            LoadSpec3::Resultant { set, value } => (Some(set), LoadKind::Resultant(0, v3(&value)?)),
-            LoadSpec3::BodyForce { value } => (None, LoadKind::Body(v3(&value)?)),
-            LoadSpec3::Gravity => (None, LoadKind::Gravity),
-        })
     }
 
     fn boundary_set(path: &KeyPath, mesh: &SolidMesh, set: &str) -> CliResult<()> {
@@ -223,5 +405,220 @@ impl SceneDim<3> for Dim<3> {
 
     fn pressure(model: &mut SolidModel, set: &str, p: f64) -> Result<(), FemError> {
         model.add_face_traction(set, |_, n| n.map(|c| -p * c))
+    }
+
+    /// The box.
+    fn generate(mp: &KeyPath, plan: MeshPlan) -> CliResult<SolidMesh> {
+        match plan {
+            MeshPlan::Box([xs, ys, zs], kind) => {
+                fem_core::solid::generate::box_mesh(&xs, &ys, &zs, kind).map_err(|e| fem(mp, e))
+            }
+            _ => Err(routing(mp)),
+        }
+    }
+
+    const CANDIDATES_FIRST: bool = false;
+    const INSIDE_HINT: &'static str =
+        "does the plane's normal (or the side) point towards the contactor?";
+
+    /// A plane, a sphere or a cylinder.
+    fn obstacle(tp: &KeyPath, t: &TargetSpec) -> CliResult<Arc<dyn Obstacle<3>>> {
+        let err = |e: SolverError| solver_error(tp, e);
+        let side = |s: &ArcSideSpec| match s {
+            ArcSideSpec::Outside => Side3::Outside,
+            ArcSideSpec::Inside => Side3::Inside,
+        };
+        Ok(match t {
+            TargetSpec::Plane { point: x, normal } => Arc::new(
+                RigidPlane::new(
+                    point(&tp.key("point"), x)?,
+                    direction(&tp.key("normal"), normal)?,
+                )
+                .map_err(err)?,
+            ),
+            TargetSpec::Sphere {
+                center,
+                radius,
+                side: s,
+            } => Arc::new(
+                RigidSphere::new(
+                    point(&tp.key("center"), center)?,
+                    positive(&tp.key("radius"), *radius)?,
+                    side(s),
+                )
+                .map_err(err)?,
+            ),
+            TargetSpec::Cylinder {
+                point: x,
+                axis,
+                radius,
+                side: s,
+            } => Arc::new(
+                RigidCylinder::new(
+                    point(&tp.key("point"), x)?,
+                    direction(&tp.key("axis"), axis)?,
+                    positive(&tp.key("radius"), *radius)?,
+                    side(s),
+                )
+                .map_err(err)?,
+            ),
+            _ => return Err(routing(tp)),
+        })
+    }
+
+    fn pair_normal(p: &KeyPath, n: &Coords) -> CliResult<[f64; 3]> {
+        direction(p, n)
+    }
+
+    /// A face set (a physical surface) gives its nodes with their consistent nodal areas (the
+    /// reports' pressures are then `r_n / A_i`); a node set, its nodes.
+    fn contactor(
+        mesh: &SolidMesh,
+        p: &KeyPath,
+        set: &str,
+    ) -> CliResult<(Vec<usize>, Option<Vec<f64>>)> {
+        Ok(match mesh.nodal_areas(set) {
+            Ok((nodes, areas)) => (nodes, Some(areas)),
+            Err(_) => (node_set(p, mesh, set)?, None),
+        })
+    }
+
+    /// By position; a fixed normal, or the target body's from the faces of `set`.
+    fn pairs(
+        model: &SolidModel,
+        tp: &KeyPath,
+        contactor_set: &str,
+        set: &str,
+        normal: Option<[f64; 3]>,
+        contactor: &mut Vec<usize>,
+    ) -> CliResult<(Vec<usize>, PairNormals<3>)> {
+        let sp = tp.key("set");
+        let targets = pair_by_position(model.mesh(), &sp, set, contactor_set, contactor)?;
+        let normals = match normal {
+            Some(n) => PairNormals::Fixed(n),
+            None => PairNormals::Surface(Self::surface(model, &sp, set)?),
+        };
+        Ok((targets, normals))
+    }
+
+    /// The triangles of the face set.
+    fn surface(model: &SolidModel, sp: &KeyPath, set: &str) -> CliResult<TriSurface> {
+        TriSurface::from_face_set(model.mesh(), set).map_err(|_| {
+            CliError::at(
+                sp,
+                format!(
+                    "`{sp}` = \"{set}\" is not a face set of the mesh (a physical surface, or a \
+                     side of the box): a faces target, and node pairs without a `normal`, need \
+                     the target body's faces"
+                ),
+            )
+        })
+    }
+
+    fn areas(_: &SolidModel, _: &str, _: &[usize]) -> Option<Vec<f64>> {
+        None
+    }
+
+    fn check_facing(
+        _: &[Candidate<3>],
+        _: &[ContactZone<StandardLaw, 3>],
+        _: &SolidModel,
+    ) -> CliResult<()> {
+        Ok(())
+    }
+
+    fn no_projection(set: &str, _: usize) -> String {
+        format!("none of the nodes of `{set}` projects onto the target")
+    }
+}
+
+/// Three finite numbers at `p`.
+fn point(p: &KeyPath, c: &Coords) -> CliResult<[f64; 3]> {
+    finite_all(p, vector::<3>(p, c)?)
+}
+
+/// A direction at `p`: three finite numbers, not all zero, whose length does not overflow.
+fn direction(p: &KeyPath, c: &Coords) -> CliResult<[f64; 3]> {
+    let v = point(p, c)?;
+    let len = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(len > 0.0 && len.is_finite()) {
+        return Err(CliError::at(
+            p,
+            format!(
+                "`{p}` = {v:?}: expected a direction (not [0, 0, 0], and of a length that stays \
+                 finite)"
+            ),
+        ));
+    }
+    Ok(v)
+}
+
+/// For each contactor node, the node of `set` at the same position (to 1e-9 of the mesh's
+/// extent): node pairs join two bodies whose meshes match on the interface, each with its own
+/// nodes there.
+fn pair_by_position(
+    mesh: &SolidMesh,
+    sp: &KeyPath,
+    set: &str,
+    contactor_set: &str,
+    contactor: &[usize],
+) -> CliResult<Vec<usize>> {
+    let targets = node_set(sp, mesh, set)?;
+    let nodes = mesh.nodes();
+    let extent = nodes
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let tol = 1e-9 * extent.max(f64::MIN_POSITIVE);
+    let key = |p: [f64; 3]| p.map(|v| (v / tol.max(1e-300) / 16.0).round() as i64);
+    let mut by_position: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for &t in &targets {
+        by_position.entry(key(nodes[t])).or_default().push(t);
+    }
+    contactor
+        .iter()
+        .map(|&c| {
+            let x = nodes[c];
+            let k = key(x);
+            let near = (-1..=1)
+                .flat_map(|i| (-1..=1).flat_map(move |j| (-1..=1).map(move |l| [i, j, l])))
+                .filter_map(|d| by_position.get(&[k[0] + d[0], k[1] + d[1], k[2] + d[2]]))
+                .flatten()
+                .copied()
+                .filter(|&t| t != c && (0..3).all(|a| (nodes[t][a] - x[a]).abs() <= tol))
+                .min();
+            near.ok_or_else(|| {
+                CliError::at(
+                    sp,
+                    format!(
+                        "node {c} of the contactor set `{contactor_set}` at ({}, {}, {}) has no \
+                         node of `{sp}` = \"{set}\" at its position: node pairs need matching \
+                         meshes, each body with its own nodes on the interface (use a faces \
+                         target otherwise)",
+                        x[0], x[1], x[2]
+                    ),
+                )
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn direction_rejects_zero_and_overflow() {
+        let p = KeyPath::root().key("normal");
+        assert_eq!(
+            direction(&p, &Coords(vec![0.0, 0.0, 2.0])).unwrap(),
+            [0.0, 0.0, 2.0]
+        );
+        for v in [[0.0; 3], [1e200, 1e200, 0.0]] {
+            let e = direction(&p, &Coords(v.to_vec())).unwrap_err();
+            assert!(e.message.contains("expected a direction"), "{}", e.message);
+        }
+        let e = direction(&p, &Coords(vec![f64::NAN, 0.0, 1.0])).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "normal[0]");
     }
 }

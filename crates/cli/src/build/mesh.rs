@@ -1,27 +1,36 @@
-//! The mesh: `[mesh]`'s values checked into a generator's spec (or a Gmsh file to read), then
-//! the mesh generated or read, and the axisymmetric mesh checked to lie right of the axis.
+//! The mesh, in both dimensions: `[mesh]`'s values checked into a generator's spec (the
+//! rectangle and the pile in 2D, the box in 3D: graded grid lines along x, y and z, Kuhn's six
+//! tetrahedra per cell) or a Gmsh file to read, then the mesh generated ([`SceneDim`]'s
+//! `generate`) or read, and the axisymmetric mesh checked to lie right of the axis.
 
-use super::checks::{at_least, fem, finite, finite2, grading, kind, positive};
+use super::checks::{at_least, fem, finite, finite2, grading, kind, positive, solid_kind};
 use super::dim::SceneDim;
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::spec::{Element, MeshSpec, Pair, TipCornerSpec};
-use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner};
+use crate::spec::{BoxSpec, Element, MeshSpec, Pair, TipCornerSpec};
+use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner, graded_points};
+use fem_core::solid::SolidKind;
 use fem_core::{Dim, FemError, Idealization, Mesh};
 use std::path::{Path, PathBuf};
 
+/// The most cells of a box (six tetrahedra each): 2e5 cells are 1.2e6 tetrahedra, beyond what a
+/// scene run on a workstation solves in a useful time with a dense contact flexibility.
+pub const MAX_BOX_CELLS: usize = 200_000;
+
 /// A mesh to build, its values checked.
-pub(super) enum MeshPlan {
-    /// `fem_core::generate::rectangle`.
+pub(crate) enum MeshPlan {
+    /// `fem_core::generate::rectangle` (2D).
     Rectangle(RectangleSpec),
-    /// `fem_core::generate::pile_in_soil`.
+    /// `fem_core::generate::pile_in_soil` (2D).
     Pile(PileSpec),
+    /// `fem_core::solid::generate::box_mesh` (3D): the grid lines and the element.
+    Box([Vec<f64>; 3], SolidKind),
     /// An existing Gmsh file and the element order it must hold.
     Gmsh(GmshPlan),
 }
 
 /// A Gmsh file of `[mesh]` (in either dimension), which exists, and the element order it must
 /// hold.
-pub(super) struct GmshPlan {
+pub(crate) struct GmshPlan {
     /// As written in the scene (relative to the scene file).
     file: String,
     /// Its path.
@@ -69,16 +78,17 @@ impl GmshPlan {
 }
 
 /// Checks the values of `[mesh]` (at `mp`) and gives the generator's spec, or the file to read
-/// (which must exist; `base_dir` is the scene file's folder).
+/// (which must exist; `base_dir` is the scene file's folder). `idealization`: a 2D scene's.
 pub(super) fn validate(
     mp: &KeyPath,
     spec: &MeshSpec,
-    idealization: Idealization,
+    idealization: Option<Idealization>,
     base_dir: &Path,
 ) -> CliResult<MeshPlan> {
     match spec {
         MeshSpec::Rectangle { .. } => rectangle(mp, spec),
         MeshSpec::Pile { .. } => pile(mp, spec, idealization),
+        MeshSpec::Box(b) => box_lines(mp, b),
         MeshSpec::Gmsh { file, element } => {
             Ok(MeshPlan::Gmsh(GmshPlan::new(mp, file, *element, base_dir)?))
         }
@@ -275,8 +285,36 @@ fn graded(
     }
 }
 
+/// The box generator: its grid lines along x, y and z, graded, at most [`MAX_BOX_CELLS`] cells.
+fn box_lines(mp: &KeyPath, b: &BoxSpec) -> CliResult<MeshPlan> {
+    let mut lines: [Vec<f64>; 3] = Default::default();
+    let mut cells = 1usize;
+    for (a, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        let range = interval(&mp.key(axis), b.ranges[a], axis)?;
+        let np = mp.key(&format!("n{axis}"));
+        let n = at_least(&np, b.cells[a], 1)?;
+        cells = cells.saturating_mul(n);
+        if cells > MAX_BOX_CELLS {
+            return Err(CliError::at(
+                &np,
+                format!(
+                    "`{np}` = {n}: the box would have more than {MAX_BOX_CELLS} cells \
+                     (nx·ny·nz, six tetrahedra each); use fewer cells or a graded grid"
+                ),
+            ));
+        }
+        let gp = mp.key(&format!("grading_{axis}"));
+        let g = grading(&gp, b.gradings[a])?;
+        lines[a] = graded_points(range[0], range[1], n, g).map_err(|e| match e {
+            FemError::InvalidParameter { name: "ratio", .. } => fem(&gp.key("ratio"), e),
+            e => fem(&mp.key(axis), e),
+        })?;
+    }
+    Ok(MeshPlan::Box(lines, solid_kind(b.element)))
+}
+
 /// The pile generator: the seed's pile with optional overrides (axisymmetric only).
-fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Idealization) -> CliResult<MeshPlan> {
+fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Option<Idealization>) -> CliResult<MeshPlan> {
     let MeshSpec::Pile {
         element,
         diameter,
@@ -296,7 +334,7 @@ fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Idealization) -> CliResult<
     else {
         unreachable!("called for the pile generator")
     };
-    if !matches!(idealization, Idealization::Axisymmetric) {
+    if !matches!(idealization, Some(Idealization::Axisymmetric)) {
         return Err(CliError::at(
             &KeyPath::root().key("analysis"),
             "the pile generator builds an axisymmetric (r, z) mesh: it needs \
@@ -355,17 +393,21 @@ fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Idealization) -> CliResult<
     Ok(MeshPlan::Pile(s))
 }
 
-/// Generates or reads the mesh of `plan` (`[mesh]` at `mp`); an axisymmetric mesh must lie at
-/// x >= 0.
-pub(super) fn build(mp: &KeyPath, plan: MeshPlan, idealization: Idealization) -> CliResult<Mesh> {
+/// Generates or reads the mesh of `plan` (`[mesh]` at `mp`) in dimension `D`; an axisymmetric
+/// mesh (`idealization`: a 2D scene's) must lie at x >= 0.
+pub(super) fn build<const D: usize>(
+    mp: &KeyPath,
+    plan: MeshPlan,
+    idealization: Option<Idealization>,
+) -> CliResult<Mesh<D>>
+where
+    Dim<D>: SceneDim<D>,
+{
     let mesh = match plan {
-        MeshPlan::Rectangle(spec) => {
-            fem_core::generate::rectangle(&spec).map_err(|e| fem(mp, e))?
-        }
-        MeshPlan::Pile(s) => fem_core::generate::pile_in_soil(&s).map_err(|e| fem(mp, e))?,
         MeshPlan::Gmsh(g) => g.read(mp)?,
+        plan => Dim::<D>::generate(mp, plan)?,
     };
-    if let Idealization::Axisymmetric = idealization
+    if let Some(Idealization::Axisymmetric) = idealization
         && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)
     {
         return Err(CliError::at(

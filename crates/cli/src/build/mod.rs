@@ -28,14 +28,14 @@ mod study;
 mod supported;
 mod validate;
 
-pub use checks::kind_name;
+pub use checks::{kind_name, solid_kind_name};
 pub(crate) use dim::SceneDim;
 pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
-pub use solid::{SolidStudy, solid_kind_name};
+pub use solid::SolidStudy;
 pub use study::{
     Body, Custom, Library, LoadKind, LoadRt, PresetStudy, Study, SupportRt, released_at,
 };
@@ -115,9 +115,9 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         contact,
     } = plan;
     let (idealization, _) = model.options;
-    let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, idealization)?;
+    let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, Some(idealization))?;
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
-    let (sim, zone_laws, warnings) = contact::build(model, contact.zones, contact.settings)?;
+    let (sim, zone_laws, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names = sim.zones().iter().map(|z| z.name.clone()).collect();
     let mut study = Study {
         title: scene.title.clone().unwrap_or_else(|| {

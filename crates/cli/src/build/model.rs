@@ -3,13 +3,16 @@
 //! mesh (regions, node sets, edge or face sets) to build the [`ElasticModel`] with the supports
 //! of the first phase at t = 0. What the dimension reads differently is [`SceneDim`]'s.
 
-use super::checks::{expect, fem, finite, join, list_names, node_set, non_negative, positive};
+use super::checks::{
+    expect, fem, finite, finite_all, join, list_names, node_set, non_negative, positive,
+};
 use super::dim::SceneDim;
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::study::{LoadKind, LoadRt, SupportRt};
 use crate::error::{CliError, CliResult, KeyPath};
+use crate::raw::RawLoad;
 use crate::scene::{ComponentSpec, Scene};
-use crate::spec::InitialStress;
+use crate::spec::{InitialStress, LoadSpec};
 use fem_core::{Component, Dim, ElasticModel, FemError, Idealization, Material, Mesh, Supports};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -191,6 +194,31 @@ fn validate_supports(
     Ok(supports)
 }
 
+/// A load's set (where it has one) and kind (its set or node not yet looked up), its type,
+/// keys and values checked.
+fn load<const D: usize>(l: &RawLoad, p: &KeyPath) -> CliResult<(Option<String>, LoadKind<D>)> {
+    let vp = p.key("value");
+    Ok(match l.resolve::<D>(p)? {
+        LoadSpec::Traction { set, value } => (
+            Some(set),
+            LoadKind::Traction(String::new(), finite_all(&vp, value)?),
+        ),
+        LoadSpec::Pressure { set, value } => (
+            Some(set),
+            LoadKind::Pressure(String::new(), finite(&vp, value)?),
+        ),
+        LoadSpec::NodalForce { set, value } => (
+            Some(set),
+            LoadKind::Nodal(Vec::new(), finite_all(&vp, value)?),
+        ),
+        LoadSpec::Resultant { set, value } => {
+            (Some(set), LoadKind::Resultant(0, finite_all(&vp, value)?))
+        }
+        LoadSpec::BodyForce { value } => (None, LoadKind::Body(finite_all(&vp, value)?)),
+        LoadSpec::Gravity => (None, LoadKind::Gravity),
+    })
+}
+
 /// Checks `[[loads]]`: their `type` and keys, values, function names and phase lists (a gravity
 /// load needs a unit weight).
 fn validate_loads<const D: usize>(
@@ -206,7 +234,7 @@ where
     let mut loads = Vec::new();
     for (i, l) in scene.loads.iter().enumerate() {
         let p = root.key("loads").index(i);
-        let (set, kind) = Dim::<D>::load(l, &p)?;
+        let (set, kind) = load::<D>(l, &p)?;
         if matches!(kind, LoadKind::Gravity) && !any_weight {
             return Err(CliError::at(
                 &p,

@@ -33,9 +33,22 @@ pub const QUANTITIES: &[(&str, &str)] = &[
     ("head_displacement", "pile"),
 ];
 
+/// The quantities a 3D run plots: the step's counters and, per zone, Σ r_n, the closed
+/// contacts and β (mean, least).
+const QUANTITIES_3D: &[&str] = &[
+    "force_n",
+    "beta_mean",
+    "beta_min",
+    "closed",
+    "contact_iterations",
+    "adhesion_iterations",
+    "active_contacts",
+    "candidates",
+    "residual",
+];
+
 /// Checks `[output]` and the plots of `scene` against `study`, and keeps the plots.
 pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
-    let root = KeyPath::root();
     let node_count = study.model().mesh().node_count();
     check_output_table(
         &study.output,
@@ -52,19 +65,31 @@ pub(super) fn check_outputs(scene: &Scene, study: &mut Study) -> CliResult<()> {
     study.hertz = super::hertz::check(scene, &study.zone_names, 2, |e, nu| {
         if plane_stress { e } else { e / (1.0 - nu * nu) }
     })?;
+    study.plots = check_plots(&scene.plots, &study.zone_names, Some(study))?;
+    check_file_count(study)
+}
+
+/// Checks `[[plots]]` (each file, then each curve's quantity and what it needs) of a scene with
+/// these zones, and gives them. `study`: a 2D scene's, whose contactor nodes, node sets,
+/// supports and preset the node, point, set and pile quantities need; without it (a 3D
+/// scene), only [`QUANTITIES_3D`] are plotted (what a 3D run records).
+pub(super) fn check_plots(
+    plots: &[PlotSpec],
+    zone_names: &[String],
+    study: Option<&Study>,
+) -> CliResult<Vec<PlotSpec>> {
     let mut files = BTreeSet::new();
-    for (i, plot) in scene.plots.iter().enumerate() {
-        let pp = root.key("plots").index(i);
+    for (i, plot) in plots.iter().enumerate() {
+        let pp = KeyPath::root().key("plots").index(i);
         check_plot_file(&pp, plot, &mut files)?;
         for (k, c) in plot.curves.iter().enumerate() {
-            check_curve(&pp.key("curves").index(k), c, study)?;
+            check_curve(&pp.key("curves").index(k), c, zone_names, study)?;
         }
         if let Some(c) = &plot.x_quantity {
-            check_curve(&pp.key("x_quantity"), c, study)?;
+            check_curve(&pp.key("x_quantity"), c, zone_names, study)?;
         }
     }
-    study.plots = scene.plots.clone();
-    check_file_count(study)
+    Ok(plots.to_vec())
 }
 
 /// Checks plot `pp`'s file (an `.svg` name, not used twice: `files` holds those seen) and that
@@ -216,9 +241,19 @@ pub fn zone_index(path: &KeyPath, names: &[String], name: &str) -> CliResult<usi
     })
 }
 
-/// Checks one curve (or abscissa) of a plot: its quantity and what that quantity needs.
-fn check_curve(p: &KeyPath, c: &CurveSpec, study: &Study) -> CliResult<()> {
-    let Some((_, needs)) = QUANTITIES.iter().find(|(q, _)| *q == c.quantity) else {
+/// Checks one curve (or abscissa) of a plot: its quantity and what that quantity needs (see
+/// [`check_plots`] for `study`).
+fn check_curve(
+    p: &KeyPath,
+    c: &CurveSpec,
+    zone_names: &[String],
+    study: Option<&Study>,
+) -> CliResult<()> {
+    let known = QUANTITIES.iter().find(|(q, _)| *q == c.quantity);
+    if study.is_none() {
+        check_curve_3d(p, c, known.is_some())?;
+    }
+    let Some((_, needs)) = known else {
         let q = p.key("quantity");
         return Err(CliError::at(
             &q,
@@ -234,20 +269,23 @@ fn check_curve(p: &KeyPath, c: &CurveSpec, study: &Study) -> CliResult<()> {
         ));
     };
     let zone = match &c.zone {
-        Some(z) => Some(zone_index(&p.key("zone"), &study.zone_names, z)?),
+        Some(z) => Some(zone_index(&p.key("zone"), zone_names, z)?),
         None => None,
+    };
+    if *needs == "zone" && zone.is_none() && zone_names.len() > 1 {
+        return Err(CliError::at(
+            p,
+            format!(
+                "`{p}`: quantity `{}` needs `zone` (the scene has several zones)",
+                c.quantity
+            ),
+        ));
+    }
+    let Some(study) = study else {
+        return Ok(());
     };
     let mesh = study.model().mesh();
     match *needs {
-        "zone" if zone.is_none() && study.zone_names.len() > 1 => {
-            return Err(CliError::at(
-                p,
-                format!(
-                    "`{p}`: quantity `{}` needs `zone` (the scene has several zones)",
-                    c.quantity
-                ),
-            ));
-        }
         "node" => {
             let Some(n) = c.node else {
                 return Err(CliError::at(
@@ -342,6 +380,37 @@ fn check_curve(p: &KeyPath, c: &CurveSpec, study: &Study) -> CliResult<()> {
             }
         }
         _ => {}
+    }
+    Ok(())
+}
+
+/// What a 3D scene refuses of a curve: a quantity a 3D run does not record (`known`: one of
+/// [`QUANTITIES`]), a node or a set.
+fn check_curve_3d(p: &KeyPath, c: &CurveSpec, known: bool) -> CliResult<()> {
+    if !QUANTITIES_3D.contains(&c.quantity.as_str()) {
+        let q = p.key("quantity");
+        let what = if known {
+            "not available in a 3D scene"
+        } else {
+            "unknown quantity"
+        };
+        return Err(CliError::at(
+            &q,
+            format!(
+                "`{q}` = \"{}\": {what} (3D plots: {})",
+                c.quantity,
+                QUANTITIES_3D.join(", ")
+            ),
+        ));
+    }
+    for (key, given) in [("node", c.node.is_some()), ("set", c.set.is_some())] {
+        if given {
+            let k = p.key(key);
+            return Err(CliError::at(
+                &k,
+                format!("`{k}`: a 3D plot's quantities are per step or per zone, not per {key}"),
+            ));
+        }
     }
     Ok(())
 }

@@ -5,7 +5,7 @@
 //! regions, candidates, the plots' nodes) is checked by the build that follows.
 
 use super::checks::positive;
-use super::contact::{self, ContactPlan, TargetPlan};
+use super::contact::{self, ContactPlan};
 use super::mesh::{self, MeshPlan};
 use super::model::{self, ModelPlan};
 use super::phases::{Phase, TimeFunction, phases_of, time_functions};
@@ -36,7 +36,7 @@ pub(super) struct Plan {
     /// Materials, supports, loads, initial stress.
     pub(super) model: ModelPlan<2>,
     /// Contact zones and solver settings.
-    pub(super) contact: ContactPlan<TargetPlan>,
+    pub(super) contact: ContactPlan<2>,
 }
 
 /// Checks every value of the scene that does not need the mesh, in the order of the file's
@@ -65,7 +65,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
         )
     })?;
     let mp = root.key("mesh");
-    let mesh_spec = &mesh_raw.resolve(&mp)?;
+    let mesh_spec = &mesh_raw.resolve::<2>(&mp)?;
     let analysis = scene.analysis.ok_or_else(|| {
         CliError::at(
             &root,
@@ -86,13 +86,13 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
             ));
         }
     };
-    let mesh = mesh::validate(&mp, mesh_spec, idealization, &base_dir)?;
+    let mesh = mesh::validate(&mp, mesh_spec, Some(idealization), &base_dir)?;
 
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
     let model = model::validate(scene, &functions, &phases, (idealization, floating))?;
 
     // contact (the solver settings with it)
-    let contact = contact::validate::<2, _>(scene, contact::target)?;
+    let contact = contact::validate::<2>(scene)?;
     Ok(Validated::Custom(Box::new(Plan {
         functions,
         phases,

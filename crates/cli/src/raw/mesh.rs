@@ -1,9 +1,9 @@
-//! `[mesh]` as read (one flat table for the three generators) and its gradings.
+//! `[mesh]` as read (one flat table for the four generators: rectangle and pile in 2D, box in
+//! 3D, gmsh in both) and its gradings.
 
 use super::keys::{need, only};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::*;
-use crate::spec3::{BoxSpec, MeshSpec3};
 use serde::Deserialize;
 
 /// Grading kinds.
@@ -193,9 +193,34 @@ impl RawMesh {
         ]
     }
 
-    /// The mesh spec of a 2D scene.
-    pub fn resolve(&self, p: &KeyPath) -> CliResult<MeshSpec> {
+    /// The mesh spec of a scene of dimension `D`: the generators of the other dimension are
+    /// refused at `generator`.
+    pub fn resolve<const D: usize>(&self, p: &KeyPath) -> CliResult<MeshSpec> {
         let present = self.present();
+        let gp = p.key("generator");
+        if D == 2 && self.generator == Generator::Box {
+            return Err(CliError::at(
+                &gp,
+                format!(
+                    "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
+                     (a 2D scene takes rectangle, pile or gmsh)"
+                ),
+            ));
+        }
+        if D == 3 && matches!(self.generator, Generator::Rectangle | Generator::Pile) {
+            return Err(CliError::at(
+                &gp,
+                format!(
+                    "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
+                     \"3d\") takes generator = \"box\" or \"gmsh\"",
+                    if self.generator == Generator::Pile {
+                        "pile"
+                    } else {
+                        "rectangle"
+                    }
+                ),
+            ));
+        }
         Ok(match self.generator {
             Generator::Rectangle => {
                 only(p, "the rectangle generator", &present, RECTANGLE_KEYS)?;
@@ -263,29 +288,12 @@ impl RawMesh {
                 }
             }
             Generator::Box => {
-                let gp = p.key("generator");
-                return Err(CliError::at(
-                    &gp,
-                    format!(
-                        "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
-                         (a 2D scene takes rectangle, pile or gmsh)"
-                    ),
-                ));
-            }
-        })
-    }
-
-    /// The mesh spec of a 3D scene.
-    pub fn resolve_3d(&self, p: &KeyPath) -> CliResult<MeshSpec3> {
-        let present = self.present();
-        Ok(match self.generator {
-            Generator::Box => {
                 let what = "the box generator";
                 only(p, what, &present, BOX_KEYS)?;
                 let g = |key: &str, v: &Option<RawGrading>| -> CliResult<GradingSpec> {
                     Ok(grading(&p.key(key), v)?.unwrap_or_default())
                 };
-                MeshSpec3::Box(BoxSpec {
+                MeshSpec::Box(BoxSpec {
                     element: need(p, &self.element, "element", what)?,
                     ranges: [
                         need(p, &self.x, "x", what)?,
@@ -303,28 +311,6 @@ impl RawMesh {
                         g("grading_z", &self.grading_z)?,
                     ],
                 })
-            }
-            Generator::Gmsh => {
-                only(p, "a gmsh mesh", &present, GMSH_KEYS)?;
-                MeshSpec3::Gmsh {
-                    file: need(p, &self.file, "file", "a gmsh mesh")?,
-                    element: self.element,
-                }
-            }
-            Generator::Rectangle | Generator::Pile => {
-                let gp = p.key("generator");
-                return Err(CliError::at(
-                    &gp,
-                    format!(
-                        "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
-                         \"3d\") takes generator = \"box\" or \"gmsh\"",
-                        if self.generator == Generator::Pile {
-                            "pile"
-                        } else {
-                            "rectangle"
-                        }
-                    ),
-                ));
             }
         })
     }

@@ -6,22 +6,21 @@
 //! so a wrong value inside (`nx = "two"`) is reported at the table, without the key. Flat
 //! structs keep the line, the column and the key path of every value.
 //!
+//! A table is resolved once for both dimensions (`resolve::<D>`): the types of the other
+//! dimension are refused with a message that names it, and vectors take `D` numbers.
+//!
 //! [`keys`] holds the two checks of keys; `[mesh]` and `[preset]`, the two largest tables, have
-//! a file each; [`solid`] resolves `[[loads]]` and `target` of a 3D scene (the typed values of
-//! [`crate::spec3`]; `[mesh]`'s 3D form is in [`mesh`]).
+//! a file each.
 
 mod keys;
 mod mesh;
 mod preset;
-mod solid;
 
 pub use mesh::RawMesh;
 pub use preset::RawPreset;
-pub use solid::triple;
 
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::spec::*;
-use crate::spec3::{Coords, LoadValue};
 use keys::{need, only};
 use serde::Deserialize;
 
@@ -168,29 +167,48 @@ pub struct RawLoad {
     phases: Option<Vec<String>>,
 }
 
-/// Two or three numbers as a 2D scene's `[a, b]`, with the error a 2D scene gives for three.
-fn pair_of(p: &KeyPath, c: &Coords) -> CliResult<Pair> {
-    match c.0[..] {
-        [a, b] => Ok(Pair([a, b])),
-        _ => Err(CliError::at(
-            p,
-            format!(
-                "`{p}`: invalid length {}, expected two numbers [a, b] (three numbers [x, y, z] \
-                 are for a 3D scene: [analysis] type = \"3d\")",
-                c.0.len()
-            ),
-        )),
+/// How a scene of dimension `D` writes a vector: "two numbers [a, b]" or "three numbers [x,
+/// y, z]".
+fn numbers<const D: usize>() -> &'static str {
+    if D == 2 {
+        "two numbers [a, b]"
+    } else {
+        "three numbers [x, y, z]"
     }
 }
 
-/// A 2D load's `value`: a vector `[a, b]`.
-fn load_pair(p: &KeyPath, v: &Option<LoadValue>, what: &str) -> CliResult<Pair> {
+/// The vector `c` at `p` in a scene of dimension `D`, or the error that says which length the
+/// scene takes (and, for three numbers in 2D, that they are for a 3D scene).
+pub fn vector<const D: usize>(p: &KeyPath, c: &Coords) -> CliResult<[f64; D]> {
+    <[f64; D]>::try_from(c.0.as_slice()).map_err(|_| {
+        let hint = if D == 2 {
+            " (three numbers [x, y, z] are for a 3D scene: [analysis] type = \"3d\")"
+        } else {
+            " (a 3D scene)"
+        };
+        CliError::at(
+            p,
+            format!(
+                "`{p}`: invalid length {}, expected {}{hint}",
+                c.0.len(),
+                numbers::<D>()
+            ),
+        )
+    })
+}
+
+/// A load's vector `value` in a scene of dimension `D`.
+fn load_vector<const D: usize>(
+    p: &KeyPath,
+    v: &Option<LoadValue>,
+    what: &str,
+) -> CliResult<[f64; D]> {
     let vp = p.key("value");
     match need(p, v, "value", what)? {
-        LoadValue::Vector(c) => pair_of(&vp, &c),
+        LoadValue::Vector(c) => vector(&vp, &c),
         LoadValue::Scalar(x) => Err(CliError::at(
             &vp,
-            format!("`{vp}` = {x:?}: {what} takes two numbers [a, b]"),
+            format!("`{vp}` = {x:?}: {what} takes {}", numbers::<D>()),
         )),
     }
 }
@@ -205,30 +223,60 @@ impl RawLoad {
         )
     }
 
-    /// The load of a 2D scene.
-    pub fn resolve(&self, p: &KeyPath) -> CliResult<LoadSpec> {
+    /// The load of a scene of dimension `D` (a pressure is a load of a 3D scene).
+    pub fn resolve<const D: usize>(&self, p: &KeyPath) -> CliResult<LoadSpec<D>> {
         let present = [
             ("set", self.set.is_some()),
             ("value", self.value.is_some()),
             ("function", self.function.is_some()),
         ];
+        let boundary = if D == 2 { "an edge set" } else { "a face set" };
         Ok(match self.kind {
             LoadKindSpec::Traction => LoadSpec::Traction {
-                set: need(p, &self.set, "set", "a traction (an edge set)")?,
-                value: load_pair(p, &self.value, "a traction")?,
+                set: need(p, &self.set, "set", &format!("a traction ({boundary})"))?,
+                value: load_vector(p, &self.value, "a traction")?,
             },
+            LoadKindSpec::Pressure if D == 2 => {
+                let tp = p.key("type");
+                return Err(CliError::at(
+                    &tp,
+                    format!(
+                        "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
+                         \"3d\"); in 2D give a traction [t_x, t_y] on an edge set"
+                    ),
+                ));
+            }
+            LoadKindSpec::Pressure => {
+                let what = "a pressure (a face set)";
+                let vp = p.key("value");
+                LoadSpec::Pressure {
+                    set: need(p, &self.set, "set", what)?,
+                    value: match need(p, &self.value, "value", what)? {
+                        LoadValue::Scalar(x) => x,
+                        LoadValue::Vector(_) => {
+                            return Err(CliError::at(
+                                &vp,
+                                format!(
+                                    "`{vp}`: a pressure is one number (positive pushes into \
+                                     the body); for a vector give type = \"traction\""
+                                ),
+                            ));
+                        }
+                    },
+                }
+            }
             LoadKindSpec::NodalForce => LoadSpec::NodalForce {
                 set: need(p, &self.set, "set", "a nodal force (a node set)")?,
-                value: load_pair(p, &self.value, "a nodal force")?,
+                value: load_vector(p, &self.value, "a nodal force")?,
             },
             LoadKindSpec::Resultant => LoadSpec::Resultant {
                 set: need(p, &self.set, "set", "a resultant force (a tied node set)")?,
-                value: load_pair(p, &self.value, "a resultant force")?,
+                value: load_vector(p, &self.value, "a resultant force")?,
             },
             LoadKindSpec::BodyForce => {
                 only(p, "a body force", &present, &["value", "function"])?;
                 LoadSpec::BodyForce {
-                    value: load_pair(p, &self.value, "a body force")?,
+                    value: load_vector(p, &self.value, "a body force")?,
                 }
             }
             LoadKindSpec::Gravity => {
@@ -239,16 +287,6 @@ impl RawLoad {
                     &[],
                 )?;
                 LoadSpec::Gravity
-            }
-            LoadKindSpec::Pressure => {
-                let tp = p.key("type");
-                return Err(CliError::at(
-                    &tp,
-                    format!(
-                        "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
-                         \"3d\"); in 2D give a traction [t_x, t_y] on an edge set"
-                    ),
-                ));
             }
         })
     }
@@ -331,18 +369,42 @@ impl RawTarget {
         ]
     }
 
-    /// The target of a 2D scene.
-    pub fn resolve(&self, p: &KeyPath) -> CliResult<TargetSpec> {
+    /// The target of a scene of dimension `D`: the types of the other dimension are refused
+    /// at `type`.
+    pub fn resolve<const D: usize>(&self, p: &KeyPath) -> CliResult<TargetSpec> {
+        use TargetKind::*;
         let present = self.present();
+        let kind = self.kind.name();
+        if D == 2 && matches!(self.kind, Plane | Sphere | Cylinder | Faces) {
+            let tp = p.key("type");
+            return Err(CliError::at(
+                &tp,
+                format!(
+                    "`{tp}` = \"{kind}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
+                     a 2D scene takes line, arc, node_pairs or segments"
+                ),
+            ));
+        }
+        if D == 3 && matches!(self.kind, Line | Arc | Segments) {
+            let tp = p.key("type");
+            return Err(CliError::at(
+                &tp,
+                format!(
+                    "`{tp}` = \"{kind}\" is a target of a 2D scene; a 3D scene takes plane, \
+                     sphere, cylinder, node_pairs or faces"
+                ),
+            ));
+        }
+        let side = self.side.unwrap_or(ArcSideSpec::Outside);
         Ok(match self.kind {
-            TargetKind::Line => {
+            Line => {
                 only(p, "a LINE target", &present, &["a", "b"])?;
                 TargetSpec::Line {
                     a: need(p, &self.a, "a", "a LINE target")?,
                     b: need(p, &self.b, "b", "a LINE target")?,
                 }
             }
-            TargetKind::Arc => {
+            Arc => {
                 let what = "an ARC target";
                 only(
                     p,
@@ -350,41 +412,56 @@ impl RawTarget {
                     &present,
                     &["center", "radius", "start_angle", "sweep", "side"],
                 )?;
+                let center = need(p, &self.center, "center", what)?;
                 TargetSpec::Arc {
-                    center: pair_of(&p.key("center"), &need(p, &self.center, "center", what)?)?,
+                    center: Pair(vector(&p.key("center"), &center)?),
                     radius: need(p, &self.radius, "radius", what)?,
                     start_angle: self.start_angle.unwrap_or(0.0),
                     sweep: self.sweep,
                     side: need(p, &self.side, "side", what)?,
                 }
             }
-            TargetKind::NodePairs => {
-                only(p, "a node_pairs target", &present, &["set", "normal"])?;
+            Plane => {
+                let what = "a plane target";
+                only(p, what, &present, &["point", "normal"])?;
+                TargetSpec::Plane {
+                    point: need(p, &self.point, "point", what)?,
+                    normal: need(p, &self.normal, "normal", what)?,
+                }
+            }
+            Sphere => {
+                let what = "a sphere target";
+                only(p, what, &present, &["center", "radius", "side"])?;
+                TargetSpec::Sphere {
+                    center: need(p, &self.center, "center", what)?,
+                    radius: need(p, &self.radius, "radius", what)?,
+                    side,
+                }
+            }
+            Cylinder => {
+                let what = "a cylinder target";
+                only(p, what, &present, &["point", "axis", "radius", "side"])?;
+                TargetSpec::Cylinder {
+                    point: need(p, &self.point, "point", what)?,
+                    axis: need(p, &self.axis, "axis", what)?,
+                    radius: need(p, &self.radius, "radius", what)?,
+                    side,
+                }
+            }
+            NodePairs => {
+                let what = "a node_pairs target";
+                only(p, what, &present, &["set", "normal"])?;
                 TargetSpec::NodePairs {
-                    set: need(p, &self.set, "set", "a node_pairs target")?,
-                    normal: self
-                        .normal
-                        .as_ref()
-                        .map(|n| pair_of(&p.key("normal"), n))
-                        .transpose()?,
+                    set: need(p, &self.set, "set", what)?,
+                    normal: self.normal.clone(),
                 }
             }
-            TargetKind::Segments => {
-                only(p, "a segments target", &present, &["set"])?;
-                TargetSpec::Segments {
-                    set: need(p, &self.set, "set", "a segments target")?,
+            Segments | Faces => {
+                let what = format!("a {kind} target");
+                only(p, &what, &present, &["set"])?;
+                TargetSpec::Surface {
+                    set: need(p, &self.set, "set", &what)?,
                 }
-            }
-            TargetKind::Plane | TargetKind::Sphere | TargetKind::Cylinder | TargetKind::Faces => {
-                let tp = p.key("type");
-                return Err(CliError::at(
-                    &tp,
-                    format!(
-                        "`{tp}` = \"{}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
-                         a 2D scene takes line, arc, node_pairs or segments",
-                        self.kind.name()
-                    ),
-                ));
             }
         })
     }
@@ -461,5 +538,78 @@ impl RawLaw {
                 })
             }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn target(s: &str) -> RawTarget {
+        toml::from_str(s).unwrap()
+    }
+
+    #[test]
+    fn vector_takes_the_scene_s_length_works() {
+        let p = KeyPath::root().key("v");
+        let three = Coords(vec![1.0, 2.0, 3.0]);
+        assert_eq!(vector::<3>(&p, &three).unwrap(), [1.0, 2.0, 3.0]);
+        assert_eq!(
+            vector::<2>(&p, &Coords(vec![1.0, 2.0])).unwrap(),
+            [1.0, 2.0]
+        );
+        let e = vector::<3>(&p, &Coords(vec![1.0, 2.0])).unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "v");
+        assert!(
+            e.message.contains("expected three numbers"),
+            "{}",
+            e.message
+        );
+        let e = vector::<2>(&p, &three).unwrap_err();
+        assert!(e.message.contains("are for a 3D scene"), "{}", e.message);
+    }
+
+    #[test]
+    fn targets_resolve_in_3d_works() {
+        let p = KeyPath::root().key("target");
+        let t = target("type = \"sphere\"\ncenter = [0, 0, 1]\nradius = 2.0");
+        match t.resolve::<3>(&p).unwrap() {
+            TargetSpec::Sphere { radius, side, .. } => {
+                assert_eq!(radius, 2.0);
+                assert!(matches!(side, ArcSideSpec::Outside));
+            }
+            other => panic!("{other:?}"),
+        }
+        let t = target(
+            "type = \"cylinder\"\npoint = [0, 0, 1]\naxis = [1, 0, 0]\nradius = 1.0\nside = \"inside\"",
+        );
+        assert!(matches!(
+            t.resolve::<3>(&p).unwrap(),
+            TargetSpec::Cylinder {
+                side: ArcSideSpec::Inside,
+                ..
+            }
+        ));
+    }
+
+    #[test]
+    fn targets_rejects_the_other_dimension() {
+        let p = KeyPath::root().key("target");
+        let e = target("type = \"line\"\na = [0, 0]\nb = [1, 0]")
+            .resolve::<3>(&p)
+            .unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "target.type");
+        let e = target("type = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]")
+            .resolve::<2>(&p)
+            .unwrap_err();
+        assert!(
+            e.message.contains("is a target of a 3D scene"),
+            "{}",
+            e.message
+        );
+        let e = target("type = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nradius = 1.0")
+            .resolve::<3>(&p)
+            .unwrap_err();
+        assert_eq!(e.path.unwrap().to_string(), "target.radius");
     }
 }

@@ -6,22 +6,17 @@
 //! depend on the dimension is the 2D code (time functions, phases, materials, supports' values
 //! and names, the law of a zone, `[solver]`'s local keys, `[output]`); the model (loads with
 //! three components, pressures on face sets) is built by the one generic
-//! [`super::model::build`]; [`mesh`] and [`contact`] hold what 3D reads differently: the box
-//! generator and Gmsh volume files, rigid planes, spheres and cylinders.
-//! [`plots`] checks `[[plots]]` (the quantities a 3D run records). What 3D scenes do not have
-//! yet (floating bodies, shaft profiles) is refused with its key path.
-
-mod contact;
-mod mesh;
-mod plots;
-
-pub use mesh::solid_kind_name;
+//! [`super::model::build`], the mesh, the zones and the plots by the generic [`mesh`],
+//! [`contact`] and [`super::outputs::check_plots`] (what 3D reads differently, the box
+//! generator and Gmsh volume files, rigid planes, spheres and cylinders, is
+//! [`super::SceneDim`]'s). What 3D scenes do not have yet (floating bodies, shaft profiles) is
+//! refused with its key path.
 
 use super::Loaded;
-use super::model;
-use super::outputs::{MAX_OUTPUT_FILES, check_output_table};
+use super::outputs::{MAX_OUTPUT_FILES, check_output_table, check_plots};
 use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::study::{LoadRt, SupportRt, written_steps};
+use super::{contact, mesh, model};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{OutputSpec, PlotSpec, Scene, Units};
 use contact_laws::StandardLaw;
@@ -132,20 +127,20 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<SolidStudy> {
             "the 3D scene has no [mesh] (give `generator = \"box\"` or `\"gmsh\"`)",
         )
     })?;
-    let mesh_plan = mesh::validate(&mp, &mesh_raw.resolve_3d(&mp)?, &base_dir)?;
+    let mesh_plan = mesh::validate(&mp, &mesh_raw.resolve::<3>(&mp)?, None, &base_dir)?;
     if let Some(a) = &scene.analysis {
         a.resolve(&root.key("analysis"))?;
     }
     let plan = model::validate(scene, &functions, &phases, ())?;
-    let contact = super::contact::validate::<3, _>(scene, contact::target)?;
+    let contact = contact::validate::<3>(scene)?;
     refuse_unsupported(scene)?;
 
-    let mesh = mesh::build(&mp, mesh_plan)?;
+    let mesh = mesh::build(&mp, mesh_plan, None)?;
     let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
-    let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
+    let (sim, _, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
     let hertz = super::hertz::check(scene, &zone_names, 3, |e, nu| e / (1.0 - nu * nu))?;
-    let plots = plots::check(&scene.plots, &zone_names)?;
+    let plots = check_plots(&scene.plots, &zone_names, None)?;
     let study = SolidStudy {
         title: scene.title.clone().unwrap_or_else(|| {
             loaded
