@@ -190,6 +190,7 @@ impl SceneDim<2> for Dim<2> {
         })
     }
 
+    /// The rectangle and the pile.
     fn generate(mp: &KeyPath, plan: MeshPlan) -> CliResult<Mesh> {
         match plan {
             MeshPlan::Rectangle(spec) => fem_core::generate::rectangle(&spec),
