@@ -136,6 +136,7 @@ struct Local {
     p: Vec<i32>,
     i: Vec<i32>,
     x: Vec<f64>,
+    nzmax: Option<i32>,
     q: Vec<f64>,
     mu: Vec<f64>,
     vectors: bool,
@@ -152,6 +153,7 @@ impl Local {
             p: vec![0, 1, 2, 3, 4],
             i: vec![0, 1, 2, 3],
             x: vec![2.0, 1.0, 3.0, 1.0],
+            nzmax: None,
             q: vec![-1.0, 0.0, 0.5, 0.1],
             mu: vec![0.2, 0.4],
             vectors: true,
@@ -176,6 +178,9 @@ impl Local {
         ints(&w, "p", &self.p);
         ints(&w, "i", &self.i);
         reals(&w, "x", &self.x);
+        if let Some(nzmax) = self.nzmax {
+            ints(&w, "nzmax", &[nzmax]);
+        }
         if self.vectors {
             let v = g.create_group("vectors").unwrap();
             reals(&v, "q", &self.q);
@@ -284,6 +289,54 @@ fn read_fclib_captures_errors() {
     for (name, local, expected) in cases {
         assert_eq!(local.reason(&format!("{name}.hdf5")), expected, "{name}");
     }
+}
+
+/// Issue 37: fclib.c writes `nzmax` with `i` and `x` either padded to it (as FCLIB's paper
+/// says) or holding only the `p[outer]` entries used (as some versions of fclib.c do). Both are
+/// read to the same `W`; any other length is refused, naming the dataset.
+#[test]
+fn issue_37_reads_i_and_x_of_nzmax_or_of_the_used_length() {
+    let w = |local: &Local, name: &str| {
+        let back = read_fclib(local.write(name)).unwrap();
+        back.problem.w_dense().unwrap().to_vec()
+    };
+    let reference = w(&Local::valid(), "nzmax_none.hdf5");
+    assert_eq!(reference, {
+        let mut d = vec![0.0; 16];
+        for (k, v) in [2.0, 1.0, 3.0, 1.0].into_iter().enumerate() {
+            d[5 * k] = v;
+        }
+        d
+    });
+    let used = Local {
+        nzmax: Some(6),
+        ..Local::valid()
+    };
+    assert_eq!(
+        w(&used, "nzmax_used.hdf5"),
+        reference,
+        "i, x of the used length"
+    );
+    let padded = Local {
+        nzmax: Some(6),
+        i: vec![0, 1, 2, 3, 0, 0],
+        x: vec![2.0, 1.0, 3.0, 1.0, 0.0, 0.0],
+        ..Local::valid()
+    };
+    assert_eq!(
+        w(&padded, "nzmax_padded.hdf5"),
+        reference,
+        "i, x padded to nzmax"
+    );
+    let neither = Local {
+        nzmax: Some(6),
+        x: vec![2.0, 1.0, 3.0, 1.0, 0.0],
+        ..Local::valid()
+    };
+    assert_eq!(
+        neither.reason("nzmax_neither.hdf5"),
+        "`fclib_local/W/x` has 5 entries, expected 6"
+    );
 }
 
 #[test]

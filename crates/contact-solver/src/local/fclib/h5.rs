@@ -226,8 +226,12 @@ impl H5File<'_> {
         } else {
             stored
         };
+        // FCLIB says `i` and `x` hold `nzmax` entries, but some versions of fclib.c write only
+        // the `count` that are used (issue 37): either length is read, anything else refused.
+        let i_len = self.used_or(&g, &full, "i", count, i_len)?;
+        let x_len = self.used_or(&g, &full, "x", count, stored)?;
         let i = self.ints(&g, &full, "i", i_len)?;
-        let x = self.reals(&g, &full, "x", stored)?;
+        let x = self.reals(&g, &full, "x", x_len)?;
         Ok(RawSparse {
             m,
             n,
@@ -236,6 +240,20 @@ impl H5File<'_> {
             i,
             x,
         })
+    }
+
+    /// `used` when dataset `name` holds exactly that many entries, `stored` otherwise (whose
+    /// length the read then checks, naming the dataset).
+    fn used_or(
+        &self,
+        g: &Group,
+        at: &str,
+        name: &str,
+        used: usize,
+        stored: usize,
+    ) -> Result<usize, SolverError> {
+        let ds = self.dataset(g, at, name)?;
+        Ok(if ds.size() == used { used } else { stored })
     }
 
     /// Writes `v` as a 1-D dataset `name` of C `int`s (FCLIB's `H5LTmake_dataset_int`).
