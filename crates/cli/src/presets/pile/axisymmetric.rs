@@ -11,11 +11,11 @@ use fem_core::{
 };
 
 impl PulloutSpec {
-    /// Builds the scene: mesh (with the tip detached), model with self-weight and initial
-    /// stress, the three contact zones (shaft, tip corner, tip), and the installation forces
-    /// for a unit `δ`. With [`BetaCoupling::Staggered`](super::BetaCoupling::Staggered) the settings' adhesion fixed point is
-    /// cut to one iteration and accepted unconverged (the scene then checks each contact
-    /// solve's residual against `settings.solver.tol`).
+    /// Builds the axisymmetric scene: mesh (with the tip detached), model with self-weight and
+    /// initial stress, the three contact zones (shaft, tip corner, tip), and the installation
+    /// forces for a unit `δ`. With [`BetaCoupling::Staggered`](super::BetaCoupling::Staggered)
+    /// the settings' adhesion fixed point is cut to one iteration and accepted unconverged (the
+    /// scene then checks each contact solve's residual against `settings.solver.tol`).
     ///
     /// # Errors
     /// [`SolverError::Structure`] for invalid geometry or materials; [`SolverError::Law`] for

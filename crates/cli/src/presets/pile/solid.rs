@@ -19,7 +19,8 @@
 //! - **Installation.** The radial displacement `δ` of the soil's interface nodes, solved on the
 //!   soil alone in 3D; its reactions, scaled to `δ`, are added as nodal forces (the
 //!   axisymmetric scene's method). `δ` is calibrated as in 2D, or given
-//!   ([`Installation::RadialDisplacement`](super::Installation::RadialDisplacement)) to run both models with the same `δ`.
+//!   ([`Installation::RadialDisplacement`](super::Installation::RadialDisplacement)) to run
+//!   both models with the same `δ`.
 //! - **Head load.** `Q = 4 Σ R_z` over the head nodes (quarter to full ring,
 //!   [`PileSpace::RING`](super::PileSpace::RING)), the contact forces on the head's prescribed
 //!   `u_z` taken out as in 2D.
