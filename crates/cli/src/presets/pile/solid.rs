@@ -254,3 +254,59 @@ impl PulloutSpec {
         self.assemble(parts, settings)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets::PileSpace;
+    use fem_core::Dim;
+
+    /// A small Plancoët: 4 shaft cells, one increment.
+    fn small() -> PulloutSpec {
+        let mut spec = PulloutSpec::plancoet();
+        (
+            spec.mesh.cells_shaft,
+            spec.mesh.cells_soil_r,
+            spec.mesh.cells_below_tip,
+        ) = (4, 3, 2);
+        spec.steps = 1;
+        spec
+    }
+
+    fn out_of_order<const D: usize>(scene: &mut PulloutScene<D>)
+    where
+        Dim<D>: PileSpace<D>,
+    {
+        let what = |e: SolverError| match e {
+            SolverError::InvalidSetting { what, .. } => what,
+            e => panic!("{e:?}"),
+        };
+        assert_eq!(what(scene.pull(1).unwrap_err()), "pull");
+        assert_eq!(what(scene.install().unwrap_err()), "install");
+    }
+
+    #[test]
+    fn issue_35_both_dimensions_keep_the_phase_order() {
+        let spec = small();
+        out_of_order(&mut spec.build(SimulationSettings::default()).unwrap());
+        let settings = SimulationSettings::for_dimension::<3>();
+        out_of_order(&mut spec.build_3d(1, settings).unwrap());
+    }
+
+    #[test]
+    fn issue_35_the_quarter_captures_errors() {
+        let mut spec = small();
+        let settings = SimulationSettings::for_dimension::<3>();
+        let err = spec.build_3d(0, settings).err().unwrap();
+        assert!(matches!(
+            err,
+            SolverError::InvalidSetting {
+                what: "sectors",
+                ..
+            }
+        ));
+        spec.head_force = Some(100.0);
+        let err = spec.build_3d(2, settings).err().unwrap();
+        assert!(matches!(err, SolverError::Unsupported(_)), "{err:?}");
+    }
+}
