@@ -2,10 +2,10 @@
 //! `(r, z)`, forces per radian, the tributary areas consistent along the lines of nodes.
 
 use super::meridian::Meridian;
-use super::{Parts, PulloutScene, PulloutSpec};
+use super::{Parts, PulloutScene, PulloutSpec, ZonePairs};
 use contact_solver::SolverError;
 use contact_solver::coupling::simulation::SimulationSettings;
-use contact_solver::coupling::zone::ContactZone;
+use contact_solver::coupling::zone::PairNormals;
 use fem_core::{
     Component, ElementKind, Idealization, LinearElasticModel, Material, Mesh, Supports,
 };
@@ -86,37 +86,27 @@ impl PulloutSpec {
         let geostatic_normal =
             self.shaft_normal_at_rest(shaft_z.iter().copied().zip(shaft_areas.iter().copied()));
 
-        let (shaft_law, corner_law, tip_law) = self.zone_laws()?;
-        let inward = Some([-1.0, 0.0]);
-        let zones = vec![
-            ContactZone::node_pairs(
-                "shaft",
-                shaft_pile[1..].to_vec(),
-                shaft_soil[1..].to_vec(),
-                inward,
-                shaft_law,
-                self.alert_distance,
-            )
-            .with_areas(shaft_areas[1..].to_vec()),
-            ContactZone::node_pairs(
-                "tip_corner",
-                vec![shaft_pile[0]],
-                vec![shaft_soil[0]],
-                inward,
-                corner_law,
-                self.alert_distance,
-            )
-            .with_areas(vec![shaft_areas[0]]),
-            ContactZone::node_pairs(
-                "tip",
-                tip_pile.clone(),
-                tip_soil,
-                Some([0.0, 1.0]),
-                tip_law,
-                self.alert_distance,
-            )
-            .with_areas(tip_areas),
-        ];
+        let inward = PairNormals::Fixed([-1.0, 0.0]);
+        let zones = self.zones([
+            ZonePairs {
+                pile: shaft_pile[1..].to_vec(),
+                soil: shaft_soil[1..].to_vec(),
+                normals: inward.clone(),
+                areas: shaft_areas[1..].to_vec(),
+            },
+            ZonePairs {
+                pile: vec![shaft_pile[0]],
+                soil: vec![shaft_soil[0]],
+                normals: inward,
+                areas: vec![shaft_areas[0]],
+            },
+            ZonePairs {
+                pile: tip_pile.clone(),
+                soil: tip_soil,
+                normals: PairNormals::Fixed([0.0, 1.0]),
+                areas: tip_areas,
+            },
+        ])?;
         // candidates in zone order: shaft above the corner (n − 1), corner, tip
         let n_shaft = shaft_pile.len();
         let parts = Parts {

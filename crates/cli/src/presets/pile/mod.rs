@@ -84,7 +84,7 @@
 use contact_laws::{BetaScheme, Rccm, RccmParams};
 use contact_solver::SolverError;
 use contact_solver::coupling::simulation::{ContactSimulation, SimulationSettings};
-use contact_solver::coupling::zone::ContactZone;
+use contact_solver::coupling::zone::{ContactZone, PairNormals};
 use fem_core::generate::{PileSpec, TipCorner};
 use fem_core::{Dim, ElasticModel, Stress, StressField};
 use std::f64::consts::PI;
@@ -365,23 +365,43 @@ impl PulloutSpec {
         })
     }
 
-    /// The laws of the three zones (module docs): the shaft's RCCM interface, the tip
+    /// The three zones (module docs) from their pairs: the shaft's RCCM interface, the tip
     /// corner's plain Coulomb friction (no adhesion), the tip's frictionless contact.
-    pub(super) fn zone_laws(&self) -> Result<(Rccm, Rccm, Rccm), SolverError> {
-        let shaft = Rccm::new(self.interface)?;
-        let corner = Rccm::new(RccmParams {
+    ///
+    /// # Errors
+    /// [`SolverError::Law`] for invalid interface parameters.
+    fn zones<const D: usize>(
+        &self,
+        [shaft, corner, tip]: [ZonePairs<D>; 3],
+    ) -> Result<Vec<ContactZone<Rccm, D>>, SolverError>
+    where
+        Dim<D>: PileSpace<D>,
+    {
+        let shaft_law = Rccm::new(self.interface)?;
+        let corner_law = Rccm::new(RccmParams {
             beta_0: 0.0,
             ..self.interface
         })?;
-        let tip = Rccm::new(RccmParams {
+        let tip_law = Rccm::new(RccmParams {
             mu: 0.0,
             beta_0: 0.0,
             ..self.interface
         })?;
-        Ok((shaft, corner, tip))
+        let zones = [
+            ("shaft", shaft, shaft_law),
+            ("tip_corner", corner, corner_law),
+            ("tip", tip, tip_law),
+        ];
+        Ok(zones
+            .into_iter()
+            .map(|(name, p, law)| {
+                ContactZone::node_pairs(name, p.pile, p.soil, p.normals, law, self.alert_distance)
+                    .with_areas(p.areas)
+            })
+            .collect())
     }
 
-    pub(super) fn check(&self) -> Result<(), SolverError> {
+    fn check(&self) -> Result<(), SolverError> {
         let bad = |what: &'static str, value: f64, expected: &'static str| {
             Err(SolverError::InvalidSetting {
                 what,
@@ -456,4 +476,16 @@ where
     /// its `δ₁`), and their resultant along `e_r`.
     unit_forces: Vec<(usize, [f64; D])>,
     unit_normal: f64,
+}
+
+/// The node pairs of one zone: the pile's nodes (contactors), the soil's (targets), their
+/// normals (from the soil to the pile) and tributary areas.
+struct ZonePairs<const D: usize>
+where
+    Dim<D>: PileSpace<D>,
+{
+    pile: Vec<usize>,
+    soil: Vec<usize>,
+    normals: PairNormals<D>,
+    areas: Vec<f64>,
 }

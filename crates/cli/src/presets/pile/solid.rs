@@ -29,9 +29,8 @@
 //!   supported.
 
 use super::meridian::Meridian;
-use super::{Parts, PulloutScene, PulloutSpec};
-use contact_laws::Rccm;
-use contact_solver::coupling::solid::{ContactZone3, PairNormals3};
+use super::{Parts, PulloutScene, PulloutSpec, ZonePairs};
+use contact_solver::coupling::zone::PairNormals;
 use contact_solver::{SimulationSettings, SolverError};
 use fem_core::generate::{PILE, SOIL};
 use fem_core::solid::{Face, SolidMesh, SolidModel, Stress3, StressField3, revolve};
@@ -186,49 +185,44 @@ impl PulloutSpec {
             }
             (c, t, angle)
         };
-        let radial_zone = |name: &str, pile: &[usize], soil: &[usize], law: Rccm| {
+        let radial = |pile: &[usize], soil: &[usize]| {
             let (c, t, angle) = pairs(pile, soil);
-            let normals = angle.iter().map(|a| [-a.cos(), -a.sin(), 0.0]).collect();
-            let a = c.iter().map(|n| shaft_area[n]).collect();
-            ContactZone3::node_pairs(
-                name,
-                c,
-                t,
-                PairNormals3::PerPair(normals),
-                law,
-                self.alert_distance,
-            )
-            .with_areas(a)
+            ZonePairs {
+                normals: PairNormals::PerPair(
+                    angle.iter().map(|a| [-a.cos(), -a.sin(), 0.0]).collect(),
+                ),
+                areas: c.iter().map(|n| shaft_area[n]).collect(),
+                pile: c,
+                soil: t,
+            }
         };
-        let (shaft_law, corner_law, tip_law) = self.zone_laws()?;
-        let shaft = radial_zone("shaft", &shaft_pile[1..], &shaft_soil[1..], shaft_law);
-        let corner = radial_zone("tip_corner", &shaft_pile[..1], &shaft_soil[..1], corner_law);
         let (c, t, _) = pairs(&tip_pile, &tip_soil);
-        let a = c
-            .iter()
-            .map(|n| tip_area.get(n).copied().unwrap_or(0.0))
-            .collect();
-        let tip = ContactZone3::node_pairs(
-            "tip",
-            c,
-            t,
-            PairNormals3::Fixed([0.0, 0.0, 1.0]),
-            tip_law,
-            self.alert_distance,
-        )
-        .with_areas(a);
+        let tip = ZonePairs {
+            areas: c
+                .iter()
+                .map(|n| tip_area.get(n).copied().unwrap_or(0.0))
+                .collect(),
+            pile: c,
+            soil: t,
+            normals: PairNormals::Fixed([0.0, 0.0, 1.0]),
+        };
+        let zones = self.zones([
+            radial(&shaft_pile[1..], &shaft_soil[1..]),
+            radial(&shaft_pile[..1], &shaft_soil[..1]),
+            tip,
+        ])?;
         let (n_shaft, n_corner, n_tip) = (
-            shaft.contactor.len(),
-            corner.contactor.len(),
-            tip.contactor.len(),
+            zones[0].contactor.len(),
+            zones[1].contactor.len(),
+            zones[2].contactor.len(),
         );
 
         // δ for the requested installation (quarter sums on both sides)
         let geostatic_normal = self.shaft_normal_at_rest(
-            shaft
+            zones[0]
                 .contactor
                 .iter()
-                .chain(&corner.contactor)
+                .chain(&zones[1].contactor)
                 .map(|n| (model.mesh().nodes()[*n][2], shaft_area[n])),
         );
         let mut unit_forces: Vec<(usize, [f64; 3])> = unit_force.into_iter().collect();
@@ -243,7 +237,7 @@ impl PulloutSpec {
             .sum();
         let parts = Parts {
             model,
-            zones: vec![shaft, corner, tip],
+            zones,
             head,
             shaft_candidates: (0..n_shaft + n_corner).collect(),
             tip_candidates: (n_shaft + n_corner..n_shaft + n_corner + n_tip).collect(),
