@@ -57,7 +57,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         settings.flexibility = FlexibilityMode::ActiveSet;
     }
     let mut solid = spec.build_3d(sectors, settings)?;
-    let curve3 = solid.run()?;
+    let curve3 = solid.run()?.curve();
     let t3 = t.elapsed().as_secs_f64();
     let dofs3 = 3 * solid.simulation.structure().mesh().node_count();
     println!(

@@ -10,7 +10,7 @@ pub mod pile;
 pub mod seed;
 
 pub use pile::{
-    BetaCoupling, Installation, PulloutRun, PulloutScene, PulloutSpec, PulloutStep, ShaftPoint,
-    SolidPulloutScene, SolidPulloutStep,
+    BetaCoupling, Installation, PileSpace, PulloutRun, PulloutScene, PulloutSpec, PulloutStep,
+    ShaftPoint,
 };
 pub use seed::{DelaminationSpec, Scene, ShearSpec};

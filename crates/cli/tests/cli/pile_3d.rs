@@ -93,7 +93,7 @@ fn the_active_set_pulls_the_3d_pile_out_on_the_dense_curve() {
     let curve = |mode: FlexibilityMode| {
         let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
         let mut solid = spec.build_3d(2, settings).unwrap();
-        solid.run().unwrap()
+        solid.run().unwrap().curve()
     };
     let dense = curve(FlexibilityMode::Dense);
     let active = curve(FlexibilityMode::ActiveSet);

@@ -84,21 +84,19 @@
 use contact_laws::{BetaScheme, Rccm, RccmParams};
 use contact_solver::SolverError;
 use contact_solver::coupling::simulation::{ContactSimulation, SimulationSettings};
-use contact_solver::coupling::zone::ContactZone;
-use fem_core::generate::{PILE, PileSpec, SOIL, TipCorner, pile_in_soil};
-use fem_core::{
-    Component, ElementKind, FemError, Idealization, LinearElasticModel, Material, Mesh, Stress,
-    StressField, Supports,
-};
+use contact_solver::coupling::zone::{ContactZone, PairNormals};
+use fem_core::generate::{PileSpec, TipCorner};
+use fem_core::{Dim, ElasticModel, Stress, StressField};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+mod axisymmetric;
+mod meridian;
 mod scene;
 mod solid;
 
 use scene::Phase;
-pub use scene::{PulloutRun, PulloutScene, PulloutStep, ShaftPoint};
-pub use solid::{SolidPulloutScene, SolidPulloutStep};
+pub use scene::{PileSpace, PulloutRun, PulloutScene, PulloutStep, ShaftPoint};
 
 /// How the installation (phase 2) is modelled: the imposed radial displacement `δ` of the soil's
 /// interface nodes, uniform along the shaft (seed §6.3, third method).
@@ -284,147 +282,60 @@ impl PulloutSpec {
             * self.mesh.length
     }
 
-    /// The initial stress of phase 1 (see the [module docs](self)), in [`Stress`] order
-    /// `(rr, zz, rz, θθ)`, tension positive.
+    /// The initial stress of phase 1 (see the [module docs](self)) of the axisymmetric model,
+    /// in [`Stress`] order `(rr, zz, rz, θθ)`, tension positive.
     pub fn initial_stress(&self) -> StressField {
         let (radius, length) = (self.radius(), self.mesh.length);
-        let (gamma_s, gamma_p, k0) = (self.soil_unit_weight, self.pile_unit_weight, self.k0);
+        let stress = self.geostatic_stress();
         Arc::new(move |x: [f64; 2]| -> Stress {
-            let z = x[1].min(0.0);
-            let s_rr = k0 * gamma_s * z;
-            if x[0] < radius && x[1] > -length {
-                [s_rr, -gamma_s * length + gamma_p * (z + length), 0.0, s_rr]
-            } else {
-                [s_rr, gamma_s * z, 0.0, s_rr]
-            }
+            let (s_rr, s_zz) = stress(x[1], x[0] < radius && x[1] > -length);
+            [s_rr, s_zz, 0.0, s_rr]
         })
     }
 
-    /// Builds the scene: mesh (with the tip detached), model with self-weight and initial
-    /// stress, the three contact zones (shaft, tip corner, tip), and the installation forces
-    /// for a unit `δ`. With [`BetaCoupling::Staggered`] the settings' adhesion fixed point is
-    /// cut to one iteration and accepted unconverged (the scene then checks each contact
-    /// solve's residual against `settings.solver.tol`).
-    ///
-    /// # Errors
-    /// [`SolverError::Structure`] for invalid geometry or materials; [`SolverError::Law`] for
-    /// invalid interface parameters; [`SolverError::InvalidSetting`] for a non-finite or
-    /// negative installation, `k0`, head displacement or alert distance, zero steps, or
-    /// [`TipCorner::Shared`].
-    pub fn build(&self, mut settings: SimulationSettings) -> Result<PulloutScene, SolverError> {
-        self.check()?;
+    /// Phase 1's stresses `(σ_rr = σ_θθ, σ_zz)` at the height `z` (taken as `min(z, 0)`), in
+    /// the pile (`in_pile`) or in the soil (module docs), tension positive, no shear: one
+    /// formula for both dimensions.
+    fn geostatic_stress(&self) -> impl Fn(f64, bool) -> (f64, f64) + Copy + Send + Sync + 'static {
+        let length = self.mesh.length;
+        let (gamma_s, gamma_p, k0) = (self.soil_unit_weight, self.pile_unit_weight, self.k0);
+        move |z: f64, in_pile: bool| {
+            let z = z.min(0.0);
+            let s_rr = k0 * gamma_s * z;
+            if in_pile {
+                (s_rr, -gamma_s * length + gamma_p * (z + length))
+            } else {
+                (s_rr, gamma_s * z)
+            }
+        }
+    }
+
+    /// The shaft normal force of phase 1, `Σ K0 γ_s |z| A` over the shaft's `(z, A)`.
+    fn shaft_normal_at_rest(&self, shaft: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+        shaft
+            .into_iter()
+            .map(|(z, a)| self.k0 * self.soil_unit_weight * (-z).max(0.0) * a)
+            .sum()
+    }
+
+    /// Finishes a scene from what a dimension's builder made: the coupling's settings, the
+    /// simulation, and `δ` for the requested installation from the geostatic shaft normal
+    /// force and the unit installation's (both in the model's units).
+    fn assemble<const D: usize>(
+        &self,
+        parts: Parts<D>,
+        mut settings: SimulationSettings,
+    ) -> Result<PulloutScene<D>, SolverError>
+    where
+        Dim<D>: PileSpace<D>,
+    {
         let tol = settings.solver.tol;
         if self.beta_coupling == BetaCoupling::Staggered {
             settings.max_adhesion_iterations = 1;
             settings.solver.accept_non_converged = true;
         }
-        let radius = self.radius();
-        let length = self.mesh.length;
-        let generated = pile_in_soil(&self.mesh)?;
-        let (mesh, tip_pile, tip_soil) = detach_tip(generated, radius, length)?;
-        let kind = mesh.kind();
-        let shaft_pile = mesh.node_set("interface_pile")?.to_vec();
-        let shaft_soil = mesh.node_set("interface_soil")?.to_vec();
-        let head = mesh.node_set("pile_head")?.to_vec();
-
-        let mut supports = Supports::new();
-        supports
-            .fix(mesh.node_set("axis")?, Component::X)
-            .fix(mesh.node_set("outer")?, Component::X)
-            .fix(mesh.node_set("base")?, Component::Y);
-        let mut held = supports.clone();
-        held.fix(&head, Component::Y);
-        if self.head_force.is_some() {
-            supports.tie(&head, Component::Y)?;
-        } else {
-            supports = held.clone();
-        }
-        let materials = [
-            (
-                SOIL,
-                Material::new(self.soil_young, self.soil_poisson, self.soil_unit_weight)?,
-            ),
-            (
-                PILE,
-                Material::new(self.pile_young, self.pile_poisson, self.pile_unit_weight)?,
-            ),
-        ];
-
-        // the installation's calibration with the head held (a unit solve of the bonded soil)
-        let unit_forces = unit_installation_forces(&mesh, &materials, &held, &shaft_soil)?;
-
-        let mut model = if self.head_force.is_some() {
-            LinearElasticModel::floating(mesh, Idealization::Axisymmetric, &materials, supports)?
-        } else {
-            LinearElasticModel::new(mesh, Idealization::Axisymmetric, &materials, supports)?
-        };
-        model.add_self_weight()?;
-        model.set_initial_stress(self.initial_stress())?;
-
-        // Zones: shaft (all pairs but the tip corner), tip corner (Coulomb), tip (Signorini).
-        let positions = |nodes: &[usize], axis: usize| -> Vec<f64> {
-            nodes
-                .iter()
-                .map(|&n| model.mesh().nodes()[n][axis])
-                .collect()
-        };
-        let shaft_z = positions(&shaft_pile, 1);
-        if shaft_z
-            .first()
-            .is_none_or(|z| (z + length).abs() > 1e-9 * length)
-        {
-            return Err(SolverError::InvalidGeometry(
-                "the lowest shaft pair is not the tip corner".into(),
-            ));
-        }
-        let shaft_areas: Vec<f64> = consistent_weights(&shaft_z, kind, |_| radius)?;
-        let tip_r = positions(&tip_pile, 0);
-        // the tip's last side ends at the corner (r = R), which belongs to the shaft zone
-        let mut tip_line = tip_r.clone();
-        tip_line.push(radius);
-        let mut tip_areas = consistent_weights(&tip_line, kind, |r| r)?;
-        tip_areas.pop();
-
-        let (shaft_law, corner_law, tip_law) = self.zone_laws()?;
-        let inward = Some([-1.0, 0.0]);
-        let zones = vec![
-            ContactZone::node_pairs(
-                "shaft",
-                shaft_pile[1..].to_vec(),
-                shaft_soil[1..].to_vec(),
-                inward,
-                shaft_law,
-                self.alert_distance,
-            )
-            .with_areas(shaft_areas[1..].to_vec()),
-            ContactZone::node_pairs(
-                "tip_corner",
-                vec![shaft_pile[0]],
-                vec![shaft_soil[0]],
-                inward,
-                corner_law,
-                self.alert_distance,
-            )
-            .with_areas(vec![shaft_areas[0]]),
-            ContactZone::node_pairs(
-                "tip",
-                tip_pile.clone(),
-                tip_soil,
-                Some([0.0, 1.0]),
-                tip_law,
-                self.alert_distance,
-            )
-            .with_areas(tip_areas),
-        ];
-        let simulation = ContactSimulation::new(model, zones, settings)?;
-
-        // δ for the requested installation
-        let geostatic_normal: f64 = shaft_z
-            .iter()
-            .zip(&shaft_areas)
-            .map(|(z, a)| self.k0 * self.soil_unit_weight * (-z).max(0.0) * a)
-            .sum();
-        let unit_normal: f64 = unit_forces.iter().sum();
+        let simulation = ContactSimulation::new(parts.model, parts.zones, settings)?;
+        let unit_normal = parts.unit_normal;
         if !(unit_normal > 0.0 && unit_normal.is_finite()) {
             return Err(SolverError::InvalidGeometry(format!(
                 "the installation's unit radial displacement gives a shaft normal force of \
@@ -434,20 +345,18 @@ impl PulloutSpec {
         let delta = match self.installation {
             Installation::None => 0.0,
             Installation::RadialDisplacement(d) => d,
-            Installation::NormalForceRatio(k) => (k - 1.0) * geostatic_normal / unit_normal,
+            Installation::NormalForceRatio(k) => (k - 1.0) * parts.geostatic_normal / unit_normal,
         };
-        // candidates in zone order: shaft above the corner (n − 1), corner, tip
-        let n_shaft = shaft_pile.len();
         Ok(PulloutScene {
             simulation,
             spec: self.clone(),
-            head,
-            shaft_candidates: std::iter::once(n_shaft - 1).chain(0..n_shaft - 1).collect(),
-            tip_candidates: (n_shaft..n_shaft + tip_pile.len()).collect(),
-            installation_forces: shaft_soil
-                .iter()
-                .zip(&unit_forces)
-                .map(|(&n, f)| (n, -f * delta))
+            head: parts.head,
+            shaft_candidates: parts.shaft_candidates,
+            tip_candidates: parts.tip_candidates,
+            installation_forces: parts
+                .unit_forces
+                .into_iter()
+                .map(|(n, f)| (n, f.map(|v| -v * delta)))
                 .collect(),
             installation_displacement: delta,
             tol,
@@ -456,20 +365,40 @@ impl PulloutSpec {
         })
     }
 
-    /// The laws of the three zones (module docs): the shaft's RCCM interface, the tip
+    /// The three zones (module docs) from their pairs: the shaft's RCCM interface, the tip
     /// corner's plain Coulomb friction (no adhesion), the tip's frictionless contact.
-    fn zone_laws(&self) -> Result<(Rccm, Rccm, Rccm), SolverError> {
-        let shaft = Rccm::new(self.interface)?;
-        let corner = Rccm::new(RccmParams {
+    ///
+    /// # Errors
+    /// [`SolverError::Law`] for invalid interface parameters.
+    fn zones<const D: usize>(
+        &self,
+        [shaft, corner, tip]: [ZonePairs<D>; 3],
+    ) -> Result<Vec<ContactZone<Rccm, D>>, SolverError>
+    where
+        Dim<D>: PileSpace<D>,
+    {
+        let shaft_law = Rccm::new(self.interface)?;
+        let corner_law = Rccm::new(RccmParams {
             beta_0: 0.0,
             ..self.interface
         })?;
-        let tip = Rccm::new(RccmParams {
+        let tip_law = Rccm::new(RccmParams {
             mu: 0.0,
             beta_0: 0.0,
             ..self.interface
         })?;
-        Ok((shaft, corner, tip))
+        let zones = [
+            ("shaft", shaft, shaft_law),
+            ("tip_corner", corner, corner_law),
+            ("tip", tip, tip_law),
+        ];
+        Ok(zones
+            .into_iter()
+            .map(|(name, p, law)| {
+                ContactZone::node_pairs(name, p.pile, p.soil, p.normals, law, self.alert_distance)
+                    .with_areas(p.areas)
+            })
+            .collect())
     }
 
     fn check(&self) -> Result<(), SolverError> {
@@ -527,194 +456,36 @@ impl PulloutSpec {
     }
 }
 
-/// The soil's radial reactions per unit installation displacement `δ` at its interface nodes
-/// (`shaft_soil`): the soil alone (the pile is detached and held at its head, so `K` stays
-/// definite) with `u_r = δ₁` prescribed on those nodes, divided by `δ₁`.
-fn unit_installation_forces(
-    mesh: &Mesh,
-    materials: &[(u32, Material)],
-    supports: &Supports,
-    shaft_soil: &[usize],
-) -> Result<Vec<f64>, SolverError> {
-    // Installation forces for a unit δ: the soil alone (the pile is detached and held at its
-    // head, so K stays definite), u_r = δ₁ on the soil's interface nodes.
-    let unit_delta = 1e-3;
-    let mut inst_supports = supports.clone();
-    inst_supports.prescribe(shaft_soil, Component::X, unit_delta)?;
-    let inst_model = LinearElasticModel::new(
-        mesh.clone(),
-        Idealization::Axisymmetric,
-        materials,
-        inst_supports,
-    )?;
-    let u_unit = inst_model.solve(1.0)?;
-    let reactions = inst_model.reactions(&u_unit, 1.0)?;
-    Ok(shaft_soil
-        .iter()
-        .map(|&n| {
-            reactions
-                .iter()
-                .find(|((node, c), _)| *node == n && *c == Component::X)
-                .map_or(0.0, |(_, r)| r / unit_delta)
-        })
-        .collect())
+/// What a dimension's builder makes ([`PulloutSpec::build`], [`PulloutSpec::build_3d`]) for
+/// [`PulloutSpec::assemble`] to finish.
+struct Parts<const D: usize>
+where
+    Dim<D>: PileSpace<D>,
+{
+    /// The model with its self-weight and initial stress.
+    model: ElasticModel<D>,
+    /// Shaft, tip corner, tip.
+    zones: Vec<ContactZone<Rccm, D>>,
+    /// The `pile_head` nodes, sorted.
+    head: Vec<usize>,
+    shaft_candidates: Vec<usize>,
+    tip_candidates: Vec<usize>,
+    /// The shaft normal force of phase 1, `Σ K0 γ_s |z| A`.
+    geostatic_normal: f64,
+    /// The soil's interface forces per unit `δ` (the unit installation's reactions, divided by
+    /// its `δ₁`), and their resultant along `e_r`.
+    unit_forces: Vec<(usize, [f64; D])>,
+    unit_normal: f64,
 }
 
-/// Duplicates the pile's tip nodes at `r < radius` (bonded to the soil by the generator) so the
-/// tip can lift off: pile elements get new copies, the soil keeps the originals. Returns the
-/// mesh (every set kept; `"axis"` gains the pile copy of the axis node; new node sets
-/// `"tip_pile"` and `"tip_soil"`) and the paired tip nodes, pile copies then soil originals,
-/// sorted by `r`.
-fn detach_tip(
-    mesh: Mesh,
-    radius: f64,
-    length: f64,
-) -> Result<(Mesh, Vec<usize>, Vec<usize>), FemError> {
-    let tol = 1e-9 * radius.max(length);
-    let npe = mesh.kind().node_count();
-    let mut on_tip: Vec<usize> = (0..mesh.node_count())
-        .filter(|&n| {
-            let p = mesh.nodes()[n];
-            (p[1] + length).abs() <= tol && p[0] < radius - tol
-        })
-        .filter(|&n| {
-            (0..mesh.element_count())
-                .any(|e| mesh.regions()[e] == PILE && mesh.element(e).contains(&n))
-        })
-        .collect();
-    on_tip.sort_by(|a, b| mesh.nodes()[*a][0].total_cmp(&mesh.nodes()[*b][0]));
-    let mut nodes = mesh.nodes().to_vec();
-    let mut copy = std::collections::HashMap::new();
-    for &n in &on_tip {
-        copy.insert(n, nodes.len());
-        nodes.push(nodes[n]);
-    }
-    let mut connectivity = mesh.connectivity().to_vec();
-    for (cell, &region) in connectivity.chunks_exact_mut(npe).zip(mesh.regions()) {
-        if region == PILE {
-            for node in cell.iter_mut() {
-                if let Some(&c) = copy.get(node) {
-                    *node = c;
-                }
-            }
-        }
-    }
-    let mut out = Mesh::new(nodes, mesh.kind(), connectivity, mesh.regions().to_vec())?;
-    for name in mesh.edge_set_names() {
-        out.add_edge_set(name, mesh.edge_set(name)?.to_vec())?;
-    }
-    for name in mesh.node_set_names() {
-        let mut set = mesh.node_set(name)?.to_vec();
-        if name == "axis" {
-            set.extend(
-                set.iter()
-                    .filter_map(|n| copy.get(n))
-                    .copied()
-                    .collect::<Vec<_>>(),
-            );
-        }
-        out.add_node_set(name, set)?;
-    }
-    let tip_pile: Vec<usize> = on_tip.iter().map(|n| copy[n]).collect();
-    out.add_node_set("tip_pile", tip_pile.clone())?;
-    out.add_node_set("tip_soil", on_tip.clone())?;
-    Ok((out, tip_pile, on_tip))
-}
-
-/// Consistent nodal weights `∫ N_i(s) w(s) ds` of a line of nodes at increasing coordinates
-/// `s` (P1: 2-node sides; P2: 3-node sides, corner–mid–corner), for a weight `w` that is
-/// linear in `s` (`r` along the tip, the constant `R` along the shaft): Simpson's rule is exact
-/// for P2 (`N_i w` is cubic), the two-point closed form for P1.
-fn consistent_weights(
-    s: &[f64],
-    kind: ElementKind,
-    weight: impl Fn(f64) -> f64,
-) -> Result<Vec<f64>, SolverError> {
-    let per_side = if kind.is_quadratic() { 2 } else { 1 };
-    if s.len() < per_side + 1 || !(s.len() - 1).is_multiple_of(per_side) {
-        return Err(SolverError::InvalidGeometry(format!(
-            "a line of {} nodes is not made of whole {kind:?} sides",
-            s.len()
-        )));
-    }
-    let mut a = vec![0.0; s.len()];
-    for k in (0..s.len() - 1).step_by(per_side) {
-        let h = s[k + per_side] - s[k];
-        if per_side == 1 {
-            let (wa, wb) = (weight(s[k]), weight(s[k + 1]));
-            a[k] += h * (2.0 * wa + wb) / 6.0;
-            a[k + 1] += h * (wa + 2.0 * wb) / 6.0;
-        } else {
-            a[k] += h / 6.0 * weight(s[k]);
-            a[k + 1] += 4.0 * h / 6.0 * weight(s[k + 1]);
-            a[k + 2] += h / 6.0 * weight(s[k + 2]);
-        }
-    }
-    Ok(a)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn consistent_weights_works() {
-        // P2 side of length 2 at constant weight 1: 1/3, 4/3, 1/3.
-        let a = consistent_weights(&[0.0, 1.0, 2.0], ElementKind::Tri6, |_| 1.0).unwrap();
-        assert!((a[0] - 1.0 / 3.0).abs() < 1e-15 && (a[1] - 4.0 / 3.0).abs() < 1e-15);
-        // ∫ N_i r dr over [0, 1] with P1: (0·2 + 1)/6 = 1/6 and (0 + 2)/6 = 1/3.
-        let b = consistent_weights(&[0.0, 1.0], ElementKind::Tri3, |r| r).unwrap();
-        assert!((b[0] - 1.0 / 6.0).abs() < 1e-15 && (b[1] - 1.0 / 3.0).abs() < 1e-15);
-        // Σ = ∫ r dr = 1/2 for P2 too.
-        let c = consistent_weights(&[0.0, 0.25, 0.5, 0.75, 1.0], ElementKind::Tri6, |r| r).unwrap();
-        assert!((c.iter().sum::<f64>() - 0.5).abs() < 1e-15);
-    }
-
-    #[test]
-    fn consistent_weights_rejects_partial_sides() {
-        let err = consistent_weights(&[0.0, 1.0], ElementKind::Tri6, |_| 1.0).unwrap_err();
-        assert!(matches!(err, SolverError::InvalidGeometry(_)), "{err:?}");
-    }
-
-    #[test]
-    fn detach_tip_works() {
-        let spec = PileSpec {
-            cells_shaft: 4,
-            cells_soil_r: 3,
-            cells_below_tip: 2,
-            ..PileSpec::default()
-        };
-        let mesh = pile_in_soil(&spec).unwrap();
-        let n0 = mesh.node_count();
-        let (mesh, pile, soil) = detach_tip(mesh, 0.135, 13.0).unwrap();
-        // P2, 2 cells across the pile: nodes at r = 0, R/4, R/2, 3R/4 (the corner is split).
-        assert_eq!(pile.len(), 4);
-        assert_eq!(mesh.node_count(), n0 + 4);
-        for (p, s) in pile.iter().zip(&soil) {
-            assert_eq!(mesh.nodes()[*p], mesh.nodes()[*s]);
-            assert_ne!(p, s);
-        }
-        assert!(mesh.node_set("axis").unwrap().contains(&pile[0]));
-        // no element uses both a pile copy and its soil original
-        for e in 0..mesh.element_count() {
-            let cell = mesh.element(e);
-            for (p, s) in pile.iter().zip(&soil) {
-                assert!(!(cell.contains(p) && cell.contains(s)));
-            }
-        }
-    }
-
-    #[test]
-    fn build_rejects_a_shared_tip_corner() {
-        let mut spec = PulloutSpec::default();
-        spec.mesh.tip_corner = TipCorner::Shared;
-        let err = spec.build(SimulationSettings::default()).err().unwrap();
-        assert!(matches!(
-            err,
-            SolverError::InvalidSetting {
-                what: "mesh.tip_corner",
-                ..
-            }
-        ));
-    }
+/// The node pairs of one zone: the pile's nodes (contactors), the soil's (targets), their
+/// normals (from the soil to the pile) and tributary areas.
+struct ZonePairs<const D: usize>
+where
+    Dim<D>: PileSpace<D>,
+{
+    pile: Vec<usize>,
+    soil: Vec<usize>,
+    normals: PairNormals<D>,
+    areas: Vec<f64>,
 }
