@@ -10,8 +10,9 @@
 //!    the alert distance, contactor nodes of the plots) are made there, still with key paths.
 //!
 //! [`checks`] holds the value checks and error conversions, [`phases`] the time functions and
-//! phases, [`study`] what a build gives. A 3D scene (`[analysis] type = "3d"`) takes the same
-//! two passes in [`solid`], which reuses the checks that do not depend on the dimension.
+//! phases, [`study`] what a build gives: one [`Study`] type for both dimensions (`Study<3>` for
+//! a 3D scene, `[analysis] type = "3d"`, whose two passes [`solid`] lists: it reuses the checks
+//! that do not depend on the dimension).
 
 mod checks;
 mod contact;
@@ -35,9 +36,10 @@ pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
-pub use solid::{SolidStudy, solid_kind_name};
+pub use solid::solid_kind_name;
 pub use study::{
-    Body, Custom, Library, LoadKind, LoadRt, PresetStudy, Study, SupportRt, released_at,
+    Body, Custom, Library, LoadKind, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt,
+    released_at,
 };
 
 use crate::error::{CliError, CliResult, KeyPath};
@@ -83,12 +85,24 @@ pub fn parse(source: &str) -> CliResult<Scene> {
     })
 }
 
-/// A built scene: 2D (a scene described key by key or a preset) or 3D.
+/// A built scene: 2D (a scene described key by key or a preset) or 3D: the one place where
+/// the dimension is chosen.
 pub enum Built {
     /// A 2D study.
     Plane(Box<Study>),
     /// A 3D study (`[analysis] type = "3d"`).
-    Solid(Box<SolidStudy>),
+    Solid(Box<Study<3>>),
+}
+
+/// The study's title: the scene's `title`, else the file's stem.
+fn title(loaded: &Loaded) -> String {
+    loaded.scene.title.clone().unwrap_or_else(|| {
+        loaded
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    })
 }
 
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
@@ -120,13 +134,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
     let (sim, zone_laws, warnings) = contact::build(model, contact.zones, contact.settings)?;
     let zone_names = sim.zones().iter().map(|z| z.name.clone()).collect();
     let mut study = Study {
-        title: scene.title.clone().unwrap_or_else(|| {
-            loaded
-                .path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default()
-        }),
+        title: title(loaded),
         units: scene.units.clone().unwrap_or_default(),
         body: Body::Custom(Box::new(Custom {
             sim,

@@ -6,12 +6,12 @@
 use super::driver::Extras;
 use super::errors::io;
 use super::summary::{CurveSummary, keep};
-use crate::build::Study;
+use crate::build::{Study, StudyDim};
 use crate::error::CliResult;
 use crate::plot;
 use crate::scene::{CurveSpec, PlotSpec, XAxis};
 use contact_solver::{ContactRecord, StepResult};
-use fem_core::Component;
+use fem_core::{Component, Dim};
 use std::path::Path;
 
 /// One curve of a plot, with its values so far.
@@ -27,7 +27,7 @@ struct CurveRt {
 }
 
 /// The curves of every plot and the three abscissae (time, step, load factor) of every step.
-pub(super) struct Plots {
+pub(crate) struct Plots {
     curves: Vec<CurveRt>,
     x_time: Vec<f64>,
     x_step: Vec<f64>,
@@ -36,7 +36,10 @@ pub(super) struct Plots {
 
 impl Plots {
     /// The curves of the study's plots, with their labels, zones and node sets resolved.
-    pub(super) fn new(study: &Study) -> Self {
+    pub(super) fn new<const D: usize>(study: &Study<D>) -> Self
+    where
+        Dim<D>: StudyDim<D>,
+    {
         Self::of(&study.plots, &study.zone_names, |s| {
             study.model().mesh().node_set(s).ok().map(|s| s.to_vec())
         })
