@@ -78,6 +78,9 @@ where
         zones: &[ZoneSummary<D>],
     ) -> CliResult<()>;
 
+    /// A contact's total tangential relative displacement along its (first) tangent.
+    fn u_t(c: &ContactRecord<D>) -> f64;
+
     /// Whether a VTK series is written.
     fn vtk_active(w: &Self::Writers) -> bool;
 

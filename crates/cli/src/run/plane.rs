@@ -151,6 +151,10 @@ impl RunDim<2> for Dim<2> {
         w.csv.write_contacts(&res.report, selected)
     }
 
+    fn u_t(c: &ContactRecord) -> f64 {
+        c.u_t
+    }
+
     fn vtk_active(w: &PlaneWriters) -> bool {
         w.vtk.is_active()
     }

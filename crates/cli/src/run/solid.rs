@@ -150,12 +150,12 @@ impl RunDim<3> for Dim<3> {
             total_n += z.final_force_n;
             (0..3).for_each(|a| total[a] += z.final_force[a]);
         }
-        plots.record_3d(t, 1.0, step, |q, zone| plot_value(res, q, zone));
-        // the nodal displacements, for the reactions and the VTK series
+        // the nodal displacements, for the reactions, the plots and the VTK series
         let mesh = sim.structure().mesh();
         let u: Vec<[f64; 3]> = (0..mesh.node_count())
             .map(|n| sim.nodal_displacement(n))
             .collect();
+        plots.record(res, row.extras, Some(&u), None, step);
         w.reaction = support_reaction(sim.structure(), &u)?;
         if let Some(out) = &mut w.steps {
             let mut text = format!(
@@ -238,6 +238,10 @@ impl RunDim<3> for Dim<3> {
             line(out, &w.dir, "contacts.csv", &text)?;
         }
         Ok(())
+    }
+
+    fn u_t(c: &ContactRecord<3>) -> f64 {
+        c.u_t[0]
     }
 
     fn vtk_active(w: &SolidWriters) -> bool {
@@ -367,37 +371,6 @@ fn write_vtk(
     let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
     let pvd = w.dir.join("mesh.pvd");
     write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
-}
-
-/// The value of a 3D plot's `quantity` at this step, over `zone` (all zones: `None`); the
-/// quantities are those [`crate::build`] lets through for 3D.
-fn plot_value(res: &StepResult<3>, quantity: &str, zone: Option<usize>) -> f64 {
-    let mine = || {
-        res.contacts
-            .iter()
-            .filter(move |c| zone.is_none_or(|z| c.zone == z))
-    };
-    match quantity {
-        "contact_iterations" => res.report.contact_iterations as f64,
-        "adhesion_iterations" => res.report.adhesion_iterations as f64,
-        // closed, as steps.csv's column; the reduced problem's size is `candidates`
-        "active_contacts" => res.report.closed_contacts as f64,
-        "candidates" => res.report.active_contacts as f64,
-        "residual" => res.report.residual,
-        "force_n" => mine().map(|c| c.r.n).sum(),
-        "closed" => mine().filter(|c| c.is_closed()).count() as f64,
-        "beta_mean" | "beta_min" => {
-            let b: Vec<f64> = mine().map(|c| c.beta).collect();
-            if b.is_empty() {
-                f64::NAN
-            } else if quantity == "beta_min" {
-                b.iter().copied().fold(f64::INFINITY, f64::min)
-            } else {
-                b.iter().sum::<f64>() / b.len() as f64
-            }
-        }
-        _ => f64::NAN,
-    }
 }
 
 /// The status of a 3D contact, named as 2D's `InterfaceStatus`: `inactive` (outside the
