@@ -231,7 +231,7 @@ fn run_study<const D: usize>(
     threads: Option<u16>,
 ) -> CliResult<()>
 where
-    Dim<D>: run::RunDim<D>,
+    Dim<D>: run::Drive<D>,
 {
     use fem_core::Structure;
     faer::set_global_parallelism(parallelism(threads, Some(study.model().dof_count())));

@@ -5,15 +5,13 @@
 //! reactions appended), the VTK series, the rigid motions of floating bodies (2D), the
 //! coordinates of `pressure.csv` and the order in which the files are listed.
 
-use super::RunOptions;
 use super::driver::Extras;
-use super::recorder::Recorder;
 use super::plots::Plots;
 use super::pressure::PressureRecorder;
 use super::rigid::RigidMotionSummary;
-use super::summary::{CurveSummary, PhaseSummary, StepTotals, ZoneSummary};
-use crate::build::{Phase, Study, StudyDim};
-use crate::error::{CliError, CliResult};
+use super::summary::{CurveSummary, ZoneSummary};
+use crate::build::{Study, StudyDim};
+use crate::error::CliResult;
 use contact_laws::{ContactLaw, RccmState};
 use contact_solver::coupling::traction::TractionField;
 use contact_solver::{ContactRecord, ContactSimulation, StepResult};
@@ -78,9 +76,6 @@ where
         zones: &[ZoneSummary<D>],
     ) -> CliResult<()>;
 
-    /// A contact's total tangential relative displacement along its (first) tangent.
-    fn u_t(c: &ContactRecord<D>) -> f64;
-
     /// Whether a VTK series is written.
     fn vtk_active(w: &Self::Writers) -> bool;
 
@@ -92,13 +87,6 @@ where
         written: (f64, &[ContactRecord<D>], Option<&[[f64; D]]>),
         fields: &[TractionField],
     ) -> CliResult<()>;
-
-    /// Steps every phase of a preset with its driver (see [`super::drive`]).
-    fn drive_preset(
-        p: &mut <Self as StudyDim<D>>::Preset,
-        run: (&[Phase], usize, &RunOptions),
-        rec: &mut Recorder<D>,
-    ) -> (Vec<PhaseSummary<D>>, Option<CliError>, StepTotals);
 
     /// The support reactions' sum at the last step, where this dimension keeps it.
     fn reaction(w: &Self::Writers) -> Option<[f64; D]>;

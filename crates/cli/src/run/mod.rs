@@ -28,9 +28,8 @@ pub use summary::{Peak, StepTotals, Summary};
 
 use crate::build::{self, Body, Phase, Study, StudyDim};
 use crate::error::{CliError, CliResult};
-pub(crate) use dim::RunDim;
-use dim::StepRow;
-use driver::{CustomDriver, Driver};
+use dim::{RunDim, StepRow};
+use driver::{CustomDriver, Driver, PresetDriver};
 use fem_core::Dim;
 use progress::Progress;
 use recorder::Recorder;
@@ -48,10 +47,44 @@ pub struct RunOptions {
     pub scene_file: PathBuf,
 }
 
+/// How a dimension's run steps its presets (2D: the library's seed studies, by their driver;
+/// 3D has none).
+pub(crate) trait Drive<const D: usize>: RunDim<D>
+where
+    Dim<D>: RunDim<D>,
+{
+    /// Steps every phase of a preset (see [`drive`]).
+    fn drive_preset(
+        p: &mut <Self as StudyDim<D>>::Preset,
+        run: (&[Phase], usize, &RunOptions),
+        rec: &mut Recorder<D>,
+    ) -> (Vec<PhaseSummary<D>>, Option<CliError>, StepTotals);
+}
+
+impl Drive<2> for Dim<2> {
+    fn drive_preset(
+        p: &mut build::PresetStudy,
+        run: (&[Phase], usize, &RunOptions),
+        rec: &mut Recorder<2>,
+    ) -> (Vec<PhaseSummary>, Option<CliError>, StepTotals) {
+        drive(&mut PresetDriver::new(p), run, rec)
+    }
+}
+
+impl Drive<3> for Dim<3> {
+    fn drive_preset(
+        p: &mut build::NoPreset,
+        _: (&[Phase], usize, &RunOptions),
+        _: &mut Recorder<3>,
+    ) -> (Vec<PhaseSummary<3>>, Option<CliError>, StepTotals) {
+        match *p {}
+    }
+}
+
 /// Runs the study; returns the summary (also written to `summary.json`).
 pub fn run<const D: usize>(mut study: Study<D>, opts: &RunOptions) -> CliResult<Summary<D>>
 where
-    Dim<D>: RunDim<D>,
+    Dim<D>: Drive<D>,
 {
     let mut recorder = Recorder::new(&study, &opts.out_dir)?;
     let start = Instant::now();

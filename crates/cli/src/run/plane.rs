@@ -3,19 +3,16 @@
 //! rigid motions of floating bodies ([`super::rigid`]), and the pressure on the zones'
 //! contactor edges (axisymmetric: rings).
 
-use super::RunOptions;
 use super::csv::CsvWriter;
-use super::driver::PresetDriver;
-use super::recorder::Recorder;
 use super::dim::{RunDim, Sim, StepRow, positions};
 use super::errors::fem_failed;
 use super::plots::Plots;
 use super::pressure::{PressureRecorder, zone_mass};
 use super::rigid::{RigidMotionSummary, RigidWriter};
-use super::summary::{CurveSummary, PhaseSummary, StepTotals, ZoneSummary};
+use super::summary::{CurveSummary, ZoneSummary};
 use super::vtk::VtkWriter;
-use crate::build::{HertzShape, Phase, PresetStudy, Study};
-use crate::error::{CliError, CliResult};
+use crate::build::{HertzShape, Study};
+use crate::error::CliResult;
 use contact_laws::{ContactLaw, RccmState};
 use contact_solver::coupling::traction::TractionField;
 use contact_solver::{ContactRecord, StepResult};
@@ -131,13 +128,8 @@ impl RunDim<2> for Dim<2> {
             ),
             _ => None,
         };
-        plots.record(
-            res,
-            row.extras,
-            disp.as_deref(),
-            reactions.as_deref(),
-            row.step,
-        );
+        let step = (res, row.extras, row.step);
+        plots.record(step, disp.as_deref(), reactions.as_deref(), |c| c.u_t);
         Ok(disp)
     }
 
@@ -151,10 +143,6 @@ impl RunDim<2> for Dim<2> {
         w.csv.write_contacts(&res.report, selected)
     }
 
-    fn u_t(c: &ContactRecord) -> f64 {
-        c.u_t
-    }
-
     fn vtk_active(w: &PlaneWriters) -> bool {
         w.vtk.is_active()
     }
@@ -166,14 +154,6 @@ impl RunDim<2> for Dim<2> {
         fields: &[TractionField],
     ) -> CliResult<()> {
         w.vtk.write_step(t, selected, disp, model, fields)
-    }
-
-    fn drive_preset(
-        p: &mut PresetStudy,
-        run: (&[Phase], usize, &RunOptions),
-        rec: &mut Recorder<2>,
-    ) -> (Vec<PhaseSummary>, Option<CliError>, StepTotals) {
-        super::drive(&mut PresetDriver::new(p), run, rec)
     }
 
     fn reaction(_: &PlaneWriters) -> Option<[f64; 2]> {
@@ -201,7 +181,9 @@ impl RunDim<2> for Dim<2> {
 }
 
 /// Each zone's name and contactor nodes.
-fn zone_nodes<L: ContactLaw>(zones: &[contact_solver::ContactZone<L>]) -> Vec<(String, Vec<usize>)> {
+fn zone_nodes<L: ContactLaw>(
+    zones: &[contact_solver::ContactZone<L>],
+) -> Vec<(String, Vec<usize>)> {
     zones
         .iter()
         .map(|z| (z.name.clone(), z.contactor.clone()))

@@ -2,7 +2,6 @@
 //! at the end as `curves.csv` and one SVG per plot, with their extremes for the summary. The
 //! curves are those of a 2D or a 3D run (the 3D scene lets through the quantities it has).
 
-use super::dim::RunDim;
 use super::driver::Extras;
 use super::errors::io;
 use super::summary::{CurveSummary, keep};
@@ -10,6 +9,7 @@ use crate::build::{Study, StudyDim};
 use crate::error::CliResult;
 use crate::plot;
 use crate::scene::{CurveSpec, PlotSpec, XAxis};
+use contact_solver::coupling::space::ContactSpace;
 use contact_solver::{ContactRecord, StepResult};
 use fem_core::{Component, Dim};
 use std::path::Path;
@@ -119,22 +119,22 @@ impl Plots {
         self.x_time.len()
     }
 
-    /// The values of global step `global`.
+    /// The values of global step `global` (`u_t`: a contact's tangential relative
+    /// displacement along its first tangent).
     pub(super) fn record<const D: usize>(
         &mut self,
-        res: &StepResult<D>,
-        extras: Extras,
+        (res, extras, global): (&StepResult<D>, Extras, usize),
         disp: Option<&[[f64; D]]>,
         reactions: Option<&[fem_core::Reaction]>,
-        global: usize,
+        u_t: fn(&ContactRecord<D>) -> f64,
     ) where
-        Dim<D>: RunDim<D>,
+        Dim<D>: ContactSpace<D>,
     {
         let (time, load) = (res.report.time, res.report.load_factor);
         self.record_with(time, load, global, |c| match c.spec.quantity.as_str() {
             "head_load" => extras.head_load.unwrap_or(f64::NAN),
             "head_displacement" => extras.head_displacement.unwrap_or(f64::NAN),
-            _ => curve_value(c, res, disp, reactions),
+            _ => curve_value(c, res, (disp, reactions), u_t),
         });
     }
 
@@ -243,11 +243,11 @@ impl Plots {
 fn curve_value<const D: usize>(
     c: &CurveRt,
     res: &StepResult<D>,
-    disp: Option<&[[f64; D]]>,
-    reactions: Option<&[fem_core::Reaction]>,
+    (disp, reactions): (Option<&[[f64; D]]>, Option<&[fem_core::Reaction]>),
+    u_t: fn(&ContactRecord<D>) -> f64,
 ) -> f64
 where
-    Dim<D>: RunDim<D>,
+    Dim<D>: ContactSpace<D>,
 {
     let q = c.spec.quantity.as_str();
     let in_zone = |r: &&ContactRecord<D>| c.zone.is_none_or(|z| r.zone == z);
@@ -259,8 +259,18 @@ where
         "active_contacts" => rep.closed_contacts as f64,
         "candidates" => rep.active_contacts as f64,
         "residual" => rep.residual,
-        "force_n" => res.contacts.iter().filter(in_zone).map(|r| r.reaction()[0]).sum(),
-        "force_t" => res.contacts.iter().filter(in_zone).map(|r| r.reaction()[1]).sum(),
+        "force_n" => res
+            .contacts
+            .iter()
+            .filter(in_zone)
+            .map(|r| r.reaction()[0])
+            .sum(),
+        "force_t" => res
+            .contacts
+            .iter()
+            .filter(in_zone)
+            .map(|r| r.reaction()[1])
+            .sum(),
         "closed" => res
             .contacts
             .iter()
@@ -292,7 +302,7 @@ where
             {
                 Some(r) => match q {
                     "gap" => r.gap,
-                    "u_t" => Dim::<D>::u_t(r),
+                    "u_t" => u_t(r),
                     "beta" => r.beta,
                     "r_n" => r.reaction()[0],
                     _ => r.reaction()[1],

@@ -7,15 +7,13 @@
 //! `interface.pvd` (`output.vtk`: one point per contact at its deformed position,
 //! [`write_interface_vtu_3d`]), and the pressure on the zones' contactor faces.
 
-use super::RunOptions;
-use super::recorder::Recorder;
 use super::dim::{RunDim, Sim, StepRow, positions};
 use super::errors::{create, fem_failed, io};
 use super::plots::Plots;
 use super::pressure::{PressureRecorder, zone_mass};
 use super::rigid::RigidMotionSummary;
-use super::summary::{CurveSummary, PhaseSummary, StepTotals, ZoneSummary};
-use crate::build::{Body, HertzShape, NoPreset, Phase, Study, StudyDim};
+use super::summary::{CurveSummary, ZoneSummary};
+use crate::build::{Body, HertzShape, Study, StudyDim};
 use crate::error::{CliError, CliResult};
 use contact_laws::{ContactLaw, RccmState};
 use contact_solver::coupling::output::InterfaceSeries;
@@ -155,7 +153,7 @@ impl RunDim<3> for Dim<3> {
         let u: Vec<[f64; 3]> = (0..mesh.node_count())
             .map(|n| sim.nodal_displacement(n))
             .collect();
-        plots.record(res, row.extras, Some(&u), None, step);
+        plots.record((res, row.extras, step), Some(&u), None, |c| c.u_t[0]);
         w.reaction = support_reaction(sim.structure(), &u)?;
         if let Some(out) = &mut w.steps {
             let mut text = format!(
@@ -204,7 +202,10 @@ impl RunDim<3> for Dim<3> {
         let model = sim.structure();
         let model_zones = sim.zones();
         for c in selected {
-            if w.nodes_filter.as_ref().is_some_and(|n| !n.contains(&c.node)) {
+            if w.nodes_filter
+                .as_ref()
+                .is_some_and(|n| !n.contains(&c.node))
+            {
                 continue;
             }
             let x = model.mesh().nodes()[c.node];
@@ -240,10 +241,6 @@ impl RunDim<3> for Dim<3> {
         Ok(())
     }
 
-    fn u_t(c: &ContactRecord<3>) -> f64 {
-        c.u_t[0]
-    }
-
     fn vtk_active(w: &SolidWriters) -> bool {
         w.vtk.is_some() || w.interface.is_some()
     }
@@ -273,14 +270,6 @@ impl RunDim<3> for Dim<3> {
         Ok(())
     }
 
-    fn drive_preset(
-        p: &mut NoPreset,
-        _: (&[Phase], usize, &RunOptions),
-        _: &mut Recorder<3>,
-    ) -> (Vec<PhaseSummary<3>>, Option<CliError>, StepTotals) {
-        match *p {}
-    }
-
     fn reaction(w: &SolidWriters) -> Option<[f64; 3]> {
         Some(w.reaction)
     }
@@ -295,7 +284,10 @@ impl RunDim<3> for Dim<3> {
         let positions = positions(study);
         pressure.finish(|n| positions[n], files)?;
         let curves = plots.finish(&study.plots, dir, files)?;
-        for (out, name) in [(&mut w.steps, "steps.csv"), (&mut w.contacts, "contacts.csv")] {
+        for (out, name) in [
+            (&mut w.steps, "steps.csv"),
+            (&mut w.contacts, "contacts.csv"),
+        ] {
             if let Some(out) = out {
                 out.flush().map_err(|e| io(&dir.join(name), e))?;
             }

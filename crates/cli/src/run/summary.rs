@@ -12,8 +12,8 @@ use crate::scene::Units;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, Counters, InterfaceStatus, StepResult};
 use fem_core::{Dim, ElasticModel, Structure};
-use serde::ser::{SerializeStruct, Serializer};
 use serde::Serialize;
+use serde::ser::{SerializeStruct, Serializer};
 use std::path::Path;
 
 /// A value with where it happened.
@@ -306,7 +306,10 @@ pub struct Summary<const D: usize = 2> {
 impl<const D: usize> Summary<D> {
     /// Contact iterations of the phases done.
     pub fn phase_contact_iterations(&self) -> usize {
-        self.phases.iter().map(|p| p.totals.contact_iterations).sum()
+        self.phases
+            .iter()
+            .map(|p| p.totals.contact_iterations)
+            .sum()
     }
 
     /// Penetration-check passes of the phases done.
@@ -340,7 +343,10 @@ impl<const D: usize> Serialize for Summary<D> {
             m.serialize_field("passes", &self.phase_passes())?;
             m.serialize_field("factorizations", &self.totals.factorizations())?;
             m.serialize_field("counters", &self.totals)?;
-            m.serialize_field("final_reaction", &self.final_reaction.as_ref().map(|r| &r[..]))?;
+            m.serialize_field(
+                "final_reaction",
+                &self.final_reaction.as_ref().map(|r| &r[..]),
+            )?;
         }
         m.serialize_field("phases", &self.phases)?;
         m.serialize_field("zones", &self.zones)?;
