@@ -132,29 +132,45 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
     let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, idealization)?;
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
     let (sim, zone_laws, warnings) = contact::build(model, contact.zones, contact.settings)?;
-    let zone_names = sim.zones().iter().map(|z| z.name.clone()).collect();
-    let mut study = Study {
-        title: title(loaded),
-        units: scene.units.clone().unwrap_or_default(),
-        body: Body::Custom(Box::new(Custom {
-            sim,
-            supports,
-            loads,
-            functions,
-            phase_laws: contact.phase_laws,
-        })),
-        phases,
-        output: scene.output.clone(),
-        plots: Vec::new(),
-        zone_names,
-        zone_laws,
-        adhesive_zones: contact.adhesive,
-        friction_zones: contact.friction,
-        warnings,
-        hertz: None,
+    let custom = Custom {
+        sim,
+        supports,
+        loads,
+        functions,
+        phase_laws: contact.phase_laws,
     };
+    let zones = (zone_laws, contact.adhesive, contact.friction);
+    let mut study = custom_study(loaded, custom, phases, zones, warnings);
     outputs::check_outputs(scene, &mut study)?;
     Ok(study)
+}
+
+/// The study of a scene described key by key, before its `[output]` and plots are checked:
+/// `zones` are the zones' law names and how many have adhesion and friction.
+fn custom_study<const D: usize>(
+    loaded: &Loaded,
+    custom: Custom<D>,
+    phases: Vec<Phase>,
+    (zone_laws, adhesive_zones, friction_zones): (Vec<String>, usize, usize),
+    warnings: Vec<String>,
+) -> Study<D>
+where
+    fem_core::Dim<D>: StudyDim<D>,
+{
+    Study {
+        title: title(loaded),
+        units: loaded.scene.units.clone().unwrap_or_default(),
+        zone_names: custom.sim.zones().iter().map(|z| z.name.clone()).collect(),
+        body: Body::Custom(Box::new(custom)),
+        phases,
+        output: loaded.scene.output.clone(),
+        plots: Vec::new(),
+        zone_laws,
+        adhesive_zones,
+        friction_zones,
+        warnings,
+        hertz: None,
+    }
 }
 
 #[cfg(test)]

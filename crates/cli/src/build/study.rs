@@ -6,9 +6,9 @@
 use super::SceneDim;
 use super::phases::{Phase, TimeFunction};
 use crate::scene::{OutputSpec, PlotSpec, Units};
-use contact_laws::{Rccm, StandardLaw};
+use contact_laws::{ContactLaw, Rccm, StandardLaw};
 use contact_solver::coupling::space::ContactSpace;
-use contact_solver::{Candidate, ContactSimulation};
+use contact_solver::{Candidate, ContactSimulation, ContactZone};
 use fem_core::{Component, Dim, ElasticModel, Idealization, LinearElasticModel, Mesh, Structure};
 use std::collections::BTreeMap;
 
@@ -285,6 +285,25 @@ where
                 .iter()
                 .map(|z| z.alert_distance)
                 .collect(),
+        }
+    }
+
+    /// Each zone's name and contactor nodes.
+    pub fn contactors(&self) -> Vec<(String, Vec<usize>)> {
+        fn of<L: ContactLaw, const D: usize>(
+            zones: &[ContactZone<L, D>],
+        ) -> Vec<(String, Vec<usize>)>
+        where
+            Dim<D>: ContactSpace<D>,
+        {
+            zones
+                .iter()
+                .map(|z| (z.name.clone(), z.contactor.clone()))
+                .collect()
+        }
+        match &self.body {
+            Body::Custom(c) => of(c.sim.zones()),
+            Body::Preset(p) => of(Dim::<D>::preset_sim(p).zones()),
         }
     }
 

@@ -10,12 +10,13 @@ use super::plots::Plots;
 use super::pressure::PressureRecorder;
 use super::rigid::RigidMotionSummary;
 use super::summary::{CurveSummary, ZoneSummary};
-use crate::build::{Study, StudyDim};
+use crate::build::{HertzShape, Study, StudyDim};
 use crate::error::CliResult;
 use contact_laws::{ContactLaw, RccmState};
 use contact_solver::coupling::traction::TractionField;
 use contact_solver::{ContactRecord, ContactSimulation, StepResult};
-use fem_core::{Dim, ElasticModel};
+use fem_core::boundary_mass::BoundaryMass;
+use fem_core::{Dim, ElasticModel, FemError};
 use std::path::Path;
 
 /// A simulation the run steps: a scene's (`StandardLaw`) or a preset's (`Rccm`).
@@ -48,13 +49,21 @@ where
     /// Creates the files written from the first step on, listed in `files`.
     fn writers(study: &Study<D>, dir: &Path, files: &mut Vec<String>) -> CliResult<Self::Writers>;
 
-    /// The pressure recovery (`pressure.csv` when `output.pressure`, the `[hertz]` plot).
-    fn pressure(
-        study: &Study<D>,
-        dir: &Path,
-        zones_filter: Option<Vec<usize>>,
-        files: &mut Vec<String>,
-    ) -> CliResult<PressureRecorder>;
+    /// The tangential columns of `pressure.csv` (`t`; `t1`, `t2`).
+    const SHEAR: &'static [&'static str];
+
+    /// The names of the axes (`x, y`, or `r, z` in axisymmetry; `x, y, z`).
+    fn axes(model: &ElasticModel<D>) -> &'static [&'static str];
+
+    /// The consistent mass of the boundary facets whose nodes are all in `nodes` (a zone's
+    /// contactor surface, for the pressure recovery).
+    ///
+    /// # Errors
+    /// The model's, for nodes without such a facet among others.
+    fn surface_mass(model: &ElasticModel<D>, nodes: &[usize]) -> Result<BoundaryMass, FemError>;
+
+    /// The shape `[hertz]` compares the pressure with (the plane or axisymmetric setting).
+    fn hertz_shape(model: &ElasticModel<D>) -> HertzShape;
 
     /// Every step: its row of `steps.csv` (`zones` tallied already), the rigid motions, the
     /// plotted values; returns the nodal displacements when the step is `written` and its VTK

@@ -183,7 +183,7 @@ where
     let mut global = 0;
     for (pi, phase) in phases.iter().enumerate() {
         progress.begin_phase(&phase.name);
-        let (before, totals_before) = (d.sim().counters(), totals);
+        let (before, mut phase_totals) = (d.sim().counters(), StepTotals::default());
         let t_phase = Instant::now();
         let fail = |out: &mut Vec<PhaseSummary<D>>, e: CliError, totals: StepTotals| {
             progress.finish();
@@ -208,6 +208,7 @@ where
             let k_step = d.sim().structure().factorizations() - k0;
             let a_step = d.sim().counters().active_set_factorizations - a0;
             totals.add(&res.report, k_step, a_step);
+            phase_totals.add(&res.report, k_step, a_step);
             let row = StepRow {
                 step: global,
                 phase: &phase.name,
@@ -236,7 +237,7 @@ where
             t_start: phase.t0,
             t_end: phase.t1,
             counters: since(d.sim().counters(), before),
-            totals: totals.since(&totals_before),
+            totals: phase_totals,
             wall_time_s: t_phase.elapsed().as_secs_f64(),
         };
         progress.end_phase(&s);

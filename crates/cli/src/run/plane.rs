@@ -7,7 +7,7 @@ use super::csv::CsvWriter;
 use super::dim::{RunDim, Sim, StepRow, positions};
 use super::errors::fem_failed;
 use super::plots::Plots;
-use super::pressure::{PressureRecorder, zone_mass};
+use super::pressure::PressureRecorder;
 use super::rigid::{RigidMotionSummary, RigidWriter};
 use super::summary::{CurveSummary, ZoneSummary};
 use super::vtk::VtkWriter;
@@ -17,7 +17,7 @@ use contact_laws::{ContactLaw, RccmState};
 use contact_solver::coupling::traction::TractionField;
 use contact_solver::{ContactRecord, StepResult};
 use fem_core::boundary_mass::BoundaryMass;
-use fem_core::{Dim, Idealization, LinearElasticModel, Structure};
+use fem_core::{Dim, FemError, Idealization, LinearElasticModel, Structure};
 use std::path::Path;
 
 /// The writers of a 2D run.
@@ -28,12 +28,10 @@ pub(crate) struct PlaneWriters {
     rigid: Option<RigidWriter>,
 }
 
-/// The names of the two axes: `r, z` in axisymmetry, `x, y` otherwise.
+/// The names of the two axes (`x, y`; `r, z` in axisymmetry).
 fn axes(study: &Study) -> [&'static str; 2] {
-    match study.model().idealization() {
-        Idealization::Axisymmetric => ["r", "z"],
-        _ => ["x", "y"],
-    }
+    let a = Dim::<2>::axes(study.model());
+    [a[0], a[1]]
 }
 
 impl RunDim<2> for Dim<2> {
@@ -66,44 +64,27 @@ impl RunDim<2> for Dim<2> {
         })
     }
 
-    fn pressure(
-        study: &Study,
-        dir: &Path,
-        zones_filter: Option<Vec<usize>>,
-        files: &mut Vec<String>,
-    ) -> CliResult<PressureRecorder> {
-        let model = study.model();
-        let ideal = model.idealization();
-        let masses = if study.output.pressure || study.hertz.is_some() {
-            let zones: Vec<(String, Vec<usize>)> = match &study.body {
-                crate::build::Body::Custom(c) => zone_nodes(c.sim.zones()),
-                crate::build::Body::Preset(p) => zone_nodes(p.sim().zones()),
-            };
-            zones
-                .iter()
-                .map(|(name, nodes)| {
-                    zone_mass(name, BoundaryMass::on_nodes(model.mesh(), nodes, ideal))
-                })
-                .collect::<CliResult<Vec<_>>>()?
-        } else {
-            vec![None; study.zone_names.len()]
-        };
-        let shape = match ideal {
+    const SHEAR: &'static [&'static str] = &["t"];
+
+    fn axes(model: &LinearElasticModel) -> &'static [&'static str] {
+        match model.idealization() {
+            Idealization::Axisymmetric => &["r", "z"],
+            _ => &["x", "y"],
+        }
+    }
+
+    fn surface_mass(model: &LinearElasticModel, nodes: &[usize]) -> Result<BoundaryMass, FemError> {
+        BoundaryMass::on_nodes(model.mesh(), nodes, model.idealization())
+    }
+
+    fn hertz_shape(model: &LinearElasticModel) -> HertzShape {
+        match model.idealization() {
             Idealization::Axisymmetric => HertzShape::Sphere {
                 ring: std::f64::consts::TAU,
             },
             Idealization::PlaneStress { thickness } => HertzShape::Cylinder { thickness },
             _ => HertzShape::Cylinder { thickness: 1.0 },
-        };
-        PressureRecorder::new(
-            dir,
-            study.output.pressure,
-            masses,
-            zones_filter,
-            study.hertz.clone().map(|h| (h, shape)),
-            (&axes(study)[..], &["t"][..]),
-            files,
-        )
+        }
     }
 
     fn step<L: ContactLaw<State = RccmState> + Clone>(
@@ -178,14 +159,4 @@ impl RunDim<2> for Dim<2> {
         pressure.finish(|n| positions[n], files)?;
         Ok((curves, rigid))
     }
-}
-
-/// Each zone's name and contactor nodes.
-fn zone_nodes<L: ContactLaw>(
-    zones: &[contact_solver::ContactZone<L>],
-) -> Vec<(String, Vec<usize>)> {
-    zones
-        .iter()
-        .map(|z| (z.name.clone(), z.contactor.clone()))
-        .collect()
 }

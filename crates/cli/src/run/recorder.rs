@@ -7,7 +7,7 @@
 use super::dim::{RunDim, Sim, StepRow};
 use super::errors::io;
 use super::plots::Plots;
-use super::pressure::PressureRecorder;
+use super::pressure::{PressureRecorder, zone_mass};
 use super::profiles::Profiles;
 use super::rigid::RigidMotionSummary;
 use super::summary::{CurveSummary, Tally, ZoneSummary};
@@ -61,7 +61,7 @@ where
                 .filter_map(|z| study.zone_names.iter().position(|n| n == z))
                 .collect()
         });
-        let pressure = Dim::<D>::pressure(study, dir, zones_filter.clone(), &mut files)?;
+        let pressure = pressure_recorder(study, dir, zones_filter.clone(), &mut files)?;
         let counts = study
             .candidates()
             .iter()
@@ -208,4 +208,37 @@ pub(super) struct Finished<const D: usize> {
     pub(super) curves: Vec<CurveSummary>,
     pub(super) zones: Vec<ZoneSummary<D>>,
     pub(super) rigid: Vec<RigidMotionSummary>,
+}
+
+/// The masses of the zones' contactor surfaces (when `output.pressure` or `[hertz]` asks for
+/// them) and the writer of `pressure.csv`.
+fn pressure_recorder<const D: usize>(
+    study: &Study<D>,
+    dir: &Path,
+    zones_filter: Option<Vec<usize>>,
+    files: &mut Vec<String>,
+) -> CliResult<PressureRecorder>
+where
+    Dim<D>: RunDim<D>,
+{
+    let model = study.model();
+    let masses = if study.output.pressure || study.hertz.is_some() {
+        study
+            .contactors()
+            .iter()
+            .map(|(name, nodes)| zone_mass(name, Dim::<D>::surface_mass(model, nodes)))
+            .collect::<CliResult<Vec<_>>>()?
+    } else {
+        vec![None; study.zone_names.len()]
+    };
+    let hertz = study.hertz.clone();
+    PressureRecorder::new(
+        dir,
+        study.output.pressure,
+        masses,
+        zones_filter,
+        hertz.map(|h| (h, Dim::<D>::hertz_shape(model))),
+        (Dim::<D>::axes(model), Dim::<D>::SHEAR),
+        files,
+    )
 }

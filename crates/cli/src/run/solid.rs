@@ -10,10 +10,10 @@
 use super::dim::{RunDim, Sim, StepRow, positions};
 use super::errors::{create, fem_failed, io};
 use super::plots::Plots;
-use super::pressure::{PressureRecorder, zone_mass};
+use super::pressure::PressureRecorder;
 use super::rigid::RigidMotionSummary;
 use super::summary::{CurveSummary, ZoneSummary};
-use crate::build::{Body, HertzShape, Study, StudyDim};
+use crate::build::{HertzShape, Study, StudyDim};
 use crate::error::{CliError, CliResult};
 use contact_laws::{ContactLaw, RccmState};
 use contact_solver::coupling::output::InterfaceSeries;
@@ -22,7 +22,7 @@ use contact_solver::coupling::traction::{TractionField, write_interface_vtu_3d_w
 use contact_solver::{ContactRecord, StepResult};
 use fem_core::boundary_mass::BoundaryMass;
 use fem_core::vtk::{Field3, write_pvd, write_vtu_3d};
-use fem_core::{Dim, ElasticModel};
+use fem_core::{Dim, ElasticModel, FemError};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -101,37 +101,18 @@ impl RunDim<3> for Dim<3> {
         })
     }
 
-    fn pressure(
-        study: &Study<3>,
-        dir: &Path,
-        zones_filter: Option<Vec<usize>>,
-        files: &mut Vec<String>,
-    ) -> CliResult<PressureRecorder> {
-        let o = &study.output;
-        let masses = match &study.body {
-            Body::Custom(c) if o.pressure || study.hertz.is_some() => {
-                let mesh = c.sim.structure().mesh();
-                c.sim
-                    .zones()
-                    .iter()
-                    .map(|z| zone_mass(&z.name, BoundaryMass::on_nodes_3d(mesh, &z.contactor)))
-                    .collect::<CliResult<Vec<_>>>()?
-            }
-            _ => vec![None; study.zone_names.len()],
-        };
-        let hertz = study
-            .hertz
-            .clone()
-            .map(|h| (h, HertzShape::Sphere { ring: 1.0 }));
-        PressureRecorder::new(
-            dir,
-            o.pressure,
-            masses,
-            zones_filter,
-            hertz,
-            (&["x", "y", "z"][..], &["t1", "t2"][..]),
-            files,
-        )
+    const SHEAR: &'static [&'static str] = &["t1", "t2"];
+
+    fn axes(_: &ElasticModel<3>) -> &'static [&'static str] {
+        &["x", "y", "z"]
+    }
+
+    fn surface_mass(model: &ElasticModel<3>, nodes: &[usize]) -> Result<BoundaryMass, FemError> {
+        BoundaryMass::on_nodes_3d(model.mesh(), nodes)
+    }
+
+    fn hertz_shape(_: &ElasticModel<3>) -> HertzShape {
+        HertzShape::Sphere { ring: 1.0 }
     }
 
     fn step<L: ContactLaw<State = RccmState> + Clone>(

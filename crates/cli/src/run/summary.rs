@@ -152,22 +152,6 @@ impl StepTotals {
         self.active_set_factorizations += a;
     }
 
-    /// The work done since `start` (the totals at an earlier step).
-    pub(super) fn since(&self, start: &StepTotals) -> StepTotals {
-        StepTotals {
-            steps: self.steps - start.steps,
-            contact_iterations: self.contact_iterations - start.contact_iterations,
-            adhesion_iterations: self.adhesion_iterations - start.adhesion_iterations,
-            passes: self.passes - start.passes,
-            stiffness_factorizations: self.stiffness_factorizations
-                - start.stiffness_factorizations,
-            matrix_free_steps: self.matrix_free_steps - start.matrix_free_steps,
-            active_set_steps: self.active_set_steps - start.active_set_steps,
-            active_set_factorizations: self.active_set_factorizations
-                - start.active_set_factorizations,
-        }
-    }
-
     /// Numeric factorisations, of K and by the active set.
     pub fn factorizations(&self) -> usize {
         self.stiffness_factorizations + self.active_set_factorizations

@@ -20,9 +20,9 @@ pub use mesh::solid_kind_name;
 
 use super::Loaded;
 use super::model;
-use super::outputs::{MAX_OUTPUT_FILES, check_output_table};
+use super::outputs::{check_file_count, check_output_table};
 use super::phases::{phases_of, time_functions};
-use super::study::{Body, Custom, Study};
+use super::study::{Custom, Study};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
 use std::path::Path;
@@ -69,29 +69,18 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<Study<3>> {
     let mesh = mesh::build(&mp, mesh_plan)?;
     let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
     let (sim, warnings) = contact::build(model, &contact.zones, contact.settings)?;
-    let zone_names: Vec<String> = sim.zones().iter().map(|z| z.name.clone()).collect();
-    let hertz = super::hertz::check(scene, &zone_names, 3, |e, nu| e / (1.0 - nu * nu))?;
-    let plots = plots::check(&scene.plots, &zone_names)?;
-    let study = Study {
-        title: super::title(loaded),
-        units: scene.units.clone().unwrap_or_default(),
-        body: Body::Custom(Box::new(Custom {
-            sim,
-            supports,
-            loads,
-            functions,
-            phase_laws: contact.phase_laws,
-        })),
-        phases,
-        output: scene.output.clone(),
-        plots,
-        zone_names,
-        zone_laws: contact.zones.iter().map(|z| z.law_name.into()).collect(),
-        adhesive_zones: contact.adhesive,
-        friction_zones: contact.friction,
-        warnings,
-        hertz,
+    let custom = Custom {
+        sim,
+        supports,
+        loads,
+        functions,
+        phase_laws: contact.phase_laws,
     };
+    let laws = contact.zones.iter().map(|z| z.law_name.into()).collect();
+    let zones = (laws, contact.adhesive, contact.friction);
+    let mut study = super::custom_study(loaded, custom, phases, zones, warnings);
+    study.hertz = super::hertz::check(scene, &study.zone_names, 3, |e, nu| e / (1.0 - nu * nu))?;
+    study.plots = plots::check(&scene.plots, &study.zone_names)?;
     let candidates = study.candidates();
     check_output_table(
         &study.output,
@@ -100,22 +89,6 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<Study<3>> {
         &|n| candidates.iter().any(|c| c.node == n),
         study.model().mesh().node_count(),
     )?;
-    let files = study.output_files();
-    if files > MAX_OUTPUT_FILES {
-        let key = if study.output.steps.is_some() {
-            "steps"
-        } else {
-            "every"
-        };
-        let p = root.key("output").key(key);
-        return Err(CliError::at(
-            &p,
-            format!(
-                "`{p}`: the run would write {files} files: more than the limit of \
-                 {MAX_OUTPUT_FILES}; raise `output.every`, list `output.steps`, or set \
-                 `output.vtk` and `output.mesh_vtk` = false"
-            ),
-        ));
-    }
+    check_file_count(&study)?;
     Ok(study)
 }
