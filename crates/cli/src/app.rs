@@ -3,6 +3,7 @@
 use crate::error::{CliError, CliResult};
 use crate::{build, error, out, run, templates};
 use clap::{Parser, Subcommand, ValueEnum};
+use fem_core::Dim;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -189,58 +190,15 @@ pub fn main() -> ExitCode {
             threads,
         } => with_scene(&scene, |loaded| {
             faer::set_global_parallelism(parallelism(threads, None));
-            let built = build::build(loaded)?;
-            let dofs = {
-                use fem_core::Structure;
-                match &built {
-                    build::Built::Plane(s) => s.model().dof_count(),
-                    build::Built::Solid(s) => s.sim.structure().dof_count(),
-                }
-            };
-            faer::set_global_parallelism(parallelism(threads, Some(dofs)));
-            let dir = match &built {
-                build::Built::Plane(s) => &s.output.dir,
-                build::Built::Solid(s) => &s.output.dir,
-            };
-            let out_dir = out
-                .or_else(|| dir.as_ref().map(PathBuf::from))
-                .unwrap_or_else(|| {
-                    PathBuf::from("out").join(
-                        scene
-                            .file_stem()
-                            .map(|s| s.to_string_lossy().into_owned())
-                            .unwrap_or_else(|| "scene".into()),
-                    )
-                });
-            let opts = run::RunOptions {
-                out_dir: out_dir.clone(),
-                quiet,
-                scene_file: scene.clone(),
-            };
-            match built {
-                build::Built::Plane(study) => {
-                    print_header("run", loaded, &study);
-                    let summary = run::run(*study, &opts)?;
-                    print_summary(&summary, &out_dir);
-                }
-                build::Built::Solid(study) => {
-                    print_solid_header("run", loaded, &study);
-                    let summary = run::run_solid(*study, &opts)?;
-                    print_solid_summary(&summary, &out_dir);
-                }
+            match build::build(loaded)? {
+                build::Built::Plane(study) => run_study(*study, loaded, out, quiet, threads),
+                build::Built::Solid(study) => run_study(*study, loaded, out, quiet, threads),
             }
-            Ok(())
         }),
         Command::Check { scene } => with_scene(&scene, |loaded| {
             let (steps, files) = match build::build(loaded)? {
-                build::Built::Plane(study) => {
-                    print_header("check", loaded, &study);
-                    (study.total_steps(), study.output_files())
-                }
-                build::Built::Solid(study) => {
-                    print_solid_header("check", loaded, &study);
-                    (study.total_steps(), study.output_files())
-                }
+                build::Built::Plane(study) => check_study(&study, loaded),
+                build::Built::Solid(study) => check_study(&study, loaded),
             };
             out::outln!("ok: the scene is valid ({steps} steps to run, {files} files to write)");
             Ok(())
@@ -262,6 +220,50 @@ pub fn main() -> ExitCode {
         } => finish(templates::write(kind, output, force), None),
     };
     ExitCode::from(code)
+}
+
+/// `bipo run` of a built study: its header, the run, its summary.
+fn run_study<const D: usize>(
+    study: build::Study<D>,
+    loaded: &build::Loaded,
+    out: Option<PathBuf>,
+    quiet: bool,
+    threads: Option<u16>,
+) -> CliResult<()>
+where
+    Dim<D>: run::Drive<D>,
+{
+    use fem_core::Structure;
+    faer::set_global_parallelism(parallelism(threads, Some(study.model().dof_count())));
+    let scene = &loaded.path;
+    let out_dir = out
+        .or_else(|| study.output.dir.as_ref().map(PathBuf::from))
+        .unwrap_or_else(|| {
+            PathBuf::from("out").join(
+                scene
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| "scene".into()),
+            )
+        });
+    let opts = run::RunOptions {
+        out_dir: out_dir.clone(),
+        quiet,
+        scene_file: scene.clone(),
+    };
+    print_header("run", loaded, &study);
+    let summary = run::run(study, &opts)?;
+    print_summary(&summary, &out_dir);
+    Ok(())
+}
+
+/// `bipo check` of a built study: its header; returns its steps and files.
+fn check_study<const D: usize>(study: &build::Study<D>, loaded: &build::Loaded) -> (usize, usize)
+where
+    Dim<D>: build::StudyDim<D>,
+{
+    print_header("check", loaded, study);
+    (study.total_steps(), study.output_files())
 }
 
 /// The name of a contact's status in `solve-local`'s table, by what its law is: a closed
@@ -359,16 +361,11 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
         source: source.to_string(),
         scene,
     };
-    Ok(match build::build(&loaded).map_err(render)? {
-        build::Built::Plane(study) => CheckedScene {
-            steps: study.total_steps(),
-            files: study.output_files(),
-        },
-        build::Built::Solid(study) => CheckedScene {
-            steps: study.total_steps(),
-            files: study.output_files(),
-        },
-    })
+    let (steps, files) = match build::build(&loaded).map_err(render)? {
+        build::Built::Plane(study) => (study.total_steps(), study.output_files()),
+        build::Built::Solid(study) => (study.total_steps(), study.output_files()),
+    };
+    Ok(CheckedScene { steps, files })
 }
 
 fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
@@ -386,7 +383,11 @@ fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
     }
 }
 
-fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
+fn print_header<const D: usize>(cmd: &str, loaded: &build::Loaded, study: &build::Study<D>)
+where
+    Dim<D>: build::StudyDim<D>,
+{
+    use build::StudyDim;
     use fem_core::Structure;
     let model = study.model();
     let mesh = model.mesh();
@@ -395,22 +396,19 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
         loaded.path.display(),
         study.title,
         match &study.body {
+            build::Body::Custom(_) if D == 3 => "3D scene".to_string(),
             build::Body::Custom(_) => "scene".to_string(),
-            build::Body::Preset(p) => format!("preset {}", p.kind),
+            build::Body::Preset(p) => format!("preset {}", Dim::<D>::preset_kind(p)),
         }
     );
+    let setting = Dim::<D>::setting(model)
+        .map(|s| format!("; {s}"))
+        .unwrap_or_default();
     out::outln!(
-        "  mesh: {} nodes, {} elements, {}; {}; {} free dofs",
+        "  mesh: {} nodes, {} elements, {}{setting}; {} free dofs",
         mesh.node_count(),
         mesh.element_count(),
-        build::kind_name(mesh.kind()),
-        match model.idealization() {
-            fem_core::Idealization::PlaneStrain => "plane strain".to_string(),
-            fem_core::Idealization::PlaneStress { thickness } =>
-                format!("plane stress, thickness {thickness}"),
-            fem_core::Idealization::Axisymmetric => "axisymmetric".to_string(),
-            _ => "other idealisation".to_string(),
-        },
+        Dim::<D>::kind_name(mesh),
         model.dof_count()
     );
     let alert = study.alert_distances();
@@ -425,11 +423,7 @@ fn print_header(cmd: &str, loaded: &build::Loaded, study: &build::Study) {
             alert[z]
         );
     }
-    let set = match &study.body {
-        build::Body::Custom(c) => build::phase_law_names(&c.phase_laws),
-        build::Body::Preset(_) => Vec::new(),
-    };
-    print_phases(&study.phases, &set);
+    print_phases(&study.phases, &study.phase_law_names());
     print_warnings(&study.warnings);
 }
 
@@ -461,66 +455,45 @@ fn print_phases(phases: &[build::Phase], set: &[Vec<(String, String)>]) {
     }
 }
 
-fn print_solid_header(cmd: &str, loaded: &build::Loaded, study: &build::SolidStudy) {
-    use fem_core::Structure;
-    let model = study.sim.structure();
-    let mesh = model.mesh();
-    out::outln!(
-        "bipo {cmd}: {} — {} (3D scene)",
-        loaded.path.display(),
-        study.title
-    );
-    out::outln!(
-        "  mesh: {} nodes, {} elements, {}; {} free dofs",
-        mesh.node_count(),
-        mesh.element_count(),
-        build::solid_kind_name(mesh.kind()),
-        model.dof_count()
-    );
-    for (z, zone) in study.sim.zones().iter().enumerate() {
-        let c: Vec<_> = study
-            .sim
-            .candidates()
-            .iter()
-            .filter(|c| c.zone == z)
-            .collect();
-        let within = c.iter().filter(|c| c.gap0 <= zone.alert_distance).count();
-        let min_gap = c.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
-        out::outln!(
-            "  zone `{}` ({}): {} candidates, {within} within the alert distance {} at the start (smallest gap {min_gap:.4e})",
-            zone.name,
-            study.zone_laws[z],
-            c.len(),
-            zone.alert_distance
-        );
+/// The final lines of `bipo run`: the work done (each dimension's counters) and each zone's
+/// results.
+fn print_summary<const D: usize>(s: &run::Summary<D>, dir: &Path) {
+    if D == 3 {
+        print_solid_work(s);
+    } else {
+        print_plane_work(s);
     }
-    print_phases(&study.phases, &build::phase_law_names(&study.phase_laws));
-    print_warnings(&study.warnings);
+    out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 
-fn print_solid_summary(s: &run::SolidSummary, dir: &Path) {
+/// The work of a 3D run, and each zone's force.
+fn print_solid_work<const D: usize>(s: &run::Summary<D>) {
+    let t = &s.totals;
     out::outln!(
         "done: {} steps in {:.3} s (t = {}), {} contact iterations, {} active-set passes, {} factorisations ({} of K, {} by the active set), {} adhesion iterations",
         s.steps,
         s.wall_time_s,
         s.time,
-        s.contact_iterations,
-        s.passes,
-        s.factorizations,
-        s.counters.stiffness_factorizations,
-        s.counters.active_set_factorizations,
-        s.counters.adhesion_iterations
+        s.phase_contact_iterations(),
+        s.phase_passes(),
+        t.factorizations(),
+        t.stiffness_factorizations,
+        t.active_set_factorizations,
+        t.adhesion_iterations
     );
+    let r = s.final_reaction.map(|r| r.to_vec()).unwrap_or_default();
+    let e = |a: usize| r.get(a).copied().unwrap_or(0.0);
     out::outln!(
         "  steps: {} dense, {} active set, {} matrix-free; support reactions at the end [{:.6e}, {:.6e}, {:.6e}]",
-        s.counters.steps - s.counters.active_set_steps - s.counters.matrix_free_steps,
-        s.counters.active_set_steps,
-        s.counters.matrix_free_steps,
-        s.final_reaction[0],
-        s.final_reaction[1],
-        s.final_reaction[2]
+        t.steps - t.active_set_steps - t.matrix_free_steps,
+        t.active_set_steps,
+        t.matrix_free_steps,
+        e(0),
+        e(1),
+        e(2)
     );
     for z in &s.zones {
+        let f = |a: usize| z.final_force.get(a).copied().unwrap_or(0.0);
         out::outln!(
             "  zone `{}` ({}, {} candidates): final Σr_n {:.6e} ({} active = closed, {} within the alert distance), force [{:.6e}, {:.6e}, {:.6e}], max Σr_n {}",
             z.name,
@@ -529,18 +502,18 @@ fn print_solid_summary(s: &run::SolidSummary, dir: &Path) {
             z.final_force_n,
             z.final_active,
             z.final_within_alert,
-            z.final_force[0],
-            z.final_force[1],
-            z.final_force[2],
+            f(0),
+            f(1),
+            f(2),
             z.max_force_n
                 .map(|p| format!("{:.6e} at step {} (t = {})", p.value, p.step, p.time))
                 .unwrap_or_else(|| "-".into())
         );
     }
-    out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 
-fn print_summary(s: &run::Summary, dir: &Path) {
+/// The work of a 2D run (the stages that ran), each zone's extremes and the plotted curves'.
+fn print_plane_work<const D: usize>(s: &run::Summary<D>) {
     let c = &s.counters;
     let solver_steps = if c.steps != s.steps {
         format!(" ({} solver steps)", c.steps)
@@ -624,7 +597,6 @@ fn print_summary(s: &run::Summary, dir: &Path) {
             );
         }
     }
-    out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 
 /// The reduced problem of `bipo solve-local`: FCLIB HDF5 for `.h5`/`.hdf5` (feature `fclib`),

@@ -10,8 +10,9 @@
 //!    the alert distance, contactor nodes of the plots) are made there, still with key paths.
 //!
 //! [`checks`] holds the value checks and error conversions, [`phases`] the time functions and
-//! phases, [`study`] what a build gives. A 3D scene (`[analysis] type = "3d"`) takes the same
-//! two passes in [`solid`], which reuses the checks that do not depend on the dimension.
+//! phases, [`study`] what a build gives: one [`Study`] type for both dimensions (`Study<3>` for
+//! a 3D scene, `[analysis] type = "3d"`, whose two passes [`solid`] lists: it reuses the checks
+//! that do not depend on the dimension).
 
 mod checks;
 mod contact;
@@ -35,9 +36,9 @@ pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
-pub use solid::SolidStudy;
 pub use study::{
-    Body, Custom, Library, LoadKind, LoadRt, PresetStudy, Study, SupportRt, released_at,
+    Body, Custom, Library, LoadKind, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt,
+    released_at,
 };
 
 use crate::error::{CliError, CliResult, KeyPath};
@@ -83,12 +84,24 @@ pub fn parse(source: &str) -> CliResult<Scene> {
     })
 }
 
-/// A built scene: 2D (a scene described key by key or a preset) or 3D.
+/// A built scene: 2D (a scene described key by key or a preset) or 3D: the one place where
+/// the dimension is chosen.
 pub enum Built {
     /// A 2D study.
     Plane(Box<Study>),
     /// A 3D study (`[analysis] type = "3d"`).
-    Solid(Box<SolidStudy>),
+    Solid(Box<Study<3>>),
+}
+
+/// The study's title: the scene's `title`, else the file's stem.
+fn title(loaded: &Loaded) -> String {
+    loaded.scene.title.clone().unwrap_or_else(|| {
+        loaded
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    })
 }
 
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
@@ -118,35 +131,45 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
     let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, Some(idealization))?;
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
     let (sim, zone_laws, warnings) = contact::build(model, &contact.zones, contact.settings)?;
-    let zone_names = sim.zones().iter().map(|z| z.name.clone()).collect();
-    let mut study = Study {
-        title: scene.title.clone().unwrap_or_else(|| {
-            loaded
-                .path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default()
-        }),
-        units: scene.units.clone().unwrap_or_default(),
-        body: Body::Custom(Box::new(Custom {
-            sim,
-            supports,
-            loads,
-            functions,
-            phase_laws: contact.phase_laws,
-        })),
-        phases,
-        output: scene.output.clone(),
-        plots: Vec::new(),
-        zone_names,
-        zone_laws,
-        adhesive_zones: contact.adhesive,
-        friction_zones: contact.friction,
-        warnings,
-        hertz: None,
+    let custom = Custom {
+        sim,
+        supports,
+        loads,
+        functions,
+        phase_laws: contact.phase_laws,
     };
+    let zones = (zone_laws, contact.adhesive, contact.friction);
+    let mut study = custom_study(loaded, custom, phases, zones, warnings);
     outputs::check_outputs(scene, &mut study)?;
     Ok(study)
+}
+
+/// The study of a scene described key by key, before its `[output]` and plots are checked:
+/// `zones` are the zones' law names and how many have adhesion and friction.
+fn custom_study<const D: usize>(
+    loaded: &Loaded,
+    custom: Custom<D>,
+    phases: Vec<Phase>,
+    (zone_laws, adhesive_zones, friction_zones): (Vec<String>, usize, usize),
+    warnings: Vec<String>,
+) -> Study<D>
+where
+    fem_core::Dim<D>: StudyDim<D>,
+{
+    Study {
+        title: title(loaded),
+        units: loaded.scene.units.clone().unwrap_or_default(),
+        zone_names: custom.sim.zones().iter().map(|z| z.name.clone()).collect(),
+        body: Body::Custom(Box::new(custom)),
+        phases,
+        output: loaded.scene.output.clone(),
+        plots: Vec::new(),
+        zone_laws,
+        adhesive_zones,
+        friction_zones,
+        warnings,
+        hertz: None,
+    }
 }
 
 #[cfg(test)]

@@ -2,10 +2,11 @@
 //! contactor nodes that exist, plot files, and what each plotted quantity needs.
 
 use super::checks::{at_least, list_names, node_set};
-use super::study::{Body, Study};
+use super::study::{Body, Study, StudyDim};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::{CurveSpec, OutputSpec, PlotSpec, Scene};
 use fem_core::Component;
+use fem_core::Dim;
 use std::collections::BTreeSet;
 
 /// Quantities of the plots: (name, needs).
@@ -182,7 +183,10 @@ pub const MAX_OUTPUT_FILES: usize = 100_000;
 
 /// Refuses a run that would write more than [`MAX_OUTPUT_FILES`] files, at the key that
 /// chooses the written steps.
-fn check_file_count(study: &Study) -> CliResult<()> {
+pub(super) fn check_file_count<const D: usize>(study: &Study<D>) -> CliResult<()>
+where
+    Dim<D>: StudyDim<D>,
+{
     let files = study.output_files();
     if files <= MAX_OUTPUT_FILES {
         return Ok(());
@@ -199,7 +203,7 @@ fn check_file_count(study: &Study) -> CliResult<()> {
              `output.steps`, or set `output.vtk` / `output.mesh_vtk` = false",
             study.written_steps(),
             study.total_steps(),
-            usize::from(o.vtk) + usize::from(o.writes_mesh_vtk())
+            usize::from(o.vtk) + usize::from(Dim::<D>::mesh_series(o))
         ),
     ))
 }

@@ -1,12 +1,95 @@
-//! What a build gives: a [`Study`] ready to run, its body (a scene described key by key, with
-//! its supports, loads and time functions ready to apply, or a library preset) and its phases.
+//! What a build gives: a [`Study`] ready to run, in 2D or 3D (`Study<3>`), its body (a scene
+//! described key by key, with its supports, loads and time functions ready to apply, or a 2D
+//! library preset) and its phases. What a study holds differently by dimension is
+//! [`StudyDim`]'s.
 
+use super::SceneDim;
 use super::phases::{Phase, TimeFunction};
 use crate::scene::{OutputSpec, PlotSpec, Units};
-use contact_laws::{Rccm, StandardLaw};
-use contact_solver::{Candidate, ContactSimulation};
-use fem_core::{Component, LinearElasticModel};
+use contact_laws::{ContactLaw, Rccm, StandardLaw};
+use contact_solver::coupling::space::ContactSpace;
+use contact_solver::{Candidate, ContactSimulation, ContactZone};
+use fem_core::{Component, Dim, ElasticModel, Idealization, LinearElasticModel, Mesh, Structure};
 use std::collections::BTreeMap;
+
+/// What a study holds and shows differently in 2D and 3D: its presets (2D only), the name of
+/// its elements, the idealisation, and which `.vtu` series the body writes.
+pub trait StudyDim<const D: usize>: SceneDim<D> + ContactSpace<D>
+where
+    Dim<D>: SceneDim<D> + ContactSpace<D>,
+{
+    /// A library preset of this dimension ([`PresetStudy`] in 2D; 3D has none: [`NoPreset`]).
+    type Preset;
+    /// The preset's simulation.
+    fn preset_sim(p: &Self::Preset) -> &ContactSimulation<ElasticModel<D>, Rccm, D>;
+    /// The preset's kind (`delamination`, `shear`, `pile`).
+    fn preset_kind(p: &Self::Preset) -> &'static str;
+    /// The name of the mesh's elements (`P1 (3-node triangles)`).
+    fn kind_name(mesh: &Mesh<D>) -> &'static str;
+    /// The idealisation, as the header names it (none in 3D).
+    fn setting(model: &ElasticModel<D>) -> Option<String>;
+    /// Whether the body's `mesh_NNNN.vtu` series is written: 2D with `output.mesh_vtk`, 3D also
+    /// with `output.vtk` (its body series carries the contact forces).
+    fn mesh_series(o: &OutputSpec) -> bool;
+}
+
+/// 3D has no preset: no value of this type exists.
+pub enum NoPreset {}
+
+impl StudyDim<2> for Dim<2> {
+    type Preset = PresetStudy;
+
+    fn preset_sim(p: &PresetStudy) -> &ContactSimulation<LinearElasticModel, Rccm> {
+        p.sim()
+    }
+
+    fn preset_kind(p: &PresetStudy) -> &'static str {
+        p.kind
+    }
+
+    fn kind_name(mesh: &Mesh<2>) -> &'static str {
+        super::kind_name(mesh.kind())
+    }
+
+    fn setting(model: &LinearElasticModel) -> Option<String> {
+        Some(match model.idealization() {
+            Idealization::PlaneStrain => "plane strain".to_string(),
+            Idealization::PlaneStress { thickness } => {
+                format!("plane stress, thickness {thickness}")
+            }
+            Idealization::Axisymmetric => "axisymmetric".to_string(),
+            _ => "other idealisation".to_string(),
+        })
+    }
+
+    fn mesh_series(o: &OutputSpec) -> bool {
+        o.writes_mesh_vtk()
+    }
+}
+
+impl StudyDim<3> for Dim<3> {
+    type Preset = NoPreset;
+
+    fn preset_sim(p: &NoPreset) -> &ContactSimulation<ElasticModel<3>, Rccm, 3> {
+        match *p {}
+    }
+
+    fn preset_kind(p: &NoPreset) -> &'static str {
+        match *p {}
+    }
+
+    fn kind_name(mesh: &Mesh<3>) -> &'static str {
+        super::solid_kind_name(mesh.kind())
+    }
+
+    fn setting(_: &ElasticModel<3>) -> Option<String> {
+        None
+    }
+
+    fn mesh_series(o: &OutputSpec) -> bool {
+        o.vtk || o.writes_mesh_vtk()
+    }
+}
 
 /// A support ready to apply.
 #[derive(Clone, Debug)]
@@ -88,13 +171,16 @@ pub struct LoadRt<const D: usize = 2> {
 }
 
 /// A scene described key by key.
-pub struct Custom {
+pub struct Custom<const D: usize = 2>
+where
+    Dim<D>: StudyDim<D>,
+{
     /// The simulation.
-    pub sim: ContactSimulation<LinearElasticModel, StandardLaw>,
+    pub sim: ContactSimulation<ElasticModel<D>, StandardLaw, D>,
     /// Supports.
     pub supports: Vec<SupportRt>,
     /// Loads.
-    pub loads: Vec<LoadRt>,
+    pub loads: Vec<LoadRt<D>>,
     /// Time functions.
     pub functions: BTreeMap<String, TimeFunction>,
     /// Per phase, the laws it sets on zones at its start: `(zone, law)`.
@@ -128,21 +214,27 @@ impl PresetStudy {
 }
 
 /// The body of a study.
-pub enum Body {
+pub enum Body<const D: usize = 2>
+where
+    Dim<D>: StudyDim<D>,
+{
     /// Key by key.
-    Custom(Box<Custom>),
-    /// A preset.
-    Preset(Box<PresetStudy>),
+    Custom(Box<Custom<D>>),
+    /// A preset (2D only).
+    Preset(Box<<Dim<D> as StudyDim<D>>::Preset>),
 }
 
-/// A scene ready to run.
-pub struct Study {
+/// A scene ready to run, in 2D or 3D (`[analysis] type = "3d"`).
+pub struct Study<const D: usize = 2>
+where
+    Dim<D>: StudyDim<D>,
+{
     /// Title.
     pub title: String,
     /// Units.
     pub units: Units,
     /// The body.
-    pub body: Body,
+    pub body: Body<D>,
     /// Phases.
     pub phases: Vec<Phase>,
     /// Outputs.
@@ -164,20 +256,23 @@ pub struct Study {
     pub hertz: Option<super::HertzPlan>,
 }
 
-impl Study {
+impl<const D: usize> Study<D>
+where
+    Dim<D>: StudyDim<D>,
+{
     /// The candidates.
-    pub fn candidates(&self) -> &[Candidate] {
+    pub fn candidates(&self) -> &[Candidate<D>] {
         match &self.body {
             Body::Custom(c) => c.sim.candidates(),
-            Body::Preset(p) => p.sim().candidates(),
+            Body::Preset(p) => Dim::<D>::preset_sim(p).candidates(),
         }
     }
 
     /// The model.
-    pub fn model(&self) -> &LinearElasticModel {
+    pub fn model(&self) -> &ElasticModel<D> {
         match &self.body {
             Body::Custom(c) => c.sim.structure(),
-            Body::Preset(p) => p.sim().structure(),
+            Body::Preset(p) => Dim::<D>::preset_sim(p).structure(),
         }
     }
 
@@ -185,7 +280,39 @@ impl Study {
     pub fn alert_distances(&self) -> Vec<f64> {
         match &self.body {
             Body::Custom(c) => c.sim.zones().iter().map(|z| z.alert_distance).collect(),
-            Body::Preset(p) => p.sim().zones().iter().map(|z| z.alert_distance).collect(),
+            Body::Preset(p) => Dim::<D>::preset_sim(p)
+                .zones()
+                .iter()
+                .map(|z| z.alert_distance)
+                .collect(),
+        }
+    }
+
+    /// Each zone's name and contactor nodes.
+    pub fn contactors(&self) -> Vec<(String, Vec<usize>)> {
+        fn of<L: ContactLaw, const D: usize>(
+            zones: &[ContactZone<L, D>],
+        ) -> Vec<(String, Vec<usize>)>
+        where
+            Dim<D>: ContactSpace<D>,
+        {
+            zones
+                .iter()
+                .map(|z| (z.name.clone(), z.contactor.clone()))
+                .collect()
+        }
+        match &self.body {
+            Body::Custom(c) => of(c.sim.zones()),
+            Body::Preset(p) => of(Dim::<D>::preset_sim(p).zones()),
+        }
+    }
+
+    /// The laws each phase sets on zones at its start (`[[phases]] laws`; none for a preset),
+    /// by name.
+    pub fn phase_law_names(&self) -> Vec<Vec<(String, String)>> {
+        match &self.body {
+            Body::Custom(c) => super::phase_law_names(&c.phase_laws),
+            Body::Preset(_) => Vec::new(),
         }
     }
 
@@ -205,11 +332,10 @@ impl Study {
     /// their `.pvd`, the CSV histories, the plots, `curves.csv` and `summary.json`.
     pub fn output_files(&self) -> usize {
         let o = &self.output;
-        let series = usize::from(o.vtk) + usize::from(o.writes_mesh_vtk());
+        let series = usize::from(o.vtk) + usize::from(Dim::<D>::mesh_series(o));
         let fixed = 1
             + usize::from(o.history)
             + usize::from(o.report)
-            + series
             + usize::from(o.pressure)
             + usize::from(self.hertz.is_some());
         let plots = if self.plots.is_empty() {
@@ -218,6 +344,7 @@ impl Study {
             self.plots.len() + 1
         };
         self.written_steps()
+            .saturating_add(1)
             .saturating_mul(series)
             .saturating_add(fixed + plots)
     }

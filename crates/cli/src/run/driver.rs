@@ -1,23 +1,26 @@
-//! What steps a study: the scene-file driver (supports released and applied per phase, loads
-//! scaled by their time functions, [`apply_step`] in either dimension) or a library preset (its
+//! What steps a study: the scene-file driver of either dimension (supports released and applied
+//! per phase, loads scaled by their time functions, [`apply_step`]) or a 2D library preset (its
 //! own step functions).
 
 use super::errors::{fem_failed, step_error};
 use crate::build::{
-    Custom, Library, LoadKind, LoadRt, Phase, PresetStudy, SceneDim, SupportRt, TimeFunction,
-    function_value, released_at,
+    Custom, Library, LoadKind, LoadRt, Phase, PresetStudy, SceneDim, StudyDim, SupportRt,
+    TimeFunction, function_value, released_at,
 };
 use crate::error::{CliError, CliResult};
 use crate::presets::ShaftPoint;
-use contact_laws::ContactLaw;
+use contact_laws::{ContactLaw, RccmState};
 use contact_solver::{ContactSimulation, StepResult};
 use fem_core::{Dim, ElasticModel, LinearElasticModel};
 use std::collections::BTreeMap;
 
 /// What steps the simulation: the scene-file driver or a library preset.
-pub(super) trait Driver {
-    type Law: ContactLaw + Clone;
-    fn sim(&self) -> &ContactSimulation<LinearElasticModel, Self::Law>;
+pub(super) trait Driver<const D: usize>
+where
+    Dim<D>: StudyDim<D>,
+{
+    type Law: ContactLaw<State = RccmState> + Clone;
+    fn sim(&self) -> &ContactSimulation<ElasticModel<D>, Self::Law, D>;
     fn begin_phase(&mut self, phases: &[Phase], p: usize) -> CliResult<()>;
     fn step(
         &mut self,
@@ -25,21 +28,21 @@ pub(super) trait Driver {
         p: usize,
         k: usize,
         t: f64,
-    ) -> Result<StepResult, CliError>;
+    ) -> Result<StepResult<D>, CliError>;
     fn end_phase(&mut self, phases: &[Phase], p: usize);
     /// Quantities only this driver knows (the pile's head load), at the last step.
     fn extras(&self) -> Extras {
         Extras::default()
     }
     /// The pile's shaft at the end of `res` (a step of this driver), for the profiles.
-    fn profile(&self, _res: &StepResult) -> Option<Vec<ShaftPoint>> {
+    fn profile(&self, _res: &StepResult<D>) -> Option<Vec<ShaftPoint>> {
         None
     }
 }
 
 /// Quantities of the pile preset at the last step.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Extras {
+pub(crate) struct Extras {
     /// Load on the pile head.
     pub(super) head_load: Option<f64>,
     /// Displacement of the pile head.
@@ -47,14 +50,20 @@ pub(super) struct Extras {
 }
 
 /// Steps a scene described key by key.
-pub(super) struct CustomDriver<'a> {
-    c: &'a mut Custom,
+pub(super) struct CustomDriver<'a, const D: usize>
+where
+    Dim<D>: StudyDim<D>,
+{
+    c: &'a mut Custom<D>,
     last_loads: Option<Vec<f64>>,
 }
 
-impl<'a> CustomDriver<'a> {
+impl<'a, const D: usize> CustomDriver<'a, D>
+where
+    Dim<D>: StudyDim<D>,
+{
     /// The driver of `c`, before its first phase.
-    pub(super) fn new(c: &'a mut Custom) -> Self {
+    pub(super) fn new(c: &'a mut Custom<D>) -> Self {
         Self {
             c,
             last_loads: None,
@@ -62,10 +71,13 @@ impl<'a> CustomDriver<'a> {
     }
 }
 
-impl Driver for CustomDriver<'_> {
+impl<const D: usize> Driver<D> for CustomDriver<'_, D>
+where
+    Dim<D>: StudyDim<D>,
+{
     type Law = contact_laws::StandardLaw;
 
-    fn sim(&self) -> &ContactSimulation<LinearElasticModel, Self::Law> {
+    fn sim(&self) -> &ContactSimulation<ElasticModel<D>, Self::Law, D> {
         &self.c.sim
     }
 
@@ -122,7 +134,7 @@ impl Driver for CustomDriver<'_> {
         p: usize,
         _k: usize,
         t: f64,
-    ) -> Result<StepResult, CliError> {
+    ) -> Result<StepResult<D>, CliError> {
         let c = &mut *self.c;
         let phase = &phases[p];
         apply_step(
@@ -134,7 +146,8 @@ impl Driver for CustomDriver<'_> {
             t,
             &mut self.last_loads,
         )?;
-        c.sim.step(t, 1.0).map_err(|e| step_error(e, phase, t))
+        let at = t.max(c.sim.time());
+        c.sim.step(at, 1.0).map_err(|e| step_error(e, phase, t))
     }
 
     fn end_phase(&mut self, phases: &[Phase], p: usize) {
@@ -160,7 +173,7 @@ impl<'a> PresetDriver<'a> {
     }
 }
 
-impl Driver for PresetDriver<'_> {
+impl Driver<2> for PresetDriver<'_> {
     type Law = contact_laws::Rccm;
 
     fn sim(&self) -> &ContactSimulation<LinearElasticModel, Self::Law> {
@@ -177,7 +190,7 @@ impl Driver for PresetDriver<'_> {
         p: usize,
         k: usize,
         t: f64,
-    ) -> Result<StepResult, CliError> {
+    ) -> Result<StepResult<2>, CliError> {
         let err = |e| step_error(e, &phases[p], t);
         match &mut self.p.scene {
             Library::Seed(s) => s.step(k).map_err(err),

@@ -1,16 +1,19 @@
-//! `bipo run`: steps a [`Study`] phase by phase with a progress bar, writes the CSV histories,
-//! the VTK series, the plots and `summary.json`, and prints what work was done.
+//! `bipo run`: steps a [`Study`] (2D or 3D) phase by phase with a progress bar, writes the CSV
+//! histories, the VTK series, the plots and `summary.json`, and prints what work was done.
 //!
-//! One file per output: [`csv`] (`contacts.csv`, `steps.csv`), [`vtk`] (the interface and mesh
-//! series), [`plots`] (`curves.csv` and the SVGs), [`pressure`] (`pressure.csv` and the Hertz
-//! plot of the recovered pressure field), [`summary`] (`summary.json`) and
-//! [`progress`] (the bar and the phase lines); the [`recorder`] hands each step to them, and a
-//! [`driver`] steps the study (a scene described key by key or a library preset). A 3D study
-//! runs through [`solid`] (its own driver and outputs; the bar and the error hints are shared).
+//! One file per output: [`csv`] (`contacts.csv`, `steps.csv` of a 2D run), [`vtk`] (its
+//! interface and mesh series), [`plots`] (`curves.csv` and the SVGs), [`pressure`]
+//! (`pressure.csv` and the Hertz plot of the recovered pressure field), [`summary`]
+//! (`summary.json`) and [`progress`] (the bar and the phase lines); the [`recorder`] hands each
+//! step to them, and a [`driver`] steps the study (a scene described key by key or a 2D library
+//! preset). The run is written once over the dimension; the formats that differ by dimension
+//! are [`dim::RunDim`]'s ([`plane`] and [`solid`]).
 
 mod csv;
+mod dim;
 mod driver;
 mod errors;
+mod plane;
 mod plots;
 mod pressure;
 mod profiles;
@@ -21,12 +24,13 @@ mod solid;
 mod summary;
 mod vtk;
 
-pub use solid::{SolidSummary, run_solid};
-pub use summary::{Peak, Summary};
+pub use summary::{Peak, StepTotals, Summary};
 
-use crate::build::{self, Body, Phase, Study};
+use crate::build::{self, Body, Phase, Study, StudyDim};
 use crate::error::{CliError, CliResult};
+use dim::{RunDim, StepRow};
 use driver::{CustomDriver, Driver, PresetDriver};
+use fem_core::Dim;
 use progress::Progress;
 use recorder::Recorder;
 use std::path::PathBuf;
@@ -43,44 +47,72 @@ pub struct RunOptions {
     pub scene_file: PathBuf,
 }
 
+/// How a dimension's run steps its presets (2D: the library's seed studies, by their driver;
+/// 3D has none).
+pub(crate) trait Drive<const D: usize>: RunDim<D>
+where
+    Dim<D>: RunDim<D>,
+{
+    /// Steps every phase of a preset (see [`drive`]).
+    fn drive_preset(
+        p: &mut <Self as StudyDim<D>>::Preset,
+        run: (&[Phase], usize, &RunOptions),
+        rec: &mut Recorder<D>,
+    ) -> (Vec<PhaseSummary<D>>, Option<CliError>, StepTotals);
+}
+
+impl Drive<2> for Dim<2> {
+    fn drive_preset(
+        p: &mut build::PresetStudy,
+        run: (&[Phase], usize, &RunOptions),
+        rec: &mut Recorder<2>,
+    ) -> (Vec<PhaseSummary>, Option<CliError>, StepTotals) {
+        drive(&mut PresetDriver::new(p), run, rec)
+    }
+}
+
+impl Drive<3> for Dim<3> {
+    fn drive_preset(
+        p: &mut build::NoPreset,
+        _: (&[Phase], usize, &RunOptions),
+        _: &mut Recorder<3>,
+    ) -> (Vec<PhaseSummary<3>>, Option<CliError>, StepTotals) {
+        match *p {}
+    }
+}
+
 /// Runs the study; returns the summary (also written to `summary.json`).
-pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
+pub fn run<const D: usize>(mut study: Study<D>, opts: &RunOptions) -> CliResult<Summary<D>>
+where
+    Dim<D>: Drive<D>,
+{
     let mut recorder = Recorder::new(&study, &opts.out_dir)?;
     let start = Instant::now();
     let total = study.total_steps();
     let at_start = match &study.body {
         Body::Custom(c) => c.sim.counters(),
-        Body::Preset(p) => p.sim().counters(),
+        Body::Preset(p) => Dim::<D>::preset_sim(p).counters(),
     };
-    let outcome = match &mut study.body {
-        Body::Custom(c) => {
-            let mut d = CustomDriver::new(c);
-            drive(&mut d, &study.phases, total, &mut recorder, opts)
-        }
-        Body::Preset(p) => {
-            let mut d = PresetDriver::new(p);
-            drive(&mut d, &study.phases, total, &mut recorder, opts)
-        }
+    let run = (&study.phases[..], total, opts);
+    let (phases, error, totals) = match &mut study.body {
+        Body::Custom(c) => drive(&mut CustomDriver::new(c), run, &mut recorder),
+        Body::Preset(p) => Dim::<D>::drive_preset(p, run, &mut recorder),
     };
     let wall = start.elapsed().as_secs_f64();
-    let (phases, error) = outcome;
     let (tangential, detection) = recorder.stage_counts();
     let steps_done = recorder.steps();
+    let final_reaction = recorder.reaction();
     let recorder::Finished {
         mut files,
         curves,
         mut zones,
         rigid,
     } = recorder.finish(&study)?;
-    let set = match &study.body {
-        Body::Custom(c) => build::phase_law_names(&c.phase_laws),
-        Body::Preset(_) => Vec::new(),
-    };
     let laws = build::laws_by_phase(
         &study.phases,
         &study.zone_names,
         &study.zone_laws,
-        &set,
+        &study.phase_law_names(),
         steps_done,
         error.is_some(),
     );
@@ -90,7 +122,10 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
     }
     let (counters, time, facts) = match &study.body {
         Body::Custom(c) => (c.sim.counters(), c.sim.time(), facts(&c.sim)),
-        Body::Preset(p) => (p.sim().counters(), p.sim().time(), facts(p.sim())),
+        Body::Preset(p) => {
+            let sim = Dim::<D>::preset_sim(p);
+            (sim.counters(), sim.time(), facts(sim))
+        }
     };
     files.insert(0, "summary.json".into());
     let counters = since(counters, at_start);
@@ -106,6 +141,8 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
         wall_time_s: wall,
         mesh: facts,
         counters,
+        totals,
+        final_reaction,
         stages: Stages {
             adhesive_zones: study.adhesive_zones,
             friction_zones: study.friction_zones,
@@ -130,41 +167,58 @@ pub fn run(mut study: Study, opts: &RunOptions) -> CliResult<Summary> {
     }
 }
 
-/// Steps every phase of `phases` with `d`, recording each step; returns the phases done and the
-/// error that stopped the run, if any.
-fn drive<D: Driver>(
-    d: &mut D,
-    phases: &[Phase],
-    total: usize,
-    rec: &mut Recorder,
-    opts: &RunOptions,
-) -> (Vec<PhaseSummary>, Option<CliError>) {
+/// Steps every phase of `phases` with `d`, recording each step; returns the phases done, the
+/// error that stopped the run, if any, and the steps' reports summed.
+fn drive<const D: usize, Dr: Driver<D>>(
+    d: &mut Dr,
+    (phases, total, opts): (&[Phase], usize, &RunOptions),
+    rec: &mut Recorder<D>,
+) -> (Vec<PhaseSummary<D>>, Option<CliError>, StepTotals)
+where
+    Dim<D>: RunDim<D>,
+{
     let progress = Progress::new(total, opts.quiet);
-    let mut out: Vec<PhaseSummary> = Vec::new();
+    let mut out: Vec<PhaseSummary<D>> = Vec::new();
+    let mut totals = StepTotals::default();
     let mut global = 0;
     for (pi, phase) in phases.iter().enumerate() {
         progress.begin_phase(&phase.name);
-        let before = d.sim().counters();
+        let (before, mut phase_totals) = (d.sim().counters(), StepTotals::default());
         let t_phase = Instant::now();
-        let fail = |out: &mut Vec<PhaseSummary>, e: CliError| {
+        let fail = |out: &mut Vec<PhaseSummary<D>>, e: CliError, totals: StepTotals| {
             progress.finish();
-            (std::mem::take(out), Some(e))
+            (std::mem::take(out), Some(e), totals)
         };
         if let Err(e) = d.begin_phase(phases, pi) {
-            return fail(&mut out, e);
+            return fail(&mut out, e, totals);
         }
         for k in 1..=phase.steps {
             let t = phase.time(k);
+            let t_step = Instant::now();
+            let k0 = d.sim().structure().factorizations();
+            let a0 = d.sim().counters().active_set_factorizations;
             let res = match d.step(phases, pi, k, t) {
                 Ok(r) => r,
                 Err(mut e) => {
                     e.message = format!("step {} ({e_msg})", global + 1, e_msg = e.message);
-                    return fail(&mut out, e);
+                    return fail(&mut out, e, totals);
                 }
             };
             global += 1;
-            if let Err(e) = rec.record(d.sim(), &res, d.extras(), global, k == phase.steps) {
-                return fail(&mut out, e);
+            let k_step = d.sim().structure().factorizations() - k0;
+            let a_step = d.sim().counters().active_set_factorizations - a0;
+            totals.add(&res.report, k_step, a_step);
+            phase_totals.add(&res.report, k_step, a_step);
+            let row = StepRow {
+                step: global,
+                phase: &phase.name,
+                time: t,
+                wall_time_s: t_step.elapsed().as_secs_f64(),
+                factorizations: k_step + a_step,
+                extras: d.extras(),
+            };
+            if let Err(e) = rec.record(d.sim(), &res, &row, k == phase.steps) {
+                return fail(&mut out, e, totals);
             }
             if let Some(points) = d.profile(&res) {
                 let q = d.extras().head_load.unwrap_or(f64::NAN);
@@ -177,21 +231,18 @@ fn drive<D: Driver>(
             );
         }
         d.end_phase(phases, pi);
-        let after = d.sim().counters();
         let s = PhaseSummary {
             name: phase.name.clone(),
             steps: phase.steps,
             t_start: phase.t0,
             t_end: phase.t1,
-            contact_iterations: after.contact_iterations - before.contact_iterations,
-            adhesion_iterations: after.adhesion_iterations - before.adhesion_iterations,
-            flexibility_builds: after.flexibility_builds - before.flexibility_builds,
-            stiffness_changes: after.stiffness_changes - before.stiffness_changes,
+            counters: since(d.sim().counters(), before),
+            totals: phase_totals,
             wall_time_s: t_phase.elapsed().as_secs_f64(),
         };
         progress.end_phase(&s);
         out.push(s);
     }
     progress.finish();
-    (out, None)
+    (out, None, totals)
 }

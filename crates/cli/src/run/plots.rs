@@ -1,17 +1,17 @@
 //! The plotted curves: one value per step of each `[[plots]]` curve (and abscissa), written
 //! at the end as `curves.csv` and one SVG per plot, with their extremes for the summary. The
-//! curves are those of a 2D or a 3D run: each run hands the values of a step through
-//! [`Plots::record_3d`] (2D: [`Plots::record`]).
+//! curves are those of a 2D or a 3D run (the 3D scene lets through the quantities it has).
 
 use super::driver::Extras;
 use super::errors::io;
 use super::summary::{CurveSummary, keep};
-use crate::build::Study;
+use crate::build::{Study, StudyDim};
 use crate::error::CliResult;
 use crate::plot;
 use crate::scene::{CurveSpec, PlotSpec, XAxis};
+use contact_solver::coupling::space::ContactSpace;
 use contact_solver::{ContactRecord, StepResult};
-use fem_core::Component;
+use fem_core::{Component, Dim};
 use std::path::Path;
 
 /// One curve of a plot, with its values so far.
@@ -27,7 +27,7 @@ struct CurveRt {
 }
 
 /// The curves of every plot and the three abscissae (time, step, load factor) of every step.
-pub(super) struct Plots {
+pub(crate) struct Plots {
     curves: Vec<CurveRt>,
     x_time: Vec<f64>,
     x_step: Vec<f64>,
@@ -36,7 +36,10 @@ pub(super) struct Plots {
 
 impl Plots {
     /// The curves of the study's plots, with their labels, zones and node sets resolved.
-    pub(super) fn new(study: &Study) -> Self {
+    pub(super) fn new<const D: usize>(study: &Study<D>) -> Self
+    where
+        Dim<D>: StudyDim<D>,
+    {
         Self::of(&study.plots, &study.zone_names, |s| {
             study.model().mesh().node_set(s).ok().map(|s| s.to_vec())
         })
@@ -116,34 +119,22 @@ impl Plots {
         self.x_time.len()
     }
 
-    /// The values of global step `global`.
-    pub(super) fn record(
+    /// The values of global step `global` (`u_t`: a contact's tangential relative
+    /// displacement along its first tangent).
+    pub(super) fn record<const D: usize>(
         &mut self,
-        res: &StepResult,
-        extras: Extras,
-        disp: Option<&[[f64; 2]]>,
+        (res, extras, global): (&StepResult<D>, Extras, usize),
+        disp: Option<&[[f64; D]]>,
         reactions: Option<&[fem_core::Reaction]>,
-        global: usize,
-    ) {
+        u_t: fn(&ContactRecord<D>) -> f64,
+    ) where
+        Dim<D>: ContactSpace<D>,
+    {
         let (time, load) = (res.report.time, res.report.load_factor);
         self.record_with(time, load, global, |c| match c.spec.quantity.as_str() {
             "head_load" => extras.head_load.unwrap_or(f64::NAN),
             "head_displacement" => extras.head_displacement.unwrap_or(f64::NAN),
-            _ => curve_value(c, res, disp, reactions),
-        });
-    }
-
-    /// Records global step `global` at `time` and `load_factor`: `value(quantity, zone)` gives
-    /// each curve's value (`zone`: the curve's zone, or the only one).
-    pub(super) fn record_3d(
-        &mut self,
-        time: f64,
-        load_factor: f64,
-        global: usize,
-        value: impl Fn(&str, Option<usize>) -> f64,
-    ) {
-        self.record_with(time, load_factor, global, |c| {
-            value(&c.spec.quantity, c.zone)
+            _ => curve_value(c, res, (disp, reactions), u_t),
         });
     }
 
@@ -249,14 +240,17 @@ impl Plots {
     }
 }
 
-fn curve_value(
+fn curve_value<const D: usize>(
     c: &CurveRt,
-    res: &StepResult,
-    disp: Option<&[[f64; 2]]>,
-    reactions: Option<&[fem_core::Reaction]>,
-) -> f64 {
+    res: &StepResult<D>,
+    (disp, reactions): (Option<&[[f64; D]]>, Option<&[fem_core::Reaction]>),
+    u_t: fn(&ContactRecord<D>) -> f64,
+) -> f64
+where
+    Dim<D>: ContactSpace<D>,
+{
     let q = c.spec.quantity.as_str();
-    let in_zone = |r: &&ContactRecord| c.zone.is_none_or(|z| r.zone == z);
+    let in_zone = |r: &&ContactRecord<D>| c.zone.is_none_or(|z| r.zone == z);
     let rep = &res.report;
     match q {
         "contact_iterations" => rep.contact_iterations as f64,
@@ -265,8 +259,18 @@ fn curve_value(
         "active_contacts" => rep.closed_contacts as f64,
         "candidates" => rep.active_contacts as f64,
         "residual" => rep.residual,
-        "force_n" => res.contacts.iter().filter(in_zone).map(|r| r.r.n).sum(),
-        "force_t" => res.contacts.iter().filter(in_zone).map(|r| r.r.t[0]).sum(),
+        "force_n" => res
+            .contacts
+            .iter()
+            .filter(in_zone)
+            .map(|r| r.reaction()[0])
+            .sum(),
+        "force_t" => res
+            .contacts
+            .iter()
+            .filter(in_zone)
+            .map(|r| r.reaction()[1])
+            .sum(),
         "closed" => res
             .contacts
             .iter()
@@ -298,10 +302,10 @@ fn curve_value(
             {
                 Some(r) => match q {
                     "gap" => r.gap,
-                    "u_t" => r.u_t,
+                    "u_t" => u_t(r),
                     "beta" => r.beta,
-                    "r_n" => r.r.n,
-                    _ => r.r.t[0],
+                    "r_n" => r.reaction()[0],
+                    _ => r.reaction()[1],
                 },
                 None => f64::NAN,
             }

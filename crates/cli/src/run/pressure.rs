@@ -45,7 +45,7 @@ struct Last {
 }
 
 /// `pressure.csv`, the fields of each written step and the Hertz plot.
-pub(super) struct PressureRecorder {
+pub(crate) struct PressureRecorder {
     dir: PathBuf,
     csv: Option<BufWriter<File>>,
     masses: Vec<Option<BoundaryMass>>,

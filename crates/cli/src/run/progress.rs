@@ -83,21 +83,32 @@ impl Progress {
         }
     }
 
-    /// A phase is done: its line, above the bar.
-    pub(super) fn end_phase(&self, s: &PhaseSummary) {
-        let line = format!(
-            "phase `{}`: {} steps, t {} → {}: {} contact iterations, {} adhesion iterations, {} F* builds, {} stiffness changes, {:.3} s",
-            s.name,
-            s.steps,
-            s.t_start,
-            s.t_end,
-            s.contact_iterations,
-            s.adhesion_iterations,
-            s.flexibility_builds,
-            s.stiffness_changes,
-            s.wall_time_s
-        );
-        self.line(&line);
+    /// A phase is done: its line, above the bar (with the counters of its dimension's
+    /// summary: `F*` builds in 2D, penetration-check passes and factorisations in 3D).
+    pub(super) fn end_phase<const D: usize>(&self, s: &PhaseSummary<D>) {
+        let (c, t) = (&s.counters, &s.totals);
+        let work = if D == 2 {
+            format!(
+                "{} contact iterations, {} adhesion iterations, {} F* builds, {} stiffness changes",
+                c.contact_iterations,
+                c.adhesion_iterations,
+                c.flexibility_builds,
+                c.stiffness_changes
+            )
+        } else {
+            format!(
+                "{} contact iterations, {} adhesion iterations, {} active-set passes, {} \
+                 factorisations",
+                t.contact_iterations,
+                t.adhesion_iterations,
+                t.passes,
+                t.factorizations()
+            )
+        };
+        self.line(&format!(
+            "phase `{}`: {} steps, t {} → {}: {work}, {:.3} s",
+            s.name, s.steps, s.t_start, s.t_end, s.wall_time_s
+        ));
     }
 
     /// A line above the bar (nothing when quiet).
@@ -113,7 +124,7 @@ impl Progress {
     }
 }
 
-/// How a 2D step was solved, for the progress lines.
+/// How a step was solved, for the progress lines.
 pub(super) fn path_name(rep: &contact_solver::StepReport) -> &'static str {
     if rep.active_set {
         "active set"

@@ -1,14 +1,19 @@
 //! `summary.json`: what the run did (counters, stages, phases) and found (per-zone extremes and
 //! final state, the plotted curves' extremes), and the tally of the zones kept step by step.
+//!
+//! One summary for both dimensions; the keys written are each dimension's (the file is a
+//! contract): a 2D summary shows the library's [`Counters`] and the [`Stages`], a 3D one the
+//! steps' reports summed ([`StepTotals`]) and the support reactions.
 
 use super::errors::io;
-use crate::build::PhaseLaw;
+use crate::build::{PhaseLaw, StudyDim};
 use crate::error::{CliError, CliResult};
 use crate::scene::Units;
 use contact_laws::ContactLaw;
 use contact_solver::{ContactSimulation, Counters, InterfaceStatus, StepResult};
-use fem_core::{LinearElasticModel, Structure};
+use fem_core::{Dim, ElasticModel, Structure};
 use serde::Serialize;
+use serde::ser::{SerializeStruct, Serializer};
 use std::path::Path;
 
 /// A value with where it happened.
@@ -35,9 +40,9 @@ pub(super) fn keep(p: &mut Option<Peak>, value: f64, step: usize, time: f64, lar
     }
 }
 
-/// Per-zone results.
-#[derive(Clone, Debug, Serialize)]
-pub struct ZoneSummary {
+/// Per-zone results (2D: the tangential extremes and the statuses; 3D: the total force).
+#[derive(Clone, Debug)]
+pub struct ZoneSummary<const D: usize = 2> {
     /// Name.
     pub name: String,
     /// The law in force at the end of the run (`[[phases]] laws` may have changed it; `laws`
@@ -55,8 +60,10 @@ pub struct ZoneSummary {
     pub min_beta: Option<Peak>,
     /// Σ r_n at the end.
     pub final_force_n: f64,
-    /// Σ r_t at the end.
+    /// Σ r_t at the end (the first tangential component).
     pub final_force_t: f64,
+    /// Σ of the contact forces (global axes) at the end.
+    pub final_force: [f64; D],
     /// Final statuses: inactive, open, stick, slip (laws with friction), closed
     /// (frictionless).
     pub final_status: StatusCount,
@@ -84,9 +91,77 @@ pub struct StatusCount {
     pub closed: usize,
 }
 
-/// Per-phase results.
-#[derive(Clone, Debug, Serialize)]
-pub struct PhaseSummary {
+impl<const D: usize> Serialize for ZoneSummary<D> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_struct("ZoneSummary", 13)?;
+        m.serialize_field("name", &self.name)?;
+        m.serialize_field("law", &self.law)?;
+        m.serialize_field("candidates", &self.candidates)?;
+        m.serialize_field("max_force_n", &self.max_force_n)?;
+        if D == 2 {
+            m.serialize_field("min_force_n", &self.min_force_n)?;
+            m.serialize_field("max_abs_force_t", &self.max_abs_force_t)?;
+            m.serialize_field("min_beta", &self.min_beta)?;
+        }
+        m.serialize_field("final_force_n", &self.final_force_n)?;
+        if D == 2 {
+            m.serialize_field("final_force_t", &self.final_force_t)?;
+            m.serialize_field("final_status", &self.final_status)?;
+        } else {
+            m.serialize_field("final_force", &self.final_force[..])?;
+        }
+        m.serialize_field("final_active", &self.final_active)?;
+        m.serialize_field("final_within_alert", &self.final_within_alert)?;
+        m.serialize_field("laws", &self.laws)?;
+        m.end()
+    }
+}
+
+/// The steps' reports summed (a 3D summary's `counters`; a preset's step may run several
+/// solver steps, which the library's [`Counters`] count).
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct StepTotals {
+    /// Steps done.
+    pub steps: usize,
+    /// Contact (solver) iterations.
+    pub contact_iterations: usize,
+    /// Adhesion fixed-point iterations.
+    pub adhesion_iterations: usize,
+    /// Passes of the penetration check.
+    pub passes: usize,
+    /// Numeric factorisations of K (a support released, a stiffness change).
+    pub stiffness_factorizations: usize,
+    /// Steps solved matrix-free (no `F*`).
+    pub matrix_free_steps: usize,
+    /// Steps solved by the primal active-set iteration (no `F*`).
+    pub active_set_steps: usize,
+    /// Numeric factorisations of the constrained stiffness by the active-set iteration.
+    pub active_set_factorizations: usize,
+}
+
+impl StepTotals {
+    /// Adds a step of report `r`, with `k` factorisations of K and `a` by the active set.
+    pub(super) fn add(&mut self, r: &contact_solver::StepReport, k: usize, a: usize) {
+        self.steps += 1;
+        self.contact_iterations += r.contact_iterations;
+        self.adhesion_iterations += r.adhesion_iterations;
+        self.passes += r.detection_passes;
+        self.stiffness_factorizations += k;
+        self.matrix_free_steps += usize::from(r.matrix_free);
+        self.active_set_steps += usize::from(r.active_set);
+        self.active_set_factorizations += a;
+    }
+
+    /// Numeric factorisations, of K and by the active set.
+    pub fn factorizations(&self) -> usize {
+        self.stiffness_factorizations + self.active_set_factorizations
+    }
+}
+
+/// Per-phase results: the library's counters over the phase (2D's keys) and the steps'
+/// reports summed (3D's).
+#[derive(Clone, Debug)]
+pub struct PhaseSummary<const D: usize = 2> {
     /// Name.
     pub name: String,
     /// Steps.
@@ -95,16 +170,37 @@ pub struct PhaseSummary {
     pub t_start: f64,
     /// End time.
     pub t_end: f64,
-    /// Contact iterations.
-    pub contact_iterations: usize,
-    /// Adhesion iterations.
-    pub adhesion_iterations: usize,
-    /// F* builds.
-    pub flexibility_builds: usize,
-    /// Stiffness changes.
-    pub stiffness_changes: usize,
+    /// The library's counters over the phase.
+    pub counters: Counters,
+    /// The phase's steps' reports summed.
+    pub totals: StepTotals,
     /// Wall time.
     pub wall_time_s: f64,
+}
+
+impl<const D: usize> Serialize for PhaseSummary<D> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_struct("PhaseSummary", 9)?;
+        m.serialize_field("name", &self.name)?;
+        m.serialize_field("steps", &self.steps)?;
+        m.serialize_field("t_start", &self.t_start)?;
+        m.serialize_field("t_end", &self.t_end)?;
+        if D == 2 {
+            let c = &self.counters;
+            m.serialize_field("contact_iterations", &c.contact_iterations)?;
+            m.serialize_field("adhesion_iterations", &c.adhesion_iterations)?;
+            m.serialize_field("flexibility_builds", &c.flexibility_builds)?;
+            m.serialize_field("stiffness_changes", &c.stiffness_changes)?;
+        } else {
+            let t = &self.totals;
+            m.serialize_field("contact_iterations", &t.contact_iterations)?;
+            m.serialize_field("passes", &t.passes)?;
+            m.serialize_field("adhesion_iterations", &t.adhesion_iterations)?;
+            m.serialize_field("factorizations", &t.factorizations())?;
+        }
+        m.serialize_field("wall_time_s", &self.wall_time_s)?;
+        m.end()
+    }
 }
 
 /// Which stages of the step ran.
@@ -144,8 +240,8 @@ pub struct CurveSummary {
 }
 
 /// `summary.json`.
-#[derive(Clone, Debug, Serialize)]
-pub struct Summary {
+#[derive(Clone, Debug)]
+pub struct Summary<const D: usize = 2> {
     /// `bipo` version.
     pub bipo_version: &'static str,
     /// Scene file.
@@ -169,12 +265,17 @@ pub struct Summary {
     pub mesh: MeshFacts,
     /// The library's counters of the work done by this run (`contact_solver::Counters`).
     pub counters: Counters,
+    /// The steps' reports summed.
+    pub totals: StepTotals,
+    /// The sum of the support reactions at the last step (global axes), where the run keeps
+    /// it (3D: `steps.csv` has it per step).
+    pub final_reaction: Option<[f64; D]>,
     /// Stages.
     pub stages: Stages,
     /// Phases.
-    pub phases: Vec<PhaseSummary>,
+    pub phases: Vec<PhaseSummary<D>>,
     /// Zones.
-    pub zones: Vec<ZoneSummary>,
+    pub zones: Vec<ZoneSummary<D>>,
     /// Plotted curves.
     pub curves: Vec<CurveSummary>,
     /// Files written (relative to the output directory).
@@ -184,6 +285,68 @@ pub struct Summary {
     pub rigid_motions: Vec<super::rigid::RigidMotionSummary>,
     /// The scene's warnings (e.g. contactor nodes held by a support, left out).
     pub warnings: Vec<String>,
+}
+
+impl<const D: usize> Summary<D> {
+    /// Contact iterations of the phases done.
+    pub fn phase_contact_iterations(&self) -> usize {
+        self.phases
+            .iter()
+            .map(|p| p.totals.contact_iterations)
+            .sum()
+    }
+
+    /// Penetration-check passes of the phases done.
+    pub fn phase_passes(&self) -> usize {
+        self.phases.iter().map(|p| p.totals.passes).sum()
+    }
+}
+
+impl<const D: usize> Serialize for Summary<D> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let plane = D == 2;
+        let mut m = s.serialize_struct("Summary", 21)?;
+        m.serialize_field("bipo_version", self.bipo_version)?;
+        m.serialize_field("scene", &self.scene)?;
+        m.serialize_field("title", &self.title)?;
+        if !plane {
+            m.serialize_field("dimension", &D)?;
+        }
+        m.serialize_field("units", &self.units)?;
+        m.serialize_field("status", &self.status)?;
+        m.serialize_field("error", &self.error)?;
+        m.serialize_field("steps", &self.steps)?;
+        m.serialize_field("time", &self.time)?;
+        m.serialize_field("wall_time_s", &self.wall_time_s)?;
+        m.serialize_field("mesh", &self.mesh)?;
+        if plane {
+            m.serialize_field("counters", &self.counters)?;
+            m.serialize_field("stages", &self.stages)?;
+        } else {
+            m.serialize_field("contact_iterations", &self.phase_contact_iterations())?;
+            m.serialize_field("passes", &self.phase_passes())?;
+            m.serialize_field("factorizations", &self.totals.factorizations())?;
+            m.serialize_field("counters", &self.totals)?;
+            m.serialize_field(
+                "final_reaction",
+                &self.final_reaction.as_ref().map(|r| &r[..]),
+            )?;
+        }
+        m.serialize_field("phases", &self.phases)?;
+        m.serialize_field("zones", &self.zones)?;
+        if plane {
+            m.serialize_field("curves", &self.curves)?;
+            m.serialize_field("files", &self.files)?;
+            m.serialize_field("rigid_motions", &self.rigid_motions)?;
+        } else {
+            m.serialize_field("files", &self.files)?;
+        }
+        m.serialize_field("warnings", &self.warnings)?;
+        if !plane {
+            m.serialize_field("curves", &self.curves)?;
+        }
+        m.end()
+    }
 }
 
 /// Units note.
@@ -236,16 +399,19 @@ pub struct MeshFacts {
 
 /// What the summary keeps of each step: the zones' extremes and final state, and how many
 /// steps carried a tangential reaction or needed several penetration-check passes.
-pub(super) struct Tally {
+pub(super) struct Tally<const D: usize> {
     /// Per-zone results so far.
-    pub(super) zones: Vec<ZoneSummary>,
+    pub(super) zones: Vec<ZoneSummary<D>>,
     /// Steps whose contacts carried a tangential reaction.
     pub(super) tangential_steps: usize,
     /// Steps needing more than one penetration-check pass.
     pub(super) detection_steps: usize,
 }
 
-impl Tally {
+impl<const D: usize> Tally<D>
+where
+    Dim<D>: StudyDim<D>,
+{
     /// No step yet: one empty summary per zone.
     pub(super) fn new(names: &[String], laws: &[String], candidates: &[usize]) -> Self {
         let zones = names
@@ -261,6 +427,7 @@ impl Tally {
                 min_beta: None,
                 final_force_n: 0.0,
                 final_force_t: 0.0,
+                final_force: [0.0; D],
                 final_status: StatusCount::default(),
                 final_active: 0,
                 final_within_alert: 0,
@@ -275,10 +442,14 @@ impl Tally {
     }
 
     /// Adds global step `global`.
-    pub(super) fn record(&mut self, res: &StepResult, global: usize) {
+    pub(super) fn record(&mut self, res: &StepResult<D>, global: usize) {
         let rep = &res.report;
         let t = rep.time;
-        if res.contacts.iter().any(|c| c.r.t[0] != 0.0) {
+        if res
+            .contacts
+            .iter()
+            .any(|c| c.reaction()[1..].iter().any(|&r| r != 0.0))
+        {
             self.tangential_steps += 1;
         }
         if rep.detection_passes > 1 {
@@ -287,13 +458,16 @@ impl Tally {
         for (z, zs) in self.zones.iter_mut().enumerate() {
             let mine = res.contacts.iter().filter(|c| c.zone == z);
             let (mut fn_, mut ft, mut bmin) = (0.0, 0.0, f64::INFINITY);
+            let mut force = [0.0; D];
             let mut st = StatusCount::default();
             let (mut closed, mut within) = (0, 0);
             for c in mine {
-                closed += usize::from(c.status.is_closed());
-                within += usize::from(c.status != InterfaceStatus::Inactive);
-                fn_ += c.r.n;
-                ft += c.r.t[0];
+                closed += usize::from(c.is_closed());
+                within += usize::from(c.is_active());
+                let (r, f) = (c.reaction(), c.force());
+                fn_ += r[0];
+                ft += r[1];
+                (0..D).for_each(|a| force[a] += f[a]);
                 bmin = bmin.min(c.beta);
                 match c.status {
                     InterfaceStatus::Inactive => st.inactive += 1,
@@ -313,6 +487,7 @@ impl Tally {
             }
             zs.final_force_n = fn_;
             zs.final_force_t = ft;
+            zs.final_force = force;
             zs.final_status = st;
             zs.final_active = closed;
             zs.final_within_alert = within;
@@ -321,7 +496,7 @@ impl Tally {
 }
 
 /// Writes `summary.json` (pretty-printed, with a final newline).
-pub(super) fn write(path: &Path, summary: &Summary) -> CliResult<()> {
+pub(super) fn write<const D: usize>(path: &Path, summary: &Summary<D>) -> CliResult<()> {
     let text = serde_json::to_string_pretty(summary).map_err(|e| io(path, e))?;
     std::fs::write(path, text + "\n").map_err(|e| io(path, e))
 }
@@ -351,9 +526,12 @@ pub(super) fn since(now: Counters, start: Counters) -> Counters {
     d
 }
 
-pub(super) fn facts<L: ContactLaw + Clone>(
-    sim: &ContactSimulation<LinearElasticModel, L>,
-) -> MeshFacts {
+pub(super) fn facts<const D: usize, L: ContactLaw + Clone>(
+    sim: &ContactSimulation<ElasticModel<D>, L, D>,
+) -> MeshFacts
+where
+    Dim<D>: StudyDim<D>,
+{
     let m = sim.structure();
     MeshFacts {
         nodes: m.mesh().node_count(),

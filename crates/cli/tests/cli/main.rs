@@ -8,6 +8,7 @@ mod cli;
 mod delamination;
 mod fuzz_corpus;
 mod gmsh_2d;
+mod issue_35_one_run;
 mod issue_36_outputs;
 mod issue_36_traps;
 mod local_algorithms_scenes;
