@@ -65,7 +65,7 @@ pub use model::{
 };
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
 pub use space::{CellKind, Dim, Plane, Solid, Space};
-pub use structure::{Floating, Structure};
+pub use structure::{Floating, Mass, Nonlinear, Structure};
 
 /// The `faer` this crate is built with (its sparse matrices and `MatMut` are in
 /// [`Structure`]'s signatures): an implementer of [`Structure`] writes `fem_core::faer::…`
