@@ -98,7 +98,10 @@ impl Pattern {
     pub(crate) fn symmetric_mul_into(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         let n = self.dim();
         assert_eq!(values.len(), self.nnz(), "one value per stored entry");
-        assert!(x.len() == n && y.len() == n, "x and y of the matrix's dimension");
+        assert!(
+            x.len() == n && y.len() == n,
+            "x and y of the matrix's dimension"
+        );
         y.fill(0.0);
         let (col_ptr, row_idx) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
         for (j, &x_j) in x.iter().enumerate() {

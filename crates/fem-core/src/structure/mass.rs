@@ -6,9 +6,9 @@
 //! ```
 //! Both on the free dofs, numbered as the stiffness (Hinton, Rock & Zienkiewicz 1976 for HRZ).
 
-use faer::sparse::SparseColMatRef;
 #[cfg(doc)]
 use crate::structure::Structure;
+use faer::sparse::SparseColMatRef;
 
 /// The mass of a [`Structure`], reached through [`Structure::mass`]: what a dynamic time
 /// scheme needs (Moreau–Jean: products `M v` and the iteration matrix `M + hθC + h²θ²K`).

@@ -56,6 +56,7 @@ use crate::structure::Structure;
 /// supports.fix(&left, Component::X).fix(&left, Component::Y);
 /// let mut model = LinearElasticModel::new(mesh, Idealization::PlaneStrain,
 ///     &[(0, Material::new(100.0, 0.3, 1.0)?)], supports)?;
+/// model.add_self_weight()?;
 /// let n = model.dof_count();
 /// let (mut u, mut f_ext, mut f_int) = (vec![0.1; n], vec![0.0; n], vec![0.0; n]);
 /// let body = model.nonlinear().expect("the elastic model is its own tangent");
