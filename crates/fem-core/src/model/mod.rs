@@ -143,6 +143,9 @@ impl ElasticModel<2> {
     ///
     /// # Errors
     /// - [`FemError::MissingMaterial`] if a region has no material;
+    /// - [`FemError::MissingDensity`] if some region's material has a density
+    ///   ([`Material::with_density`]) and another's has none (the model has a mass,
+    ///   [`Structure::mass`], when every region has one, and none when no region has);
     /// - [`FemError::NegativeRadius`] in axisymmetry for a node at `r < 0`;
     /// - [`FemError::InvertedElement`] for a (curved) element with a non-positive Jacobian;
     /// - [`FemError::UnknownNode`] for a support on a missing node;
@@ -176,7 +179,7 @@ impl ElasticModel<3> {
     ///
     /// # Errors
     /// As [`LinearElasticModel::new`] (without the 2D idealisation's): a region without
-    /// material, a support on a missing node, an inverted element, a stiffness that
+    /// material or, beside one with, without density, a support on a missing node, an inverted element, a stiffness that
     /// overflows, and [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body
     /// mode of some body of the mesh (a body that contact holds is built with
     /// [`SolidModel::floating`]) or `K` is singular otherwise.
