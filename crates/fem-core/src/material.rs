@@ -227,6 +227,20 @@ mod tests {
     }
 
     #[test]
+    fn with_density_rejects_invalid_densities() {
+        let m = Material::new(1.0, 0.3, 0.0).unwrap();
+        for rho in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            match m.with_density(rho) {
+                Err(FemError::InvalidParameter { name, .. }) => assert_eq!(name, "density"),
+                other => panic!("expected InvalidParameter(density), got {other:?}"),
+            }
+        }
+        let dense = m.with_density(3.0).unwrap();
+        assert_eq!((dense.density(), m.density()), (Some(3.0), None));
+        assert_eq!(dense.young(), m.young());
+    }
+
+    #[test]
     fn from_params_agrees_with_new() {
         for (young, poisson, unit_weight) in [
             (210e9, 0.3, 78.5e3),

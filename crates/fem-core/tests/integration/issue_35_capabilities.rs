@@ -204,6 +204,14 @@ fn issue_35_supported_dofs_have_no_mass_and_a_model_without_density_has_none() {
     mass.mul_into(&t, &mut mt);
     let total: f64 = t.iter().zip(&mt).map(|(a, b)| a * b).sum();
     assert!((total - 2.0 * DENSITY).abs() < 1e-12 * 2.0 * DENSITY);
+    // released, the left nodes' x dofs come back (renumbered) with their mass
+    let mut model = model;
+    let before = model.dof_count();
+    model.release(&left, Component::X).unwrap();
+    assert_eq!(model.dof_count(), before + left.len());
+    let (total, lumped) = translation_mass(&model, [1.0, 0.0]);
+    assert!((total - 2.0 * DENSITY).abs() < 1e-12 * 2.0 * DENSITY);
+    assert!((lumped[0] - 2.0 * DENSITY).abs() < 1e-12 * 2.0 * DENSITY);
     let plain = Material::new(100.0, 0.3, 0.0).unwrap();
     let model =
         LinearElasticModel::floating(mesh, Idealization::PlaneStrain, &[(0, plain)], supports)
