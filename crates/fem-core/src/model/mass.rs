@@ -117,23 +117,41 @@ where
     }
 }
 
-/// Asked only through [`Structure::mass`](crate::Structure::mass), which offers the model
-/// when its materials have densities.
+/// Asked through [`Structure::mass`](crate::Structure::mass), which offers the model when its
+/// materials have densities.
+///
+/// # Panics
+/// Called directly on a model without mass (no region's material has a density), every
+/// method but [`matrix`](Mass::matrix) (which answers `None`): the caller skipped the
+/// question `mass()` asks.
 impl<const D: usize> Mass for ElasticModel<D>
 where
     Dim<D>: ModelSpace<D>,
 {
     #[track_caller]
     fn mul_into(&self, x: &[f64], y: &mut [f64]) {
-        let values = self.mass.as_ref().map_or(&[][..], |m| &m.values);
-        self.pattern.symmetric_mul_into(values, x, y);
+        self.pattern
+            .symmetric_mul_into(&self.mass_values().values, x, y);
     }
 
+    #[track_caller]
     fn lumped(&self) -> &[f64] {
-        self.mass.as_ref().map_or(&[], |m| &m.lumped)
+        &self.mass_values().lumped
     }
 
     fn matrix(&self) -> Option<SparseColMatRef<'_, usize, f64>> {
         self.mass.as_ref().map(|m| self.pattern.view(&m.values))
+    }
+}
+
+impl<const D: usize> ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    #[track_caller]
+    fn mass_values(&self) -> &MassValues {
+        self.mass.as_ref().expect(
+            "the model has no mass (no region's material has a density): ask `Structure::mass`",
+        )
     }
 }
