@@ -90,6 +90,33 @@ impl Pattern {
                 .expect("entry outside the sparsity pattern")
     }
 
+    /// `y = A x` for the symmetric matrix `A` whose lower triangle has these `values`.
+    ///
+    /// # Panics
+    /// If `values.len() != nnz()` or `x`, `y` are not of length `dim()`.
+    #[track_caller]
+    pub(crate) fn symmetric_mul_into(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
+        let n = self.dim();
+        assert_eq!(values.len(), self.nnz(), "one value per stored entry");
+        assert!(
+            x.len() == n && y.len() == n,
+            "x and y of the matrix's dimension"
+        );
+        y.fill(0.0);
+        let (col_ptr, row_idx) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
+        for (j, &x_j) in x.iter().enumerate() {
+            let mut y_j = 0.0;
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let (i, a) = (row_idx[k], values[k]);
+                y[i] += a * x_j;
+                if i != j {
+                    y_j += a * x[i];
+                }
+            }
+            y[j] += y_j;
+        }
+    }
+
     /// A faer view of the matrix with these `values`.
     ///
     /// # Panics

@@ -215,6 +215,19 @@ pub enum FemError {
         /// First element of that region.
         element: usize,
     },
+    /// A model's mass was asked for (some region's material has a density) but the material
+    /// of `region` has none ([`Material::with_density`](crate::Material::with_density)):
+    /// a region without inertia would be a silent zero mass.
+    #[error(
+        "region {region} (element {element}) has no density: give every region's material one \
+         (`Material::with_density`) or none"
+    )]
+    MissingDensity {
+        /// Region id.
+        region: u32,
+        /// First element of that region.
+        element: usize,
+    },
     /// A region id that no element of the mesh has.
     #[error("no element of the mesh is in region {region}")]
     UnknownRegion {

@@ -22,7 +22,9 @@
 //! - **Boundary fields** ([`boundary_mass`]): the consistent mass of a boundary's sides or
 //!   faces, to recover a continuous traction from nodal forces.
 //! - **The seam to the contact solver**: the [`Structure`] trait, implemented by
-//!   [`LinearElasticModel`] and by users' own FE codes.
+//!   [`ElasticModel`] and by users' own FE codes, with its optional capabilities
+//!   [`Floating`] (rigid-body modes), [`Mass`] (inertia, for dynamics) and [`Nonlinear`]
+//!   (internal forces and a state-dependent tangent, for nonlinear materials).
 //! - **Verification**: closed-form elasticity solutions ([`analytical`]).
 //!
 //! It knows nothing about contact. Errors are [`FemError`].
@@ -65,7 +67,7 @@ pub use model::{
 };
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
 pub use space::{CellKind, Dim, Plane, Solid, Space};
-pub use structure::{Floating, Structure};
+pub use structure::{Floating, Mass, Nonlinear, Structure};
 
 /// The `faer` this crate is built with (its sparse matrices and `MatMut` are in
 /// [`Structure`]'s signatures): an implementer of [`Structure`] writes `fem_core::faer::…`

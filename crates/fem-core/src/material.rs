@@ -4,11 +4,14 @@ use crate::error::{FemError, non_negative, positive};
 use crate::idealization::Idealization;
 use nalgebra::Matrix4;
 
-/// An isotropic linear-elastic material with a unit weight.
+/// An isotropic linear-elastic material with a unit weight and, optionally, a mass density.
 ///
 /// Build it with [`Material::new`] (positional: `young, poisson, unit_weight`) or, with the
 /// parameters named at the call site, [`Material::from_params`] (or `try_from`) on a
-/// [`MaterialParams`]; both validate the same way.
+/// [`MaterialParams`]; both validate the same way. A dynamic analysis needs the mass density
+/// too, added with [`Material::with_density`]; a material has none until then (the unit
+/// weight is a load, not a mass: the two stay apart so that a weightless body can have
+/// inertia and a quasi-static body needs no density).
 ///
 /// Strain and stress vectors are ordered `(xx, yy, xy)` in the plane and
 /// `(rr, zz, rz, θθ)` in axisymmetry, with engineering shear strain `γ = 2ε`.
@@ -17,6 +20,7 @@ pub struct Material {
     young: f64,
     poisson: f64,
     unit_weight: f64,
+    density: Option<f64>,
 }
 
 /// The parameters of a [`Material`], by name: the input of [`Material::from_params`].
@@ -81,6 +85,31 @@ impl Material {
             young,
             poisson,
             unit_weight,
+            density: None,
+        })
+    }
+
+    /// The material with the mass density `density > 0` (mass per volume), which the mass of
+    /// a model ([`crate::Mass`]) integrates.
+    ///
+    /// # Errors
+    /// [`FemError::InvalidParameter`] named `density` for a value that is not finite and
+    /// positive.
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::Material;
+    /// let steel = Material::new(210e9, 0.3, 78.5e3)?.with_density(7850.0)?;
+    /// assert_eq!(steel.density(), Some(7850.0));
+    /// assert_eq!(Material::new(210e9, 0.3, 0.0)?.density(), None);
+    /// assert!(steel.with_density(0.0).is_err());
+    /// # Ok::<(), fem_core::FemError>(())
+    /// ```
+    pub fn with_density(self, density: f64) -> Result<Self, FemError> {
+        let density = positive("density", density)?;
+        Ok(Self {
+            density: Some(density),
+            ..self
         })
     }
 
@@ -115,6 +144,13 @@ impl Material {
     #[inline]
     pub fn unit_weight(&self) -> f64 {
         self.unit_weight
+    }
+
+    /// The mass density `ρ` (mass per volume), if one was given
+    /// ([`Material::with_density`]).
+    #[inline]
+    pub fn density(&self) -> Option<f64> {
+        self.density
     }
 
     /// The elasticity matrix `D` (σ = D ε) for `idealization`, in the top-left
@@ -188,6 +224,20 @@ mod tests {
                 other => panic!("expected InvalidParameter({name}), got {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn with_density_rejects_invalid_densities() {
+        let m = Material::new(1.0, 0.3, 0.0).unwrap();
+        for rho in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            match m.with_density(rho) {
+                Err(FemError::InvalidParameter { name, .. }) => assert_eq!(name, "density"),
+                other => panic!("expected InvalidParameter(density), got {other:?}"),
+            }
+        }
+        let dense = m.with_density(3.0).unwrap();
+        assert_eq!((dense.density(), m.density()), (Some(3.0), None));
+        assert_eq!(dense.young(), m.young());
     }
 
     #[test]

@@ -2,11 +2,14 @@
 //! factored once, that implements [`Structure`]: [`LinearElasticModel`] in the plane (plane
 //! strain, plane stress or axisymmetry) and [`SolidModel`] in space are its two dimensions.
 //! Loads are in `loads.rs`, recovery from a solution (stresses, strains, reactions, error
-//! norms) in `post.rs`, floating bodies in `floating.rs`, users' elements in `elements.rs`.
+//! norms) in `post.rs`, floating bodies in `floating.rs`, users' elements in `elements.rs`,
+//! the mass in `mass.rs`, the (trivial) state-dependent side in `nonlinear.rs`.
 
 mod elements;
 mod floating;
 mod loads;
+mod mass;
+mod nonlinear;
 mod normals;
 mod post;
 
@@ -24,7 +27,7 @@ use crate::ordering::{FillOrdering, nested_dissection};
 use crate::rigid_modes::RigidBodyModes;
 use crate::solid::SolidMesh;
 use crate::space::{Dim, Space};
-use crate::structure::{Floating, Structure};
+use crate::structure::{Floating, Mass, Nonlinear, Structure};
 use faer::MatMut;
 use nalgebra::DMatrix;
 use std::collections::BTreeMap;
@@ -113,6 +116,8 @@ where
     mode_basis: Vec<f64>,
     /// Users' elements by region, in place of the mesh kind's ([`ElasticModel::with_element`]).
     elements: RegionElements<D>,
+    /// The mass, when every region's material has a density (reassembled with `K`).
+    mass: Option<mass::MassValues>,
 }
 
 impl<const D: usize> core::fmt::Debug for ElasticModel<D>
@@ -138,6 +143,9 @@ impl ElasticModel<2> {
     ///
     /// # Errors
     /// - [`FemError::MissingMaterial`] if a region has no material;
+    /// - [`FemError::MissingDensity`] if some region's material has a density
+    ///   ([`Material::with_density`]) and another's has none (the model has a mass,
+    ///   [`Structure::mass`], when every region has one, and none when no region has);
     /// - [`FemError::NegativeRadius`] in axisymmetry for a node at `r < 0`;
     /// - [`FemError::InvertedElement`] for a (curved) element with a non-positive Jacobian;
     /// - [`FemError::UnknownNode`] for a support on a missing node;
@@ -171,7 +179,7 @@ impl ElasticModel<3> {
     ///
     /// # Errors
     /// As [`LinearElasticModel::new`] (without the 2D idealisation's): a region without
-    /// material, a support on a missing node, an inverted element, a stiffness that
+    /// material or, beside one with, without density, a support on a missing node, an inverted element, a stiffness that
     /// overflows, and [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body
     /// mode of some body of the mesh (a body that contact holds is built with
     /// [`SolidModel::floating`]) or `K` is singular otherwise.
@@ -228,6 +236,7 @@ where
         {
             return Err(FemError::NegativeRadius { node, r: p[0] });
         }
+        let with_mass = mass::has_mass(&mesh, &materials)?;
         let dofs = DofMap::<D>::numbered(mesh.node_count(), &supports)?;
         let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
         let solver = solver_for(&mesh, &dofs, &pattern, ordering)?;
@@ -254,6 +263,7 @@ where
             pinned_values: Vec::new(),
             mode_basis: Vec::new(),
             elements: RegionElements::default(),
+            mass: with_mass.then(mass::MassValues::default),
         };
         model.find_modes()?;
         model.assemble_and_factor()?;
@@ -291,6 +301,7 @@ where
             );
         }
         self.coupling = merge(coupling);
+        self.assemble_mass()?;
         let values = if self.pinned.is_empty() {
             &self.values
         } else {
@@ -659,6 +670,14 @@ where
 
     fn stiffness_matrix(&self) -> Option<faer::sparse::SparseColMatRef<'_, usize, f64>> {
         Some(self.stiffness())
+    }
+
+    fn mass(&self) -> Option<&dyn Mass> {
+        self.mass.is_some().then_some(self)
+    }
+
+    fn nonlinear(&mut self) -> Option<&mut dyn Nonlinear> {
+        Some(self)
     }
 }
 

@@ -12,6 +12,7 @@ mod exact_solutions;
 mod fuzz_corpus;
 mod gmsh_curves;
 mod hostile_input;
+mod issue_35_capabilities;
 mod mesh_io;
 mod patch;
 mod quad_hex;

@@ -1,9 +1,18 @@
-//! The [`Structure`] trait: everything the contact solver may know about a body, and the
-//! optional capability [`Floating`] of a body that only contact holds.
+//! The [`Structure`] trait: everything the contact solver may know about a body, and its
+//! optional capabilities, one file each: [`Floating`] (a body that only contact holds),
+//! [`Mass`] (inertia, for a dynamic scheme) and [`Nonlinear`] (internal forces and a tangent
+//! that depend on the state, for a nonlinear material).
+
+mod floating;
+mod mass;
+mod nonlinear;
+
+pub use floating::Floating;
+pub use mass::Mass;
+pub use nonlinear::Nonlinear;
 
 use crate::error::FemError;
 use crate::idealization::Idealization;
-use crate::rigid_modes::RigidBodyModes;
 use faer::MatMut;
 use faer::sparse::SparseColMatRef;
 
@@ -22,14 +31,18 @@ use faer::sparse::SparseColMatRef;
 /// [`LinearElasticModel`](crate::model::LinearElasticModel) is one implementation.
 ///
 /// # What to implement
-/// The **required** methods are what every structure has: its dofs
-/// ([`dof_count`](Self::dof_count)), its nodes ([`node_count`](Self::node_count),
+/// The **required** methods are what every structure has, in three groups: its geometry and
+/// dofs ([`dof_count`](Self::dof_count), [`node_count`](Self::node_count),
 /// [`node_position`](Self::node_position), [`node_dofs`](Self::node_dofs),
-/// [`prescribed_displacement`](Self::prescribed_displacement)), solves with its factorised
-/// stiffness ([`solve_many_in_place`](Self::solve_many_in_place)), its free response to the
-/// loads ([`free_response_into`](Self::free_response_into)) and a version of its stiffness
-/// ([`stiffness_version`](Self::stiffness_version)). Everything else is **provided**, with a
-/// default that is the honest answer for a structure that does not override it:
+/// [`prescribed_displacement`](Self::prescribed_displacement)); a linear solve with its
+/// factorised stiffness ([`solve_many_in_place`](Self::solve_many_in_place), with
+/// [`stiffness_version`](Self::stiffness_version) saying when `K` changed); and its load, as
+/// the free response to it ([`free_response_into`](Self::free_response_into)). The contact
+/// solver calls every one of them on every scene, so they are one trait rather than three
+/// that every implementer would have to name. Everything else is **provided**, with a
+/// default that is the honest answer for a structure that does not override it; the last
+/// three are **capabilities**, each a trait of its own reached by one method, so that a
+/// structure implements only what it has:
 ///
 /// | method | default | override when |
 /// |---|---|---|
@@ -37,7 +50,9 @@ use faer::sparse::SparseColMatRef;
 /// | [`idealization`](Self::idealization) | plane strain (unit weight) | 2D plane stress or axisymmetry (never asked in 3D) |
 /// | [`outward_normal`](Self::outward_normal) | `None` (not known) | the boundary normals are at hand |
 /// | [`stiffness_matrix`](Self::stiffness_matrix) | `None` (not assembled) | `K` is assembled (the active-set path needs it) |
-/// | [`floating`](Self::floating) | `None` (`K` positive definite) | supports leave rigid-body modes |
+/// | [`floating`](Self::floating) → [`Floating`] | `None` (`K` positive definite) | supports leave rigid-body modes |
+/// | [`mass`](Self::mass) → [`Mass`] | `None` (no inertia) | a dynamic scheme runs on it |
+/// | [`nonlinear`](Self::nonlinear) → [`Nonlinear`] | `None` (linear: `f_int = K u`) | the tangent and internal forces depend on the state |
 ///
 /// Named node sets (a contactor surface) are not asked by the solver: the zones name their
 /// nodes by index, so a model keeps its sets itself (fem-core's models read them from their
@@ -58,14 +73,17 @@ use faer::sparse::SparseColMatRef;
 /// forgetting their load (a silent zero load would be a wrong answer); the solver asks one
 /// question and gets both.
 ///
-/// # Capabilities to come
-/// The same shape will carry what a time scheme or a nonlinear material needs, each an
-/// optional capability reached by one provided method with the default `None`, so that a
-/// structure implements only what it has: the **mass** matrix (for dynamics, e.g. Moreau–Jean:
-/// solves with `M + h² θ K` and products with `M`) and a **state-dependent tangent** with its
-/// internal forces (plasticity, large strain: the tangent stiffness and `f_int(u)` at the
-/// current state, after which [`stiffness_version`](Self::stiffness_version) changes). They are
-/// not in the trait yet because no implementation backs them.
+/// # Mass and state-dependent tangent
+/// The two capabilities that a time scheme and a material need take the same shape: the
+/// **mass** ([`Mass`]: `M v`, the lumped diagonal, and `M` itself when assembled, for a
+/// dynamic scheme such as Moreau–Jean) and the **state-dependent** side ([`Nonlinear`]:
+/// `f_int(u)` at a trial displacement, the tangent there, commit on acceptance and rollback,
+/// for plasticity or large strain). The tangent is solved with through the structure's own
+/// solves, so the contact solver's flexibility follows it through
+/// [`stiffness_version`](Self::stiffness_version). fem-core's
+/// [`ElasticModel`](crate::ElasticModel) has both: its mass when every region's material has
+/// a density ([`Material::with_density`](crate::Material::with_density)), and the trivial
+/// tangent `K` with `f_int = K u`.
 ///
 /// # Examples
 /// A single spring `k` on one node along `x` (the `y` component supported): the smallest
@@ -94,7 +112,7 @@ use faer::sparse::SparseColMatRef;
 /// let mut u = [0.0];
 /// s.free_response_into(1.0, &mut u)?;
 /// assert_eq!(u, [0.5]); // f / k, through the provided `solve_in_place`
-/// assert!(s.floating().is_none() && s.stiffness_matrix().is_none());
+/// assert!(s.floating().is_none() && s.stiffness_matrix().is_none() && s.mass().is_none());
 /// # Ok::<(), FemError>(())
 /// ```
 pub trait Structure<const D: usize = 2> {
@@ -203,41 +221,18 @@ pub trait Structure<const D: usize = 2> {
     fn floating(&self) -> Option<&dyn Floating> {
         None
     }
-}
 
-/// The capability of a [`Structure`] that only contact holds: the rigid-body modes its
-/// supports leave and the load along them, reached through [`Structure::floating`] (the trait
-/// docs say how the solves treat such a body and why the pair is one capability).
-///
-/// The modes live on the free dofs, so the trait is the same in 2D and 3D.
-///
-/// # Examples
-/// A block with no support at all floats with three modes (two translations, one rotation):
-/// ```
-/// use fem_core::generate::{RectangleSpec, rectangle};
-/// use fem_core::{Idealization, LinearElasticModel, Material, Structure, Supports};
-/// let mesh = rectangle(&RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 2, 1))?;
-/// let model = LinearElasticModel::floating(mesh, Idealization::PlaneStrain,
-///     &[(0, Material::new(100.0, 0.3, 0.0)?)], Supports::new())?;
-/// let floating = model.floating().expect("no support: rigid-body modes");
-/// let mut load = vec![1.0; floating.rigid_body_modes().len()];
-/// floating.rigid_body_load_into(1.0, &mut load)?;
-/// assert_eq!(load, [0.0; 3]); // no load: nothing for contact to balance
-/// # Ok::<(), fem_core::FemError>(())
-/// ```
-pub trait Floating {
-    /// The rigid-body modes the supports leave (the kernel of `K` over the free dofs), at least
-    /// one.
-    fn rigid_body_modes(&self) -> &RigidBodyModes;
+    /// The structure's mass ([`Mass`]), or `None` (the default) for a structure without
+    /// inertia: a quasi-static scheme never asks, a dynamic one refuses a structure without
+    /// it.
+    fn mass(&self) -> Option<&dyn Mass> {
+        None
+    }
 
-    /// The generalized load along each rigid-body mode, `Rᵀ f` (`f` the right-hand side of
-    /// [`Structure::free_response_into`] at `load_factor`), written into `out` (one entry per
-    /// mode). Contact must balance it.
-    ///
-    /// # Errors
-    /// As the structure's own load assembly (e.g. a non-finite load).
-    ///
-    /// # Panics
-    /// If `out.len()` is not the number of modes.
-    fn rigid_body_load_into(&self, load_factor: f64, out: &mut [f64]) -> Result<(), FemError>;
+    /// The structure as a state-dependent body ([`Nonlinear`]: internal forces at a trial
+    /// displacement, the tangent there, commit and rollback), or `None` (the default) for a
+    /// linear structure, whose internal forces are `K u` with the `K` it solves with.
+    fn nonlinear(&mut self) -> Option<&mut dyn Nonlinear> {
+        None
+    }
 }
