@@ -371,12 +371,15 @@ fn issue_35_floating_3d_coulomb_sticks() {
 ///
 /// Pushed by `T = 1.5 > μN = 0.9` it slides off: as the 2D block above `μW`
 /// (`floating_block.rs`), [`SolverError::Unbalanced`] names body 0 and a translation in the
-/// plane of the base, along the push, out of balance by about `T − μN = 0.6`. Unlike 2D, where
-/// the slip has one direction and the figure is exact, the 3D slip turns: the report is taken
-/// where the equilibrium iteration stops, the slips not yet aligned with the push. Measured:
-/// along `(0.618, 0.786, 0)`, 1.8° off the push, out of balance by 0.611 (+1.9 %), the load
-/// along that direction 1.4996 (`T cos 1.8°`). Bounds 3° and 3 %; before: along
-/// `(0.286, 0.958, 0)`, 16.6° off, by 0.672.
+/// plane of the base along the push, out of balance by `T − μN = 0.6`. In 3D the slips turn
+/// and no direction is free at any finite slide; the force left is that of the slide's limit
+/// (`floating/slide.rs`: friction opposing every contact's slide, the direction that leaves
+/// the largest force). Measured: along `(0.60031, 0.79977, 0)`, out of balance by
+/// `0.60000025`, the load along it `1.49999989`. The limit may turn the block a little about
+/// `z` as it slides (the tilted normal reactions give the friction a moment about the centre
+/// of a non-square base), which would explain the 3.1e-4 off the push and the force left
+/// 4.2e-7 above the straight slide's. Before: along `(0.286, 0.958, 0)` by 0.672 (the force
+/// left at the iteration where the frozen linearisation found the slide).
 #[test]
 fn issue_35_floating_3d_coulomb_sticks_then_slides() {
     let n = 3.0;
@@ -388,7 +391,7 @@ fn issue_35_floating_3d_coulomb_sticks_then_slides() {
     );
     let t = 1.5;
     let err = coulomb_block(t / 3.0).unwrap_err();
-    eprintln!("T = {t}: {err}");
+    eprintln!("T = {t}: {err:?}");
     let SolverError::Unbalanced {
         body,
         motion: RigidMotion::SpaceTranslation { direction },
@@ -399,17 +402,23 @@ fn issue_35_floating_3d_coulomb_sticks_then_slides() {
         panic!("{err:?}");
     };
     assert_eq!(body, 0);
-    // in the plane of the base, within 3° of the push
+    // in the plane of the base, along the push to 1e-3 (measured 3.1e-4: the slide's limit
+    // may carry a twist, see the doc)
     let cos = direction[0] * 0.6 + direction[1] * 0.8;
-    assert!(direction[2].abs() < 1e-6, "{direction:?}");
-    assert!(cos >= 3.0_f64.to_radians().cos(), "{direction:?}");
+    assert!(direction[2].abs() < 1e-9, "{direction:?}");
+    assert!(
+        (direction[0] - 0.6).abs() < 1e-3 && (direction[1] - 0.8).abs() < 1e-3,
+        "{direction:?}"
+    );
     // the load along the direction named is the load's component along it (exact integration;
     // the direction's round-off `z` takes a share of `−N`)
     let along = t * cos - n * direction[2];
     assert!((load - along).abs() < 1e-12 * t, "{load} vs {along}");
+    // T − μN to 1e-5 (measured +4.2e-7), and not below it: the largest force left over the
+    // slides is at least the straight slide's (1e-9: the normal reactions' balance)
     let expected = t - MU * n;
     assert!(
-        (imbalance - expected).abs() < 0.03 * expected,
+        (imbalance - expected).abs() < 1e-5 * expected && imbalance > expected - 1e-9,
         "{imbalance} vs {expected}"
     );
 }

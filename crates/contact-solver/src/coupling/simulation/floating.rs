@@ -42,6 +42,7 @@ use contact_laws::ContactLaw;
 use fem_core::{Dim, RigidMode, RigidMotion, Structure};
 
 mod linearized;
+mod slide;
 use linearized::Linearized;
 
 /// Singular values of `J` below this fraction of the largest count as directions no contact
@@ -94,6 +95,15 @@ where
             }
         }
         g
+    }
+
+    /// The candidates outside `active` that the rigid motion `d` (amplitudes) would close.
+    fn closed_by(&self, active: &[usize], g_all: &[f64], d: &[f64]) -> Vec<usize> {
+        let nm = d.len();
+        (0..self.interface.candidates.len())
+            .filter(|i| active.binary_search(i).is_err())
+            .filter(|&i| (0..nm).map(|j| g_all[D * i * nm + j] * d[j]).sum::<f64>() < 0.0)
+            .collect()
     }
 
     /// The reduced solve of a floating structure on `active`, the active set of the cached
@@ -251,6 +261,18 @@ where
             // the free directions are examined once the resisted ones balance to this (the
             // reduced solves' own accuracy may not reach `tol` while a force is left over)
             let balanced = tol.max(RAY_TOL * scale);
+            // in 3D a slipping reaction turns with its slip and no direction is free while the
+            // body slides off: the slide's limit decides (`floating/slide.rs`)
+            if lin.turns && !adhesive {
+                let frozen = Linearized::frozen::<_, D>(&self.cache.w, m, &fl, &sol, &tangent)?;
+                if let Some(d) = frozen.slide_off::<D>(&sol.r, &res, balanced, tol) {
+                    let extend = self.closed_by(active, &g_all, &d);
+                    if !extend.is_empty() {
+                        return Ok(Pass::Extend(extend));
+                    }
+                    return Err(fl.unbalanced(&d, &d));
+                }
+            }
             if merit <= balanced && norm(&free) > tol {
                 // the resisted directions balance: the force left is along free directions;
                 // move rigidly that way until a contact closes (or stops slipping)
@@ -284,13 +306,7 @@ where
                         .unwrap_or(f64::INFINITY);
                     let step = t_root.min(t_event);
                     if !step.is_finite() {
-                        // contacts outside the active set that this motion would close
-                        let extend: Vec<usize> = (0..self.interface.candidates.len())
-                            .filter(|i| active.binary_search(i).is_err())
-                            .filter(|&i| {
-                                (0..nm).map(|j| g_all[D * i * nm + j] * d[j]).sum::<f64>() < 0.0
-                            })
-                            .collect();
+                        let extend = self.closed_by(active, &g_all, &d);
                         if !extend.is_empty() {
                             return Ok(Pass::Extend(extend));
                         }

@@ -17,7 +17,7 @@ use faer::linalg::solvers::Solve;
 
 /// The reduced problem linearised at a solution, on its closed contacts (module docs).
 pub(super) struct Linearized {
-    nm: usize,
+    pub(super) nm: usize,
     /// The reaction directions `E`: per column, `(row, coefficient)` pairs.
     e_cols: Vec<Vec<(usize, f64)>>,
     /// The rows `P` of the held gaps: per row, `(row, coefficient)` pairs (one pair, except
@@ -30,9 +30,11 @@ pub(super) struct Linearized {
     /// Closed contacts.
     closed: Vec<bool>,
     /// Closed contacts that slip (with a tangential unknown).
-    slipping: Vec<bool>,
+    pub(super) slipping: Vec<bool>,
+    /// Whether a slipping reaction turns with its slip (3D; built by [`Self::new`]).
+    pub(super) turns: bool,
     /// `G` row-major.
-    g: Vec<f64>,
+    pub(super) g: Vec<f64>,
 }
 
 impl Linearized {
@@ -43,6 +45,29 @@ impl Linearized {
         sol: &AdhesiveSolution<T>,
         tangent: &[bool],
     ) -> Result<Self, SolverError> {
+        Self::build::<T, D>(w, m, fl, sol, tangent, true)
+    }
+
+    /// [`Self::new`] with every slipping reaction's direction frozen (`r_t/r_n`): what the
+    /// contacts resist once the body slides far (the turning stiffness `μ r_n/|s|` is gone).
+    pub(super) fn frozen<T, const D: usize>(
+        w: &[f64],
+        m: usize,
+        fl: &Floating,
+        sol: &AdhesiveSolution<T>,
+        tangent: &[bool],
+    ) -> Result<Self, SolverError> {
+        Self::build::<T, D>(w, m, fl, sol, tangent, false)
+    }
+
+    fn build<T, const D: usize>(
+        w: &[f64],
+        m: usize,
+        fl: &Floating,
+        sol: &AdhesiveSolution<T>,
+        tangent: &[bool],
+        turning: bool,
+    ) -> Result<Self, SolverError> {
         let na = m / D;
         let nm = fl.nm;
         let mut e_cols = Vec::with_capacity(m);
@@ -52,6 +77,7 @@ impl Linearized {
         let mut compliance = Vec::with_capacity(m);
         let mut closed = vec![false; na];
         let mut slipping = vec![false; na];
+        let mut turns = false;
         for k in 0..na {
             let n = D * k;
             let rn = sol.r[n];
@@ -71,7 +97,9 @@ impl Linearized {
                 e_cols.push(once(n, 1.0, ts.map(|t| (t, ratio(t)))));
                 p_rows.push(vec![(n, 1.0)]);
                 compliance.push(0.0);
-                if let Some((across, c)) = across_slip::<D>(&sol.r[n..n + D], &sol.x[n..n + D]) {
+                let across = across_slip::<D>(&sol.r[n..n + D], &sol.x[n..n + D]);
+                if let Some((across, c)) = across.filter(|_| turning) {
+                    turns = true;
                     let pairs: Vec<(usize, f64)> = across
                         .iter()
                         .enumerate()
@@ -144,6 +172,7 @@ impl Linearized {
             jac,
             closed,
             slipping,
+            turns,
             g: fl.g.clone(),
         })
     }
@@ -280,7 +309,7 @@ fn across_slip<const D: usize>(r: &[f64], x: &[f64]) -> Option<([f64; 2], f64)> 
     }
     let (rt, s) = ([r[1], r[2]], [x[1], x[2]]);
     let size = rt[0].hypot(rt[1]);
-    if !(size > 0.0) {
+    if size == 0.0 || !size.is_finite() {
         return None;
     }
     let across = [-rt[1] / size, rt[0] / size];
