@@ -17,15 +17,20 @@
 //! frictionless: `x_n = 0`),
 //!
 //! ```text
-//! dr/dα = −E (Pᵀ F E)⁻¹ Pᵀ G,    J = Gᵀ dr/dα
+//! dr/dα = −E (Pᵀ F E − C)⁻¹ Pᵀ G,    J = Gᵀ dr/dα
 //! ```
+//! where in 3D a slipping reaction also turns with its slip: across it (the unit tangent `p`
+//! normal to `r_t`) it holds `p · x_t = C β` with the compliance `C = |s|/(κ r_n)` of
+//! `r_t = κ r_n ŝ` (`floating/linearized.rs`; in the plane `C` has no row and the rows above
+//! are all).
 //! The step solves `J d = −(Gᵀ r − e)` on the directions `J` resists (a pseudo-inverse by
 //! SVD), with a backtracking line search on `‖Gᵀ r − e‖`. Along a direction that no closed
 //! contact resists (`J d = 0`: the body is free to move that way), the body moves rigidly
 //! until the first open contact closes, and a little further (the penetration a lone contact
 //! needs to carry the out-of-balance force). If no contact closes that way (or the closed
 //! ones slip), contact cannot hold the body: [`SolverError::Unbalanced`] names the mode and
-//! the force left over. No penalty: the answer meets `Gᵀ r = e` to
+//! the force left over. In 3D the turning reactions resist every direction while the slips are
+//! finite; whether the body slides off is decided by the slide's limit (`floating/slide.rs`). No penalty: the answer meets `Gᵀ r = e` to
 //! [`SimulationTuning::equilibrium_tol`](super::SimulationTuning::equilibrium_tol).
 
 use super::ContactSimulation;
