@@ -10,7 +10,7 @@
 //! ```
 //! (the floating-subdomain form of FETI, Farhat & Roux 1991). Modes are few (at most 3 per
 //! body in the plane, 6 in 3D), so the equation `Gᵀ r(α) = e` is solved by a semismooth Newton method on `α`, where
-//! `r(α)` is the ordinary reduced problem with `q + G α`, solved by [`UzawaSolver`] and warm
+//! `r(α)` is the ordinary reduced problem with `q + G α`, solved by [`UzawaSolver`](crate::local::UzawaSolver) and warm
 //! started. Its Jacobian comes from the contacts' statuses: with `E` the directions the
 //! closed contacts' reactions may take (stick: `e_n`, `e_t`; slip: `e_n + (r_t/r_n) e_t`;
 //! frictionless: `e_n`) and `P` the gaps they hold (stick: `x_n = x_t = 0`; slip or
