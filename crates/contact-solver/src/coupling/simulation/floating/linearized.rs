@@ -326,3 +326,38 @@ fn across_slip<const D: usize>(r: &[f64], x: &[f64]) -> Option<([f64; 2], f64)> 
 fn once(first: usize, a: f64, rest: impl Iterator<Item = (usize, f64)>) -> Vec<(usize, f64)> {
     std::iter::once((first, a)).chain(rest).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::across_slip;
+
+    /// The compliance across a slip against finite differences of the slipping reaction
+    /// `r_t(s) = −μ r_n s/|s|`: moving the slip by `ε p` across it turns the reaction by
+    /// `β = p · dr_t`, and `p · ds = C β` (to `1e-6`: forward differences of a unit-size
+    /// turn, step `1e-7 |s|`). In the plane: no row.
+    #[test]
+    fn across_slip_works() {
+        let (mu, rn) = (0.3, 2.0);
+        let s: [f64; 3] = [0.0, 3e-3, -4e-3];
+        let size = s[1].hypot(s[2]);
+        let rt = |s: [f64; 3]| -> [f64; 2] {
+            let n = s[1].hypot(s[2]);
+            [-mu * rn * s[1] / n, -mu * rn * s[2] / n]
+        };
+        let r0 = rt(s);
+        let r = [rn, r0[0], r0[1]];
+        let (p, c) = across_slip::<3>(&r, &s).unwrap();
+        assert!((p[0] * r0[0] + p[1] * r0[1]).abs() < 1e-15, "p ⟂ r_t");
+        assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-15);
+        let eps = 1e-7 * size;
+        let r1 = rt([s[0], s[1] + eps * p[0], s[2] + eps * p[1]]);
+        let beta = p[0] * (r1[0] - r0[0]) + p[1] * (r1[1] - r0[1]);
+        assert!((eps - c * beta).abs() < 1e-6 * eps, "{eps} vs {}", c * beta);
+        // |s| / (κ r_n), κ = −μ
+        assert!((c + size / (mu * rn)).abs() < 1e-15);
+        // no slip yet: stuck across; in the plane, no row
+        assert_eq!(across_slip::<3>(&r, &[0.0; 3]).map(|x| x.1), Some(0.0));
+        assert!(across_slip::<2>(&[rn, r0[0]], &[0.0, 1.0]).is_none());
+        assert!(across_slip::<3>(&[rn, 0.0, 0.0], &s).is_none());
+    }
+}

@@ -182,3 +182,42 @@ fn limit(f: &[f64], slips: &[(f64, Vec<f64>)], rows: usize) -> Option<Vec<f64>> 
     let gap = size(&left.iter().zip(&c).map(|(a, b)| a - b).collect::<Vec<_>>());
     (gap <= LIMIT_CHECK * size(&c)).then_some(left)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::limit;
+
+    /// A block sliding on a plane: the free amplitudes are the two translations, every contact
+    /// slides at the rigid rate (`A_k = I`), friction `w_k` summing to `μN = 0.9`. Pushed by
+    /// `T = 1.5` along `(0.6, 0.8)`: the force left is `(T − μN) T̂` (to `1e-12`: Newton from
+    /// `c = f` lands on it in one step); pushed by `T = 0.6 < μN`: the contacts hold it.
+    #[test]
+    fn limit_of_a_straight_slide_works() {
+        let identity = vec![1.0, 0.0, 0.0, 1.0];
+        let slips: Vec<(f64, Vec<f64>)> = [0.2, 0.3, 0.4]
+            .iter()
+            .map(|&w| (w, identity.clone()))
+            .collect();
+        let left = limit(&[0.9, 1.2], &slips, 2).expect("slides off");
+        assert!(
+            (left[0] - 0.36).abs() < 1e-12 && (left[1] - 0.48).abs() < 1e-12,
+            "{left:?}"
+        );
+        assert!(limit(&[0.36, 0.48], &slips, 2).is_none());
+    }
+
+    /// A twist joins the translations: two contacts at `±1` across the push, sliding at
+    /// `t ± ω` along it; a moment-free push above their friction slides them straight
+    /// (`ω = 0`), and the force left satisfies its own equation.
+    #[test]
+    fn limit_with_a_twist_works() {
+        // amplitudes (t, ω); each contact's rate along the push is t + y ω, y = ±1
+        let slips = vec![(0.45, vec![1.0, 1.0]), (0.45, vec![1.0, -1.0])];
+        let left = limit(&[1.5, 0.0], &slips, 1).expect("slides off");
+        assert!(
+            (left[0] - 0.6).abs() < 1e-12 && left[1].abs() < 1e-12,
+            "{left:?}"
+        );
+        assert!(limit(&[0.6, 0.0], &slips, 1).is_none());
+    }
+}
