@@ -10,22 +10,27 @@
 //! ```
 //! (the floating-subdomain form of FETI, Farhat & Roux 1991). Modes are few (at most 3 per
 //! body in the plane, 6 in 3D), so the equation `Gᵀ r(α) = e` is solved by a semismooth Newton method on `α`, where
-//! `r(α)` is the ordinary reduced problem with `q + G α`, solved by [`UzawaSolver`] and warm
+//! `r(α)` is the ordinary reduced problem with `q + G α`, solved by [`UzawaSolver`](crate::local::UzawaSolver) and warm
 //! started. Its Jacobian comes from the contacts' statuses: with `E` the directions the
 //! closed contacts' reactions may take (stick: `e_n`, `e_t`; slip: `e_n + (r_t/r_n) e_t`;
 //! frictionless: `e_n`) and `P` the gaps they hold (stick: `x_n = x_t = 0`; slip or
 //! frictionless: `x_n = 0`),
 //!
 //! ```text
-//! dr/dα = −E (Pᵀ F E)⁻¹ Pᵀ G,    J = Gᵀ dr/dα
+//! dr/dα = −E (Pᵀ F E − C)⁻¹ Pᵀ G,    J = Gᵀ dr/dα
 //! ```
+//! where in 3D a slipping reaction also turns with its slip: across it (the unit tangent `p`
+//! normal to `r_t`) it holds `p · x_t = C β` with the compliance `C = |s|/(κ r_n)` of
+//! `r_t = κ r_n ŝ` (`floating/linearized.rs`; in the plane `C` has no row and the rows above
+//! are all).
 //! The step solves `J d = −(Gᵀ r − e)` on the directions `J` resists (a pseudo-inverse by
 //! SVD), with a backtracking line search on `‖Gᵀ r − e‖`. Along a direction that no closed
 //! contact resists (`J d = 0`: the body is free to move that way), the body moves rigidly
 //! until the first open contact closes, and a little further (the penetration a lone contact
 //! needs to carry the out-of-balance force). If no contact closes that way (or the closed
 //! ones slip), contact cannot hold the body: [`SolverError::Unbalanced`] names the mode and
-//! the force left over. No penalty: the answer meets `Gᵀ r = e` to
+//! the force left over. In 3D the turning reactions resist every direction while the slips are
+//! finite; whether the body slides off is decided by the slide's limit (`floating/slide.rs`). No penalty: the answer meets `Gᵀ r = e` to
 //! [`SimulationTuning::equilibrium_tol`](super::SimulationTuning::equilibrium_tol).
 
 use super::ContactSimulation;
@@ -38,10 +43,12 @@ use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
 use crate::local::norm;
-use contact_laws::{ContactLaw, ContactStatus};
-use faer::Mat;
-use faer::linalg::solvers::Solve;
+use contact_laws::ContactLaw;
 use fem_core::{Dim, RigidMode, RigidMotion, Structure};
+
+mod linearized;
+mod slide;
+use linearized::Linearized;
 
 /// Singular values of `J` below this fraction of the largest count as directions no contact
 /// resists.
@@ -93,6 +100,15 @@ where
             }
         }
         g
+    }
+
+    /// The candidates outside `active` that the rigid motion `d` (amplitudes) would close.
+    fn closed_by(&self, active: &[usize], g_all: &[f64], d: &[f64]) -> Vec<usize> {
+        let nm = d.len();
+        (0..self.interface.candidates.len())
+            .filter(|i| active.binary_search(i).is_err())
+            .filter(|&i| (0..nm).map(|j| g_all[D * i * nm + j] * d[j]).sum::<f64>() < 0.0)
+            .collect()
     }
 
     /// The reduced solve of a floating structure on `active`, the active set of the cached
@@ -250,6 +266,18 @@ where
             // the free directions are examined once the resisted ones balance to this (the
             // reduced solves' own accuracy may not reach `tol` while a force is left over)
             let balanced = tol.max(RAY_TOL * scale);
+            // in 3D a slipping reaction turns with its slip and no direction is free while the
+            // body slides off: the slide's limit decides (`floating/slide.rs`)
+            if lin.turns && !adhesive {
+                let frozen = Linearized::frozen::<_, D>(&self.cache.w, m, &fl, &sol, &tangent)?;
+                if let Some(d) = frozen.slide_off::<D>(&sol.r, &res, balanced, tol) {
+                    let extend = self.closed_by(active, &g_all, &d);
+                    if !extend.is_empty() {
+                        return Ok(Pass::Extend(extend));
+                    }
+                    return Err(fl.unbalanced(&d, &d));
+                }
+            }
             if merit <= balanced && norm(&free) > tol {
                 // the resisted directions balance: the force left is along free directions;
                 // move rigidly that way until a contact closes (or stops slipping)
@@ -283,13 +311,7 @@ where
                         .unwrap_or(f64::INFINITY);
                     let step = t_root.min(t_event);
                     if !step.is_finite() {
-                        // contacts outside the active set that this motion would close
-                        let extend: Vec<usize> = (0..self.interface.candidates.len())
-                            .filter(|i| active.binary_search(i).is_err())
-                            .filter(|&i| {
-                                (0..nm).map(|j| g_all[D * i * nm + j] * d[j]).sum::<f64>() < 0.0
-                            })
-                            .collect();
+                        let extend = self.closed_by(active, &g_all, &d);
                         if !extend.is_empty() {
                             return Ok(Pass::Extend(extend));
                         }
@@ -508,233 +530,4 @@ impl Floating {
             load,
         })
     }
-}
-
-/// The reduced problem linearised at a solution, on its closed contacts (module docs).
-struct Linearized {
-    nm: usize,
-    /// The reaction directions `E`: per column, `(row, coefficient)` pairs.
-    e_cols: Vec<Vec<(usize, f64)>>,
-    /// The rows `P` of the held gaps.
-    p_rows: Vec<usize>,
-    /// `Z = (Pᵀ F E)⁻¹ Pᵀ G` (`p × nm`).
-    z: Mat<f64>,
-    /// `J = −Gᵀ E Z`.
-    jac: Mat<f64>,
-    /// Closed contacts.
-    closed: Vec<bool>,
-    /// Closed contacts that slip (with a tangential unknown).
-    slipping: Vec<bool>,
-    /// `G` row-major.
-    g: Vec<f64>,
-}
-
-impl Linearized {
-    fn new<T, const D: usize>(
-        w: &[f64],
-        m: usize,
-        fl: &Floating,
-        sol: &AdhesiveSolution<T>,
-        tangent: &[bool],
-    ) -> Result<Self, SolverError> {
-        let na = m / D;
-        let nm = fl.nm;
-        let mut e_cols = Vec::with_capacity(m);
-        let mut p_rows = Vec::with_capacity(m);
-        let mut closed = vec![false; na];
-        let mut slipping = vec![false; na];
-        for k in 0..na {
-            let n = D * k;
-            let rn = sol.r[n];
-            let status = sol.report.statuses[k];
-            if status == ContactStatus::Separation && rn <= 0.0 {
-                continue;
-            }
-            closed[k] = true;
-            let ts = n + 1..n + D;
-            if !tangent[k] {
-                e_cols.push(once(n, 1.0, ts.map(|t| (t, 0.0))));
-                p_rows.push(n);
-            } else if status == ContactStatus::Slip {
-                slipping[k] = true;
-                let ratio = |t: usize| if rn > 0.0 { sol.r[t] / rn } else { 0.0 };
-                e_cols.push(once(n, 1.0, ts.map(|t| (t, ratio(t)))));
-                p_rows.push(n);
-            } else {
-                e_cols.push(once(n, 1.0, ts.clone().map(|t| (t, 0.0))));
-                p_rows.push(n);
-                for t in ts {
-                    e_cols.push(vec![(t, 1.0), (n, 0.0)]);
-                    p_rows.push(t);
-                }
-            }
-        }
-        let p = p_rows.len();
-        let fe = |row: usize, c: usize| -> f64 {
-            e_cols[c]
-                .iter()
-                .map(|&(col, a)| if a == 0.0 { 0.0 } else { w[row * m + col] * a })
-                .sum()
-        };
-        let a = Mat::<f64>::from_fn(p, p, |i, c| fe(p_rows[i], c));
-        let b = Mat::<f64>::from_fn(p, nm, |i, j| fl.g[p_rows[i] * nm + j]);
-        let z = if p == 0 {
-            Mat::zeros(0, nm)
-        } else {
-            a.partial_piv_lu().solve(&b)
-        };
-        if z.col_iter().any(|c| c.iter().any(|v| !v.is_finite())) {
-            return Err(SolverError::Unsupported(
-                "floating structure: the closed contacts' flexibility is singular, the rigid \
-                 motion cannot be linearised"
-                    .into(),
-            ));
-        }
-        // J = −(Gᵀ E) Z
-        let mut jac = Mat::<f64>::zeros(nm, nm);
-        for (c, col) in e_cols.iter().enumerate() {
-            for i in 0..nm {
-                let ge: f64 = col.iter().map(|&(row, a)| fl.g[row * nm + i] * a).sum();
-                if ge != 0.0 {
-                    for j in 0..nm {
-                        jac[(i, j)] -= ge * z[(c, j)];
-                    }
-                }
-            }
-        }
-        Ok(Self {
-            nm,
-            e_cols,
-            p_rows,
-            z,
-            jac,
-            closed,
-            slipping,
-            g: fl.g.clone(),
-        })
-    }
-
-    /// The split of the amplitudes into the directions the closed contacts resist (`V_S`,
-    /// right singular vectors of `J` with a non-zero singular value) and the free ones (`V_N`).
-    /// Returns the Newton step on the resisted ones, `d = V_S (V_Sᵀ J V_S)⁻¹ (−V_Sᵀ res)`
-    /// (each resisted direction balanced, whatever is left along the free ones), the projector
-    /// `V_S` (`nm × s`, for the line search's merit `‖V_Sᵀ res‖`) and the free part of the
-    /// force, `V_N V_Nᵀ res`.
-    fn directions(&self, res: &[f64]) -> (Vec<f64>, Mat<f64>, Vec<f64>) {
-        let nm = self.nm;
-        let Ok(svd) = self.jac.svd() else {
-            return (vec![0.0; nm], Mat::zeros(nm, 0), res.to_vec());
-        };
-        let (s, v) = (svd.S().column_vector(), svd.V());
-        let top = if nm > 0 { s[0] } else { 0.0 };
-        let stiff: Vec<usize> = (0..nm)
-            .filter(|&c| top > 0.0 && s[c] > NULL_TOL * top)
-            .collect();
-        let vs = Mat::<f64>::from_fn(nm, stiff.len(), |i, c| v[(i, stiff[c])]);
-        let mut free = res.to_vec();
-        for c in 0..vs.ncols() {
-            let d: f64 = (0..nm).map(|i| vs[(i, c)] * res[i]).sum();
-            for i in 0..nm {
-                free[i] -= d * vs[(i, c)];
-            }
-        }
-        let mut newton = vec![0.0; nm];
-        if vs.ncols() > 0 {
-            let reduced = vs.transpose() * &self.jac * &vs;
-            let rhs = Mat::<f64>::from_fn(vs.ncols(), 1, |c, _| {
-                -(0..nm).map(|i| vs[(i, c)] * res[i]).sum::<f64>()
-            });
-            let y = reduced.partial_piv_lu().solve(&rhs);
-            if (0..vs.ncols()).all(|c| y[(c, 0)].is_finite()) {
-                for c in 0..vs.ncols() {
-                    for i in 0..nm {
-                        newton[i] += vs[(i, c)] * y[(c, 0)];
-                    }
-                }
-            }
-        }
-        (newton, vs, free)
-    }
-
-    /// How far to move along the free direction `d` before a contact changes what it resists:
-    /// an open contact closes (its gap reaches 0) or a slipping one sticks (its slip increment
-    /// returns to 0), plus the gap or slip a lone contact needs to carry the force; `None` if
-    /// none does.
-    fn ray_length<const D: usize>(
-        &self,
-        d: &[f64],
-        x: &[f64],
-        res: &[f64],
-        w: &[f64],
-        m: usize,
-    ) -> Option<f64> {
-        let nm = self.nm;
-        // dx = G d − F E Z d
-        let zd: Vec<f64> = (0..self.p_rows.len())
-            .map(|c| (0..nm).map(|j| self.z[(c, j)] * d[j]).sum())
-            .collect();
-        let dx = |row: usize| -> f64 {
-            let mut v: f64 = (0..nm).map(|j| self.g[row * nm + j] * d[j]).sum();
-            for (c, col) in self.e_cols.iter().enumerate() {
-                for &(r, a) in col {
-                    if a != 0.0 {
-                        v -= w[row * m + r] * a * zd[c];
-                    }
-                }
-            }
-            v
-        };
-        let mut best: Option<(f64, usize, f64)> = None;
-        // rates below this are round-off of a direction that does not move the contact
-        let tiny = 1e-9 * norm(d);
-        let mut consider = |t: f64, row: usize, rate: f64| {
-            if best.is_none_or(|(b, _, _)| t < b) {
-                best = Some((t, row, rate));
-            }
-        };
-        for k in 0..self.closed.len() {
-            let n = D * k;
-            if !self.closed[k] {
-                let rate = dx(n);
-                if rate < -tiny {
-                    consider(x[n].max(0.0) / -rate, n, rate);
-                }
-            } else if self.slipping[k] && D == 2 {
-                let rate = dx(n + 1);
-                if rate.abs() > tiny && rate * x[n + 1] < 0.0 {
-                    consider(x[n + 1].abs() / rate.abs(), n + 1, rate);
-                }
-            } else if self.slipping[k] {
-                // the slip shrinks along the ray: it reaches its closest to 0 at
-                // t = −(x_t · ẋ_t) / |ẋ_t|² (the rate named is the slip's speed)
-                let (mut along, mut speed2) = (0.0, 0.0);
-                for (t, xt) in x.iter().enumerate().take(n + D).skip(n + 1) {
-                    let rate = dx(t);
-                    along += rate * xt;
-                    speed2 += rate * rate;
-                }
-                let speed = speed2.sqrt();
-                if speed > tiny && along < 0.0 {
-                    consider(-along / speed2, n + 1, speed);
-                }
-            }
-        }
-        let (t, row, rate) = best?;
-        // the force along d̂ and the gap (or slip) one contact needs to carry it:
-        // extra = W_rr f / (|G_r d̂| |dx_r/dt|)
-        let dn = norm(d);
-        let force = res.iter().zip(d).map(|(a, b)| a * b).sum::<f64>().abs() / dn;
-        let lever = ((0..nm).map(|j| self.g[row * nm + j] * d[j]).sum::<f64>() / dn).abs();
-        let extra = if lever > 0.0 {
-            w[row * m + row] * force / (lever * rate.abs())
-        } else {
-            0.0
-        };
-        Some(t + extra)
-    }
-}
-
-/// A reaction direction: `(first, a)` then the rest.
-fn once(first: usize, a: f64, rest: impl Iterator<Item = (usize, f64)>) -> Vec<(usize, f64)> {
-    std::iter::once((first, a)).chain(rest).collect()
 }
