@@ -129,6 +129,24 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
     } = plan;
     let (idealization, _) = model.options;
     let mesh = mesh::build(&KeyPath::root().key("mesh"), mesh, Some(idealization))?;
+    let mut study = custom_study(loaded, mesh, model, functions, phases, contact)?;
+    outputs::check_outputs(scene, &mut study)?;
+    Ok(study)
+}
+
+/// The study of a scene described key by key from its mesh and validated plans (the model,
+/// the zones and the simulation built), before its `[output]` and plots are checked.
+fn custom_study<const D: usize>(
+    loaded: &Loaded,
+    mesh: fem_core::Mesh<D>,
+    model: model::ModelPlan<D>,
+    functions: std::collections::BTreeMap<String, TimeFunction>,
+    phases: Vec<Phase>,
+    contact: contact::ContactPlan<D>,
+) -> CliResult<Study<D>>
+where
+    fem_core::Dim<D>: StudyDim<D> + SceneDim<D>,
+{
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
     let (sim, zone_laws, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let custom = Custom {
@@ -138,25 +156,7 @@ fn build_custom(loaded: &Loaded, plan: Plan) -> CliResult<Study> {
         functions,
         phase_laws: contact.phase_laws,
     };
-    let zones = (zone_laws, contact.adhesive, contact.friction);
-    let mut study = custom_study(loaded, custom, phases, zones, warnings);
-    outputs::check_outputs(scene, &mut study)?;
-    Ok(study)
-}
-
-/// The study of a scene described key by key, before its `[output]` and plots are checked:
-/// `zones` are the zones' law names and how many have adhesion and friction.
-fn custom_study<const D: usize>(
-    loaded: &Loaded,
-    custom: Custom<D>,
-    phases: Vec<Phase>,
-    (zone_laws, adhesive_zones, friction_zones): (Vec<String>, usize, usize),
-    warnings: Vec<String>,
-) -> Study<D>
-where
-    fem_core::Dim<D>: StudyDim<D>,
-{
-    Study {
+    Ok(Study {
         title: title(loaded),
         units: loaded.scene.units.clone().unwrap_or_default(),
         zone_names: custom.sim.zones().iter().map(|z| z.name.clone()).collect(),
@@ -165,11 +165,11 @@ where
         output: loaded.scene.output.clone(),
         plots: Vec::new(),
         zone_laws,
-        adhesive_zones,
-        friction_zones,
+        adhesive_zones: contact.adhesive,
+        friction_zones: contact.friction,
         warnings,
         hertz: None,
-    }
+    })
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@
 use super::Loaded;
 use super::outputs::{check_file_count, check_output_table, check_plots};
 use super::phases::{phases_of, time_functions};
-use super::study::{Custom, Study};
+use super::study::Study;
 use super::{contact, mesh, model};
 use crate::error::{CliError, CliResult, KeyPath};
 use crate::scene::Scene;
@@ -62,18 +62,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<Study<3>> {
     refuse_unsupported(scene)?;
 
     let mesh = mesh::build(&mp, mesh_plan, None)?;
-    let (model, supports, loads) = model::build(mesh, plan, &functions, &phases)?;
-    let (sim, _, warnings) = contact::build(model, &contact.zones, contact.settings)?;
-    let custom = Custom {
-        sim,
-        supports,
-        loads,
-        functions,
-        phase_laws: contact.phase_laws,
-    };
-    let laws = contact.zones.iter().map(|z| z.law_name.into()).collect();
-    let zones = (laws, contact.adhesive, contact.friction);
-    let mut study = super::custom_study(loaded, custom, phases, zones, warnings);
+    let mut study = super::custom_study(loaded, mesh, plan, functions, phases, contact)?;
     study.hertz = super::hertz::check(scene, &study.zone_names, 3, |e, nu| e / (1.0 - nu * nu))?;
     study.plots = check_plots(&scene.plots, &study.zone_names, None)?;
     let candidates = study.candidates();
