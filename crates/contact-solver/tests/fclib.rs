@@ -513,7 +513,10 @@ fn issue_37_non_symmetric_w_is_read_as_given() {
         let uzawa = UzawaSettings::default().with_algorithm(Algorithm::Uzawa);
         assert!(matches!(
             solve_coulomb(&back, &uzawa),
-            Err(SolverError::NeedsSymmetricW { algorithm: "Uzawa", .. })
+            Err(SolverError::NeedsSymmetricW {
+                algorithm: "Uzawa",
+                ..
+            })
         ));
     }
 }

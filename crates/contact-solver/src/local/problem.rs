@@ -714,4 +714,55 @@ mod tests {
             Err(SolverError::InvalidSetting { what: "dim", .. })
         ));
     }
+
+    #[test]
+    fn asymmetry_keep_works() {
+        // a block [1 3; −3 1]: skew off-diagonal, symmetric part I (positive definite)
+        let w = vec![1.0, 3.0, -3.0, 1.0];
+        let p = ReducedProblem::with_asymmetry(
+            2,
+            w.clone(),
+            vec![-1.0, 0.0],
+            vec![0.2],
+            Asymmetry::Keep,
+        )
+        .unwrap();
+        assert!(!p.is_symmetric() && p.kept_asymmetry() == 2.0 && p.asymmetry() == 0.0);
+        assert_eq!(p.w_dense(), Some(&w[..]));
+        // the columns' storage is Wᵀ: its row 0 is W's column 0
+        let mut x = [0.0; 2];
+        p.columns().axpy_row(0, 1.0, &mut x);
+        assert_eq!(x, [1.0, -3.0]);
+        // x = W r + q reads the rows of W
+        p.displacement_into(&[1.0, 0.0], &mut x);
+        assert_eq!(x, [0.0, -3.0]);
+        // a restricted and a rescaled copy keep it
+        assert!(!p.restricted(&[0]).is_symmetric());
+        assert!(!p.rescaled(2.0, 0.5).unwrap().is_symmetric());
+        // refused by the other policies, naming the pair
+        for policy in [Asymmetry::Refuse, Asymmetry::default()] {
+            let e =
+                ReducedProblem::with_asymmetry(2, w.clone(), vec![-1.0, 0.0], vec![0.2], policy);
+            assert!(matches!(
+                e,
+                Err(SolverError::NotSymmetric { row: 0, col: 1, .. })
+            ));
+        }
+    }
+
+    #[test]
+    fn asymmetry_keep_rejects_indefinite_symmetric_part() {
+        // [1 3; 1 1]: its symmetric part [1 2; 2 1] is indefinite
+        let w = vec![1.0, 3.0, 1.0, 1.0];
+        let e = ReducedProblem::with_asymmetry(2, w, vec![-1.0, 0.0], vec![0.2], Asymmetry::Keep);
+        assert_eq!(e, Err(SolverError::NotPositiveDefinite { contact: 0 }));
+        let e = ReducedProblem::with_asymmetry(
+            2,
+            vec![1.0, 0.0, 0.0, 1.0],
+            vec![-1.0, 0.0],
+            vec![0.2],
+            Asymmetry::Symmetrise { tolerance: -1.0 },
+        );
+        assert!(matches!(e, Err(SolverError::InvalidSetting { .. })));
+    }
 }

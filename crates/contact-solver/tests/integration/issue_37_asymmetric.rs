@@ -320,7 +320,11 @@ fn issue_37_kept_asymmetric_agrees_with_siconos_nsgs() {
             .zip(&r_siconos)
             .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()))
     };
-    for algorithm in [Algorithm::AndersonGaussSeidel, Algorithm::Newton, Algorithm::Auto] {
+    for algorithm in [
+        Algorithm::AndersonGaussSeidel,
+        Algorithm::Newton,
+        Algorithm::Auto,
+    ] {
         let t = std::time::Instant::now();
         let sol = solve_coulomb(&p, &settings(algorithm)).unwrap();
         let ms = t.elapsed().as_secs_f64() * 1e3;
@@ -340,5 +344,8 @@ fn issue_37_kept_asymmetric_agrees_with_siconos_nsgs() {
     )
     .unwrap();
     let g = gap(&solve_coulomb(&sym, &settings(Algorithm::Newton)).unwrap().r);
-    assert!(g > 1e-5 * scale, "the symmetrised answer is {g:e} from Siconos'");
+    assert!(
+        g > 1e-5 * scale,
+        "the symmetrised answer is {g:e} from Siconos'"
+    );
 }
