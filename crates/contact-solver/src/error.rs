@@ -51,9 +51,11 @@ pub enum SolverError {
         /// The bound it must stay below (`m`).
         bound: usize,
     },
-    /// The flexibility matrix `W` is not symmetric to the relative tolerance `1e-12·max|W|`.
+    /// The flexibility matrix `W` is not symmetric to the tolerance of its
+    /// [`Asymmetry`](crate::Asymmetry) policy (`1e-6·max|W|` by default).
     #[error(
-        "W is not symmetric: |W[{row}][{col}] - W[{col}][{row}]| = {difference:e} exceeds {tolerance:e}"
+        "W is not symmetric: |W[{row}][{col}] - W[{col}][{row}]| = {difference:e} exceeds \
+         {tolerance:e} (to solve it as given, build it with Asymmetry::Keep)"
     )]
     NotSymmetric {
         /// Row of the worst entry.
@@ -64,6 +66,21 @@ pub enum SolverError {
         difference: f64,
         /// The tolerance it exceeds.
         tolerance: f64,
+    },
+    /// The algorithm asked for needs a symmetric `W` (its step is a projected gradient of the
+    /// energy `½ rᵀ W r + qᵀ r`), and the problem keeps a non-symmetric one
+    /// ([`Asymmetry::Keep`](crate::Asymmetry::Keep)).
+    #[error(
+        "the algorithm {algorithm} needs a symmetric W, and this problem keeps a W whose \
+         asymmetry is {asymmetry:e} of its scale: use AndersonGaussSeidel, GaussSeidel, Newton, \
+         ClassicRccm or Auto, which solve it as given"
+    )]
+    NeedsSymmetricW {
+        /// The algorithm refused (`"Uzawa"`, `"AndersonUzawa"`).
+        algorithm: &'static str,
+        /// The relative asymmetry of the kept `W`
+        /// ([`ReducedProblem::kept_asymmetry`](crate::ReducedProblem::kept_asymmetry)).
+        asymmetry: f64,
     },
     /// A 2×2 diagonal block of `W` is not positive definite, so `W` is not SPD (a contact with
     /// no flexibility, or a rigid-body mode).
@@ -384,6 +401,14 @@ impl fmt::Debug for SolverError {
                 .field("col", col)
                 .field("difference", difference)
                 .field("tolerance", tolerance)
+                .finish(),
+            Self::NeedsSymmetricW {
+                algorithm,
+                asymmetry,
+            } => f
+                .debug_struct("NeedsSymmetricW")
+                .field("algorithm", algorithm)
+                .field("asymmetry", asymmetry)
                 .finish(),
             Self::NotPositiveDefinite { contact } => f
                 .debug_struct("NotPositiveDefinite")

@@ -49,8 +49,8 @@ pub mod local;
 pub use contact_laws;
 pub use error::SolverError;
 pub use local::{
-    Algorithm, CsrMatrix, ReducedProblem, Solution, UzawaReport, UzawaSettings, UzawaSolver,
-    UzawaTuning, WView, solve_coulomb,
+    Algorithm, Asymmetry, CsrMatrix, ReducedProblem, Solution, UzawaReport, UzawaSettings,
+    UzawaSolver, UzawaTuning, WView, solve_coulomb,
 };
 
 #[cfg(feature = "fe")]

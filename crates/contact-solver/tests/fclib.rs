@@ -473,3 +473,50 @@ fn issue_14_sparse_problem_round_trips_sparse() {
         assert_eq!(back.solution.map(|s| s.r), Some(sol.r.clone()));
     }
 }
+
+/// Issue 37: an FCLIB file written by a multibody code holds a non-symmetric `W`; the reader
+/// keeps it as given (not symmetrised, not refused), dense and sparse, and the answer solves
+/// the problem in the file: `x = W r + q` recomputed from the rows of the file's `W` gives a
+/// natural residual within `2 × tol` (the solver's own check on a kept `W`).
+#[test]
+fn issue_37_non_symmetric_w_is_read_as_given() {
+    use contact_solver::{Algorithm, Asymmetry};
+    let base = random_problem_in(3, 6, 37);
+    let m = base.size();
+    let mut w = base.w_dense().unwrap().to_vec();
+    // a skew part of 1e-3 of the scale on every pair
+    let s = w.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    for i in 0..m {
+        for j in (i + 1)..m {
+            let k = 1e-3 * s * (((i * 7 + j * 3) % 11) as f64 / 5.0 - 1.0);
+            w[i * m + j] += k;
+            w[j * m + i] -= k;
+        }
+    }
+    let (q, mu) = (base.q().to_vec(), base.mu().to_vec());
+    let p = ReducedProblem::with_asymmetry(3, w, q, mu, Asymmetry::Keep).unwrap();
+    assert!(!p.is_symmetric());
+    for (name, form) in [
+        ("issue_37_csr.hdf5", SparseForm::CompressedRow),
+        ("issue_37_triplets.hdf5", SparseForm::Triplet),
+    ] {
+        let path = temp(name);
+        write_fclib_as(&path, &p, None, form).unwrap();
+        let back = read_fclib(&path).unwrap().problem;
+        assert!(!back.is_symmetric(), "{form:?}");
+        assert_eq!(back.kept_asymmetry(), p.kept_asymmetry(), "{form:?}");
+        assert_eq!(bits(back.w_dense().unwrap()), bits(p.w_dense().unwrap()));
+        let st = UzawaSettings::default().with_algorithm(Algorithm::Auto);
+        let sol = solve_coulomb(&back, &st).unwrap();
+        assert!(sol.report.residual <= 2.0 * st.tol, "{form:?}");
+        // a Uzawa variant says it needs symmetry
+        let uzawa = UzawaSettings::default().with_algorithm(Algorithm::Uzawa);
+        assert!(matches!(
+            solve_coulomb(&back, &uzawa),
+            Err(SolverError::NeedsSymmetricW {
+                algorithm: "Uzawa",
+                ..
+            })
+        ));
+    }
+}

@@ -212,7 +212,7 @@ fn sor_sweep(
         }
         d2 += d * d;
         r[k] = new;
-        // x += W[:, k] Δr_k, read as row k (W is symmetric).
+        // x += W[:, k] Δr_k, read as row k of `columns`.
         w.axpy_row(k, d, x);
     }
     d2.sqrt() / r2.sqrt().max(f64::MIN_POSITIVE)
@@ -284,7 +284,8 @@ impl ClassicScratch {
         let nc = problem.contact_count();
         let m = problem.size();
         let d = DT + 1;
-        let w = problem.delassus();
+        // rows of `columns` are the columns of W (W itself unless a non-symmetric W is kept)
+        let w = problem.columns();
         friction_coefficients_into(laws, states, nc, &mut self.mu_bar)?;
         let frictional = self.mu_bar.iter().any(|&mu_bar| mu_bar > 0.0);
         let tangential = |k: &usize| !k.is_multiple_of(d);

@@ -277,6 +277,21 @@ impl CsrMatrix {
         (worst, row, col, diff)
     }
 
+    /// `Wᵀ` on the same pattern (the pattern is symmetric, so only the values move).
+    pub(crate) fn transposed(&self) -> Self {
+        let mut t = self.clone();
+        for i in 0..self.m {
+            for p in self.row_ptr[i]..self.row_ptr[i + 1] {
+                let j = self.col[p] as usize;
+                let q = self
+                    .position(j, i)
+                    .unwrap_or_else(|| unreachable!("the pattern is symmetric"));
+                t.val[q] = self.val[p];
+            }
+        }
+        t
+    }
+
     /// Replaces `W` by `(W + Wᵀ)/2`, in place (the pattern is symmetric).
     pub(crate) fn symmetrize(&mut self) {
         for i in 0..self.m {

@@ -9,6 +9,11 @@
 //! ```
 //! Each is `O(m)` per row on a dense `W` and `O(stored entries of the row)` on a sparse one,
 //! with the same arithmetic in the same order on the stored columns (see [`super::csr`]).
+//!
+//! The algorithms' column updates (`x += W[:, k] Δr_k`, `W v`) call the row operations on
+//! `ReducedProblem::columns`: `W` itself when it is symmetric, the stored `Wᵀ` when a
+//! non-symmetric `W` is kept ([`Asymmetry::Keep`](super::Asymmetry::Keep)), whose rows are the
+//! columns of `W`; `x = W r + q` always reads the rows of `W`.
 
 use super::csr::CsrMatrix;
 
@@ -64,6 +69,23 @@ impl Delassus {
                 w: w.iter().map(|v| v * s).collect(),
             },
             Self::Sparse(a) => Self::Sparse(a.scaled(s)),
+        }
+    }
+
+    /// `Wᵀ` in the same storage (the columns of a `W` kept non-symmetric, read as rows).
+    pub(crate) fn transposed(&self) -> Self {
+        match self {
+            Self::Dense { m, w } => {
+                let m = *m;
+                let mut t = vec![0.0; w.len()];
+                for i in 0..m {
+                    for j in 0..m {
+                        t[j * m + i] = w[i * m + j];
+                    }
+                }
+                Self::Dense { m, w: t }
+            }
+            Self::Sparse(a) => Self::Sparse(a.transposed()),
         }
     }
 
@@ -162,7 +184,8 @@ impl Delassus {
         }
     }
 
-    /// `out = W v`, skipping the zero entries of `v` (`W` symmetric: rows are columns).
+    /// `out = Σ_j v_j (row j)`: `W v` when the rows are the columns of `W` (`W` symmetric, or
+    /// the kept `Wᵀ`), skipping the zero entries of `v`.
     pub(crate) fn mul_into(&self, v: &[f64], out: &mut [f64]) {
         out.iter_mut().for_each(|a| *a = 0.0);
         for (j, &vj) in v.iter().enumerate() {

@@ -50,6 +50,7 @@ mod sparse;
 
 pub use sparse::{MAX_DENSE_ENTRIES, SparseForm};
 
+use super::asymmetry::Asymmetry;
 use super::delassus::WView;
 use super::problem::ReducedProblem;
 use crate::error::SolverError;
@@ -106,8 +107,10 @@ pub struct FclibProblem {
 /// [`SolverError::Fclib`] naming the group or dataset for a file that cannot be opened, a
 /// missing group or dataset, a `spacedim` other than 2 or 3, inconsistent sizes, an index out
 /// of range, a value that is not finite, a singular `M`, or a mixed problem; then those of
-/// [`ReducedProblem::new`] (an asymmetric `W`, a block that is not positive definite, a
-/// negative `μ`).
+/// [`ReducedProblem::with_asymmetry`] with [`Asymmetry::Keep`] (a diagonal block that is not
+/// positive definite, a negative `μ`): a non-symmetric `W`, as multibody codes write them, is
+/// kept as given (not symmetrised: [`ReducedProblem::is_symmetric`] says which), so the
+/// answer is the one of the problem in the file.
 ///
 /// # Examples
 /// ```
@@ -225,7 +228,8 @@ fn read_local(
             cols.push(c);
             vals.push(v);
         }
-        ReducedProblem::from_triplets(spacedim, &rows, &cols, &vals, q, mu)?
+        let keep = Asymmetry::Keep;
+        ReducedProblem::from_triplets_with_asymmetry(spacedim, &rows, &cols, &vals, q, mu, keep)?
     } else {
         let w = w_raw.to_dense("fclib_local/W").map_err(|r| f.error(r))?;
         build_problem(f, spacedim, w, q, mu)?
@@ -273,7 +277,7 @@ fn build_problem(
     q: Vec<f64>,
     mu: Vec<f64>,
 ) -> Result<ReducedProblem, SolverError> {
-    ReducedProblem::with_dimension(spacedim, w, q, mu)
+    ReducedProblem::with_asymmetry(spacedim, w, q, mu, Asymmetry::Keep)
 }
 
 /// The solution group `g` (at `at`): `r` (required), `u` and `v` (optional).

@@ -23,7 +23,8 @@ impl Sweeps {
         r: &mut [f64],
         x: &mut [f64],
     ) -> f64 {
-        let w = problem.delassus();
+        // rows of `columns` are the columns of W (W itself unless a non-symmetric W is kept)
+        let w = problem.columns();
         let mut dr2 = 0.0;
         for i in 0..problem.contact_count() {
             let (law, s) = (pick(laws, i), pick(states, i));
@@ -66,7 +67,7 @@ impl Sweeps {
             }
             dr2 += d.dot(&d);
             set_local(r, i, &(ri + d));
-            // x += W[:, d i + k] Δr_k, read as rows (W is symmetric).
+            // x += W[:, d i + k] Δr_k, read as rows of `columns`.
             let b = (DT + 1) * i;
             if DT == 1 {
                 w.axpy_rows2(b, [d.n, d.t[0]], x);

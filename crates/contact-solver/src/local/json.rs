@@ -11,6 +11,7 @@
 //! "j", "v"}"), and serde_json's line and column. Unknown keys are refused with the list of
 //! keys there are (no writer of this project, `to_json`, the examples or `shared/peers/`, adds
 //! any; a typo such as `"Mu"` would otherwise surface as a missing `mu` at best).
+use super::asymmetry::Asymmetry;
 use super::delassus::WView;
 use super::problem::ReducedProblem;
 use crate::error::{Cause, SolverError};
@@ -379,6 +380,27 @@ impl ReducedProblem {
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn from_json(text: &str) -> Result<Self, SolverError> {
+        Self::from_json_with_asymmetry(text, Asymmetry::default())
+    }
+
+    /// As [`from_json`](Self::from_json), with the [`Asymmetry`] policy `asymmetry`
+    /// ([`Asymmetry::Keep`]: a non-symmetric `W`, as a multibody code exports it, is solved as
+    /// given; see [`with_asymmetry`](Self::with_asymmetry)).
+    ///
+    /// # Errors
+    /// As for [`from_json`](Self::from_json), the policy's as for
+    /// [`with_asymmetry`](Self::with_asymmetry).
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{Asymmetry, ReducedProblem};
+    /// let text = r#"{"W": [[1, 0], [0.5, 1]], "q": [-1, 0], "mu": [0.3]}"#;
+    /// assert!(ReducedProblem::from_json(text).is_err());
+    /// let p = ReducedProblem::from_json_with_asymmetry(text, Asymmetry::Keep)?;
+    /// assert!(!p.is_symmetric() && p.w_dense() == Some(&[1.0, 0.0, 0.5, 1.0][..]));
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn from_json_with_asymmetry(text: &str, asymmetry: Asymmetry) -> Result<Self, SolverError> {
         let j = read(text)?;
         let dim = j.dim.map_or(2, |d| d.0);
         let (q, mu) = (j.q.0, j.mu.0);
@@ -404,7 +426,7 @@ impl ReducedProblem {
                         ),
                     });
                 }
-                return Self::from_triplets(dim, &i, &jj, &v, q, mu);
+                return Self::from_triplets_with_asymmetry(dim, &i, &jj, &v, q, mu, asymmetry);
             }
             MatrixIn::Flat(w) => {
                 let m = q.len();
@@ -442,7 +464,7 @@ impl ReducedProblem {
                 rows.concat()
             }
         };
-        Self::with_dimension(dim, w, q, mu)
+        Self::with_asymmetry(dim, w, q, mu, asymmetry)
     }
 
     /// Writes the problem as JSON `{"dim": d, "W": ..., "q": [...], "mu": [...]}`, `W` flat

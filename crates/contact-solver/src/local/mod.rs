@@ -142,6 +142,12 @@
 //!   `DEFAULT_ASYMMETRY_TOL` (1e-6, or [`ReducedProblem::with_asymmetry_tolerance`]) and
 //!   reports it ([`UzawaReport::asymmetry`]); beyond, a typed error gives the entry and the
 //!   difference.
+//! - **Asymmetry of the model.** With [`Asymmetry::Keep`]
+//!   ([`ReducedProblem::with_asymmetry`], the FCLIB reader) a non-symmetric `W` is solved as
+//!   given: the Gauss–Seidel sweeps (and Anderson on them), the classical split and Newton
+//!   read its columns from a stored `Wᵀ`; the Uzawa variants refuse it
+//!   ([`SolverError::NeedsSymmetricW`](crate::SolverError::NeedsSymmetricW)); the answer is
+//!   checked by the natural residual recomputed from `x = W r + q` (see [`Asymmetry`]).
 //! - **Every gap open.** With `r = 0` as the start and every `q_n ≥ 0` (Coulomb-type laws; for
 //!   other laws, a natural residual of exactly 0 at `r = 0`), `r = 0` is the exact answer:
 //!   returned with no iteration.
@@ -182,6 +188,7 @@
 
 pub mod adhesion;
 pub mod anderson;
+mod asymmetry;
 pub mod classic;
 mod csr;
 mod delassus;
@@ -204,6 +211,7 @@ pub mod stall;
 mod sweep;
 mod uzawa;
 
+pub use asymmetry::Asymmetry;
 pub use csr::CsrMatrix;
 pub use delassus::WView;
 #[cfg(feature = "fe")]

@@ -452,7 +452,7 @@ impl NewtonScratch {
         self.a.clear();
         self.a.resize(p * p, 0.0);
         for (jc, (&(j, z), col)) in self.cols.iter().zip(self.a.chunks_exact_mut(p)).enumerate() {
-            // W z, read as rows d j + k (W symmetric).
+            // W z, read as rows d j + k of `columns`.
             let b = d * j;
             self.wcol.iter_mut().for_each(|o| *o = 0.0);
             for (k, &zk) in z.iter().enumerate().take(d) {
@@ -482,7 +482,8 @@ impl NewtonScratch {
     /// it is not finite.
     #[allow(clippy::needless_range_loop)] // offsets d j + k into flat vectors
     fn direction<const DT: usize>(&mut self, problem: &ReducedProblem) -> bool {
-        let (w, d) = (problem.delassus(), DT + 1);
+        // rows of `columns` are the columns of W (W itself unless a non-symmetric W is kept)
+        let (w, d) = (problem.columns(), DT + 1);
         self.rows.clear();
         self.cols.clear();
         self.d.iter_mut().for_each(|a| *a = 0.0);
@@ -558,7 +559,7 @@ impl NewtonScratch {
             let mut stepped = false;
             let warming_up = run.iterations <= WARMUP_SWEEPS;
             if !warming_up && !polishing && self.direction::<DT>(problem) {
-                problem.delassus().mul_into(&self.dr, &mut self.wdr);
+                problem.columns().mul_into(&self.dr, &mut self.wdr);
                 let mut t = 1.0;
                 for _ in 0..=MAX_HALVINGS {
                     for k in 0..m {

@@ -17,19 +17,11 @@
 //! both through the crate's row operations, in `O(stored entries)` per sweep or product, and
 //! nothing densifies a sparse `W`.
 
+use super::asymmetry::{Asymmetry, SYMMETRY_TOL};
 use super::csr::CsrMatrix;
 use super::delassus::{Delassus, WView};
 use crate::error::SolverError;
 use contact_laws::{Coulomb, CoulombCone};
-
-/// Asymmetry below which `W` is taken as given: `|W_ij − W_ji| ≤ 1e-12 · max|W|` (round-off
-/// of a symmetric assembly).
-pub(crate) const SYMMETRY_TOL: f64 = 1e-12;
-
-/// Default relative asymmetry [`ReducedProblem::new`] repairs: up to
-/// `|W_ij − W_ji| ≤ 1e-6 · max|W|` (round-off of the exporting code) `W` is replaced by
-/// `(W + Wᵀ)/2` and [`ReducedProblem::asymmetry`] says by how much; beyond it, an error.
-pub(crate) const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 
 /// A validated reduced contact problem `x = W r + q` with friction coefficients `μ_i`, in
 /// dimension `d` = 2 or 3 (the size of a contact's block: one normal and `d − 1` tangents).
@@ -42,7 +34,9 @@ pub(crate) const DEFAULT_ASYMMETRY_TOL: f64 = 1e-6;
 /// Invariants (checked by every constructor):
 /// `W` is `m × m`, `q` has `m` entries, `μ` has `n_c = m/d`; every entry
 /// is finite; `W` is symmetric (to `SYMMETRY_TOL` as given, or symmetrised, see
-/// [`new`](Self::new)); every `d × d` diagonal block of `W` is positive definite; `μ_i ≥ 0`.
+/// [`new`](Self::new)) unless kept non-symmetric ([`Asymmetry::Keep`],
+/// [`is_symmetric`](Self::is_symmetric)); the symmetric part of every `d × d` diagonal block of
+/// `W` is positive definite; `μ_i ≥ 0`.
 /// Full positive definiteness of `W` is *not* checked (it would cost a factorisation, and
 /// the Delassus operators of multibody codes are often only semidefinite).
 #[derive(Clone, Debug, PartialEq)]
@@ -54,6 +48,11 @@ pub struct ReducedProblem {
     mu: Vec<f64>,
     /// Relative asymmetry `max|W_ij − W_ji| / max|W|` removed by symmetrising (0 if none).
     asymmetry: f64,
+    /// `Wᵀ` in the storage of `W` when a non-symmetric `W` is kept ([`Asymmetry::Keep`]):
+    /// its rows are the columns of `W` that the algorithms' updates read.
+    columns: Option<Delassus>,
+    /// Relative asymmetry of the `W` kept (0 when symmetric).
+    kept_asymmetry: f64,
 }
 
 impl ReducedProblem {
@@ -83,7 +82,7 @@ impl ReducedProblem {
     /// # Ok::<(), SolverError>(())
     /// ```
     pub fn new(w: Vec<f64>, q: Vec<f64>, mu: Vec<f64>) -> Result<Self, SolverError> {
-        Self::with_asymmetry_tolerance(2, w, q, mu, DEFAULT_ASYMMETRY_TOL)
+        Self::with_asymmetry(2, w, q, mu, Asymmetry::default())
     }
 
     /// A 3D problem: per contact the normal, then two tangents (`m = 3 n_c`); otherwise as
@@ -105,7 +104,7 @@ impl ReducedProblem {
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn new_3d(w: Vec<f64>, q: Vec<f64>, mu: Vec<f64>) -> Result<Self, SolverError> {
-        Self::with_asymmetry_tolerance(3, w, q, mu, DEFAULT_ASYMMETRY_TOL)
+        Self::with_asymmetry(3, w, q, mu, Asymmetry::default())
     }
 
     /// A problem of dimension `dim` (2 or 3): [`new`](Self::new) or [`new_3d`](Self::new_3d).
@@ -118,7 +117,7 @@ impl ReducedProblem {
         q: Vec<f64>,
         mu: Vec<f64>,
     ) -> Result<Self, SolverError> {
-        Self::with_asymmetry_tolerance(dim, w, q, mu, DEFAULT_ASYMMETRY_TOL)
+        Self::with_asymmetry(dim, w, q, mu, Asymmetry::default())
     }
 
     /// As [`with_dimension`](Self::with_dimension), repairing a relative asymmetry of `W` up
@@ -145,7 +144,38 @@ impl ReducedProblem {
         mu: Vec<f64>,
         tolerance: f64,
     ) -> Result<Self, SolverError> {
-        let m = check_setup(dim, tolerance, &q)?;
+        Self::with_asymmetry(dim, w, q, mu, Asymmetry::Symmetrise { tolerance })
+    }
+
+    /// As [`with_dimension`](Self::with_dimension), with the [`Asymmetry`] policy `asymmetry`:
+    /// [`Asymmetry::Keep`] keeps a non-symmetric `W` as given (the algorithms that need
+    /// symmetry then refuse the problem, `Auto` avoids them).
+    ///
+    /// # Errors
+    /// As for [`with_asymmetry_tolerance`](Self::with_asymmetry_tolerance); with
+    /// [`Asymmetry::Keep`], never [`SolverError::NotSymmetric`], and
+    /// [`SolverError::NotPositiveDefinite`] when the symmetric part of a diagonal block is not
+    /// positive definite.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{Asymmetry, ReducedProblem, UzawaSettings, solve_coulomb};
+    /// // one contact pressed (q_n = −1) with a skew coupling W_tn = 0.5 ≠ W_nt = 0: frictionless,
+    /// // r_n = 1 and x_t = q_t + W_tn r_n = 0.5 on the real W
+    /// let w = vec![1.0, 0.0, 0.5, 1.0];
+    /// let p = ReducedProblem::with_asymmetry(2, w, vec![-1.0, 0.0], vec![0.0], Asymmetry::Keep)?;
+    /// let sol = solve_coulomb(&p, &UzawaSettings::default())?;
+    /// assert!((sol.r[0] - 1.0).abs() < 1e-9 && (sol.x[1] - 0.5).abs() < 1e-9);
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn with_asymmetry(
+        dim: usize,
+        w: Vec<f64>,
+        q: Vec<f64>,
+        mu: Vec<f64>,
+        asymmetry: Asymmetry,
+    ) -> Result<Self, SolverError> {
+        let m = check_setup(dim, asymmetry, &q)?;
         if m.checked_mul(m).is_none() {
             return Err(SolverError::SizeMismatch {
                 what: "W",
@@ -168,17 +198,17 @@ impl ReducedProblem {
             });
         }
         check_vectors(m / dim, &q, &mu)?;
-        Self::validated(dim, Delassus::Dense { m, w }, q, mu, tolerance)
+        Self::validated(dim, Delassus::Dense { m, w }, q, mu, asymmetry)
     }
 
-    /// The symmetry (symmetrised within `tolerance`) and diagonal-block checks shared by every
-    /// constructor, on `W` whose sizes and entries were checked.
+    /// The symmetry (refused, symmetrised or kept by `policy`) and diagonal-block checks
+    /// shared by every constructor, on `W` whose sizes and entries were checked.
     fn validated(
         dim: usize,
         mut w: Delassus,
         q: Vec<f64>,
         mu: Vec<f64>,
-        tolerance: f64,
+        policy: Asymmetry,
     ) -> Result<Self, SolverError> {
         let w_max = w.max_abs();
         // the worst pair, compared scale-free (w_max may be near overflow or underflow)
@@ -219,20 +249,28 @@ impl ReducedProblem {
             }
             Delassus::Sparse(a) => a.worst_asymmetry(w_max),
         };
-        let mut asymmetry = 0.0;
-        if worst > tolerance.max(SYMMETRY_TOL) {
-            return Err(SolverError::NotSymmetric {
-                row,
-                col,
-                difference,
-                tolerance: tolerance.max(SYMMETRY_TOL) * w_max,
-            });
-        } else if worst > SYMMETRY_TOL {
-            asymmetry = worst;
-            match &mut w {
-                Delassus::Dense { m, w } => super::dense::symmetrize(w, *m),
-                Delassus::Sparse(a) => a.symmetrize(),
+        let (mut asymmetry, mut columns, mut kept_asymmetry) = (0.0, None, 0.0);
+        match policy.symmetrise_up_to() {
+            Some(tolerance) if worst > tolerance.max(SYMMETRY_TOL) => {
+                return Err(SolverError::NotSymmetric {
+                    row,
+                    col,
+                    difference,
+                    tolerance: tolerance.max(SYMMETRY_TOL) * w_max,
+                });
             }
+            Some(_) if worst > SYMMETRY_TOL => {
+                asymmetry = worst;
+                match &mut w {
+                    Delassus::Dense { m, w } => super::dense::symmetrize(w, *m),
+                    Delassus::Sparse(a) => a.symmetrize(),
+                }
+            }
+            None if worst > SYMMETRY_TOL => {
+                kept_asymmetry = worst;
+                columns = Some(w.transposed());
+            }
+            _ => {}
         }
         let p = Self {
             dim,
@@ -240,6 +278,8 @@ impl ReducedProblem {
             q,
             mu,
             asymmetry,
+            columns,
+            kept_asymmetry,
         };
         for contact in 0..p.contact_count() {
             if !block_is_positive_definite(&p.diagonal_block(contact), dim) {
@@ -289,7 +329,7 @@ impl ReducedProblem {
         q: Vec<f64>,
         mu: Vec<f64>,
     ) -> Result<Self, SolverError> {
-        Self::from_triplets_with_tolerance(dim, rows, cols, vals, q, mu, DEFAULT_ASYMMETRY_TOL)
+        Self::from_triplets_with_asymmetry(dim, rows, cols, vals, q, mu, Asymmetry::default())
     }
 
     /// As [`from_triplets`](Self::from_triplets), repairing a relative asymmetry of `W` up to
@@ -307,30 +347,54 @@ impl ReducedProblem {
         mu: Vec<f64>,
         tolerance: f64,
     ) -> Result<Self, SolverError> {
-        let m = check_setup(dim, tolerance, &q)?;
+        let policy = Asymmetry::Symmetrise { tolerance };
+        Self::from_triplets_with_asymmetry(dim, rows, cols, vals, q, mu, policy)
+    }
+
+    /// As [`from_triplets`](Self::from_triplets), with the [`Asymmetry`] policy `asymmetry`
+    /// (as [`with_asymmetry`](Self::with_asymmetry)).
+    ///
+    /// # Errors
+    /// As for [`from_triplets`](Self::from_triplets) and
+    /// [`with_asymmetry`](Self::with_asymmetry).
+    pub fn from_triplets_with_asymmetry(
+        dim: usize,
+        rows: &[usize],
+        cols: &[usize],
+        vals: &[f64],
+        q: Vec<f64>,
+        mu: Vec<f64>,
+        asymmetry: Asymmetry,
+    ) -> Result<Self, SolverError> {
+        let m = check_setup(dim, asymmetry, &q)?;
         check_vectors(m / dim, &q, &mu)?;
         let w = CsrMatrix::from_triplets(dim, m, rows, cols, vals)?;
-        Self::validated(dim, Delassus::Sparse(w), q, mu, tolerance)
+        Self::validated(dim, Delassus::Sparse(w), q, mu, asymmetry)
     }
 
     /// The same problem with `W` scaled by `s_w` and `q` by `s_q` (powers of two in the
     /// dispatcher's rescaling: exact), in the same storage, validated again.
     pub(crate) fn rescaled(&self, s_w: f64, s_q: f64) -> Result<Self, SolverError> {
         let q = self.q.iter().map(|v| v * s_q).collect();
-        Self::validated(self.dim, self.w.scaled(s_w), q, self.mu.clone(), 0.0)
+        let policy = if self.columns.is_some() {
+            Asymmetry::Keep
+        } else {
+            Asymmetry::Refuse
+        };
+        Self::validated(self.dim, self.w.scaled(s_w), q, self.mu.clone(), policy)
     }
 
     /// The problem on the contacts `keep` (increasing, distinct, each `< n_c`): `W` restricted
     /// to their rows and columns in the same storage, `q` and `μ` likewise. A principal
     /// sub-matrix of a valid `W` is valid (symmetric, the same diagonal blocks), so nothing is
-    /// checked again.
+    /// checked again; a kept non-symmetric `W` keeps its `Wᵀ` restricted alike.
     pub(crate) fn restricted(&self, keep: &[usize]) -> Self {
         let d = self.dim;
         let rows: Vec<usize> = keep
             .iter()
             .flat_map(|&i| (0..d).map(move |k| d * i + k))
             .collect();
-        let w = match &self.w {
+        let restrict = |w: &Delassus| match w {
             Delassus::Dense { m, w } => {
                 let mut out = Vec::with_capacity(rows.len() * rows.len());
                 for &r in &rows {
@@ -346,10 +410,12 @@ impl ReducedProblem {
         };
         Self {
             dim: d,
-            w,
+            w: restrict(&self.w),
             q: rows.iter().map(|&r| self.q[r]).collect(),
             mu: keep.iter().map(|&i| self.mu[i]).collect(),
             asymmetry: 0.0,
+            columns: self.columns.as_ref().map(restrict),
+            kept_asymmetry: self.kept_asymmetry,
         }
     }
 
@@ -357,6 +423,19 @@ impl ReducedProblem {
     /// symmetrising it (0 when it was symmetric to `SYMMETRY_TOL`).
     pub fn asymmetry(&self) -> f64 {
         self.asymmetry
+    }
+
+    /// Whether `W` is symmetric (as given to round-off, or symmetrised): `false` only when a
+    /// non-symmetric `W` was kept ([`Asymmetry::Keep`]).
+    #[inline]
+    pub fn is_symmetric(&self) -> bool {
+        self.columns.is_none()
+    }
+
+    /// Relative asymmetry `max|W_ij − W_ji| / max|W|` of a `W` kept non-symmetric
+    /// ([`Asymmetry::Keep`]); 0 when `W` is symmetric.
+    pub fn kept_asymmetry(&self) -> f64 {
+        self.kept_asymmetry
     }
 
     /// The dimension `d` (2 or 3): unknowns per contact, the normal first.
@@ -426,6 +505,13 @@ impl ReducedProblem {
         &self.w
     }
 
+    /// The storage whose rows are the columns of `W`, for the algorithms' updates
+    /// `x += W[:, k] Δr_k` and products `W v`: `W` when symmetric, the kept `Wᵀ` otherwise.
+    #[inline]
+    pub(crate) fn columns(&self) -> &Delassus {
+        self.columns.as_ref().unwrap_or(&self.w)
+    }
+
     /// The free gap / displacement `q`.
     #[inline]
     pub fn q(&self) -> &[f64] {
@@ -479,9 +565,10 @@ impl ReducedProblem {
     }
 }
 
-/// Checks the asymmetry `tolerance`, `dim` (2 or 3) and that `q` has `dim · n_c` entries;
-/// returns `m`.
-fn check_setup(dim: usize, tolerance: f64, q: &[f64]) -> Result<usize, SolverError> {
+/// Checks the asymmetry policy's tolerance, `dim` (2 or 3) and that `q` has `dim · n_c`
+/// entries; returns `m`.
+fn check_setup(dim: usize, policy: Asymmetry, q: &[f64]) -> Result<usize, SolverError> {
+    let tolerance = policy.symmetrise_up_to().unwrap_or(0.0);
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(SolverError::InvalidSetting {
             what: "asymmetry tolerance",
@@ -527,7 +614,8 @@ fn check_vectors(nc: usize, q: &[f64], mu: &[f64]) -> Result<(), SolverError> {
     Ok(())
 }
 
-/// Whether the `d × d` symmetric block `b` is positive definite, scale-free (blocks of 1e300 or
+/// Whether the symmetric part `(b + bᵀ)/2` of the `d × d` block `b` is positive definite
+/// (`b` itself when symmetric, the case of every `W` but a kept non-symmetric one), scale-free (blocks of 1e300 or
 /// 1e-300 neither overflow nor underflow) — except that a tangent whose row and column are
 /// exactly zero is allowed: it is a contact whose tangential displacement is prescribed (a
 /// supported node), so `x_t = q_t` whatever `r`.
@@ -544,7 +632,13 @@ fn block_is_positive_definite(b: &[[f64; 3]; 3], d: usize) -> bool {
     let mut l = [[0.0_f64; 3]; 3];
     for (a, &i) in kept.iter().enumerate() {
         for (c, &j) in kept.iter().enumerate().take(a + 1) {
-            let mut v = b[i][j] / s;
+            // the symmetric part's entry; b[i][j] itself (the same bits) when symmetric
+            let b_ij = if b[i][j] == b[j][i] {
+                b[i][j]
+            } else {
+                0.5 * b[i][j] + 0.5 * b[j][i]
+            };
+            let mut v = b_ij / s;
             for k in 0..c {
                 v -= l[a][k] * l[c][k];
             }
@@ -619,5 +713,56 @@ mod tests {
             e,
             Err(SolverError::InvalidSetting { what: "dim", .. })
         ));
+    }
+
+    #[test]
+    fn asymmetry_keep_works() {
+        // a block [1 3; −3 1]: skew off-diagonal, symmetric part I (positive definite)
+        let w = vec![1.0, 3.0, -3.0, 1.0];
+        let p = ReducedProblem::with_asymmetry(
+            2,
+            w.clone(),
+            vec![-1.0, 0.0],
+            vec![0.2],
+            Asymmetry::Keep,
+        )
+        .unwrap();
+        assert!(!p.is_symmetric() && p.kept_asymmetry() == 2.0 && p.asymmetry() == 0.0);
+        assert_eq!(p.w_dense(), Some(&w[..]));
+        // the columns' storage is Wᵀ: its row 0 is W's column 0
+        let mut x = [0.0; 2];
+        p.columns().axpy_row(0, 1.0, &mut x);
+        assert_eq!(x, [1.0, -3.0]);
+        // x = W r + q reads the rows of W
+        p.displacement_into(&[1.0, 0.0], &mut x);
+        assert_eq!(x, [0.0, -3.0]);
+        // a restricted and a rescaled copy keep it
+        assert!(!p.restricted(&[0]).is_symmetric());
+        assert!(!p.rescaled(2.0, 0.5).unwrap().is_symmetric());
+        // refused by the other policies, naming the pair
+        for policy in [Asymmetry::Refuse, Asymmetry::default()] {
+            let e =
+                ReducedProblem::with_asymmetry(2, w.clone(), vec![-1.0, 0.0], vec![0.2], policy);
+            assert!(matches!(
+                e,
+                Err(SolverError::NotSymmetric { row: 0, col: 1, .. })
+            ));
+        }
+    }
+
+    #[test]
+    fn asymmetry_keep_rejects_indefinite_symmetric_part() {
+        // [1 3; 1 1]: its symmetric part [1 2; 2 1] is indefinite
+        let w = vec![1.0, 3.0, 1.0, 1.0];
+        let e = ReducedProblem::with_asymmetry(2, w, vec![-1.0, 0.0], vec![0.2], Asymmetry::Keep);
+        assert_eq!(e, Err(SolverError::NotPositiveDefinite { contact: 0 }));
+        let e = ReducedProblem::with_asymmetry(
+            2,
+            vec![1.0, 0.0, 0.0, 1.0],
+            vec![-1.0, 0.0],
+            vec![0.2],
+            Asymmetry::Symmetrise { tolerance: -1.0 },
+        );
+        assert!(matches!(e, Err(SolverError::InvalidSetting { .. })));
     }
 }

@@ -64,8 +64,19 @@ pub(crate) fn norm(v: &[f64]) -> f64 {
 }
 
 /// `1/λ_max` of the symmetric positive (semi)definite `d × d` block in the top-left corner of
-/// `b` (`d` = 2 or 3).
+/// `b` (`d` = 2 or 3); of its symmetric part `(b + bᵀ)/2` when it is not symmetric (a block of
+/// a kept non-symmetric `W`: `λ_max` of the symmetric part bounds `uᵀ b u / uᵀ u`).
 pub(crate) fn rho_of_block(b: &[[f64; 3]; 3], d: usize) -> f64 {
+    let mut sym = *b;
+    for i in 0..3 {
+        for j in 0..i {
+            if b[i][j] != b[j][i] {
+                let a = 0.5 * b[i][j] + 0.5 * b[j][i];
+                (sym[i][j], sym[j][i]) = (a, a);
+            }
+        }
+    }
+    let b = &sym;
     if d == 2 {
         let (a, c, e) = (b[0][0], b[0][1], b[1][1]);
         let h = 0.5 * (a - e);

@@ -32,6 +32,12 @@ mod skip_open;
 /// unsolvable problem of `tests/integration/stall.rs` 1e10 × tol).
 pub(crate) const CHECK_FACTOR: f64 = 1e3;
 
+/// On a kept non-symmetric `W`, the natural residual recomputed from `x = W r + q` must be
+/// within this factor of the tolerance: the algorithm stopped on its own `x`, updated column
+/// by column, which differs from the recomputed one by round-off (`~1e-16 · cond`, far below
+/// `tol`); the factor only keeps an answer stopped just under `tol` from being refused.
+pub(crate) const KEPT_CHECK_FACTOR: f64 = 2.0;
+
 /// `W`, `q` or the reactions' scale `max|q|/max|W|` with magnitudes beyond
 /// `[1/RESCALE_ABOVE, RESCALE_ABOVE]` are rescaled internally (scale-invariant laws only).
 pub(crate) const RESCALE_ABOVE: f64 = 1e100;
@@ -172,6 +178,16 @@ impl UzawaSolver {
                 Algorithm::AndersonGaussSeidel
             };
         }
+        // the Uzawa step is a projected gradient of the energy ½ rᵀ W r + qᵀ r: it needs W
+        // symmetric (the sweeps and Newton need only the diagonal blocks, see `asymmetry`)
+        if !problem.is_symmetric()
+            && matches!(st.algorithm, Algorithm::Uzawa | Algorithm::AndersonUzawa)
+        {
+            return Err(SolverError::NeedsSymmetricW {
+                algorithm: st.algorithm.name(),
+                asymmetry: problem.kept_asymmetry(),
+            });
+        }
         if let Some(sol) = self.solve_rescaled(problem, laws, states, &r)? {
             return Ok(sol);
         }
@@ -206,7 +222,7 @@ impl UzawaSolver {
             return Ok(sol);
         }
         let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.clone())?;
-        self.check::<DT>(problem, &mut sol, mu);
+        self.check::<L, DT>(problem, laws, states, &mut sol, mu);
         // the smallest residual of the last run, for the stalled error
         let mut best = best_of(&sol.report.history);
         if !sol.report.converged
@@ -232,7 +248,7 @@ impl UzawaSolver {
                     ..st
                 };
                 sol = self.attempt::<L, DT>(settings, problem, laws, states, r.clone())?;
-                self.check::<DT>(problem, &mut sol, mu);
+                self.check::<L, DT>(problem, laws, states, &mut sol, mu);
                 let report = &mut sol.report;
                 best = best_of(&report.history);
                 report.fallback_from = Some(st.algorithm);
@@ -269,9 +285,14 @@ impl UzawaSolver {
     /// Signorini–Coulomb conditions without the modified velocity
     /// ([`coulomb_residual`](super::residual::coulomb_residual)), relative like the natural
     /// residual, must be within `CHECK_FACTOR`` × tol`; else the answer is not converged.
-    fn check<const DT: usize>(
+    /// On a kept non-symmetric `W` the natural residual itself is recomputed from
+    /// `x = W r + q` (the rows of the real `W`; the algorithms updated `x` by columns read from
+    /// the stored `Wᵀ`), reported, and must be within `KEPT_CHECK_FACTOR`` × tol`.
+    fn check<L: ContactLaw, const DT: usize>(
         &self,
         problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
         sol: &mut Solution,
         mu: Option<&[f64]>,
     ) {
@@ -284,6 +305,15 @@ impl UzawaSolver {
         let denom = norm(&sol.r)
             .max(rho_max * norm(problem.q()))
             .max(f64::MIN_POSITIVE);
+        if !problem.is_symmetric() {
+            problem.displacement_into(&sol.r, &mut sol.x);
+            let residual = natural_residual::<L, DT>(laws, states, rho0, &sol.r, &sol.x) / denom;
+            sol.report.residual = residual;
+            if residual.is_nan() || residual > KEPT_CHECK_FACTOR * self.settings.tol {
+                sol.report.converged = false;
+                return;
+            }
+        }
         let error = coulomb_residual::<DT>(mu, rho0, &sol.r, &sol.x) / denom;
         if error.is_nan() || error > CHECK_FACTOR * self.settings.tol {
             sol.report.converged = false;

@@ -41,7 +41,8 @@ impl NewtonScratch {
                 if lo == hi {
                     continue;
                 }
-                // (W z) on contact i, W symmetric: Σ_k z_k W[d j + k, d i + l]
+                // (W z) on contact i from the rows of `columns` (Wᵀ when W is kept
+                // non-symmetric): Σ_k z_k C[d j + k, d i + l] = Σ_k W[d i + l, d j + k] z_k
                 let mut wz = [0.0; 3];
                 for (k, &zk) in z.iter().enumerate().take(d) {
                     if zk != 0.0 {
