@@ -88,7 +88,8 @@ W is m x m (flat row-major, a list of rows, or sparse triplets {\"m\", \"i\", \"
 q has m entries (normal first per contact), mu has n_c. The table printed has r_n, r_t (r_t1,
 r_t2 in 3D), the gap and the slip of each contact and its status: Separation, Stick, Slip, or
 Closed for a frictionless contact (mu = 0). Signs: r_n >= 0 is compression, x_n >= 0 an
-opening. W symmetric to 1e-6 (relative) is symmetrised; magnitudes beyond 1e+-100 are rescaled
+opening. W symmetric to 1e-6 (relative) is symmetrised (--keep-asymmetric: kept as given and
+solved by an algorithm that allows it; uzawa and anderson-uzawa refuse it); magnitudes beyond 1e+-100 are rescaled
 internally; an algorithm that stalls or whose answer fails the Signorini-Coulomb check falls
 back to rccm-classic (the output says so)."
     )]
@@ -108,6 +109,11 @@ back to rccm-classic (the output says so)."
         /// converged, asymmetry, rescaled}.
         #[arg(long)]
         json: bool,
+        /// Keep a non-symmetric `W` of a JSON problem as given (multibody problems with joints)
+        /// instead of symmetrising it up to 1e-6 and refusing it beyond; FCLIB files are always
+        /// kept as given.
+        #[arg(long)]
+        keep_asymmetric: bool,
     },
     /// Write a commented template scene.
     #[command(after_help = "\
@@ -209,8 +215,16 @@ pub fn main() -> ExitCode {
             max_iterations,
             algorithm,
             json,
+            keep_asymmetric,
         } => finish(
-            solve_local(&problem, tol, max_iterations, algorithm, json),
+            solve_local(
+                &problem,
+                tol,
+                max_iterations,
+                algorithm,
+                json,
+                keep_asymmetric,
+            ),
             None,
         ),
         Command::New {
@@ -601,7 +615,10 @@ fn print_plane_work<const D: usize>(s: &run::Summary<D>) {
 
 /// The reduced problem of `bipo solve-local`: FCLIB HDF5 for `.h5`/`.hdf5` (feature `fclib`),
 /// JSON otherwise.
-fn read_local_problem(path: &Path) -> CliResult<contact_solver::ReducedProblem> {
+fn read_local_problem(
+    path: &Path,
+    keep_asymmetric: bool,
+) -> CliResult<contact_solver::ReducedProblem> {
     use contact_solver::error::chain;
     let hdf5 = path
         .extension()
@@ -631,8 +648,15 @@ fn read_local_problem(path: &Path) -> CliResult<contact_solver::ReducedProblem> 
     })?;
     // a byte-order mark (some Windows editors write one) is not part of the JSON
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    contact_solver::ReducedProblem::from_json(text)
-        .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))
+    let read = if keep_asymmetric {
+        contact_solver::ReducedProblem::from_json_with_asymmetry(
+            text,
+            contact_solver::Asymmetry::Keep,
+        )
+    } else {
+        contact_solver::ReducedProblem::from_json(text)
+    };
+    read.map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))))
 }
 
 fn solve_local(
@@ -641,10 +665,11 @@ fn solve_local(
     max_iterations: usize,
     algorithm: AlgorithmArg,
     json: bool,
+    keep_asymmetric: bool,
 ) -> CliResult<()> {
     use contact_solver::error::chain;
     use contact_solver::{UzawaSettings, solve_coulomb};
-    let problem = read_local_problem(path)?;
+    let problem = read_local_problem(path, keep_asymmetric)?;
     if problem.contact_count() == 0 {
         return Err(CliError::input(format!(
             "{}: the problem has no contact (`W`, `q` and `mu` are empty): nothing to solve",

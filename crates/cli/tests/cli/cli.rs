@@ -332,6 +332,43 @@ fn solve_local_prints_the_solution() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Issue 37: a non-symmetric `W` (a multibody problem with joints) is refused by default and
+/// solved as given with `--keep-asymmetric`. W = [[1, 0.1], [0, 1]], q = (−1, 0.5), μ = 0.2:
+/// the contact slips with r_t = −μ r_n and r_n + 0.1 r_t = 1, so r_n = 1/0.98 (the symmetrised
+/// W would give 1/0.99: the two differ by 1e-2, the tolerance is the solver's 1e-9).
+#[test]
+fn issue_37_solve_local_keeps_a_non_symmetric_w_on_request() {
+    let dir = tmp("local_asym");
+    let file = dir.join("p.json");
+    std::fs::write(
+        &file,
+        r#"{"W": [[1, 0.1], [0, 1]], "q": [-1, 0.5], "mu": [0.2]}"#,
+    )
+    .unwrap();
+    let refused = bipo(&["solve-local".as_ref(), file.as_os_str()]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("W is not symmetric"));
+    let json = ok(&bipo(&[
+        "solve-local".as_ref(),
+        file.as_os_str(),
+        "--keep-asymmetric".as_ref(),
+        "--json".as_ref(),
+    ]));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let (rn, rt) = (v["r"][0].as_f64().unwrap(), v["r"][1].as_f64().unwrap());
+    assert!((rn - 1.0 / 0.98).abs() < 1e-9, "r_n = {rn}");
+    assert!((rt + 0.2 / 0.98).abs() < 1e-9, "r_t = {rt}");
+    let uzawa = bipo(&[
+        "solve-local".as_ref(),
+        file.as_os_str(),
+        "--keep-asymmetric".as_ref(),
+        "--algorithm".as_ref(),
+        "uzawa".as_ref(),
+    ]);
+    assert!(!uzawa.status.success(), "Uzawa needs a symmetric W");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn solve_local_reads_fclib_files_with_the_feature() {
     let file = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
