@@ -32,14 +32,18 @@ where
 pub(crate) type Orient<const D: usize> = fn(Kind<D>, Vec<usize>, &[[f64; D]]) -> Vec<usize>;
 
 /// The physical groups' elements made into sets of the mesh.
-pub(crate) type Sets<const D: usize> = fn(
-    &mut Mesh<D>,
-    &[Lower],
-    &HashMap<u64, usize>,
-    &Names,
-    &Physical,
-    &str,
-) -> Result<(), FemError>;
+pub(crate) type Sets<const D: usize> = fn(&mut Mesh<D>, &Groups) -> Result<(), FemError>;
+
+/// The elements of the physical groups of lower dimension, and what naming them needs.
+pub(crate) struct Groups<'a> {
+    pub(crate) lower: &'a [Lower],
+    /// The mesh's node of each node tag.
+    pub(crate) index: &'a HashMap<u64, usize>,
+    pub(crate) names: &'a Names,
+    pub(crate) physical: &'a Physical,
+    /// The file, for messages.
+    pub(crate) origin: &'a str,
+}
 
 /// The shapes of the elements of physical groups.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -191,7 +195,14 @@ where
     }
     let mut mesh = Mesh::new(nodes, kind, connectivity, regions)
         .map_err(|e| with_tags(e, &used, &cell_tags, origin))?;
-    (reader.sets)(&mut mesh, &lower, &index, names, &physical, origin)?;
+    let groups = Groups {
+        lower: &lower,
+        index: &index,
+        names,
+        physical: &physical,
+        origin,
+    };
+    (reader.sets)(&mut mesh, &groups)?;
     Ok(mesh)
 }
 

@@ -1,7 +1,7 @@
 //! The 2D tables of the Gmsh reader: triangles and quadrangles, oriented counter-clockwise;
 //! physical curves matched to element sides, physical points to nodes.
 
-use super::build::{Lower, Names, Physical, Reader, Shape};
+use super::build::{Groups, Lower, Reader, Shape};
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh, Side};
 use mshio::ElementType;
@@ -43,14 +43,14 @@ fn orient(kind: ElementKind, mut cell: Vec<usize>, nodes: &[[f64; 2]]) -> Vec<us
 /// The physical curves and points as edge and node sets of `mesh`: line elements matched to
 /// triangle sides (directed corner pairs), point elements to nodes; named by `names` or
 /// `curve_N` / `point_N`.
-fn add_physical_sets(
-    mesh: &mut Mesh,
-    lower: &[Lower],
-    index: &HashMap<u64, usize>,
-    names: &Names,
-    physical: &Physical,
-    origin: &str,
-) -> Result<(), FemError> {
+fn add_physical_sets(mesh: &mut Mesh, groups: &Groups) -> Result<(), FemError> {
+    let Groups {
+        lower,
+        index,
+        names,
+        physical,
+        origin,
+    } = *groups;
     let of = |shape: Shape| lower.iter().filter(move |l| l.shape == shape);
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();

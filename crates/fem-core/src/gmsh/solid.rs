@@ -2,7 +2,7 @@
 //! and Hex20 mid-edge nodes mapped), right-handed; physical surfaces matched to element faces,
 //! physical curves and points to nodes.
 
-use super::build::{Lower, Names, Physical, Reader, Shape};
+use super::build::{Groups, Reader, Shape};
 use crate::element::hex20::GMSH_TO_LOCAL;
 use crate::error::FemError;
 use crate::mesh::{Face, SolidKind, SolidMesh, signed_volume};
@@ -74,14 +74,14 @@ fn orient(kind: SolidKind, t: Vec<usize>, nodes: &[[f64; 3]]) -> Vec<usize> {
 }
 
 /// The physical surfaces, curves and points as face and node sets of `mesh`.
-fn add_physical_sets(
-    mesh: &mut SolidMesh,
-    lower: &[Lower],
-    index: &HashMap<u64, usize>,
-    names: &Names,
-    physical: &Physical,
-    origin: &str,
-) -> Result<(), FemError> {
+fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemError> {
+    let Groups {
+        lower,
+        index,
+        names,
+        physical,
+        origin,
+    } = *groups;
     // The faces of every tetrahedron, by their sorted corners (two for an interior face).
     let mut faces: HashMap<[usize; 4], Vec<Face>> = HashMap::new();
     if lower

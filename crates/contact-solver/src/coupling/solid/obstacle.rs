@@ -15,6 +15,9 @@ use crate::error::SolverError;
 /// The closest point of a 3D obstacle: [`ObstaclePoint<3>`].
 pub type ObstaclePoint3 = ObstaclePoint<3>;
 
+/// The side of a 3D sphere or cylinder: [`ObstacleSide`], the one type of both dimensions.
+pub type Side3 = ObstacleSide;
+
 /// The tangents `(t₁, t₂)` of the contact frame of unit normal `n` (module docs).
 pub fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     // cos 25° ≈ 0.906: e_x unless n is within 25° of it
@@ -91,9 +94,6 @@ impl Obstacle<3> for RigidPlane {
         })
     }
 }
-
-/// The side of a 3D sphere or cylinder: [`ObstacleSide`], the one type of both dimensions.
-pub type Side3 = ObstacleSide;
 
 /// A rigid sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
