@@ -87,12 +87,12 @@ pub(crate) struct Lower {
 impl Lower {
     /// The names of the element's physical groups: from `$PhysicalNames`, else
     /// `surface_<tag>`, `curve_<tag>` or `point_<tag>`.
-    pub(crate) fn groups(&self, names: &Names, physical: &Physical) -> Vec<String> {
+    pub(crate) fn groups(&self, of: &Groups) -> Vec<String> {
         let dim = self.entity.0;
-        let tags = physical.get(&self.entity).map_or(&[][..], Vec::as_slice);
+        let tags = of.physical.get(&self.entity).map_or(&[][..], Vec::as_slice);
         tags.iter()
             .map(|&p| {
-                let name = names.get(&(dim, p)).cloned();
+                let name = of.names.get(&(dim, p)).cloned();
                 name.unwrap_or_else(|| format!("{}_{p}", self.shape.prefix()))
             })
             .collect()

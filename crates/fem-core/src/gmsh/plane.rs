@@ -44,13 +44,7 @@ fn orient(kind: ElementKind, mut cell: Vec<usize>, nodes: &[[f64; 2]]) -> Vec<us
 /// triangle sides (directed corner pairs), point elements to nodes; named by `names` or
 /// `curve_N` / `point_N`.
 fn add_physical_sets(mesh: &mut Mesh, groups: &Groups) -> Result<(), FemError> {
-    let Groups {
-        lower,
-        index,
-        names,
-        physical,
-        origin,
-    } = *groups;
+    let (lower, index, origin) = (groups.lower, groups.index, groups.origin);
     let of = |shape: Shape| lower.iter().filter(move |l| l.shape == shape);
     // Physical curves: match lines to triangle sides (directed corner pairs).
     let mut sides: HashMap<(usize, usize), Side> = HashMap::new();
@@ -68,7 +62,7 @@ fn add_physical_sets(mesh: &mut Mesh, groups: &Groups) -> Result<(), FemError> {
                 line.entity.1, line.nodes
             ),
         })?;
-        for name in line.groups(names, physical) {
+        for name in line.groups(groups) {
             let set = edge_sets.entry(name).or_default();
             if !set.contains(&side) {
                 set.push(side);
@@ -92,7 +86,7 @@ fn add_physical_sets(mesh: &mut Mesh, groups: &Groups) -> Result<(), FemError> {
                     point.entity.1, point.nodes
                 ),
             })?;
-        for name in point.groups(names, physical) {
+        for name in point.groups(groups) {
             node_sets.entry(name).or_default().push(node);
         }
     }

@@ -75,13 +75,7 @@ fn orient(kind: SolidKind, t: Vec<usize>, nodes: &[[f64; 3]]) -> Vec<usize> {
 
 /// The physical surfaces, curves and points as face and node sets of `mesh`.
 fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemError> {
-    let Groups {
-        lower,
-        index,
-        names,
-        physical,
-        origin,
-    } = *groups;
+    let (lower, index, origin) = (groups.lower, groups.index, groups.origin);
     // The faces of every tetrahedron, by their sorted corners (two for an interior face).
     let mut faces: HashMap<[usize; 4], Vec<Face>> = HashMap::new();
     if lower
@@ -97,7 +91,7 @@ fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemErr
     let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for l in lower {
         let entity = l.entity.1;
-        let groups = l.groups(names, physical);
+        let names = l.groups(groups);
         if matches!(l.shape, Shape::Triangle | Shape::Quadrangle) {
             let (what, of) = match l.shape {
                 Shape::Triangle => ("triangle", "a tetrahedron"),
@@ -110,10 +104,10 @@ fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemErr
                          {origin} is not a face of {of}",
                         l.element_tag,
                         l.nodes,
-                        groups.join(", ")
+                        names.join(", ")
                     ),
                 })?;
-            for name in groups {
+            for name in names {
                 face_sets.entry(name).or_default().insert(face);
             }
             continue;
@@ -128,11 +122,11 @@ fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemErr
                     "node {t} of physical {} {} (element {}) in {origin} is not a node of a \
                      tetrahedron",
                     l.shape.prefix(),
-                    groups.join(", "),
+                    names.join(", "),
                     l.element_tag
                 ),
             })?;
-        for name in groups {
+        for name in names {
             node_sets.entry(name).or_default().extend(&ids);
         }
     }
