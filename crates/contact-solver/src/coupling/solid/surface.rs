@@ -133,10 +133,9 @@ impl TriSurface {
 
 impl TargetSurface<3> for TriSurface {
     fn check<S: Structure<3> + ?Sized>(&self, s: &S, zone: &str) -> Result<(), SolverError> {
-        for &n in &self.connectivity {
-            check_node(s, zone, n)?;
-        }
-        Ok(())
+        self.connectivity
+            .iter()
+            .try_for_each(|&n| check_node(s, zone, n))
     }
 
     fn project_all<S: Structure<3> + ?Sized>(
