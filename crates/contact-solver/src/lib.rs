@@ -54,7 +54,7 @@ pub use local::{
 };
 
 #[cfg(feature = "fe")]
-pub use coupling::obstacle::{ArcSide, Obstacle, ObstaclePoint, RigidArc, RigidLine};
+pub use coupling::obstacle::{ArcSide, Obstacle, ObstaclePoint, ObstacleSide, RigidArc, RigidLine};
 #[cfg(feature = "fe")]
 pub use coupling::output::{HistoryWriter, InterfaceSeries, ReportWriter, write_interface_vtu};
 #[cfg(feature = "fe")]

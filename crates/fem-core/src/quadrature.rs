@@ -5,6 +5,9 @@
 //! Every triangle point is interior, so no point ever sits on the axis `r = 0` in
 //! axisymmetry.
 
+use std::any::Any;
+use std::sync::OnceLock;
+
 /// A point `(ξ, η)` and weight of a triangle rule; weights sum to ½.
 pub type TriPoint = ([f64; 2], f64);
 
@@ -107,6 +110,21 @@ pub fn gauss_tensor<const D: usize>(n: usize) -> Vec<([f64; D], f64)> {
             (xi, w)
         })
         .collect()
+}
+
+/// [`gauss_tensor`] with `n ∈ {2, 3, 4}` points per direction on the square (`D = 2`) or the
+/// cube (`D = 3`), built once and kept.
+///
+/// # Panics
+/// If `n ∉ {2, 3, 4}`, or `D ∉ {2, 3}`.
+#[track_caller]
+pub(crate) fn tensor_rule<const D: usize>(n: usize) -> &'static [([f64; D], f64)] {
+    type Rules<const D: usize> = [OnceLock<Vec<([f64; D], f64)>>; 3];
+    static SQUARE: Rules<2> = [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    static CUBE: Rules<3> = [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    let rules: &'static dyn Any = if D == 2 { &SQUARE } else { &CUBE };
+    let rules: &'static Rules<D> = rules.downcast_ref().expect("a square or a cube");
+    rules[n - 2].get_or_init(|| gauss_tensor::<D>(n))
 }
 
 /// Gauss–Legendre rule with 3 points on `[−1, 1]` (exact to degree 5).

@@ -156,16 +156,37 @@ impl Obstacle for RigidLine {
     }
 }
 
-/// Which side of an ARC the contactor is on.
+/// Which side of a curved rigid obstacle the contactor is on: of a 2D [`RigidArc`], of a 3D
+/// [`RigidSphere`](super::solid::RigidSphere) or [`RigidCylinder`](super::solid::RigidCylinder).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ArcSide {
-    /// The contactor is outside the circle (a rigid cylinder or sphere pressed into a body);
-    /// the normal points away from the centre.
+pub enum ObstacleSide {
+    /// The contactor is outside the circle, sphere or cylinder (a rigid cylinder, ball or rod
+    /// pressed into a body); the normal points away from the centre (or the axis).
     Outside,
-    /// The contactor is inside the circle (a body in a rigid bore); the normal points to the
-    /// centre.
+    /// The contactor is inside the circle, sphere or cylinder (a body in a rigid bore or
+    /// cavity); the normal points to the centre (or the axis).
     Inside,
 }
+
+impl ObstacleSide {
+    /// The normal and the gap at a point at distance `dist > 0` from the centre (or the axis)
+    /// along the unit vector `out`, for a surface of `radius`.
+    #[inline]
+    pub(crate) fn normal_and_gap<const D: usize>(
+        self,
+        out: [f64; D],
+        dist: f64,
+        radius: f64,
+    ) -> ([f64; D], f64) {
+        match self {
+            ObstacleSide::Outside => (out, dist - radius),
+            ObstacleSide::Inside => (out.map(|v| -v), radius - dist),
+        }
+    }
+}
+
+/// The side of a 2D [`RigidArc`]: [`ObstacleSide`] (the name the 2D API has always used).
+pub type ArcSide = ObstacleSide;
 
 /// A rigid circular arc: centre, radius, and the angles it spans counter-clockwise from
 /// `start_angle` over `sweep` (radians, `0 < sweep ≤ 2π`).
@@ -175,7 +196,7 @@ pub struct RigidArc {
     radius: f64,
     start_angle: f64,
     sweep: f64,
-    side: ArcSide,
+    side: ObstacleSide,
 }
 
 impl RigidArc {
@@ -189,7 +210,7 @@ impl RigidArc {
         radius: f64,
         start_angle: f64,
         sweep: f64,
-        side: ArcSide,
+        side: ObstacleSide,
     ) -> Result<Self, SolverError> {
         let center = finite_point("ARC centre", center)?;
         for (what, value) in [
@@ -228,7 +249,7 @@ impl RigidArc {
     ///
     /// # Errors
     /// As for [`RigidArc::new`].
-    pub fn circle(center: [f64; 2], radius: f64, side: ArcSide) -> Result<Self, SolverError> {
+    pub fn circle(center: [f64; 2], radius: f64, side: ObstacleSide) -> Result<Self, SolverError> {
         Self::new(center, radius, 0.0, TAU, side)
     }
 
@@ -267,10 +288,7 @@ impl Obstacle for RigidArc {
             self.center[0] + self.radius * e[0],
             self.center[1] + self.radius * e[1],
         ];
-        let (normal, gap) = match self.side {
-            ArcSide::Outside => (e, dist - self.radius),
-            ArcSide::Inside => ([-e[0], -e[1]], self.radius - dist),
-        };
+        let (normal, gap) = self.side.normal_and_gap(e, dist, self.radius);
         Some(ObstaclePoint { point, normal, gap })
     }
 }
@@ -299,7 +317,7 @@ mod tests {
 
     #[test]
     fn arc_outside_and_inside() {
-        let c = RigidArc::new([0.0, 0.0], 2.0, 0.0, PI, ArcSide::Outside).unwrap();
+        let c = RigidArc::new([0.0, 0.0], 2.0, 0.0, PI, ObstacleSide::Outside).unwrap();
         let p = c.project([0.0, 3.0]).unwrap();
         assert_relative_eq!(p.point[1], 2.0);
         assert_relative_eq!(p.normal[1], 1.0);
@@ -309,13 +327,13 @@ mod tests {
         assert!(c.project([3.0, 0.0]).is_some());
         assert!(c.project([-3.0, 0.0]).is_some());
         assert!(c.project([3.0, -1e-3]).is_none());
-        let i = RigidArc::circle([1.0, 1.0], 2.0, ArcSide::Inside).unwrap();
+        let i = RigidArc::circle([1.0, 1.0], 2.0, ObstacleSide::Inside).unwrap();
         let p = i.project([1.0, 2.5]).unwrap();
         assert_relative_eq!(p.gap, 0.5);
         assert_relative_eq!(p.normal[1], -1.0);
         assert!(i.project([1.0, 1.0]).is_none());
         // an arc whose span wraps through angle 0
-        let w = RigidArc::new([0.0, 0.0], 1.0, -FRAC_PI_2, PI, ArcSide::Outside).unwrap();
+        let w = RigidArc::new([0.0, 0.0], 1.0, -FRAC_PI_2, PI, ObstacleSide::Outside).unwrap();
         assert!(w.project([2.0, -0.5]).is_some());
         assert!(w.project([-2.0, 0.1]).is_none());
     }
@@ -334,8 +352,8 @@ mod tests {
             Err(SolverError::InvalidGeometry(m)) => assert!(m.contains("overflows"), "{m}"),
             other => panic!("{other:?}"),
         }
-        assert!(RigidArc::new([0.0, 0.0], -1.0, 0.0, 1.0, ArcSide::Outside).is_err());
-        assert!(RigidArc::new([0.0, 0.0], 1.0, 0.0, 7.0, ArcSide::Outside).is_err());
-        assert!(RigidArc::new([0.0, 0.0], 1.0, 0.0, 0.0, ArcSide::Outside).is_err());
+        assert!(RigidArc::new([0.0, 0.0], -1.0, 0.0, 1.0, ObstacleSide::Outside).is_err());
+        assert!(RigidArc::new([0.0, 0.0], 1.0, 0.0, 7.0, ObstacleSide::Outside).is_err());
+        assert!(RigidArc::new([0.0, 0.0], 1.0, 0.0, 0.0, ObstacleSide::Outside).is_err());
     }
 }

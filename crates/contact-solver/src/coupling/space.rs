@@ -147,6 +147,16 @@ pub(crate) fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
     core::array::from_fn(|k| a[k] - b[k])
 }
 
+/// `a × b`.
+#[inline]
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 /// `v / |v|`, or an error naming the zone for a zero or non-finite `v`.
 pub(crate) fn unit<const D: usize>(zone: &str, v: [f64; D]) -> Result<[f64; D], SolverError> {
     let l = if D == 2 {

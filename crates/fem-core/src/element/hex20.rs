@@ -10,8 +10,9 @@
 //! ξ_i = 0   N_i = ¼ (1 − ξ²)(1 + η η_i)(1 + ζ ζ_i)   (and likewise for η_i = 0, ζ_i = 0)
 //! ```
 
-use super::hex8::{CORNERS, cube_rule};
+use super::hex8::CORNERS;
 use super::{Element, QuadPoint, Topology};
+use crate::quadrature::tensor_rule;
 
 /// The 20-node hexahedron: stiffness and stresses with the full 3×3×3 Gauss rule, loads and
 /// mass with 4×4×4.
@@ -93,10 +94,10 @@ impl Element<3> for Hex20 {
         }
     }
     fn stiffness_rule(&self, _: &(), _: &[[f64; 3]]) -> &[QuadPoint<3>] {
-        cube_rule(3)
+        tensor_rule(3)
     }
     fn load_rule(&self, _: &()) -> &[QuadPoint<3>] {
-        cube_rule(4)
+        tensor_rule(4)
     }
     fn topology(&self) -> Topology {
         Topology {

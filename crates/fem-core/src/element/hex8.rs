@@ -8,8 +8,7 @@
 //! ```
 
 use super::{Element, QuadPoint, Topology};
-use crate::quadrature::gauss_tensor;
-use std::sync::OnceLock;
+use crate::quadrature::tensor_rule;
 
 /// The 8-node hexahedron: stiffness and stresses with the full 2×2×2 Gauss rule, loads and
 /// mass with 3×3×3.
@@ -39,13 +38,6 @@ pub const FACES: [&[usize]; 6] = [
     &[4, 5, 6, 7],
 ];
 
-/// The `n × n × n` Gauss rule on the cube, built once per `n ∈ {2, 3, 4}`.
-pub(crate) fn cube_rule(n: usize) -> &'static [QuadPoint<3>] {
-    static RULES: [OnceLock<Vec<QuadPoint<3>>>; 3] =
-        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
-    RULES[n - 2].get_or_init(|| gauss_tensor::<3>(n))
-}
-
 impl Element<3> for Hex8 {
     #[inline]
     fn node_count(&self) -> usize {
@@ -63,10 +55,10 @@ impl Element<3> for Hex8 {
         }
     }
     fn stiffness_rule(&self, _: &(), _: &[[f64; 3]]) -> &[QuadPoint<3>] {
-        cube_rule(2)
+        tensor_rule(2)
     }
     fn load_rule(&self, _: &()) -> &[QuadPoint<3>] {
-        cube_rule(3)
+        tensor_rule(3)
     }
     fn topology(&self) -> Topology {
         Topology {

@@ -8,8 +8,7 @@
 
 use super::{Element, QuadPoint, Topology};
 use crate::idealization::Idealization;
-use crate::quadrature::gauss_tensor;
-use std::sync::OnceLock;
+use crate::quadrature::tensor_rule;
 
 /// The 4-node quadrilateral (plane strain, plane stress, axisymmetry): stiffness and stresses
 /// with the full 2×2 Gauss rule, loads and mass with 3×3.
@@ -21,13 +20,6 @@ pub(crate) const CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0]
 
 /// The sides of a 4-node quadrilateral.
 pub const SIDES: [&[usize]; 4] = [&[0, 1], &[1, 2], &[2, 3], &[3, 0]];
-
-/// The `n × n` Gauss rule on the square, built once per `n ∈ {2, 3, 4}`.
-pub(crate) fn square_rule(n: usize) -> &'static [QuadPoint<2>] {
-    static RULES: [OnceLock<Vec<QuadPoint<2>>>; 3] =
-        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
-    RULES[n - 2].get_or_init(|| gauss_tensor::<2>(n))
-}
 
 impl Element<2> for Quad4 {
     #[inline]
@@ -42,10 +34,10 @@ impl Element<2> for Quad4 {
         }
     }
     fn stiffness_rule(&self, _: &Idealization, _: &[[f64; 2]]) -> &[QuadPoint<2>] {
-        square_rule(2)
+        tensor_rule(2)
     }
     fn load_rule(&self, _: &Idealization) -> &[QuadPoint<2>] {
-        square_rule(3)
+        tensor_rule(3)
     }
     fn topology(&self) -> Topology {
         Topology {

@@ -7,9 +7,10 @@
 //! ξ_i = 0  N_i = ½ (1 − ξ²)(1 + η η_i)        η_i = 0  N_i = ½ (1 + ξ ξ_i)(1 − η²)
 //! ```
 
-use super::quad4::{CORNERS, square_rule};
+use super::quad4::CORNERS;
 use super::{Element, QuadPoint, Topology};
 use crate::idealization::Idealization;
+use crate::quadrature::tensor_rule;
 
 /// The 8-node serendipity quadrilateral (plane strain, plane stress, axisymmetry): stiffness
 /// and stresses with the full 3×3 Gauss rule, loads and mass with 4×4.
@@ -46,10 +47,10 @@ impl Element<2> for Quad8 {
         }
     }
     fn stiffness_rule(&self, _: &Idealization, _: &[[f64; 2]]) -> &[QuadPoint<2>] {
-        square_rule(3)
+        tensor_rule(3)
     }
     fn load_rule(&self, _: &Idealization) -> &[QuadPoint<2>] {
-        square_rule(4)
+        tensor_rule(4)
     }
     fn topology(&self) -> Topology {
         Topology {

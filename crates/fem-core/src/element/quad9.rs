@@ -6,10 +6,11 @@
 //! N_i(ξ, η) = l_{ξ_i}(ξ) l_{η_i}(η)
 //! ```
 
-use super::quad4::{CORNERS, square_rule};
+use super::quad4::CORNERS;
 use super::quad8::{MIDS, SIDES};
 use super::{Element, QuadPoint, Topology};
 use crate::idealization::Idealization;
+use crate::quadrature::tensor_rule;
 
 /// The 9-node Lagrange quadrilateral (plane strain, plane stress, axisymmetry): stiffness and
 /// stresses with the full 3×3 Gauss rule, loads and mass with 4×4.
@@ -40,10 +41,10 @@ impl Element<2> for Quad9 {
         }
     }
     fn stiffness_rule(&self, _: &Idealization, _: &[[f64; 2]]) -> &[QuadPoint<2>] {
-        square_rule(3)
+        tensor_rule(3)
     }
     fn load_rule(&self, _: &Idealization) -> &[QuadPoint<2>] {
-        square_rule(4)
+        tensor_rule(4)
     }
     fn topology(&self) -> Topology {
         Topology {

@@ -16,6 +16,20 @@ pub(super) fn increasing(name: &'static str, points: &[f64]) -> Result<(), FemEr
     }
 }
 
+/// The lattice lines of grid lines `c`: the lines themselves, plus their midpoints when the
+/// elements are `quadratic` (2D grids and 3D boxes alike).
+pub(crate) fn lattice_lines(c: &[f64], quadratic: bool) -> Vec<f64> {
+    if !quadratic {
+        return c.to_vec();
+    }
+    let mut out = Vec::with_capacity(2 * c.len() - 1);
+    for w in c.windows(2) {
+        out.extend([w[0], 0.5 * (w[0] + w[1])]);
+    }
+    out.push(c[c.len() - 1]);
+    out
+}
+
 /// The lattice of a structured grid: the cell lines, plus the mid-lines for P2.
 pub(super) struct Grid {
     pub(super) xs: Vec<f64>,
@@ -27,21 +41,10 @@ pub(super) struct Grid {
 
 impl Grid {
     pub(super) fn new(xs: &[f64], ys: &[f64], kind: ElementKind) -> Self {
-        let refine = |c: &[f64]| match kind.is_quadratic() {
-            false => c.to_vec(),
-            true => {
-                let mut out = Vec::with_capacity(2 * c.len() - 1);
-                for w in c.windows(2) {
-                    out.extend([w[0], 0.5 * (w[0] + w[1])]);
-                }
-                out.push(c[c.len() - 1]);
-                out
-            }
-        };
         let step = if kind.is_quadratic() { 2 } else { 1 };
         Self {
-            xs: refine(xs),
-            ys: refine(ys),
+            xs: lattice_lines(xs, kind.is_quadratic()),
+            ys: lattice_lines(ys, kind.is_quadratic()),
             step,
             kind,
         }

@@ -31,6 +31,8 @@ mod test_support;
 pub use pile::{PILE, PileSpec, SOIL, TipCorner, pile_in_soil};
 pub use rectangle::{Layer, RectangleSpec, rectangle};
 
+pub(crate) use grid::lattice_lines;
+
 use crate::error::{FemError, positive};
 
 /// How the cells of a 1D subdivision grow from its start `a` to its end `b`.

@@ -97,7 +97,7 @@ impl ElementKind {
 /// Node order: tetrahedra have corners `0, 1, 2, 3` with `(x₁ − x₀, x₂ − x₀, x₃ − x₀)` a
 /// right-handed triad (positive volume), then for P2 the mid-edge nodes `4` (edge 0–1), `5`
 /// (1–2), `6` (2–0), `7` (0–3), `8` (1–3), `9` (2–3): VTK's order. Gmsh numbers the last two the
-/// other way round; [`crate::solid::gmsh`] swaps them on reading. Hexahedra have corners
+/// other way round; [`crate::gmsh`] swaps them on reading. Hexahedra have corners
 /// `0..4` counter-clockwise seen from above, then `4..8` above them, then for Hex20 the
 /// mid-edge nodes in VTK's order ([`crate::element::hex20`]; Gmsh's order is mapped on reading).
 /// The element of each kind is [`SolidKind::element`].

@@ -98,7 +98,7 @@ impl SolidMesh {
         let nodes = &nodes[..count];
         let quad = self.kind.face_corner_count() == 4;
         let rule: &[([f64; 2], f64)] = if quad {
-            crate::element::quad4::square_rule(3)
+            crate::quadrature::tensor_rule(3)
         } else {
             &crate::quadrature::TRI_6
         };

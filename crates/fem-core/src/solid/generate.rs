@@ -3,6 +3,7 @@
 
 use super::mesh::{Face, SolidKind, SolidMesh, dot, signed_volume};
 use crate::error::FemError;
+use crate::generate::lattice_lines;
 
 /// `n + 1` equally spaced values from `a` to `b` (grid lines for [`box_mesh`]).
 pub fn lines(a: f64, b: f64, n: usize) -> Vec<f64> {
@@ -88,9 +89,29 @@ pub fn box_mesh(
     check_lines("xs", xs)?;
     check_lines("ys", ys)?;
     check_lines("zs", zs)?;
-    if matches!(kind, SolidKind::Hex8 | SolidKind::Hex20) {
-        return hex_box(xs, ys, zs, kind);
+    let mut mesh = match kind {
+        SolidKind::Hex8 | SolidKind::Hex20 => hex_box(xs, ys, zs, kind)?,
+        SolidKind::Tet4 | SolidKind::Tet10 => tet_box(xs, ys, zs)?,
+    };
+    let [x, y, z] = [xs, ys, zs].map(|v| (v[0], v[v.len() - 1]));
+    let span = [x, y, z].iter().map(|(a, b)| b - a).fold(0.0, f64::max);
+    let planes = [
+        ("x0", 0, x.0),
+        ("x1", 0, x.1),
+        ("y0", 1, y.0),
+        ("y1", 1, y.1),
+        ("z0", 2, z.0),
+        ("z1", 2, z.1),
+    ];
+    name_planes(&mut mesh, &planes, span)?;
+    match kind {
+        SolidKind::Tet10 => mesh.to_tet10(None),
+        _ => Ok(mesh),
     }
+}
+
+/// The tetrahedral (Tet4) box of [`box_mesh`], before its sides are named.
+fn tet_box(xs: &[f64], ys: &[f64], zs: &[f64]) -> Result<SolidMesh, FemError> {
     let (nx, ny, nz) = (xs.len(), ys.len(), zs.len());
     let id = |i: usize, j: usize, k: usize| i + nx * (j + ny * k);
     let mut nodes = Vec::with_capacity(nx * ny * nz);
@@ -125,49 +146,16 @@ pub fn box_mesh(
             }
         }
     }
-    let span = [xs[nx - 1] - xs[0], ys[ny - 1] - ys[0], zs[nz - 1] - zs[0]]
-        .into_iter()
-        .fold(0.0, f64::max);
-    let mut mesh = SolidMesh::new(nodes, SolidKind::Tet4, connectivity, Vec::new())?;
-    name_planes(
-        &mut mesh,
-        &[
-            ("x0", 0, xs[0]),
-            ("x1", 0, xs[nx - 1]),
-            ("y0", 1, ys[0]),
-            ("y1", 1, ys[ny - 1]),
-            ("z0", 2, zs[0]),
-            ("z1", 2, zs[nz - 1]),
-        ],
-        span,
-    )?;
-    match kind {
-        SolidKind::Tet4 => Ok(mesh),
-        SolidKind::Tet10 => mesh.to_tet10(None),
-        other => Err(FemError::Unsupported {
-            what: format!("box_mesh of {other:?} elements"),
-        }),
-    }
+    SolidMesh::new(nodes, SolidKind::Tet4, connectivity, Vec::new())
 }
 
-/// The hexahedral box of [`box_mesh`]: a lattice of the grid lines (and their midpoints for
+/// The hexahedral box of [`box_mesh`] (before its sides are named): a lattice of the grid lines (and their midpoints for
 /// Hex20, whose nodes are the lattice points with at most one odd index).
 fn hex_box(xs: &[f64], ys: &[f64], zs: &[f64], kind: SolidKind) -> Result<SolidMesh, FemError> {
     use crate::element::hex8::CORNERS;
     use crate::element::hex20::EDGES;
     let quadratic = kind == SolidKind::Hex20;
-    let refine = |c: &[f64]| -> Vec<f64> {
-        if !quadratic {
-            return c.to_vec();
-        }
-        let mut out: Vec<f64> = c
-            .windows(2)
-            .flat_map(|w| [w[0], 0.5 * (w[0] + w[1])])
-            .collect();
-        out.push(c[c.len() - 1]);
-        out
-    };
-    let (lx, ly, lz) = (refine(xs), refine(ys), refine(zs));
+    let [lx, ly, lz] = [xs, ys, zs].map(|c| lattice_lines(c, quadratic));
     let step = if quadratic { 2 } else { 1 };
     let (mx, my) = (lx.len(), ly.len());
     let lattice = |i: usize, j: usize, k: usize| i + mx * (j + my * k);
@@ -205,24 +193,7 @@ fn hex_box(xs: &[f64], ys: &[f64], zs: &[f64], kind: SolidKind) -> Result<SolidM
             }
         }
     }
-    let span = [xs, ys, zs]
-        .iter()
-        .map(|v| v[v.len() - 1] - v[0])
-        .fold(0.0, f64::max);
-    let mut mesh = SolidMesh::new(nodes, kind, connectivity, Vec::new())?;
-    name_planes(
-        &mut mesh,
-        &[
-            ("x0", 0, xs[0]),
-            ("x1", 0, xs[xs.len() - 1]),
-            ("y0", 1, ys[0]),
-            ("y1", 1, ys[ys.len() - 1]),
-            ("z0", 2, zs[0]),
-            ("z1", 2, zs[zs.len() - 1]),
-        ],
-        span,
-    )?;
-    Ok(mesh)
+    SolidMesh::new(nodes, kind, connectivity, Vec::new())
 }
 
 /// The octant `x, y, z ≥ 0` of a hollow sphere of radii `inner < outer`: the spherical

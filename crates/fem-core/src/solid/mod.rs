@@ -10,7 +10,8 @@
 //! with [`crate::Component::Z`].
 
 pub mod generate;
-pub mod gmsh;
+/// The Gmsh reader of both dimensions ([`gmsh::read_msh_3d`] reads a 3D mesh).
+pub use crate::gmsh;
 /// The mesh of both dimensions ([`SolidMesh`] is `Mesh<3>`).
 pub use crate::mesh;
 pub mod quadrature;

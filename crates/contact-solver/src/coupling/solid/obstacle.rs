@@ -8,21 +8,15 @@
 //! to `n`, and `t₂ = n × t₁`, so `(n, t₁, t₂)` is right-handed; on a plane of normal `e_z`,
 //! `t₁ = e_x` and `t₂ = e_y`.
 
-use crate::coupling::obstacle::{Obstacle, ObstaclePoint, finite_point};
-use crate::coupling::space::dot;
+use crate::coupling::obstacle::{Obstacle, ObstaclePoint, ObstacleSide, finite_point};
+use crate::coupling::space::{cross, dot};
 use crate::error::SolverError;
 
 /// The closest point of a 3D obstacle: [`ObstaclePoint<3>`].
 pub type ObstaclePoint3 = ObstaclePoint<3>;
 
-#[inline]
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+/// The side of a 3D sphere or cylinder: [`ObstacleSide`], the one type of both dimensions.
+pub type Side3 = ObstacleSide;
 
 /// The tangents `(t₁, t₂)` of the contact frame of unit normal `n` (module docs).
 pub fn tangent_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
@@ -101,21 +95,12 @@ impl Obstacle<3> for RigidPlane {
     }
 }
 
-/// Which side of a curved rigid surface the contactor is on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side3 {
-    /// The contactor is outside (a rigid ball or rod pressed into a body).
-    Outside,
-    /// The contactor is inside (a body in a spherical or cylindrical cavity).
-    Inside,
-}
-
 /// A rigid sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RigidSphere {
     center: [f64; 3],
     radius: f64,
-    side: Side3,
+    side: ObstacleSide,
 }
 
 impl RigidSphere {
@@ -124,7 +109,7 @@ impl RigidSphere {
     /// # Errors
     /// [`SolverError::NonFinite`]; [`SolverError::InvalidSetting`] for a radius that is not
     /// finite and positive.
-    pub fn new(center: [f64; 3], radius_: f64, side: Side3) -> Result<Self, SolverError> {
+    pub fn new(center: [f64; 3], radius_: f64, side: ObstacleSide) -> Result<Self, SolverError> {
         Ok(Self {
             center: finite_point("sphere center", center)?,
             radius: radius("sphere radius", radius_)?,
@@ -145,10 +130,7 @@ impl Obstacle<3> for RigidSphere {
             return None; // the centre: every direction is as close
         }
         let out = d.map(|v| v / len);
-        let (normal, gap) = match self.side {
-            Side3::Outside => (out, len - self.radius),
-            Side3::Inside => (out.map(|v| -v), self.radius - len),
-        };
+        let (normal, gap) = self.side.normal_and_gap(out, len, self.radius);
         Some(ObstaclePoint {
             point: core::array::from_fn(|a| self.center[a] + self.radius * out[a]),
             normal,
@@ -163,7 +145,7 @@ pub struct RigidCylinder {
     point: [f64; 3],
     axis: [f64; 3],
     radius: f64,
-    side: Side3,
+    side: ObstacleSide,
 }
 
 impl RigidCylinder {
@@ -177,7 +159,7 @@ impl RigidCylinder {
         point: [f64; 3],
         axis: [f64; 3],
         radius_: f64,
-        side: Side3,
+        side: ObstacleSide,
     ) -> Result<Self, SolverError> {
         Ok(Self {
             point: finite_point("cylinder point", point)?,
@@ -202,10 +184,7 @@ impl Obstacle<3> for RigidCylinder {
             return None; // on the axis
         }
         let out = radial.map(|v| v / len);
-        let (normal, gap) = match self.side {
-            Side3::Outside => (out, len - self.radius),
-            Side3::Inside => (out.map(|v| -v), self.radius - len),
-        };
+        let (normal, gap) = self.side.normal_and_gap(out, len, self.radius);
         Some(ObstaclePoint {
             point: core::array::from_fn(|a| {
                 self.point[a] + along * self.axis[a] + self.radius * out[a]
@@ -243,20 +222,26 @@ mod tests {
 
     #[test]
     fn obstacles_project_works() {
-        let s = RigidSphere::new([0.0, 0.0, 2.0], 1.0, Side3::Outside).unwrap();
+        let s = RigidSphere::new([0.0, 0.0, 2.0], 1.0, ObstacleSide::Outside).unwrap();
         let p = s.project([0.0, 0.0, 0.5]).unwrap();
         assert_eq!(p.point, [0.0, 0.0, 1.0]);
         assert_eq!(p.normal, [0.0, 0.0, -1.0]);
         assert!((p.gap - 0.5).abs() < 1e-15);
-        let c = RigidCylinder::new([0.0; 3], [0.0, 0.0, 2.0], 1.0, Side3::Inside).unwrap();
+        let c = RigidCylinder::new([0.0; 3], [0.0, 0.0, 2.0], 1.0, ObstacleSide::Inside).unwrap();
         let p = c.project([0.5, 0.0, 7.0]).unwrap();
         assert_eq!(p.point, [1.0, 0.0, 7.0]);
         assert_eq!(p.normal, [-1.0, 0.0, 0.0]);
         assert!((p.gap - 0.5).abs() < 1e-15);
         assert!(RigidPlane::new([0.0; 3], [0.0; 3]).is_err());
-        assert!(RigidSphere::new([0.0; 3], -1.0, Side3::Outside).is_err());
+        assert!(RigidSphere::new([0.0; 3], -1.0, ObstacleSide::Outside).is_err());
         assert!(
-            RigidCylinder::new([f64::NAN, 0.0, 0.0], [0.0, 0.0, 1.0], 1.0, Side3::Outside).is_err()
+            RigidCylinder::new(
+                [f64::NAN, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                1.0,
+                ObstacleSide::Outside
+            )
+            .is_err()
         );
     }
 }

@@ -18,7 +18,7 @@
 //! surface's border). A node beyond the surface's border is not a candidate, as a node beyond
 //! a rigid obstacle's end is not.
 
-use crate::coupling::space::{dot, sub};
+use crate::coupling::space::{cross, dot, sub};
 use crate::coupling::zone::{MAX_TARGETS, Projection, TargetSurface, check_node};
 use crate::error::SolverError;
 use fem_core::Structure;
@@ -133,10 +133,9 @@ impl TriSurface {
 
 impl TargetSurface<3> for TriSurface {
     fn check<S: Structure<3> + ?Sized>(&self, s: &S, zone: &str) -> Result<(), SolverError> {
-        for &n in &self.connectivity {
-            check_node(s, zone, n)?;
-        }
-        Ok(())
+        self.connectivity
+            .iter()
+            .try_for_each(|&n| check_node(s, zone, n))
     }
 
     fn project_all<S: Structure<3> + ?Sized>(
@@ -451,13 +450,4 @@ fn node_normals<S: Structure<3> + ?Sized>(s: &S, surface: &TriSurface) -> HashMa
 #[inline]
 fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
-}
-
-#[inline]
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }

@@ -49,10 +49,7 @@ impl TargetSurface<2> for Polyline {
                 "zone `{zone}`: a target polyline needs at least two nodes"
             )));
         }
-        for &n in &self.nodes {
-            check_node(s, zone, n)?;
-        }
-        Ok(())
+        self.nodes.iter().try_for_each(|&n| check_node(s, zone, n))
     }
 
     fn project_all<S: Structure<2> + ?Sized>(

@@ -1,43 +1,12 @@
-//! Reading 3D tetrahedral and hexahedral meshes from Gmsh `.msh` files, format 4.1 (ASCII or binary).
-//!
-//! The 3D tables of [`crate::gmsh`], whose checks around the [`mshio`] parser and whose build
-//! it shares; the file becomes a [`SolidMesh`]:
-//!
-//! - **Nodes.** Only the nodes used by tetrahedra are kept, numbered `0..n` in increasing Gmsh
-//!   tag order.
-//! - **Tetrahedra.** 4-node (Gmsh type 4) or 10-node (type 11) tetrahedra, one kind per file.
-//!   Gmsh numbers the last two mid-edge nodes of the 10-node tetrahedron the other way round
-//!   from [`SolidKind`] (Gmsh's node 8 is on edge 2–3, node 9 on edge 1–3: checked on files
-//!   written by Gmsh 4.8.4), so they are swapped. Left-handed tetrahedra are reordered
-//!   (corners 2 ↔ 3 and the mid-edge nodes with them), so either orientation is accepted. The
-//!   region of a tetrahedron is the first physical tag of its volume entity, or 0 if it has
-//!   none (the names of physical volumes are not kept).
-//! - **Hexahedra.** 8-node (type 5) or 20-node (type 17) hexahedra. Gmsh numbers the mid-edge
-//!   nodes of the 20-node hexahedron by edge 0–1, 0–3, 0–4, 1–2, 1–5, 2–3, 2–6, 3–7, 4–5,
-//!   4–7, 5–6, 6–7, VTK (cell 25, our order) by 0–1, 1–2, 2–3, 3–0, 4–5, 5–6, 6–7, 7–4, 0–4,
-//!   1–5, 2–6, 3–7: the reader maps them ([`crate::element::hex20::GMSH_TO_LOCAL`]).
-//!   Left-handed hexahedra are mirrored (bottom ↔ top). Physical surfaces of a hexahedral
-//!   mesh are quadrangles (type 3 or 16) matched to faces by their four corners.
-//! - **Physical surfaces** (dimension 2) become a face set and a node set of the same name.
-//!   Each triangle (type 2 or 9) is matched to a tetrahedron face by its three corners; where
-//!   two tetrahedra share that face (an interior surface), the one the triangle's normal
-//!   (right-hand rule on its corners) points out of is taken. A 6-node triangle on a P2 mesh
-//!   must have the face's mid-edge nodes. The node set holds all the nodes of those faces.
-//! - **Physical curves** (dimension 1, lines of type 1 or 8) and **physical points**
-//!   (dimension 0, type 15) become node sets holding their nodes.
-//! - **Names** come from `$PhysicalNames`; an unnamed group is called `surface_<tag>`,
-//!   `curve_<tag>` or `point_<tag>`. Groups of different dimensions with one name share one
-//!   node set.
-//!
-//! Triangles, quadrangles, lines and points outside physical groups are ignored. Any other
-//! element type (prisms, pyramids, higher orders, …) is [`FemError::Unsupported`].
+//! The 3D tables of the Gmsh reader: tetrahedra and hexahedra in our node order (Gmsh's Tet10
+//! and Hex20 mid-edge nodes mapped), right-handed; physical surfaces matched to element faces,
+//! physical curves and points to nodes.
 
-use super::mesh::{Face, SolidKind, SolidMesh, signed_volume};
+use super::build::{Groups, Reader, Shape};
 use crate::element::hex20::GMSH_TO_LOCAL;
 use crate::error::FemError;
-use crate::gmsh::{Lower, Names, Physical, Reader, Shape, build, parse_file};
+use crate::mesh::{Face, SolidKind, SolidMesh, signed_volume};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
-use std::path::Path;
 
 /// What the reader takes, for the error on any other element type.
 const READ: &str = "tetrahedra (types 4, 11), hexahedra (5, 17), triangles (2, 9), \
@@ -57,58 +26,8 @@ const HEX_MIRROR: [usize; 20] = [
     4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19,
 ];
 
-/// Reads a Gmsh `.msh` 4.1 file holding a tetrahedral mesh (see the [module docs](self)).
-///
-/// # Errors
-/// - [`FemError::Io`] if the file cannot be read or is not valid MSH 4.1 (with the line of
-///   the first error where it is known);
-/// - [`FemError::Unsupported`] for another format version, an element type other than
-///   tetrahedra, triangles, lines and points, mixed 4-node and 10-node tetrahedra, a triangle
-///   of a physical surface that is not a tetrahedron face, a node of a physical curve or point
-///   that no tetrahedron uses, or a negative physical tag;
-/// - the errors of [`SolidMesh::new`] (e.g. a flat tetrahedron), told with the file's tags.
-///
-/// # Examples
-/// ```no_run
-/// let mesh = fem_core::solid::gmsh::read_msh_3d(std::path::Path::new("block.msh"))?;
-/// println!("{} tetrahedra", mesh.element_count());
-/// # Ok::<(), fem_core::FemError>(())
-/// ```
-pub fn read_msh_3d(path: &Path) -> Result<SolidMesh, FemError> {
-    let origin = path.display().to_string();
-    let bytes =
-        std::fs::read(path).map_err(|e| FemError::io(origin.clone(), "cannot read the file", e))?;
-    parse(&bytes, &origin)
-}
-
-/// Parses the bytes of a Gmsh `.msh` 4.1 file holding a tetrahedral mesh (see
-/// [`read_msh_3d`]). Errors about the data name the file as `<msh>`.
-///
-/// # Errors
-/// As [`read_msh_3d`].
-///
-/// # Examples
-/// ```
-/// let msh = "$MeshFormat\n4.1 0 8\n$EndMeshFormat
-/// $Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes
-/// $Elements\n1 1 1 1\n3 1 4 1\n1 1 3 2 4\n$EndElements\n";
-/// let mesh = fem_core::solid::gmsh::parse_msh_3d(msh.as_bytes())?;
-/// assert_eq!(mesh.element_count(), 1);
-/// // the left-handed tetrahedron (1, 3, 2, 4) is read as (1, 3, 4, 2)
-/// assert_eq!(mesh.element(0), &[0, 2, 3, 1]);
-/// # Ok::<(), fem_core::FemError>(())
-/// ```
-pub fn parse_msh_3d(bytes: &[u8]) -> Result<SolidMesh, FemError> {
-    parse(bytes, "<msh>")
-}
-
-fn parse(bytes: &[u8], origin: &str) -> Result<SolidMesh, FemError> {
-    let (file, names) = parse_file(bytes, origin)?;
-    build(file, &names, origin, &SOLID)
-}
-
 /// The 3D reader's tables.
-const SOLID: Reader<3> = Reader {
+pub(super) static SOLID: Reader<3> = Reader {
     kind_of: |t| {
         SolidKind::ALL
             .into_iter()
@@ -155,14 +74,8 @@ fn orient(kind: SolidKind, t: Vec<usize>, nodes: &[[f64; 3]]) -> Vec<usize> {
 }
 
 /// The physical surfaces, curves and points as face and node sets of `mesh`.
-fn add_physical_sets(
-    mesh: &mut SolidMesh,
-    lower: &[Lower],
-    index: &HashMap<u64, usize>,
-    names: &Names,
-    physical: &Physical,
-    origin: &str,
-) -> Result<(), FemError> {
+fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemError> {
+    let (lower, index, origin) = (groups.lower, groups.index, groups.origin);
     // The faces of every tetrahedron, by their sorted corners (two for an interior face).
     let mut faces: HashMap<[usize; 4], Vec<Face>> = HashMap::new();
     if lower
@@ -178,7 +91,7 @@ fn add_physical_sets(
     let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for l in lower {
         let entity = l.entity.1;
-        let groups = l.groups(names, physical);
+        let names = l.groups(groups);
         if matches!(l.shape, Shape::Triangle | Shape::Quadrangle) {
             let (what, of) = match l.shape {
                 Shape::Triangle => ("triangle", "a tetrahedron"),
@@ -191,10 +104,10 @@ fn add_physical_sets(
                          {origin} is not a face of {of}",
                         l.element_tag,
                         l.nodes,
-                        groups.join(", ")
+                        names.join(", ")
                     ),
                 })?;
-            for name in groups {
+            for name in names {
                 face_sets.entry(name).or_default().insert(face);
             }
             continue;
@@ -209,11 +122,11 @@ fn add_physical_sets(
                     "node {t} of physical {} {} (element {}) in {origin} is not a node of a \
                      tetrahedron",
                     l.shape.prefix(),
-                    groups.join(", "),
+                    names.join(", "),
                     l.element_tag
                 ),
             })?;
-        for name in groups {
+        for name in names {
             node_sets.entry(name).or_default().extend(&ids);
         }
     }
@@ -323,7 +236,7 @@ mod tests {
 $Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes
 $Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n";
         assert!(matches!(
-            parse_msh_3d(msh.as_bytes()),
+            crate::gmsh::parse_msh_3d(msh.as_bytes()),
             Err(FemError::Unsupported { what }) if what.contains("no tetrahedra")
         ));
     }
