@@ -312,6 +312,18 @@ where
         &self.connectivity[e * npe..(e + 1) * npe]
     }
 
+    /// The coordinates of element `e`'s nodes, in its node order, into `coords` (cleared
+    /// first; no allocation once `coords` holds an element's worth).
+    ///
+    /// # Panics
+    /// If `e >= element_count()`.
+    #[inline]
+    #[track_caller]
+    pub fn element_coords_into(&self, e: usize, coords: &mut Vec<[f64; D]>) {
+        coords.clear();
+        coords.extend(self.element(e).iter().map(|&n| self.nodes[n]));
+    }
+
     /// The flat connectivity array.
     #[inline]
     pub fn connectivity(&self) -> &[usize] {

@@ -135,8 +135,7 @@ where
         let mut f_e = Vec::new();
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            self.mesh.element_coords_into(e, &mut coords);
             f_e.resize(D * cell.len(), 0.0);
             f_e.fill(0.0);
             integrate(self.element_at(e), e, &coords, &self.setting, &mut f_e)?;

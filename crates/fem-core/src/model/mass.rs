@@ -81,8 +81,7 @@ where
         let (mut coords, mut coupling) = (Vec::new(), Vec::new());
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            self.mesh.element_coords_into(e, &mut coords);
             let region = self.mesh.regions()[e];
             // every region has a density: checked by `has_mass` when the model was built
             let density = self.materials[&region].density().unwrap_or(0.0);

@@ -278,8 +278,7 @@ where
         let mut coupling = Vec::new();
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            self.mesh.element_coords_into(e, &mut coords);
             let region = self.mesh.regions()[e];
             let material = &self.materials[&region];
             let element = self.elements.get(region, built_in);
@@ -313,6 +312,21 @@ where
             .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
         Ok(())
+    }
+
+    /// [`Self::rhs_into`] for a load factor that must be finite, the result checked finite:
+    /// the right-hand side of [`Structure::free_response_into`] and the external force of
+    /// [`crate::structure::Nonlinear`].
+    fn checked_rhs_into(&self, load_factor: f64, rhs: &mut [f64]) -> Result<(), FemError> {
+        if !load_factor.is_finite() {
+            return Err(FemError::NonFiniteSolve {
+                what: "load factor",
+                node: None,
+                value: load_factor,
+            });
+        }
+        self.rhs_into(load_factor, rhs);
+        self.check_finite("right-hand side", rhs)
     }
 
     /// [`FemError::NonFiniteSolve`] at the first non-finite entry of a free-dof vector.
@@ -647,15 +661,7 @@ where
     }
 
     fn free_response_into(&self, load_factor: f64, u: &mut [f64]) -> Result<(), FemError> {
-        if !load_factor.is_finite() {
-            return Err(FemError::NonFiniteSolve {
-                what: "load factor",
-                node: None,
-                value: load_factor,
-            });
-        }
-        self.rhs_into(load_factor, u);
-        self.check_finite("right-hand side", u)?;
+        self.checked_rhs_into(load_factor, u)?;
         self.solve_in_place(u)?;
         self.check_finite("displacement", u)
     }

@@ -20,15 +20,7 @@ where
     Dim<D>: ModelSpace<D>,
 {
     fn external_force_into(&self, load_factor: f64, f_ext: &mut [f64]) -> Result<(), FemError> {
-        if !load_factor.is_finite() {
-            return Err(FemError::NonFiniteSolve {
-                what: "load factor",
-                node: None,
-                value: load_factor,
-            });
-        }
-        self.rhs_into(load_factor, f_ext);
-        self.check_finite("right-hand side", f_ext)
+        self.checked_rhs_into(load_factor, f_ext)
     }
 
     #[track_caller]

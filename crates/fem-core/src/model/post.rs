@@ -57,8 +57,7 @@ where
         let mut u_e = Vec::new();
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            self.mesh.element_coords_into(e, &mut coords);
             u_e.clear();
             u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
             let material = &self.materials[&self.mesh.regions()[e]];
@@ -199,8 +198,7 @@ impl ElasticModel<3> {
         let mut u_e = Vec::with_capacity(30);
         for e in 0..self.mesh.element_count() {
             let cell = self.mesh.element(e);
-            coords.clear();
-            coords.extend(cell.iter().map(|&n| self.mesh.nodes()[n]));
+            self.mesh.element_coords_into(e, &mut coords);
             u_e.clear();
             u_e.extend(cell.iter().flat_map(|&n| displacements[n]));
             let (lambda, mu) = lame(self.material(e));
