@@ -19,7 +19,6 @@ pub enum Seg {
 pub struct KeyPath(pub Vec<Seg>);
 
 impl KeyPath {
-    /// The root.
     pub fn root() -> Self {
         Self(Vec::new())
     }

@@ -23,7 +23,6 @@ pub struct Scene {
     pub units: Option<Units>,
     /// A seed study built by the library (`delamination`, `shear`, `pile`).
     pub preset: Option<RawPreset>,
-    /// The mesh.
     pub mesh: Option<RawMesh>,
     /// The 2D idealisation, or `type = "3d"` for a solid of tetrahedra.
     pub analysis: Option<RawAnalysis>,
@@ -41,7 +40,6 @@ pub struct Scene {
     /// Ties: node sets that share one displacement component (rigid caps, pilot nodes).
     #[serde(default)]
     pub ties: Vec<TieSpec>,
-    /// Loads.
     #[serde(default)]
     pub loads: Vec<RawLoad>,
     /// Contact zones.
@@ -282,7 +280,6 @@ pub enum AlgorithmSpec {
 pub struct StepsSpec {
     /// Number of steps.
     pub count: usize,
-    /// Duration.
     pub duration: f64,
 }
 
@@ -292,9 +289,7 @@ pub struct StepsSpec {
 pub struct PhaseSpec {
     /// Name.
     pub name: String,
-    /// Number of steps.
     pub steps: usize,
-    /// Duration.
     pub duration: f64,
     /// Function overrides for named loads and supports during this phase.
     #[serde(default)]
@@ -307,7 +302,6 @@ pub struct PhaseSpec {
     pub laws: BTreeMap<String, crate::raw::RawLaw>,
 }
 
-/// Outputs.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSpec {
@@ -368,12 +362,10 @@ impl Default for OutputSpec {
 #[derive(Debug, Deserialize, Clone, Copy, Default, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum XAxis {
-    /// Time.
     #[default]
     Time,
     /// Global step number.
     Step,
-    /// Load factor.
     LoadFactor,
 }
 
@@ -383,14 +375,12 @@ pub enum XAxis {
 pub struct PlotSpec {
     /// File name (`.svg`) in the output directory.
     pub file: String,
-    /// Title.
     pub title: Option<String>,
     /// Abscissa.
     #[serde(default)]
     pub x: XAxis,
     /// A recorded quantity as abscissa instead of `x` (e.g. a displacement).
     pub x_quantity: Option<CurveSpec>,
-    /// Curves.
     pub curves: Vec<CurveSpec>,
 }
 
@@ -402,7 +392,6 @@ pub struct CurveSpec {
     pub quantity: String,
     /// Zone (zone quantities; node quantities when a node is in several zones).
     pub zone: Option<String>,
-    /// Node.
     pub node: Option<usize>,
     /// Node set (reactions, displacements).
     pub set: Option<String>,

@@ -136,7 +136,6 @@ pub struct LayerSpec {
     pub ny: usize,
     /// Grading upward.
     pub grading: GradingSpec,
-    /// Region id.
     pub region: u32,
 }
 
@@ -198,7 +197,6 @@ pub enum MeshSpec {
         cells_soil_r: Option<usize>,
         /// Cells along the shaft.
         cells_shaft: Option<usize>,
-        /// Cells below the tip.
         cells_below_tip: Option<usize>,
         /// Grading across the pile radius.
         grading_pile_r: Option<GradingSpec>,
@@ -238,17 +236,13 @@ pub enum Analysis {
     /// Plane strain (per unit thickness).
     PlaneStrain {},
     /// Plane stress with a thickness.
-    PlaneStress {
-        /// Thickness.
-        thickness: f64,
-    },
+    PlaneStress { thickness: f64 },
     /// Axisymmetric `(r, z)`, per radian.
     Axisymmetric {},
     /// A 3D solid (tetrahedra).
     Solid {},
 }
 
-/// Initial stress.
 #[derive(Debug, Clone, Copy)]
 pub enum InitialStress {
     /// `fem_core::geostatic(gamma, k0, z_surface)`.
@@ -303,7 +297,6 @@ pub enum LoadSpec<const D: usize> {
     Gravity,
 }
 
-/// Side of an ARC.
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(rename_all = "snake_case")]
 pub enum ArcSideSpec {
@@ -329,7 +322,6 @@ pub enum TargetSpec {
     Arc {
         /// Centre.
         center: Pair,
-        /// Radius.
         radius: f64,
         /// Start angle (radians, counter-clockwise from +x).
         start_angle: f64,
@@ -349,7 +341,6 @@ pub enum TargetSpec {
     Sphere {
         /// Centre.
         center: Coords,
-        /// Radius.
         radius: f64,
         /// The contactor's side (default outside).
         side: ArcSideSpec,
@@ -360,7 +351,6 @@ pub enum TargetSpec {
         point: Coords,
         /// The axis direction.
         axis: Coords,
-        /// Radius.
         radius: f64,
         /// The contactor's side (default outside).
         side: ArcSideSpec,
@@ -386,7 +376,6 @@ pub enum TargetSpec {
 #[derive(Debug, Deserialize, Clone, Copy, Default, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum SchemeSpec {
-    /// Implicit Euler.
     #[default]
     ImplicitEuler,
     /// θ-method (with `theta`).
@@ -435,9 +424,7 @@ pub struct RccmSpec {
 pub enum Preset {
     /// Seed 5.6.1.
     Delamination {
-        /// Length.
         length: Option<f64>,
-        /// Height.
         height: Option<f64>,
         /// Young's modulus.
         young: Option<f64>,
@@ -451,18 +438,14 @@ pub enum Preset {
         element: Option<Element>,
         /// Lift of point A.
         lift: Option<f64>,
-        /// Duration.
         duration: Option<f64>,
-        /// Steps.
         steps: Option<usize>,
         /// Interface law parameters (each optional).
         interface: Option<RccmOverride>,
     },
     /// Seed 5.6.2.
     Shear {
-        /// Length.
         length: Option<f64>,
-        /// Height.
         height: Option<f64>,
         /// Young's modulus.
         young: Option<f64>,
@@ -478,9 +461,7 @@ pub enum Preset {
         press: Option<f64>,
         /// Left `u_x` at the end.
         push: Option<f64>,
-        /// Duration.
         duration: Option<f64>,
-        /// Steps.
         steps: Option<usize>,
         /// Interface law parameters (each optional).
         interface: Option<RccmOverride>,
@@ -503,7 +484,6 @@ pub enum Preset {
         soil_poisson: Option<f64>,
         /// Soil unit weight (kN/m³).
         soil_unit_weight: Option<f64>,
-        /// K0.
         k0: Option<f64>,
         /// Phase 2.
         installation: Option<InstallationSpec>,
@@ -562,7 +542,6 @@ pub struct PileMeshOverride {
     pub length: Option<f64>,
     /// Radial extent.
     pub width: Option<f64>,
-    /// Depth.
     pub depth: Option<f64>,
     /// Cells across the pile radius.
     pub cells_pile_r: Option<usize>,
@@ -570,7 +549,6 @@ pub struct PileMeshOverride {
     pub cells_soil_r: Option<usize>,
     /// Cells along the shaft.
     pub cells_shaft: Option<usize>,
-    /// Cells below the tip.
     pub cells_below_tip: Option<usize>,
 }
 
@@ -592,7 +570,6 @@ pub struct RccmOverride {
     pub m: Option<u32>,
     /// Initial β.
     pub beta_0: Option<f64>,
-    /// Scheme.
     pub scheme: Option<SchemeSpec>,
     /// θ.
     pub theta: Option<f64>,

@@ -41,7 +41,6 @@ pub(super) fn non_negative(path: &KeyPath, v: f64) -> CliResult<f64> {
     expect(path, v, v.is_finite() && v >= 0.0, "a finite number >= 0")
 }
 
-/// A finite number.
 pub(super) fn finite(path: &KeyPath, v: f64) -> CliResult<f64> {
     expect(path, v, v.is_finite(), "a finite number (not nan or inf)")
 }

@@ -40,7 +40,6 @@ where
     fn idealization(options: &Self::Options) -> Option<Idealization>;
     /// Checks that the boundary set a traction or pressure names exists.
     fn boundary_set(path: &KeyPath, mesh: &Mesh<D>, set: &str) -> CliResult<()>;
-    /// The model.
     fn model(
         mesh: Mesh<D>,
         options: &Self::Options,

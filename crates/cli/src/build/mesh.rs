@@ -33,7 +33,6 @@ pub(crate) enum MeshPlan {
 pub(crate) struct GmshPlan {
     /// As written in the scene (relative to the scene file).
     file: String,
-    /// Its path.
     path: PathBuf,
     /// `mesh.element`, if given.
     element: Option<Element>,

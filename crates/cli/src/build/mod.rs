@@ -48,7 +48,6 @@ use validate::{Plan, Validated};
 
 /// A scene file read from disk.
 pub struct Loaded {
-    /// Its path.
     pub path: PathBuf,
     /// Its text.
     pub source: String,

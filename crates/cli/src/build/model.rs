@@ -364,13 +364,9 @@ where
 {
     /// What the dimension builds the model in (2D: the idealisation and `floating`).
     pub(super) options: <Dim<D> as SceneDim<D>>::Options,
-    /// Materials.
     pub(super) materials: Vec<MaterialPlan>,
-    /// Supports.
     pub(super) supports: Vec<SupportPlan>,
-    /// Loads.
     pub(super) loads: Vec<LoadPlan<D>>,
-    /// Initial stress.
     pub(super) initial_stress: InitialStressPlan,
     /// `[[ties]]`.
     pub(super) ties: Ties,

@@ -72,7 +72,6 @@ pub(super) fn time_function(path: &KeyPath, pts: &[Pair]) -> CliResult<TimeFunct
 pub struct Phase {
     /// Name.
     pub name: String,
-    /// Steps.
     pub steps: usize,
     /// Start time.
     pub t0: f64,
@@ -310,7 +309,6 @@ pub fn phase_law_names(phase_laws: &[Vec<(String, StandardLaw)>]) -> Vec<Vec<(St
 /// The law of a zone during one phase of a run (`summary.json`: `zones[].laws`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PhaseLaw {
-    /// The phase.
     pub phase: String,
     /// The law in force during it (`signorini`, `coulomb`, `rccm`).
     pub law: String,

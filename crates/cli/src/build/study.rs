@@ -96,13 +96,10 @@ impl StudyDim<3> for Dim<3> {
 pub struct SupportRt {
     /// Name.
     pub name: Option<String>,
-    /// Nodes.
     pub nodes: Vec<usize>,
-    /// Components.
     pub components: Vec<Component>,
     /// Value.
     pub value: f64,
-    /// Function name.
     pub function: Option<String>,
     /// Phase mask.
     pub phases: Vec<bool>,
@@ -162,9 +159,7 @@ pub enum LoadKind<const D: usize = 2> {
 pub struct LoadRt<const D: usize = 2> {
     /// Name.
     pub name: Option<String>,
-    /// Kind.
     pub kind: LoadKind<D>,
-    /// Function name.
     pub function: Option<String>,
     /// Phase mask.
     pub phases: Vec<bool>,
@@ -177,9 +172,7 @@ where
 {
     /// The simulation.
     pub sim: ContactSimulation<ElasticModel<D>, StandardLaw, D>,
-    /// Supports.
     pub supports: Vec<SupportRt>,
-    /// Loads.
     pub loads: Vec<LoadRt<D>>,
     /// Time functions.
     pub functions: BTreeMap<String, TimeFunction>,
@@ -229,19 +222,13 @@ pub struct Study<const D: usize = 2>
 where
     Dim<D>: StudyDim<D>,
 {
-    /// Title.
     pub title: String,
-    /// Units.
     pub units: Units,
-    /// The body.
     pub body: Body<D>,
-    /// Phases.
     pub phases: Vec<Phase>,
-    /// Outputs.
     pub output: OutputSpec,
     /// Plots (validated).
     pub plots: Vec<PlotSpec>,
-    /// Zone names.
     pub zone_names: Vec<String>,
     /// Zone law names.
     pub zone_laws: Vec<String>,
@@ -260,7 +247,6 @@ impl<const D: usize> Study<D>
 where
     Dim<D>: StudyDim<D>,
 {
-    /// The candidates.
     pub fn candidates(&self) -> &[Candidate<D>] {
         match &self.body {
             Body::Custom(c) => c.sim.candidates(),
@@ -268,7 +254,6 @@ where
         }
     }
 
-    /// The model.
     pub fn model(&self) -> &ElasticModel<D> {
         match &self.body {
             Body::Custom(c) => c.sim.structure(),
@@ -316,7 +301,6 @@ where
         }
     }
 
-    /// Total steps.
     pub fn total_steps(&self) -> usize {
         self.phases.iter().map(|p| p.steps).sum()
     }

@@ -21,7 +21,6 @@ use std::path::Path;
 pub(super) enum Validated {
     /// A scene described key by key.
     Custom(Box<Plan>),
-    /// A preset.
     Preset(Box<PresetPlan>),
 }
 
@@ -29,7 +28,6 @@ pub(super) enum Validated {
 pub(super) struct Plan {
     /// Time functions by name.
     pub(super) functions: BTreeMap<String, TimeFunction>,
-    /// Phases.
     pub(super) phases: Vec<Phase>,
     /// The mesh to generate or read.
     pub(super) mesh: MeshPlan,

@@ -3,29 +3,35 @@
 
 use crate::error::{CliError, CliResult, KeyPath};
 
+/// `present!(self; a, b)`: `[("a", self.a.is_some()), ("b", self.b.is_some())]`, the keys a
+/// flat table has, for [`only`].
+macro_rules! present {
+    ($s:ident; $($k:ident),* $(,)?) => { [$((stringify!($k), $s.$k.is_some())),*] };
+}
+pub(super) use present;
+
 /// `need(path, &opt, "key", "what")`: the value, or the error "`path`: what needs `key`".
 pub(super) fn need<T: Clone>(path: &KeyPath, v: &Option<T>, key: &str, what: &str) -> CliResult<T> {
     v.clone()
         .ok_or_else(|| CliError::at(path, format!("`{path}`: {what} needs `{key}`")))
 }
 
-/// Refuses the keys present that `what` does not read.
+/// Refuses the keys present that `what` does not read (`accepted`: the keys it reads, separated
+/// by spaces).
 pub(super) fn only(
     path: &KeyPath,
     what: &str,
     present: &[(&str, bool)],
-    accepted: &[&str],
+    accepted: &str,
 ) -> CliResult<()> {
+    let accepted: Vec<&str> = accepted.split_whitespace().collect();
     if let Some((k, _)) = present.iter().find(|(k, p)| *p && !accepted.contains(k)) {
         let p = path.key(k);
         let keys = if accepted.is_empty() {
             "none".to_string()
         } else {
-            accepted
-                .iter()
-                .map(|a| format!("`{a}`"))
-                .collect::<Vec<_>>()
-                .join(", ")
+            let quoted: Vec<String> = accepted.iter().map(|a| format!("`{a}`")).collect();
+            quoted.join(", ")
         };
         return Err(CliError::at(
             &p,

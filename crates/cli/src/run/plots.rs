@@ -114,7 +114,6 @@ impl Plots {
             .any(|c| c.spec.quantity.starts_with("reaction"))
     }
 
-    /// Steps recorded.
     pub(super) fn steps(&self) -> usize {
         self.x_time.len()
     }

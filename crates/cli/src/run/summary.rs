@@ -23,7 +23,6 @@ pub struct Peak {
     pub value: f64,
     /// Global step.
     pub step: usize,
-    /// Time.
     pub time: f64,
 }
 
@@ -48,7 +47,6 @@ pub struct ZoneSummary<const D: usize = 2> {
     /// The law in force at the end of the run (`[[phases]] laws` may have changed it; `laws`
     /// lists them).
     pub law: String,
-    /// Candidates.
     pub candidates: usize,
     /// Largest Σ r_n (compression).
     pub max_force_n: Option<Peak>,
@@ -76,16 +74,12 @@ pub struct ZoneSummary<const D: usize = 2> {
     pub laws: Vec<PhaseLaw>,
 }
 
-/// Status counts.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct StatusCount {
     /// Not in the reduced problem.
     pub inactive: usize,
-    /// Open.
     pub open: usize,
-    /// Stick.
     pub stick: usize,
-    /// Slip.
     pub slip: usize,
     /// Closed under a frictionless law (neither sticking nor slipping).
     pub closed: usize,
@@ -121,7 +115,6 @@ impl<const D: usize> Serialize for ZoneSummary<D> {
 /// solver steps, which the library's [`Counters`] count).
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct StepTotals {
-    /// Steps done.
     pub steps: usize,
     /// Contact (solver) iterations.
     pub contact_iterations: usize,
@@ -164,7 +157,6 @@ impl StepTotals {
 pub struct PhaseSummary<const D: usize = 2> {
     /// Name.
     pub name: String,
-    /// Steps.
     pub steps: usize,
     /// Start time.
     pub t_start: f64,
@@ -174,7 +166,6 @@ pub struct PhaseSummary<const D: usize = 2> {
     pub counters: Counters,
     /// The phase's steps' reports summed.
     pub totals: StepTotals,
-    /// Wall time.
     pub wall_time_s: f64,
 }
 
@@ -218,7 +209,6 @@ pub struct Stages {
     pub flexibility_builds: usize,
     /// Refactorisations of K after the first (stiffness changes).
     pub stiffness_changes: usize,
-    /// Contact iterations.
     pub contact_iterations: usize,
     /// Steps needing more than one penetration-check pass.
     pub steps_with_detection_passes: usize,
@@ -229,7 +219,6 @@ pub struct Stages {
 pub struct CurveSummary {
     /// Plot file.
     pub plot: String,
-    /// Label.
     pub label: String,
     /// Minimum.
     pub min: Option<Peak>,
@@ -246,7 +235,6 @@ pub struct Summary<const D: usize = 2> {
     pub bipo_version: &'static str,
     /// Scene file.
     pub scene: String,
-    /// Title.
     pub title: String,
     /// Units note.
     pub units: BTreeUnits,
@@ -270,11 +258,8 @@ pub struct Summary<const D: usize = 2> {
     /// The sum of the support reactions at the last step (global axes), where the run keeps
     /// it (3D: `steps.csv` has it per step).
     pub final_reaction: Option<[f64; D]>,
-    /// Stages.
     pub stages: Stages,
-    /// Phases.
     pub phases: Vec<PhaseSummary<D>>,
-    /// Zones.
     pub zones: Vec<ZoneSummary<D>>,
     /// Plotted curves.
     pub curves: Vec<CurveSummary>,
@@ -352,13 +337,9 @@ impl<const D: usize> Serialize for Summary<D> {
 /// Units note.
 #[derive(Clone, Debug, Serialize, Default)]
 pub struct BTreeUnits {
-    /// Length.
     pub length: Option<String>,
-    /// Force.
     pub force: Option<String>,
-    /// Time.
     pub time: Option<String>,
-    /// Stress.
     pub stress: Option<String>,
 }
 
@@ -384,12 +365,9 @@ pub(super) fn status(error: Option<&CliError>) -> String {
     .into()
 }
 
-/// Mesh facts.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct MeshFacts {
-    /// Nodes.
     pub nodes: usize,
-    /// Elements.
     pub elements: usize,
     /// Free dofs at the start.
     pub free_dofs: usize,
