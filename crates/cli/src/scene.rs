@@ -10,7 +10,7 @@
 
 use crate::raw::{RawAnalysis, RawInitialStress, RawLaw, RawLoad, RawMesh, RawPreset, RawTarget};
 use crate::spec::Pair;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// A whole scene file.
@@ -83,8 +83,8 @@ pub struct HertzSpec {
     pub file: Option<String>,
 }
 
-/// Units note.
-#[derive(Debug, Deserialize, Clone, Default)]
+/// Units note (written back as `summary.json`'s `units`).
+#[derive(Debug, Deserialize, Serialize, Clone, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Units {
     /// e.g. "mm".

@@ -419,52 +419,40 @@ pub struct RccmSpec {
     pub theta: Option<f64>,
 }
 
+/// The overrides the two seed plates (5.6.1, 5.6.2) share.
+#[derive(Debug, Clone)]
+pub struct PlateOverride {
+    pub length: Option<f64>,
+    pub height: Option<f64>,
+    pub young: Option<f64>,
+    pub poisson: Option<f64>,
+    /// Cells along the interface.
+    pub nx: Option<usize>,
+    /// Cells across.
+    pub ny: Option<usize>,
+    pub element: Option<Element>,
+    pub duration: Option<f64>,
+    pub steps: Option<usize>,
+    /// Interface law parameters (each optional).
+    pub interface: Option<RccmOverride>,
+}
+
 /// A seed study built by the library.
 #[derive(Debug, Clone)]
 pub enum Preset {
     /// Seed 5.6.1.
     Delamination {
-        length: Option<f64>,
-        height: Option<f64>,
-        /// Young's modulus.
-        young: Option<f64>,
-        /// Poisson's ratio.
-        poisson: Option<f64>,
-        /// Cells along the interface.
-        nx: Option<usize>,
-        /// Cells across.
-        ny: Option<usize>,
-        /// P1 / P2.
-        element: Option<Element>,
+        plate: PlateOverride,
         /// Lift of point A.
         lift: Option<f64>,
-        duration: Option<f64>,
-        steps: Option<usize>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
     },
     /// Seed 5.6.2.
     Shear {
-        length: Option<f64>,
-        height: Option<f64>,
-        /// Young's modulus.
-        young: Option<f64>,
-        /// Poisson's ratio.
-        poisson: Option<f64>,
-        /// Cells along the interface.
-        nx: Option<usize>,
-        /// Cells across.
-        ny: Option<usize>,
-        /// P1 / P2.
-        element: Option<Element>,
+        plate: PlateOverride,
         /// Top `u_y` at the end.
         press: Option<f64>,
         /// Left `u_x` at the end.
         push: Option<f64>,
-        duration: Option<f64>,
-        steps: Option<usize>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
     },
     /// Seed chapter 6: pile pull-out (geostatic, installation, pull-out phases).
     Pile {

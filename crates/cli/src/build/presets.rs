@@ -119,96 +119,45 @@ pub(super) fn validate(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> 
     let settings = settings::<2>(&scene.solver)?;
     let p = KeyPath::root().key("preset");
     macro_rules! set {
-        ($spec:ident, $field:ident, positive) => {
-            if let Some(v) = $field {
-                $spec.$field = positive(&p.key(stringify!($field)), *v)?;
-            }
-        };
-        ($spec:ident, $field:ident, finite) => {
-            if let Some(v) = $field {
-                $spec.$field = finite(&p.key(stringify!($field)), *v)?;
-            }
-        };
-        ($spec:ident, $field:ident, count) => {
-            if let Some(v) = $field {
-                $spec.$field = at_least(&p.key(stringify!($field)), *v, 1)?;
+        ($spec:ident.$field:ident = $v:expr, $check:expr) => {
+            if let Some(v) = $v {
+                $spec.$field = $check(&p.key(stringify!($field)), v)?;
             }
         };
     }
-    let poisson_ok = |v: &Option<f64>| -> CliResult<Option<f64>> {
-        match v {
-            Some(x) => Ok(Some(expect(
-                &p.key("poisson"),
-                *x,
-                *x > -1.0 && *x < 0.5,
-                "a Poisson's ratio in (-1, 0.5)",
-            )?)),
-            None => Ok(None),
-        }
-    };
+    let count = |p: &KeyPath, v| at_least(p, v, 1);
+    let poisson =
+        |p: &KeyPath, v: f64| expect(p, v, v > -1.0 && v < 0.5, "a Poisson's ratio in (-1, 0.5)");
+    // the keys both plates have, checked in the order of the table, around the plate's own
+    macro_rules! plate {
+        ($spec:ident, $o:ident, $own:block) => {
+            set!($spec.length = $o.length, positive);
+            set!($spec.height = $o.height, positive);
+            set!($spec.young = $o.young, positive);
+            set!($spec.poisson = $o.poisson, poisson);
+            set!($spec.nx = $o.nx, count);
+            set!($spec.ny = $o.ny, count);
+            if let Some(e) = $o.element {
+                $spec.kind = kind(e);
+            }
+            $own
+            set!($spec.duration = $o.duration, positive);
+            set!($spec.steps = $o.steps, count);
+            $spec.interface = override_rccm(&p.key("interface"), $spec.interface, &$o.interface)?;
+        };
+    }
     let spec = match preset {
-        Preset::Delamination {
-            length,
-            height,
-            young,
-            poisson,
-            nx,
-            ny,
-            element,
-            lift,
-            duration,
-            steps,
-            interface,
-        } => {
+        Preset::Delamination { plate, lift } => {
             let mut spec = DelaminationSpec::default();
-            set!(spec, length, positive);
-            set!(spec, height, positive);
-            set!(spec, young, positive);
-            if let Some(v) = poisson_ok(poisson)? {
-                spec.poisson = v;
-            }
-            set!(spec, nx, count);
-            set!(spec, ny, count);
-            if let Some(e) = element {
-                spec.kind = kind(*e);
-            }
-            set!(spec, lift, finite);
-            set!(spec, duration, positive);
-            set!(spec, steps, count);
-            spec.interface = override_rccm(&p.key("interface"), spec.interface, interface)?;
+            plate!(spec, plate, { set!(spec.lift = *lift, finite) });
             PresetSpec::Delamination(spec)
         }
-        Preset::Shear {
-            length,
-            height,
-            young,
-            poisson,
-            nx,
-            ny,
-            element,
-            press,
-            push,
-            duration,
-            steps,
-            interface,
-        } => {
+        Preset::Shear { plate, press, push } => {
             let mut spec = ShearSpec::default();
-            set!(spec, length, positive);
-            set!(spec, height, positive);
-            set!(spec, young, positive);
-            if let Some(v) = poisson_ok(poisson)? {
-                spec.poisson = v;
-            }
-            set!(spec, nx, count);
-            set!(spec, ny, count);
-            if let Some(e) = element {
-                spec.kind = kind(*e);
-            }
-            set!(spec, press, finite);
-            set!(spec, push, finite);
-            set!(spec, duration, positive);
-            set!(spec, steps, count);
-            spec.interface = override_rccm(&p.key("interface"), spec.interface, interface)?;
+            plate!(spec, plate, {
+                set!(spec.press = *press, finite);
+                set!(spec.push = *push, finite);
+            });
             PresetSpec::Shear(spec)
         }
         Preset::Pile { .. } => unreachable!("handled above"),

@@ -70,6 +70,21 @@ pub struct RawPreset {
 }
 
 impl RawPreset {
+    fn plate(&self) -> PlateOverride {
+        PlateOverride {
+            length: self.length,
+            height: self.height,
+            young: self.young,
+            poisson: self.poisson,
+            nx: self.nx,
+            ny: self.ny,
+            element: self.element,
+            duration: self.duration,
+            steps: self.steps,
+            interface: self.interface,
+        }
+    }
+
     /// The preset.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<Preset> {
         let present = present!(self; length, height, young, poisson, nx, ny, element, lift, press,
@@ -86,17 +101,8 @@ impl RawPreset {
                     &format!("{COMMON} lift"),
                 )?;
                 Preset::Delamination {
-                    length: self.length,
-                    height: self.height,
-                    young: self.young,
-                    poisson: self.poisson,
-                    nx: self.nx,
-                    ny: self.ny,
-                    element: self.element,
+                    plate: self.plate(),
                     lift: self.lift,
-                    duration: self.duration,
-                    steps: self.steps,
-                    interface: self.interface,
                 }
             }
             PresetKind::Shear => {
@@ -107,18 +113,9 @@ impl RawPreset {
                     &format!("{COMMON} press push"),
                 )?;
                 Preset::Shear {
-                    length: self.length,
-                    height: self.height,
-                    young: self.young,
-                    poisson: self.poisson,
-                    nx: self.nx,
-                    ny: self.ny,
-                    element: self.element,
+                    plate: self.plate(),
                     press: self.press,
                     push: self.push,
-                    duration: self.duration,
-                    steps: self.steps,
-                    interface: self.interface,
                 }
             }
             PresetKind::Pile => {

@@ -35,7 +35,7 @@ use progress::Progress;
 use recorder::Recorder;
 use std::path::PathBuf;
 use std::time::Instant;
-use summary::{BTreeUnits, PhaseSummary, Stages, facts, since, status};
+use summary::{PhaseSummary, Stages, facts, since, status};
 
 /// Options of `bipo run`.
 pub struct RunOptions {
@@ -133,7 +133,7 @@ where
         bipo_version: env!("CARGO_PKG_VERSION"),
         scene: opts.scene_file.display().to_string(),
         title: study.title.clone(),
-        units: BTreeUnits::of(&study.units),
+        units: study.units.clone(),
         status: status(error.as_ref()),
         error: error.as_ref().map(|e| e.message.clone()),
         steps: steps_done,

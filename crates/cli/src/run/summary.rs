@@ -236,8 +236,8 @@ pub struct Summary<const D: usize = 2> {
     /// Scene file.
     pub scene: String,
     pub title: String,
-    /// Units note.
-    pub units: BTreeUnits,
+    /// The scene's `[units]`.
+    pub units: Units,
     /// `completed` or `failed`.
     pub status: String,
     /// The error when failed.
@@ -331,27 +331,6 @@ impl<const D: usize> Serialize for Summary<D> {
             m.serialize_field("curves", &self.curves)?;
         }
         m.end()
-    }
-}
-
-/// Units note.
-#[derive(Clone, Debug, Serialize, Default)]
-pub struct BTreeUnits {
-    pub length: Option<String>,
-    pub force: Option<String>,
-    pub time: Option<String>,
-    pub stress: Option<String>,
-}
-
-impl BTreeUnits {
-    /// The scene's `[units]`.
-    pub(super) fn of(u: &Units) -> Self {
-        Self {
-            length: u.length.clone(),
-            force: u.force.clone(),
-            time: u.time.clone(),
-            stress: u.stress.clone(),
-        }
     }
 }
 
