@@ -8,9 +8,7 @@ use std::path::{Path, PathBuf};
 /// One segment of a key path: `contact[1].law.mu` is `Key(contact) Index(1) Key(law) Key(mu)`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Seg {
-    /// A table key.
     Key(String),
-    /// An array index.
     Index(usize),
 }
 
@@ -253,7 +251,6 @@ pub fn locate(src: &str, path: &KeyPath) -> Option<Range<usize>> {
     span
 }
 
-/// A `bipo` result.
 pub type CliResult<T> = Result<T, CliError>;
 
 #[cfg(test)]

@@ -17,7 +17,6 @@ use std::collections::BTreeMap;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// A title for reports.
     pub title: Option<String>,
     /// Free-text note of the unit system (the code needs only consistency).
     pub units: Option<Units>,
@@ -26,10 +25,8 @@ pub struct Scene {
     pub mesh: Option<RawMesh>,
     /// The 2D idealisation, or `type = "3d"` for a solid of tetrahedra.
     pub analysis: Option<RawAnalysis>,
-    /// Materials per region.
     #[serde(default)]
     pub materials: Vec<MaterialSpec>,
-    /// Initial stress field.
     pub initial_stress: Option<RawInitialStress>,
     /// Piecewise linear time functions, by name.
     #[serde(default)]
@@ -42,7 +39,6 @@ pub struct Scene {
     pub ties: Vec<TieSpec>,
     #[serde(default)]
     pub loads: Vec<RawLoad>,
-    /// Contact zones.
     #[serde(default)]
     pub contact: Vec<ZoneSpec>,
     /// The reduced solver and the adhesion loop.
@@ -56,7 +52,6 @@ pub struct Scene {
     /// Which outputs, where.
     #[serde(default)]
     pub output: OutputSpec,
-    /// SVG plots.
     #[serde(default)]
     pub plots: Vec<PlotSpec>,
     /// The recovered contact pressure against Hertz's (an SVG at the last written step).
@@ -106,7 +101,6 @@ pub struct MaterialSpec {
     pub name: Option<String>,
     /// One region.
     pub region: Option<u32>,
-    /// Several regions.
     pub regions: Option<Vec<u32>>,
     /// Young's modulus.
     pub young: f64,
@@ -139,7 +133,6 @@ pub enum ComponentSpec {
 pub struct SupportSpec {
     /// A name (phases may override its function by this name).
     pub name: Option<String>,
-    /// Node set.
     pub set: String,
     /// Component(s).
     pub component: ComponentSpec,
@@ -156,13 +149,11 @@ pub struct SupportSpec {
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct TieSpec {
-    /// Node set.
     pub set: String,
     /// Component(s).
     pub component: ComponentSpec,
 }
 
-/// A contact zone.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct ZoneSpec {
@@ -172,7 +163,6 @@ pub struct ZoneSpec {
     pub contactor: String,
     /// What the contactor faces.
     pub target: RawTarget,
-    /// Interface law.
     pub law: RawLaw,
     /// Alert distance Δx.
     pub alert_distance: f64,
@@ -216,11 +206,9 @@ pub struct SolverSpec {
     pub adhesion_method: Option<AdhesionMethodSpec>,
     /// Newton adhesion: try Newton from the previous step's reactions first (default true).
     pub adhesion_warm_start: Option<bool>,
-    /// Maximum adhesion iterations.
     pub max_adhesion_iterations: Option<usize>,
     /// Maximum penetration-check passes.
     pub max_detection_passes: Option<usize>,
-    /// Accept non-converged steps.
     pub accept_non_converged: Option<bool>,
     /// Window of the stall detector (0: off).
     pub stall_window: Option<usize>,
@@ -260,7 +248,6 @@ pub enum AdhesionMethodSpec {
     FixedPoint,
 }
 
-/// Algorithm names.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 pub enum AlgorithmSpec {
     /// Projected Gauss–Seidel bipotential sweeps (default).
@@ -283,7 +270,6 @@ pub struct StepsSpec {
     pub duration: f64,
 }
 
-/// One phase of several.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct PhaseSpec {

@@ -127,7 +127,6 @@ impl Default for GradingSpec {
     }
 }
 
-/// One layer of a rectangle.
 #[derive(Debug, Clone)]
 pub struct LayerSpec {
     /// Upper edge.
@@ -164,7 +163,6 @@ pub enum MeshSpec {
         x: Pair,
         /// Cells along x.
         nx: usize,
-        /// Grading along x.
         grading_x: GradingSpec,
         /// `[y0, y1]` (one layer; or `y0` and `layers`).
         y: Option<Pair>,
@@ -183,7 +181,6 @@ pub enum MeshSpec {
     Pile {
         /// P1 / P2 (default P2).
         element: Option<Element>,
-        /// Pile diameter.
         diameter: Option<f64>,
         /// Embedded length.
         length: Option<f64>,
@@ -195,7 +192,6 @@ pub enum MeshSpec {
         cells_pile_r: Option<usize>,
         /// Cells in the soil, radially.
         cells_soil_r: Option<usize>,
-        /// Cells along the shaft.
         cells_shaft: Option<usize>,
         cells_below_tip: Option<usize>,
         /// Grading across the pile radius.
@@ -220,7 +216,6 @@ pub enum MeshSpec {
     },
 }
 
-/// Pile tip corner.
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(rename_all = "snake_case")]
 pub enum TipCornerSpec {
@@ -235,8 +230,9 @@ pub enum TipCornerSpec {
 pub enum Analysis {
     /// Plane strain (per unit thickness).
     PlaneStrain {},
-    /// Plane stress with a thickness.
-    PlaneStress { thickness: f64 },
+    PlaneStress {
+        thickness: f64,
+    },
     /// Axisymmetric `(r, z)`, per radian.
     Axisymmetric {},
     /// A 3D solid (tetrahedra).
@@ -268,21 +264,18 @@ pub enum LoadSpec<const D: usize> {
     },
     /// A pressure on a face set, positive into the body (3D only).
     Pressure {
-        /// Face set.
         set: String,
         /// The pressure.
         value: f64,
     },
     /// A force on every node of a node set.
     NodalForce {
-        /// Node set.
         set: String,
         /// The force per node.
         value: [f64; D],
     },
     /// One force on a node set tied along its non-zero components (a rigid cap's resultant).
     Resultant {
-        /// Node set.
         set: String,
         /// The force on the whole set.
         value: [f64; D],
@@ -366,10 +359,7 @@ pub enum TargetSpec {
     },
     /// Another body's surface: the polyline through a node set in order (2D `segments`), the
     /// faces of a face set (3D `faces`).
-    Surface {
-        /// The target set.
-        set: String,
-    },
+    Surface { set: String },
 }
 
 /// β time integration.
@@ -382,17 +372,14 @@ pub enum SchemeSpec {
     Theta,
 }
 
-/// Interface law.
 #[derive(Debug, Clone, Copy)]
 pub enum LawSpec {
     /// Frictionless unilateral contact.
     Signorini {},
-    /// Coulomb friction.
     Coulomb {
         /// Friction coefficient.
         mu: f64,
     },
-    /// RCCM adhesion.
     Rccm(RccmSpec),
 }
 
@@ -485,7 +472,6 @@ pub enum Preset {
         alert_distance: Option<f64>,
         /// Interface law parameters (each optional).
         interface: Option<RccmOverride>,
-        /// Mesh overrides.
         mesh: Option<PileMeshOverride>,
     },
 }
@@ -518,13 +504,11 @@ pub enum InstallationSpec {
     },
 }
 
-/// Mesh overrides of the pile preset.
 #[derive(Debug, Deserialize, Clone, Copy, Default)]
 #[serde(deny_unknown_fields)]
 pub struct PileMeshOverride {
     /// P1 / P2.
     pub element: Option<Element>,
-    /// Pile diameter.
     pub diameter: Option<f64>,
     /// Embedded length.
     pub length: Option<f64>,
@@ -535,7 +519,6 @@ pub struct PileMeshOverride {
     pub cells_pile_r: Option<usize>,
     /// Cells in the soil, radially.
     pub cells_soil_r: Option<usize>,
-    /// Cells along the shaft.
     pub cells_shaft: Option<usize>,
     pub cells_below_tip: Option<usize>,
 }

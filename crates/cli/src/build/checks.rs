@@ -45,6 +45,16 @@ pub(super) fn finite(path: &KeyPath, v: f64) -> CliResult<f64> {
     expect(path, v, v.is_finite(), "a finite number (not nan or inf)")
 }
 
+/// A Poisson's ratio, in (-1, 0.5).
+pub(super) fn poisson(path: &KeyPath, v: f64) -> CliResult<f64> {
+    expect(
+        path,
+        v,
+        v > -1.0 && v < 0.5,
+        "a Poisson's ratio in (-1, 0.5)",
+    )
+}
+
 /// Two finite numbers (the error names the index).
 pub(super) fn finite2(path: &KeyPath, v: Pair) -> CliResult<[f64; 2]> {
     finite_all(path, v.0)
@@ -58,7 +68,6 @@ pub(super) fn finite_all<const D: usize>(path: &KeyPath, v: [f64; D]) -> CliResu
     Ok(v)
 }
 
-/// An integer >= `min`.
 pub(super) fn at_least(path: &KeyPath, v: usize, min: usize) -> CliResult<usize> {
     if v >= min {
         Ok(v)

@@ -4,7 +4,7 @@
 //! of the first phase at t = 0. What the dimension reads differently is [`SceneDim`]'s.
 
 use super::checks::{
-    expect, fem, finite, finite_all, join, list_names, node_set, non_negative, positive,
+    fem, finite, finite_all, join, list_names, node_set, non_negative, poisson, positive,
 };
 use super::dim::SceneDim;
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
@@ -121,12 +121,7 @@ fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
     for (i, m) in scene.materials.iter().enumerate() {
         let p = root.key("materials").index(i);
         let young = positive(&p.key("young"), m.young)?;
-        let poisson = expect(
-            &p.key("poisson"),
-            m.poisson,
-            m.poisson > -1.0 && m.poisson < 0.5,
-            "a Poisson's ratio in (-1, 0.5)",
-        )?;
+        let poisson = poisson(&p.key("poisson"), m.poisson)?;
         let weight = non_negative(&p.key("unit_weight"), m.unit_weight)?;
         any_weight |= weight > 0.0;
         let material = Material::new(young, poisson, weight).map_err(|e| fem(&p, e))?;
@@ -305,7 +300,6 @@ fn validate_names(
     Ok(())
 }
 
-/// Checks `[initial_stress]`.
 fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
     let root = KeyPath::root();
     let initial = scene

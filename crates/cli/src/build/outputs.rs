@@ -232,7 +232,6 @@ fn check_profile_steps(o: &OutputSpec, study: &Study) -> CliResult<()> {
     Ok(())
 }
 
-/// Index of a zone by name.
 pub fn zone_index(path: &KeyPath, names: &[String], name: &str) -> CliResult<usize> {
     names.iter().position(|n| n == name).ok_or_else(|| {
         CliError::at(

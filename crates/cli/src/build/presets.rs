@@ -2,7 +2,7 @@
 //! library's presets (`bipo::presets`), then the preset built and made a study.
 
 use super::checks::{
-    at_least, expect, finite, kind, law_error, non_negative, positive, solver_error,
+    at_least, expect, finite, kind, law_error, non_negative, poisson, positive, solver_error,
 };
 use super::contact::{rccm_params, settings};
 use super::outputs::check_outputs;
@@ -15,7 +15,6 @@ use crate::spec::{InstallationSpec, Preset, RccmOverride, RccmSpec, Site};
 use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
 use contact_solver::SimulationSettings;
 
-/// The library's spec of a preset.
 enum PresetSpec {
     Delamination(DelaminationSpec),
     Shear(ShearSpec),
@@ -126,8 +125,6 @@ pub(super) fn validate(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> 
         };
     }
     let count = |p: &KeyPath, v| at_least(p, v, 1);
-    let poisson =
-        |p: &KeyPath, v: f64| expect(p, v, v > -1.0 && v < 0.5, "a Poisson's ratio in (-1, 0.5)");
     // the keys both plates have, checked in the order of the table, around the plate's own
     macro_rules! plate {
         ($spec:ident, $o:ident, $own:block) => {
@@ -198,7 +195,7 @@ fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
     if *coulomb {
         spec = spec.with_coulomb_interface();
     }
-    for (name, value, slot, poisson) in [
+    for (name, value, slot, is_poisson) in [
         ("pile_young", pile_young, &mut spec.pile_young, false),
         ("pile_poisson", pile_poisson, &mut spec.pile_poisson, true),
         (
@@ -217,13 +214,8 @@ fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
         ),
     ] {
         if let Some(v) = value {
-            *slot = if poisson {
-                expect(
-                    &p.key(name),
-                    *v,
-                    *v > -1.0 && *v < 0.5,
-                    "a Poisson's ratio in (-1, 0.5)",
-                )?
+            *slot = if is_poisson {
+                poisson(&p.key(name), *v)?
             } else if name.ends_with("unit_weight") {
                 non_negative(&p.key(name), *v)?
             } else {

@@ -101,7 +101,6 @@ pub struct SupportRt {
     /// Value.
     pub value: f64,
     pub function: Option<String>,
-    /// Phase mask.
     pub phases: Vec<bool>,
 }
 
@@ -148,7 +147,6 @@ pub enum LoadKind<const D: usize = 2> {
     Nodal(Vec<usize>, [f64; D]),
     /// One force on a tied set, applied at this node of it.
     Resultant(usize, [f64; D]),
-    /// Body force.
     Body([f64; D]),
     /// Self-weight (along −y in 2D, −z in 3D).
     Gravity,
@@ -161,7 +159,6 @@ pub struct LoadRt<const D: usize = 2> {
     pub name: Option<String>,
     pub kind: LoadKind<D>,
     pub function: Option<String>,
-    /// Phase mask.
     pub phases: Vec<bool>,
 }
 
@@ -174,7 +171,6 @@ where
     pub sim: ContactSimulation<ElasticModel<D>, StandardLaw, D>,
     pub supports: Vec<SupportRt>,
     pub loads: Vec<LoadRt<D>>,
-    /// Time functions.
     pub functions: BTreeMap<String, TimeFunction>,
     /// Per phase, the laws it sets on zones at its start: `(zone, law)`.
     pub phase_laws: Vec<Vec<(String, StandardLaw)>>,
@@ -192,7 +188,6 @@ pub enum Library {
 pub struct PresetStudy {
     /// `delamination`, `shear` or `pile`.
     pub kind: &'static str,
-    /// The library's scene.
     pub scene: Library,
 }
 
@@ -206,7 +201,6 @@ impl PresetStudy {
     }
 }
 
-/// The body of a study.
 pub enum Body<const D: usize = 2>
 where
     Dim<D>: StudyDim<D>,
@@ -230,11 +224,8 @@ where
     /// Plots (validated).
     pub plots: Vec<PlotSpec>,
     pub zone_names: Vec<String>,
-    /// Zone law names.
     pub zone_laws: Vec<String>,
-    /// Zones with adhesion.
     pub adhesive_zones: usize,
-    /// Zones with friction.
     pub friction_zones: usize,
     /// What the scene's checks let pass but the user should know (e.g. contactor nodes held
     /// by a support, left out): printed by `bipo check` and `bipo run`, and in `summary.json`.
@@ -261,7 +252,6 @@ where
         }
     }
 
-    /// Alert distance of each zone.
     pub fn alert_distances(&self) -> Vec<f64> {
         match &self.body {
             Body::Custom(c) => c.sim.zones().iter().map(|z| z.alert_distance).collect(),

@@ -26,7 +26,6 @@ pub(super) enum Validated {
 
 /// A scene described key by key, checked.
 pub(super) struct Plan {
-    /// Time functions by name.
     pub(super) functions: BTreeMap<String, TimeFunction>,
     pub(super) phases: Vec<Phase>,
     /// The mesh to generate or read.

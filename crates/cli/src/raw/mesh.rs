@@ -57,7 +57,6 @@ pub struct RawLayer {
     region: u32,
 }
 
-/// Mesh generators.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum Generator {
@@ -117,7 +116,6 @@ const GMSH_KEYS: &str = "element file";
 const BOX_KEYS: &str = "element x nx grading_x y ny grading_y z nz grading_z";
 
 impl RawMesh {
-    /// The keys present, by name.
     fn present(&self) -> [(&'static str, bool); 27] {
         present!(self; element, x, nx, grading_x, y, ny, grading_y, region, y0, layers, diameter,
             length, width, depth, cells_pile_r, cells_soil_r, cells_shaft, cells_below_tip,

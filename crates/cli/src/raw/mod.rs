@@ -24,7 +24,6 @@ use crate::spec::*;
 use keys::{need, only, present};
 use serde::Deserialize;
 
-/// Analysis types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum AnalysisKind {
@@ -98,14 +97,12 @@ impl RawAnalysis {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Initial stress types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum InitialStressKind {
     Geostatic,
 }
 
-/// `[initial_stress]`.
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(deny_unknown_fields)]
 pub struct RawInitialStress {
@@ -132,7 +129,6 @@ impl RawInitialStress {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Load types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum LoadKindSpec {
@@ -279,14 +275,12 @@ impl RawLoad {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Target types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum TargetKind {
     Line,
     Arc,
     NodePairs,
-    /// Node-to-segment.
     Segments,
     /// A rigid plane (3D).
     Plane,
@@ -434,7 +428,6 @@ impl RawTarget {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Law types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum LawKind {

@@ -16,7 +16,6 @@ pub enum PresetKind {
     Pile,
 }
 
-/// Installation types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum InstallationKind {

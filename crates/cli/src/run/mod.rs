@@ -37,7 +37,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 use summary::{PhaseSummary, Stages, facts, since, status};
 
-/// Options of `bipo run`.
 pub struct RunOptions {
     /// Output directory.
     pub out_dir: PathBuf,

@@ -158,9 +158,7 @@ pub struct PhaseSummary<const D: usize = 2> {
     /// Name.
     pub name: String,
     pub steps: usize,
-    /// Start time.
     pub t_start: f64,
-    /// End time.
     pub t_end: f64,
     /// The library's counters over the phase.
     pub counters: Counters,
@@ -217,7 +215,6 @@ pub struct Stages {
 /// A curve's extremes.
 #[derive(Clone, Debug, Serialize)]
 pub struct CurveSummary {
-    /// Plot file.
     pub plot: String,
     pub label: String,
     /// Minimum.
@@ -228,15 +225,11 @@ pub struct CurveSummary {
     pub last: Option<f64>,
 }
 
-/// `summary.json`.
 #[derive(Clone, Debug)]
 pub struct Summary<const D: usize = 2> {
-    /// `bipo` version.
     pub bipo_version: &'static str,
-    /// Scene file.
     pub scene: String,
     pub title: String,
-    /// The scene's `[units]`.
     pub units: Units,
     /// `completed` or `failed`.
     pub status: String,
@@ -245,11 +238,8 @@ pub struct Summary<const D: usize = 2> {
     /// Steps of the scene done (a preset's step may run several solver steps: see
     /// `counters.steps`).
     pub steps: usize,
-    /// Final time.
     pub time: f64,
-    /// Wall time of the run.
     pub wall_time_s: f64,
-    /// Mesh facts.
     pub mesh: MeshFacts,
     /// The library's counters of the work done by this run (`contact_solver::Counters`).
     pub counters: Counters,
@@ -261,7 +251,6 @@ pub struct Summary<const D: usize = 2> {
     pub stages: Stages,
     pub phases: Vec<PhaseSummary<D>>,
     pub zones: Vec<ZoneSummary<D>>,
-    /// Plotted curves.
     pub curves: Vec<CurveSummary>,
     /// Files written (relative to the output directory).
     pub files: Vec<String>,
@@ -273,7 +262,6 @@ pub struct Summary<const D: usize = 2> {
 }
 
 impl<const D: usize> Summary<D> {
-    /// Contact iterations of the phases done.
     pub fn phase_contact_iterations(&self) -> usize {
         self.phases
             .iter()
@@ -350,7 +338,6 @@ pub struct MeshFacts {
     pub elements: usize,
     /// Free dofs at the start.
     pub free_dofs: usize,
-    /// Contact candidates.
     pub candidates: usize,
 }
 
