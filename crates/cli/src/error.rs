@@ -56,6 +56,15 @@ impl fmt::Display for KeyPath {
     }
 }
 
+/// `bail!(path, "…", args)`: returns `Err(CliError::at(&path, format!("…", args)))`, a
+/// bad-input error at a key path.
+macro_rules! bail {
+    ($path:expr, $($message:tt)+) => {
+        return Err($crate::error::CliError::at(&$path, format!($($message)+)))
+    };
+}
+pub(crate) use bail;
+
 /// An error with what `bipo` knows of where it comes from.
 #[derive(Debug)]
 pub struct CliError {

@@ -9,7 +9,7 @@ use super::checks::{
 };
 use super::dim::SceneDim;
 use super::supported::{Policy, point, resolve};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::raw::RawTarget;
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
@@ -79,13 +79,11 @@ pub const MAX_DETECTION_PASSES: usize = 1_000;
 fn count(path: &KeyPath, n: usize, max: usize) -> CliResult<usize> {
     at_least(path, n, 1)?;
     if n > max {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!(
-                "`{path}` = {n}: expected an integer in 1..={max} (more would let a step that \
+            "`{path}` = {n}: expected an integer in 1..={max} (more would let a step that \
                  does not converge run without end)"
-            ),
-        ));
+        );
     }
     Ok(n)
 }
@@ -118,10 +116,10 @@ where
     if let Some(w) = s.omega {
         let p = root.key("omega");
         if s.algorithm != Some(AlgorithmSpec::RccmClassic) {
-            return Err(CliError::at(
-                &p,
-                format!("`{p}` is only read with algorithm = \"rccm-classic\" (its SOR factor)"),
-            ));
+            bail!(
+                p,
+                "`{p}` is only read with algorithm = \"rccm-classic\" (its SOR factor)"
+            );
         }
         out.solver.tuning.omega = expect(&p, w, w > 0.0 && w < 2.0, "a factor in (0, 2)")?;
     }
@@ -133,14 +131,12 @@ where
         out.tuning.adhesion_method = match m {
             AdhesionMethodSpec::FixedPoint => AdhesionMethod::FixedPoint,
             AdhesionMethodSpec::Newton if s.algorithm == Some(AlgorithmSpec::RccmClassic) => {
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}` = \"newton\" does not combine with algorithm = \"rccm-classic\" \
+                bail!(
+                    p,
+                    "`{p}` = \"newton\" does not combine with algorithm = \"rccm-classic\" \
                          (the classical solver is a fixed point by definition): use \"fixed-point\" \
                          or leave the key out"
-                    ),
-                ));
+                );
             }
             AdhesionMethodSpec::Newton => AdhesionMethod::Newton,
         };
@@ -148,13 +144,11 @@ where
     if let Some(w) = s.adhesion_warm_start {
         let p = root.key("adhesion_warm_start");
         if w && out.tuning.adhesion_method == AdhesionMethod::FixedPoint {
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` = true is only read with adhesion_method = \"newton\" (it starts \
+            bail!(
+                p,
+                "`{p}` = true is only read with adhesion_method = \"newton\" (it starts \
                      Newton from the previous step's reactions)"
-                ),
-            ));
+            );
         }
         out.tuning.adhesion_warm_start = w;
     }
@@ -175,13 +169,11 @@ where
     if let Some(n) = s.stall_window {
         let p = root.key("stall_window");
         if n != 0 && !(MIN_STALL_WINDOW..=MAX_ITERATIONS).contains(&n) {
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` = {n}: expected 0 (no stall detection) or an integer in \
+            bail!(
+                p,
+                "`{p}` = {n}: expected 0 (no stall detection) or an integer in \
                      {MIN_STALL_WINDOW}..={MAX_ITERATIONS}"
-                ),
-            ));
+            );
         }
         out.solver.tuning.stall_window = n;
     }
@@ -195,10 +187,10 @@ where
         FlexibilitySpec::Auto => FlexibilityMode::Auto { dense_limit },
         other if s.dense_limit.is_some() => {
             let p = root.key("dense_limit");
-            return Err(CliError::at(
-                &p,
-                format!("`{p}` only applies to flexibility = \"auto\" (here {other:?})"),
-            ));
+            bail!(
+                p,
+                "`{p}` only applies to flexibility = \"auto\" (here {other:?})"
+            );
         }
         FlexibilitySpec::Dense => FlexibilityMode::Dense,
         FlexibilitySpec::ActiveSet => FlexibilityMode::ActiveSet,
@@ -213,12 +205,10 @@ pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams>
         (SchemeSpec::ImplicitEuler, None) => BetaScheme::ImplicitEuler,
         (SchemeSpec::ImplicitEuler, Some(_)) => {
             let p = path.key("theta");
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` is only read with scheme = \"theta\" (the scheme is implicit_euler)"
-                ),
-            ));
+            bail!(
+                p,
+                "`{p}` is only read with scheme = \"theta\" (the scheme is implicit_euler)"
+            );
         }
         (SchemeSpec::Theta, Some(t)) => {
             let p = path.key("theta");
@@ -230,10 +220,10 @@ pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams>
             )?)
         }
         (SchemeSpec::Theta, None) => {
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!("`{path}`: scheme = \"theta\" needs `theta` (a value in [0, 1])"),
-            ));
+                "`{path}`: scheme = \"theta\" needs `theta` (a value in [0, 1])"
+            );
         }
     };
     let p = RccmParams {
@@ -273,10 +263,10 @@ where
 {
     let root = KeyPath::root();
     if scene.contact.is_empty() {
-        return Err(CliError::at(
-            &root,
-            "the scene has no [[contact]] zone (bipo solves contact problems)",
-        ));
+        bail!(
+            root,
+            "the scene has no [[contact]] zone (bipo solves contact problems)"
+        );
     }
     let settings = settings::<D>(&scene.solver)?;
     let mut zones = Vec::new();
@@ -332,13 +322,11 @@ pub(super) fn phase_laws(
         for (zone, raw) in &ph.laws {
             let p = root.key("phases").index(i).key("laws").key(zone);
             if !names.contains(zone) {
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}`: no [[contact]] zone is named `{zone}` (zones: {})",
-                        list_names(names.iter().map(String::as_str))
-                    ),
-                ));
+                bail!(
+                    p,
+                    "`{p}`: no [[contact]] zone is named `{zone}` (zones: {})",
+                    list_names(names.iter().map(String::as_str))
+                );
             }
             let (l, _) = law(&p, &raw.resolve(&p)?)?;
             laws.push((zone.clone(), l));
@@ -482,40 +470,37 @@ where
             .filter(|c| c.zone == z)
             .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
         else {
-            return Err(CliError::at(
-                &p.key("target"),
-                format!(
-                    "zone `{}`: {}",
-                    plan.name,
-                    Dim::<D>::no_projection(&plan.contactor, zone.contactor.len())
-                ),
-            ));
+            bail!(
+                p.key("target"),
+                "zone `{}`: {}",
+                plan.name,
+                Dim::<D>::no_projection(&plan.contactor, zone.contactor.len())
+            );
         };
         let x = point(&model.node_position(closest.node));
         if closest.gap0 < -plan.alert {
-            return Err(CliError::at(
-                &p.key("target"),
-                format!(
-                    "zone `{}`: contactor node {} at {x} starts inside the target by {}, more \
+            bail!(
+                p.key("target"),
+                "zone `{}`: contactor node {} at {x} starts inside the target by {}, more \
                      than the alert distance {}: {}",
-                    plan.name,
-                    closest.node,
-                    -closest.gap0,
-                    plan.alert,
-                    <Dim<D> as SceneDim<D>>::INSIDE_HINT
-                ),
-            ));
+                plan.name,
+                closest.node,
+                -closest.gap0,
+                plan.alert,
+                <Dim<D> as SceneDim<D>>::INSIDE_HINT
+            );
         }
         if closest.gap0 > plan.alert {
-            return Err(CliError::at(
-                &p.key("alert_distance"),
-                format!(
-                    "zone `{}`: every contactor node is outside the alert distance {} at the start \
+            bail!(
+                p.key("alert_distance"),
+                "zone `{}`: every contactor node is outside the alert distance {} at the start \
                      (the closest, node {} at {x}, has a gap of {}); move the target closer \
                      or raise `alert_distance`",
-                    plan.name, plan.alert, closest.node, closest.gap0
-                ),
-            ));
+                plan.name,
+                plan.alert,
+                closest.node,
+                closest.gap0
+            );
         }
     }
     Ok(())
@@ -524,16 +509,14 @@ where
 /// A zone's name at `p`: not empty, not used by an earlier zone (`names` collects them).
 pub(super) fn zone_name(p: &KeyPath, name: &str, names: &mut BTreeSet<String>) -> CliResult<()> {
     if name.trim().is_empty() {
-        return Err(CliError::at(
-            &p.key("name"),
-            format!("`{}` is empty: a zone needs a name", p.key("name")),
-        ));
+        bail!(
+            p.key("name"),
+            "`{}` is empty: a zone needs a name",
+            p.key("name")
+        );
     }
     if !names.insert(name.to_string()) {
-        return Err(CliError::at(
-            &p.key("name"),
-            format!("zone name `{name}` is used twice"),
-        ));
+        bail!(p.key("name"), "zone name `{name}` is used twice");
     }
     Ok(())
 }

@@ -11,7 +11,7 @@ use super::checks::{expect, solid_kind_name, solver_error};
 use super::checks::{fem, finite, finite_all, kind_name, list_names, node_set, positive};
 use super::curves;
 use super::mesh::MeshPlan;
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::raw::vector;
 use crate::spec::{ArcSideSpec, Coords, Element, TargetSpec};
 use contact_laws::StandardLaw;
@@ -211,13 +211,11 @@ impl SceneDim<2> for Dim<2> {
                 let b = finite_all(&tp.key("b"), b.0)?;
                 let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
                 if !(dx.is_finite() && dy.is_finite() && dx.hypot(dy).is_finite()) {
-                    return Err(CliError::at(
+                    bail!(
                         tp,
-                        format!(
-                            "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows \
+                        "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows \
                              (expected end points whose distance stays finite)"
-                        ),
-                    ));
+                    );
                 }
                 Arc::new(RigidLine::new(a, b).map_err(|e| solver_error(tp, e))?)
             }
@@ -256,7 +254,7 @@ impl SceneDim<2> for Dim<2> {
     fn pair_normal(p: &KeyPath, n: &Coords) -> CliResult<[f64; 2]> {
         let n = finite_all(p, vector::<2>(p, n)?)?;
         if n == [0.0, 0.0] {
-            return Err(CliError::at(p, "the normal [0, 0] has no direction"));
+            bail!(p, "the normal [0, 0] has no direction");
         }
         Ok(n)
     }
@@ -288,26 +286,22 @@ impl SceneDim<2> for Dim<2> {
             (set, targets.as_slice()),
         );
         if targets.len() != contactor.len() {
-            return Err(CliError::at(
-                &sp,
-                format!(
-                    "node set `{set}` has {} nodes but the contactor set `{}` has {}: node pairs \
+            bail!(
+                sp,
+                "node set `{set}` has {} nodes but the contactor set `{}` has {}: node pairs \
                      need sets of the same length, in matching order",
-                    targets.len(),
-                    contactor_set,
-                    contactor.len()
-                ),
-            ));
+                targets.len(),
+                contactor_set,
+                contactor.len()
+            );
         }
         if let Some((c, _)) = contactor.iter().zip(&targets).find(|(c, t)| c == t) {
-            return Err(CliError::at(
-                &sp,
-                format!(
-                    "`{sp}` = \"{set}\": node {c} of the contactor set `{}` is paired with \
+            bail!(
+                sp,
+                "`{sp}` = \"{set}\": node {c} of the contactor set `{}` is paired with \
                      itself (a node cannot touch itself; pair two distinct surfaces)",
-                    contactor_set
-                ),
-            ));
+                contactor_set
+            );
         }
         Ok((targets, normal.into()))
     }
@@ -319,13 +313,11 @@ impl SceneDim<2> for Dim<2> {
             surface.push(surface[0]);
         }
         if surface.len() < 2 {
-            return Err(CliError::at(
+            bail!(
                 sp,
-                format!(
-                    "node set `{set}` has {} node: a target polyline needs at least two",
-                    surface.len()
-                ),
-            ));
+                "node set `{set}` has {} node: a target polyline needs at least two",
+                surface.len()
+            );
         }
         curves::check_polyline(sp, set, model, &surface)?;
         Ok(Polyline::new(surface))
@@ -542,13 +534,11 @@ fn direction(p: &KeyPath, c: &Coords) -> CliResult<[f64; 3]> {
     let v = point(p, c)?;
     let len = v.iter().map(|x| x * x).sum::<f64>().sqrt();
     if !(len > 0.0 && len.is_finite()) {
-        return Err(CliError::at(
+        bail!(
             p,
-            format!(
-                "`{p}` = {v:?}: expected a direction (not [0, 0, 0], and of a length that stays \
+            "`{p}` = {v:?}: expected a direction (not [0, 0, 0], and of a length that stays \
                  finite)"
-            ),
-        ));
+        );
     }
     Ok(v)
 }

@@ -5,7 +5,7 @@
 
 use super::checks::{at_least, fem, finite, finite2, grading, kind, positive, solid_kind};
 use super::dim::SceneDim;
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::spec::{BoxSpec, Element, MeshSpec, Pair, TipCornerSpec};
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner, graded_points};
 use fem_core::solid::SolidKind;
@@ -63,13 +63,11 @@ impl GmshPlan {
         if let Some(e) = self.element {
             let (order, name) = Dim::<D>::element_order(e, &mesh);
             if !order {
-                return Err(CliError::at(
-                    &mp.key("element"),
-                    format!(
-                        "`mesh.element` = \"{e:?}\" but `{}` holds {name}",
-                        self.file
-                    ),
-                ));
+                bail!(
+                    mp.key("element"),
+                    "`mesh.element` = \"{e:?}\" but `{}` holds {name}",
+                    self.file
+                );
             }
         }
         Ok(mesh)
@@ -109,13 +107,11 @@ fn gmsh_file(mp: &KeyPath, file: &str, base_dir: &Path) -> CliResult<PathBuf> {
         None
     };
     if let Some(what) = what {
-        return Err(CliError::at(
-            &fp,
-            format!(
-                "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
-                path.display()
-            ),
-        ));
+        bail!(
+            fp,
+            "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
+            path.display()
+        );
     }
     Ok(path)
 }
@@ -151,10 +147,10 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
     match (y, layers) {
         (Some(y), None) => {
             if y0.is_some() {
-                return Err(CliError::at(
-                    &mp.key("y0"),
-                    "`y0` goes with `layers`; with `y = [y0, y1]` leave it out",
-                ));
+                bail!(
+                    mp.key("y0"),
+                    "`y0` goes with `layers`; with `y = [y0, y1]` leave it out"
+                );
             }
             let ys = interval(&mp.key("y"), *y, "y")?;
             let ny = ny.ok_or_else(|| CliError::at(mp, "`mesh.ny` is missing (cells along y)"))?;
@@ -181,17 +177,15 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
                 (region.is_some(), "region"),
             ] {
                 if k {
-                    return Err(CliError::at(
-                        &mp.key(key),
-                        format!(
-                            "`mesh.{key}` goes with `y = [y0, y1]`; with `layers` give it per layer"
-                        ),
-                    ));
+                    bail!(
+                        mp.key(key),
+                        "`mesh.{key}` goes with `y = [y0, y1]`; with `layers` give it per layer"
+                    );
                 }
             }
             spec.y0 = finite(&mp.key("y0"), y0.unwrap_or(0.0))?;
             if layers.is_empty() {
-                return Err(CliError::at(&mp.key("layers"), "`mesh.layers` is empty"));
+                bail!(mp.key("layers"), "`mesh.layers` is empty");
             }
             let mut below = spec.y0;
             spec.layers = Vec::new();
@@ -199,13 +193,11 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
                 let lp = mp.key("layers").index(i);
                 let top = finite(&lp.key("top"), l.top)?;
                 if top <= below {
-                    return Err(CliError::at(
-                        &lp.key("top"),
-                        format!(
-                            "`{}` = {top}: layers go upward, expected a top above {below}",
-                            lp.key("top")
-                        ),
-                    ));
+                    bail!(
+                        lp.key("top"),
+                        "`{}` = {top}: layers go upward, expected a top above {below}",
+                        lp.key("top")
+                    );
                 }
                 let layer = Layer {
                     top,
@@ -225,16 +217,16 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
             }
         }
         (Some(_), Some(_)) => {
-            return Err(CliError::at(
-                &mp.key("layers"),
-                "give `y = [y0, y1]` or `layers`, not both",
-            ));
+            bail!(
+                mp.key("layers"),
+                "give `y = [y0, y1]` or `layers`, not both"
+            );
         }
         (None, None) => {
-            return Err(CliError::at(
+            bail!(
                 mp,
-                "the rectangle needs `y = [y0, y1]` and `ny`, or `y0` and `layers`",
-            ));
+                "the rectangle needs `y = [y0, y1]` and `ny`, or `y0` and `layers`"
+            );
         }
     }
     Ok(MeshPlan::Rectangle(spec))
@@ -244,19 +236,17 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
 pub(super) fn interval(path: &KeyPath, pair: Pair, axis: &str) -> CliResult<[f64; 2]> {
     let [a, b] = finite2(path, pair)?;
     if a >= b {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!("`{path}` = [{a:?}, {b:?}]: expected {axis}0 < {axis}1"),
-        ));
+            "`{path}` = [{a:?}, {b:?}]: expected {axis}0 < {axis}1"
+        );
     }
     if !(b - a).is_finite() {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!(
-                "`{path}` = [{a:?}, {b:?}]: the length {axis}1 - {axis}0 overflows (expected \
+            "`{path}` = [{a:?}, {b:?}]: the length {axis}1 - {axis}0 overflows (expected \
                  coordinates whose differences stay finite)"
-            ),
-        ));
+        );
     }
     Ok([a, b])
 }
@@ -294,13 +284,11 @@ fn box_lines(mp: &KeyPath, b: &BoxSpec) -> CliResult<MeshPlan> {
         let n = at_least(&np, b.cells[a], 1)?;
         cells = cells.saturating_mul(n);
         if cells > MAX_BOX_CELLS {
-            return Err(CliError::at(
-                &np,
-                format!(
-                    "`{np}` = {n}: the box would have more than {MAX_BOX_CELLS} cells \
+            bail!(
+                np,
+                "`{np}` = {n}: the box would have more than {MAX_BOX_CELLS} cells \
                      (nx·ny·nz, six tetrahedra each); use fewer cells or a graded grid"
-                ),
-            ));
+            );
         }
         let gp = mp.key(&format!("grading_{axis}"));
         let g = grading(&gp, b.gradings[a])?;
@@ -334,11 +322,11 @@ fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Option<Idealization>) -> Cl
         unreachable!("called for the pile generator")
     };
     if !matches!(idealization, Some(Idealization::Axisymmetric)) {
-        return Err(CliError::at(
-            &KeyPath::root().key("analysis"),
+        bail!(
+            KeyPath::root().key("analysis"),
             "the pile generator builds an axisymmetric (r, z) mesh: it needs \
-             [analysis] type = \"axisymmetric\"",
-        ));
+             [analysis] type = \"axisymmetric\""
+        );
     }
     let mut s = PileSpec::default();
     macro_rules! pos {
@@ -409,14 +397,12 @@ where
     if let Some(Idealization::Axisymmetric) = idealization
         && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)
     {
-        return Err(CliError::at(
-            &KeyPath::root().key("analysis"),
-            format!(
-                "axisymmetric analysis needs every node at r = x >= 0, but node {node} is at x = {} \
+        bail!(
+            KeyPath::root().key("analysis"),
+            "axisymmetric analysis needs every node at r = x >= 0, but node {node} is at x = {} \
                  (the mesh must lie right of the axis x = 0)",
-                p[0]
-            ),
-        ));
+            p[0]
+        );
     }
     Ok(mesh)
 }

@@ -9,7 +9,7 @@ use super::checks::{
 use super::dim::SceneDim;
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::study::{LoadKind, LoadRt, SupportRt};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::raw::RawLoad;
 use crate::scene::{ComponentSpec, Scene};
 use crate::spec::{InitialStress, LoadSpec};
@@ -54,14 +54,12 @@ fn check_section(materials: &[MaterialPlan], idealization: Idealization) -> CliR
         let young = m.material.young();
         if !(young * thickness).is_finite() {
             let p = KeyPath::root().key("analysis").key("thickness");
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` = {thickness:?}: its product with `{}` = {young:?} overflows (the \
+            bail!(
+                p,
+                "`{p}` = {thickness:?}: its product with `{}` = {young:?} overflows (the \
                      section stiffness E·h must stay below 1.8e308)",
-                    m.young
-                ),
-            ));
+                m.young
+            );
         }
     }
     Ok(())
@@ -88,18 +86,16 @@ pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> 
                 continue;
             };
             if let Some(n) = b.nodes.iter().find(|n| a.nodes.contains(n)) {
-                return Err(CliError::at(
-                    &paths[j],
-                    format!(
-                        "`{}` prescribes component {c} of node {n} as {}, but `{}` already \
+                bail!(
+                    paths[j],
+                    "`{}` prescribes component {c} of node {n} as {}, but `{}` already \
                          prescribes it as {}: a degree of freedom takes one prescription \
                          (remove one, or give them the same value and function)",
-                        paths[j],
-                        describe(b),
-                        paths[i],
-                        describe(a)
-                    ),
-                ));
+                    paths[j],
+                    describe(b),
+                    paths[i],
+                    describe(a)
+                );
             }
         }
     }
@@ -111,10 +107,10 @@ pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> 
 fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
     let root = KeyPath::root();
     if scene.materials.is_empty() {
-        return Err(CliError::at(
-            &root,
-            "the scene has no [[materials]] (each with `region`, `young`, `poisson`)",
-        ));
+        bail!(
+            root,
+            "the scene has no [[materials]] (each with `region`, `young`, `poisson`)"
+        );
     }
     let mut plans = Vec::new();
     let mut any_weight = false;
@@ -133,13 +129,10 @@ fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
                 .map(|(k, r)| (p.key("regions").index(k), *r))
                 .collect(),
             (Some(_), Some(_)) => {
-                return Err(CliError::at(&p, "give `region` or `regions`, not both"));
+                bail!(p, "give `region` or `regions`, not both");
             }
             _ => {
-                return Err(CliError::at(
-                    &p,
-                    format!("`{p}` needs `region = <id>` or `regions = [ids]`"),
-                ));
+                bail!(p, "`{p}` needs `region = <id>` or `regions = [ids]`");
             }
         };
         plans.push(MaterialPlan {
@@ -180,11 +173,11 @@ fn validate_supports(
     }
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
     if supports.is_empty() && !floating {
-        return Err(CliError::at(
-            &root,
+        bail!(
+            root,
             "the scene has no [[supports]]: a body without supports has rigid-body modes \
-             (set `floating = true` in [analysis] if contact alone holds it)",
-        ));
+             (set `floating = true` in [analysis] if contact alone holds it)"
+        );
     }
     Ok(supports)
 }
@@ -231,10 +224,10 @@ where
         let p = root.key("loads").index(i);
         let (set, kind) = load::<D>(l, &p)?;
         if matches!(kind, LoadKind::Gravity) && !any_weight {
-            return Err(CliError::at(
-                &p,
-                "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
-            ));
+            bail!(
+                p,
+                "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)"
+            );
         }
         let (name, function, ph) = l.common();
         check_function(&p.key("function"), &function, functions)?;
@@ -266,33 +259,31 @@ fn validate_names(
         if let Some(n) = &s.name
             && !named.insert(n.clone())
         {
-            return Err(CliError::at(
-                &root.key("supports").index(i).key("name"),
-                format!("name `{n}` is used twice among supports and loads"),
-            ));
+            bail!(
+                root.key("supports").index(i).key("name"),
+                "name `{n}` is used twice among supports and loads"
+            );
         }
     }
     for name in load_names {
         if let Some(n) = name
             && !named.insert(n.clone())
         {
-            return Err(CliError::at(
-                &root.key("loads"),
-                format!("name `{n}` is used twice among supports and loads"),
-            ));
+            bail!(
+                root.key("loads"),
+                "name `{n}` is used twice among supports and loads"
+            );
         }
     }
     for (i, ph) in phases.iter().enumerate() {
         for (target, f) in &ph.overrides {
             let p = root.key("phases").index(i).key("functions").key(target);
             if !named.contains(target) {
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}`: no support or load is named `{target}` (named: {})",
-                        list_names(named.iter().map(|s| s.as_str()))
-                    ),
-                ));
+                bail!(
+                    p,
+                    "`{p}`: no support or load is named `{target}` (named: {})",
+                    list_names(named.iter().map(|s| s.as_str()))
+                );
             }
             check_function(&p, &Some(f.clone()), functions)?;
         }
@@ -401,22 +392,18 @@ pub(super) fn components(
             _ => vec![Component::X, Component::Y, Component::Z],
         },
         (ComponentSpec::Both, _) => {
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}` = \"both\" is x and y of a 2D scene; a 3D scene takes \"x\", \
+                "`{path}` = \"both\" is x and y of a 2D scene; a 3D scene takes \"x\", \
                      \"y\", \"z\" or \"all\""
-                ),
-            ));
+            );
         }
         (ComponentSpec::Z | ComponentSpec::All, _) => {
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}`: components \"z\" and \"all\" are for a 3D scene ([analysis] \
+                "`{path}`: components \"z\" and \"all\" are for a 3D scene ([analysis] \
                      type = \"3d\"); a 2D scene takes \"x\", \"y\" or \"both\""
-                ),
-            ));
+            );
         }
     })
 }
@@ -473,19 +460,17 @@ where
                 let nodes = node_set(&sp, &mesh, &set)?;
                 for (c, comp) in Component::all::<D>().into_iter().enumerate() {
                     if v[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
-                        return Err(CliError::at(
-                            &sp,
-                            format!(
-                                "`{sp}` = \"{set}\": a resultant force along {comp} needs the set \
+                        bail!(
+                            sp,
+                            "`{sp}` = \"{set}\": a resultant force along {comp} needs the set \
                                  tied along {comp} (a [[ties]] entry with set = \"{set}\"), so \
                                  that it has one point of application; for a force on each node \
                                  use type = \"nodal_force\""
-                            ),
-                        ));
+                        );
                     }
                 }
                 let Some(&first) = nodes.first() else {
-                    return Err(CliError::at(&sp, format!("`{sp}` = \"{set}\" is empty")));
+                    bail!(sp, "`{sp}` = \"{set}\" is empty");
                 };
                 LoadKind::Resultant(first, v)
             }
@@ -530,19 +515,14 @@ pub(super) fn regions(
     for m in plans {
         for (rp, r) in m.regions {
             if !mesh_regions.contains(&r) {
-                return Err(CliError::at(
-                    &rp,
-                    format!(
-                        "`{rp}` = {r}: the mesh has no element in region {r} (regions: {})",
-                        join(&mesh_regions)
-                    ),
-                ));
+                bail!(
+                    rp,
+                    "`{rp}` = {r}: the mesh has no element in region {r} (regions: {})",
+                    join(&mesh_regions)
+                );
             }
             if materials.iter().any(|(q, _)| *q == r) {
-                return Err(CliError::at(
-                    &rp,
-                    format!("`{rp}` = {r}: region {r} already has a material"),
-                ));
+                bail!(rp, "`{rp}` = {r}: region {r} already has a material");
             }
             materials.push((r, m.material));
         }
@@ -551,12 +531,10 @@ pub(super) fn regions(
         .iter()
         .find(|r| !materials.iter().any(|(q, _)| q == *r))
     {
-        return Err(CliError::at(
-            &KeyPath::root().key("materials"),
-            format!(
-                "region {r} of the mesh has no material (add a [[materials]] with region = {r})"
-            ),
-        ));
+        bail!(
+            KeyPath::root().key("materials"),
+            "region {r} of the mesh has no material (add a [[materials]] with region = {r})"
+        );
     }
     Ok(materials)
 }

@@ -8,7 +8,7 @@ use super::contact::{rccm_params, settings};
 use super::outputs::check_outputs;
 use super::phases::{Phase, phase};
 use super::study::{Body, Library, PresetStudy, Study};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::presets::{DelaminationSpec, Installation, PulloutSpec, ShearSpec};
 use crate::scene::{OutputSpec, Scene};
 use crate::spec::{InstallationSpec, Preset, RccmOverride, RccmSpec, Site};
@@ -43,13 +43,11 @@ fn preset_only(scene: &Scene) -> CliResult<()> {
         ("phases", !scene.phases.is_empty()),
     ];
     if let Some((k, _)) = present.iter().find(|(_, p)| *p) {
-        return Err(CliError::at(
-            &KeyPath::root().key(k),
-            format!(
-                "`{k}` cannot be combined with [preset]: the preset builds its own mesh, \
+        bail!(
+            KeyPath::root().key(k),
+            "`{k}` cannot be combined with [preset]: the preset builds its own mesh, \
                  supports, loads, contact zone and steps (override them inside [preset])"
-            ),
-        ));
+        );
     }
     Ok(())
 }
@@ -87,10 +85,7 @@ fn override_rccm(
                     "a value in [0, 1]",
                 )?)
             } else {
-                return Err(CliError::at(
-                    &p,
-                    format!("`{p}` is only read with scheme = \"theta\""),
-                ));
+                bail!(p, "`{p}` is only read with scheme = \"theta\"");
             }
         }
     };
@@ -231,11 +226,11 @@ fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
     }
     if let Some(v) = head_force {
         if head_displacement.is_some() {
-            return Err(CliError::at(
-                &p.key("head_force"),
+            bail!(
+                p.key("head_force"),
                 "give either `head_displacement` (the head's u_z prescribed) or `head_force` \
-                 (a jack force on the head, the pile held by the soil alone), not both",
-            ));
+                 (a jack force on the head, the pile held by the soil alone), not both"
+            );
         }
         spec.head_force = Some(finite(&p.key("head_force"), *v)?);
     }

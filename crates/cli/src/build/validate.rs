@@ -10,7 +10,7 @@ use super::mesh::{self, MeshPlan};
 use super::model::{self, ModelPlan};
 use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::presets::{self, PresetPlan};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::scene::Scene;
 use crate::spec::Analysis;
 use fem_core::Idealization;
@@ -77,10 +77,10 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
         },
         Analysis::Axisymmetric {} => Idealization::Axisymmetric,
         Analysis::Solid {} => {
-            return Err(CliError::at(
-                &root.key("analysis"),
-                "a 3D scene is built by the 3D builder (internal routing error)",
-            ));
+            bail!(
+                root.key("analysis"),
+                "a 3D scene is built by the 3D builder (internal routing error)"
+            );
         }
     };
     let mesh = mesh::validate(&mp, mesh_spec, Some(idealization), &base_dir)?;

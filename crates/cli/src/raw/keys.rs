@@ -1,7 +1,7 @@
 //! The two checks every flat table makes once its `type` is known: the keys it needs, and no
 //! key it does not read.
 
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 
 /// `present!(self; a, b)`: `[("a", self.a.is_some()), ("b", self.b.is_some())]`, the keys a
 /// flat table has, for [`only`].
@@ -33,10 +33,7 @@ pub(super) fn only(
             let quoted: Vec<String> = accepted.iter().map(|a| format!("`{a}`")).collect();
             quoted.join(", ")
         };
-        return Err(CliError::at(
-            &p,
-            format!("`{p}` is not a key of {what} (its keys: {keys})"),
-        ));
+        bail!(p, "`{p}` is not a key of {what} (its keys: {keys})");
     }
     Ok(())
 }

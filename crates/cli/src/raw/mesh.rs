@@ -2,7 +2,7 @@
 //! 3D, gmsh in both) and its gradings.
 
 use super::keys::{need, only, present};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::spec::*;
 use serde::Deserialize;
 
@@ -129,27 +129,23 @@ impl RawMesh {
         let present = self.present();
         let gp = p.key("generator");
         if D == 2 && self.generator == Generator::Box {
-            return Err(CliError::at(
-                &gp,
-                format!(
-                    "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
+            bail!(
+                gp,
+                "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
                      (a 2D scene takes rectangle, pile or gmsh)"
-                ),
-            ));
+            );
         }
         if D == 3 && matches!(self.generator, Generator::Rectangle | Generator::Pile) {
-            return Err(CliError::at(
-                &gp,
-                format!(
-                    "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
+            bail!(
+                gp,
+                "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
                      \"3d\") takes generator = \"box\" or \"gmsh\"",
-                    if self.generator == Generator::Pile {
-                        "pile"
-                    } else {
-                        "rectangle"
-                    }
-                ),
-            ));
+                if self.generator == Generator::Pile {
+                    "pile"
+                } else {
+                    "rectangle"
+                }
+            );
         }
         Ok(match self.generator {
             Generator::Rectangle => {

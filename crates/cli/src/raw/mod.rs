@@ -19,7 +19,7 @@ mod preset;
 pub use mesh::RawMesh;
 pub use preset::RawPreset;
 
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::spec::*;
 use keys::{need, only, present};
 use serde::Deserialize;
@@ -81,13 +81,11 @@ impl RawAnalysis {
                 only(p, "a 3D analysis", &present, "")?;
                 if self.floating == Some(true) {
                     let f = p.key("floating");
-                    return Err(CliError::at(
-                        &f,
-                        format!(
-                            "`{f}` = true: floating bodies are not supported in 3D yet (hold \
+                    bail!(
+                        f,
+                        "`{f}` = true: floating bodies are not supported in 3D yet (hold \
                              the body with supports)"
-                        ),
-                    ));
+                    );
                 }
                 Analysis::Solid {}
             }
@@ -222,13 +220,11 @@ impl RawLoad {
             },
             LoadKindSpec::Pressure if D == 2 => {
                 let tp = p.key("type");
-                return Err(CliError::at(
-                    &tp,
-                    format!(
-                        "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
+                bail!(
+                    tp,
+                    "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
                          \"3d\"); in 2D give a traction [t_x, t_y] on an edge set"
-                    ),
-                ));
+                );
             }
             LoadKindSpec::Pressure => {
                 let what = "a pressure (a face set)";
@@ -238,13 +234,11 @@ impl RawLoad {
                     value: match need(p, &self.value, "value", what)? {
                         LoadValue::Scalar(x) => x,
                         LoadValue::Vector(_) => {
-                            return Err(CliError::at(
-                                &vp,
-                                format!(
-                                    "`{vp}`: a pressure is one number (positive pushes into \
+                            bail!(
+                                vp,
+                                "`{vp}`: a pressure is one number (positive pushes into \
                                      the body); for a vector give type = \"traction\""
-                                ),
-                            ));
+                            );
                         }
                     },
                 }
@@ -341,23 +335,19 @@ impl RawTarget {
         let kind = self.kind.name();
         if D == 2 && matches!(self.kind, Plane | Sphere | Cylinder | Faces) {
             let tp = p.key("type");
-            return Err(CliError::at(
-                &tp,
-                format!(
-                    "`{tp}` = \"{kind}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
+            bail!(
+                tp,
+                "`{tp}` = \"{kind}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
                      a 2D scene takes line, arc, node_pairs or segments"
-                ),
-            ));
+            );
         }
         if D == 3 && matches!(self.kind, Line | Arc | Segments) {
             let tp = p.key("type");
-            return Err(CliError::at(
-                &tp,
-                format!(
-                    "`{tp}` = \"{kind}\" is a target of a 2D scene; a 3D scene takes plane, \
+            bail!(
+                tp,
+                "`{tp}` = \"{kind}\" is a target of a 2D scene; a 3D scene takes plane, \
                      sphere, cylinder, node_pairs or faces"
-                ),
-            ));
+            );
         }
         let side = self.side.unwrap_or(ArcSideSpec::Outside);
         Ok(match self.kind {

@@ -18,7 +18,7 @@ use super::outputs::{check_file_count, check_output_table, check_plots};
 use super::phases::{phases_of, time_functions};
 use super::study::Study;
 use super::{contact, mesh, model};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::scene::Scene;
 use std::path::Path;
 
@@ -27,10 +27,10 @@ fn refuse_unsupported(scene: &Scene) -> CliResult<()> {
     let root = KeyPath::root();
     if scene.output.profile_steps.is_some() {
         let p = root.key("output").key("profile_steps");
-        return Err(CliError::at(
-            &p,
-            format!("`{p}`: shaft profiles are written by the 2D pile preset only"),
-        ));
+        bail!(
+            p,
+            "`{p}`: shaft profiles are written by the 2D pile preset only"
+        );
     }
     Ok(())
 }
