@@ -21,11 +21,15 @@ impl KeyPath {
         Self(Vec::new())
     }
 
+    fn with(&self, seg: Seg) -> Self {
+        let mut v = self.0.clone();
+        v.push(seg);
+        Self(v)
+    }
+
     /// This path extended by a key.
     pub fn key(&self, k: &str) -> Self {
-        let mut v = self.0.clone();
-        v.push(Seg::Key(k.to_string()));
-        Self(v)
+        self.with(Seg::Key(k.to_string()))
     }
 
     /// This path without its last segment (the root stays the root).
@@ -37,9 +41,7 @@ impl KeyPath {
 
     /// This path extended by an index.
     pub fn index(&self, i: usize) -> Self {
-        let mut v = self.0.clone();
-        v.push(Seg::Index(i));
-        Self(v)
+        self.with(Seg::Index(i))
     }
 }
 
@@ -81,37 +83,30 @@ pub struct CliError {
 }
 
 impl CliError {
-    /// A bad-input error at a key path.
-    pub fn at(path: &KeyPath, message: impl Into<String>) -> Self {
+    fn new(path: Option<KeyPath>, message: impl Into<String>, code: i32) -> Self {
+        let message = message.into();
         Self {
             file: None,
             span: None,
-            path: Some(path.clone()),
-            message: message.into(),
-            code: 2,
+            path,
+            message,
+            code,
         }
+    }
+
+    /// A bad-input error at a key path.
+    pub fn at(path: &KeyPath, message: impl Into<String>) -> Self {
+        Self::new(Some(path.clone()), message, 2)
     }
 
     /// A bad-input error without location.
     pub fn input(message: impl Into<String>) -> Self {
-        Self {
-            file: None,
-            span: None,
-            path: None,
-            message: message.into(),
-            code: 2,
-        }
+        Self::new(None, message, 2)
     }
 
     /// A failure of the computation or of the output files.
     pub fn failed(message: impl Into<String>) -> Self {
-        Self {
-            file: None,
-            span: None,
-            path: None,
-            message: message.into(),
-            code: 1,
-        }
+        Self::new(None, message, 1)
     }
 
     /// Sets the file if none is set yet.
