@@ -8,6 +8,7 @@ use super::checks::{
     at_least, expect, law_error, list_names, non_negative, positive, solver_error,
 };
 use super::dim::SceneDim;
+use super::phases::law_name;
 use super::supported::{Policy, point, resolve};
 use crate::error::{CliResult, KeyPath, bail};
 use crate::raw::RawTarget;
@@ -47,7 +48,6 @@ pub(super) struct ZonePlan<const D: usize> {
     pub(super) name: String,
     pub(super) contactor: String,
     pub(super) law: StandardLaw,
-    pub(super) law_name: &'static str,
     pub(super) alert: f64,
     pub(super) target: TargetPlan<D>,
     pub(super) supported: SupportedContactors,
@@ -240,18 +240,14 @@ pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams>
     Ok(p)
 }
 
-/// The law of a zone, checked, and its name for reports.
-pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'static str)> {
+/// The law of a zone, checked.
+pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<StandardLaw> {
     Ok(match l {
-        LawSpec::Signorini {} => (Signorini.into(), "signorini"),
-        LawSpec::Coulomb { mu } => (
-            Coulomb::new(*mu).map_err(|e| law_error(path, e))?.into(),
-            "coulomb",
-        ),
-        LawSpec::Rccm(r) => {
-            let p = rccm_params(path, r)?;
-            (Rccm::new(p).map_err(|e| law_error(path, e))?.into(), "rccm")
-        }
+        LawSpec::Signorini {} => Signorini.into(),
+        LawSpec::Coulomb { mu } => Coulomb::new(*mu).map_err(|e| law_error(path, e))?.into(),
+        LawSpec::Rccm(r) => Rccm::new(rccm_params(path, r)?)
+            .map_err(|e| law_error(path, e))?
+            .into(),
     })
 }
 
@@ -276,7 +272,7 @@ where
         let p = root.key("contact").index(i);
         zone_name(&p, &z.name, &mut names)?;
         let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
-        let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
+        let l = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
         if l.has_adhesion() {
             adhesive += 1;
         }
@@ -289,7 +285,6 @@ where
             name: z.name.clone(),
             contactor: z.contactor.clone(),
             law: l,
-            law_name,
             alert,
             target,
             supported: z.supported_contactors,
@@ -328,7 +323,7 @@ pub(super) fn phase_laws(
                     list_names(names.iter().map(String::as_str))
                 );
             }
-            let (l, _) = law(&p, &raw.resolve(&p)?)?;
+            let l = law(&p, &raw.resolve(&p)?)?;
             laws.push((zone.clone(), l));
         }
         out.push(laws);
@@ -414,7 +409,7 @@ where
         .iter()
         .map(|z| zone(&model, z))
         .collect::<CliResult<Vec<_>>>()?;
-    let zone_laws = plans.iter().map(|z| z.law_name.to_string()).collect();
+    let zone_laws = plans.iter().map(|z| law_name(&z.law).to_string()).collect();
     let held = supported_contactors(&model, &zones).map_err(|e| solver_error(&contact, e))?;
     let policies: Vec<Policy<'_>> = plans
         .iter()

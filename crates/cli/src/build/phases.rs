@@ -119,14 +119,13 @@ pub(super) fn phases_of(
         }
         (Some(s), true, _) => {
             let p = KeyPath::root().key("steps");
-            out.push(Phase {
-                name: "steps".into(),
-                steps: at_least(&p.key("count"), s.count, 1)?,
-                t0: 0.0,
-                t1: positive(&p.key("duration"), s.duration)?,
-                overrides: BTreeMap::new(),
-                reset_displacements: false,
-            });
+            let steps = at_least(&p.key("count"), s.count, 1)?;
+            out.push(phase(
+                "steps",
+                steps,
+                0.0,
+                positive(&p.key("duration"), s.duration)?,
+            ));
         }
         (None, false, _) => {
             let mut t = 0.0;
@@ -165,14 +164,7 @@ pub(super) fn phases_of(
                 t += d;
             }
         }
-        (None, true, Some((steps, duration))) => out.push(Phase {
-            name: "loading".into(),
-            steps,
-            t0: 0.0,
-            t1: duration,
-            overrides: BTreeMap::new(),
-            reset_displacements: false,
-        }),
+        (None, true, Some((steps, duration))) => out.push(phase("loading", steps, 0.0, duration)),
         (None, true, None) => {
             bail!(
                 KeyPath::root(),
