@@ -36,6 +36,7 @@ pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
+pub(crate) use study::on_sim;
 pub use study::{
     Body, Custom, Library, LoadKind, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt,
     released_at,

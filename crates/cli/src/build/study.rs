@@ -6,9 +6,9 @@
 use super::SceneDim;
 use super::phases::{Phase, TimeFunction};
 use crate::scene::{OutputSpec, PlotSpec, Units};
-use contact_laws::{ContactLaw, Rccm, StandardLaw};
+use contact_laws::{Rccm, StandardLaw};
 use contact_solver::coupling::space::ContactSpace;
-use contact_solver::{Candidate, ContactSimulation, ContactZone};
+use contact_solver::{Candidate, ContactSimulation};
 use fem_core::{Component, Dim, ElasticModel, Idealization, LinearElasticModel, Mesh, Structure};
 use std::collections::BTreeMap;
 
@@ -211,6 +211,24 @@ where
     Preset(Box<<Dim<D> as StudyDim<D>>::Preset>),
 }
 
+/// `on_sim!(study, s => expr)`: `expr` with `s` the study's simulation, in both arms (a scene's
+/// has the standard law, a preset's the RCCM law: two types). `D` is the caller's dimension.
+macro_rules! on_sim {
+    ($study:expr, $s:ident => $e:expr) => {
+        match &$study.body {
+            $crate::build::Body::Custom(c) => {
+                let $s = &c.sim;
+                $e
+            }
+            $crate::build::Body::Preset(p) => {
+                let $s = <fem_core::Dim<D> as $crate::build::StudyDim<D>>::preset_sim(p);
+                $e
+            }
+        }
+    };
+}
+pub(crate) use on_sim;
+
 /// A scene ready to run, in 2D or 3D (`[analysis] type = "3d"`).
 pub struct Study<const D: usize = 2>
 where
@@ -239,47 +257,22 @@ where
     Dim<D>: StudyDim<D>,
 {
     pub fn candidates(&self) -> &[Candidate<D>] {
-        match &self.body {
-            Body::Custom(c) => c.sim.candidates(),
-            Body::Preset(p) => Dim::<D>::preset_sim(p).candidates(),
-        }
+        on_sim!(self, s => s.candidates())
     }
 
     pub fn model(&self) -> &ElasticModel<D> {
-        match &self.body {
-            Body::Custom(c) => c.sim.structure(),
-            Body::Preset(p) => Dim::<D>::preset_sim(p).structure(),
-        }
+        on_sim!(self, s => s.structure())
     }
 
     pub fn alert_distances(&self) -> Vec<f64> {
-        match &self.body {
-            Body::Custom(c) => c.sim.zones().iter().map(|z| z.alert_distance).collect(),
-            Body::Preset(p) => Dim::<D>::preset_sim(p)
-                .zones()
-                .iter()
-                .map(|z| z.alert_distance)
-                .collect(),
-        }
+        on_sim!(self, s => s.zones().iter().map(|z| z.alert_distance).collect())
     }
 
     /// Each zone's name and contactor nodes.
     pub fn contactors(&self) -> Vec<(String, Vec<usize>)> {
-        fn of<L: ContactLaw, const D: usize>(
-            zones: &[ContactZone<L, D>],
-        ) -> Vec<(String, Vec<usize>)>
-        where
-            Dim<D>: ContactSpace<D>,
-        {
-            zones
-                .iter()
-                .map(|z| (z.name.clone(), z.contactor.clone()))
-                .collect()
-        }
-        match &self.body {
-            Body::Custom(c) => of(c.sim.zones()),
-            Body::Preset(p) => of(Dim::<D>::preset_sim(p).zones()),
-        }
+        on_sim!(self, s => {
+            s.zones().iter().map(|z| (z.name.clone(), z.contactor.clone())).collect()
+        })
     }
 
     /// The laws each phase sets on zones at its start (`[[phases]] laws`; none for a preset),
