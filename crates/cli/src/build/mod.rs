@@ -59,11 +59,8 @@ pub struct Loaded {
 /// Parses scene text.
 pub fn parse(source: &str) -> CliResult<Scene> {
     let de = toml::Deserializer::parse(source).map_err(|e| CliError {
-        file: None,
         span: e.span(),
-        path: None,
-        message: format!("invalid TOML: {}", e.message()),
-        code: 2,
+        ..CliError::input(format!("invalid TOML: {}", e.message()))
     })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -75,11 +72,8 @@ pub fn parse(source: &str) -> CliResult<Scene> {
             format!("`{path}`: {message}")
         };
         CliError {
-            file: None,
             span: inner.span(),
-            path: None,
-            message,
-            code: 2,
+            ..CliError::input(message)
         }
     })
 }

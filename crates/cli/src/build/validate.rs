@@ -37,7 +37,7 @@ pub(super) struct Plan {
 }
 
 /// Checks every value of the scene that does not need the mesh, in the order of the file's
-/// sections (so that the first error reported is the first one met, as before the split);
+/// sections (so that the first error reported is the first one met);
 /// `path` is the scene file's (Gmsh files are relative to it).
 pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     let root = KeyPath::root();

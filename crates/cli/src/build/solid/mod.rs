@@ -1,17 +1,7 @@
-//! A 3D scene (`[analysis] type = "3d"`): validated and built into a [`Study<3>`], a
-//! [`ContactSimulation`](contact_solver::ContactSimulation) of an
-//! [`ElasticModel<3>`](fem_core::ElasticModel) with its supports, loads, time functions and
-//! phases.
-//!
-//! The passes are those of the 2D scene ([`super::validate`], then the build): what does not
-//! depend on the dimension is the 2D code (time functions, phases, materials, supports' values
-//! and names, the law of a zone, `[solver]`'s local keys, `[output]`); the model (loads with
-//! three components, pressures on face sets) is built by the one generic
-//! [`super::model::build`], the mesh, the zones and the plots by the generic [`mesh`],
-//! [`contact`] and [`super::outputs::check_plots`] (what 3D reads differently, the box
-//! generator and Gmsh volume files, rigid planes, spheres and cylinders, is
-//! [`super::SceneDim`]'s). What 3D scenes do not have yet (floating bodies, shaft profiles) is
-//! refused with its key path.
+//! A 3D scene (`[analysis] type = "3d"`) validated and built into a [`Study<3>`] by the passes
+//! of the 2D scene ([`super::validate`], then the build), all generic over the dimension (what 3D
+//! reads differently is [`super::SceneDim`]'s). What 3D scenes do not have yet (floating bodies,
+//! shaft profiles) is refused with its key path.
 
 use super::Loaded;
 use super::outputs::{check_file_count, check_output_table, check_plots};
