@@ -2,7 +2,7 @@
 //! element kinds, and the library errors turned into errors at a key path (with the whole
 //! source chain).
 
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::spec::{Element, GradingSpec, Pair};
 use contact_laws::LawError;
 use contact_solver::SolverError;
@@ -17,10 +17,7 @@ pub(super) fn expect(path: &KeyPath, value: f64, ok: bool, expected: &str) -> Cl
     if ok {
         Ok(value)
     } else {
-        Err(CliError::at(
-            path,
-            format!("`{path}` = {value:?}: expected {expected}"),
-        ))
+        bail!(path, "`{path}` = {value:?}: expected {expected}")
     }
 }
 
@@ -72,10 +69,7 @@ pub(super) fn at_least(path: &KeyPath, v: usize, min: usize) -> CliResult<usize>
     if v >= min {
         Ok(v)
     } else {
-        Err(CliError::at(
-            path,
-            format!("`{path}` = {v}: expected an integer >= {min}"),
-        ))
+        bail!(path, "`{path}` = {v}: expected an integer >= {min}")
     }
 }
 

@@ -19,7 +19,7 @@
 //! segment. A contactor read from a curve that is not one curve gets its areas from its sides.
 
 use super::checks::node_set;
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliResult, KeyPath, bail};
 use contact_laws::StandardLaw;
 use contact_solver::coupling::zone::{lumped_areas, segment_areas};
 use contact_solver::{Candidate, ContactZone, PairNormals, Target};
@@ -46,14 +46,12 @@ pub(super) fn target_nodes(
                 }
                 _ => String::new(),
             };
-            Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}` = \"{name}\": a target must follow one curve, but the curve \
+                "`{path}` = \"{name}\": a target must follow one curve, but the curve \
                      `{name}` is not one: {why}{at}; give each piece its own physical curve \
                      and zone"
-                ),
-            ))
+            )
         }
         Some(CurveOrder::Closed) => Ok((nodes, true)),
         _ => Ok((nodes, false)),

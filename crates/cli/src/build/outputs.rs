@@ -180,17 +180,15 @@ where
     let op = KeyPath::root().key("output");
     let key = if o.steps.is_some() { "steps" } else { "every" };
     let p = op.key(key);
-    Err(CliError::at(
-        &p,
-        format!(
-            "`{p}`: the run would write {files} files ({} written steps of {} steps, each with {} VTK \
+    bail!(
+        p,
+        "`{p}`: the run would write {files} files ({} written steps of {} steps, each with {} VTK \
              file(s)): more than the limit of {MAX_OUTPUT_FILES}; raise `output.every`, list \
              `output.steps`, or set `output.vtk` / `output.mesh_vtk` = false",
-            study.written_steps(),
-            study.total_steps(),
-            usize::from(o.vtk) + usize::from(Dim::<D>::mesh_series(o))
-        ),
-    ))
+        study.written_steps(),
+        study.total_steps(),
+        usize::from(o.vtk) + usize::from(Dim::<D>::mesh_series(o))
+    )
 }
 
 /// `output.profile_steps`: the pile preset's only, each a step of the run.

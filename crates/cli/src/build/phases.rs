@@ -3,7 +3,7 @@
 //! and the law each zone has in each phase (`[[phases]] laws`), as the summaries report it.
 
 use super::checks::{at_least, finite2, list_names, positive};
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::scene::Scene;
 use crate::spec::Pair;
 use contact_laws::StandardLaw;
@@ -203,13 +203,11 @@ pub(super) fn phase_mask(
 ) -> CliResult<Vec<bool>> {
     match list {
         None => Ok(vec![true; phases.len()]),
-        Some(names) if names.is_empty() => Err(CliError::at(
+        Some(names) if names.is_empty() => bail!(
             path,
-            format!(
-                "`{path}` is empty: it would act in no phase (name at least one, or leave \
+            "`{path}` is empty: it would act in no phase (name at least one, or leave \
                  `phases` out to act in every phase)"
-            ),
-        )),
+        ),
         Some(names) => {
             let mut mask = vec![false; phases.len()];
             for (i, n) in names.iter().enumerate() {

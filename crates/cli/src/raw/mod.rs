@@ -192,10 +192,7 @@ fn load_vector<const D: usize>(
     let vp = p.key("value");
     match need(p, v, "value", what)? {
         LoadValue::Vector(c) => vector(&vp, &c),
-        LoadValue::Scalar(x) => Err(CliError::at(
-            &vp,
-            format!("`{vp}` = {x:?}: {what} takes {}", numbers::<D>()),
-        )),
+        LoadValue::Scalar(x) => bail!(vp, "`{vp}` = {x:?}: {what} takes {}", numbers::<D>()),
     }
 }
 
