@@ -442,38 +442,42 @@ pub enum Preset {
         push: Option<f64>,
     },
     /// Seed chapter 6: pile pull-out (geostatic, installation, pull-out phases).
-    Pile {
-        /// `plancoet` (default) or `cran`.
-        site: Option<Site>,
-        /// Plain Coulomb interface (β₀ = 0) instead of RCCM.
-        coulomb: bool,
-        /// Pile Young's modulus (kPa).
-        pile_young: Option<f64>,
-        /// Pile Poisson's ratio.
-        pile_poisson: Option<f64>,
-        /// Pile unit weight (kN/m³).
-        pile_unit_weight: Option<f64>,
-        /// Soil Young's modulus (kPa).
-        soil_young: Option<f64>,
-        /// Soil Poisson's ratio.
-        soil_poisson: Option<f64>,
-        /// Soil unit weight (kN/m³).
-        soil_unit_weight: Option<f64>,
-        k0: Option<f64>,
-        /// Phase 2.
-        installation: Option<InstallationSpec>,
-        /// Final head displacement (m).
-        head_displacement: Option<f64>,
-        /// Force control: the final jack force (kN, full ring, upwards).
-        head_force: Option<f64>,
-        /// Pull-out increments.
-        steps: Option<usize>,
-        /// Alert distance (m).
-        alert_distance: Option<f64>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
-        mesh: Option<PileMeshOverride>,
-    },
+    Pile(PileOverride),
+}
+
+/// The overrides of the pile preset.
+#[derive(Debug, Clone)]
+pub struct PileOverride {
+    /// `plancoet` (default) or `cran`.
+    pub site: Option<Site>,
+    /// Plain Coulomb interface (β₀ = 0) instead of RCCM.
+    pub coulomb: bool,
+    /// Pile Young's modulus (kPa).
+    pub pile_young: Option<f64>,
+    /// Pile Poisson's ratio.
+    pub pile_poisson: Option<f64>,
+    /// Pile unit weight (kN/m³).
+    pub pile_unit_weight: Option<f64>,
+    /// Soil Young's modulus (kPa).
+    pub soil_young: Option<f64>,
+    /// Soil Poisson's ratio.
+    pub soil_poisson: Option<f64>,
+    /// Soil unit weight (kN/m³).
+    pub soil_unit_weight: Option<f64>,
+    pub k0: Option<f64>,
+    /// Phase 2.
+    pub installation: Option<InstallationSpec>,
+    /// Final head displacement (m).
+    pub head_displacement: Option<f64>,
+    /// Force control: the final jack force (kN, full ring, upwards).
+    pub head_force: Option<f64>,
+    /// Pull-out increments.
+    pub steps: Option<usize>,
+    /// Alert distance (m).
+    pub alert_distance: Option<f64>,
+    /// Interface law parameters (each optional).
+    pub interface: Option<RccmOverride>,
+    pub mesh: Option<PileMeshOverride>,
 }
 
 /// Which pile of the seed a pile preset starts from.

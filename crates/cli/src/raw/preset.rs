@@ -145,7 +145,7 @@ impl RawPreset {
                         })
                     }
                 };
-                Preset::Pile {
+                Preset::Pile(PileOverride {
                     site: self.site,
                     coulomb: self.coulomb.unwrap_or(false),
                     pile_young: self.pile_young,
@@ -162,7 +162,7 @@ impl RawPreset {
                     alert_distance: self.alert_distance,
                     interface: self.interface,
                     mesh: self.mesh,
-                }
+                })
             }
         })
     }
