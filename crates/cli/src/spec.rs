@@ -152,6 +152,36 @@ pub struct BoxSpec {
     pub gradings: [GradingSpec; 3],
 }
 
+/// The pile generator's keys (each optional: the seed's pile by default).
+#[derive(Debug, Clone)]
+pub struct PileMeshSpec {
+    /// P1 / P2 (default P2).
+    pub element: Option<Element>,
+    pub diameter: Option<f64>,
+    /// Embedded length.
+    pub length: Option<f64>,
+    /// Radial extent of the soil.
+    pub width: Option<f64>,
+    /// Depth of the soil.
+    pub depth: Option<f64>,
+    /// Cells across the pile radius.
+    pub cells_pile_r: Option<usize>,
+    /// Cells in the soil, radially.
+    pub cells_soil_r: Option<usize>,
+    pub cells_shaft: Option<usize>,
+    pub cells_below_tip: Option<usize>,
+    /// Grading across the pile radius.
+    pub grading_pile_r: Option<GradingSpec>,
+    /// Grading of the soil, outward.
+    pub grading_soil_r: Option<GradingSpec>,
+    /// Grading along the shaft, upward.
+    pub grading_shaft: Option<GradingSpec>,
+    /// Grading below the tip, upward.
+    pub grading_below_tip: Option<GradingSpec>,
+    /// `split` or `shared`.
+    pub tip_corner: Option<TipCornerSpec>,
+}
+
 /// The mesh: a generator or a Gmsh file.
 #[derive(Debug, Clone)]
 pub enum MeshSpec {
@@ -178,33 +208,7 @@ pub enum MeshSpec {
         layers: Option<Vec<LayerSpec>>,
     },
     /// `fem_core::generate::pile_in_soil` (axisymmetric).
-    Pile {
-        /// P1 / P2 (default P2).
-        element: Option<Element>,
-        diameter: Option<f64>,
-        /// Embedded length.
-        length: Option<f64>,
-        /// Radial extent of the soil.
-        width: Option<f64>,
-        /// Depth of the soil.
-        depth: Option<f64>,
-        /// Cells across the pile radius.
-        cells_pile_r: Option<usize>,
-        /// Cells in the soil, radially.
-        cells_soil_r: Option<usize>,
-        cells_shaft: Option<usize>,
-        cells_below_tip: Option<usize>,
-        /// Grading across the pile radius.
-        grading_pile_r: Option<GradingSpec>,
-        /// Grading of the soil, outward.
-        grading_soil_r: Option<GradingSpec>,
-        /// Grading along the shaft, upward.
-        grading_shaft: Option<GradingSpec>,
-        /// Grading below the tip, upward.
-        grading_below_tip: Option<GradingSpec>,
-        /// `split` or `shared`.
-        tip_corner: Option<TipCornerSpec>,
-    },
+    Pile(PileMeshSpec),
     /// `fem_core::solid::generate::box_mesh` (3D).
     Box(BoxSpec),
     /// A Gmsh `.msh` 4.1 file (of the scene's dimension).

@@ -73,6 +73,23 @@ pub(super) fn at_least(path: &KeyPath, v: usize, min: usize) -> CliResult<usize>
     }
 }
 
+/// `set!(p, spec, field = value, check)`: `spec.field = check(p.field, v)?` when the scene
+/// gives `value = Some(v)`.
+macro_rules! set {
+    ($p:expr, $spec:expr, $field:ident = $v:expr, $check:expr) => {
+        if let Some(v) = $v {
+            $spec.$field = $check(&$p.key(stringify!($field)), v)?;
+        }
+    };
+}
+
+pub(super) use set;
+
+/// An integer >= 1 (a count of cells, steps).
+pub(super) fn count(path: &KeyPath, v: usize) -> CliResult<usize> {
+    at_least(path, v, 1)
+}
+
 /// The generator's grading (a ratio must be > 0).
 pub(super) fn grading(path: &KeyPath, g: GradingSpec) -> CliResult<Grading> {
     Ok(match g {

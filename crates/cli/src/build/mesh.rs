@@ -3,10 +3,12 @@
 //! tetrahedra per cell) or a Gmsh file to read, then the mesh generated ([`SceneDim`]'s
 //! `generate`) or read, and the axisymmetric mesh checked to lie right of the axis.
 
-use super::checks::{at_least, fem, finite, finite2, grading, kind, positive, solid_kind};
+use super::checks::{
+    at_least, count, fem, finite, finite2, grading, kind, positive, set, solid_kind,
+};
 use super::dim::SceneDim;
 use crate::error::{CliError, CliResult, KeyPath, bail};
-use crate::spec::{BoxSpec, Element, MeshSpec, Pair, TipCornerSpec};
+use crate::spec::{BoxSpec, Element, MeshSpec, Pair, PileMeshSpec, TipCornerSpec};
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner, graded_points};
 use fem_core::solid::SolidKind;
 use fem_core::{Dim, FemError, Idealization, Mesh};
@@ -84,7 +86,7 @@ pub(super) fn validate(
 ) -> CliResult<MeshPlan> {
     match spec {
         MeshSpec::Rectangle { .. } => rectangle(mp, spec),
-        MeshSpec::Pile { .. } => pile(mp, spec, idealization),
+        MeshSpec::Pile(o) => pile(mp, o, idealization),
         MeshSpec::Box(b) => box_lines(mp, b),
         MeshSpec::Gmsh { file, element } => {
             Ok(MeshPlan::Gmsh(GmshPlan::new(mp, file, *element, base_dir)?))
@@ -301,26 +303,7 @@ fn box_lines(mp: &KeyPath, b: &BoxSpec) -> CliResult<MeshPlan> {
 }
 
 /// The pile generator: the seed's pile with optional overrides (axisymmetric only).
-fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Option<Idealization>) -> CliResult<MeshPlan> {
-    let MeshSpec::Pile {
-        element,
-        diameter,
-        length,
-        width,
-        depth,
-        cells_pile_r,
-        cells_soil_r,
-        cells_shaft,
-        cells_below_tip,
-        grading_pile_r,
-        grading_soil_r,
-        grading_shaft,
-        grading_below_tip,
-        tip_corner,
-    } = spec
-    else {
-        unreachable!("called for the pile generator")
-    };
+fn pile(mp: &KeyPath, o: &PileMeshSpec, idealization: Option<Idealization>) -> CliResult<MeshPlan> {
     if !matches!(idealization, Some(Idealization::Axisymmetric)) {
         bail!(
             KeyPath::root().key("analysis"),
@@ -329,49 +312,28 @@ fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Option<Idealization>) -> Cl
         );
     }
     let mut s = PileSpec::default();
-    macro_rules! pos {
-        ($f:ident) => {
-            if let Some(v) = $f {
-                s.$f = positive(&mp.key(stringify!($f)), *v)?;
-            }
-        };
-    }
-    macro_rules! cnt {
-        ($f:ident) => {
-            if let Some(v) = $f {
-                s.$f = at_least(&mp.key(stringify!($f)), *v, 1)?;
-            }
-        };
-    }
-    macro_rules! grd {
-        ($f:ident) => {
-            if let Some(v) = $f {
-                s.$f = grading(&mp.key(stringify!($f)), *v)?;
-            }
-        };
-    }
-    if length.is_some() && width.is_none() && depth.is_none() {
+    if o.length.is_some() && o.width.is_none() && o.depth.is_none() {
         // keep the seed's proportions W = 2 L_p, H = 3.5 L_p
-        let l = positive(&mp.key("length"), length.unwrap_or(13.0))?;
+        let l = positive(&mp.key("length"), o.length.unwrap_or(13.0))?;
         s.width = 2.0 * l;
         s.depth = 3.5 * l;
     }
-    pos!(diameter);
-    pos!(length);
-    pos!(width);
-    pos!(depth);
-    cnt!(cells_pile_r);
-    cnt!(cells_soil_r);
-    cnt!(cells_shaft);
-    cnt!(cells_below_tip);
-    grd!(grading_pile_r);
-    grd!(grading_soil_r);
-    grd!(grading_shaft);
-    grd!(grading_below_tip);
-    if let Some(e) = element {
-        s.kind = kind(*e);
+    set!(mp, s, diameter = o.diameter, positive);
+    set!(mp, s, length = o.length, positive);
+    set!(mp, s, width = o.width, positive);
+    set!(mp, s, depth = o.depth, positive);
+    set!(mp, s, cells_pile_r = o.cells_pile_r, count);
+    set!(mp, s, cells_soil_r = o.cells_soil_r, count);
+    set!(mp, s, cells_shaft = o.cells_shaft, count);
+    set!(mp, s, cells_below_tip = o.cells_below_tip, count);
+    set!(mp, s, grading_pile_r = o.grading_pile_r, grading);
+    set!(mp, s, grading_soil_r = o.grading_soil_r, grading);
+    set!(mp, s, grading_shaft = o.grading_shaft, grading);
+    set!(mp, s, grading_below_tip = o.grading_below_tip, grading);
+    if let Some(e) = o.element {
+        s.kind = kind(e);
     }
-    if let Some(t) = tip_corner {
+    if let Some(t) = o.tip_corner {
         s.tip_corner = match t {
             TipCornerSpec::Split => TipCorner::Split,
             TipCornerSpec::Shared => TipCorner::Shared,

@@ -2,7 +2,7 @@
 //! library's presets (`bipo::presets`), then the preset built and made a study.
 
 use super::checks::{
-    at_least, expect, finite, kind, law_error, non_negative, poisson, positive, solver_error,
+    count, expect, finite, kind, law_error, non_negative, poisson, positive, set, solver_error,
 };
 use super::contact::{rccm_params, settings};
 use super::outputs::check_outputs;
@@ -101,20 +101,6 @@ fn override_rccm(
     };
     Rccm::new(p).map_err(|e| law_error(path, e))?;
     Ok(p)
-}
-
-/// `set!(p, spec, field = value, check)`: `spec.field = check(p.field, v)?` when the scene
-/// gives `value = Some(v)`.
-macro_rules! set {
-    ($p:expr, $spec:expr, $field:ident = $v:expr, $check:expr) => {
-        if let Some(v) = $v {
-            $spec.$field = $check(&$p.key(stringify!($field)), v)?;
-        }
-    };
-}
-
-fn count(p: &KeyPath, v: usize) -> CliResult<usize> {
-    at_least(p, v, 1)
 }
 
 /// Checks the preset's overrides (the scene may give nothing else but the title, units, solver,

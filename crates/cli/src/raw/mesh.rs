@@ -186,7 +186,7 @@ impl RawMesh {
             }
             Generator::Pile => {
                 only(p, "the pile generator", &present, PILE_KEYS)?;
-                MeshSpec::Pile {
+                MeshSpec::Pile(PileMeshSpec {
                     element: self.element,
                     diameter: self.diameter,
                     length: self.length,
@@ -204,7 +204,7 @@ impl RawMesh {
                         &self.grading_below_tip,
                     )?,
                     tip_corner: self.tip_corner,
-                }
+                })
             }
             Generator::Gmsh => {
                 only(p, "a gmsh mesh", &present, GMSH_KEYS)?;
