@@ -199,9 +199,14 @@ where
     Ok(out)
 }
 
-/// RCCM parameters, checked (the θ key against the scheme, then the law's own checks).
-pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams> {
-    let scheme = match (r.scheme, r.theta) {
+/// A θ in [0, 1] at `path`.
+pub(super) fn theta(path: &KeyPath, t: f64) -> CliResult<f64> {
+    expect(path, t, (0.0..=1.0).contains(&t), "a value in [0, 1]")
+}
+
+/// The β scheme of an RCCM law at `path`: `scheme` with its `theta` key, checked.
+pub(super) fn scheme(path: &KeyPath, s: SchemeSpec, t: Option<f64>) -> CliResult<BetaScheme> {
+    Ok(match (s, t) {
         (SchemeSpec::ImplicitEuler, None) => BetaScheme::ImplicitEuler,
         (SchemeSpec::ImplicitEuler, Some(_)) => {
             let p = path.key("theta");
@@ -210,22 +215,19 @@ pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams>
                 "`{p}` is only read with scheme = \"theta\" (the scheme is implicit_euler)"
             );
         }
-        (SchemeSpec::Theta, Some(t)) => {
-            let p = path.key("theta");
-            BetaScheme::Theta(expect(
-                &p,
-                t,
-                (0.0..=1.0).contains(&t),
-                "a value in [0, 1]",
-            )?)
-        }
+        (SchemeSpec::Theta, Some(t)) => BetaScheme::Theta(theta(&path.key("theta"), t)?),
         (SchemeSpec::Theta, None) => {
             bail!(
                 path,
                 "`{path}`: scheme = \"theta\" needs `theta` (a value in [0, 1])"
             );
         }
-    };
+    })
+}
+
+/// RCCM parameters, checked (the θ key against the scheme, then the law's own checks).
+pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams> {
+    let scheme = scheme(path, r.scheme, r.theta)?;
     let p = RccmParams {
         c_n: r.c_n,
         c_t: r.c_t,

@@ -4,14 +4,14 @@
 use super::checks::{
     count, expect, finite, kind, law_error, non_negative, poisson, positive, set, solver_error,
 };
-use super::contact::{rccm_params, settings};
+use super::contact::{scheme, settings, theta};
 use super::outputs::check_outputs;
 use super::phases::{Phase, phase};
 use super::study::{Body, Library, PresetStudy, Study};
 use crate::error::{CliResult, KeyPath, bail};
 use crate::presets::{DelaminationSpec, Installation, PulloutSpec, ShearSpec};
 use crate::scene::{OutputSpec, Scene};
-use crate::spec::{InstallationSpec, PileOverride, Preset, RccmOverride, RccmSpec, Site};
+use crate::spec::{InstallationSpec, PileOverride, Preset, RccmOverride, Site};
 use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
 use contact_solver::SimulationSettings;
 
@@ -61,29 +61,11 @@ fn override_rccm(
     let Some(o) = o else { return Ok(base) };
     let scheme = match (o.scheme, o.theta) {
         (None, None) => base.scheme,
-        (Some(s), t) => {
-            let spec = RccmSpec {
-                c_n: 0.0,
-                c_t: 0.0,
-                w: 0.0,
-                alpha: 0.0,
-                mu: 0.0,
-                m: 1,
-                beta_0: 1.0,
-                scheme: s,
-                theta: t,
-            };
-            rccm_params(path, &spec)?.scheme
-        }
+        (Some(s), t) => scheme(path, s, t)?,
         (None, Some(t)) => {
             let p = path.key("theta");
             if let BetaScheme::Theta(_) = base.scheme {
-                BetaScheme::Theta(expect(
-                    &p,
-                    t,
-                    (0.0..=1.0).contains(&t),
-                    "a value in [0, 1]",
-                )?)
+                BetaScheme::Theta(theta(&p, t)?)
             } else {
                 bail!(p, "`{p}` is only read with scheme = \"theta\"");
             }
