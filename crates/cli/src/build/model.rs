@@ -387,10 +387,8 @@ pub(super) fn components(
         (ComponentSpec::X, _) => vec![Component::X],
         (ComponentSpec::Y, _) => vec![Component::Y],
         (ComponentSpec::Both, 2) => vec![Component::X, Component::Y],
-        (ComponentSpec::Z | ComponentSpec::All, 3) => match c {
-            ComponentSpec::Z => vec![Component::Z],
-            _ => vec![Component::X, Component::Y, Component::Z],
-        },
+        (ComponentSpec::Z, 3) => vec![Component::Z],
+        (ComponentSpec::All, 3) => vec![Component::X, Component::Y, Component::Z],
         (ComponentSpec::Both, _) => {
             bail!(
                 path,
@@ -421,7 +419,6 @@ where
     Dim<D>: SceneDim<D>,
 {
     let root = KeyPath::root();
-    // An element stiffness that overflows is the material's fault, not the supports'.
     let young_keys = young_keys(&plan.materials);
     let materials = regions(mesh.regions(), plan.materials)?;
     let mut supports = Vec::new();
