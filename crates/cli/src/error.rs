@@ -62,10 +62,18 @@ impl fmt::Display for KeyPath {
 /// bad-input error at a key path.
 macro_rules! bail {
     ($path:expr, $($message:tt)+) => {
-        return Err($crate::error::CliError::at(&$path, format!($($message)+)))
+        return Err($crate::error::err!($path, $($message)+))
     };
 }
 pub(crate) use bail;
+
+/// `err!(path, "…", args)`: `CliError::at(&path, format!("…", args))`.
+macro_rules! err {
+    ($path:expr, $($message:tt)+) => {
+        $crate::error::CliError::at(&$path, format!($($message)+))
+    };
+}
+pub(crate) use err;
 
 /// An error with what `bipo` knows of where it comes from.
 #[derive(Debug)]

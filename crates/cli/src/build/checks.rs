@@ -2,7 +2,7 @@
 //! element kinds, and the library errors turned into errors at a key path (with the whole
 //! source chain).
 
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliError, CliResult, KeyPath, bail, err};
 use crate::spec::{Element, GradingSpec, Pair};
 use contact_laws::LawError;
 use contact_solver::SolverError;
@@ -150,7 +150,7 @@ pub(super) fn fem(path: &KeyPath, e: FemError) -> CliError {
         }
         _ => "",
     };
-    CliError::at(path, format!("{}{hint}", chain(&e)))
+    err!(path, "{}{hint}", chain(&e))
 }
 
 /// A `LawError` at the key of the offending parameter under `path`.
@@ -162,11 +162,11 @@ pub(super) fn law_error(path: &KeyPath, e: LawError) -> CliError {
             expected,
         } => {
             let p = path.key(name);
-            CliError::at(&p, format!("`{p}` = {value:?}: expected {expected}"))
+            err!(p, "`{p}` = {value:?}: expected {expected}")
         }
         LawError::InvalidExponent { m } => {
             let p = path.key("m");
-            CliError::at(&p, format!("`{p}` = {m}: expected 1 or 2"))
+            err!(p, "`{p}` = {m}: expected 1 or 2")
         }
         other => CliError::at(path, chain(&other)),
     }
@@ -208,12 +208,10 @@ where
     Dim<D>: Space,
 {
     mesh.node_set(name).map(|s| s.to_vec()).map_err(|_| {
-        CliError::at(
+        err!(
             path,
-            format!(
-                "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
-                list_names(mesh.node_set_names())
-            ),
+            "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
+            list_names(mesh.node_set_names())
         )
     })
 }

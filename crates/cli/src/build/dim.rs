@@ -11,7 +11,7 @@ use super::checks::{expect, solid_kind_name, solver_error};
 use super::checks::{fem, finite, finite_all, kind_name, list_names, node_set, positive};
 use super::curves;
 use super::mesh::MeshPlan;
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliError, CliResult, KeyPath, bail, err};
 use crate::raw::vector;
 use crate::spec::{ArcSideSpec, Coords, Element, TargetSpec};
 use contact_laws::StandardLaw;
@@ -132,12 +132,10 @@ impl SceneDim<2> for Dim<2> {
 
     fn boundary_set(path: &KeyPath, mesh: &Mesh, set: &str) -> CliResult<()> {
         mesh.edge_set(set).map(|_| ()).map_err(|_| {
-            CliError::at(
+            err!(
                 path,
-                format!(
-                    "`{path}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
-                    list_names(mesh.edge_set_names())
-                ),
+                "`{path}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
+                list_names(mesh.edge_set_names())
             )
         })
     }
@@ -353,13 +351,11 @@ impl SceneDim<3> for Dim<3> {
 
     fn boundary_set(path: &KeyPath, mesh: &SolidMesh, set: &str) -> CliResult<()> {
         mesh.face_set(set).map(|_| ()).map_err(|_| {
-            CliError::at(
+            err!(
                 path,
-                format!(
-                    "`{path}` = \"{set}\": the mesh has no face set of that name (face sets, the \
+                "`{path}` = \"{set}\": the mesh has no face set of that name (face sets, the \
                      physical surfaces: {})",
-                    list_names(mesh.facet_set_names())
-                ),
+                list_names(mesh.facet_set_names())
             )
         })
     }
@@ -496,13 +492,11 @@ impl SceneDim<3> for Dim<3> {
     /// The triangles of the face set.
     fn surface(model: &SolidModel, sp: &KeyPath, set: &str) -> CliResult<TriSurface> {
         TriSurface::from_face_set(model.mesh(), set).map_err(|_| {
-            CliError::at(
+            err!(
                 sp,
-                format!(
-                    "`{sp}` = \"{set}\" is not a face set of the mesh (a physical surface, or a \
+                "`{sp}` = \"{set}\" is not a face set of the mesh (a physical surface, or a \
                      side of the box): a faces target, and node pairs without a `normal`, need \
                      the target body's faces"
-                ),
             )
         })
     }
@@ -578,15 +572,15 @@ fn pair_by_position(
                 .filter(|&t| t != c && (0..3).all(|a| (nodes[t][a] - x[a]).abs() <= tol))
                 .min();
             near.ok_or_else(|| {
-                CliError::at(
+                err!(
                     sp,
-                    format!(
-                        "node {c} of the contactor set `{contactor_set}` at ({}, {}, {}) has no \
+                    "node {c} of the contactor set `{contactor_set}` at ({}, {}, {}) has no \
                          node of `{sp}` = \"{set}\" at its position: node pairs need matching \
                          meshes, each body with its own nodes on the interface (use a faces \
                          target otherwise)",
-                        x[0], x[1], x[2]
-                    ),
+                    x[0],
+                    x[1],
+                    x[2]
                 )
             })
         })

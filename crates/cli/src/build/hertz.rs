@@ -2,7 +2,7 @@
 //! symmetry factor, the contact modulus `E*` and the SVG file ([`HertzPlan`]).
 
 use super::checks::{finite, positive};
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliResult, KeyPath, bail, err};
 use crate::scene::Scene;
 
 /// The Hertz reference of a run (drawn by `run`'s pressure plot).
@@ -79,12 +79,10 @@ pub(super) fn check(
     let zone = match &h.zone {
         Some(name) => zone_names.iter().position(|z| z == name).ok_or_else(|| {
             let zp = p.key("zone");
-            CliError::at(
-                &zp,
-                format!(
-                    "`{zp}` = \"{name}\": no contact zone has that name (zones: {})",
-                    zone_names.join(", ")
-                ),
+            err!(
+                zp,
+                "`{zp}` = \"{name}\": no contact zone has that name (zones: {})",
+                zone_names.join(", ")
             )
         })?,
         None if zone_names.len() == 1 => 0,

@@ -3,7 +3,7 @@
 
 use super::checks::{at_least, list_names, node_set};
 use super::study::{Body, Study, StudyDim};
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliResult, KeyPath, bail, err};
 use crate::scene::{CurveSpec, OutputSpec, PlotSpec, Scene};
 use fem_core::Component;
 use fem_core::Dim;
@@ -212,12 +212,10 @@ fn check_profile_steps(o: &OutputSpec, study: &Study) -> CliResult<()> {
 
 pub fn zone_index(path: &KeyPath, names: &[String], name: &str) -> CliResult<usize> {
     names.iter().position(|n| n == name).ok_or_else(|| {
-        CliError::at(
+        err!(
             path,
-            format!(
-                "`{path}` = \"{name}\": no such contact zone (zones: {})",
-                list_names(names.iter().map(|s| s.as_str()))
-            ),
+            "`{path}` = \"{name}\": no such contact zone (zones: {})",
+            list_names(names.iter().map(|s| s.as_str()))
         )
     })
 }

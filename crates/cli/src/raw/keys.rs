@@ -1,7 +1,7 @@
 //! The two checks every flat table makes once its `type` is known: the keys it needs, and no
 //! key it does not read.
 
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliResult, KeyPath, bail, err};
 
 /// `present!(self; a, b)`: `[("a", self.a.is_some()), ("b", self.b.is_some())]`, the keys a
 /// flat table has, for [`only`].
@@ -13,7 +13,7 @@ pub(super) use present;
 /// `need(path, &opt, "key", "what")`: the value, or the error "`path`: what needs `key`".
 pub(super) fn need<T: Clone>(path: &KeyPath, v: &Option<T>, key: &str, what: &str) -> CliResult<T> {
     v.clone()
-        .ok_or_else(|| CliError::at(path, format!("`{path}`: {what} needs `{key}`")))
+        .ok_or_else(|| err!(path, "`{path}`: {what} needs `{key}`"))
 }
 
 /// Refuses the keys present that `what` does not read (`accepted`: the keys it reads, separated

@@ -19,7 +19,7 @@ mod preset;
 pub use mesh::RawMesh;
 pub use preset::RawPreset;
 
-use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::error::{CliResult, KeyPath, bail, err};
 use crate::spec::*;
 use keys::{need, only, present};
 use serde::Deserialize;
@@ -172,13 +172,11 @@ pub fn vector<const D: usize>(p: &KeyPath, c: &Coords) -> CliResult<[f64; D]> {
         } else {
             " (a 3D scene)"
         };
-        CliError::at(
+        err!(
             p,
-            format!(
-                "`{p}`: invalid length {}, expected {}{hint}",
-                c.0.len(),
-                numbers::<D>()
-            ),
+            "`{p}`: invalid length {}, expected {}{hint}",
+            c.0.len(),
+            numbers::<D>()
         )
     })
 }
