@@ -99,12 +99,9 @@ pub struct MaterialSpec {
     /// A name, for the reader of the scene only.
     #[allow(dead_code)]
     pub name: Option<String>,
-    /// One region.
     pub region: Option<u32>,
     pub regions: Option<Vec<u32>>,
-    /// Young's modulus.
     pub young: f64,
-    /// Poisson's ratio.
     pub poisson: f64,
     /// Unit weight (for gravity loads).
     #[serde(default)]
@@ -134,7 +131,6 @@ pub struct SupportSpec {
     /// A name (phases may override its function by this name).
     pub name: Option<String>,
     pub set: String,
-    /// Component(s).
     pub component: ComponentSpec,
     /// Prescribed value (times the function).
     #[serde(default)]
@@ -150,14 +146,12 @@ pub struct SupportSpec {
 #[serde(deny_unknown_fields)]
 pub struct TieSpec {
     pub set: String,
-    /// Component(s).
     pub component: ComponentSpec,
 }
 
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct ZoneSpec {
-    /// Zone name.
     pub name: String,
     /// Contactor node set.
     pub contactor: String,
@@ -273,7 +267,6 @@ pub struct StepsSpec {
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct PhaseSpec {
-    /// Name.
     pub name: String,
     pub steps: usize,
     pub duration: f64,

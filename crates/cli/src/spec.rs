@@ -261,17 +261,12 @@ pub enum InitialStress {
 pub enum LoadSpec<const D: usize> {
     /// Traction (force per area, global frame) on an edge set (2D) or a face set (3D).
     Traction {
-        /// Edge or face set.
         set: String,
         /// `[t_x, t_y]` or `[t_x, t_y, t_z]`.
         value: [f64; D],
     },
     /// A pressure on a face set, positive into the body (3D only).
-    Pressure {
-        set: String,
-        /// The pressure.
-        value: f64,
-    },
+    Pressure { set: String, value: f64 },
     /// A force on every node of a node set.
     NodalForce {
         set: String,
@@ -285,10 +280,7 @@ pub enum LoadSpec<const D: usize> {
         value: [f64; D],
     },
     /// A uniform body force (force per volume) over the whole mesh.
-    BodyForce {
-        /// The force per volume.
-        value: [f64; D],
-    },
+    BodyForce { value: [f64; D] },
     /// The self-weight of every region (its material's `unit_weight`, along −y in 2D, −z in
     /// 3D), in full.
     Gravity,
@@ -309,15 +301,9 @@ pub enum ArcSideSpec {
 #[derive(Debug, Clone)]
 pub enum TargetSpec {
     /// Rigid segment a → b, contactor on its left (2D).
-    Line {
-        /// Start.
-        a: Pair,
-        /// End.
-        b: Pair,
-    },
+    Line { a: Pair, b: Pair },
     /// Rigid circular arc (2D).
     Arc {
-        /// Centre.
         center: Pair,
         radius: f64,
         /// Start angle (radians, counter-clockwise from +x).
@@ -336,7 +322,6 @@ pub enum TargetSpec {
     },
     /// A rigid sphere (3D).
     Sphere {
-        /// Centre.
         center: Coords,
         radius: f64,
         /// The contactor's side (default outside).
@@ -346,7 +331,6 @@ pub enum TargetSpec {
     Cylinder {
         /// A point of the axis.
         point: Coords,
-        /// The axis direction.
         axis: Coords,
         radius: f64,
         /// The contactor's side (default outside).
@@ -355,7 +339,6 @@ pub enum TargetSpec {
     /// Node pairs: each contactor node with a node of `set` (2D: in the set's order, 3D: at
     /// its position).
     NodePairs {
-        /// The target node set.
         set: String,
         /// A fixed normal from the target to the contactor; absent: from the target nodes in
         /// order (2D) or the target body's faces (3D).
@@ -458,13 +441,11 @@ pub struct PileOverride {
     pub coulomb: bool,
     /// Pile Young's modulus (kPa).
     pub pile_young: Option<f64>,
-    /// Pile Poisson's ratio.
     pub pile_poisson: Option<f64>,
     /// Pile unit weight (kN/m³).
     pub pile_unit_weight: Option<f64>,
     /// Soil Young's modulus (kPa).
     pub soil_young: Option<f64>,
-    /// Soil Poisson's ratio.
     pub soil_poisson: Option<f64>,
     /// Soil unit weight (kN/m³).
     pub soil_unit_weight: Option<f64>,
