@@ -152,24 +152,11 @@ pub struct BoxSpec {
     pub gradings: [GradingSpec; 3],
 }
 
-/// The pile generator's keys (each optional: the seed's pile by default).
+/// The pile generator's keys (each optional: the seed's pile by default): those a pile preset
+/// overrides too, the gradings and the tip corner.
 #[derive(Debug, Clone)]
 pub struct PileMeshSpec {
-    /// P1 / P2 (default P2).
-    pub element: Option<Element>,
-    pub diameter: Option<f64>,
-    /// Embedded length.
-    pub length: Option<f64>,
-    /// Radial extent of the soil.
-    pub width: Option<f64>,
-    /// Depth of the soil.
-    pub depth: Option<f64>,
-    /// Cells across the pile radius.
-    pub cells_pile_r: Option<usize>,
-    /// Cells in the soil, radially.
-    pub cells_soil_r: Option<usize>,
-    pub cells_shaft: Option<usize>,
-    pub cells_below_tip: Option<usize>,
+    pub sizes: PileMeshOverride,
     /// Grading across the pile radius.
     pub grading_pile_r: Option<GradingSpec>,
     /// Grading of the soil, outward.
@@ -493,16 +480,18 @@ pub enum InstallationSpec {
     },
 }
 
+/// The pile's sizes: `[preset] mesh` of the pile preset, and keys of the pile generator.
 #[derive(Debug, Deserialize, Clone, Copy, Default)]
 #[serde(deny_unknown_fields)]
 pub struct PileMeshOverride {
-    /// P1 / P2.
+    /// P1 / P2 (the generator's default: P2).
     pub element: Option<Element>,
     pub diameter: Option<f64>,
     /// Embedded length.
     pub length: Option<f64>,
-    /// Radial extent.
+    /// Radial extent of the soil.
     pub width: Option<f64>,
+    /// Depth of the soil.
     pub depth: Option<f64>,
     /// Cells across the pile radius.
     pub cells_pile_r: Option<usize>,

@@ -8,7 +8,9 @@ use super::checks::{
 };
 use super::dim::SceneDim;
 use crate::error::{CliError, CliResult, KeyPath, bail};
-use crate::spec::{BoxSpec, Element, MeshSpec, Pair, PileMeshSpec, TipCornerSpec};
+use crate::spec::{
+    BoxSpec, Element, MeshSpec, Pair, PileMeshOverride, PileMeshSpec, TipCornerSpec,
+};
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner, graded_points};
 use fem_core::solid::SolidKind;
 use fem_core::{Dim, FemError, Idealization, Mesh};
@@ -312,27 +314,18 @@ fn pile(mp: &KeyPath, o: &PileMeshSpec, idealization: Option<Idealization>) -> C
         );
     }
     let mut s = PileSpec::default();
-    if o.length.is_some() && o.width.is_none() && o.depth.is_none() {
+    let sizes = &o.sizes;
+    if sizes.length.is_some() && sizes.width.is_none() && sizes.depth.is_none() {
         // keep the seed's proportions W = 2 L_p, H = 3.5 L_p
-        let l = positive(&mp.key("length"), o.length.unwrap_or(13.0))?;
+        let l = positive(&mp.key("length"), sizes.length.unwrap_or(13.0))?;
         s.width = 2.0 * l;
         s.depth = 3.5 * l;
     }
-    set!(mp, s, diameter = o.diameter, positive);
-    set!(mp, s, length = o.length, positive);
-    set!(mp, s, width = o.width, positive);
-    set!(mp, s, depth = o.depth, positive);
-    set!(mp, s, cells_pile_r = o.cells_pile_r, count);
-    set!(mp, s, cells_soil_r = o.cells_soil_r, count);
-    set!(mp, s, cells_shaft = o.cells_shaft, count);
-    set!(mp, s, cells_below_tip = o.cells_below_tip, count);
+    pile_sizes(mp, &mut s, sizes)?;
     set!(mp, s, grading_pile_r = o.grading_pile_r, grading);
     set!(mp, s, grading_soil_r = o.grading_soil_r, grading);
     set!(mp, s, grading_shaft = o.grading_shaft, grading);
     set!(mp, s, grading_below_tip = o.grading_below_tip, grading);
-    if let Some(e) = o.element {
-        s.kind = kind(e);
-    }
     if let Some(t) = o.tip_corner {
         s.tip_corner = match t {
             TipCornerSpec::Split => TipCorner::Split,
@@ -340,6 +333,22 @@ fn pile(mp: &KeyPath, o: &PileMeshSpec, idealization: Option<Idealization>) -> C
         };
     }
     Ok(MeshPlan::Pile(s))
+}
+
+/// The pile's element, sizes and cell counts of `m` (at `mp`: `[mesh]` or `[preset] mesh`).
+pub(super) fn pile_sizes(mp: &KeyPath, s: &mut PileSpec, m: &PileMeshOverride) -> CliResult<()> {
+    if let Some(e) = m.element {
+        s.kind = kind(e);
+    }
+    set!(mp, s, diameter = m.diameter, positive);
+    set!(mp, s, length = m.length, positive);
+    set!(mp, s, width = m.width, positive);
+    set!(mp, s, depth = m.depth, positive);
+    set!(mp, s, cells_pile_r = m.cells_pile_r, count);
+    set!(mp, s, cells_soil_r = m.cells_soil_r, count);
+    set!(mp, s, cells_shaft = m.cells_shaft, count);
+    set!(mp, s, cells_below_tip = m.cells_below_tip, count);
+    Ok(())
 }
 
 /// Generates or reads the mesh of `plan` (`[mesh]` at `mp`) in dimension `D`; an axisymmetric

@@ -5,6 +5,7 @@ use super::checks::{
     count, expect, finite, kind, law_error, non_negative, poisson, positive, set, solver_error,
 };
 use super::contact::{scheme, settings, theta};
+use super::mesh::pile_sizes;
 use super::outputs::check_outputs;
 use super::phases::{Phase, phase};
 use super::study::{Body, Library, PresetStudy, Study};
@@ -170,19 +171,8 @@ fn pile(p: &KeyPath, o: &PileOverride) -> CliResult<PulloutSpec> {
             }
         };
     }
-    if let Some(m) = o.mesh {
-        let (mp, s) = (p.key("mesh"), &mut spec.mesh);
-        if let Some(e) = m.element {
-            s.kind = kind(e);
-        }
-        set!(mp, s, diameter = m.diameter, positive);
-        set!(mp, s, length = m.length, positive);
-        set!(mp, s, width = m.width, positive);
-        set!(mp, s, depth = m.depth, positive);
-        set!(mp, s, cells_pile_r = m.cells_pile_r, count);
-        set!(mp, s, cells_soil_r = m.cells_soil_r, count);
-        set!(mp, s, cells_shaft = m.cells_shaft, count);
-        set!(mp, s, cells_below_tip = m.cells_below_tip, count);
+    if let Some(m) = &o.mesh {
+        pile_sizes(&p.key("mesh"), &mut spec.mesh, m)?;
     }
     spec.interface = override_rccm(&p.key("interface"), spec.interface, &o.interface)?;
     Ok(spec)

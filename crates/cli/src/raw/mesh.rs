@@ -187,15 +187,17 @@ impl RawMesh {
             Generator::Pile => {
                 only(p, "the pile generator", &present, PILE_KEYS)?;
                 MeshSpec::Pile(PileMeshSpec {
-                    element: self.element,
-                    diameter: self.diameter,
-                    length: self.length,
-                    width: self.width,
-                    depth: self.depth,
-                    cells_pile_r: self.cells_pile_r,
-                    cells_soil_r: self.cells_soil_r,
-                    cells_shaft: self.cells_shaft,
-                    cells_below_tip: self.cells_below_tip,
+                    sizes: PileMeshOverride {
+                        element: self.element,
+                        diameter: self.diameter,
+                        length: self.length,
+                        width: self.width,
+                        depth: self.depth,
+                        cells_pile_r: self.cells_pile_r,
+                        cells_soil_r: self.cells_soil_r,
+                        cells_shaft: self.cells_shaft,
+                        cells_below_tip: self.cells_below_tip,
+                    },
                     grading_pile_r: grading(&p.key("grading_pile_r"), &self.grading_pile_r)?,
                     grading_soil_r: grading(&p.key("grading_soil_r"), &self.grading_soil_r)?,
                     grading_shaft: grading(&p.key("grading_shaft"), &self.grading_shaft)?,
