@@ -8,9 +8,7 @@ use std::path::{Path, PathBuf};
 /// One segment of a key path: `contact[1].law.mu` is `Key(contact) Index(1) Key(law) Key(mu)`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Seg {
-    /// A table key.
     Key(String),
-    /// An array index.
     Index(usize),
 }
 
@@ -19,16 +17,19 @@ pub enum Seg {
 pub struct KeyPath(pub Vec<Seg>);
 
 impl KeyPath {
-    /// The root.
     pub fn root() -> Self {
         Self(Vec::new())
     }
 
+    fn with(&self, seg: Seg) -> Self {
+        let mut v = self.0.clone();
+        v.push(seg);
+        Self(v)
+    }
+
     /// This path extended by a key.
     pub fn key(&self, k: &str) -> Self {
-        let mut v = self.0.clone();
-        v.push(Seg::Key(k.to_string()));
-        Self(v)
+        self.with(Seg::Key(k.to_string()))
     }
 
     /// This path without its last segment (the root stays the root).
@@ -40,9 +41,7 @@ impl KeyPath {
 
     /// This path extended by an index.
     pub fn index(&self, i: usize) -> Self {
-        let mut v = self.0.clone();
-        v.push(Seg::Index(i));
-        Self(v)
+        self.with(Seg::Index(i))
     }
 }
 
@@ -58,6 +57,23 @@ impl fmt::Display for KeyPath {
         Ok(())
     }
 }
+
+/// `bail!(path, "…", args)`: returns `Err(CliError::at(&path, format!("…", args)))`, a
+/// bad-input error at a key path.
+macro_rules! bail {
+    ($path:expr, $($message:tt)+) => {
+        return Err($crate::error::err!($path, $($message)+))
+    };
+}
+pub(crate) use bail;
+
+/// `err!(path, "…", args)`: `CliError::at(&path, format!("…", args))`.
+macro_rules! err {
+    ($path:expr, $($message:tt)+) => {
+        $crate::error::CliError::at(&$path, format!($($message)+))
+    };
+}
+pub(crate) use err;
 
 /// An error with what `bipo` knows of where it comes from.
 #[derive(Debug)]
@@ -75,37 +91,30 @@ pub struct CliError {
 }
 
 impl CliError {
-    /// A bad-input error at a key path.
-    pub fn at(path: &KeyPath, message: impl Into<String>) -> Self {
+    fn new(path: Option<KeyPath>, message: impl Into<String>, code: i32) -> Self {
+        let message = message.into();
         Self {
             file: None,
             span: None,
-            path: Some(path.clone()),
-            message: message.into(),
-            code: 2,
+            path,
+            message,
+            code,
         }
+    }
+
+    /// A bad-input error at a key path.
+    pub fn at(path: &KeyPath, message: impl Into<String>) -> Self {
+        Self::new(Some(path.clone()), message, 2)
     }
 
     /// A bad-input error without location.
     pub fn input(message: impl Into<String>) -> Self {
-        Self {
-            file: None,
-            span: None,
-            path: None,
-            message: message.into(),
-            code: 2,
-        }
+        Self::new(None, message, 2)
     }
 
     /// A failure of the computation or of the output files.
     pub fn failed(message: impl Into<String>) -> Self {
-        Self {
-            file: None,
-            span: None,
-            path: None,
-            message: message.into(),
-            code: 1,
-        }
+        Self::new(None, message, 1)
     }
 
     /// Sets the file if none is set yet.
@@ -254,7 +263,6 @@ pub fn locate(src: &str, path: &KeyPath) -> Option<Range<usize>> {
     span
 }
 
-/// A `bipo` result.
 pub type CliResult<T> = Result<T, CliError>;
 
 #[cfg(test)]

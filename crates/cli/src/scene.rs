@@ -10,27 +10,23 @@
 
 use crate::raw::{RawAnalysis, RawInitialStress, RawLaw, RawLoad, RawMesh, RawPreset, RawTarget};
 use crate::spec::Pair;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// A whole scene file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// A title for reports.
     pub title: Option<String>,
     /// Free-text note of the unit system (the code needs only consistency).
     pub units: Option<Units>,
     /// A seed study built by the library (`delamination`, `shear`, `pile`).
     pub preset: Option<RawPreset>,
-    /// The mesh.
     pub mesh: Option<RawMesh>,
     /// The 2D idealisation, or `type = "3d"` for a solid of tetrahedra.
     pub analysis: Option<RawAnalysis>,
-    /// Materials per region.
     #[serde(default)]
     pub materials: Vec<MaterialSpec>,
-    /// Initial stress field.
     pub initial_stress: Option<RawInitialStress>,
     /// Piecewise linear time functions, by name.
     #[serde(default)]
@@ -41,10 +37,8 @@ pub struct Scene {
     /// Ties: node sets that share one displacement component (rigid caps, pilot nodes).
     #[serde(default)]
     pub ties: Vec<TieSpec>,
-    /// Loads.
     #[serde(default)]
     pub loads: Vec<RawLoad>,
-    /// Contact zones.
     #[serde(default)]
     pub contact: Vec<ZoneSpec>,
     /// The reduced solver and the adhesion loop.
@@ -58,7 +52,6 @@ pub struct Scene {
     /// Which outputs, where.
     #[serde(default)]
     pub output: OutputSpec,
-    /// SVG plots.
     #[serde(default)]
     pub plots: Vec<PlotSpec>,
     /// The recovered contact pressure against Hertz's (an SVG at the last written step).
@@ -85,8 +78,8 @@ pub struct HertzSpec {
     pub file: Option<String>,
 }
 
-/// Units note.
-#[derive(Debug, Deserialize, Clone, Default)]
+/// Units note (written back as `summary.json`'s `units`).
+#[derive(Debug, Deserialize, Serialize, Clone, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Units {
     /// e.g. "mm".
@@ -106,13 +99,9 @@ pub struct MaterialSpec {
     /// A name, for the reader of the scene only.
     #[allow(dead_code)]
     pub name: Option<String>,
-    /// One region.
     pub region: Option<u32>,
-    /// Several regions.
     pub regions: Option<Vec<u32>>,
-    /// Young's modulus.
     pub young: f64,
-    /// Poisson's ratio.
     pub poisson: f64,
     /// Unit weight (for gravity loads).
     #[serde(default)]
@@ -141,9 +130,7 @@ pub enum ComponentSpec {
 pub struct SupportSpec {
     /// A name (phases may override its function by this name).
     pub name: Option<String>,
-    /// Node set.
     pub set: String,
-    /// Component(s).
     pub component: ComponentSpec,
     /// Prescribed value (times the function).
     #[serde(default)]
@@ -158,23 +145,18 @@ pub struct SupportSpec {
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct TieSpec {
-    /// Node set.
     pub set: String,
-    /// Component(s).
     pub component: ComponentSpec,
 }
 
-/// A contact zone.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct ZoneSpec {
-    /// Zone name.
     pub name: String,
     /// Contactor node set.
     pub contactor: String,
     /// What the contactor faces.
     pub target: RawTarget,
-    /// Interface law.
     pub law: RawLaw,
     /// Alert distance Δx.
     pub alert_distance: f64,
@@ -218,11 +200,9 @@ pub struct SolverSpec {
     pub adhesion_method: Option<AdhesionMethodSpec>,
     /// Newton adhesion: try Newton from the previous step's reactions first (default true).
     pub adhesion_warm_start: Option<bool>,
-    /// Maximum adhesion iterations.
     pub max_adhesion_iterations: Option<usize>,
     /// Maximum penetration-check passes.
     pub max_detection_passes: Option<usize>,
-    /// Accept non-converged steps.
     pub accept_non_converged: Option<bool>,
     /// Window of the stall detector (0: off).
     pub stall_window: Option<usize>,
@@ -262,7 +242,6 @@ pub enum AdhesionMethodSpec {
     FixedPoint,
 }
 
-/// Algorithm names.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 pub enum AlgorithmSpec {
     /// Projected Gauss–Seidel bipotential sweeps (default).
@@ -282,19 +261,14 @@ pub enum AlgorithmSpec {
 pub struct StepsSpec {
     /// Number of steps.
     pub count: usize,
-    /// Duration.
     pub duration: f64,
 }
 
-/// One phase of several.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct PhaseSpec {
-    /// Name.
     pub name: String,
-    /// Number of steps.
     pub steps: usize,
-    /// Duration.
     pub duration: f64,
     /// Function overrides for named loads and supports during this phase.
     #[serde(default)]
@@ -307,7 +281,6 @@ pub struct PhaseSpec {
     pub laws: BTreeMap<String, crate::raw::RawLaw>,
 }
 
-/// Outputs.
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSpec {
@@ -368,12 +341,10 @@ impl Default for OutputSpec {
 #[derive(Debug, Deserialize, Clone, Copy, Default, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum XAxis {
-    /// Time.
     #[default]
     Time,
     /// Global step number.
     Step,
-    /// Load factor.
     LoadFactor,
 }
 
@@ -383,14 +354,12 @@ pub enum XAxis {
 pub struct PlotSpec {
     /// File name (`.svg`) in the output directory.
     pub file: String,
-    /// Title.
     pub title: Option<String>,
     /// Abscissa.
     #[serde(default)]
     pub x: XAxis,
     /// A recorded quantity as abscissa instead of `x` (e.g. a displacement).
     pub x_quantity: Option<CurveSpec>,
-    /// Curves.
     pub curves: Vec<CurveSpec>,
 }
 
@@ -402,7 +371,6 @@ pub struct CurveSpec {
     pub quantity: String,
     /// Zone (zone quantities; node quantities when a node is in several zones).
     pub zone: Option<String>,
-    /// Node.
     pub node: Option<usize>,
     /// Node set (reactions, displacements).
     pub set: Option<String>,

@@ -127,7 +127,6 @@ impl Default for GradingSpec {
     }
 }
 
-/// One layer of a rectangle.
 #[derive(Debug, Clone)]
 pub struct LayerSpec {
     /// Upper edge.
@@ -136,7 +135,6 @@ pub struct LayerSpec {
     pub ny: usize,
     /// Grading upward.
     pub grading: GradingSpec,
-    /// Region id.
     pub region: u32,
 }
 
@@ -154,6 +152,23 @@ pub struct BoxSpec {
     pub gradings: [GradingSpec; 3],
 }
 
+/// The pile generator's keys (each optional: the seed's pile by default): those a pile preset
+/// overrides too, the gradings and the tip corner.
+#[derive(Debug, Clone)]
+pub struct PileMeshSpec {
+    pub sizes: PileMeshOverride,
+    /// Grading across the pile radius.
+    pub grading_pile_r: Option<GradingSpec>,
+    /// Grading of the soil, outward.
+    pub grading_soil_r: Option<GradingSpec>,
+    /// Grading along the shaft, upward.
+    pub grading_shaft: Option<GradingSpec>,
+    /// Grading below the tip, upward.
+    pub grading_below_tip: Option<GradingSpec>,
+    /// `split` or `shared`.
+    pub tip_corner: Option<TipCornerSpec>,
+}
+
 /// The mesh: a generator or a Gmsh file.
 #[derive(Debug, Clone)]
 pub enum MeshSpec {
@@ -165,7 +180,6 @@ pub enum MeshSpec {
         x: Pair,
         /// Cells along x.
         nx: usize,
-        /// Grading along x.
         grading_x: GradingSpec,
         /// `[y0, y1]` (one layer; or `y0` and `layers`).
         y: Option<Pair>,
@@ -181,36 +195,7 @@ pub enum MeshSpec {
         layers: Option<Vec<LayerSpec>>,
     },
     /// `fem_core::generate::pile_in_soil` (axisymmetric).
-    Pile {
-        /// P1 / P2 (default P2).
-        element: Option<Element>,
-        /// Pile diameter.
-        diameter: Option<f64>,
-        /// Embedded length.
-        length: Option<f64>,
-        /// Radial extent of the soil.
-        width: Option<f64>,
-        /// Depth of the soil.
-        depth: Option<f64>,
-        /// Cells across the pile radius.
-        cells_pile_r: Option<usize>,
-        /// Cells in the soil, radially.
-        cells_soil_r: Option<usize>,
-        /// Cells along the shaft.
-        cells_shaft: Option<usize>,
-        /// Cells below the tip.
-        cells_below_tip: Option<usize>,
-        /// Grading across the pile radius.
-        grading_pile_r: Option<GradingSpec>,
-        /// Grading of the soil, outward.
-        grading_soil_r: Option<GradingSpec>,
-        /// Grading along the shaft, upward.
-        grading_shaft: Option<GradingSpec>,
-        /// Grading below the tip, upward.
-        grading_below_tip: Option<GradingSpec>,
-        /// `split` or `shared`.
-        tip_corner: Option<TipCornerSpec>,
-    },
+    Pile(PileMeshSpec),
     /// `fem_core::solid::generate::box_mesh` (3D).
     Box(BoxSpec),
     /// A Gmsh `.msh` 4.1 file (of the scene's dimension).
@@ -222,7 +207,6 @@ pub enum MeshSpec {
     },
 }
 
-/// Pile tip corner.
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(rename_all = "snake_case")]
 pub enum TipCornerSpec {
@@ -237,9 +221,7 @@ pub enum TipCornerSpec {
 pub enum Analysis {
     /// Plane strain (per unit thickness).
     PlaneStrain {},
-    /// Plane stress with a thickness.
     PlaneStress {
-        /// Thickness.
         thickness: f64,
     },
     /// Axisymmetric `(r, z)`, per radian.
@@ -248,7 +230,6 @@ pub enum Analysis {
     Solid {},
 }
 
-/// Initial stress.
 #[derive(Debug, Clone, Copy)]
 pub enum InitialStress {
     /// `fem_core::geostatic(gamma, k0, z_surface)`.
@@ -267,43 +248,31 @@ pub enum InitialStress {
 pub enum LoadSpec<const D: usize> {
     /// Traction (force per area, global frame) on an edge set (2D) or a face set (3D).
     Traction {
-        /// Edge or face set.
         set: String,
         /// `[t_x, t_y]` or `[t_x, t_y, t_z]`.
         value: [f64; D],
     },
     /// A pressure on a face set, positive into the body (3D only).
-    Pressure {
-        /// Face set.
-        set: String,
-        /// The pressure.
-        value: f64,
-    },
+    Pressure { set: String, value: f64 },
     /// A force on every node of a node set.
     NodalForce {
-        /// Node set.
         set: String,
         /// The force per node.
         value: [f64; D],
     },
     /// One force on a node set tied along its non-zero components (a rigid cap's resultant).
     Resultant {
-        /// Node set.
         set: String,
         /// The force on the whole set.
         value: [f64; D],
     },
     /// A uniform body force (force per volume) over the whole mesh.
-    BodyForce {
-        /// The force per volume.
-        value: [f64; D],
-    },
+    BodyForce { value: [f64; D] },
     /// The self-weight of every region (its material's `unit_weight`, along −y in 2D, −z in
     /// 3D), in full.
     Gravity,
 }
 
-/// Side of an ARC.
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(rename_all = "snake_case")]
 pub enum ArcSideSpec {
@@ -319,17 +288,10 @@ pub enum ArcSideSpec {
 #[derive(Debug, Clone)]
 pub enum TargetSpec {
     /// Rigid segment a → b, contactor on its left (2D).
-    Line {
-        /// Start.
-        a: Pair,
-        /// End.
-        b: Pair,
-    },
+    Line { a: Pair, b: Pair },
     /// Rigid circular arc (2D).
     Arc {
-        /// Centre.
         center: Pair,
-        /// Radius.
         radius: f64,
         /// Start angle (radians, counter-clockwise from +x).
         start_angle: f64,
@@ -347,9 +309,7 @@ pub enum TargetSpec {
     },
     /// A rigid sphere (3D).
     Sphere {
-        /// Centre.
         center: Coords,
-        /// Radius.
         radius: f64,
         /// The contactor's side (default outside).
         side: ArcSideSpec,
@@ -358,9 +318,7 @@ pub enum TargetSpec {
     Cylinder {
         /// A point of the axis.
         point: Coords,
-        /// The axis direction.
         axis: Coords,
-        /// Radius.
         radius: f64,
         /// The contactor's side (default outside).
         side: ArcSideSpec,
@@ -368,7 +326,6 @@ pub enum TargetSpec {
     /// Node pairs: each contactor node with a node of `set` (2D: in the set's order, 3D: at
     /// its position).
     NodePairs {
-        /// The target node set.
         set: String,
         /// A fixed normal from the target to the contactor; absent: from the target nodes in
         /// order (2D) or the target body's faces (3D).
@@ -376,34 +333,27 @@ pub enum TargetSpec {
     },
     /// Another body's surface: the polyline through a node set in order (2D `segments`), the
     /// faces of a face set (3D `faces`).
-    Surface {
-        /// The target set.
-        set: String,
-    },
+    Surface { set: String },
 }
 
 /// β time integration.
 #[derive(Debug, Deserialize, Clone, Copy, Default, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum SchemeSpec {
-    /// Implicit Euler.
     #[default]
     ImplicitEuler,
     /// θ-method (with `theta`).
     Theta,
 }
 
-/// Interface law.
 #[derive(Debug, Clone, Copy)]
 pub enum LawSpec {
     /// Frictionless unilateral contact.
     Signorini {},
-    /// Coulomb friction.
     Coulomb {
         /// Friction coefficient.
         mu: f64,
     },
-    /// RCCM adhesion.
     Rccm(RccmSpec),
 }
 
@@ -430,96 +380,76 @@ pub struct RccmSpec {
     pub theta: Option<f64>,
 }
 
+/// The overrides the two seed plates (5.6.1, 5.6.2) share.
+#[derive(Debug, Clone)]
+pub struct PlateOverride {
+    pub length: Option<f64>,
+    pub height: Option<f64>,
+    pub young: Option<f64>,
+    pub poisson: Option<f64>,
+    /// Cells along the interface.
+    pub nx: Option<usize>,
+    /// Cells across.
+    pub ny: Option<usize>,
+    pub element: Option<Element>,
+    pub duration: Option<f64>,
+    pub steps: Option<usize>,
+    /// Interface law parameters (each optional).
+    pub interface: Option<RccmOverride>,
+}
+
 /// A seed study built by the library.
 #[derive(Debug, Clone)]
 pub enum Preset {
     /// Seed 5.6.1.
     Delamination {
-        /// Length.
-        length: Option<f64>,
-        /// Height.
-        height: Option<f64>,
-        /// Young's modulus.
-        young: Option<f64>,
-        /// Poisson's ratio.
-        poisson: Option<f64>,
-        /// Cells along the interface.
-        nx: Option<usize>,
-        /// Cells across.
-        ny: Option<usize>,
-        /// P1 / P2.
-        element: Option<Element>,
+        plate: PlateOverride,
         /// Lift of point A.
         lift: Option<f64>,
-        /// Duration.
-        duration: Option<f64>,
-        /// Steps.
-        steps: Option<usize>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
     },
     /// Seed 5.6.2.
     Shear {
-        /// Length.
-        length: Option<f64>,
-        /// Height.
-        height: Option<f64>,
-        /// Young's modulus.
-        young: Option<f64>,
-        /// Poisson's ratio.
-        poisson: Option<f64>,
-        /// Cells along the interface.
-        nx: Option<usize>,
-        /// Cells across.
-        ny: Option<usize>,
-        /// P1 / P2.
-        element: Option<Element>,
+        plate: PlateOverride,
         /// Top `u_y` at the end.
         press: Option<f64>,
         /// Left `u_x` at the end.
         push: Option<f64>,
-        /// Duration.
-        duration: Option<f64>,
-        /// Steps.
-        steps: Option<usize>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
     },
     /// Seed chapter 6: pile pull-out (geostatic, installation, pull-out phases).
-    Pile {
-        /// `plancoet` (default) or `cran`.
-        site: Option<Site>,
-        /// Plain Coulomb interface (β₀ = 0) instead of RCCM.
-        coulomb: bool,
-        /// Pile Young's modulus (kPa).
-        pile_young: Option<f64>,
-        /// Pile Poisson's ratio.
-        pile_poisson: Option<f64>,
-        /// Pile unit weight (kN/m³).
-        pile_unit_weight: Option<f64>,
-        /// Soil Young's modulus (kPa).
-        soil_young: Option<f64>,
-        /// Soil Poisson's ratio.
-        soil_poisson: Option<f64>,
-        /// Soil unit weight (kN/m³).
-        soil_unit_weight: Option<f64>,
-        /// K0.
-        k0: Option<f64>,
-        /// Phase 2.
-        installation: Option<InstallationSpec>,
-        /// Final head displacement (m).
-        head_displacement: Option<f64>,
-        /// Force control: the final jack force (kN, full ring, upwards).
-        head_force: Option<f64>,
-        /// Pull-out increments.
-        steps: Option<usize>,
-        /// Alert distance (m).
-        alert_distance: Option<f64>,
-        /// Interface law parameters (each optional).
-        interface: Option<RccmOverride>,
-        /// Mesh overrides.
-        mesh: Option<PileMeshOverride>,
-    },
+    Pile(PileOverride),
+}
+
+/// The overrides of the pile preset.
+#[derive(Debug, Clone)]
+pub struct PileOverride {
+    /// `plancoet` (default) or `cran`.
+    pub site: Option<Site>,
+    /// Plain Coulomb interface (β₀ = 0) instead of RCCM.
+    pub coulomb: bool,
+    /// Pile Young's modulus (kPa).
+    pub pile_young: Option<f64>,
+    pub pile_poisson: Option<f64>,
+    /// Pile unit weight (kN/m³).
+    pub pile_unit_weight: Option<f64>,
+    /// Soil Young's modulus (kPa).
+    pub soil_young: Option<f64>,
+    pub soil_poisson: Option<f64>,
+    /// Soil unit weight (kN/m³).
+    pub soil_unit_weight: Option<f64>,
+    pub k0: Option<f64>,
+    /// Phase 2.
+    pub installation: Option<InstallationSpec>,
+    /// Final head displacement (m).
+    pub head_displacement: Option<f64>,
+    /// Force control: the final jack force (kN, full ring, upwards).
+    pub head_force: Option<f64>,
+    /// Pull-out increments.
+    pub steps: Option<usize>,
+    /// Alert distance (m).
+    pub alert_distance: Option<f64>,
+    /// Interface law parameters (each optional).
+    pub interface: Option<RccmOverride>,
+    pub mesh: Option<PileMeshOverride>,
 }
 
 /// Which pile of the seed a pile preset starts from.
@@ -550,27 +480,24 @@ pub enum InstallationSpec {
     },
 }
 
-/// Mesh overrides of the pile preset.
+/// The pile's sizes: `[preset] mesh` of the pile preset, and keys of the pile generator.
 #[derive(Debug, Deserialize, Clone, Copy, Default)]
 #[serde(deny_unknown_fields)]
 pub struct PileMeshOverride {
-    /// P1 / P2.
+    /// P1 / P2 (the generator's default: P2).
     pub element: Option<Element>,
-    /// Pile diameter.
     pub diameter: Option<f64>,
     /// Embedded length.
     pub length: Option<f64>,
-    /// Radial extent.
+    /// Radial extent of the soil.
     pub width: Option<f64>,
-    /// Depth.
+    /// Depth of the soil.
     pub depth: Option<f64>,
     /// Cells across the pile radius.
     pub cells_pile_r: Option<usize>,
     /// Cells in the soil, radially.
     pub cells_soil_r: Option<usize>,
-    /// Cells along the shaft.
     pub cells_shaft: Option<usize>,
-    /// Cells below the tip.
     pub cells_below_tip: Option<usize>,
 }
 
@@ -592,7 +519,6 @@ pub struct RccmOverride {
     pub m: Option<u32>,
     /// Initial β.
     pub beta_0: Option<f64>,
-    /// Scheme.
     pub scheme: Option<SchemeSpec>,
     /// θ.
     pub theta: Option<f64>,

@@ -4,6 +4,7 @@
 //! carries its templates.
 
 use crate::error::{CliError, CliResult};
+use clap::ValueEnum;
 use std::path::PathBuf;
 
 /// Template kinds.
@@ -33,17 +34,6 @@ const PILE: &str = include_str!("../templates/pile.toml");
 const SPHERE_3D: &str = include_str!("../templates/sphere_3d.toml");
 
 impl Kind {
-    fn name(self) -> &'static str {
-        match self {
-            Kind::Block => "block",
-            Kind::Hertz => "hertz",
-            Kind::Delamination => "delamination",
-            Kind::Shear => "shear",
-            Kind::Pile => "pile",
-            Kind::Sphere3d => "sphere_3d",
-        }
-    }
-
     /// The template text.
     pub fn text(self) -> &'static str {
         match self {
@@ -67,7 +57,11 @@ impl Kind {
 
 /// Writes the template (and its extra files beside it).
 pub fn write(kind: Kind, output: Option<PathBuf>, force: bool) -> CliResult<()> {
-    let path = output.unwrap_or_else(|| PathBuf::from(format!("{}.toml", kind.name())));
+    let path = output.unwrap_or_else(|| {
+        // the name on the command line: `block`, …, `sphere_3d`
+        let name = kind.to_possible_value().map(|v| v.get_name().to_owned());
+        PathBuf::from(format!("{}.toml", name.unwrap_or_default()))
+    });
     let dir = path.parent().map(PathBuf::from).unwrap_or_default();
     let mut files = vec![(path.clone(), kind.text())];
     for (name, text) in kind.extra() {

@@ -2,7 +2,7 @@
 //! element kinds, and the library errors turned into errors at a key path (with the whole
 //! source chain).
 
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail, err};
 use crate::spec::{Element, GradingSpec, Pair};
 use contact_laws::LawError;
 use contact_solver::SolverError;
@@ -17,10 +17,7 @@ pub(super) fn expect(path: &KeyPath, value: f64, ok: bool, expected: &str) -> Cl
     if ok {
         Ok(value)
     } else {
-        Err(CliError::at(
-            path,
-            format!("`{path}` = {value:?}: expected {expected}"),
-        ))
+        bail!(path, "`{path}` = {value:?}: expected {expected}")
     }
 }
 
@@ -41,9 +38,18 @@ pub(super) fn non_negative(path: &KeyPath, v: f64) -> CliResult<f64> {
     expect(path, v, v.is_finite() && v >= 0.0, "a finite number >= 0")
 }
 
-/// A finite number.
 pub(super) fn finite(path: &KeyPath, v: f64) -> CliResult<f64> {
     expect(path, v, v.is_finite(), "a finite number (not nan or inf)")
+}
+
+/// A Poisson's ratio, in (-1, 0.5).
+pub(super) fn poisson(path: &KeyPath, v: f64) -> CliResult<f64> {
+    expect(
+        path,
+        v,
+        v > -1.0 && v < 0.5,
+        "a Poisson's ratio in (-1, 0.5)",
+    )
 }
 
 /// Two finite numbers (the error names the index).
@@ -59,16 +65,29 @@ pub(super) fn finite_all<const D: usize>(path: &KeyPath, v: [f64; D]) -> CliResu
     Ok(v)
 }
 
-/// An integer >= `min`.
 pub(super) fn at_least(path: &KeyPath, v: usize, min: usize) -> CliResult<usize> {
     if v >= min {
         Ok(v)
     } else {
-        Err(CliError::at(
-            path,
-            format!("`{path}` = {v}: expected an integer >= {min}"),
-        ))
+        bail!(path, "`{path}` = {v}: expected an integer >= {min}")
     }
+}
+
+/// `set!(p, spec, field = value, check)`: `spec.field = check(p.field, v)?` when the scene
+/// gives `value = Some(v)`.
+macro_rules! set {
+    ($p:expr, $spec:expr, $field:ident = $v:expr, $check:expr) => {
+        if let Some(v) = $v {
+            $spec.$field = $check(&$p.key(stringify!($field)), v)?;
+        }
+    };
+}
+
+pub(super) use set;
+
+/// An integer >= 1 (a count of cells, steps).
+pub(super) fn count(path: &KeyPath, v: usize) -> CliResult<usize> {
+    at_least(path, v, 1)
 }
 
 /// The generator's grading (a ratio must be > 0).
@@ -131,7 +150,7 @@ pub(super) fn fem(path: &KeyPath, e: FemError) -> CliError {
         }
         _ => "",
     };
-    CliError::at(path, format!("{}{hint}", chain(&e)))
+    err!(path, "{}{hint}", chain(&e))
 }
 
 /// A `LawError` at the key of the offending parameter under `path`.
@@ -143,11 +162,11 @@ pub(super) fn law_error(path: &KeyPath, e: LawError) -> CliError {
             expected,
         } => {
             let p = path.key(name);
-            CliError::at(&p, format!("`{p}` = {value:?}: expected {expected}"))
+            err!(p, "`{p}` = {value:?}: expected {expected}")
         }
         LawError::InvalidExponent { m } => {
             let p = path.key("m");
-            CliError::at(&p, format!("`{p}` = {m}: expected 1 or 2"))
+            err!(p, "`{p}` = {m}: expected 1 or 2")
         }
         other => CliError::at(path, chain(&other)),
     }
@@ -189,12 +208,10 @@ where
     Dim<D>: Space,
 {
     mesh.node_set(name).map(|s| s.to_vec()).map_err(|_| {
-        CliError::at(
+        err!(
             path,
-            format!(
-                "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
-                list_names(mesh.node_set_names())
-            ),
+            "`{path}` = \"{name}\": the mesh has no node set of that name (node sets: {})",
+            list_names(mesh.node_set_names())
         )
     })
 }

@@ -8,8 +8,9 @@ use super::checks::{
     at_least, expect, law_error, list_names, non_negative, positive, solver_error,
 };
 use super::dim::SceneDim;
+use super::phases::law_name;
 use super::supported::{Policy, point, resolve};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::raw::RawTarget;
 use crate::scene::{
     AdhesionMethodSpec, AlgorithmSpec, FlexibilitySpec, Scene, SolverSpec, SupportedContactors,
@@ -47,7 +48,6 @@ pub(super) struct ZonePlan<const D: usize> {
     pub(super) name: String,
     pub(super) contactor: String,
     pub(super) law: StandardLaw,
-    pub(super) law_name: &'static str,
     pub(super) alert: f64,
     pub(super) target: TargetPlan<D>,
     pub(super) supported: SupportedContactors,
@@ -79,13 +79,11 @@ pub const MAX_DETECTION_PASSES: usize = 1_000;
 fn count(path: &KeyPath, n: usize, max: usize) -> CliResult<usize> {
     at_least(path, n, 1)?;
     if n > max {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!(
-                "`{path}` = {n}: expected an integer in 1..={max} (more would let a step that \
+            "`{path}` = {n}: expected an integer in 1..={max} (more would let a step that \
                  does not converge run without end)"
-            ),
-        ));
+        );
     }
     Ok(n)
 }
@@ -118,10 +116,10 @@ where
     if let Some(w) = s.omega {
         let p = root.key("omega");
         if s.algorithm != Some(AlgorithmSpec::RccmClassic) {
-            return Err(CliError::at(
-                &p,
-                format!("`{p}` is only read with algorithm = \"rccm-classic\" (its SOR factor)"),
-            ));
+            bail!(
+                p,
+                "`{p}` is only read with algorithm = \"rccm-classic\" (its SOR factor)"
+            );
         }
         out.solver.tuning.omega = expect(&p, w, w > 0.0 && w < 2.0, "a factor in (0, 2)")?;
     }
@@ -133,14 +131,12 @@ where
         out.tuning.adhesion_method = match m {
             AdhesionMethodSpec::FixedPoint => AdhesionMethod::FixedPoint,
             AdhesionMethodSpec::Newton if s.algorithm == Some(AlgorithmSpec::RccmClassic) => {
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}` = \"newton\" does not combine with algorithm = \"rccm-classic\" \
+                bail!(
+                    p,
+                    "`{p}` = \"newton\" does not combine with algorithm = \"rccm-classic\" \
                          (the classical solver is a fixed point by definition): use \"fixed-point\" \
                          or leave the key out"
-                    ),
-                ));
+                );
             }
             AdhesionMethodSpec::Newton => AdhesionMethod::Newton,
         };
@@ -148,13 +144,11 @@ where
     if let Some(w) = s.adhesion_warm_start {
         let p = root.key("adhesion_warm_start");
         if w && out.tuning.adhesion_method == AdhesionMethod::FixedPoint {
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` = true is only read with adhesion_method = \"newton\" (it starts \
+            bail!(
+                p,
+                "`{p}` = true is only read with adhesion_method = \"newton\" (it starts \
                      Newton from the previous step's reactions)"
-                ),
-            ));
+            );
         }
         out.tuning.adhesion_warm_start = w;
     }
@@ -175,13 +169,11 @@ where
     if let Some(n) = s.stall_window {
         let p = root.key("stall_window");
         if n != 0 && !(MIN_STALL_WINDOW..=MAX_ITERATIONS).contains(&n) {
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` = {n}: expected 0 (no stall detection) or an integer in \
+            bail!(
+                p,
+                "`{p}` = {n}: expected 0 (no stall detection) or an integer in \
                      {MIN_STALL_WINDOW}..={MAX_ITERATIONS}"
-                ),
-            ));
+            );
         }
         out.solver.tuning.stall_window = n;
     }
@@ -195,10 +187,10 @@ where
         FlexibilitySpec::Auto => FlexibilityMode::Auto { dense_limit },
         other if s.dense_limit.is_some() => {
             let p = root.key("dense_limit");
-            return Err(CliError::at(
-                &p,
-                format!("`{p}` only applies to flexibility = \"auto\" (here {other:?})"),
-            ));
+            bail!(
+                p,
+                "`{p}` only applies to flexibility = \"auto\" (here {other:?})"
+            );
         }
         FlexibilitySpec::Dense => FlexibilityMode::Dense,
         FlexibilitySpec::ActiveSet => FlexibilityMode::ActiveSet,
@@ -207,35 +199,35 @@ where
     Ok(out)
 }
 
-/// RCCM parameters, checked (the θ key against the scheme, then the law's own checks).
-pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams> {
-    let scheme = match (r.scheme, r.theta) {
+/// A θ in [0, 1] at `path`.
+pub(super) fn theta(path: &KeyPath, t: f64) -> CliResult<f64> {
+    expect(path, t, (0.0..=1.0).contains(&t), "a value in [0, 1]")
+}
+
+/// The β scheme of an RCCM law at `path`: `scheme` with its `theta` key, checked.
+pub(super) fn scheme(path: &KeyPath, s: SchemeSpec, t: Option<f64>) -> CliResult<BetaScheme> {
+    Ok(match (s, t) {
         (SchemeSpec::ImplicitEuler, None) => BetaScheme::ImplicitEuler,
         (SchemeSpec::ImplicitEuler, Some(_)) => {
             let p = path.key("theta");
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` is only read with scheme = \"theta\" (the scheme is implicit_euler)"
-                ),
-            ));
+            bail!(
+                p,
+                "`{p}` is only read with scheme = \"theta\" (the scheme is implicit_euler)"
+            );
         }
-        (SchemeSpec::Theta, Some(t)) => {
-            let p = path.key("theta");
-            BetaScheme::Theta(expect(
-                &p,
-                t,
-                (0.0..=1.0).contains(&t),
-                "a value in [0, 1]",
-            )?)
-        }
+        (SchemeSpec::Theta, Some(t)) => BetaScheme::Theta(theta(&path.key("theta"), t)?),
         (SchemeSpec::Theta, None) => {
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!("`{path}`: scheme = \"theta\" needs `theta` (a value in [0, 1])"),
-            ));
+                "`{path}`: scheme = \"theta\" needs `theta` (a value in [0, 1])"
+            );
         }
-    };
+    })
+}
+
+/// RCCM parameters, checked (the θ key against the scheme, then the law's own checks).
+pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams> {
+    let scheme = scheme(path, r.scheme, r.theta)?;
     let p = RccmParams {
         c_n: r.c_n,
         c_t: r.c_t,
@@ -250,18 +242,14 @@ pub(super) fn rccm_params(path: &KeyPath, r: &RccmSpec) -> CliResult<RccmParams>
     Ok(p)
 }
 
-/// The law of a zone, checked, and its name for reports.
-pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<(StandardLaw, &'static str)> {
+/// The law of a zone, checked.
+pub(super) fn law(path: &KeyPath, l: &LawSpec) -> CliResult<StandardLaw> {
     Ok(match l {
-        LawSpec::Signorini {} => (Signorini.into(), "signorini"),
-        LawSpec::Coulomb { mu } => (
-            Coulomb::new(*mu).map_err(|e| law_error(path, e))?.into(),
-            "coulomb",
-        ),
-        LawSpec::Rccm(r) => {
-            let p = rccm_params(path, r)?;
-            (Rccm::new(p).map_err(|e| law_error(path, e))?.into(), "rccm")
-        }
+        LawSpec::Signorini {} => Signorini.into(),
+        LawSpec::Coulomb { mu } => Coulomb::new(*mu).map_err(|e| law_error(path, e))?.into(),
+        LawSpec::Rccm(r) => Rccm::new(rccm_params(path, r)?)
+            .map_err(|e| law_error(path, e))?
+            .into(),
     })
 }
 
@@ -273,10 +261,10 @@ where
 {
     let root = KeyPath::root();
     if scene.contact.is_empty() {
-        return Err(CliError::at(
-            &root,
-            "the scene has no [[contact]] zone (bipo solves contact problems)",
-        ));
+        bail!(
+            root,
+            "the scene has no [[contact]] zone (bipo solves contact problems)"
+        );
     }
     let settings = settings::<D>(&scene.solver)?;
     let mut zones = Vec::new();
@@ -286,7 +274,7 @@ where
         let p = root.key("contact").index(i);
         zone_name(&p, &z.name, &mut names)?;
         let alert = non_negative(&p.key("alert_distance"), z.alert_distance)?;
-        let (l, law_name) = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
+        let l = law(&p.key("law"), &z.law.resolve(&p.key("law"))?)?;
         if l.has_adhesion() {
             adhesive += 1;
         }
@@ -299,7 +287,6 @@ where
             name: z.name.clone(),
             contactor: z.contactor.clone(),
             law: l,
-            law_name,
             alert,
             target,
             supported: z.supported_contactors,
@@ -332,15 +319,13 @@ pub(super) fn phase_laws(
         for (zone, raw) in &ph.laws {
             let p = root.key("phases").index(i).key("laws").key(zone);
             if !names.contains(zone) {
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}`: no [[contact]] zone is named `{zone}` (zones: {})",
-                        list_names(names.iter().map(String::as_str))
-                    ),
-                ));
+                bail!(
+                    p,
+                    "`{p}`: no [[contact]] zone is named `{zone}` (zones: {})",
+                    list_names(names.iter().map(String::as_str))
+                );
             }
-            let (l, _) = law(&p, &raw.resolve(&p)?)?;
+            let l = law(&p, &raw.resolve(&p)?)?;
             laws.push((zone.clone(), l));
         }
         out.push(laws);
@@ -426,7 +411,7 @@ where
         .iter()
         .map(|z| zone(&model, z))
         .collect::<CliResult<Vec<_>>>()?;
-    let zone_laws = plans.iter().map(|z| z.law_name.to_string()).collect();
+    let zone_laws = plans.iter().map(|z| law_name(&z.law).to_string()).collect();
     let held = supported_contactors(&model, &zones).map_err(|e| solver_error(&contact, e))?;
     let policies: Vec<Policy<'_>> = plans
         .iter()
@@ -482,40 +467,37 @@ where
             .filter(|c| c.zone == z)
             .min_by(|a, b| a.gap0.total_cmp(&b.gap0))
         else {
-            return Err(CliError::at(
-                &p.key("target"),
-                format!(
-                    "zone `{}`: {}",
-                    plan.name,
-                    Dim::<D>::no_projection(&plan.contactor, zone.contactor.len())
-                ),
-            ));
+            bail!(
+                p.key("target"),
+                "zone `{}`: {}",
+                plan.name,
+                Dim::<D>::no_projection(&plan.contactor, zone.contactor.len())
+            );
         };
         let x = point(&model.node_position(closest.node));
         if closest.gap0 < -plan.alert {
-            return Err(CliError::at(
-                &p.key("target"),
-                format!(
-                    "zone `{}`: contactor node {} at {x} starts inside the target by {}, more \
+            bail!(
+                p.key("target"),
+                "zone `{}`: contactor node {} at {x} starts inside the target by {}, more \
                      than the alert distance {}: {}",
-                    plan.name,
-                    closest.node,
-                    -closest.gap0,
-                    plan.alert,
-                    <Dim<D> as SceneDim<D>>::INSIDE_HINT
-                ),
-            ));
+                plan.name,
+                closest.node,
+                -closest.gap0,
+                plan.alert,
+                <Dim<D> as SceneDim<D>>::INSIDE_HINT
+            );
         }
         if closest.gap0 > plan.alert {
-            return Err(CliError::at(
-                &p.key("alert_distance"),
-                format!(
-                    "zone `{}`: every contactor node is outside the alert distance {} at the start \
+            bail!(
+                p.key("alert_distance"),
+                "zone `{}`: every contactor node is outside the alert distance {} at the start \
                      (the closest, node {} at {x}, has a gap of {}); move the target closer \
                      or raise `alert_distance`",
-                    plan.name, plan.alert, closest.node, closest.gap0
-                ),
-            ));
+                plan.name,
+                plan.alert,
+                closest.node,
+                closest.gap0
+            );
         }
     }
     Ok(())
@@ -524,16 +506,14 @@ where
 /// A zone's name at `p`: not empty, not used by an earlier zone (`names` collects them).
 pub(super) fn zone_name(p: &KeyPath, name: &str, names: &mut BTreeSet<String>) -> CliResult<()> {
     if name.trim().is_empty() {
-        return Err(CliError::at(
-            &p.key("name"),
-            format!("`{}` is empty: a zone needs a name", p.key("name")),
-        ));
+        bail!(
+            p.key("name"),
+            "`{}` is empty: a zone needs a name",
+            p.key("name")
+        );
     }
     if !names.insert(name.to_string()) {
-        return Err(CliError::at(
-            &p.key("name"),
-            format!("zone name `{name}` is used twice"),
-        ));
+        bail!(p.key("name"), "zone name `{name}` is used twice");
     }
     Ok(())
 }

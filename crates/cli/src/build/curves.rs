@@ -19,7 +19,7 @@
 //! segment. A contactor read from a curve that is not one curve gets its areas from its sides.
 
 use super::checks::node_set;
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use contact_laws::StandardLaw;
 use contact_solver::coupling::zone::{lumped_areas, segment_areas};
 use contact_solver::{Candidate, ContactZone, PairNormals, Target};
@@ -46,14 +46,12 @@ pub(super) fn target_nodes(
                 }
                 _ => String::new(),
             };
-            Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}` = \"{name}\": a target must follow one curve, but the curve \
+                "`{path}` = \"{name}\": a target must follow one curve, but the curve \
                      `{name}` is not one: {why}{at}; give each piece its own physical curve \
                      and zone"
-                ),
-            ))
+            )
         }
         Some(CurveOrder::Closed) => Ok((nodes, true)),
         _ => Ok((nodes, false)),
@@ -136,14 +134,13 @@ pub(super) fn check_polyline(
     for (k, &node) in open_part.iter().enumerate() {
         if !seen.insert(node) {
             let p = x(k);
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}` = \"{name}\": the target polyline visits node {node} at ({}, {}) \
+                "`{path}` = \"{name}\": the target polyline visits node {node} at ({}, {}) \
                      twice (a `segments` target runs once along the surface, in order)",
-                    p[0], p[1]
-                ),
-            ));
+                p[0],
+                p[1]
+            );
         }
     }
     let joint = closed.then_some((0, n - 2, 1));
@@ -157,17 +154,17 @@ pub(super) fn check_polyline(
         let lengths = t1[0].hypot(t1[1]) * t2[0].hypot(t2[1]);
         if dot < 0.0 && lengths > 0.0 {
             let turn = (dot / lengths).clamp(-1.0, 1.0).acos().to_degrees();
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}` = \"{name}\": the target polyline doubles back at node {} at \
+                "`{path}` = \"{name}\": the target polyline doubles back at node {} at \
                      ({}, {}): it turns by {turn:.0}° there (more than 90°). A `segments` target \
                      is the polyline through its set's nodes in order: the set must run along \
                      the surface (a Gmsh physical curve does; a hand-made set sorted by index \
                      may not)",
-                    surface[k], v[0], v[1]
-                ),
-            ));
+                surface[k],
+                v[0],
+                v[1]
+            );
         }
     }
     Ok(())
@@ -214,17 +211,22 @@ pub(super) fn check_facing(
                 .map(|(t, _)| t.to_string())
                 .collect::<Vec<_>>()
                 .join(" and ");
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "zone `{}`: contactor node {} at ({}, {}) faces away from its target (node \
+            bail!(
+                p,
+                "zone `{}`: contactor node {} at ({}, {}) faces away from its target (node \
                      {target}): {what} points ({:.3}, {:.3}), along the contactor body's own \
                      outward normal ({:.3}, {:.3}). The target set runs the wrong way (reverse \
                      it, or give node pairs a `normal` from the target towards the contactor) \
                      or does not face the contactor",
-                    zone.name, c.node, x[0], x[1], n[0], n[1], out[0], out[1]
-                ),
-            ));
+                zone.name,
+                c.node,
+                x[0],
+                x[1],
+                n[0],
+                n[1],
+                out[0],
+                out[1]
+            );
         }
     }
     Ok(())

@@ -11,7 +11,7 @@ use super::checks::{expect, solid_kind_name, solver_error};
 use super::checks::{fem, finite, finite_all, kind_name, list_names, node_set, positive};
 use super::curves;
 use super::mesh::MeshPlan;
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail, err};
 use crate::raw::vector;
 use crate::spec::{ArcSideSpec, Coords, Element, TargetSpec};
 use contact_laws::StandardLaw;
@@ -40,7 +40,6 @@ where
     fn idealization(options: &Self::Options) -> Option<Idealization>;
     /// Checks that the boundary set a traction or pressure names exists.
     fn boundary_set(path: &KeyPath, mesh: &Mesh<D>, set: &str) -> CliResult<()>;
-    /// The model.
     fn model(
         mesh: Mesh<D>,
         options: &Self::Options,
@@ -133,12 +132,10 @@ impl SceneDim<2> for Dim<2> {
 
     fn boundary_set(path: &KeyPath, mesh: &Mesh, set: &str) -> CliResult<()> {
         mesh.edge_set(set).map(|_| ()).map_err(|_| {
-            CliError::at(
+            err!(
                 path,
-                format!(
-                    "`{path}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
-                    list_names(mesh.edge_set_names())
-                ),
+                "`{path}` = \"{set}\": the mesh has no edge set of that name (edge sets: {})",
+                list_names(mesh.edge_set_names())
             )
         })
     }
@@ -212,13 +209,11 @@ impl SceneDim<2> for Dim<2> {
                 let b = finite_all(&tp.key("b"), b.0)?;
                 let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
                 if !(dx.is_finite() && dy.is_finite() && dx.hypot(dy).is_finite()) {
-                    return Err(CliError::at(
+                    bail!(
                         tp,
-                        format!(
-                            "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows \
+                        "`{tp}`: the length of the LINE from {a:?} to {b:?} overflows \
                              (expected end points whose distance stays finite)"
-                        ),
-                    ));
+                    );
                 }
                 Arc::new(RigidLine::new(a, b).map_err(|e| solver_error(tp, e))?)
             }
@@ -257,7 +252,7 @@ impl SceneDim<2> for Dim<2> {
     fn pair_normal(p: &KeyPath, n: &Coords) -> CliResult<[f64; 2]> {
         let n = finite_all(p, vector::<2>(p, n)?)?;
         if n == [0.0, 0.0] {
-            return Err(CliError::at(p, "the normal [0, 0] has no direction"));
+            bail!(p, "the normal [0, 0] has no direction");
         }
         Ok(n)
     }
@@ -289,26 +284,22 @@ impl SceneDim<2> for Dim<2> {
             (set, targets.as_slice()),
         );
         if targets.len() != contactor.len() {
-            return Err(CliError::at(
-                &sp,
-                format!(
-                    "node set `{set}` has {} nodes but the contactor set `{}` has {}: node pairs \
+            bail!(
+                sp,
+                "node set `{set}` has {} nodes but the contactor set `{}` has {}: node pairs \
                      need sets of the same length, in matching order",
-                    targets.len(),
-                    contactor_set,
-                    contactor.len()
-                ),
-            ));
+                targets.len(),
+                contactor_set,
+                contactor.len()
+            );
         }
         if let Some((c, _)) = contactor.iter().zip(&targets).find(|(c, t)| c == t) {
-            return Err(CliError::at(
-                &sp,
-                format!(
-                    "`{sp}` = \"{set}\": node {c} of the contactor set `{}` is paired with \
+            bail!(
+                sp,
+                "`{sp}` = \"{set}\": node {c} of the contactor set `{}` is paired with \
                      itself (a node cannot touch itself; pair two distinct surfaces)",
-                    contactor_set
-                ),
-            ));
+                contactor_set
+            );
         }
         Ok((targets, normal.into()))
     }
@@ -320,13 +311,11 @@ impl SceneDim<2> for Dim<2> {
             surface.push(surface[0]);
         }
         if surface.len() < 2 {
-            return Err(CliError::at(
+            bail!(
                 sp,
-                format!(
-                    "node set `{set}` has {} node: a target polyline needs at least two",
-                    surface.len()
-                ),
-            ));
+                "node set `{set}` has {} node: a target polyline needs at least two",
+                surface.len()
+            );
         }
         curves::check_polyline(sp, set, model, &surface)?;
         Ok(Polyline::new(surface))
@@ -362,13 +351,11 @@ impl SceneDim<3> for Dim<3> {
 
     fn boundary_set(path: &KeyPath, mesh: &SolidMesh, set: &str) -> CliResult<()> {
         mesh.face_set(set).map(|_| ()).map_err(|_| {
-            CliError::at(
+            err!(
                 path,
-                format!(
-                    "`{path}` = \"{set}\": the mesh has no face set of that name (face sets, the \
+                "`{path}` = \"{set}\": the mesh has no face set of that name (face sets, the \
                      physical surfaces: {})",
-                    list_names(mesh.facet_set_names())
-                ),
+                list_names(mesh.facet_set_names())
             )
         })
     }
@@ -505,13 +492,11 @@ impl SceneDim<3> for Dim<3> {
     /// The triangles of the face set.
     fn surface(model: &SolidModel, sp: &KeyPath, set: &str) -> CliResult<TriSurface> {
         TriSurface::from_face_set(model.mesh(), set).map_err(|_| {
-            CliError::at(
+            err!(
                 sp,
-                format!(
-                    "`{sp}` = \"{set}\" is not a face set of the mesh (a physical surface, or a \
+                "`{sp}` = \"{set}\" is not a face set of the mesh (a physical surface, or a \
                      side of the box): a faces target, and node pairs without a `normal`, need \
                      the target body's faces"
-                ),
             )
         })
     }
@@ -543,13 +528,11 @@ fn direction(p: &KeyPath, c: &Coords) -> CliResult<[f64; 3]> {
     let v = point(p, c)?;
     let len = v.iter().map(|x| x * x).sum::<f64>().sqrt();
     if !(len > 0.0 && len.is_finite()) {
-        return Err(CliError::at(
+        bail!(
             p,
-            format!(
-                "`{p}` = {v:?}: expected a direction (not [0, 0, 0], and of a length that stays \
+            "`{p}` = {v:?}: expected a direction (not [0, 0, 0], and of a length that stays \
                  finite)"
-            ),
-        ));
+        );
     }
     Ok(v)
 }
@@ -589,15 +572,15 @@ fn pair_by_position(
                 .filter(|&t| t != c && (0..3).all(|a| (nodes[t][a] - x[a]).abs() <= tol))
                 .min();
             near.ok_or_else(|| {
-                CliError::at(
+                err!(
                     sp,
-                    format!(
-                        "node {c} of the contactor set `{contactor_set}` at ({}, {}, {}) has no \
+                    "node {c} of the contactor set `{contactor_set}` at ({}, {}, {}) has no \
                          node of `{sp}` = \"{set}\" at its position: node pairs need matching \
                          meshes, each body with its own nodes on the interface (use a faces \
                          target otherwise)",
-                        x[0], x[1], x[2]
-                    ),
+                    x[0],
+                    x[1],
+                    x[2]
                 )
             })
         })

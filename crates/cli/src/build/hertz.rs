@@ -2,7 +2,7 @@
 //! symmetry factor, the contact modulus `E*` and the SVG file ([`HertzPlan`]).
 
 use super::checks::{finite, positive};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail, err};
 use crate::scene::Scene;
 
 /// The Hertz reference of a run (drawn by `run`'s pressure plot).
@@ -79,38 +79,32 @@ pub(super) fn check(
     let zone = match &h.zone {
         Some(name) => zone_names.iter().position(|z| z == name).ok_or_else(|| {
             let zp = p.key("zone");
-            CliError::at(
-                &zp,
-                format!(
-                    "`{zp}` = \"{name}\": no contact zone has that name (zones: {})",
-                    zone_names.join(", ")
-                ),
+            err!(
+                zp,
+                "`{zp}` = \"{name}\": no contact zone has that name (zones: {})",
+                zone_names.join(", ")
             )
         })?,
         None if zone_names.len() == 1 => 0,
         None => {
-            return Err(CliError::at(
-                &p.key("zone"),
-                format!(
-                    "`{}`: the scene has {} contact zones: say which one to compare with Hertz",
-                    p.key("zone"),
-                    zone_names.len()
-                ),
-            ));
+            bail!(
+                p.key("zone"),
+                "`{}`: the scene has {} contact zones: say which one to compare with Hertz",
+                p.key("zone"),
+                zone_names.len()
+            );
         }
     };
     let radius = positive(&p.key("radius"), h.radius)?;
     let mut center = [0.0; 3];
     if let Some(c) = &h.center {
         if c.len() != dim {
-            return Err(CliError::at(
-                &p.key("center"),
-                format!(
-                    "`{}` has {} entries: expected {dim} coordinates",
-                    p.key("center"),
-                    c.len()
-                ),
-            ));
+            bail!(
+                p.key("center"),
+                "`{}` has {} entries: expected {dim} coordinates",
+                p.key("center"),
+                c.len()
+            );
         }
         for (k, v) in c.iter().enumerate() {
             center[k] = finite(&p.key("center").index(k), *v)?;
@@ -124,33 +118,30 @@ pub(super) fn check(
         (Some(e), _) => positive(&p.key("e_star"), e)?,
         (None, [m]) => e_of(m.young, m.poisson),
         (None, ms) => {
-            return Err(CliError::at(
-                &p.key("e_star"),
-                format!(
-                    "`{}`: the scene has {} materials: give the contact modulus \
+            bail!(
+                p.key("e_star"),
+                "`{}`: the scene has {} materials: give the contact modulus \
                      E* = 1 / ((1 − ν₁²)/E₁ + (1 − ν₂²)/E₂) of the two bodies",
-                    p.key("e_star"),
-                    ms.len()
-                ),
-            ));
+                p.key("e_star"),
+                ms.len()
+            );
         }
     };
     let file = h.file.clone().unwrap_or_else(|| "pressure.svg".into());
     if !file.ends_with(".svg") || file.contains(['/', '\\']) {
-        return Err(CliError::at(
-            &p.key("file"),
-            format!(
-                "`{}` = \"{file}\": expected a file name ending in .svg (written in the output \
+        bail!(
+            p.key("file"),
+            "`{}` = \"{file}\": expected a file name ending in .svg (written in the output \
                  directory)",
-                p.key("file")
-            ),
-        ));
+            p.key("file")
+        );
     }
     if scene.plots.iter().any(|pl| pl.file == file) {
-        return Err(CliError::at(
-            &p.key("file"),
-            format!("`{}` = \"{file}\" is also a plot's file", p.key("file")),
-        ));
+        bail!(
+            p.key("file"),
+            "`{}` = \"{file}\" is also a plot's file",
+            p.key("file")
+        );
     }
     Ok(Some(HertzPlan {
         zone,

@@ -3,10 +3,14 @@
 //! tetrahedra per cell) or a Gmsh file to read, then the mesh generated ([`SceneDim`]'s
 //! `generate`) or read, and the axisymmetric mesh checked to lie right of the axis.
 
-use super::checks::{at_least, fem, finite, finite2, grading, kind, positive, solid_kind};
+use super::checks::{
+    at_least, count, fem, finite, finite2, grading, kind, positive, set, solid_kind,
+};
 use super::dim::SceneDim;
-use crate::error::{CliError, CliResult, KeyPath};
-use crate::spec::{BoxSpec, Element, MeshSpec, Pair, TipCornerSpec};
+use crate::error::{CliError, CliResult, KeyPath, bail};
+use crate::spec::{
+    BoxSpec, Element, MeshSpec, Pair, PileMeshOverride, PileMeshSpec, TipCornerSpec,
+};
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner, graded_points};
 use fem_core::solid::SolidKind;
 use fem_core::{Dim, FemError, Idealization, Mesh};
@@ -33,7 +37,6 @@ pub(crate) enum MeshPlan {
 pub(crate) struct GmshPlan {
     /// As written in the scene (relative to the scene file).
     file: String,
-    /// Its path.
     path: PathBuf,
     /// `mesh.element`, if given.
     element: Option<Element>,
@@ -64,13 +67,11 @@ impl GmshPlan {
         if let Some(e) = self.element {
             let (order, name) = Dim::<D>::element_order(e, &mesh);
             if !order {
-                return Err(CliError::at(
-                    &mp.key("element"),
-                    format!(
-                        "`mesh.element` = \"{e:?}\" but `{}` holds {name}",
-                        self.file
-                    ),
-                ));
+                bail!(
+                    mp.key("element"),
+                    "`mesh.element` = \"{e:?}\" but `{}` holds {name}",
+                    self.file
+                );
             }
         }
         Ok(mesh)
@@ -87,7 +88,7 @@ pub(super) fn validate(
 ) -> CliResult<MeshPlan> {
     match spec {
         MeshSpec::Rectangle { .. } => rectangle(mp, spec),
-        MeshSpec::Pile { .. } => pile(mp, spec, idealization),
+        MeshSpec::Pile(o) => pile(mp, o, idealization),
         MeshSpec::Box(b) => box_lines(mp, b),
         MeshSpec::Gmsh { file, element } => {
             Ok(MeshPlan::Gmsh(GmshPlan::new(mp, file, *element, base_dir)?))
@@ -110,13 +111,11 @@ fn gmsh_file(mp: &KeyPath, file: &str, base_dir: &Path) -> CliResult<PathBuf> {
         None
     };
     if let Some(what) = what {
-        return Err(CliError::at(
-            &fp,
-            format!(
-                "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
-                path.display()
-            ),
-        ));
+        bail!(
+            fp,
+            "`{fp}` = \"{file}\": {what} ({}; paths are relative to the scene file)",
+            path.display()
+        );
     }
     Ok(path)
 }
@@ -152,10 +151,10 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
     match (y, layers) {
         (Some(y), None) => {
             if y0.is_some() {
-                return Err(CliError::at(
-                    &mp.key("y0"),
-                    "`y0` goes with `layers`; with `y = [y0, y1]` leave it out",
-                ));
+                bail!(
+                    mp.key("y0"),
+                    "`y0` goes with `layers`; with `y = [y0, y1]` leave it out"
+                );
             }
             let ys = interval(&mp.key("y"), *y, "y")?;
             let ny = ny.ok_or_else(|| CliError::at(mp, "`mesh.ny` is missing (cells along y)"))?;
@@ -182,17 +181,15 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
                 (region.is_some(), "region"),
             ] {
                 if k {
-                    return Err(CliError::at(
-                        &mp.key(key),
-                        format!(
-                            "`mesh.{key}` goes with `y = [y0, y1]`; with `layers` give it per layer"
-                        ),
-                    ));
+                    bail!(
+                        mp.key(key),
+                        "`mesh.{key}` goes with `y = [y0, y1]`; with `layers` give it per layer"
+                    );
                 }
             }
             spec.y0 = finite(&mp.key("y0"), y0.unwrap_or(0.0))?;
             if layers.is_empty() {
-                return Err(CliError::at(&mp.key("layers"), "`mesh.layers` is empty"));
+                bail!(mp.key("layers"), "`mesh.layers` is empty");
             }
             let mut below = spec.y0;
             spec.layers = Vec::new();
@@ -200,13 +197,11 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
                 let lp = mp.key("layers").index(i);
                 let top = finite(&lp.key("top"), l.top)?;
                 if top <= below {
-                    return Err(CliError::at(
-                        &lp.key("top"),
-                        format!(
-                            "`{}` = {top}: layers go upward, expected a top above {below}",
-                            lp.key("top")
-                        ),
-                    ));
+                    bail!(
+                        lp.key("top"),
+                        "`{}` = {top}: layers go upward, expected a top above {below}",
+                        lp.key("top")
+                    );
                 }
                 let layer = Layer {
                     top,
@@ -226,16 +221,16 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
             }
         }
         (Some(_), Some(_)) => {
-            return Err(CliError::at(
-                &mp.key("layers"),
-                "give `y = [y0, y1]` or `layers`, not both",
-            ));
+            bail!(
+                mp.key("layers"),
+                "give `y = [y0, y1]` or `layers`, not both"
+            );
         }
         (None, None) => {
-            return Err(CliError::at(
+            bail!(
                 mp,
-                "the rectangle needs `y = [y0, y1]` and `ny`, or `y0` and `layers`",
-            ));
+                "the rectangle needs `y = [y0, y1]` and `ny`, or `y0` and `layers`"
+            );
         }
     }
     Ok(MeshPlan::Rectangle(spec))
@@ -245,19 +240,17 @@ fn rectangle(mp: &KeyPath, spec: &MeshSpec) -> CliResult<MeshPlan> {
 pub(super) fn interval(path: &KeyPath, pair: Pair, axis: &str) -> CliResult<[f64; 2]> {
     let [a, b] = finite2(path, pair)?;
     if a >= b {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!("`{path}` = [{a:?}, {b:?}]: expected {axis}0 < {axis}1"),
-        ));
+            "`{path}` = [{a:?}, {b:?}]: expected {axis}0 < {axis}1"
+        );
     }
     if !(b - a).is_finite() {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!(
-                "`{path}` = [{a:?}, {b:?}]: the length {axis}1 - {axis}0 overflows (expected \
+            "`{path}` = [{a:?}, {b:?}]: the length {axis}1 - {axis}0 overflows (expected \
                  coordinates whose differences stay finite)"
-            ),
-        ));
+        );
     }
     Ok([a, b])
 }
@@ -295,13 +288,11 @@ fn box_lines(mp: &KeyPath, b: &BoxSpec) -> CliResult<MeshPlan> {
         let n = at_least(&np, b.cells[a], 1)?;
         cells = cells.saturating_mul(n);
         if cells > MAX_BOX_CELLS {
-            return Err(CliError::at(
-                &np,
-                format!(
-                    "`{np}` = {n}: the box would have more than {MAX_BOX_CELLS} cells \
+            bail!(
+                np,
+                "`{np}` = {n}: the box would have more than {MAX_BOX_CELLS} cells \
                      (nx·ny·nz, six tetrahedra each); use fewer cells or a graded grid"
-                ),
-            ));
+            );
         }
         let gp = mp.key(&format!("grading_{axis}"));
         let g = grading(&gp, b.gradings[a])?;
@@ -314,83 +305,50 @@ fn box_lines(mp: &KeyPath, b: &BoxSpec) -> CliResult<MeshPlan> {
 }
 
 /// The pile generator: the seed's pile with optional overrides (axisymmetric only).
-fn pile(mp: &KeyPath, spec: &MeshSpec, idealization: Option<Idealization>) -> CliResult<MeshPlan> {
-    let MeshSpec::Pile {
-        element,
-        diameter,
-        length,
-        width,
-        depth,
-        cells_pile_r,
-        cells_soil_r,
-        cells_shaft,
-        cells_below_tip,
-        grading_pile_r,
-        grading_soil_r,
-        grading_shaft,
-        grading_below_tip,
-        tip_corner,
-    } = spec
-    else {
-        unreachable!("called for the pile generator")
-    };
+fn pile(mp: &KeyPath, o: &PileMeshSpec, idealization: Option<Idealization>) -> CliResult<MeshPlan> {
     if !matches!(idealization, Some(Idealization::Axisymmetric)) {
-        return Err(CliError::at(
-            &KeyPath::root().key("analysis"),
+        bail!(
+            KeyPath::root().key("analysis"),
             "the pile generator builds an axisymmetric (r, z) mesh: it needs \
-             [analysis] type = \"axisymmetric\"",
-        ));
+             [analysis] type = \"axisymmetric\""
+        );
     }
     let mut s = PileSpec::default();
-    macro_rules! pos {
-        ($f:ident) => {
-            if let Some(v) = $f {
-                s.$f = positive(&mp.key(stringify!($f)), *v)?;
-            }
-        };
-    }
-    macro_rules! cnt {
-        ($f:ident) => {
-            if let Some(v) = $f {
-                s.$f = at_least(&mp.key(stringify!($f)), *v, 1)?;
-            }
-        };
-    }
-    macro_rules! grd {
-        ($f:ident) => {
-            if let Some(v) = $f {
-                s.$f = grading(&mp.key(stringify!($f)), *v)?;
-            }
-        };
-    }
-    if length.is_some() && width.is_none() && depth.is_none() {
+    let sizes = &o.sizes;
+    if sizes.length.is_some() && sizes.width.is_none() && sizes.depth.is_none() {
         // keep the seed's proportions W = 2 L_p, H = 3.5 L_p
-        let l = positive(&mp.key("length"), length.unwrap_or(13.0))?;
+        let l = positive(&mp.key("length"), sizes.length.unwrap_or(13.0))?;
         s.width = 2.0 * l;
         s.depth = 3.5 * l;
     }
-    pos!(diameter);
-    pos!(length);
-    pos!(width);
-    pos!(depth);
-    cnt!(cells_pile_r);
-    cnt!(cells_soil_r);
-    cnt!(cells_shaft);
-    cnt!(cells_below_tip);
-    grd!(grading_pile_r);
-    grd!(grading_soil_r);
-    grd!(grading_shaft);
-    grd!(grading_below_tip);
-    if let Some(e) = element {
-        s.kind = kind(*e);
-    }
-    if let Some(t) = tip_corner {
+    pile_sizes(mp, &mut s, sizes)?;
+    set!(mp, s, grading_pile_r = o.grading_pile_r, grading);
+    set!(mp, s, grading_soil_r = o.grading_soil_r, grading);
+    set!(mp, s, grading_shaft = o.grading_shaft, grading);
+    set!(mp, s, grading_below_tip = o.grading_below_tip, grading);
+    if let Some(t) = o.tip_corner {
         s.tip_corner = match t {
             TipCornerSpec::Split => TipCorner::Split,
             TipCornerSpec::Shared => TipCorner::Shared,
         };
     }
     Ok(MeshPlan::Pile(s))
+}
+
+/// The pile's element, sizes and cell counts of `m` (at `mp`: `[mesh]` or `[preset] mesh`).
+pub(super) fn pile_sizes(mp: &KeyPath, s: &mut PileSpec, m: &PileMeshOverride) -> CliResult<()> {
+    if let Some(e) = m.element {
+        s.kind = kind(e);
+    }
+    set!(mp, s, diameter = m.diameter, positive);
+    set!(mp, s, length = m.length, positive);
+    set!(mp, s, width = m.width, positive);
+    set!(mp, s, depth = m.depth, positive);
+    set!(mp, s, cells_pile_r = m.cells_pile_r, count);
+    set!(mp, s, cells_soil_r = m.cells_soil_r, count);
+    set!(mp, s, cells_shaft = m.cells_shaft, count);
+    set!(mp, s, cells_below_tip = m.cells_below_tip, count);
+    Ok(())
 }
 
 /// Generates or reads the mesh of `plan` (`[mesh]` at `mp`) in dimension `D`; an axisymmetric
@@ -410,14 +368,12 @@ where
     if let Some(Idealization::Axisymmetric) = idealization
         && let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0)
     {
-        return Err(CliError::at(
-            &KeyPath::root().key("analysis"),
-            format!(
-                "axisymmetric analysis needs every node at r = x >= 0, but node {node} is at x = {} \
+        bail!(
+            KeyPath::root().key("analysis"),
+            "axisymmetric analysis needs every node at r = x >= 0, but node {node} is at x = {} \
                  (the mesh must lie right of the axis x = 0)",
-                p[0]
-            ),
-        ));
+            p[0]
+        );
     }
     Ok(mesh)
 }

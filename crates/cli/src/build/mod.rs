@@ -36,6 +36,7 @@ pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
+pub(crate) use study::on_sim;
 pub use study::{
     Body, Custom, Library, LoadKind, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt,
     released_at,
@@ -48,7 +49,6 @@ use validate::{Plan, Validated};
 
 /// A scene file read from disk.
 pub struct Loaded {
-    /// Its path.
     pub path: PathBuf,
     /// Its text.
     pub source: String,
@@ -59,11 +59,8 @@ pub struct Loaded {
 /// Parses scene text.
 pub fn parse(source: &str) -> CliResult<Scene> {
     let de = toml::Deserializer::parse(source).map_err(|e| CliError {
-        file: None,
         span: e.span(),
-        path: None,
-        message: format!("invalid TOML: {}", e.message()),
-        code: 2,
+        ..CliError::input(format!("invalid TOML: {}", e.message()))
     })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -75,11 +72,8 @@ pub fn parse(source: &str) -> CliResult<Scene> {
             format!("`{path}`: {message}")
         };
         CliError {
-            file: None,
             span: inner.span(),
-            path: None,
-            message,
-            code: 2,
+            ..CliError::input(message)
         }
     })
 }

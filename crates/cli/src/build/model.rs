@@ -4,12 +4,12 @@
 //! of the first phase at t = 0. What the dimension reads differently is [`SceneDim`]'s.
 
 use super::checks::{
-    expect, fem, finite, finite_all, join, list_names, node_set, non_negative, positive,
+    fem, finite, finite_all, join, list_names, node_set, non_negative, poisson, positive,
 };
 use super::dim::SceneDim;
 use super::phases::{Phase, TimeFunction, check_function, function_value, phase_mask};
 use super::study::{LoadKind, LoadRt, SupportRt};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::raw::RawLoad;
 use crate::scene::{ComponentSpec, Scene};
 use crate::spec::{InitialStress, LoadSpec};
@@ -54,14 +54,12 @@ fn check_section(materials: &[MaterialPlan], idealization: Idealization) -> CliR
         let young = m.material.young();
         if !(young * thickness).is_finite() {
             let p = KeyPath::root().key("analysis").key("thickness");
-            return Err(CliError::at(
-                &p,
-                format!(
-                    "`{p}` = {thickness:?}: its product with `{}` = {young:?} overflows (the \
+            bail!(
+                p,
+                "`{p}` = {thickness:?}: its product with `{}` = {young:?} overflows (the \
                      section stiffness E·h must stay below 1.8e308)",
-                    m.young
-                ),
-            ));
+                m.young
+            );
         }
     }
     Ok(())
@@ -88,18 +86,16 @@ pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> 
                 continue;
             };
             if let Some(n) = b.nodes.iter().find(|n| a.nodes.contains(n)) {
-                return Err(CliError::at(
-                    &paths[j],
-                    format!(
-                        "`{}` prescribes component {c} of node {n} as {}, but `{}` already \
+                bail!(
+                    paths[j],
+                    "`{}` prescribes component {c} of node {n} as {}, but `{}` already \
                          prescribes it as {}: a degree of freedom takes one prescription \
                          (remove one, or give them the same value and function)",
-                        paths[j],
-                        describe(b),
-                        paths[i],
-                        describe(a)
-                    ),
-                ));
+                    paths[j],
+                    describe(b),
+                    paths[i],
+                    describe(a)
+                );
             }
         }
     }
@@ -111,22 +107,17 @@ pub(super) fn check_prescriptions(supports: &[SupportRt], paths: &[KeyPath]) -> 
 fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
     let root = KeyPath::root();
     if scene.materials.is_empty() {
-        return Err(CliError::at(
-            &root,
-            "the scene has no [[materials]] (each with `region`, `young`, `poisson`)",
-        ));
+        bail!(
+            root,
+            "the scene has no [[materials]] (each with `region`, `young`, `poisson`)"
+        );
     }
     let mut plans = Vec::new();
     let mut any_weight = false;
     for (i, m) in scene.materials.iter().enumerate() {
         let p = root.key("materials").index(i);
         let young = positive(&p.key("young"), m.young)?;
-        let poisson = expect(
-            &p.key("poisson"),
-            m.poisson,
-            m.poisson > -1.0 && m.poisson < 0.5,
-            "a Poisson's ratio in (-1, 0.5)",
-        )?;
+        let poisson = poisson(&p.key("poisson"), m.poisson)?;
         let weight = non_negative(&p.key("unit_weight"), m.unit_weight)?;
         any_weight |= weight > 0.0;
         let material = Material::new(young, poisson, weight).map_err(|e| fem(&p, e))?;
@@ -138,13 +129,10 @@ fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
                 .map(|(k, r)| (p.key("regions").index(k), *r))
                 .collect(),
             (Some(_), Some(_)) => {
-                return Err(CliError::at(&p, "give `region` or `regions`, not both"));
+                bail!(p, "give `region` or `regions`, not both");
             }
             _ => {
-                return Err(CliError::at(
-                    &p,
-                    format!("`{p}` needs `region = <id>` or `regions = [ids]`"),
-                ));
+                bail!(p, "`{p}` needs `region = <id>` or `regions = [ids]`");
             }
         };
         plans.push(MaterialPlan {
@@ -185,11 +173,11 @@ fn validate_supports(
     }
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
     if supports.is_empty() && !floating {
-        return Err(CliError::at(
-            &root,
+        bail!(
+            root,
             "the scene has no [[supports]]: a body without supports has rigid-body modes \
-             (set `floating = true` in [analysis] if contact alone holds it)",
-        ));
+             (set `floating = true` in [analysis] if contact alone holds it)"
+        );
     }
     Ok(supports)
 }
@@ -236,10 +224,10 @@ where
         let p = root.key("loads").index(i);
         let (set, kind) = load::<D>(l, &p)?;
         if matches!(kind, LoadKind::Gravity) && !any_weight {
-            return Err(CliError::at(
-                &p,
-                "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)",
-            ));
+            bail!(
+                p,
+                "a gravity load needs a material with `unit_weight` > 0 (every unit weight is 0)"
+            );
         }
         let (name, function, ph) = l.common();
         check_function(&p.key("function"), &function, functions)?;
@@ -271,33 +259,31 @@ fn validate_names(
         if let Some(n) = &s.name
             && !named.insert(n.clone())
         {
-            return Err(CliError::at(
-                &root.key("supports").index(i).key("name"),
-                format!("name `{n}` is used twice among supports and loads"),
-            ));
+            bail!(
+                root.key("supports").index(i).key("name"),
+                "name `{n}` is used twice among supports and loads"
+            );
         }
     }
     for name in load_names {
         if let Some(n) = name
             && !named.insert(n.clone())
         {
-            return Err(CliError::at(
-                &root.key("loads"),
-                format!("name `{n}` is used twice among supports and loads"),
-            ));
+            bail!(
+                root.key("loads"),
+                "name `{n}` is used twice among supports and loads"
+            );
         }
     }
     for (i, ph) in phases.iter().enumerate() {
         for (target, f) in &ph.overrides {
             let p = root.key("phases").index(i).key("functions").key(target);
             if !named.contains(target) {
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}`: no support or load is named `{target}` (named: {})",
-                        list_names(named.iter().map(|s| s.as_str()))
-                    ),
-                ));
+                bail!(
+                    p,
+                    "`{p}`: no support or load is named `{target}` (named: {})",
+                    list_names(named.iter().map(|s| s.as_str()))
+                );
             }
             check_function(&p, &Some(f.clone()), functions)?;
         }
@@ -305,7 +291,6 @@ fn validate_names(
     Ok(())
 }
 
-/// Checks `[initial_stress]`.
 fn validate_initial_stress(scene: &Scene) -> CliResult<InitialStressPlan> {
     let root = KeyPath::root();
     let initial = scene
@@ -364,13 +349,9 @@ where
 {
     /// What the dimension builds the model in (2D: the idealisation and `floating`).
     pub(super) options: <Dim<D> as SceneDim<D>>::Options,
-    /// Materials.
     pub(super) materials: Vec<MaterialPlan>,
-    /// Supports.
     pub(super) supports: Vec<SupportPlan>,
-    /// Loads.
     pub(super) loads: Vec<LoadPlan<D>>,
-    /// Initial stress.
     pub(super) initial_stress: InitialStressPlan,
     /// `[[ties]]`.
     pub(super) ties: Ties,
@@ -406,27 +387,21 @@ pub(super) fn components(
         (ComponentSpec::X, _) => vec![Component::X],
         (ComponentSpec::Y, _) => vec![Component::Y],
         (ComponentSpec::Both, 2) => vec![Component::X, Component::Y],
-        (ComponentSpec::Z | ComponentSpec::All, 3) => match c {
-            ComponentSpec::Z => vec![Component::Z],
-            _ => vec![Component::X, Component::Y, Component::Z],
-        },
+        (ComponentSpec::Z, 3) => vec![Component::Z],
+        (ComponentSpec::All, 3) => vec![Component::X, Component::Y, Component::Z],
         (ComponentSpec::Both, _) => {
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}` = \"both\" is x and y of a 2D scene; a 3D scene takes \"x\", \
+                "`{path}` = \"both\" is x and y of a 2D scene; a 3D scene takes \"x\", \
                      \"y\", \"z\" or \"all\""
-                ),
-            ));
+            );
         }
         (ComponentSpec::Z | ComponentSpec::All, _) => {
-            return Err(CliError::at(
+            bail!(
                 path,
-                format!(
-                    "`{path}`: components \"z\" and \"all\" are for a 3D scene ([analysis] \
+                "`{path}`: components \"z\" and \"all\" are for a 3D scene ([analysis] \
                      type = \"3d\"); a 2D scene takes \"x\", \"y\" or \"both\""
-                ),
-            ));
+            );
         }
     })
 }
@@ -444,7 +419,6 @@ where
     Dim<D>: SceneDim<D>,
 {
     let root = KeyPath::root();
-    // An element stiffness that overflows is the material's fault, not the supports'.
     let young_keys = young_keys(&plan.materials);
     let materials = regions(mesh.regions(), plan.materials)?;
     let mut supports = Vec::new();
@@ -483,19 +457,17 @@ where
                 let nodes = node_set(&sp, &mesh, &set)?;
                 for (c, comp) in Component::all::<D>().into_iter().enumerate() {
                     if v[c] != 0.0 && nodes.iter().any(|&n| !tied.contains(&(n, comp))) {
-                        return Err(CliError::at(
-                            &sp,
-                            format!(
-                                "`{sp}` = \"{set}\": a resultant force along {comp} needs the set \
+                        bail!(
+                            sp,
+                            "`{sp}` = \"{set}\": a resultant force along {comp} needs the set \
                                  tied along {comp} (a [[ties]] entry with set = \"{set}\"), so \
                                  that it has one point of application; for a force on each node \
                                  use type = \"nodal_force\""
-                            ),
-                        ));
+                        );
                     }
                 }
                 let Some(&first) = nodes.first() else {
-                    return Err(CliError::at(&sp, format!("`{sp}` = \"{set}\" is empty")));
+                    bail!(sp, "`{sp}` = \"{set}\" is empty");
                 };
                 LoadKind::Resultant(first, v)
             }
@@ -540,19 +512,14 @@ pub(super) fn regions(
     for m in plans {
         for (rp, r) in m.regions {
             if !mesh_regions.contains(&r) {
-                return Err(CliError::at(
-                    &rp,
-                    format!(
-                        "`{rp}` = {r}: the mesh has no element in region {r} (regions: {})",
-                        join(&mesh_regions)
-                    ),
-                ));
+                bail!(
+                    rp,
+                    "`{rp}` = {r}: the mesh has no element in region {r} (regions: {})",
+                    join(&mesh_regions)
+                );
             }
             if materials.iter().any(|(q, _)| *q == r) {
-                return Err(CliError::at(
-                    &rp,
-                    format!("`{rp}` = {r}: region {r} already has a material"),
-                ));
+                bail!(rp, "`{rp}` = {r}: region {r} already has a material");
             }
             materials.push((r, m.material));
         }
@@ -561,12 +528,10 @@ pub(super) fn regions(
         .iter()
         .find(|r| !materials.iter().any(|(q, _)| q == *r))
     {
-        return Err(CliError::at(
-            &KeyPath::root().key("materials"),
-            format!(
-                "region {r} of the mesh has no material (add a [[materials]] with region = {r})"
-            ),
-        ));
+        bail!(
+            KeyPath::root().key("materials"),
+            "region {r} of the mesh has no material (add a [[materials]] with region = {r})"
+        );
     }
     Ok(materials)
 }

@@ -3,7 +3,7 @@
 
 use super::checks::{at_least, list_names, node_set};
 use super::study::{Body, Study, StudyDim};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail, err};
 use crate::scene::{CurveSpec, OutputSpec, PlotSpec, Scene};
 use fem_core::Component;
 use fem_core::Dim;
@@ -101,26 +101,18 @@ pub(super) fn check_plot_file(
     files: &mut BTreeSet<String>,
 ) -> CliResult<()> {
     if !plot.file.ends_with(".svg") || plot.file.contains(['/', '\\']) {
-        return Err(CliError::at(
-            &pp.key("file"),
-            format!(
-                "`{}` = \"{}\": expected a file name ending in .svg (written in the output directory)",
-                pp.key("file"),
-                plot.file
-            ),
-        ));
+        bail!(
+            pp.key("file"),
+            "`{}` = \"{}\": expected a file name ending in .svg (written in the output directory)",
+            pp.key("file"),
+            plot.file
+        );
     }
     if !files.insert(plot.file.clone()) {
-        return Err(CliError::at(
-            &pp.key("file"),
-            format!("plot file `{}` is used twice", plot.file),
-        ));
+        bail!(pp.key("file"), "plot file `{}` is used twice", plot.file);
     }
     if plot.curves.is_empty() {
-        return Err(CliError::at(
-            &pp.key("curves"),
-            "a plot needs at least one curve",
-        ));
+        bail!(pp.key("curves"), "a plot needs at least one curve");
     }
     Ok(())
 }
@@ -138,22 +130,17 @@ pub(super) fn check_output_table(
     at_least(&op.key("every"), o.every, 1)?;
     if o.steps.is_some() && o.every != 1 {
         let p = op.key("every");
-        return Err(CliError::at(
-            &p,
-            format!(
-                "`{p}` = {}: give `output.every` or `output.steps`, not both",
-                o.every
-            ),
-        ));
+        bail!(
+            p,
+            "`{p}` = {}: give `output.every` or `output.steps`, not both",
+            o.every
+        );
     }
     if let Some(steps) = &o.steps {
         for (i, s) in steps.iter().enumerate() {
             if *s < 1 || *s > total {
                 let p = op.key("steps").index(i);
-                return Err(CliError::at(
-                    &p,
-                    format!("`{p}` = {s}: expected a step in 1..={total}"),
-                ));
+                bail!(p, "`{p}` = {s}: expected a step in 1..={total}");
             }
         }
     }
@@ -166,12 +153,10 @@ pub(super) fn check_output_table(
         for (i, n) in ns.iter().enumerate() {
             if !is_contactor(*n) {
                 let p = op.key("nodes").index(i);
-                return Err(CliError::at(
-                    &p,
-                    format!(
-                        "`{p}` = {n}: not a contactor node of any zone (the mesh has {node_count} nodes)"
-                    ),
-                ));
+                bail!(
+                    p,
+                    "`{p}` = {n}: not a contactor node of any zone (the mesh has {node_count} nodes)"
+                );
             }
         }
     }
@@ -195,17 +180,15 @@ where
     let op = KeyPath::root().key("output");
     let key = if o.steps.is_some() { "steps" } else { "every" };
     let p = op.key(key);
-    Err(CliError::at(
-        &p,
-        format!(
-            "`{p}`: the run would write {files} files ({} written steps of {} steps, each with {} VTK \
+    bail!(
+        p,
+        "`{p}`: the run would write {files} files ({} written steps of {} steps, each with {} VTK \
              file(s)): more than the limit of {MAX_OUTPUT_FILES}; raise `output.every`, list \
              `output.steps`, or set `output.vtk` / `output.mesh_vtk` = false",
-            study.written_steps(),
-            study.total_steps(),
-            usize::from(o.vtk) + usize::from(Dim::<D>::mesh_series(o))
-        ),
-    ))
+        study.written_steps(),
+        study.total_steps(),
+        usize::from(o.vtk) + usize::from(Dim::<D>::mesh_series(o))
+    )
 }
 
 /// `output.profile_steps`: the pile preset's only, each a step of the run.
@@ -215,32 +198,24 @@ fn check_profile_steps(o: &OutputSpec, study: &Study) -> CliResult<()> {
     };
     let p = KeyPath::root().key("output").key("profile_steps");
     if !matches!(&study.body, Body::Preset(b) if b.kind == "pile") {
-        return Err(CliError::at(
-            &p,
-            format!(
-                "`{p}`: shaft profiles are written by the pile preset only ([preset] kind = \"pile\")"
-            ),
-        ));
+        bail!(
+            p,
+            "`{p}`: shaft profiles are written by the pile preset only ([preset] kind = \"pile\")"
+        );
     }
     let total = study.total_steps();
     if let Some(s) = list.iter().find(|&&s| s == 0 || s > total) {
-        return Err(CliError::at(
-            &p,
-            format!("`{p}`: step {s} is not a step of the run (1 to {total})"),
-        ));
+        bail!(p, "`{p}`: step {s} is not a step of the run (1 to {total})");
     }
     Ok(())
 }
 
-/// Index of a zone by name.
 pub fn zone_index(path: &KeyPath, names: &[String], name: &str) -> CliResult<usize> {
     names.iter().position(|n| n == name).ok_or_else(|| {
-        CliError::at(
+        err!(
             path,
-            format!(
-                "`{path}` = \"{name}\": no such contact zone (zones: {})",
-                list_names(names.iter().map(|s| s.as_str()))
-            ),
+            "`{path}` = \"{name}\": no such contact zone (zones: {})",
+            list_names(names.iter().map(|s| s.as_str()))
         )
     })
 }
@@ -259,31 +234,27 @@ fn check_curve(
     }
     let Some((_, needs)) = known else {
         let q = p.key("quantity");
-        return Err(CliError::at(
-            &q,
-            format!(
-                "`{q}` = \"{}\": unknown quantity (expected one of {})",
-                c.quantity,
-                QUANTITIES
-                    .iter()
-                    .map(|(q, _)| *q)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        ));
+        bail!(
+            q,
+            "`{q}` = \"{}\": unknown quantity (expected one of {})",
+            c.quantity,
+            QUANTITIES
+                .iter()
+                .map(|(q, _)| *q)
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
     };
     let zone = match &c.zone {
         Some(z) => Some(zone_index(&p.key("zone"), zone_names, z)?),
         None => None,
     };
     if *needs == "zone" && zone.is_none() && zone_names.len() > 1 {
-        return Err(CliError::at(
+        bail!(
             p,
-            format!(
-                "`{p}`: quantity `{}` needs `zone` (the scene has several zones)",
-                c.quantity
-            ),
-        ));
+            "`{p}`: quantity `{}` needs `zone` (the scene has several zones)",
+            c.quantity
+        );
     }
     let Some(study) = study else {
         return Ok(());
@@ -292,13 +263,11 @@ fn check_curve(
     match *needs {
         "node" => {
             let Some(n) = c.node else {
-                return Err(CliError::at(
+                bail!(
                     p,
-                    format!(
-                        "`{p}`: quantity `{}` needs `node` (a contactor node)",
-                        c.quantity
-                    ),
-                ));
+                    "`{p}`: quantity `{}` needs `node` (a contactor node)",
+                    c.quantity
+                );
             };
             if !study
                 .candidates()
@@ -306,63 +275,53 @@ fn check_curve(
                 .any(|k| k.node == n && zone.is_none_or(|z| z == k.zone))
             {
                 let q = p.key("node");
-                return Err(CliError::at(
-                    &q,
-                    format!(
-                        "`{q}` = {n}: not a contactor node{} (the mesh has {} nodes)",
-                        zone.map(|z| format!(" of zone `{}`", study.zone_names[z]))
-                            .unwrap_or_default(),
-                        mesh.node_count()
-                    ),
-                ));
+                bail!(
+                    q,
+                    "`{q}` = {n}: not a contactor node{} (the mesh has {} nodes)",
+                    zone.map(|z| format!(" of zone `{}`", study.zone_names[z]))
+                        .unwrap_or_default(),
+                    mesh.node_count()
+                );
             }
         }
         "point" => match (c.node, &c.set) {
             (Some(n), None) => {
                 if n >= mesh.node_count() {
                     let q = p.key("node");
-                    return Err(CliError::at(
-                        &q,
-                        format!(
-                            "`{q}` = {n}: the mesh has {} nodes (0..{})",
-                            mesh.node_count(),
-                            mesh.node_count()
-                        ),
-                    ));
+                    bail!(
+                        q,
+                        "`{q}` = {n}: the mesh has {} nodes (0..{})",
+                        mesh.node_count(),
+                        mesh.node_count()
+                    );
                 }
             }
             (None, Some(s)) => {
                 node_set(&p.key("set"), mesh, s)?;
             }
             _ => {
-                return Err(CliError::at(
+                bail!(
                     p,
-                    format!(
-                        "`{p}`: quantity `{}` needs `node` or `set` (one of them)",
-                        c.quantity
-                    ),
-                ));
+                    "`{p}`: quantity `{}` needs `node` or `set` (one of them)",
+                    c.quantity
+                );
             }
         },
         "pile" if !matches!(&study.body, Body::Preset(p) if p.kind == "pile") => {
-            return Err(CliError::at(
-                &p.key("quantity"),
-                format!(
-                    "`{}` = \"{}\": only the pile preset has this quantity",
-                    p.key("quantity"),
-                    c.quantity
-                ),
-            ));
+            bail!(
+                p.key("quantity"),
+                "`{}` = \"{}\": only the pile preset has this quantity",
+                p.key("quantity"),
+                c.quantity
+            );
         }
         "set" => {
             let Some(s) = &c.set else {
-                return Err(CliError::at(
+                bail!(
                     p,
-                    format!(
-                        "`{p}`: quantity `{}` needs `set` (a supported node set)",
-                        c.quantity
-                    ),
-                ));
+                    "`{p}`: quantity `{}` needs `set` (a supported node set)",
+                    c.quantity
+                );
             };
             let nodes = node_set(&p.key("set"), mesh, s)?;
             let comp = if c.quantity == "reaction_x" {
@@ -375,12 +334,10 @@ fn check_curve(
                 || matches!(&study.body, Body::Custom(cu) if cu.supports.iter().any(|s| s.components.contains(&comp) && s.nodes.iter().any(|n| nodes.contains(n))));
             if !any {
                 let q = p.key("set");
-                return Err(CliError::at(
-                    &q,
-                    format!(
-                        "`{q}` = \"{s}\": no node of this set has a support on {comp:?}, so it has no reaction"
-                    ),
-                ));
+                bail!(
+                    q,
+                    "`{q}` = \"{s}\": no node of this set has a support on {comp:?}, so it has no reaction"
+                );
             }
         }
         _ => {}
@@ -398,22 +355,20 @@ fn check_curve_3d(p: &KeyPath, c: &CurveSpec, known: bool) -> CliResult<()> {
         } else {
             "unknown quantity"
         };
-        return Err(CliError::at(
-            &q,
-            format!(
-                "`{q}` = \"{}\": {what} (3D plots: {})",
-                c.quantity,
-                QUANTITIES_3D.join(", ")
-            ),
-        ));
+        bail!(
+            q,
+            "`{q}` = \"{}\": {what} (3D plots: {})",
+            c.quantity,
+            QUANTITIES_3D.join(", ")
+        );
     }
     for (key, given) in [("node", c.node.is_some()), ("set", c.set.is_some())] {
         if given {
             let k = p.key(key);
-            return Err(CliError::at(
-                &k,
-                format!("`{k}`: a 3D plot's quantities are per step or per zone, not per {key}"),
-            ));
+            bail!(
+                k,
+                "`{k}`: a 3D plot's quantities are per step or per zone, not per {key}"
+            );
         }
     }
     Ok(())

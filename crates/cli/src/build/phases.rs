@@ -3,7 +3,7 @@
 //! and the law each zone has in each phase (`[[phases]] laws`), as the summaries report it.
 
 use super::checks::{at_least, finite2, list_names, positive};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::scene::Scene;
 use crate::spec::Pair;
 use contact_laws::StandardLaw;
@@ -45,23 +45,21 @@ pub(super) fn time_functions(scene: &Scene) -> CliResult<BTreeMap<String, TimeFu
 pub(super) fn time_function(path: &KeyPath, pts: &[Pair]) -> CliResult<TimeFunction> {
     let pts: Vec<[f64; 2]> = pts.iter().map(|p| p.0).collect();
     if pts.is_empty() {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!("`{path}` is empty: expected a table of [time, value] points"),
-        ));
+            "`{path}` is empty: expected a table of [time, value] points"
+        );
     }
     for (i, p) in pts.iter().enumerate() {
         finite2(&path.index(i), Pair(*p))?;
         if i > 0 && p[0] <= pts[i - 1][0] {
             let q = path.index(i).index(0);
-            return Err(CliError::at(
-                &q,
-                format!(
-                    "`{q}` = {}: times must increase strictly (the previous point is at t = {})",
-                    p[0],
-                    pts[i - 1][0]
-                ),
-            ));
+            bail!(
+                q,
+                "`{q}` = {}: times must increase strictly (the previous point is at t = {})",
+                p[0],
+                pts[i - 1][0]
+            );
         }
     }
     Ok(TimeFunction { points: pts })
@@ -72,7 +70,6 @@ pub(super) fn time_function(path: &KeyPath, pts: &[Pair]) -> CliResult<TimeFunct
 pub struct Phase {
     /// Name.
     pub name: String,
-    /// Steps.
     pub steps: usize,
     /// Start time.
     pub t0: f64,
@@ -115,21 +112,20 @@ pub(super) fn phases_of(
     let mut out = Vec::new();
     match (&scene.steps, scene.phases.is_empty(), total_default) {
         (Some(_), false, _) => {
-            return Err(CliError::at(
-                &KeyPath::root().key("phases"),
-                "give either [steps] (one phase) or [[phases]], not both",
-            ));
+            bail!(
+                KeyPath::root().key("phases"),
+                "give either [steps] (one phase) or [[phases]], not both"
+            );
         }
         (Some(s), true, _) => {
             let p = KeyPath::root().key("steps");
-            out.push(Phase {
-                name: "steps".into(),
-                steps: at_least(&p.key("count"), s.count, 1)?,
-                t0: 0.0,
-                t1: positive(&p.key("duration"), s.duration)?,
-                overrides: BTreeMap::new(),
-                reset_displacements: false,
-            });
+            let steps = at_least(&p.key("count"), s.count, 1)?;
+            out.push(phase(
+                "steps",
+                steps,
+                0.0,
+                positive(&p.key("duration"), s.duration)?,
+            ));
         }
         (None, false, _) => {
             let mut t = 0.0;
@@ -137,29 +133,25 @@ pub(super) fn phases_of(
             for (i, ph) in scene.phases.iter().enumerate() {
                 let p = KeyPath::root().key("phases").index(i);
                 if !names.insert(ph.name.clone()) {
-                    return Err(CliError::at(
-                        &p.key("name"),
-                        format!("phase name `{}` is used twice", ph.name),
-                    ));
+                    bail!(p.key("name"), "phase name `{}` is used twice", ph.name);
                 }
                 if ph.name.trim().is_empty() {
-                    return Err(CliError::at(
-                        &p.key("name"),
-                        format!("`{}` is empty: a phase needs a name", p.key("name")),
-                    ));
+                    bail!(
+                        p.key("name"),
+                        "`{}` is empty: a phase needs a name",
+                        p.key("name")
+                    );
                 }
                 let d = positive(&p.key("duration"), ph.duration)?;
                 if !(t + d).is_finite() || t + d <= t {
                     let dp = p.key("duration");
-                    return Err(CliError::at(
-                        &dp,
-                        format!(
-                            "`{dp}` = {d:?}: the phase would end at t = {:?} after starting at \
+                    bail!(
+                        dp,
+                        "`{dp}` = {d:?}: the phase would end at t = {:?} after starting at \
                              t = {t:?} (the sum of the durations must stay finite, and each \
                              phase must move the time forward)",
-                            t + d
-                        ),
-                    ));
+                        t + d
+                    );
                 }
                 out.push(Phase {
                     name: ph.name.clone(),
@@ -172,19 +164,12 @@ pub(super) fn phases_of(
                 t += d;
             }
         }
-        (None, true, Some((steps, duration))) => out.push(Phase {
-            name: "loading".into(),
-            steps,
-            t0: 0.0,
-            t1: duration,
-            overrides: BTreeMap::new(),
-            reset_displacements: false,
-        }),
+        (None, true, Some((steps, duration))) => out.push(phase("loading", steps, 0.0, duration)),
         (None, true, None) => {
-            return Err(CliError::at(
-                &KeyPath::root(),
-                "the scene has no load steps: add [steps] with `count` and `duration`, or [[phases]]",
-            ));
+            bail!(
+                KeyPath::root(),
+                "the scene has no load steps: add [steps] with `count` and `duration`, or [[phases]]"
+            );
         }
     }
     let total = out
@@ -195,14 +180,12 @@ pub(super) fn phases_of(
             Some(_) => KeyPath::root().key("steps").key("count"),
             None => KeyPath::root().key("phases"),
         };
-        return Err(CliError::at(
-            &path,
-            format!(
-                "{total} load steps in all: more than the limit of {MAX_STEPS} (a run writes \
+        bail!(
+            path,
+            "{total} load steps in all: more than the limit of {MAX_STEPS} (a run writes \
                  output every `output.every` steps and would not end in a useful time); \
                  use fewer steps"
-            ),
-        ));
+        );
     }
     Ok(out)
 }
@@ -220,13 +203,11 @@ pub(super) fn phase_mask(
 ) -> CliResult<Vec<bool>> {
     match list {
         None => Ok(vec![true; phases.len()]),
-        Some(names) if names.is_empty() => Err(CliError::at(
+        Some(names) if names.is_empty() => bail!(
             path,
-            format!(
-                "`{path}` is empty: it would act in no phase (name at least one, or leave \
+            "`{path}` is empty: it would act in no phase (name at least one, or leave \
                  `phases` out to act in every phase)"
-            ),
-        )),
+        ),
         Some(names) => {
             let mut mask = vec![false; phases.len()];
             for (i, n) in names.iter().enumerate() {
@@ -234,13 +215,11 @@ pub(super) fn phase_mask(
                     Some(k) => mask[k] = true,
                     None => {
                         let p = path.index(i);
-                        return Err(CliError::at(
-                            &p,
-                            format!(
-                                "`{p}` = \"{n}\": no such phase (phases: {})",
-                                list_names(phases.iter().map(|p| p.name.as_str()))
-                            ),
-                        ));
+                        bail!(
+                            p,
+                            "`{p}` = \"{n}\": no such phase (phases: {})",
+                            list_names(phases.iter().map(|p| p.name.as_str()))
+                        );
                     }
                 }
             }
@@ -258,13 +237,11 @@ pub(super) fn check_function(
     if let Some(n) = name
         && !f.contains_key(n)
     {
-        return Err(CliError::at(
+        bail!(
             path,
-            format!(
-                "`{path}` = \"{n}\": no such function in [functions] (functions: {})",
-                list_names(f.keys().map(|k| k.as_str()))
-            ),
-        ));
+            "`{path}` = \"{n}\": no such function in [functions] (functions: {})",
+            list_names(f.keys().map(|k| k.as_str()))
+        );
     }
     Ok(())
 }
@@ -310,7 +287,6 @@ pub fn phase_law_names(phase_laws: &[Vec<(String, StandardLaw)>]) -> Vec<Vec<(St
 /// The law of a zone during one phase of a run (`summary.json`: `zones[].laws`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PhaseLaw {
-    /// The phase.
     pub phase: String,
     /// The law in force during it (`signorini`, `coulomb`, `rccm`).
     pub law: String,

@@ -2,20 +2,20 @@
 //! library's presets (`bipo::presets`), then the preset built and made a study.
 
 use super::checks::{
-    at_least, expect, finite, kind, law_error, non_negative, positive, solver_error,
+    count, expect, finite, kind, law_error, non_negative, poisson, positive, set, solver_error,
 };
-use super::contact::{rccm_params, settings};
+use super::contact::{scheme, settings, theta};
+use super::mesh::pile_sizes;
 use super::outputs::check_outputs;
 use super::phases::{Phase, phase};
 use super::study::{Body, Library, PresetStudy, Study};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::presets::{DelaminationSpec, Installation, PulloutSpec, ShearSpec};
 use crate::scene::{OutputSpec, Scene};
-use crate::spec::{InstallationSpec, Preset, RccmOverride, RccmSpec, Site};
+use crate::spec::{InstallationSpec, PileOverride, Preset, RccmOverride, Site};
 use contact_laws::{BetaScheme, ContactLaw, Rccm, RccmParams};
 use contact_solver::SimulationSettings;
 
-/// The library's spec of a preset.
 enum PresetSpec {
     Delamination(DelaminationSpec),
     Shear(ShearSpec),
@@ -44,13 +44,11 @@ fn preset_only(scene: &Scene) -> CliResult<()> {
         ("phases", !scene.phases.is_empty()),
     ];
     if let Some((k, _)) = present.iter().find(|(_, p)| *p) {
-        return Err(CliError::at(
-            &KeyPath::root().key(k),
-            format!(
-                "`{k}` cannot be combined with [preset]: the preset builds its own mesh, \
+        bail!(
+            KeyPath::root().key(k),
+            "`{k}` cannot be combined with [preset]: the preset builds its own mesh, \
                  supports, loads, contact zone and steps (override them inside [preset])"
-            ),
-        ));
+        );
     }
     Ok(())
 }
@@ -64,34 +62,13 @@ fn override_rccm(
     let Some(o) = o else { return Ok(base) };
     let scheme = match (o.scheme, o.theta) {
         (None, None) => base.scheme,
-        (Some(s), t) => {
-            let spec = RccmSpec {
-                c_n: 0.0,
-                c_t: 0.0,
-                w: 0.0,
-                alpha: 0.0,
-                mu: 0.0,
-                m: 1,
-                beta_0: 1.0,
-                scheme: s,
-                theta: t,
-            };
-            rccm_params(path, &spec)?.scheme
-        }
+        (Some(s), t) => scheme(path, s, t)?,
         (None, Some(t)) => {
             let p = path.key("theta");
             if let BetaScheme::Theta(_) = base.scheme {
-                BetaScheme::Theta(expect(
-                    &p,
-                    t,
-                    (0.0..=1.0).contains(&t),
-                    "a value in [0, 1]",
-                )?)
+                BetaScheme::Theta(theta(&p, t)?)
             } else {
-                return Err(CliError::at(
-                    &p,
-                    format!("`{p}` is only read with scheme = \"theta\""),
-                ));
+                bail!(p, "`{p}` is only read with scheme = \"theta\"");
             }
         }
     };
@@ -113,247 +90,92 @@ fn override_rccm(
 /// outputs and plots).
 pub(super) fn validate(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
     preset_only(scene)?;
-    if let Preset::Pile { .. } = preset {
-        return validate_pile(scene, preset);
-    }
     let settings = settings::<2>(&scene.solver)?;
     let p = KeyPath::root().key("preset");
-    macro_rules! set {
-        ($spec:ident, $field:ident, positive) => {
-            if let Some(v) = $field {
-                $spec.$field = positive(&p.key(stringify!($field)), *v)?;
+    // the keys both plates have, checked in the order of the table, around the plate's own
+    macro_rules! plate {
+        ($spec:ident, $o:ident, $own:block) => {
+            set!(p, $spec, length = $o.length, positive);
+            set!(p, $spec, height = $o.height, positive);
+            set!(p, $spec, young = $o.young, positive);
+            set!(p, $spec, poisson = $o.poisson, poisson);
+            set!(p, $spec, nx = $o.nx, count);
+            set!(p, $spec, ny = $o.ny, count);
+            if let Some(e) = $o.element {
+                $spec.kind = kind(e);
             }
-        };
-        ($spec:ident, $field:ident, finite) => {
-            if let Some(v) = $field {
-                $spec.$field = finite(&p.key(stringify!($field)), *v)?;
-            }
-        };
-        ($spec:ident, $field:ident, count) => {
-            if let Some(v) = $field {
-                $spec.$field = at_least(&p.key(stringify!($field)), *v, 1)?;
-            }
+            $own
+            set!(p, $spec, duration = $o.duration, positive);
+            set!(p, $spec, steps = $o.steps, count);
+            $spec.interface = override_rccm(&p.key("interface"), $spec.interface, &$o.interface)?;
         };
     }
-    let poisson_ok = |v: &Option<f64>| -> CliResult<Option<f64>> {
-        match v {
-            Some(x) => Ok(Some(expect(
-                &p.key("poisson"),
-                *x,
-                *x > -1.0 && *x < 0.5,
-                "a Poisson's ratio in (-1, 0.5)",
-            )?)),
-            None => Ok(None),
-        }
-    };
     let spec = match preset {
-        Preset::Delamination {
-            length,
-            height,
-            young,
-            poisson,
-            nx,
-            ny,
-            element,
-            lift,
-            duration,
-            steps,
-            interface,
-        } => {
+        Preset::Delamination { plate, lift } => {
             let mut spec = DelaminationSpec::default();
-            set!(spec, length, positive);
-            set!(spec, height, positive);
-            set!(spec, young, positive);
-            if let Some(v) = poisson_ok(poisson)? {
-                spec.poisson = v;
-            }
-            set!(spec, nx, count);
-            set!(spec, ny, count);
-            if let Some(e) = element {
-                spec.kind = kind(*e);
-            }
-            set!(spec, lift, finite);
-            set!(spec, duration, positive);
-            set!(spec, steps, count);
-            spec.interface = override_rccm(&p.key("interface"), spec.interface, interface)?;
+            plate!(spec, plate, { set!(p, spec, lift = *lift, finite) });
             PresetSpec::Delamination(spec)
         }
-        Preset::Shear {
-            length,
-            height,
-            young,
-            poisson,
-            nx,
-            ny,
-            element,
-            press,
-            push,
-            duration,
-            steps,
-            interface,
-        } => {
+        Preset::Shear { plate, press, push } => {
             let mut spec = ShearSpec::default();
-            set!(spec, length, positive);
-            set!(spec, height, positive);
-            set!(spec, young, positive);
-            if let Some(v) = poisson_ok(poisson)? {
-                spec.poisson = v;
-            }
-            set!(spec, nx, count);
-            set!(spec, ny, count);
-            if let Some(e) = element {
-                spec.kind = kind(*e);
-            }
-            set!(spec, press, finite);
-            set!(spec, push, finite);
-            set!(spec, duration, positive);
-            set!(spec, steps, count);
-            spec.interface = override_rccm(&p.key("interface"), spec.interface, interface)?;
+            plate!(spec, plate, {
+                set!(p, spec, press = *press, finite);
+                set!(p, spec, push = *push, finite);
+            });
             PresetSpec::Shear(spec)
         }
-        Preset::Pile { .. } => unreachable!("handled above"),
+        Preset::Pile(o) => PresetSpec::Pile(Box::new(pile(&p, o)?)),
     };
     Ok(PresetPlan { spec, settings })
 }
 
-/// Checks the pile preset's overrides.
-// A flat list of optional overrides, each with its own check: clearer in one place than split.
-fn validate_pile(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> {
-    let Preset::Pile {
-        site,
-        coulomb,
-        pile_young,
-        pile_poisson,
-        pile_unit_weight,
-        soil_young,
-        soil_poisson,
-        soil_unit_weight,
-        k0,
-        installation,
-        head_displacement,
-        head_force,
-        steps,
-        alert_distance,
-        interface,
-        mesh,
-    } = preset
-    else {
-        unreachable!("called for the pile preset")
-    };
-    let settings = settings::<2>(&scene.solver)?;
-    let p = KeyPath::root().key("preset");
-    let mut spec = match site {
+/// The pile preset's spec with the overrides `o` (at `p`), checked.
+fn pile(p: &KeyPath, o: &PileOverride) -> CliResult<PulloutSpec> {
+    let mut spec = match o.site {
         Some(Site::Cran) => PulloutSpec::cran(),
         _ => PulloutSpec::plancoet(),
     };
-    if *coulomb {
+    if o.coulomb {
         spec = spec.with_coulomb_interface();
     }
-    for (name, value, slot, poisson) in [
-        ("pile_young", pile_young, &mut spec.pile_young, false),
-        ("pile_poisson", pile_poisson, &mut spec.pile_poisson, true),
-        (
-            "pile_unit_weight",
-            pile_unit_weight,
-            &mut spec.pile_unit_weight,
-            false,
-        ),
-        ("soil_young", soil_young, &mut spec.soil_young, false),
-        ("soil_poisson", soil_poisson, &mut spec.soil_poisson, true),
-        (
-            "soil_unit_weight",
-            soil_unit_weight,
-            &mut spec.soil_unit_weight,
-            false,
-        ),
-    ] {
-        if let Some(v) = value {
-            *slot = if poisson {
-                expect(
-                    &p.key(name),
-                    *v,
-                    *v > -1.0 && *v < 0.5,
-                    "a Poisson's ratio in (-1, 0.5)",
-                )?
-            } else if name.ends_with("unit_weight") {
-                non_negative(&p.key(name), *v)?
-            } else {
-                positive(&p.key(name), *v)?
-            };
-        }
-    }
-    if let Some(v) = k0 {
-        spec.k0 = non_negative(&p.key("k0"), *v)?;
-    }
-    if let Some(v) = head_displacement {
-        spec.head_displacement = finite(&p.key("head_displacement"), *v)?;
-    }
-    if let Some(v) = head_force {
-        if head_displacement.is_some() {
-            return Err(CliError::at(
-                &p.key("head_force"),
+    set!(p, spec, pile_young = o.pile_young, positive);
+    set!(p, spec, pile_poisson = o.pile_poisson, poisson);
+    set!(p, spec, pile_unit_weight = o.pile_unit_weight, non_negative);
+    set!(p, spec, soil_young = o.soil_young, positive);
+    set!(p, spec, soil_poisson = o.soil_poisson, poisson);
+    set!(p, spec, soil_unit_weight = o.soil_unit_weight, non_negative);
+    set!(p, spec, k0 = o.k0, non_negative);
+    set!(p, spec, head_displacement = o.head_displacement, finite);
+    if let Some(v) = o.head_force {
+        if o.head_displacement.is_some() {
+            bail!(
+                p.key("head_force"),
                 "give either `head_displacement` (the head's u_z prescribed) or `head_force` \
-                 (a jack force on the head, the pile held by the soil alone), not both",
-            ));
+                 (a jack force on the head, the pile held by the soil alone), not both"
+            );
         }
-        spec.head_force = Some(finite(&p.key("head_force"), *v)?);
+        spec.head_force = Some(finite(&p.key("head_force"), v)?);
     }
-    if let Some(v) = steps {
-        spec.steps = at_least(&p.key("steps"), *v, 1)?;
-    }
-    if let Some(v) = alert_distance {
-        spec.alert_distance = non_negative(&p.key("alert_distance"), *v)?;
-    }
-    if let Some(i) = installation {
+    set!(p, spec, steps = o.steps, count);
+    set!(p, spec, alert_distance = o.alert_distance, non_negative);
+    if let Some(i) = o.installation {
         let ip = p.key("installation").key("value");
         spec.installation = match i {
             InstallationSpec::None {} => Installation::None,
             InstallationSpec::RadialDisplacement { value } => {
-                Installation::RadialDisplacement(non_negative(&ip, *value)?)
+                Installation::RadialDisplacement(non_negative(&ip, value)?)
             }
-            InstallationSpec::NormalForceRatio { value } => Installation::NormalForceRatio(expect(
-                &ip,
-                *value,
-                value.is_finite() && *value >= 1.0,
-                "a finite ratio >= 1",
-            )?),
+            InstallationSpec::NormalForceRatio { value } => {
+                let ok = value.is_finite() && value >= 1.0;
+                Installation::NormalForceRatio(expect(&ip, value, ok, "a finite ratio >= 1")?)
+            }
         };
     }
-    if let Some(m) = mesh {
-        let mp = p.key("mesh");
-        if let Some(e) = m.element {
-            spec.mesh.kind = kind(e);
-        }
-        for (name, value, slot) in [
-            ("diameter", m.diameter, &mut spec.mesh.diameter),
-            ("length", m.length, &mut spec.mesh.length),
-            ("width", m.width, &mut spec.mesh.width),
-            ("depth", m.depth, &mut spec.mesh.depth),
-        ] {
-            if let Some(v) = value {
-                *slot = positive(&mp.key(name), v)?;
-            }
-        }
-        for (name, value, slot) in [
-            ("cells_pile_r", m.cells_pile_r, &mut spec.mesh.cells_pile_r),
-            ("cells_soil_r", m.cells_soil_r, &mut spec.mesh.cells_soil_r),
-            ("cells_shaft", m.cells_shaft, &mut spec.mesh.cells_shaft),
-            (
-                "cells_below_tip",
-                m.cells_below_tip,
-                &mut spec.mesh.cells_below_tip,
-            ),
-        ] {
-            if let Some(v) = value {
-                *slot = at_least(&mp.key(name), v, 1)?;
-            }
-        }
+    if let Some(m) = &o.mesh {
+        pile_sizes(&p.key("mesh"), &mut spec.mesh, m)?;
     }
-    spec.interface = override_rccm(&p.key("interface"), spec.interface, interface)?;
-    Ok(PresetPlan {
-        spec: PresetSpec::Pile(Box::new(spec)),
-        settings,
-    })
+    spec.interface = override_rccm(&p.key("interface"), spec.interface, &o.interface)?;
+    Ok(spec)
 }
 
 /// Builds the preset of `plan` (`[preset]` in the error) and makes it a study of `scene`.

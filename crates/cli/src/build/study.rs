@@ -6,9 +6,9 @@
 use super::SceneDim;
 use super::phases::{Phase, TimeFunction};
 use crate::scene::{OutputSpec, PlotSpec, Units};
-use contact_laws::{ContactLaw, Rccm, StandardLaw};
+use contact_laws::{Rccm, StandardLaw};
 use contact_solver::coupling::space::ContactSpace;
-use contact_solver::{Candidate, ContactSimulation, ContactZone};
+use contact_solver::{Candidate, ContactSimulation};
 use fem_core::{Component, Dim, ElasticModel, Idealization, LinearElasticModel, Mesh, Structure};
 use std::collections::BTreeMap;
 
@@ -96,15 +96,11 @@ impl StudyDim<3> for Dim<3> {
 pub struct SupportRt {
     /// Name.
     pub name: Option<String>,
-    /// Nodes.
     pub nodes: Vec<usize>,
-    /// Components.
     pub components: Vec<Component>,
     /// Value.
     pub value: f64,
-    /// Function name.
     pub function: Option<String>,
-    /// Phase mask.
     pub phases: Vec<bool>,
 }
 
@@ -151,7 +147,6 @@ pub enum LoadKind<const D: usize = 2> {
     Nodal(Vec<usize>, [f64; D]),
     /// One force on a tied set, applied at this node of it.
     Resultant(usize, [f64; D]),
-    /// Body force.
     Body([f64; D]),
     /// Self-weight (along −y in 2D, −z in 3D).
     Gravity,
@@ -162,11 +157,8 @@ pub enum LoadKind<const D: usize = 2> {
 pub struct LoadRt<const D: usize = 2> {
     /// Name.
     pub name: Option<String>,
-    /// Kind.
     pub kind: LoadKind<D>,
-    /// Function name.
     pub function: Option<String>,
-    /// Phase mask.
     pub phases: Vec<bool>,
 }
 
@@ -177,11 +169,8 @@ where
 {
     /// The simulation.
     pub sim: ContactSimulation<ElasticModel<D>, StandardLaw, D>,
-    /// Supports.
     pub supports: Vec<SupportRt>,
-    /// Loads.
     pub loads: Vec<LoadRt<D>>,
-    /// Time functions.
     pub functions: BTreeMap<String, TimeFunction>,
     /// Per phase, the laws it sets on zones at its start: `(zone, law)`.
     pub phase_laws: Vec<Vec<(String, StandardLaw)>>,
@@ -199,7 +188,6 @@ pub enum Library {
 pub struct PresetStudy {
     /// `delamination`, `shear` or `pile`.
     pub kind: &'static str,
-    /// The library's scene.
     pub scene: Library,
 }
 
@@ -213,7 +201,6 @@ impl PresetStudy {
     }
 }
 
-/// The body of a study.
 pub enum Body<const D: usize = 2>
 where
     Dim<D>: StudyDim<D>,
@@ -224,30 +211,39 @@ where
     Preset(Box<<Dim<D> as StudyDim<D>>::Preset>),
 }
 
+/// `on_sim!(study, s => expr)`: `expr` with `s` the study's simulation, in both arms (a scene's
+/// has the standard law, a preset's the RCCM law: two types). `D` is the caller's dimension.
+macro_rules! on_sim {
+    ($study:expr, $s:ident => $e:expr) => {
+        match &$study.body {
+            $crate::build::Body::Custom(c) => {
+                let $s = &c.sim;
+                $e
+            }
+            $crate::build::Body::Preset(p) => {
+                let $s = <fem_core::Dim<D> as $crate::build::StudyDim<D>>::preset_sim(p);
+                $e
+            }
+        }
+    };
+}
+pub(crate) use on_sim;
+
 /// A scene ready to run, in 2D or 3D (`[analysis] type = "3d"`).
 pub struct Study<const D: usize = 2>
 where
     Dim<D>: StudyDim<D>,
 {
-    /// Title.
     pub title: String,
-    /// Units.
     pub units: Units,
-    /// The body.
     pub body: Body<D>,
-    /// Phases.
     pub phases: Vec<Phase>,
-    /// Outputs.
     pub output: OutputSpec,
     /// Plots (validated).
     pub plots: Vec<PlotSpec>,
-    /// Zone names.
     pub zone_names: Vec<String>,
-    /// Zone law names.
     pub zone_laws: Vec<String>,
-    /// Zones with adhesion.
     pub adhesive_zones: usize,
-    /// Zones with friction.
     pub friction_zones: usize,
     /// What the scene's checks let pass but the user should know (e.g. contactor nodes held
     /// by a support, left out): printed by `bipo check` and `bipo run`, and in `summary.json`.
@@ -260,51 +256,23 @@ impl<const D: usize> Study<D>
 where
     Dim<D>: StudyDim<D>,
 {
-    /// The candidates.
     pub fn candidates(&self) -> &[Candidate<D>] {
-        match &self.body {
-            Body::Custom(c) => c.sim.candidates(),
-            Body::Preset(p) => Dim::<D>::preset_sim(p).candidates(),
-        }
+        on_sim!(self, s => s.candidates())
     }
 
-    /// The model.
     pub fn model(&self) -> &ElasticModel<D> {
-        match &self.body {
-            Body::Custom(c) => c.sim.structure(),
-            Body::Preset(p) => Dim::<D>::preset_sim(p).structure(),
-        }
+        on_sim!(self, s => s.structure())
     }
 
-    /// Alert distance of each zone.
     pub fn alert_distances(&self) -> Vec<f64> {
-        match &self.body {
-            Body::Custom(c) => c.sim.zones().iter().map(|z| z.alert_distance).collect(),
-            Body::Preset(p) => Dim::<D>::preset_sim(p)
-                .zones()
-                .iter()
-                .map(|z| z.alert_distance)
-                .collect(),
-        }
+        on_sim!(self, s => s.zones().iter().map(|z| z.alert_distance).collect())
     }
 
     /// Each zone's name and contactor nodes.
     pub fn contactors(&self) -> Vec<(String, Vec<usize>)> {
-        fn of<L: ContactLaw, const D: usize>(
-            zones: &[ContactZone<L, D>],
-        ) -> Vec<(String, Vec<usize>)>
-        where
-            Dim<D>: ContactSpace<D>,
-        {
-            zones
-                .iter()
-                .map(|z| (z.name.clone(), z.contactor.clone()))
-                .collect()
-        }
-        match &self.body {
-            Body::Custom(c) => of(c.sim.zones()),
-            Body::Preset(p) => of(Dim::<D>::preset_sim(p).zones()),
-        }
+        on_sim!(self, s => {
+            s.zones().iter().map(|z| (z.name.clone(), z.contactor.clone())).collect()
+        })
     }
 
     /// The laws each phase sets on zones at its start (`[[phases]] laws`; none for a preset),
@@ -316,7 +284,6 @@ where
         }
     }
 
-    /// Total steps.
     pub fn total_steps(&self) -> usize {
         self.phases.iter().map(|p| p.steps).sum()
     }

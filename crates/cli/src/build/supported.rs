@@ -4,7 +4,7 @@
 //! the key that leaves them out; `leave_out` drops them from their zone with a warning naming
 //! them (printed by `bipo check` and `bipo run`, and in `summary.json`'s `warnings`).
 
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::scene::SupportedContactors;
 
 /// Nodes named in full in a message; the rest are counted.
@@ -42,18 +42,16 @@ pub(super) fn resolve(
         match policy.choice {
             SupportedContactors::Refuse => {
                 let cp = policy.path.key("contactor");
-                return Err(CliError::at(
-                    &cp,
-                    format!(
-                        "`{cp}` = \"{}\": {} of its nodes carry a support that holds them along \
+                bail!(
+                    cp,
+                    "`{cp}` = \"{}\": {} of its nodes carry a support that holds them along \
                          the contact normal, so they cannot take part in contact: {list}; set \
                          `{key} = \"leave_out\"` to leave them out of zone `{}` (or remove \
                          those supports)",
-                        policy.contactor,
-                        nodes.len(),
-                        policy.name
-                    ),
-                ));
+                    policy.contactor,
+                    nodes.len(),
+                    policy.name
+                );
             }
             SupportedContactors::LeaveOut => {
                 warnings.push(format!(

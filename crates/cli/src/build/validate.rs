@@ -10,7 +10,7 @@ use super::mesh::{self, MeshPlan};
 use super::model::{self, ModelPlan};
 use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::presets::{self, PresetPlan};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::scene::Scene;
 use crate::spec::Analysis;
 use fem_core::Idealization;
@@ -21,15 +21,12 @@ use std::path::Path;
 pub(super) enum Validated {
     /// A scene described key by key.
     Custom(Box<Plan>),
-    /// A preset.
     Preset(Box<PresetPlan>),
 }
 
 /// A scene described key by key, checked.
 pub(super) struct Plan {
-    /// Time functions by name.
     pub(super) functions: BTreeMap<String, TimeFunction>,
-    /// Phases.
     pub(super) phases: Vec<Phase>,
     /// The mesh to generate or read.
     pub(super) mesh: MeshPlan,
@@ -40,7 +37,7 @@ pub(super) struct Plan {
 }
 
 /// Checks every value of the scene that does not need the mesh, in the order of the file's
-/// sections (so that the first error reported is the first one met, as before the split);
+/// sections (so that the first error reported is the first one met);
 /// `path` is the scene file's (Gmsh files are relative to it).
 pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
     let root = KeyPath::root();
@@ -80,10 +77,10 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
         },
         Analysis::Axisymmetric {} => Idealization::Axisymmetric,
         Analysis::Solid {} => {
-            return Err(CliError::at(
-                &root.key("analysis"),
-                "a 3D scene is built by the 3D builder (internal routing error)",
-            ));
+            bail!(
+                root.key("analysis"),
+                "a 3D scene is built by the 3D builder (internal routing error)"
+            );
         }
     };
     let mesh = mesh::validate(&mp, mesh_spec, Some(idealization), &base_dir)?;

@@ -9,6 +9,7 @@ use contact_solver::coupling::simulation::{ContactSimulation, SimulationSettings
 use contact_solver::coupling::zone::ContactZone;
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::{Algorithm, SolverError};
+use fem_core::Mesh;
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{Component, ElementKind, Idealization, LinearElasticModel, Material, Supports};
 
@@ -120,8 +121,23 @@ pub fn table_settings(algorithm: Algorithm) -> SimulationSettings {
     settings
 }
 
-fn interface_law(p: RccmParams) -> Result<Rccm, SolverError> {
-    Ok(Rccm::new(p)?)
+/// The simulation of a plane-strain layer `[length, height, young, poisson]` whose bottom edge
+/// adheres by `interface` to the rigid line `y = 0` (alert distance `height / 10`).
+fn glued(
+    mesh: Mesh,
+    supports: Supports,
+    [length, height, young, poisson]: [f64; 4],
+    interface: RccmParams,
+    settings: SimulationSettings,
+) -> Result<ContactSimulation<LinearElasticModel, Rccm>, SolverError> {
+    let bottom = mesh.node_set("bottom")?.to_vec();
+    let material = Material::new(young, poisson, 0.0)?;
+    let model =
+        LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, material)], supports)?;
+    let base = RigidLine::new([-length, 0.0], [2.0 * length, 0.0])?;
+    let law = Rccm::new(interface)?;
+    let zone = ContactZone::rigid("interface", bottom, base, law, 0.1 * height);
+    ContactSimulation::new(model, vec![zone], settings)
 }
 
 impl DelaminationSpec {
@@ -135,28 +151,14 @@ impl DelaminationSpec {
         let mut spec = RectangleSpec::new([0.0, self.length], [0.0, self.height], self.nx, self.ny);
         spec.kind = self.kind;
         let mesh = rectangle(&spec)?;
-        let bottom = mesh.node_set("bottom")?.to_vec();
         let left = mesh.node_set("left")?.to_vec();
         let a = mesh.node_set("top_right")?[0];
         let mut supports = Supports::new();
         supports.fix(&left, Component::X);
         supports.prescribe(&[a], Component::Y, 0.0)?;
-        let model = LinearElasticModel::new(
-            mesh,
-            Idealization::PlaneStrain,
-            &[(0, Material::new(self.young, self.poisson, 0.0)?)],
-            supports,
-        )?;
-        let base = RigidLine::new([-self.length, 0.0], [2.0 * self.length, 0.0])?;
-        let zone = ContactZone::rigid(
-            "interface",
-            bottom,
-            base,
-            interface_law(self.interface)?,
-            0.1 * self.height,
-        );
+        let layer = [self.length, self.height, self.young, self.poisson];
         Ok(Scene {
-            simulation: ContactSimulation::new(model, vec![zone], settings)?,
+            simulation: glued(mesh, supports, layer, self.interface, settings)?,
             point_a: a,
             driven: vec![(vec![a], Component::Y, self.lift)],
             steps: self.steps,
@@ -233,29 +235,15 @@ impl ShearSpec {
         let mut spec = RectangleSpec::new([0.0, self.length], [0.0, self.height], self.nx, self.ny);
         spec.kind = self.kind;
         let mesh = rectangle(&spec)?;
-        let bottom = mesh.node_set("bottom")?.to_vec();
         let left = mesh.node_set("left")?.to_vec();
         let top = mesh.node_set("top")?.to_vec();
         let a = mesh.node_set("bottom_left")?[0];
         let mut supports = Supports::new();
         supports.prescribe(&top, Component::Y, 0.0)?;
         supports.prescribe(&left, Component::X, 0.0)?;
-        let model = LinearElasticModel::new(
-            mesh,
-            Idealization::PlaneStrain,
-            &[(0, Material::new(self.young, self.poisson, 0.0)?)],
-            supports,
-        )?;
-        let base = RigidLine::new([-self.length, 0.0], [2.0 * self.length, 0.0])?;
-        let zone = ContactZone::rigid(
-            "interface",
-            bottom,
-            base,
-            interface_law(self.interface)?,
-            0.1 * self.height,
-        );
+        let layer = [self.length, self.height, self.young, self.poisson];
         Ok(Scene {
-            simulation: ContactSimulation::new(model, vec![zone], settings)?,
+            simulation: glued(mesh, supports, layer, self.interface, settings)?,
             point_a: a,
             driven: vec![
                 (top, Component::Y, self.press),

@@ -1,20 +1,17 @@
 //! `[mesh]` as read (one flat table for the four generators: rectangle and pile in 2D, box in
 //! 3D, gmsh in both) and its gradings.
 
-use super::keys::{need, only};
-use crate::error::{CliError, CliResult, KeyPath};
+use super::keys::{need, only, present};
+use crate::error::{CliResult, KeyPath, bail};
 use crate::spec::*;
 use serde::Deserialize;
 
-/// Grading kinds.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum GradingKind {
     /// Equal cells.
     Uniform,
-    /// Geometric.
     Geometric,
-    /// Both ends.
     BothEnds,
 }
 
@@ -32,12 +29,7 @@ impl RawGrading {
     pub fn resolve(&self, p: &KeyPath) -> CliResult<GradingSpec> {
         Ok(match self.kind {
             GradingKind::Uniform => {
-                only(
-                    p,
-                    "a uniform grading",
-                    &[("ratio", self.ratio.is_some())],
-                    &[],
-                )?;
+                only(p, "a uniform grading", &present!(self; ratio), "")?;
                 GradingSpec::Uniform {}
             }
             GradingKind::Geometric => GradingSpec::Geometric {
@@ -65,7 +57,6 @@ pub struct RawLayer {
     region: u32,
 }
 
-/// Mesh generators.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum Generator {
@@ -117,80 +108,19 @@ pub struct RawMesh {
     file: Option<String>,
 }
 
-const RECTANGLE_KEYS: &[&str] = &[
-    "element",
-    "x",
-    "nx",
-    "grading_x",
-    "y",
-    "ny",
-    "grading_y",
-    "region",
-    "y0",
-    "layers",
-];
-const PILE_KEYS: &[&str] = &[
-    "element",
-    "diameter",
-    "length",
-    "width",
-    "depth",
-    "cells_pile_r",
-    "cells_soil_r",
-    "cells_shaft",
-    "cells_below_tip",
-    "grading_pile_r",
-    "grading_soil_r",
-    "grading_shaft",
-    "grading_below_tip",
-    "tip_corner",
-];
-const GMSH_KEYS: &[&str] = &["element", "file"];
-const BOX_KEYS: &[&str] = &[
-    "element",
-    "x",
-    "nx",
-    "grading_x",
-    "y",
-    "ny",
-    "grading_y",
-    "z",
-    "nz",
-    "grading_z",
-];
+const RECTANGLE_KEYS: &str = "element x nx grading_x y ny grading_y region y0 layers";
+const PILE_KEYS: &str = "element diameter length width depth cells_pile_r cells_soil_r cells_shaft \
+                         cells_below_tip grading_pile_r grading_soil_r grading_shaft \
+                         grading_below_tip tip_corner";
+const GMSH_KEYS: &str = "element file";
+const BOX_KEYS: &str = "element x nx grading_x y ny grading_y z nz grading_z";
 
 impl RawMesh {
-    /// The keys present, by name.
     fn present(&self) -> [(&'static str, bool); 27] {
-        [
-            ("element", self.element.is_some()),
-            ("x", self.x.is_some()),
-            ("nx", self.nx.is_some()),
-            ("grading_x", self.grading_x.is_some()),
-            ("y", self.y.is_some()),
-            ("ny", self.ny.is_some()),
-            ("grading_y", self.grading_y.is_some()),
-            ("region", self.region.is_some()),
-            ("y0", self.y0.is_some()),
-            ("layers", self.layers.is_some()),
-            ("diameter", self.diameter.is_some()),
-            ("length", self.length.is_some()),
-            ("width", self.width.is_some()),
-            ("depth", self.depth.is_some()),
-            ("cells_pile_r", self.cells_pile_r.is_some()),
-            ("cells_soil_r", self.cells_soil_r.is_some()),
-            ("cells_shaft", self.cells_shaft.is_some()),
-            ("cells_below_tip", self.cells_below_tip.is_some()),
-            ("grading_pile_r", self.grading_pile_r.is_some()),
-            ("grading_soil_r", self.grading_soil_r.is_some()),
-            ("grading_shaft", self.grading_shaft.is_some()),
-            ("grading_below_tip", self.grading_below_tip.is_some()),
-            ("tip_corner", self.tip_corner.is_some()),
-            ("file", self.file.is_some()),
-            ("z", self.z.is_some()),
-            ("nz", self.nz.is_some()),
-            ("grading_z", self.grading_z.is_some()),
-        ]
+        present!(self; element, x, nx, grading_x, y, ny, grading_y, region, y0, layers, diameter,
+            length, width, depth, cells_pile_r, cells_soil_r, cells_shaft, cells_below_tip,
+            grading_pile_r, grading_soil_r, grading_shaft, grading_below_tip, tip_corner, file, z,
+            nz, grading_z)
     }
 
     /// The mesh spec of a scene of dimension `D`: the generators of the other dimension are
@@ -199,27 +129,23 @@ impl RawMesh {
         let present = self.present();
         let gp = p.key("generator");
         if D == 2 && self.generator == Generator::Box {
-            return Err(CliError::at(
-                &gp,
-                format!(
-                    "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
+            bail!(
+                gp,
+                "`{gp}` = \"box\" builds a 3D mesh: it needs [analysis] type = \"3d\" \
                      (a 2D scene takes rectangle, pile or gmsh)"
-                ),
-            ));
+            );
         }
         if D == 3 && matches!(self.generator, Generator::Rectangle | Generator::Pile) {
-            return Err(CliError::at(
-                &gp,
-                format!(
-                    "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
+            bail!(
+                gp,
+                "`{gp}` = \"{}\" builds a 2D mesh; a 3D scene ([analysis] type = \
                      \"3d\") takes generator = \"box\" or \"gmsh\"",
-                    if self.generator == Generator::Pile {
-                        "pile"
-                    } else {
-                        "rectangle"
-                    }
-                ),
-            ));
+                if self.generator == Generator::Pile {
+                    "pile"
+                } else {
+                    "rectangle"
+                }
+            );
         }
         Ok(match self.generator {
             Generator::Rectangle => {
@@ -260,16 +186,18 @@ impl RawMesh {
             }
             Generator::Pile => {
                 only(p, "the pile generator", &present, PILE_KEYS)?;
-                MeshSpec::Pile {
-                    element: self.element,
-                    diameter: self.diameter,
-                    length: self.length,
-                    width: self.width,
-                    depth: self.depth,
-                    cells_pile_r: self.cells_pile_r,
-                    cells_soil_r: self.cells_soil_r,
-                    cells_shaft: self.cells_shaft,
-                    cells_below_tip: self.cells_below_tip,
+                MeshSpec::Pile(PileMeshSpec {
+                    sizes: PileMeshOverride {
+                        element: self.element,
+                        diameter: self.diameter,
+                        length: self.length,
+                        width: self.width,
+                        depth: self.depth,
+                        cells_pile_r: self.cells_pile_r,
+                        cells_soil_r: self.cells_soil_r,
+                        cells_shaft: self.cells_shaft,
+                        cells_below_tip: self.cells_below_tip,
+                    },
                     grading_pile_r: grading(&p.key("grading_pile_r"), &self.grading_pile_r)?,
                     grading_soil_r: grading(&p.key("grading_soil_r"), &self.grading_soil_r)?,
                     grading_shaft: grading(&p.key("grading_shaft"), &self.grading_shaft)?,
@@ -278,7 +206,7 @@ impl RawMesh {
                         &self.grading_below_tip,
                     )?,
                     tip_corner: self.tip_corner,
-                }
+                })
             }
             Generator::Gmsh => {
                 only(p, "a gmsh mesh", &present, GMSH_KEYS)?;

@@ -19,20 +19,16 @@ mod preset;
 pub use mesh::RawMesh;
 pub use preset::RawPreset;
 
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliResult, KeyPath, bail, err};
 use crate::spec::*;
-use keys::{need, only};
+use keys::{need, only, present};
 use serde::Deserialize;
 
-/// Analysis types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum AnalysisKind {
-    /// Plane strain.
     PlaneStrain,
-    /// Plane stress.
     PlaneStress,
-    /// Axisymmetric.
     Axisymmetric,
     /// A 3D solid of tetrahedra (`type = "3d"`, or `"solid"`).
     #[serde(rename = "3d", alias = "solid")]
@@ -63,14 +59,14 @@ impl RawAnalysis {
 
     /// The analysis.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<Analysis> {
-        let present = [("thickness", self.thickness.is_some())];
+        let present = present!(self; thickness);
         Ok(match self.kind {
             AnalysisKind::PlaneStrain => {
                 only(
                     p,
                     "a plane strain analysis (per unit thickness)",
                     &present,
-                    &[],
+                    "",
                 )?;
                 Analysis::PlaneStrain {}
             }
@@ -78,20 +74,18 @@ impl RawAnalysis {
                 thickness: need(p, &self.thickness, "thickness", "a plane stress analysis")?,
             },
             AnalysisKind::Axisymmetric => {
-                only(p, "an axisymmetric analysis (per radian)", &present, &[])?;
+                only(p, "an axisymmetric analysis (per radian)", &present, "")?;
                 Analysis::Axisymmetric {}
             }
             AnalysisKind::Solid => {
-                only(p, "a 3D analysis", &present, &[])?;
+                only(p, "a 3D analysis", &present, "")?;
                 if self.floating == Some(true) {
                     let f = p.key("floating");
-                    return Err(CliError::at(
-                        &f,
-                        format!(
-                            "`{f}` = true: floating bodies are not supported in 3D yet (hold \
+                    bail!(
+                        f,
+                        "`{f}` = true: floating bodies are not supported in 3D yet (hold \
                              the body with supports)"
-                        ),
-                    ));
+                    );
                 }
                 Analysis::Solid {}
             }
@@ -101,15 +95,12 @@ impl RawAnalysis {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Initial stress types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum InitialStressKind {
-    /// Geostatic.
     Geostatic,
 }
 
-/// `[initial_stress]`.
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(deny_unknown_fields)]
 pub struct RawInitialStress {
@@ -136,17 +127,12 @@ impl RawInitialStress {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Load types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum LoadKindSpec {
-    /// Traction.
     Traction,
-    /// Nodal force.
     NodalForce,
-    /// Body force.
     BodyForce,
-    /// Gravity.
     Gravity,
     /// A resultant force on a tied node set.
     Resultant,
@@ -186,13 +172,11 @@ pub fn vector<const D: usize>(p: &KeyPath, c: &Coords) -> CliResult<[f64; D]> {
         } else {
             " (a 3D scene)"
         };
-        CliError::at(
+        err!(
             p,
-            format!(
-                "`{p}`: invalid length {}, expected {}{hint}",
-                c.0.len(),
-                numbers::<D>()
-            ),
+            "`{p}`: invalid length {}, expected {}{hint}",
+            c.0.len(),
+            numbers::<D>()
         )
     })
 }
@@ -206,10 +190,7 @@ fn load_vector<const D: usize>(
     let vp = p.key("value");
     match need(p, v, "value", what)? {
         LoadValue::Vector(c) => vector(&vp, &c),
-        LoadValue::Scalar(x) => Err(CliError::at(
-            &vp,
-            format!("`{vp}` = {x:?}: {what} takes {}", numbers::<D>()),
-        )),
+        LoadValue::Scalar(x) => bail!(vp, "`{vp}` = {x:?}: {what} takes {}", numbers::<D>()),
     }
 }
 
@@ -225,11 +206,7 @@ impl RawLoad {
 
     /// The load of a scene of dimension `D` (a pressure is a load of a 3D scene).
     pub fn resolve<const D: usize>(&self, p: &KeyPath) -> CliResult<LoadSpec<D>> {
-        let present = [
-            ("set", self.set.is_some()),
-            ("value", self.value.is_some()),
-            ("function", self.function.is_some()),
-        ];
+        let present = present!(self; set, value, function);
         let boundary = if D == 2 { "an edge set" } else { "a face set" };
         Ok(match self.kind {
             LoadKindSpec::Traction => LoadSpec::Traction {
@@ -238,13 +215,11 @@ impl RawLoad {
             },
             LoadKindSpec::Pressure if D == 2 => {
                 let tp = p.key("type");
-                return Err(CliError::at(
-                    &tp,
-                    format!(
-                        "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
+                bail!(
+                    tp,
+                    "`{tp}` = \"pressure\" is a load of a 3D scene ([analysis] type = \
                          \"3d\"); in 2D give a traction [t_x, t_y] on an edge set"
-                    ),
-                ));
+                );
             }
             LoadKindSpec::Pressure => {
                 let what = "a pressure (a face set)";
@@ -254,13 +229,11 @@ impl RawLoad {
                     value: match need(p, &self.value, "value", what)? {
                         LoadValue::Scalar(x) => x,
                         LoadValue::Vector(_) => {
-                            return Err(CliError::at(
-                                &vp,
-                                format!(
-                                    "`{vp}`: a pressure is one number (positive pushes into \
+                            bail!(
+                                vp,
+                                "`{vp}`: a pressure is one number (positive pushes into \
                                      the body); for a vector give type = \"traction\""
-                                ),
-                            ));
+                            );
                         }
                     },
                 }
@@ -274,18 +247,15 @@ impl RawLoad {
                 value: load_vector(p, &self.value, "a resultant force")?,
             },
             LoadKindSpec::BodyForce => {
-                only(p, "a body force", &present, &["value", "function"])?;
+                only(p, "a body force", &present, "value function")?;
                 LoadSpec::BodyForce {
                     value: load_vector(p, &self.value, "a body force")?,
                 }
             }
             LoadKindSpec::Gravity => {
-                only(
-                    p,
-                    "a gravity load (the self-weight is applied in full: it has no function)",
-                    &present,
-                    &[],
-                )?;
+                let what =
+                    "a gravity load (the self-weight is applied in full: it has no function)";
+                only(p, what, &present, "")?;
                 LoadSpec::Gravity
             }
         })
@@ -294,17 +264,12 @@ impl RawLoad {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Target types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum TargetKind {
-    /// LINE.
     Line,
-    /// ARC.
     Arc,
-    /// Node pairs.
     NodePairs,
-    /// Node-to-segment.
     Segments,
     /// A rigid plane (3D).
     Plane,
@@ -354,19 +319,7 @@ pub struct RawTarget {
 impl RawTarget {
     /// Which keys the table has (for the checks of which keys a type takes).
     fn present(&self) -> [(&'static str, bool); 11] {
-        [
-            ("a", self.a.is_some()),
-            ("b", self.b.is_some()),
-            ("center", self.center.is_some()),
-            ("radius", self.radius.is_some()),
-            ("start_angle", self.start_angle.is_some()),
-            ("sweep", self.sweep.is_some()),
-            ("side", self.side.is_some()),
-            ("set", self.set.is_some()),
-            ("normal", self.normal.is_some()),
-            ("point", self.point.is_some()),
-            ("axis", self.axis.is_some()),
-        ]
+        present!(self; a, b, center, radius, start_angle, sweep, side, set, normal, point, axis)
     }
 
     /// The target of a scene of dimension `D`: the types of the other dimension are refused
@@ -377,28 +330,24 @@ impl RawTarget {
         let kind = self.kind.name();
         if D == 2 && matches!(self.kind, Plane | Sphere | Cylinder | Faces) {
             let tp = p.key("type");
-            return Err(CliError::at(
-                &tp,
-                format!(
-                    "`{tp}` = \"{kind}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
+            bail!(
+                tp,
+                "`{tp}` = \"{kind}\" is a target of a 3D scene ([analysis] type = \"3d\"); \
                      a 2D scene takes line, arc, node_pairs or segments"
-                ),
-            ));
+            );
         }
         if D == 3 && matches!(self.kind, Line | Arc | Segments) {
             let tp = p.key("type");
-            return Err(CliError::at(
-                &tp,
-                format!(
-                    "`{tp}` = \"{kind}\" is a target of a 2D scene; a 3D scene takes plane, \
+            bail!(
+                tp,
+                "`{tp}` = \"{kind}\" is a target of a 2D scene; a 3D scene takes plane, \
                      sphere, cylinder, node_pairs or faces"
-                ),
-            ));
+            );
         }
         let side = self.side.unwrap_or(ArcSideSpec::Outside);
         Ok(match self.kind {
             Line => {
-                only(p, "a LINE target", &present, &["a", "b"])?;
+                only(p, "a LINE target", &present, "a b")?;
                 TargetSpec::Line {
                     a: need(p, &self.a, "a", "a LINE target")?,
                     b: need(p, &self.b, "b", "a LINE target")?,
@@ -406,12 +355,7 @@ impl RawTarget {
             }
             Arc => {
                 let what = "an ARC target";
-                only(
-                    p,
-                    what,
-                    &present,
-                    &["center", "radius", "start_angle", "sweep", "side"],
-                )?;
+                only(p, what, &present, "center radius start_angle sweep side")?;
                 let center = need(p, &self.center, "center", what)?;
                 TargetSpec::Arc {
                     center: Pair(vector(&p.key("center"), &center)?),
@@ -423,7 +367,7 @@ impl RawTarget {
             }
             Plane => {
                 let what = "a plane target";
-                only(p, what, &present, &["point", "normal"])?;
+                only(p, what, &present, "point normal")?;
                 TargetSpec::Plane {
                     point: need(p, &self.point, "point", what)?,
                     normal: need(p, &self.normal, "normal", what)?,
@@ -431,7 +375,7 @@ impl RawTarget {
             }
             Sphere => {
                 let what = "a sphere target";
-                only(p, what, &present, &["center", "radius", "side"])?;
+                only(p, what, &present, "center radius side")?;
                 TargetSpec::Sphere {
                     center: need(p, &self.center, "center", what)?,
                     radius: need(p, &self.radius, "radius", what)?,
@@ -440,7 +384,7 @@ impl RawTarget {
             }
             Cylinder => {
                 let what = "a cylinder target";
-                only(p, what, &present, &["point", "axis", "radius", "side"])?;
+                only(p, what, &present, "point axis radius side")?;
                 TargetSpec::Cylinder {
                     point: need(p, &self.point, "point", what)?,
                     axis: need(p, &self.axis, "axis", what)?,
@@ -450,7 +394,7 @@ impl RawTarget {
             }
             NodePairs => {
                 let what = "a node_pairs target";
-                only(p, what, &present, &["set", "normal"])?;
+                only(p, what, &present, "set normal")?;
                 TargetSpec::NodePairs {
                     set: need(p, &self.set, "set", what)?,
                     normal: self.normal.clone(),
@@ -458,7 +402,7 @@ impl RawTarget {
             }
             Segments | Faces => {
                 let what = format!("a {kind} target");
-                only(p, &what, &present, &["set"])?;
+                only(p, &what, &present, "set")?;
                 TargetSpec::Surface {
                     set: need(p, &self.set, "set", &what)?,
                 }
@@ -469,15 +413,11 @@ impl RawTarget {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Law types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum LawKind {
-    /// Signorini.
     Signorini,
-    /// Coulomb.
     Coulomb,
-    /// RCCM.
     Rccm,
 }
 
@@ -501,24 +441,14 @@ pub struct RawLaw {
 impl RawLaw {
     /// The law.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<LawSpec> {
-        let present = [
-            ("mu", self.mu.is_some()),
-            ("c_n", self.c_n.is_some()),
-            ("c_t", self.c_t.is_some()),
-            ("w", self.w.is_some()),
-            ("alpha", self.alpha.is_some()),
-            ("m", self.m.is_some()),
-            ("beta_0", self.beta_0.is_some()),
-            ("scheme", self.scheme.is_some()),
-            ("theta", self.theta.is_some()),
-        ];
+        let present = present!(self; mu, c_n, c_t, w, alpha, m, beta_0, scheme, theta);
         Ok(match self.kind {
             LawKind::Signorini => {
-                only(p, "the signorini law (frictionless)", &present, &[])?;
+                only(p, "the signorini law (frictionless)", &present, "")?;
                 LawSpec::Signorini {}
             }
             LawKind::Coulomb => {
-                only(p, "the coulomb law", &present, &["mu"])?;
+                only(p, "the coulomb law", &present, "mu")?;
                 LawSpec::Coulomb {
                     mu: need(p, &self.mu, "mu", "the coulomb law")?,
                 }

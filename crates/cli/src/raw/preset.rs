@@ -1,11 +1,10 @@
 //! `[preset]` as read (one flat table for the three presets) and its `installation`.
 
-use super::keys::{need, only};
+use super::keys::{need, only, present};
 use crate::error::{CliResult, KeyPath};
 use crate::spec::*;
 use serde::Deserialize;
 
-/// Preset kinds.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum PresetKind {
@@ -17,15 +16,11 @@ pub enum PresetKind {
     Pile,
 }
 
-/// Installation types.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum InstallationKind {
-    /// None.
     None,
-    /// Radial displacement.
     RadialDisplacement,
-    /// Normal force ratio.
     NormalForceRatio,
 }
 
@@ -74,109 +69,59 @@ pub struct RawPreset {
 }
 
 impl RawPreset {
+    fn plate(&self) -> PlateOverride {
+        PlateOverride {
+            length: self.length,
+            height: self.height,
+            young: self.young,
+            poisson: self.poisson,
+            nx: self.nx,
+            ny: self.ny,
+            element: self.element,
+            duration: self.duration,
+            steps: self.steps,
+            interface: self.interface,
+        }
+    }
+
     /// The preset.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<Preset> {
-        let present = [
-            ("length", self.length.is_some()),
-            ("height", self.height.is_some()),
-            ("young", self.young.is_some()),
-            ("poisson", self.poisson.is_some()),
-            ("nx", self.nx.is_some()),
-            ("ny", self.ny.is_some()),
-            ("element", self.element.is_some()),
-            ("lift", self.lift.is_some()),
-            ("press", self.press.is_some()),
-            ("push", self.push.is_some()),
-            ("duration", self.duration.is_some()),
-            ("steps", self.steps.is_some()),
-            ("interface", self.interface.is_some()),
-            ("site", self.site.is_some()),
-            ("coulomb", self.coulomb.is_some()),
-            ("pile_young", self.pile_young.is_some()),
-            ("pile_poisson", self.pile_poisson.is_some()),
-            ("pile_unit_weight", self.pile_unit_weight.is_some()),
-            ("soil_young", self.soil_young.is_some()),
-            ("soil_poisson", self.soil_poisson.is_some()),
-            ("soil_unit_weight", self.soil_unit_weight.is_some()),
-            ("k0", self.k0.is_some()),
-            ("installation", self.installation.is_some()),
-            ("head_displacement", self.head_displacement.is_some()),
-            ("head_force", self.head_force.is_some()),
-            ("alert_distance", self.alert_distance.is_some()),
-            ("mesh", self.mesh.is_some()),
-        ];
-        const COMMON: &[&str] = &[
-            "length",
-            "height",
-            "young",
-            "poisson",
-            "nx",
-            "ny",
-            "element",
-            "duration",
-            "steps",
-            "interface",
-        ];
+        let present = present!(self; length, height, young, poisson, nx, ny, element, lift, press,
+            push, duration, steps, interface, site, coulomb, pile_young, pile_poisson,
+            pile_unit_weight, soil_young, soil_poisson, soil_unit_weight, k0, installation,
+            head_displacement, head_force, alert_distance, mesh);
+        const COMMON: &str = "length height young poisson nx ny element duration steps interface";
         Ok(match self.kind {
             PresetKind::Delamination => {
-                let keys: Vec<&str> = COMMON.iter().copied().chain(["lift"]).collect();
-                only(p, "the delamination preset", &present, &keys)?;
+                only(
+                    p,
+                    "the delamination preset",
+                    &present,
+                    &format!("{COMMON} lift"),
+                )?;
                 Preset::Delamination {
-                    length: self.length,
-                    height: self.height,
-                    young: self.young,
-                    poisson: self.poisson,
-                    nx: self.nx,
-                    ny: self.ny,
-                    element: self.element,
+                    plate: self.plate(),
                     lift: self.lift,
-                    duration: self.duration,
-                    steps: self.steps,
-                    interface: self.interface,
                 }
             }
             PresetKind::Shear => {
-                let keys: Vec<&str> = COMMON.iter().copied().chain(["press", "push"]).collect();
-                only(p, "the shear preset", &present, &keys)?;
+                only(
+                    p,
+                    "the shear preset",
+                    &present,
+                    &format!("{COMMON} press push"),
+                )?;
                 Preset::Shear {
-                    length: self.length,
-                    height: self.height,
-                    young: self.young,
-                    poisson: self.poisson,
-                    nx: self.nx,
-                    ny: self.ny,
-                    element: self.element,
+                    plate: self.plate(),
                     press: self.press,
                     push: self.push,
-                    duration: self.duration,
-                    steps: self.steps,
-                    interface: self.interface,
                 }
             }
             PresetKind::Pile => {
-                only(
-                    p,
-                    "the pile preset",
-                    &present,
-                    &[
-                        "site",
-                        "coulomb",
-                        "pile_young",
-                        "pile_poisson",
-                        "pile_unit_weight",
-                        "soil_young",
-                        "soil_poisson",
-                        "soil_unit_weight",
-                        "k0",
-                        "installation",
-                        "head_displacement",
-                        "head_force",
-                        "steps",
-                        "alert_distance",
-                        "interface",
-                        "mesh",
-                    ],
-                )?;
+                let keys = "site coulomb pile_young pile_poisson pile_unit_weight soil_young \
+                            soil_poisson soil_unit_weight k0 installation head_displacement \
+                            head_force steps alert_distance interface mesh";
+                only(p, "the pile preset", &present, keys)?;
                 let installation = match self.installation {
                     None => None,
                     Some(i) => {
@@ -184,12 +129,7 @@ impl RawPreset {
                         let what = "this installation";
                         Some(match i.kind {
                             InstallationKind::None => {
-                                only(
-                                    &ip,
-                                    "installation \"none\"",
-                                    &[("value", i.value.is_some())],
-                                    &[],
-                                )?;
+                                only(&ip, "installation \"none\"", &present!(i; value), "")?;
                                 InstallationSpec::None {}
                             }
                             InstallationKind::RadialDisplacement => {
@@ -205,7 +145,7 @@ impl RawPreset {
                         })
                     }
                 };
-                Preset::Pile {
+                Preset::Pile(PileOverride {
                     site: self.site,
                     coulomb: self.coulomb.unwrap_or(false),
                     pile_young: self.pile_young,
@@ -222,7 +162,7 @@ impl RawPreset {
                     alert_distance: self.alert_distance,
                     interface: self.interface,
                     mesh: self.mesh,
-                }
+                })
             }
         })
     }

@@ -28,9 +28,7 @@ pub(crate) struct StepRow<'a> {
     pub(super) step: usize,
     /// Its phase's name.
     pub(super) phase: &'a str,
-    /// Its time.
     pub(super) time: f64,
-    /// Its wall time.
     pub(super) wall_time_s: f64,
     /// Numeric factorisations of this step (K refactored, and the active set's).
     pub(super) factorizations: usize,

@@ -43,9 +43,7 @@ where
 /// Quantities of the pile preset at the last step.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Extras {
-    /// Load on the pile head.
     pub(super) head_load: Option<f64>,
-    /// Displacement of the pile head.
     pub(super) head_displacement: Option<f64>,
 }
 

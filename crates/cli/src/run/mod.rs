@@ -26,7 +26,7 @@ mod vtk;
 
 pub use summary::{Peak, StepTotals, Summary};
 
-use crate::build::{self, Body, Phase, Study, StudyDim};
+use crate::build::{self, Body, Phase, Study, StudyDim, on_sim};
 use crate::error::{CliError, CliResult};
 use dim::{RunDim, StepRow};
 use driver::{CustomDriver, Driver, PresetDriver};
@@ -35,9 +35,8 @@ use progress::Progress;
 use recorder::Recorder;
 use std::path::PathBuf;
 use std::time::Instant;
-use summary::{BTreeUnits, PhaseSummary, Stages, facts, since, status};
+use summary::{PhaseSummary, Stages, facts, since, status};
 
-/// Options of `bipo run`.
 pub struct RunOptions {
     /// Output directory.
     pub out_dir: PathBuf,
@@ -89,10 +88,7 @@ where
     let mut recorder = Recorder::new(&study, &opts.out_dir)?;
     let start = Instant::now();
     let total = study.total_steps();
-    let at_start = match &study.body {
-        Body::Custom(c) => c.sim.counters(),
-        Body::Preset(p) => Dim::<D>::preset_sim(p).counters(),
-    };
+    let at_start = on_sim!(study, s => s.counters());
     let run = (&study.phases[..], total, opts);
     let (phases, error, totals) = match &mut study.body {
         Body::Custom(c) => drive(&mut CustomDriver::new(c), run, &mut recorder),
@@ -120,20 +116,14 @@ where
         z.law = build::final_law(&laws, &z.law);
         z.laws = laws;
     }
-    let (counters, time, facts) = match &study.body {
-        Body::Custom(c) => (c.sim.counters(), c.sim.time(), facts(&c.sim)),
-        Body::Preset(p) => {
-            let sim = Dim::<D>::preset_sim(p);
-            (sim.counters(), sim.time(), facts(sim))
-        }
-    };
+    let (counters, time, facts) = on_sim!(study, s => (s.counters(), s.time(), facts(s)));
     files.insert(0, "summary.json".into());
     let counters = since(counters, at_start);
     let summary = Summary {
         bipo_version: env!("CARGO_PKG_VERSION"),
         scene: opts.scene_file.display().to_string(),
         title: study.title.clone(),
-        units: BTreeUnits::of(&study.units),
+        units: study.units.clone(),
         status: status(error.as_ref()),
         error: error.as_ref().map(|e| e.message.clone()),
         steps: steps_done,

@@ -114,7 +114,6 @@ impl Plots {
             .any(|c| c.spec.quantity.starts_with("reaction"))
     }
 
-    /// Steps recorded.
     pub(super) fn steps(&self) -> usize {
         self.x_time.len()
     }
@@ -186,11 +185,11 @@ impl Plots {
             files.push("curves.csv".into());
             for (i, p) in plots.iter().enumerate() {
                 let x_curve = self.curves.iter().find(|c| c.plot == i && c.is_x);
-                let xs = match (x_curve, p.x) {
-                    (Some(c), _) => &c.values,
-                    (None, XAxis::Time) => &self.x_time,
-                    (None, XAxis::Step) => &self.x_step,
-                    (None, XAxis::LoadFactor) => &self.x_load,
+                let (xs, x_label) = match (x_curve, p.x) {
+                    (Some(c), _) => (&c.values, c.label.as_str()),
+                    (None, XAxis::Time) => (&self.x_time, "time"),
+                    (None, XAxis::Step) => (&self.x_step, "step"),
+                    (None, XAxis::LoadFactor) => (&self.x_load, "load factor"),
                 };
                 let series: Vec<(&str, &[f64])> = self
                     .curves
@@ -199,12 +198,6 @@ impl Plots {
                     .map(|c| (c.label.as_str(), c.values.as_slice()))
                     .collect();
                 let path = dir.join(&p.file);
-                let x_label = match (x_curve, p.x) {
-                    (Some(c), _) => c.label.as_str(),
-                    (None, XAxis::Time) => "time",
-                    (None, XAxis::Step) => "step",
-                    (None, XAxis::LoadFactor) => "load factor",
-                };
                 plot::write_svg(
                     &path,
                     p.title.as_deref().unwrap_or(&p.file),
@@ -224,14 +217,9 @@ impl Plots {
                     last: c.values.last().copied(),
                 };
                 for (i, &v) in c.values.iter().enumerate() {
-                    keep(&mut s.max, v, self.x_step[i] as usize, self.x_time[i], true);
-                    keep(
-                        &mut s.min,
-                        v,
-                        self.x_step[i] as usize,
-                        self.x_time[i],
-                        false,
-                    );
+                    let (step, t) = (self.x_step[i] as usize, self.x_time[i]);
+                    keep(&mut s.max, v, step, t, true);
+                    keep(&mut s.min, v, step, t, false);
                 }
                 summaries.push(s);
             }
@@ -250,7 +238,7 @@ where
     Dim<D>: ContactSpace<D>,
 {
     let q = c.spec.quantity.as_str();
-    let in_zone = |r: &&ContactRecord<D>| c.zone.is_none_or(|z| r.zone == z);
+    let in_zone = || (res.contacts.iter()).filter(|r| c.zone.is_none_or(|z| r.zone == z));
     let rep = &res.report;
     match q {
         "contact_iterations" => rep.contact_iterations as f64,
@@ -259,31 +247,11 @@ where
         "active_contacts" => rep.closed_contacts as f64,
         "candidates" => rep.active_contacts as f64,
         "residual" => rep.residual,
-        "force_n" => res
-            .contacts
-            .iter()
-            .filter(in_zone)
-            .map(|r| r.reaction()[0])
-            .sum(),
-        "force_t" => res
-            .contacts
-            .iter()
-            .filter(in_zone)
-            .map(|r| r.reaction()[1])
-            .sum(),
-        "closed" => res
-            .contacts
-            .iter()
-            .filter(in_zone)
-            .filter(|r| r.status.is_closed())
-            .count() as f64,
+        "force_n" => in_zone().map(|r| r.reaction()[0]).sum(),
+        "force_t" => in_zone().map(|r| r.reaction()[1]).sum(),
+        "closed" => in_zone().filter(|r| r.status.is_closed()).count() as f64,
         "beta_mean" | "beta_min" => {
-            let b: Vec<f64> = res
-                .contacts
-                .iter()
-                .filter(in_zone)
-                .map(|r| r.beta)
-                .collect();
+            let b: Vec<f64> = in_zone().map(|r| r.beta).collect();
             if b.is_empty() {
                 f64::NAN
             } else if q == "beta_min" {

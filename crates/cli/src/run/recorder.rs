@@ -90,7 +90,6 @@ where
         })
     }
 
-    /// Steps recorded.
     pub(super) fn steps(&self) -> usize {
         self.plots.steps()
     }

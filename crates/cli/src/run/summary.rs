@@ -23,7 +23,6 @@ pub struct Peak {
     pub value: f64,
     /// Global step.
     pub step: usize,
-    /// Time.
     pub time: f64,
 }
 
@@ -48,7 +47,6 @@ pub struct ZoneSummary<const D: usize = 2> {
     /// The law in force at the end of the run (`[[phases]] laws` may have changed it; `laws`
     /// lists them).
     pub law: String,
-    /// Candidates.
     pub candidates: usize,
     /// Largest Σ r_n (compression).
     pub max_force_n: Option<Peak>,
@@ -76,16 +74,12 @@ pub struct ZoneSummary<const D: usize = 2> {
     pub laws: Vec<PhaseLaw>,
 }
 
-/// Status counts.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct StatusCount {
     /// Not in the reduced problem.
     pub inactive: usize,
-    /// Open.
     pub open: usize,
-    /// Stick.
     pub stick: usize,
-    /// Slip.
     pub slip: usize,
     /// Closed under a frictionless law (neither sticking nor slipping).
     pub closed: usize,
@@ -121,7 +115,6 @@ impl<const D: usize> Serialize for ZoneSummary<D> {
 /// solver steps, which the library's [`Counters`] count).
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct StepTotals {
-    /// Steps done.
     pub steps: usize,
     /// Contact (solver) iterations.
     pub contact_iterations: usize,
@@ -164,17 +157,13 @@ impl StepTotals {
 pub struct PhaseSummary<const D: usize = 2> {
     /// Name.
     pub name: String,
-    /// Steps.
     pub steps: usize,
-    /// Start time.
     pub t_start: f64,
-    /// End time.
     pub t_end: f64,
     /// The library's counters over the phase.
     pub counters: Counters,
     /// The phase's steps' reports summed.
     pub totals: StepTotals,
-    /// Wall time.
     pub wall_time_s: f64,
 }
 
@@ -218,7 +207,6 @@ pub struct Stages {
     pub flexibility_builds: usize,
     /// Refactorisations of K after the first (stiffness changes).
     pub stiffness_changes: usize,
-    /// Contact iterations.
     pub contact_iterations: usize,
     /// Steps needing more than one penetration-check pass.
     pub steps_with_detection_passes: usize,
@@ -227,9 +215,7 @@ pub struct Stages {
 /// A curve's extremes.
 #[derive(Clone, Debug, Serialize)]
 pub struct CurveSummary {
-    /// Plot file.
     pub plot: String,
-    /// Label.
     pub label: String,
     /// Minimum.
     pub min: Option<Peak>,
@@ -239,17 +225,12 @@ pub struct CurveSummary {
     pub last: Option<f64>,
 }
 
-/// `summary.json`.
 #[derive(Clone, Debug)]
 pub struct Summary<const D: usize = 2> {
-    /// `bipo` version.
     pub bipo_version: &'static str,
-    /// Scene file.
     pub scene: String,
-    /// Title.
     pub title: String,
-    /// Units note.
-    pub units: BTreeUnits,
+    pub units: Units,
     /// `completed` or `failed`.
     pub status: String,
     /// The error when failed.
@@ -257,11 +238,8 @@ pub struct Summary<const D: usize = 2> {
     /// Steps of the scene done (a preset's step may run several solver steps: see
     /// `counters.steps`).
     pub steps: usize,
-    /// Final time.
     pub time: f64,
-    /// Wall time of the run.
     pub wall_time_s: f64,
-    /// Mesh facts.
     pub mesh: MeshFacts,
     /// The library's counters of the work done by this run (`contact_solver::Counters`).
     pub counters: Counters,
@@ -270,13 +248,9 @@ pub struct Summary<const D: usize = 2> {
     /// The sum of the support reactions at the last step (global axes), where the run keeps
     /// it (3D: `steps.csv` has it per step).
     pub final_reaction: Option<[f64; D]>,
-    /// Stages.
     pub stages: Stages,
-    /// Phases.
     pub phases: Vec<PhaseSummary<D>>,
-    /// Zones.
     pub zones: Vec<ZoneSummary<D>>,
-    /// Plotted curves.
     pub curves: Vec<CurveSummary>,
     /// Files written (relative to the output directory).
     pub files: Vec<String>,
@@ -288,7 +262,6 @@ pub struct Summary<const D: usize = 2> {
 }
 
 impl<const D: usize> Summary<D> {
-    /// Contact iterations of the phases done.
     pub fn phase_contact_iterations(&self) -> usize {
         self.phases
             .iter()
@@ -349,31 +322,6 @@ impl<const D: usize> Serialize for Summary<D> {
     }
 }
 
-/// Units note.
-#[derive(Clone, Debug, Serialize, Default)]
-pub struct BTreeUnits {
-    /// Length.
-    pub length: Option<String>,
-    /// Force.
-    pub force: Option<String>,
-    /// Time.
-    pub time: Option<String>,
-    /// Stress.
-    pub stress: Option<String>,
-}
-
-impl BTreeUnits {
-    /// The scene's `[units]`.
-    pub(super) fn of(u: &Units) -> Self {
-        Self {
-            length: u.length.clone(),
-            force: u.force.clone(),
-            time: u.time.clone(),
-            stress: u.stress.clone(),
-        }
-    }
-}
-
 /// A run's status: "failed" when it stopped on `error`, else "completed".
 pub(super) fn status(error: Option<&CliError>) -> String {
     if error.is_some() {
@@ -384,16 +332,12 @@ pub(super) fn status(error: Option<&CliError>) -> String {
     .into()
 }
 
-/// Mesh facts.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct MeshFacts {
-    /// Nodes.
     pub nodes: usize,
-    /// Elements.
     pub elements: usize,
     /// Free dofs at the start.
     pub free_dofs: usize,
-    /// Contact candidates.
     pub candidates: usize,
 }
 

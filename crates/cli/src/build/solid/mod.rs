@@ -1,24 +1,14 @@
-//! A 3D scene (`[analysis] type = "3d"`): validated and built into a [`Study<3>`], a
-//! [`ContactSimulation`](contact_solver::ContactSimulation) of an
-//! [`ElasticModel<3>`](fem_core::ElasticModel) with its supports, loads, time functions and
-//! phases.
-//!
-//! The passes are those of the 2D scene ([`super::validate`], then the build): what does not
-//! depend on the dimension is the 2D code (time functions, phases, materials, supports' values
-//! and names, the law of a zone, `[solver]`'s local keys, `[output]`); the model (loads with
-//! three components, pressures on face sets) is built by the one generic
-//! [`super::model::build`], the mesh, the zones and the plots by the generic [`mesh`],
-//! [`contact`] and [`super::outputs::check_plots`] (what 3D reads differently, the box
-//! generator and Gmsh volume files, rigid planes, spheres and cylinders, is
-//! [`super::SceneDim`]'s). What 3D scenes do not have yet (floating bodies, shaft profiles) is
-//! refused with its key path.
+//! A 3D scene (`[analysis] type = "3d"`) validated and built into a [`Study<3>`] by the passes
+//! of the 2D scene ([`super::validate`], then the build), all generic over the dimension (what 3D
+//! reads differently is [`super::SceneDim`]'s). What 3D scenes do not have yet (floating bodies,
+//! shaft profiles) is refused with its key path.
 
 use super::Loaded;
 use super::outputs::{check_file_count, check_output_table, check_plots};
 use super::phases::{phases_of, time_functions};
 use super::study::Study;
 use super::{contact, mesh, model};
-use crate::error::{CliError, CliResult, KeyPath};
+use crate::error::{CliError, CliResult, KeyPath, bail};
 use crate::scene::Scene;
 use std::path::Path;
 
@@ -27,10 +17,10 @@ fn refuse_unsupported(scene: &Scene) -> CliResult<()> {
     let root = KeyPath::root();
     if scene.output.profile_steps.is_some() {
         let p = root.key("output").key("profile_steps");
-        return Err(CliError::at(
-            &p,
-            format!("`{p}`: shaft profiles are written by the 2D pile preset only"),
-        ));
+        bail!(
+            p,
+            "`{p}`: shaft profiles are written by the 2D pile preset only"
+        );
     }
     Ok(())
 }

@@ -136,8 +136,6 @@ fn unit_installation_forces(
     supports: &Supports,
     shaft_soil: &[usize],
 ) -> Result<Vec<f64>, SolverError> {
-    // Installation forces for a unit δ: the soil alone (the pile is detached and held at its
-    // head, so K stays definite), u_r = δ₁ on the soil's interface nodes.
     let unit_delta = 1e-3;
     let mut inst_supports = supports.clone();
     inst_supports.prescribe(shaft_soil, Component::X, unit_delta)?;
