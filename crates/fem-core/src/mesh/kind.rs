@@ -86,7 +86,14 @@ impl ElementKind {
     /// hexahedra).
     #[inline]
     pub fn dimension(self) -> usize {
-        if (self as usize) < PLANE.len() { 2 } else { 3 }
+        match self {
+            ElementKind::Tri3
+            | ElementKind::Tri6
+            | ElementKind::Quad4
+            | ElementKind::Quad8
+            | ElementKind::Quad9 => 2,
+            ElementKind::Tet4 | ElementKind::Tet10 | ElementKind::Hex8 | ElementKind::Hex20 => 3,
+        }
     }
 
     /// `Ok(self)` if the kind's dimension is `D`.
