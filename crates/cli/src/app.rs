@@ -422,7 +422,7 @@ where
         "  mesh: {} nodes, {} elements, {}{setting}; {} free dofs",
         mesh.node_count(),
         mesh.element_count(),
-        Dim::<D>::kind_name(mesh),
+        build::kind_name(mesh.kind()),
         model.dof_count()
     );
     let alert = study.alert_distances();

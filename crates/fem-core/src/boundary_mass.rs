@@ -150,9 +150,10 @@ impl BoundaryMass {
     /// # Examples
     /// ```
     /// use fem_core::boundary_mass::BoundaryMass;
-    /// use fem_core::solid::{Face, SolidKind, SolidMesh};
+    /// use fem_core::ElementKind;
+    /// use fem_core::solid::{Face, SolidMesh};
     /// let nodes = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    /// let mesh = SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![])?;
+    /// let mesh = SolidMesh::new(nodes, ElementKind::Tet4, vec![0, 1, 2, 3], vec![])?;
     /// let m = BoundaryMass::from_faces(&mesh, &[Face { element: 0, side: 0 }])?;
     /// // a uniform unit pressure on the face z = 0 (area 1/2): a third of it at each corner
     /// let f = m.apply(&[1.0; 3]);
@@ -381,7 +382,6 @@ impl BoundaryMass {
 mod tests {
     use super::*;
     use crate::mesh::ElementKind;
-    use crate::solid::SolidKind;
 
     /// A strip `[0, 3] × [1, 2]` (P1, or P2 with straight sides), its bottom sides `y = 1`.
     fn strip(kind: ElementKind) -> (Mesh, Vec<Side>) {
@@ -467,7 +467,7 @@ mod tests {
             &[0.0, 1.0],
             &[0.0, 1.0],
             &[0.0, 1.0],
-            SolidKind::Tet10,
+            ElementKind::Tet10,
         )
         .unwrap();
         let top = solid.node_set("z1").unwrap();
@@ -486,7 +486,7 @@ mod tests {
             [0.0, 1.0, 0.0],
             [0.0, 0.0, 1.0],
         ];
-        let mesh = SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![]).unwrap();
+        let mesh = SolidMesh::new(nodes, ElementKind::Tet4, vec![0, 1, 2, 3], vec![]).unwrap();
         let p2 = mesh.to_tet10(None).unwrap();
         let face = Face {
             element: 0,

@@ -199,6 +199,17 @@ pub enum FemError {
         /// The model's dimension.
         dimension: usize,
     },
+    /// An element kind of the other dimension: a 3D kind (`Tet4`) for a 2D mesh, a 2D kind
+    /// (`Tri3`) for a 3D one.
+    #[error("element kind {kind} is {kind_dimension}D, but the mesh is {dimension}D")]
+    KindDimension {
+        /// The kind given (`"Tet4"`).
+        kind: String,
+        /// Its dimension.
+        kind_dimension: usize,
+        /// The dimension of the mesh (or of the element asked for).
+        dimension: usize,
+    },
     /// A named node set or edge set is not in the mesh.
     #[error("the mesh has no {kind} set named `{name}`")]
     UnknownSet {

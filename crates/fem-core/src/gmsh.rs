@@ -19,7 +19,7 @@
 //!     with them), so either orientation of the surface is accepted.
 //!   - *3D*: 4-node (type 4) or 10-node (type 11) tetrahedra; 8-node (type 5) or 20-node
 //!     (type 17) hexahedra. Gmsh numbers the last two mid-edge nodes of the 10-node
-//!     tetrahedron the other way round from [`SolidKind`](crate::mesh::SolidKind) (Gmsh's node 8 is on edge 2–3, node
+//!     tetrahedron the other way round from [`ElementKind`](crate::mesh::ElementKind) (Gmsh's node 8 is on edge 2–3, node
 //!     9 on edge 1–3: checked on files written by Gmsh 4.8.4), so they are swapped. Gmsh
 //!     numbers the mid-edge nodes of the 20-node hexahedron by edge 0–1, 0–3, 0–4, 1–2, 1–5,
 //!     2–3, 2–6, 3–7, 4–5, 4–7, 5–6, 6–7, VTK (cell 25, our order) by 0–1, 1–2, 2–3, 3–0, 4–5,
@@ -171,7 +171,7 @@ pub fn read_msh_3d(path: &Path) -> Result<SolidMesh, FemError> {
 /// $Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes
 /// $Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n";
 /// let mesh = fem_core::gmsh::parse_msh_3d(msh.as_bytes())?;
-/// assert_eq!(mesh.kind(), fem_core::mesh::SolidKind::Tet4);
+/// assert_eq!(mesh.kind(), fem_core::mesh::ElementKind::Tet4);
 /// # Ok::<(), fem_core::FemError>(())
 /// ```
 pub fn parse_msh_3d(bytes: &[u8]) -> Result<SolidMesh, FemError> {

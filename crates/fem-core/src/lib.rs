@@ -66,7 +66,7 @@ pub use model::{
     geostatic_3d,
 };
 pub use rigid_modes::{RigidBodyModes, RigidMode, RigidMotion};
-pub use space::{CellKind, Dim, Plane, Solid, Space};
+pub use space::{Dim, Plane, Solid, Space};
 pub use structure::{Floating, Mass, Nonlinear, Structure};
 
 /// The `faer` this crate is built with (its sparse matrices and `MatMut` are in

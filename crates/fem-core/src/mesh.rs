@@ -1,6 +1,6 @@
 //! One mesh for both dimensions, [`Mesh<D>`](Mesh): node coordinates `[f64; D]`, one element
-//! kind ([`ElementKind`] in the plane: triangles and quadrilaterals; [`SolidKind`] in 3D:
-//! tetrahedra and hexahedra), a flat connectivity, region ids, named node sets and named
+//! kind of the dimension ([`ElementKind`]: triangles and quadrilaterals in the plane,
+//! tetrahedra and hexahedra in 3D), a flat connectivity, region ids, named node sets and named
 //! *facet* sets (sides of 2D elements: edge sets; faces of 3D elements: face sets).
 //!
 //! What is written once over `D` lives here: construction and validation, the sets, joining,
@@ -20,22 +20,19 @@ pub(crate) use solid::{dot, signed_volume};
 
 use crate::element::Element;
 use crate::error::FemError;
-use crate::space::{CellKind, Dim, Kinds, Space};
+use crate::space::{Dim, Space};
 use curve::CurveOrder;
 use std::collections::{BTreeMap, HashMap};
 
-/// The element kind of a mesh of dimension `D`: [`ElementKind`] or [`SolidKind`].
-pub type Kind<const D: usize> = <Dim<D> as Kinds>::Kind;
-
 /// A facet of an element: element index and local facet — a side of a 2D element (see
-/// [`ElementKind::side_nodes`]) or a face of a 3D one (see [`SolidKind::face_nodes`]). The
+/// [`ElementKind::facet_nodes`]) or a face of a 3D one. The
 /// local index is called `side` in both dimensions (a face is a 3D element's side), so that
 /// 2D code reads `Side { element, side }` and 3D code `Face { element, side }`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Facet {
     /// Element index.
     pub element: usize,
-    /// Local facet index in `0..side_count()` (2D) or `0..face_count()` (3D) of the kind.
+    /// Local facet index in `0..facet_count()` of the kind.
     pub side: u8,
 }
 
@@ -58,8 +55,8 @@ pub type SolidMesh = Mesh<3>;
 /// One function for both dimensions:
 /// ```
 /// use fem_core::generate::{RectangleSpec, rectangle};
-/// use fem_core::solid::{SolidKind, generate::{box_mesh, lines}};
-/// use fem_core::{CellKind, Dim, Mesh, Space};
+/// use fem_core::solid::generate::{box_mesh, lines};
+/// use fem_core::{Dim, ElementKind, Mesh, Space};
 ///
 /// /// The boundary facets, and the facets of one element.
 /// fn facets<const D: usize>(mesh: &Mesh<D>) -> (usize, usize)
@@ -70,7 +67,7 @@ pub type SolidMesh = Mesh<3>;
 /// }
 /// let square = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
 /// let l = lines(0.0, 1.0, 1);
-/// let cube = box_mesh(&l, &l, &l, SolidKind::Hex8)?;
+/// let cube = box_mesh(&l, &l, &l, ElementKind::Hex8)?;
 /// assert_eq!((facets(&square), facets(&cube)), ((8, 3), (6, 6)));
 /// # Ok::<(), fem_core::FemError>(())
 /// ```
@@ -80,7 +77,7 @@ where
     Dim<D>: Space,
 {
     nodes: Vec<[f64; D]>,
-    kind: Kind<D>,
+    kind: ElementKind,
     connectivity: Vec<usize>,
     regions: Vec<u32>,
     node_sets: BTreeMap<String, Vec<usize>>,
@@ -97,6 +94,7 @@ where
     /// element; `regions` has one id per element (empty means all in region 0).
     ///
     /// # Errors
+    /// - [`FemError::KindDimension`] for a kind of the other dimension (`Tet4` in 2D);
     /// - [`FemError::NonFiniteNode`] (2D) or [`FemError::NonFiniteNode3`] (3D) for a NaN or
     ///   infinite coordinate;
     /// - [`FemError::EmptyMesh`] for a connectivity without a single element;
@@ -108,10 +106,11 @@ where
     ///   corner triad) with the element index.
     pub fn new(
         nodes: Vec<[f64; D]>,
-        kind: Kind<D>,
+        kind: ElementKind,
         connectivity: Vec<usize>,
         regions: Vec<u32>,
     ) -> Result<Self, FemError> {
+        let kind = kind.of_dimension::<D>()?;
         for (node, p) in nodes.iter().enumerate() {
             if !p.iter().all(|v| v.is_finite()) {
                 return Err(match *p.as_slice() {
@@ -263,12 +262,12 @@ where
 
     /// The element family.
     #[inline]
-    pub fn kind(&self) -> Kind<D> {
+    pub fn kind(&self) -> ElementKind {
         self.kind
     }
 
-    /// The built-in element of the mesh's kind ([`ElementKind::element`],
-    /// [`SolidKind::element`]), for code generic over `D`.
+    /// The built-in element of the mesh's kind ([`ElementKind::element`]), for code generic
+    /// over `D`.
     ///
     /// # Examples
     /// ```
@@ -278,9 +277,10 @@ where
     /// # Ok::<(), fem_core::FemError>(())
     /// ```
     pub fn built_in_element(&self) -> &'static dyn Element<D> {
-        let any = self.kind.element_any();
-        *any.downcast_ref::<&'static dyn Element<D>>()
-            .expect("the kinds of dimension D hold elements of dimension D")
+        match self.kind.element() {
+            Ok(element) => element,
+            Err(e) => unreachable!("Mesh::new checked the kind's dimension: {e}"),
+        }
     }
 
     /// Number of nodes.
@@ -359,7 +359,7 @@ where
             .get(name)
             .map(Vec::as_slice)
             .ok_or_else(|| FemError::UnknownSet {
-                kind: <Kind<D> as CellKind>::FACET,
+                kind: <Dim<D> as Space>::FACET,
                 name: name.to_string(),
             })
     }
@@ -599,7 +599,7 @@ mod tests {
 
     fn tetrahedron() -> SolidMesh {
         let nodes = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![]).unwrap()
+        SolidMesh::new(nodes, ElementKind::Tet4, vec![0, 1, 2, 3], vec![]).unwrap()
     }
 
     /// One generic function on a mesh of either dimension: its boundary facets, the node count
@@ -629,13 +629,13 @@ mod tests {
 
     #[test]
     fn issue_35_the_built_in_element_of_every_kind_works() {
-        fn check<const D: usize>(kind: Kind<D>)
+        fn check<const D: usize>(kind: ElementKind)
         where
             Dim<D>: Space,
         {
-            let any = kind.element_any();
-            let element = any.downcast_ref::<&'static dyn Element<D>>().unwrap();
+            let element = kind.element::<D>().unwrap();
             let topology = element.topology();
+            assert_eq!(topology, kind.topology(), "{kind:?}");
             assert_eq!(element.node_count(), kind.node_count(), "{kind:?}");
             assert_eq!(topology.corners, kind.corner_count(), "{kind:?}");
             assert_eq!(topology.sides.len(), kind.facet_count(), "{kind:?}");
@@ -647,8 +647,11 @@ mod tests {
                 );
             }
         }
-        ElementKind::ALL.into_iter().for_each(check::<2>);
-        SolidKind::ALL.into_iter().for_each(check::<3>);
+        let (plane, solid) = ElementKind::ALL.split_at(5);
+        assert!(plane.iter().all(|k| k.dimension() == 2));
+        assert!(solid.iter().all(|k| k.dimension() == 3));
+        plane.iter().copied().for_each(check::<2>);
+        solid.iter().copied().for_each(check::<3>);
     }
 
     #[test]
@@ -684,11 +687,11 @@ mod tests {
         let mut nodes = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         nodes[3][2] = f64::INFINITY;
         assert!(matches!(
-            SolidMesh::new(nodes, SolidKind::Tet4, vec![0, 1, 2, 3], vec![]),
+            SolidMesh::new(nodes, ElementKind::Tet4, vec![0, 1, 2, 3], vec![]),
             Err(FemError::NonFiniteNode3 { node: 3, coords }) if coords[2] == f64::INFINITY
         ));
         assert!(matches!(
-            SolidMesh::new(vec![[0.0; 3]], SolidKind::Tet4, vec![0, 0, 0, 9], vec![]),
+            SolidMesh::new(vec![[0.0; 3]], ElementKind::Tet4, vec![0, 0, 0, 9], vec![]),
             Err(FemError::NodeOutOfRange { node: 9, .. })
         ));
     }

@@ -34,53 +34,16 @@ pub type Plane = Dim<2>;
 pub type Solid = Dim<3>;
 
 pub(crate) mod sealed {
-    /// Implemented by the crate's dimensions and element kinds only.
+    /// Implemented by the crate's dimensions only.
     pub trait Sealed {}
     impl Sealed for super::Dim<2> {}
     impl Sealed for super::Dim<3> {}
 }
 
-/// An element kind of a mesh, as the dimension-generic mesh sees it:
-/// [`ElementKind`](crate::ElementKind) in the plane, [`SolidKind`](crate::mesh::SolidKind)
-/// in 3D (sealed). A *facet* is a side of a 2D element or a face of a 3D one. Code generic
-/// over `D` brings it into scope (`use fem_core::CellKind;`) to call these on
-/// [`Mesh::kind`](crate::Mesh::kind); the kinds' own methods of the same names need no import.
-pub trait CellKind:
-    sealed::Sealed + Copy + Debug + PartialEq + Eq + std::hash::Hash + Send + Sync + 'static
-{
-    /// What a facet is called in messages: `"edge"` or `"face"`.
-    const FACET: &'static str;
-    /// Nodes per element.
-    fn node_count(self) -> usize;
-    /// Corners per element (they come first in the element's node order).
-    fn corner_count(self) -> usize;
-    /// Facets per element.
-    fn facet_count(self) -> usize;
-    /// Corners per facet (they come first in [`CellKind::facet_nodes`]).
-    fn facet_corner_count(self) -> usize;
-    /// The local nodes of facet `facet ∈ 0..facet_count()`.
-    ///
-    /// # Panics
-    /// If `facet >= self.facet_count()`.
-    fn facet_nodes(self, facet: usize) -> &'static [usize];
-    /// The built-in element of the kind, a `&'static &'static dyn Element<D>` seen as `Any`
-    /// (read it with [`Mesh::built_in_element`](crate::Mesh::built_in_element)).
-    #[doc(hidden)]
-    fn element_any(self) -> &'static dyn std::any::Any;
-}
-
-/// The element kinds of a mesh of the dimension (a supertrait of [`Space`], sealed; its two
-/// implementations sit beside the kinds, in [`crate::mesh`]).
-pub trait Kinds: sealed::Sealed {
-    /// [`ElementKind`](crate::ElementKind) in the plane,
-    /// [`SolidKind`](crate::mesh::SolidKind) in 3D.
-    type Kind: CellKind;
-}
-
 /// What differs between the two dimensions a body may have; implemented for [`Dim<2>`] and
 /// [`Dim<3>`] only (sealed).
 pub trait Space:
-    sealed::Sealed + Kinds + Copy + Debug + Default + PartialEq + Send + Sync + 'static
+    sealed::Sealed + Copy + Debug + Default + PartialEq + Send + Sync + 'static
 {
     /// The number of coordinates of a point (and of displacement components of a node).
     const D: usize;
@@ -88,6 +51,9 @@ pub trait Space:
     const VOIGT: usize;
     /// `"2D"` or `"3D"`, for messages.
     const NAME: &'static str;
+    /// What a facet of an element (a side in 2D, a face in 3D) is called in messages:
+    /// `"edge"` or `"face"`.
+    const FACET: &'static str;
     /// A stress or strain in Voigt form: `(xx, yy, xy, zz)` in the plane (`(rr, zz, rz, θθ)`
     /// in axisymmetry), `(xx, yy, zz, xy, yz, zx)` in 3D.
     type Stress: Copy
@@ -112,6 +78,7 @@ impl Space for Dim<2> {
     const D: usize = 2;
     const VOIGT: usize = 4;
     const NAME: &'static str = "2D";
+    const FACET: &'static str = "edge";
     type Stress = [f64; 4];
     type Setting = Idealization;
 
@@ -125,6 +92,7 @@ impl Space for Dim<3> {
     const D: usize = 3;
     const VOIGT: usize = 6;
     const NAME: &'static str = "3D";
+    const FACET: &'static str = "face";
     type Stress = [f64; 6];
     type Setting = ();
 

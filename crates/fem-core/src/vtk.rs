@@ -6,7 +6,7 @@
 //! `VTK_QUADRATIC_TRIANGLE` (22), whose node order is ours.
 //!
 //! 3D meshes ([`write_vtu_3d`]): P1 tetrahedra are `VTK_TETRA` (10), P2 tetrahedra
-//! `VTK_QUADRATIC_TETRA` (24), whose node order is ours too (see [`SolidKind`](crate::mesh::SolidKind)).
+//! `VTK_QUADRATIC_TETRA` (24), whose node order is ours too (see [`ElementKind`](crate::mesh::ElementKind)).
 //!
 //! Every array is `Float64`, base64-encoded inline; the element regions are always written as
 //! the cell array `region` (`UInt32`).
@@ -117,10 +117,11 @@ where
 ///
 /// # Examples
 /// ```
-/// use fem_core::solid::{SolidKind, generate::{box_mesh, lines}};
+/// use fem_core::ElementKind;
+/// use fem_core::solid::generate::{box_mesh, lines};
 /// use fem_core::vtk::{write_vtu_3d, Field3};
 /// let l = lines(0.0, 1.0, 1);
-/// let mesh = box_mesh(&l, &l, &l, SolidKind::Tet10)?;
+/// let mesh = box_mesh(&l, &l, &l, ElementKind::Tet10)?;
 /// let u: Vec<[f64; 3]> = mesh.nodes().iter().map(|p| [0.1 * p[2], 0.0, 0.0]).collect();
 /// let path = std::env::temp_dir().join("fem_core_vtk_doc_3d.vtu");
 /// write_vtu_3d(&path, &mesh, &[("u", Field3::Vector(&u))], &[])?;

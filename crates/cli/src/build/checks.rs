@@ -8,7 +8,6 @@ use contact_laws::LawError;
 use contact_solver::SolverError;
 use contact_solver::error::chain;
 use fem_core::generate::Grading;
-use fem_core::solid::SolidKind;
 use fem_core::{Dim, ElementKind, FemError, Mesh, Space};
 use std::collections::BTreeSet;
 
@@ -112,25 +111,14 @@ pub(super) fn kind(e: Element) -> ElementKind {
 }
 
 /// The tetrahedron of a scene's element name (the box generator's).
-pub(super) fn solid_kind(e: Element) -> SolidKind {
+pub(super) fn solid_kind(e: Element) -> ElementKind {
     match e {
-        Element::P1 => SolidKind::Tet4,
-        Element::P2 => SolidKind::Tet10,
+        Element::P1 => ElementKind::Tet4,
+        Element::P2 => ElementKind::Tet10,
     }
 }
 
-/// Name of a 3D element kind for messages.
-pub fn solid_kind_name(k: SolidKind) -> &'static str {
-    match k {
-        SolidKind::Tet4 => "P1 (4-node tetrahedra)",
-        SolidKind::Tet10 => "P2 (10-node tetrahedra)",
-        SolidKind::Hex8 => "P1 (8-node hexahedra)",
-        SolidKind::Hex20 => "P2 (20-node serendipity hexahedra)",
-        _ => "elements of a kind this version of bipo does not name",
-    }
-}
-
-/// Name of an element kind for messages.
+/// Name of an element kind (2D or 3D) for messages.
 pub fn kind_name(k: ElementKind) -> &'static str {
     match k {
         ElementKind::Tri3 => "P1 (3-node triangles)",
@@ -138,6 +126,10 @@ pub fn kind_name(k: ElementKind) -> &'static str {
         ElementKind::Quad4 => "P1 (4-node quadrilaterals)",
         ElementKind::Quad8 => "P2 (8-node serendipity quadrilaterals)",
         ElementKind::Quad9 => "P2 (9-node Lagrange quadrilaterals)",
+        ElementKind::Tet4 => "P1 (4-node tetrahedra)",
+        ElementKind::Tet10 => "P2 (10-node tetrahedra)",
+        ElementKind::Hex8 => "P1 (8-node hexahedra)",
+        ElementKind::Hex20 => "P2 (20-node serendipity hexahedra)",
         _ => "elements of a kind this version of bipo does not name",
     }
 }

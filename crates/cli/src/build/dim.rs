@@ -7,7 +7,7 @@
 //! (a node set's polyline, a face set's triangles), the contactor's areas and the wording and
 //! order of the candidates' checks.
 
-use super::checks::{expect, solid_kind_name, solver_error};
+use super::checks::{expect, solver_error};
 use super::checks::{fem, finite, finite_all, kind_name, list_names, node_set, positive};
 use super::curves;
 use super::mesh::MeshPlan;
@@ -21,7 +21,7 @@ use contact_solver::coupling::space::ContactSpace;
 use contact_solver::coupling::zone::Polyline;
 use contact_solver::{ArcSide, Candidate, ContactZone, Obstacle, PairNormals, RigidArc, RigidLine};
 use fem_core::model::ModelSpace;
-use fem_core::solid::{SolidKind, SolidMesh, SolidModel, geostatic_3d};
+use fem_core::solid::{SolidMesh, SolidModel, geostatic_3d};
 use fem_core::{Dim, ElasticModel, ElementKind, FemError, Idealization, LinearElasticModel};
 use fem_core::{Material, Mesh, StressField, Supports};
 use std::collections::HashMap;
@@ -381,10 +381,10 @@ impl SceneDim<3> for Dim<3> {
     fn element_order(e: Element, mesh: &SolidMesh) -> (bool, &'static str) {
         let k = mesh.kind();
         let order = match e {
-            Element::P1 => matches!(k, SolidKind::Tet4 | SolidKind::Hex8),
-            Element::P2 => matches!(k, SolidKind::Tet10 | SolidKind::Hex20),
+            Element::P1 => matches!(k, ElementKind::Tet4 | ElementKind::Hex8),
+            Element::P2 => matches!(k, ElementKind::Tet10 | ElementKind::Hex20),
         };
-        (order, solid_kind_name(k))
+        (order, kind_name(k))
     }
 
     fn traction(model: &mut SolidModel, set: &str, t: [f64; 3]) -> Result<(), FemError> {

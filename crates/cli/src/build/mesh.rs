@@ -12,8 +12,7 @@ use crate::spec::{
     BoxSpec, Element, MeshSpec, Pair, PileMeshOverride, PileMeshSpec, TipCornerSpec,
 };
 use fem_core::generate::{Grading, Layer, PileSpec, RectangleSpec, TipCorner, graded_points};
-use fem_core::solid::SolidKind;
-use fem_core::{Dim, FemError, Idealization, Mesh};
+use fem_core::{Dim, ElementKind, FemError, Idealization, Mesh};
 use std::path::{Path, PathBuf};
 
 /// The most cells of a box (six tetrahedra each): 2e5 cells are 1.2e6 tetrahedra, beyond what a
@@ -27,7 +26,7 @@ pub(crate) enum MeshPlan {
     /// `fem_core::generate::pile_in_soil` (2D).
     Pile(PileSpec),
     /// `fem_core::solid::generate::box_mesh` (3D): the grid lines and the element.
-    Box([Vec<f64>; 3], SolidKind),
+    Box([Vec<f64>; 3], ElementKind),
     /// An existing Gmsh file and the element order it must hold.
     Gmsh(GmshPlan),
 }

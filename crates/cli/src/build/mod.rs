@@ -29,7 +29,7 @@ mod study;
 mod supported;
 mod validate;
 
-pub use checks::{kind_name, solid_kind_name};
+pub use checks::kind_name;
 pub(crate) use dim::SceneDim;
 pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{

@@ -9,7 +9,7 @@ use crate::scene::{OutputSpec, PlotSpec, Units};
 use contact_laws::{Rccm, StandardLaw};
 use contact_solver::coupling::space::ContactSpace;
 use contact_solver::{Candidate, ContactSimulation};
-use fem_core::{Component, Dim, ElasticModel, Idealization, LinearElasticModel, Mesh, Structure};
+use fem_core::{Component, Dim, ElasticModel, Idealization, LinearElasticModel, Structure};
 use std::collections::BTreeMap;
 
 /// What a study holds and shows differently in 2D and 3D: its presets (2D only), the name of
@@ -24,8 +24,6 @@ where
     fn preset_sim(p: &Self::Preset) -> &ContactSimulation<ElasticModel<D>, Rccm, D>;
     /// The preset's kind (`delamination`, `shear`, `pile`).
     fn preset_kind(p: &Self::Preset) -> &'static str;
-    /// The name of the mesh's elements (`P1 (3-node triangles)`).
-    fn kind_name(mesh: &Mesh<D>) -> &'static str;
     /// The idealisation, as the header names it (none in 3D).
     fn setting(model: &ElasticModel<D>) -> Option<String>;
     /// Whether the body's `mesh_NNNN.vtu` series is written: 2D with `output.mesh_vtk`, 3D also
@@ -45,10 +43,6 @@ impl StudyDim<2> for Dim<2> {
 
     fn preset_kind(p: &PresetStudy) -> &'static str {
         p.kind
-    }
-
-    fn kind_name(mesh: &Mesh<2>) -> &'static str {
-        super::kind_name(mesh.kind())
     }
 
     fn setting(model: &LinearElasticModel) -> Option<String> {
@@ -76,10 +70,6 @@ impl StudyDim<3> for Dim<3> {
 
     fn preset_kind(p: &NoPreset) -> &'static str {
         match *p {}
-    }
-
-    fn kind_name(mesh: &Mesh<3>) -> &'static str {
-        super::solid_kind_name(mesh.kind())
     }
 
     fn setting(_: &ElasticModel<3>) -> Option<String> {

@@ -76,7 +76,7 @@ impl Grid {
                 let mid = |(i0, j0): (usize, usize), (i1, j1): (usize, usize)| {
                     self.id((i0 + i1) / 2, (j0 + j1) / 2)
                 };
-                if self.kind.side_count() == 4 {
+                if self.kind.corner_count() == 4 {
                     connectivity.extend([a, b, c, d].map(|(i, j)| self.id(i, j)));
                     if self.kind.is_quadratic() {
                         connectivity.extend([mid(a, b), mid(b, c), mid(c, d), mid(d, a)]);

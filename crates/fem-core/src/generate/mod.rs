@@ -132,12 +132,14 @@ impl Grading {
 pub const MAX_GENERATED_NODES: usize = 100_000_000;
 
 /// Checks a structured grid of `cells_x × cells_y` cells (P2: twice the nodes per direction)
-/// against [`MAX_GENERATED_NODES`] with overflow-checked arithmetic.
+/// against [`MAX_GENERATED_NODES`] with overflow-checked arithmetic, and its kind against
+/// the plane ([`FemError::KindDimension`] for a 3D kind).
 pub(crate) fn check_grid_size(
     cells_x: usize,
     cells_y: usize,
     kind: crate::ElementKind,
 ) -> Result<(), FemError> {
+    kind.of_dimension::<2>()?;
     let per = if kind.is_quadratic() { 2 } else { 1 };
     let line = |cells: usize| cells.checked_mul(per).and_then(|n| n.checked_add(1));
     let nodes = line(cells_x)

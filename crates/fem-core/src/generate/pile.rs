@@ -134,7 +134,8 @@ pub const PILE: u32 = 1;
 ///
 /// # Errors
 /// [`FemError::InvalidParameter`] for a non-positive or non-finite size, `W ≤ D/2`,
-/// `H ≤ L_p`, a zero cell count or a bad grading ratio.
+/// `H ≤ L_p`, a zero cell count or a bad grading ratio; [`FemError::KindDimension`] for a 3D
+/// kind.
 ///
 /// # Examples
 /// ```

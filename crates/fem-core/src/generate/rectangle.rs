@@ -86,7 +86,7 @@ impl Default for RectangleSpec {
 ///
 /// # Errors
 /// [`FemError::InvalidParameter`] for non-finite or non-increasing coordinates, zero cell
-/// counts, no layer, or a bad grading ratio.
+/// counts, no layer, or a bad grading ratio; [`FemError::KindDimension`] for a 3D kind.
 ///
 /// # Examples
 /// ```

@@ -6,8 +6,8 @@
 
 use super::file::unsupported_type;
 use crate::error::FemError;
-use crate::mesh::{Kind, Mesh};
-use crate::space::{CellKind, Dim, Space};
+use crate::mesh::{ElementKind, Mesh};
+use crate::space::{Dim, Space};
 use mshio::{ElementType, MshFile};
 use std::collections::HashMap;
 
@@ -16,8 +16,6 @@ pub(crate) struct Reader<const D: usize>
 where
     Dim<D>: Space,
 {
-    /// The mesh kind of a Gmsh element type.
-    pub(crate) kind_of: fn(ElementType) -> Option<Kind<D>>,
     /// The element types read, for the error on any other.
     pub(crate) read: &'static str,
     /// What the file lacks when it holds no element of the dimension.
@@ -29,7 +27,7 @@ where
 }
 
 /// An element's nodes (0-based, Gmsh's order) in our order and orientation, given the nodes.
-pub(crate) type Orient<const D: usize> = fn(Kind<D>, Vec<usize>, &[[f64; D]]) -> Vec<usize>;
+pub(crate) type Orient<const D: usize> = fn(ElementKind, Vec<usize>, &[[f64; D]]) -> Vec<usize>;
 
 /// The physical groups' elements made into sets of the mesh.
 pub(crate) type Sets<const D: usize> = fn(&mut Mesh<D>, &Groups) -> Result<(), FemError>;
@@ -99,6 +97,14 @@ impl Lower {
     }
 }
 
+/// The mesh kind of dimension `D` of a Gmsh element type, from the catalogue's
+/// [`Topology`](crate::element::Topology).
+fn kind_of<const D: usize>(t: ElementType) -> Option<ElementKind> {
+    ElementKind::ALL
+        .into_iter()
+        .find(|k| k.dimension() == D && k.topology().gmsh_type == t as u32)
+}
+
 /// The mesh of a parsed file (see the [module docs](self)).
 pub(crate) fn build<const D: usize>(
     file: MshFile<u64, i32, f64>,
@@ -122,14 +128,14 @@ where
     check_elements(&nodes_section, &elements, &coords).map_err(io)?;
 
     // The elements of the dimension (with their region) and the lower ones of physical groups.
-    let mut kind: Option<Kind<D>> = None;
+    let mut kind: Option<ElementKind> = None;
     let mut cells: Vec<&[u64]> = Vec::new();
     let mut cell_tags: Vec<u64> = Vec::new();
     let mut regions = Vec::new();
     let mut lower: Vec<Lower> = Vec::new();
     for block in &elements.element_blocks {
         let (dim, tag, t) = (block.entity_dim, block.entity_tag, block.element_type);
-        if let Some(this) = (reader.kind_of)(t) {
+        if let Some(this) = kind_of::<D>(t) {
             let first = *kind.get_or_insert(this);
             let n = this.node_count();
             if first != this {

@@ -4,12 +4,10 @@
 use super::build::{Groups, Lower, Reader, Shape};
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh, Side};
-use mshio::ElementType;
 use std::collections::{BTreeMap, HashMap};
 
 /// The 2D reader's tables.
 pub(super) static PLANE: Reader<2> = Reader {
-    kind_of,
     read: "triangles (types 2, 9), quadrangles (3, 16, 10), lines (1, 8) and points (15) \
            (volume meshes: `solid::gmsh`)",
     none: "triangles or quadrangles (Gmsh types 2, 9, 3, 16, 10)",
@@ -107,13 +105,6 @@ fn add_physical_sets(mesh: &mut Mesh, groups: &Groups) -> Result<(), FemError> {
         mesh.add_node_set(&name, set)?;
     }
     Ok(())
-}
-
-/// The mesh kind of a Gmsh element type, from the catalogue's [`crate::element::Topology`].
-fn kind_of(t: ElementType) -> Option<ElementKind> {
-    ElementKind::ALL
-        .into_iter()
-        .find(|k| k.element().topology().gmsh_type == t as u32)
 }
 
 /// The triangle side of a line element: to the left of the line if two triangles share it.

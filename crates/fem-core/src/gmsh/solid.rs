@@ -5,7 +5,7 @@
 use super::build::{Groups, Reader, Shape};
 use crate::element::hex20::GMSH_TO_LOCAL;
 use crate::error::FemError;
-use crate::mesh::{Face, SolidKind, SolidMesh, signed_volume};
+use crate::mesh::{ElementKind, Face, SolidMesh, signed_volume};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// What the reader takes, for the error on any other element type.
@@ -28,11 +28,6 @@ const HEX_MIRROR: [usize; 20] = [
 
 /// The 3D reader's tables.
 pub(super) static SOLID: Reader<3> = Reader {
-    kind_of: |t| {
-        SolidKind::ALL
-            .into_iter()
-            .find(|k| k.element().topology().gmsh_type == t as u32)
-    },
     read: READ,
     none: "tetrahedra or hexahedra (Gmsh types 4, 11, 5, 17)",
     orient,
@@ -42,10 +37,10 @@ pub(super) static SOLID: Reader<3> = Reader {
 /// A 3D element in our node order (Gmsh's Tet10 and Hex20 mid-edge nodes mapped), right-handed:
 /// the triad at corner 0, `(1, 2, 3)` of a tetrahedron or `(1, 3, 4)` of a hexahedron, has a
 /// positive volume, else the element is mirrored.
-fn orient(kind: SolidKind, t: Vec<usize>, nodes: &[[f64; 3]]) -> Vec<usize> {
+fn orient(kind: ElementKind, t: Vec<usize>, nodes: &[[f64; 3]]) -> Vec<usize> {
     let cell: Vec<usize> = match kind {
-        SolidKind::Tet10 => FROM_GMSH_TET10.iter().map(|&k| t[k]).collect(),
-        SolidKind::Hex20 => {
+        ElementKind::Tet10 => FROM_GMSH_TET10.iter().map(|&k| t[k]).collect(),
+        ElementKind::Hex20 => {
             let mut cell = vec![0; 20];
             for (k, &local) in GMSH_TO_LOCAL.iter().enumerate() {
                 cell[local] = t[k];
@@ -82,7 +77,7 @@ fn add_physical_sets(mesh: &mut SolidMesh, groups: &Groups) -> Result<(), FemErr
         .iter()
         .any(|l| matches!(l.shape, Shape::Triangle | Shape::Quadrangle))
     {
-        faces.reserve(mesh.kind().face_count() * mesh.element_count());
+        faces.reserve(mesh.kind().facet_count() * mesh.element_count());
         for f in mesh.all_facets() {
             faces.entry(mesh.facet_key(f)).or_default().push(f);
         }
@@ -149,7 +144,7 @@ fn match_face(
     index: &HashMap<u64, usize>,
     nodes: &[u64],
 ) -> Option<Face> {
-    let nc = mesh.kind().face_corner_count();
+    let nc = mesh.kind().facet_corner_count();
     // a triangle on a hexahedral mesh (or a quadrangle on a tetrahedral one) is no face
     let element_corners = if matches!(nodes.len(), 3 | 6) { 3 } else { 4 };
     if element_corners != nc {
@@ -172,7 +167,7 @@ fn match_face(
             ids[(i + 1) % nc] == corners[1]
         })
         .unwrap_or(candidates[0]);
-    if nodes.len() == 6 && mesh.kind() == SolidKind::Tet10 {
+    if nodes.len() == 6 && mesh.kind() == ElementKind::Tet10 {
         // each mid-side node of the triangle must be the face's on the same edge
         let ids: Vec<usize> = mesh.face_node_ids(face).collect();
         let edge = |a: usize, b: usize| (a.min(b), a.max(b));

@@ -1,7 +1,7 @@
 //! What the 3D mesh has of its own: the names of its facets (faces, face sets), the nodal
 //! areas of a face set, `to_tet10`, and the corner check of its elements.
 
-use super::{Face, SolidKind, SolidMesh, TET_EDGES};
+use super::{ElementKind, Face, SolidMesh, TET_EDGES};
 use crate::element::Element;
 use crate::error::FemError;
 use std::collections::BTreeMap;
@@ -64,7 +64,7 @@ impl SolidMesh {
         Ok(())
     }
 
-    /// The global nodes of a face, in [`SolidKind::face_nodes`] order.
+    /// The global nodes of a face, in [`ElementKind::facet_nodes`] order.
     ///
     /// # Panics
     /// If the face does not exist.
@@ -83,7 +83,7 @@ impl SolidMesh {
 
     /// Calls `f(nodes, point)` at each point of a rule on `face` (degree 4 on a 3- or 6-node
     /// triangle, curved P2 faces included; 3×3 Gauss on a 4- or 8-node quadrilateral), with the face's nodes in
-    /// [`SolidKind::face_nodes`] order; stops at the first error.
+    /// [`ElementKind::facet_nodes`] order; stops at the first error.
     pub(crate) fn face_points(
         &self,
         face: Face,
@@ -96,7 +96,7 @@ impl SolidMesh {
             count += 1;
         }
         let nodes = &nodes[..count];
-        let quad = self.kind.face_corner_count() == 4;
+        let quad = self.kind.facet_corner_count() == 4;
         let rule: &[([f64; 2], f64)] = if quad {
             crate::quadrature::tensor_rule(3)
         } else {
@@ -174,8 +174,8 @@ impl SolidMesh {
     /// As [`SolidMesh::new`] (an inverted curved element shows up when assembled).
     pub fn to_tet10(&self, midpoint: Option<&MidpointFn<'_>>) -> Result<Self, FemError> {
         match self.kind {
-            SolidKind::Tet10 => return Ok(self.clone()),
-            SolidKind::Tet4 => {}
+            ElementKind::Tet10 => return Ok(self.clone()),
+            ElementKind::Tet4 => {}
             other => {
                 return Err(FemError::Unsupported {
                     what: format!("making 10-node tetrahedra of a {other:?} mesh"),
@@ -206,7 +206,12 @@ impl SolidMesh {
                 connectivity.push(id);
             }
         }
-        let mut out = Self::new(nodes, SolidKind::Tet10, connectivity, self.regions.clone())?;
+        let mut out = Self::new(
+            nodes,
+            ElementKind::Tet10,
+            connectivity,
+            self.regions.clone(),
+        )?;
         for (name, set) in &self.node_sets {
             let mut set = set.clone();
             if let Some(faces) = self.facet_sets.get(name) {
@@ -261,7 +266,7 @@ pub(super) fn corner_simplices(corners: usize) -> Vec<[usize; 4]> {
 }
 
 /// Shape values and reference derivatives `(∂/∂ξ, ∂/∂η)` of a 3- or 6-node triangle at
-/// `(ξ, η)`, in the node order of [`SolidKind::face_nodes`] (corners, then the mid-edge nodes
+/// `(ξ, η)`, in the node order of [`ElementKind::facet_nodes`] (corners, then the mid-edge nodes
 /// of edges 0–1, 1–2, 2–0); the first `nodes` entries are set (`nodes` is 3 for the linear
 /// triangle, anything else means 6).
 ///

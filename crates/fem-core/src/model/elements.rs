@@ -69,8 +69,8 @@ where
     /// ```
     /// use fem_core::element::{Element, Hex8, QuadPoint, Topology};
     /// use fem_core::quadrature::gauss_tensor;
-    /// use fem_core::solid::{SolidKind, SolidMesh, SolidModel};
-    /// use fem_core::{Component, Material, Supports};
+    /// use fem_core::solid::{SolidMesh, SolidModel};
+    /// use fem_core::{Component, ElementKind, Material, Supports};
     /// use std::sync::{Arc, OnceLock};
     ///
     /// #[derive(Debug)]
@@ -92,7 +92,7 @@ where
     ///     [0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [0.0, 1.0, 0.0],
     ///     [0.0, 0.0, 1.0], [2.0, 0.0, 1.0], [2.0, 1.0, 1.0], [0.0, 1.0, 1.0],
     /// ];
-    /// let mesh = SolidMesh::new(nodes, SolidKind::Hex8, (0..8).collect(), vec![])?;
+    /// let mesh = SolidMesh::new(nodes, ElementKind::Hex8, (0..8).collect(), vec![])?;
     /// let mut supports = Supports::new();
     /// for c in [Component::X, Component::Y, Component::Z] {
     ///     supports.fix(&[0, 1, 2, 3], c);

@@ -349,9 +349,8 @@ mod tests {
     /// rotations): `K R = 0` to round-off, and `K⁺` solves a balanced load.
     #[test]
     fn issue_35_a_solid_floats_with_six_modes_works() {
-        use crate::solid::SolidKind;
         use crate::solid::generate::{box_mesh, lines};
-        for kind in [SolidKind::Tet4, SolidKind::Hex8] {
+        for kind in [ElementKind::Tet4, ElementKind::Hex8] {
             let mesh = box_mesh(
                 &lines(0.0, 2.0, 3),
                 &lines(0.0, 1.0, 2),

@@ -290,11 +290,10 @@ where
 
 #[test]
 fn issue_35_one_model_for_both_dimensions_works() {
-    use crate::solid::SolidKind;
     use crate::solid::generate::{box_mesh, lines};
     reactions_balance(square_model(Idealization::PlaneStrain), 2);
     let unit = lines(0.0, 1.0, 1);
-    let mesh = box_mesh(&unit, &unit, &unit, SolidKind::Tet4).unwrap();
+    let mesh = box_mesh(&unit, &unit, &unit, ElementKind::Tet4).unwrap();
     let top = mesh.nodes().iter().position(|p| *p == [1.0; 3]).unwrap();
     let mut supports = Supports::new();
     let bottom = mesh.node_set("z0").unwrap().to_vec();

@@ -1,7 +1,7 @@
 //! Structured meshes: a graded box (tetrahedra or hexahedra) and the octant of a hollow sphere
 //! (tetrahedra).
 
-use super::mesh::{Face, SolidKind, SolidMesh, dot, signed_volume};
+use super::mesh::{ElementKind, Face, SolidMesh, dot, signed_volume};
 use crate::error::FemError;
 use crate::generate::lattice_lines;
 
@@ -65,17 +65,19 @@ fn name_planes(
 
 /// A box meshed on the grid `xs × ys × zs` (strictly increasing grid lines, graded as you
 /// like), each cell cut into six tetrahedra around its diagonal (Kuhn's subdivision, conforming
-/// across cells), or one hexahedron per cell for [`SolidKind::Hex8`] and [`SolidKind::Hex20`]
+/// across cells), or one hexahedron per cell for [`ElementKind::Hex8`] and [`ElementKind::Hex20`]
 /// (mid-edge nodes at the middle of the edges). Face sets (and node sets) `x0, x1, y0, y1, z0, z1` name the six sides
 /// (`x0` at `x = xs[0]`, …).
 ///
 /// # Errors
-/// [`FemError::InvalidParameter`] for fewer than two or non-increasing grid lines.
+/// [`FemError::InvalidParameter`] for fewer than two or non-increasing grid lines,
+/// [`FemError::KindDimension`] for a 2D kind.
 ///
 /// # Examples
 /// ```
-/// use fem_core::solid::{SolidKind, generate::{box_mesh, lines}};
-/// let m = box_mesh(&lines(0.0, 2.0, 2), &lines(0.0, 1.0, 1), &lines(0.0, 1.0, 1), SolidKind::Tet10)?;
+/// use fem_core::ElementKind;
+/// use fem_core::solid::generate::{box_mesh, lines};
+/// let m = box_mesh(&lines(0.0, 2.0, 2), &lines(0.0, 1.0, 1), &lines(0.0, 1.0, 1), ElementKind::Tet10)?;
 /// assert_eq!(m.element_count(), 12);
 /// assert_eq!(m.face_set("x1")?.len(), 2);
 /// # Ok::<(), fem_core::FemError>(())
@@ -84,14 +86,14 @@ pub fn box_mesh(
     xs: &[f64],
     ys: &[f64],
     zs: &[f64],
-    kind: SolidKind,
+    kind: ElementKind,
 ) -> Result<SolidMesh, FemError> {
     check_lines("xs", xs)?;
     check_lines("ys", ys)?;
     check_lines("zs", zs)?;
-    let mut mesh = match kind {
-        SolidKind::Hex8 | SolidKind::Hex20 => hex_box(xs, ys, zs, kind)?,
-        SolidKind::Tet4 | SolidKind::Tet10 => tet_box(xs, ys, zs)?,
+    let mut mesh = match kind.of_dimension::<3>()? {
+        ElementKind::Hex8 | ElementKind::Hex20 => hex_box(xs, ys, zs, kind)?,
+        _ => tet_box(xs, ys, zs)?, // Tet4, Tet10
     };
     let [x, y, z] = [xs, ys, zs].map(|v| (v[0], v[v.len() - 1]));
     let span = [x, y, z].iter().map(|(a, b)| b - a).fold(0.0, f64::max);
@@ -105,7 +107,7 @@ pub fn box_mesh(
     ];
     name_planes(&mut mesh, &planes, span)?;
     match kind {
-        SolidKind::Tet10 => mesh.to_tet10(None),
+        ElementKind::Tet10 => mesh.to_tet10(None),
         _ => Ok(mesh),
     }
 }
@@ -146,15 +148,15 @@ fn tet_box(xs: &[f64], ys: &[f64], zs: &[f64]) -> Result<SolidMesh, FemError> {
             }
         }
     }
-    SolidMesh::new(nodes, SolidKind::Tet4, connectivity, Vec::new())
+    SolidMesh::new(nodes, ElementKind::Tet4, connectivity, Vec::new())
 }
 
 /// The hexahedral box of [`box_mesh`] (before its sides are named): a lattice of the grid lines (and their midpoints for
 /// Hex20, whose nodes are the lattice points with at most one odd index).
-fn hex_box(xs: &[f64], ys: &[f64], zs: &[f64], kind: SolidKind) -> Result<SolidMesh, FemError> {
+fn hex_box(xs: &[f64], ys: &[f64], zs: &[f64], kind: ElementKind) -> Result<SolidMesh, FemError> {
     use crate::element::hex8::CORNERS;
     use crate::element::hex20::EDGES;
-    let quadratic = kind == SolidKind::Hex20;
+    let quadratic = kind == ElementKind::Hex20;
     let [lx, ly, lz] = [xs, ys, zs].map(|c| lattice_lines(c, quadratic));
     let step = if quadratic { 2 } else { 1 };
     let (mx, my) = (lx.len(), ly.len());
@@ -203,14 +205,16 @@ fn hex_box(xs: &[f64], ys: &[f64], zs: &[f64], kind: SolidKind) -> Result<SolidM
 /// and on the radial lines. Face sets `inner`, `outer` and the symmetry planes `x0`, `y0`, `z0`.
 ///
 /// # Errors
-/// [`FemError::InvalidParameter`] for radii that are not `0 < inner < outer` or a zero count.
+/// [`FemError::InvalidParameter`] for radii that are not `0 < inner < outer` or a zero count,
+/// [`FemError::KindDimension`] for a 2D kind, [`FemError::Unsupported`] for hexahedra.
 pub fn sphere_shell_octant(
     inner: f64,
     outer: f64,
     n_t: usize,
     n_r: usize,
-    kind: SolidKind,
+    kind: ElementKind,
 ) -> Result<SolidMesh, FemError> {
+    kind.of_dimension::<3>()?;
     if !(inner > 0.0 && outer > inner && outer.is_finite()) {
         return Err(FemError::InvalidParameter {
             name: "inner radius",
@@ -267,7 +271,7 @@ pub fn sphere_shell_octant(
             }
         }
     }
-    let mut mesh = SolidMesh::new(nodes, SolidKind::Tet4, connectivity, Vec::new())?;
+    let mut mesh = SolidMesh::new(nodes, ElementKind::Tet4, connectivity, Vec::new())?;
     let boundary = mesh.boundary_facets();
     let tol = 1e-9 * outer;
     let on = |mesh: &SolidMesh, f: &Face, test: &dyn Fn([f64; 3]) -> bool| {
@@ -293,8 +297,8 @@ pub fn sphere_shell_octant(
         mesh.add_face_set(name, faces)?;
     }
     match kind {
-        SolidKind::Tet4 => Ok(mesh),
-        SolidKind::Tet10 => {
+        ElementKind::Tet4 => Ok(mesh),
+        ElementKind::Tet10 => {
             // the parametric midpoint: radius and lattice position averaged, then projected
             let flat = |p: [f64; 3]| {
                 let s = p[0] + p[1] + p[2];
@@ -335,7 +339,7 @@ mod tests {
             &lines(0.0, 2.0, 3),
             &[0.0, 0.2, 1.0],
             &lines(-1.0, 0.5, 2),
-            SolidKind::Tet4,
+            ElementKind::Tet4,
         )
         .unwrap();
         assert_eq!(m.element_count(), 6 * 3 * 2 * 2);
@@ -352,7 +356,7 @@ mod tests {
             &lines(0.0, 1.0, 2),
             &lines(0.0, 1.0, 2),
             &lines(0.0, 1.0, 2),
-            SolidKind::Tet10,
+            ElementKind::Tet10,
         )
         .unwrap();
         assert_eq!(p2.node_count(), 5 * 5 * 5);
@@ -361,7 +365,7 @@ mod tests {
 
     #[test]
     fn sphere_shell_octant_is_conforming_works() {
-        let m = sphere_shell_octant(1.0, 2.0, 4, 3, SolidKind::Tet10).unwrap();
+        let m = sphere_shell_octant(1.0, 2.0, 4, 3, ElementKind::Tet10).unwrap();
         let inner: Vec<usize> = m.node_set("inner").unwrap().to_vec();
         for n in inner {
             let p = m.nodes()[n];
@@ -377,6 +381,6 @@ mod tests {
             "every boundary face is named once"
         );
         assert_eq!(m.face_set("inner").unwrap().len(), 16);
-        assert!(sphere_shell_octant(2.0, 1.0, 1, 1, SolidKind::Tet4).is_err());
+        assert!(sphere_shell_octant(2.0, 1.0, 1, 1, ElementKind::Tet4).is_err());
     }
 }

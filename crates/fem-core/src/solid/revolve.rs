@@ -17,7 +17,7 @@
 //! mid-side nodes is revolved with straight ones).
 
 use super::generate::oriented;
-use super::mesh::{Face, SolidKind, SolidMesh, TET_EDGES};
+use super::mesh::{Face, SolidMesh, TET_EDGES};
 use crate::error::FemError;
 use crate::mesh::{ElementKind, Mesh};
 use std::collections::HashMap;
@@ -133,7 +133,7 @@ pub fn revolve(mesh: &Mesh, angle: f64, sectors: usize) -> Result<Revolved, FemE
             }
         }
     }
-    let mut p1 = SolidMesh::new(nodes3, SolidKind::Tet4, connectivity, regions)?;
+    let mut p1 = SolidMesh::new(nodes3, ElementKind::Tet4, connectivity, regions)?;
     // face sets from the 2D edge sets, and the two planes
     let mut faces_of: HashMap<[usize; 3], Vec<Face>> = HashMap::new();
     for element in 0..p1.element_count() {
@@ -288,7 +288,7 @@ fn node_layers(
     for e in 0..mesh.element_count() {
         let cell = mesh.element(e);
         for side in 0..3 {
-            let s = ElementKind::Tri6.side_nodes(side);
+            let s = ElementKind::Tri6.facet_nodes(side);
             let (a, b, m) = (cell[s[0]], cell[s[1]], cell[s[2]]);
             if !layers[m].is_empty() {
                 continue;

@@ -13,6 +13,7 @@ mod fuzz_corpus;
 mod gmsh_curves;
 mod hostile_input;
 mod issue_35_capabilities;
+mod issue_35_one_element_kind;
 mod mesh_io;
 mod patch;
 mod quad_hex;

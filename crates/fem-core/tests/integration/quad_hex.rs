@@ -359,7 +359,8 @@ fn issue_35_stiffness_kernel_is_the_rigid_modes_works() {
     for kind in [ElementKind::Quad4, ElementKind::Quad8, ElementKind::Quad9] {
         let mesh = distorted_quads(kind, 0.0, [1, 1], 3);
         let coords: Vec<[f64; 2]> = mesh.element(0).iter().map(|&n| mesh.nodes()[n]).collect();
-        kind.element()
+        kind.element::<2>()
+            .unwrap()
             .stiffness_into(0, &coords, &material, &Idealization::PlaneStrain, &mut k)
             .unwrap();
         assert!((&k - k.transpose()).amax() < 1e-12 * k.amax());
@@ -376,7 +377,8 @@ fn issue_35_stiffness_kernel_is_the_rigid_modes_works() {
             p[0] += 0.2 * p[1] * p[2];
         }
         let coords: Vec<[f64; 3]> = mesh.element(0).iter().map(|&n| nodes[n]).collect();
-        kind.element()
+        kind.element::<3>()
+            .unwrap()
             .stiffness_into(0, &coords, &material, &(), &mut k)
             .unwrap();
         assert!((&k - k.transpose()).amax() < 1e-12 * k.amax());
@@ -429,7 +431,7 @@ fn issue_35_mass_totals_and_definiteness_works() {
             for e in 0..mesh.element_count() {
                 let cell = mesh.element(e);
                 let coords: Vec<[f64; 2]> = cell.iter().map(|&n| mesh.nodes()[n]).collect();
-                let el = kind.element();
+                let el = kind.element::<2>().unwrap();
                 let mut m = DMatrix::zeros(0, 0);
                 el.mass_into(e, &coords, density, &ideal, &mut m).unwrap();
                 let corners = &coords[..kind.corner_count()];
@@ -477,7 +479,7 @@ fn issue_35_mass_totals_and_definiteness_works() {
     for (slot, mesh) in [&hex8, &hex].into_iter().enumerate() {
         for e in 0..mesh.element_count() {
             let coords: Vec<[f64; 3]> = mesh.element(e).iter().map(|&n| mesh.nodes()[n]).collect();
-            let el = mesh.kind().element();
+            let el = mesh.kind().element::<3>().unwrap();
             let mut m = DMatrix::zeros(0, 0);
             el.mass_into(e, &coords, density, &(), &mut m).unwrap();
             let n = coords.len();

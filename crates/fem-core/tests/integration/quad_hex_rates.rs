@@ -50,7 +50,7 @@ fn errors_2d(kind: ElementKind, n: usize) -> (f64, f64) {
     let u = model.solve(1.0).unwrap();
     let d = material.elasticity(&ideal);
     let mesh = model.mesh();
-    let el = kind.element();
+    let el = kind.element::<2>().unwrap();
     let npe = kind.node_count();
     let (mut l2, mut energy) = (0.0, 0.0);
     let (mut nv, mut dn) = (vec![0.0; npe], vec![[0.0; 2]; npe]);

@@ -26,10 +26,10 @@ pub use zone::{
 /// use contact_laws::Coulomb;
 /// use contact_solver::SimulationSettings;
 /// use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
-/// use fem_core::solid::{SolidKind, SolidModel, generate::{box_mesh, lines}};
-/// use fem_core::{Component, Material, Supports};
+/// use fem_core::solid::{SolidModel, generate::{box_mesh, lines}};
+/// use fem_core::{Component, ElementKind, Material, Supports};
 ///
-/// let mesh = box_mesh(&lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2), &lines(0.0, 0.5, 1), SolidKind::Tet10)?;
+/// let mesh = box_mesh(&lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2), &lines(0.0, 0.5, 1), ElementKind::Tet10)?;
 /// let top = mesh.node_set("z1")?.to_vec();
 /// let mut s = Supports::new();
 /// s.prescribe(&top, Component::Z, -1e-3)?.fix(&top, Component::X).fix(&top, Component::Y);

@@ -21,8 +21,9 @@
 use crate::coupling::space::{cross, dot, sub};
 use crate::coupling::zone::{MAX_TARGETS, Projection, TargetSurface, check_node};
 use crate::error::SolverError;
+use fem_core::ElementKind;
 use fem_core::Structure;
-use fem_core::solid::{SolidKind, SolidMesh, triangle_shape};
+use fem_core::solid::{SolidMesh, triangle_shape};
 use std::collections::{HashMap, HashSet};
 
 /// Barycentric tolerance of "inside a face".
@@ -79,8 +80,8 @@ impl TriSurface {
     pub fn from_face_set(mesh: &SolidMesh, set: &str) -> Result<Self, SolverError> {
         let faces = mesh.face_set(set)?;
         let npf = match mesh.kind() {
-            SolidKind::Tet4 => 3,
-            SolidKind::Tet10 => 6,
+            ElementKind::Tet4 => 3,
+            ElementKind::Tet10 => 6,
             // a bilinear face split into two triangles would carry the target's reactions by
             // linear, not bilinear, shape functions: not the element's surface
             other => {
