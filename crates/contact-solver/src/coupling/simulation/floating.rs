@@ -169,10 +169,7 @@ where
             method: self.settings.tuning.adhesion_method,
             warm_start: self.settings.tuning.adhesion_warm_start && self.warm.enabled(),
         };
-        let mut r_warm: Vec<f64> = active
-            .iter()
-            .flat_map(|&i| self.accepted.r_bar[i])
-            .collect();
+        let mut r_warm = self.r_bar_of(active);
         let mut q = q0.clone();
         // one reduced solve at α, warm started from the last reactions
         let mut solve_at = |alpha: &[f64],
