@@ -2,6 +2,7 @@
 //! beside the knobs a user sets, with defaults measured per dimension where they differ
 //! ([`ContactSpace`]).
 
+use super::settings::with_fields;
 use crate::coupling::space::ContactSpace;
 use crate::local::adhesion::{AdhesionMethod, DEFAULT_ANDERSON_WINDOW};
 use fem_core::Dim;
@@ -124,34 +125,14 @@ impl SkipRules {
         }
     }
 
-    /// These settings with [`reuse_flexibility`](Self::reuse_flexibility) replaced.
-    #[must_use]
-    pub fn with_reuse_flexibility(mut self, reuse_flexibility: bool) -> Self {
-        self.reuse_flexibility = reuse_flexibility;
-        self
-    }
-
-    /// These settings with [`alert_distance`](Self::alert_distance) replaced.
-    #[must_use]
-    pub fn with_alert_distance(mut self, alert_distance: bool) -> Self {
-        self.alert_distance = alert_distance;
-        self
-    }
-
-    /// These settings with [`frictionless_normal_only`](Self::frictionless_normal_only) replaced.
-    #[must_use]
-    pub fn with_frictionless_normal_only(mut self, frictionless_normal_only: bool) -> Self {
-        self.frictionless_normal_only = frictionless_normal_only;
-        self
-    }
-
-    /// These settings with [`adhesion_loop_only_when_adhesive`](Self::adhesion_loop_only_when_adhesive) replaced.
-    #[must_use]
-    pub fn with_adhesion_loop_only_when_adhesive(
-        mut self,
-        adhesion_loop_only_when_adhesive: bool,
-    ) -> Self {
-        self.adhesion_loop_only_when_adhesive = adhesion_loop_only_when_adhesive;
-        self
+    with_fields! {
+        /// These settings with [`reuse_flexibility`](Self::reuse_flexibility) replaced.
+        fn with_reuse_flexibility(reuse_flexibility: bool);
+        /// These settings with [`alert_distance`](Self::alert_distance) replaced.
+        fn with_alert_distance(alert_distance: bool);
+        /// These settings with [`frictionless_normal_only`](Self::frictionless_normal_only) replaced.
+        fn with_frictionless_normal_only(frictionless_normal_only: bool);
+        /// These settings with [`adhesion_loop_only_when_adhesive`](Self::adhesion_loop_only_when_adhesive) replaced.
+        fn with_adhesion_loop_only_when_adhesive(adhesion_loop_only_when_adhesive: bool);
     }
 }
