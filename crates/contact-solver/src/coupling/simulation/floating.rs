@@ -497,7 +497,7 @@ impl Floating {
             return None;
         }
         dir = dir.map(|v| v / length);
-        // an axis direction (to round-off) is the mode itself, reported as before
+        // an axis direction (to round-off) is the mode itself, reported as it is
         if translations
             .iter()
             .any(|&(_, e)| dot(e, dir).abs() >= 1.0 - 1e-9)
