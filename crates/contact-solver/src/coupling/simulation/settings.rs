@@ -2,7 +2,7 @@
 //! tolerance and limit, the flexibility path, the right-hand sides per solve) and the
 //! [`SimulationTuning`] beside them.
 
-use super::tuning::{SimulationTuning, SkipRules};
+use super::tuning::{SimulationTuning, SkipRules, with_fields};
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::UzawaSettings;
@@ -94,19 +94,6 @@ impl Default for SimulationSettings {
         Self::for_dimension::<2>()
     }
 }
-
-/// The `with_*` builders: these settings with one field (a path under `self`) replaced.
-macro_rules! with_fields {
-    ($($(#[$doc:meta])* fn $name:ident($($field:ident).+: $ty:ty);)*) => {$(
-        $(#[$doc])*
-        #[must_use]
-        pub fn $name(mut self, value: $ty) -> Self {
-            self.$($field).+ = value;
-            self
-        }
-    )*};
-}
-pub(crate) use with_fields;
 
 impl SimulationSettings {
     /// The default settings of dimension `D`: the defaults measured for that dimension

@@ -2,10 +2,22 @@
 //! beside the knobs a user sets, with defaults measured per dimension where they differ
 //! ([`ContactSpace`]).
 
-use super::settings::with_fields;
 use crate::coupling::space::ContactSpace;
 use crate::local::adhesion::{AdhesionMethod, DEFAULT_ANDERSON_WINDOW};
 use fem_core::Dim;
+
+/// The `with_*` builders: these settings with one field (a path under `self`) replaced.
+macro_rules! with_fields {
+    ($($(#[$doc:meta])* fn $name:ident($($field:ident).+: $ty:ty);)*) => {$(
+        $(#[$doc])*
+        #[must_use]
+        pub fn $name(mut self, value: $ty) -> Self {
+            self.$($field).+ = value;
+            self
+        }
+    )*};
+}
+pub(crate) use with_fields;
 
 /// The tuning of a simulation ([`SimulationSettings::tuning`](super::SimulationSettings::tuning)):
 /// the adhesion loop's method and acceleration, the penetration check, the skip rules and the
