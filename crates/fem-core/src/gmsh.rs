@@ -30,12 +30,9 @@
 //!   name. Each line element (type 1 or 8) is matched to an element side by its two end
 //!   nodes; where two elements share that side (an interior curve), the one to the left of the
 //!   line's direction is taken. The node set holds all the nodes of those sides, mid-side
-//!   nodes included, **ordered along the curve** by chaining its sides
-//!   ([`Mesh::add_curve_node_set`]: mid-side nodes between their corners, the body on the
-//!   right so that the outward normal is on the left, a closed curve from its lowest node
-//!   without repeating it), whatever order Gmsh numbers the nodes and lists the lines in. A
-//!   curve that branches or is made of disjoint pieces keeps its nodes sorted, and
-//!   [`Mesh::curve_order`] says why (a contact target refuses it).
+//!   nodes included, **ordered along the curve** ([`Mesh::add_curve_node_set`], rules in
+//!   [`crate::mesh::curve`]); a curve that branches or is in pieces keeps its nodes sorted,
+//!   and [`Mesh::curve_order`] says why (a contact target refuses it).
 //! - **Physical surfaces in 3D** (dimension 2) become a face set and a node set of the same
 //!   name. Each triangle (type 2 or 9) or quadrangle (type 3 or 16) is matched to an element
 //!   face by its corners; where two elements share that face (an interior surface), the one

@@ -6,12 +6,10 @@ use nalgebra::Matrix4;
 
 /// An isotropic linear-elastic material with a unit weight and, optionally, a mass density.
 ///
-/// Build it with [`Material::new`] (positional: `young, poisson, unit_weight`) or, with the
-/// parameters named at the call site, [`Material::from_params`] (or `try_from`) on a
-/// [`MaterialParams`]; both validate the same way. A dynamic analysis needs the mass density
-/// too, added with [`Material::with_density`]; a material has none until then (the unit
-/// weight is a load, not a mass: the two stay apart so that a weightless body can have
-/// inertia and a quasi-static body needs no density).
+/// Build it with [`Material::new`] (positional) or [`Material::from_params`] (or `try_from`,
+/// named); both validate the same way. The mass density is separate
+/// ([`Material::with_density`]): the unit weight is a load, not a mass, so that a weightless
+/// body can have inertia and a quasi-static body needs no density.
 ///
 /// Strain and stress vectors are ordered `(xx, yy, xy)` in the plane and
 /// `(rr, zz, rz, θθ)` in axisymmetry, with engineering shear strain `γ = 2ε`.
@@ -50,8 +48,6 @@ impl Material {
     /// Builds a material from Young's modulus `young > 0` (stress), Poisson's ratio
     /// `−1 < poisson < 0.5` and unit weight `unit_weight ≥ 0` (force per volume, acting along
     /// `−y` / `−z`; seed table 6.2 gives γ in kN/m³).
-    ///
-    /// The three floats are positional; [`Material::from_params`] takes them by name.
     ///
     /// # Errors
     /// [`FemError::InvalidParameter`] naming the offending parameter.
@@ -113,12 +109,10 @@ impl Material {
         })
     }
 
-    /// Builds a material from its parameters given by name; the same checks as
-    /// [`Material::new`] (see [`MaterialParams`] for an example).
+    /// [`Material::new`] with the parameters named (example at [`MaterialParams`]).
     ///
     /// # Errors
-    /// [`FemError::InvalidParameter`] naming the offending parameter (`young`, `poisson` or
-    /// `unit_weight`).
+    /// As [`Material::new`].
     pub fn from_params(params: MaterialParams) -> Result<Self, FemError> {
         let MaterialParams {
             young,

@@ -249,7 +249,8 @@ impl RigidBodyModes {
             let k = cols.len();
             let mut basis: Vec<Vec<f64>> = Vec::with_capacity(k);
             for _ in 0..k {
-                let mut best = (0.0, usize::MAX);
+                // (squared norm, dof, row of R projected off the basis) of the farthest row
+                let mut best: Option<(f64, usize, Vec<f64>)> = None;
                 for i in 0..self.dof_count {
                     if pinned.contains(&i) {
                         continue;
@@ -260,22 +261,17 @@ impl RigidBodyModes {
                         row.iter_mut().zip(q).for_each(|(r, a)| *r -= d * a);
                     }
                     let norm = row.iter().map(|a| a * a).sum::<f64>();
-                    if norm > best.0 {
-                        best = (norm, i);
+                    if norm > best.as_ref().map_or(0.0, |b| b.0) {
+                        best = Some((norm, i, row));
                     }
                 }
-                if best.1 == usize::MAX {
+                let Some((norm, i, mut row)) = best else {
                     break;
-                }
-                let mut row: Vec<f64> = cols.iter().map(|&j| self.column(j)[best.1]).collect();
-                for q in &basis {
-                    let d: f64 = q.iter().zip(&row).map(|(a, b)| a * b).sum();
-                    row.iter_mut().zip(q).for_each(|(r, a)| *r -= d * a);
-                }
-                let norm = row.iter().map(|a| a * a).sum::<f64>().sqrt();
+                };
+                let norm = norm.sqrt();
                 row.iter_mut().for_each(|r| *r /= norm);
                 basis.push(row);
-                pinned.push(best.1);
+                pinned.push(i);
             }
         }
         pinned
@@ -449,16 +445,18 @@ where
         };
         let mut ctc = DMatrix::<f64>::zeros(k, k);
         let mut rows = 0usize;
+        let mut add_row = |row: &[f64]| {
+            rows += 1;
+            for a in 0..k {
+                for b in 0..k {
+                    ctc[(a, b)] += row[a] * row[b];
+                }
+            }
+        };
         for &node in members {
             for (c, d) in dofs.dofs(node).into_iter().enumerate() {
                 if let Dof::Prescribed(_) = d {
-                    let row = base(node, c);
-                    rows += 1;
-                    for a in 0..k {
-                        for b in 0..k {
-                            ctc[(a, b)] += row[a] * row[b];
-                        }
-                    }
+                    add_row(&base(node, c));
                 }
             }
         }
@@ -466,12 +464,7 @@ where
             let (ra, rb) = (base(a, ca), base(b, cb));
             let row: Vec<f64> = (0..k).map(|m| rb[m] - ra[m]).collect();
             if row.iter().any(|v| *v != 0.0) {
-                rows += 1;
-                for a in 0..k {
-                    for b in 0..k {
-                        ctc[(a, b)] += row[a] * row[b];
-                    }
-                }
+                add_row(&row);
             }
         }
         let null: Vec<Vec<f64>> = if rows == 0 {

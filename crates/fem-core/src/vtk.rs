@@ -1,15 +1,10 @@
 //! Writing meshes and fields for ParaView: VTK XML unstructured grids (`.vtu`) through the
 //! [`vtkio`] crate, and `.pvd` collections for time series.
 //!
-//! 2D meshes ([`write_vtu`]): points are written in 3D with `z = 0` (so `(r, z)` in
-//! axisymmetry appears as `(x, y)`). P1 triangles are `VTK_TRIANGLE` (5), P2 triangles
-//! `VTK_QUADRATIC_TRIANGLE` (22), whose node order is ours.
-//!
-//! 3D meshes ([`write_vtu_3d`]): P1 tetrahedra are `VTK_TETRA` (10), P2 tetrahedra
-//! `VTK_QUADRATIC_TETRA` (24), whose node order is ours too (see [`ElementKind`](crate::mesh::ElementKind)).
-//!
-//! Every array is `Float64`, base64-encoded inline; the element regions are always written as
-//! the cell array `region` (`UInt32`).
+//! Each cell has its element's VTK type ([`Topology::vtk_cell`](crate::element::Topology::vtk_cell)),
+//! whose node order is ours; 2D points are written with `z = 0` (so `(r, z)` in axisymmetry
+//! appears as `(x, y)`). Every array is `Float64`, base64-encoded inline; the element regions
+//! are always written as the cell array `region` (`UInt32`).
 
 use crate::element::VoigtStress;
 use crate::error::FemError;

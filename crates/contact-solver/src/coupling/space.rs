@@ -2,12 +2,9 @@
 //! [`Dim<2>`] and [`Dim<3>`] (sealed, as [`Space`] is), so that the obstacles, the zones, the
 //! candidates and recognition ([`zone`](super::zone)) are written once over `const D: usize`.
 //!
-//! What stays per dimension is geometry: the tangents of a contact frame (`t = (n_y, −n_x)`
-//! in the plane, [`tangent_frame`] in space), the surface of a
-//! deformable target (a polyline of nodes, [`Polyline`]; triangles, [`TriSurface`]), the
-//! default tributary areas (lumped along the contactor polyline in the plane, 1 per node in
-//! space), and the round-off rule of the rows of `H` (kept as each dimension had it, so that
-//! no number moves; see [`ContactSpace::ROUND_OFF`]).
+//! What stays per dimension is geometry (frame tangents, the surface of a deformable target,
+//! default tributary areas) and the measured or inherited constants, each kept as that
+//! dimension had it so that no number moves.
 //!
 //! Generic code is written with the bound `Dim<D>: ContactSpace<D>`:
 //!
@@ -45,10 +42,9 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// The number of tangential directions of a contact frame, `D − 1`.
     const TANGENTS: usize;
     /// The coefficients of an `H` row at or below this size are dropped, and the row is merged
-    /// to one entry per dof: `0` in 2D (every nonzero coefficient is kept, one entry per node
-    /// and component, as the 2D coupling always had it), `1e-14` in 3D (a unit direction's
-    /// `cos 90°`, a shape value at a vertex: so that a direction held on both sides has an
-    /// empty row).
+    /// to one entry per dof: `0` in 2D (one entry per node and component), `1e-14` in 3D (a
+    /// unit direction's `cos 90°`, a shape value at a vertex: so that a direction held on both
+    /// sides has an empty row).
     const ROUND_OFF: f64;
     /// A candidate is held along its normal when the squared norm of its normal `H` row is
     /// below this (or the row is empty): `0` in 2D (the row must be empty), `1e-24` in 3D.
@@ -63,13 +59,13 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     type Tangents: Copy + Debug + PartialEq + Send + Sync + 'static;
     /// An inactive candidate outside the reduced problem penetrates when its gap is below
     /// `−PENETRATION_TOL × extent` (`extent`: the largest side of the contactor nodes' box):
-    /// `0` in 2D (any negative gap, as 2D always tested), `1e-9` in 3D (round-off of the
-    /// nodes' positions on curved faces, as 3D always tested).
+    /// `0` in 2D (any negative gap), `1e-9` in 3D (round-off of the nodes' positions on curved
+    /// faces).
     const PENETRATION_TOL: f64;
     /// Whether a tangential direction that cannot move relative to the target (its `H` row is
     /// empty: held on both sides, e.g. across a symmetry plane) is decoupled like a
-    /// frictionless one (`W_tt = W_nn`, `r_t = 0`): `false` in 2D (its column is solved, as
-    /// 2D always did), `true` in 3D.
+    /// frictionless one (`W_tt = W_nn`, `r_t = 0`): `false` in 2D (its column is solved),
+    /// `true` in 3D.
     const DECOUPLE_HELD_TANGENTS: bool;
     /// The default [`FlexibilityMode::Auto`](super::simulation::FlexibilityMode::Auto) limit
     /// of a dense `F*`, measured per dimension (`docs/benchmarks.md`): 500 contacts in 2D,
@@ -77,15 +73,15 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     const DENSE_LIMIT: usize;
     /// The largest active set that `Auto` solves with a dense `F*` when its active-set
     /// iteration did not converge (matrix-free beyond): 8000 contacts in 2D (2 GiB), 3000 in
-    /// 3D (648 MB, as 3D always had it).
+    /// 3D (648 MB).
     const FALLBACK_DENSE_LIMIT: usize;
     /// The default right-hand sides per solve when building `F*`
     /// ([`SimulationSettings::columns_per_solve`](super::simulation::SimulationSettings::columns_per_solve)):
-    /// 64 in 2D, 96 in 3D (as each dimension always had it).
+    /// 64 in 2D, 96 in 3D.
     const COLUMNS_PER_SOLVE: usize;
     /// The default cap on the penetration-check passes of a step
     /// ([`SimulationTuning::max_detection_passes`](super::simulation::SimulationTuning::max_detection_passes)):
-    /// 5 in 2D, 20 in 3D (as each dimension always had it).
+    /// 5 in 2D, 20 in 3D.
     const MAX_DETECTION_PASSES: usize;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.
@@ -131,7 +127,7 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     ) -> Result<Vec<[f64; D]>, SolverError>;
 }
 
-/// `a·b`, summed left to right (the order the 2D and 3D copies had).
+/// `a·b`, summed left to right.
 #[inline]
 pub(crate) fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
     let mut s = a[0] * b[0];

@@ -8,23 +8,12 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 /// Users' elements by region, in place of the built-in one of the mesh's kind.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub(crate) struct RegionElements<const D: usize>
 where
     Dim<D>: Space,
 {
     users: BTreeMap<u32, Arc<dyn Element<D>>>,
-}
-
-impl<const D: usize> Default for RegionElements<D>
-where
-    Dim<D>: Space,
-{
-    fn default() -> Self {
-        Self {
-            users: BTreeMap::new(),
-        }
-    }
 }
 
 impl<const D: usize> RegionElements<D>

@@ -14,13 +14,7 @@
 //! along the boundary) and node sets of the same name hold all their nodes, mid-side nodes
 //! included.
 //!
-//! The pile mesh follows Terfaya (2019), ch. 6: axisymmetric `(r, z)` with `z` up and the
-//! ground surface at `z = 0`, a pile of diameter `D = 0.27 m` and length `L_p = 13 m`, soil at
-//! least `2 L_p` wide and `3.5 L_p` deep, and 65 interface node pairs on 6-node triangles.
-//!
-//! The generators live in submodules ([`rectangle`](fn@rectangle) in `rectangle.rs`,
-//! [`pile_in_soil`] in `pile.rs`) over a shared structured lattice (`grid.rs`); every public
-//! item is re-exported here.
+//! The pile mesh follows Terfaya (2019), ch. 6 ([`PileSpec`]).
 
 mod grid;
 mod pile;

@@ -410,20 +410,9 @@ mod tests {
             .filter(|&n| mesh.nodes()[n] == [0.25, -2.0])
             .collect();
         assert_eq!(corner.len(), 1);
-        assert!(
-            !mesh
-                .node_set("interface_pile")
-                .unwrap()
-                .contains(&corner[0])
-        );
-        assert!(
-            !mesh
-                .node_set("interface_soil")
-                .unwrap()
-                .contains(&corner[0])
-        );
         // But it ends the lowest interface side on both sides.
         for name in ["interface_pile", "interface_soil"] {
+            assert!(!mesh.node_set(name).unwrap().contains(&corner[0]), "{name}");
             let lowest = mesh.edge_set(name).unwrap()[0];
             assert!(mesh.side_nodes(lowest).any(|n| n == corner[0]));
         }

@@ -183,20 +183,12 @@ mod tests {
             assert_eq!(mesh.edge_set(name).unwrap().len(), count, "{name}");
         }
         // Bottom sides run along x, in order, from left to right (counter-clockwise).
-        let bottom: Vec<Vec<usize>> = mesh
-            .edge_set("bottom")
-            .unwrap()
-            .iter()
-            .map(|&s| mesh.side_nodes(s).collect())
-            .collect();
-        assert_eq!(bottom, vec![vec![0, 1], vec![1, 2], vec![2, 3]]);
-        let left: Vec<Vec<usize>> = mesh
-            .edge_set("left")
-            .unwrap()
-            .iter()
-            .map(|&s| mesh.side_nodes(s).collect())
-            .collect();
-        assert_eq!(left, vec![vec![4, 0], vec![8, 4]]);
+        let sides = |name| -> Vec<Vec<usize>> {
+            let set = mesh.edge_set(name).unwrap();
+            set.iter().map(|&s| mesh.side_nodes(s).collect()).collect()
+        };
+        assert_eq!(sides("bottom"), vec![vec![0, 1], vec![1, 2], vec![2, 3]]);
+        assert_eq!(sides("left"), vec![vec![4, 0], vec![8, 4]]);
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! The nodes of a set of triangle sides ordered along the curve they make (issue 36).
+//! The nodes of a set of element sides ordered along the curve they make.
 //!
 //! A mesh file lists a curve's line elements in any order and orientation, and numbers its
 //! nodes as it likes (Gmsh: the end points first, then the nodes inside the curve, then the

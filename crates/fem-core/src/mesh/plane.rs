@@ -7,11 +7,9 @@ use crate::error::FemError;
 
 impl Mesh<2> {
     /// Adds (or replaces) the node set of the edge set `name`, ordered along the curve its
-    /// sides make ([`chain_sides`]: mid-side nodes between their corners, the outward normal
-    /// on the left, a closed curve's first node not repeated); a set that is not one curve
-    /// (branches, disjoint pieces) is sorted by index instead. Returns, and records for
-    /// [`Mesh::curve_order`], which it is. The Gmsh reader makes the node sets of physical
-    /// curves this way; the generators keep their sets sorted (along their straight lines).
+    /// sides make ([`chain_sides`]); a set that is not one curve is sorted by index instead.
+    /// Returns, and records for [`Mesh::curve_order`], which it is. The Gmsh reader makes the
+    /// node sets of physical curves this way; the generators keep theirs sorted.
     ///
     /// # Errors
     /// [`FemError::UnknownSet`] if there is no edge set of that name.

@@ -178,11 +178,8 @@ impl ElasticModel<3> {
     /// (and the fill-reducing ordering, once), assembles and factors `K`.
     ///
     /// # Errors
-    /// As [`LinearElasticModel::new`] (without the 2D idealisation's): a region without
-    /// material or, beside one with, without density, a support on a missing node, an inverted element, a stiffness that
-    /// overflows, and [`FemError::NotPositiveDefinite`] if the supports leave a rigid-body
-    /// mode of some body of the mesh (a body that contact holds is built with
-    /// [`SolidModel::floating`]) or `K` is singular otherwise.
+    /// As [`LinearElasticModel::new`], but for the 2D idealisation's (a floating body is built
+    /// with [`SolidModel::floating`]).
     pub fn new(
         mesh: SolidMesh,
         materials: &[(u32, Material)],
@@ -542,8 +539,8 @@ where
         Ok(self.nodal_displacements(&u))
     }
 
-    /// The rigid-body modes the supports leave, or `None` when `K` is positive definite: the
-    /// modes of [`Structure::floating`].
+    /// The rigid-body modes the supports leave ([`Structure::floating`]), or `None` when `K`
+    /// is positive definite.
     pub fn rigid_body_modes(&self) -> Option<&RigidBodyModes> {
         self.floating().map(Floating::rigid_body_modes)
     }

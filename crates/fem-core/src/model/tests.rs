@@ -1,6 +1,7 @@
 //! Unit tests of `LinearElasticModel`.
 
 use super::*;
+use crate::generate::{RectangleSpec, rectangle};
 use crate::mesh::{ElementKind, Side};
 
 /// Unit square, two P1 triangles; right side loaded by a uniform traction.
@@ -109,7 +110,6 @@ fn missing_material_is_reported() {
 /// the model, not faer's pivot in its permuted order.
 #[test]
 fn issue_13_not_positive_definite_names_node() {
-    use crate::generate::{RectangleSpec, rectangle};
     let m = Material::new(210e9, 0.3, 0.0).unwrap();
 
     // A supported 3 × 2 rectangle plus one node (inserted as node 5) that no element
@@ -186,13 +186,7 @@ fn issue_13_not_positive_definite_names_node() {
 /// round-off (plane stress, the sides free, the bottom on rollers).
 #[test]
 fn tied_cap_under_a_resultant_force_works() {
-    let mesh = crate::generate::rectangle(&crate::generate::RectangleSpec::new(
-        [0.0, 2.0],
-        [0.0, 1.0],
-        4,
-        3,
-    ))
-    .unwrap();
+    let mesh = rectangle(&RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 4, 3)).unwrap();
     let top = mesh.node_set("top").unwrap().to_vec();
     let bottom = mesh.node_set("bottom").unwrap().to_vec();
     let mut supports = Supports::new();
@@ -233,13 +227,7 @@ fn tied_cap_under_a_resultant_force_works() {
 
 #[test]
 fn ties_that_contradict_the_supports_are_refused() {
-    let mesh = crate::generate::rectangle(&crate::generate::RectangleSpec::new(
-        [0.0, 1.0],
-        [0.0, 1.0],
-        2,
-        2,
-    ))
-    .unwrap();
+    let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2)).unwrap();
     let top = mesh.node_set("top").unwrap().to_vec();
     let bottom = mesh.node_set("bottom").unwrap().to_vec();
     let m = [(0, Material::new(1.0, 0.3, 0.0).unwrap())];

@@ -17,32 +17,23 @@ use faer::MatMut;
 use faer::sparse::SparseColMatRef;
 
 /// A linear(ised) structure seen from the contact solver, in dimension `D`: 2 (the default:
-/// plane strain, plane stress or axisymmetry, e.g. [`LinearElasticModel`](crate::LinearElasticModel))
-/// or 3 (e.g. [`SolidModel`](crate::solid::SolidModel)). Positions, dofs and displacements of a
-/// node have `D` components.
+/// plane strain, plane stress or axisymmetry) or 3. Positions, dofs and displacements of a node
+/// have `D` components; fem-core's [`LinearElasticModel`](crate::LinearElasticModel) and
+/// [`SolidModel`](crate::solid::SolidModel) are implementations, and so can be any FE code.
 ///
-/// The solver works on the **free dofs** only (prescribed dofs are eliminated). Contact forces
-/// enter as external nodal forces on the contact nodes' free dofs: with `H` the map from free
-/// dofs to the local contact frames, the displacement under contact reactions `r` is
-/// `u = u_free + K⁻¹ Hᵀ r`, where `u_free` is the response to the current loads without
-/// contact ([`Structure::free_response_into`]) and the flexibility `F* = H K⁻¹ Hᵀ` (seed 5.39)
-/// is built from [`Structure::solve_many_in_place`]. Nothing else is needed, so any FE code
-/// (or a hand-written model) can implement it; fem-core's
-/// [`LinearElasticModel`](crate::model::LinearElasticModel) is one implementation.
+/// The solver works on the **free dofs** only (prescribed dofs are eliminated). With `H` the
+/// map from free dofs to the local contact frames, the displacement under contact reactions `r`
+/// is `u = u_free + K⁻¹ Hᵀ r`, `u_free` the response to the loads without contact
+/// ([`Structure::free_response_into`]) and `F* = H K⁻¹ Hᵀ` (seed 5.39) built from
+/// [`Structure::solve_many_in_place`].
 ///
 /// # What to implement
-/// The **required** methods are what every structure has, in three groups: its geometry and
-/// dofs ([`dof_count`](Self::dof_count), [`node_count`](Self::node_count),
-/// [`node_position`](Self::node_position), [`node_dofs`](Self::node_dofs),
-/// [`prescribed_displacement`](Self::prescribed_displacement)); a linear solve with its
-/// factorised stiffness ([`solve_many_in_place`](Self::solve_many_in_place), with
-/// [`stiffness_version`](Self::stiffness_version) saying when `K` changed); and its load, as
-/// the free response to it ([`free_response_into`](Self::free_response_into)). The contact
-/// solver calls every one of them on every scene, so they are one trait rather than three
-/// that every implementer would have to name. Everything else is **provided**, with a
-/// default that is the honest answer for a structure that does not override it; the last
-/// three are **capabilities**, each a trait of its own reached by one method, so that a
-/// structure implements only what it has:
+/// The **required** methods are what every structure has and the solver calls on every scene
+/// (so they are one trait, not three): geometry and dofs, a solve with the factorised stiffness
+/// (with [`stiffness_version`](Self::stiffness_version) saying when `K` changed) and the free
+/// response to the load. The rest is **provided**, with a default that is the honest answer
+/// for a structure that does not override it; the last three are **capabilities**, a trait
+/// each reached by one method, so that a structure implements only what it has:
 ///
 /// | method | default | override when |
 /// |---|---|---|
@@ -54,36 +45,20 @@ use faer::sparse::SparseColMatRef;
 /// | [`mass`](Self::mass) → [`Mass`] | `None` (no inertia) | a dynamic scheme runs on it |
 /// | [`nonlinear`](Self::nonlinear) → [`Nonlinear`] | `None` (linear: `f_int = K u`) | the tangent and internal forces depend on the state |
 ///
-/// Named node sets (a contactor surface) are not asked by the solver: the zones name their
-/// nodes by index, so a model keeps its sets itself (fem-core's models read them from their
-/// mesh, `Mesh::node_set`).
+/// Named node sets are not asked: the zones name their nodes by index.
 ///
 /// # Floating bodies
-/// A structure whose supports leave rigid-body modes (a body that only contact holds) returns
-/// itself from [`Structure::floating`] as a [`Floating`]: its modes `R` (`K R = 0`) and the
-/// load along them (`Rᵀ f`) come together, so a structure cannot offer one without the other.
-/// Its solves then apply a **generalized inverse** `K⁺` (symmetric, `K K⁺ b = b` for every
-/// balanced `b`, `Rᵀ b = 0`), and [`Structure::free_response_into`] returns `K⁺ f` whether `f`
-/// is balanced or not: the contact solver adds the rigid motion `R α` and makes the contact
-/// reactions balance `Rᵀ f`. A structure without modes (the default) keeps `K⁺ = K⁻¹`.
+/// A floating structure's solves apply a **generalized inverse** `K⁺` (symmetric, `K K⁺ b = b`
+/// for every balanced `b`, `Rᵀ b = 0`), and [`Structure::free_response_into`] returns `K⁺ f`
+/// whether `f` is balanced or not: the contact solver adds the rigid motion `R α` and makes the
+/// reactions balance `Rᵀ f`. The modes and their load are one capability ([`Floating`]) so that
+/// a structure cannot return modes while forgetting their load (a silent zero load would be a
+/// wrong answer).
 ///
-/// The pair is one capability, reached through one method, rather than two methods with
-/// defaults, because that is what both sides need: a user's FE code implements the two
-/// methods of [`Floating`] and one line here (`Some(self)`), and cannot return modes while
-/// forgetting their load (a silent zero load would be a wrong answer); the solver asks one
-/// question and gets both.
-///
-/// # Mass and state-dependent tangent
-/// The two capabilities that a time scheme and a material need take the same shape: the
-/// **mass** ([`Mass`]: `M v`, the lumped diagonal, and `M` itself when assembled, for a
-/// dynamic scheme such as Moreau–Jean) and the **state-dependent** side ([`Nonlinear`]:
-/// `f_int(u)` at a trial displacement, the tangent there, commit on acceptance and rollback,
-/// for plasticity or large strain). The tangent is solved with through the structure's own
-/// solves, so the contact solver's flexibility follows it through
-/// [`stiffness_version`](Self::stiffness_version). fem-core's
-/// [`ElasticModel`](crate::ElasticModel) has both: its mass when every region's material has
-/// a density ([`Material::with_density`](crate::Material::with_density)), and the trivial
-/// tangent `K` with `f_int = K u`.
+/// [`Mass`] (for a dynamic scheme such as Moreau–Jean) and [`Nonlinear`] (plasticity, large
+/// strain) take the same shape; fem-core's [`ElasticModel`](crate::ElasticModel) has both, its
+/// mass when every region's material has a density
+/// ([`Material::with_density`](crate::Material::with_density)).
 ///
 /// # Examples
 /// A single spring `k` on one node along `x` (the `y` component supported): the smallest
@@ -145,10 +120,9 @@ pub trait Structure<const D: usize = 2> {
     /// If `node >= node_count()`.
     fn prescribed_displacement(&self, node: usize) -> [f64; D];
 
-    /// The 2D idealisation (plane strain, plane stress or axisymmetry): the contact zones weigh
-    /// the lumped areas of axisymmetric contact nodes by `2πr`. Only asked in 2D; a 3D
-    /// structure has none and keeps the default, [`Idealization::PlaneStrain`] (the unit
-    /// weight), as does a 2D structure in plane strain or plane stress.
+    /// The 2D idealisation: the contact zones weigh the lumped areas of axisymmetric contact
+    /// nodes by `2πr`. Only asked in 2D; the default, [`Idealization::PlaneStrain`], is the
+    /// unit weight.
     fn idealization(&self) -> Idealization {
         Idealization::PlaneStrain
     }
@@ -164,9 +138,8 @@ pub trait Structure<const D: usize = 2> {
         None
     }
 
-    /// Solves `K x = b` in place (`x = K⁺ b` for a floating structure, see the trait docs).
-    /// The default solves `b` as the one column of
-    /// [`solve_many_in_place`](Self::solve_many_in_place).
+    /// Solves `K x = b` in place (`x = K⁺ b` for a floating structure, see the trait docs), by
+    /// default as the one column of [`solve_many_in_place`](Self::solve_many_in_place).
     ///
     /// # Errors
     /// A factorisation error if `K` could not be factored.
@@ -205,33 +178,29 @@ pub trait Structure<const D: usize = 2> {
     /// The stiffness over the free dofs as its lower triangle in CSC form (row indices sorted
     /// in each column, every diagonal entry stored), if the structure has it assembled.
     ///
-    /// Optional: the dense and matrix-free contact paths only solve with `K`. The primal
-    /// active-set path (contact-solver's `FlexibilityMode::ActiveSet`, the default past a few
-    /// hundred contacts) needs the matrix itself, because it factorises `K` with the contact
-    /// conditions imposed as boundary conditions. Its pattern must couple both dofs of a node
-    /// with every dof the node is coupled to (true of any assembled FE stiffness).
+    /// The dense and matrix-free contact paths only solve with `K`; the primal active-set path
+    /// (`FlexibilityMode::ActiveSet`, the default past a few hundred contacts) factorises `K`
+    /// with the contact conditions imposed as boundary conditions. The pattern must couple all
+    /// dofs of a node with every dof the node is coupled to (true of any assembled stiffness).
     fn stiffness_matrix(&self) -> Option<SparseColMatRef<'_, usize, f64>> {
         None
     }
 
-    /// The structure as a floating body ([`Floating`]: its rigid-body modes and the load along
-    /// them), or `None` (the default) when the supports leave no rigid-body mode and `K` is
-    /// positive definite. A structure that returns `Some` applies a generalized inverse `K⁺`
-    /// in its solves (trait docs) and returns at least one mode.
+    /// The structure as a floating body (its rigid-body modes and the load along them), or
+    /// `None` when `K` is positive definite. With `Some`, the solves apply `K⁺` (trait docs)
+    /// and there is at least one mode.
     fn floating(&self) -> Option<&dyn Floating> {
         None
     }
 
-    /// The structure's mass ([`Mass`]), or `None` (the default) for a structure without
-    /// inertia: a quasi-static scheme never asks, a dynamic one refuses a structure without
-    /// it.
+    /// The structure's mass, or `None` without inertia: a quasi-static scheme never asks, a
+    /// dynamic one refuses a structure without it.
     fn mass(&self) -> Option<&dyn Mass> {
         None
     }
 
-    /// The structure as a state-dependent body ([`Nonlinear`]: internal forces at a trial
-    /// displacement, the tangent there, commit and rollback), or `None` (the default) for a
-    /// linear structure, whose internal forces are `K u` with the `K` it solves with.
+    /// The structure as a state-dependent body, or `None` for a linear structure, whose
+    /// internal forces are `K u` with the `K` it solves with.
     fn nonlinear(&mut self) -> Option<&mut dyn Nonlinear> {
         None
     }

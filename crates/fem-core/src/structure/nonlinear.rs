@@ -12,9 +12,7 @@ use crate::error::FemError;
 #[cfg(doc)]
 use crate::structure::Structure;
 
-/// The state-dependent side of a [`Structure`], reached through [`Structure::nonlinear`]:
-/// internal forces at a trial displacement, the tangent there, and the acceptance or
-/// rejection of the trial state.
+/// The state-dependent side of a [`Structure`], reached through [`Structure::nonlinear`].
 ///
 /// # Contract
 /// - `u` is the **total** displacement of the free dofs from the reference configuration
@@ -27,21 +25,16 @@ use crate::structure::Structure;
 ///   ([`Structure::solve_in_place`], [`Structure::solve_many_in_place`]) are solves with the
 ///   tangent, and [`Structure::stiffness_version`] changes whenever the tangent does: the
 ///   contact solver's `F* = H K_t⁻¹ Hᵀ` follows the current tangent with no other seam.
-/// - [`commit`](Self::commit) accepts the trial state (the step converged and the contact
-///   solver accepted it); [`rollback`](Self::rollback) returns the trial state to the
-///   committed one (a step cut).
+/// - [`commit`](Self::commit) accepts the trial state (an accepted step);
+///   [`rollback`](Self::rollback) returns to the committed one (a step cut).
 ///
 /// # How a plastic material implements it
-/// A Drucker–Prager body keeps its history per quadrature point twice: `committed` (plastic
-/// strain, hardening variables, stress at the last accepted step) and `trial`.
-/// `internal_force_into` runs the return mapping at every point from `committed` and the
-/// strain of `u`, writes the stresses and the consistent tangent moduli into `trial`, and
-/// returns `f_int = Σ_e ∫ Bᵀ σ_trial w dΩ`; `update_tangent` assembles `Σ_e ∫ Bᵀ C_t B w dΩ`
-/// from `trial` on the stiffness pattern, refactors it (numeric factorisation only: the
-/// symbolic one is per pattern) and bumps the version; `commit` copies `trial` into
-/// `committed`; `rollback` copies `committed` into `trial`. fem-core's [`ElasticModel`]
-/// implements it with no history: `f_int = K u`, `K_t = K`, and commit and rollback have
-/// nothing to keep.
+/// A Drucker–Prager body keeps its history per quadrature point twice, `committed` and
+/// `trial`. `internal_force_into` runs the return mapping from `committed` and the strain of
+/// `u` into `trial` and returns `f_int = Σ_e ∫ Bᵀ σ_trial w dΩ`; `update_tangent` assembles
+/// `Σ_e ∫ Bᵀ C_t B w dΩ` on the stiffness pattern, refactors it (numeric only: the symbolic
+/// factorisation is per pattern) and bumps the version; `commit` and `rollback` copy one
+/// history onto the other. fem-core's [`ElasticModel`] has no history: `K_t = K`.
 ///
 /// [`ElasticModel`]: crate::ElasticModel
 ///
@@ -87,9 +80,9 @@ pub trait Nonlinear {
     /// If `f_ext.len()` is not the structure's `dof_count()`.
     fn external_force_into(&self, load_factor: f64, f_ext: &mut [f64]) -> Result<(), FemError>;
 
-    /// The internal forces `f_int(u)` at the trial displacement `u` (free dofs, total),
-    /// evaluated from the committed state; the trial state is kept for
-    /// [`update_tangent`](Self::update_tangent) and [`commit`](Self::commit).
+    /// The internal forces `f_int(u)` at the trial displacement `u`, from the committed state;
+    /// the trial state is kept for [`update_tangent`](Self::update_tangent) and
+    /// [`commit`](Self::commit).
     ///
     /// # Errors
     /// A non-finite displacement, or a material point whose update fails.

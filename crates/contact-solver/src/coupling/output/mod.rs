@@ -13,11 +13,9 @@
 //! [`contact_laws`](contact_laws#sign-conventions): `r_n ≥ 0` is compression, `gap ≥ 0` an
 //! opening.
 //!
-//! Floats are written with Rust's `Display` for `f64`, the shortest text that parses back to
-//! the same number, so a history read back with `str::parse::<f64>` is bit-exact (`NaN` and
-//! `inf` are written as such). Rows are built in a buffer reused across steps and handed to the
-//! writer with one `write_all` per step; wrap a file in a [`std::io::BufWriter`] all the same
-//! when a step has few contacts.
+//! Floats are written as the shortest text that parses back to the same number, so a history
+//! read back with `str::parse::<f64>` is bit-exact. Each step is one `write_all`; wrap a file in
+//! a [`std::io::BufWriter`] all the same when a step has few contacts.
 
 use crate::coupling::simulation::{ContactRecord, StepReport, StepResult};
 use crate::error::{Cause, SolverError};
@@ -112,10 +110,7 @@ pub const REPORT_COLUMNS: [&str; 14] = [
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
 #[derive(Debug)]
-pub struct HistoryWriter<W: Write> {
-    out: W,
-    line: String,
-}
+pub struct HistoryWriter<W: Write>(Csv<W>);
 
 impl<W: Write> HistoryWriter<W> {
     /// Starts a history on `out` and writes the header line.
@@ -151,10 +146,6 @@ impl<W: Write> HistoryWriter<W> {
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn with_axes(out: W, axes: [&str; 2]) -> Result<Self, SolverError> {
-        let mut w = Self {
-            out,
-            line: String::new(),
-        };
         let head: Vec<String> = CONTACT_COLUMNS
             .iter()
             .map(|&c| match c {
@@ -165,10 +156,7 @@ impl<W: Write> HistoryWriter<W> {
                 _ => c.to_string(),
             })
             .collect();
-        w.line.push_str(&head.join(","));
-        w.line.push('\n');
-        w.flush_line()?;
-        Ok(w)
+        Csv::new(out, "contact history", &head.join(",")).map(Self)
     }
 
     /// Writes the rows of one step: one per entry of `result.contacts`, with the step number,
@@ -214,7 +202,7 @@ impl<W: Write> HistoryWriter<W> {
         contacts: &[ContactRecord],
     ) -> Result<(), SolverError> {
         for c in contacts {
-            let line = &mut self.line;
+            let line = &mut self.0.line;
             // Writing into a String cannot fail.
             let _ = write!(line, "{step}");
             push_float(line, time);
@@ -239,7 +227,7 @@ impl<W: Write> HistoryWriter<W> {
             }
             line.push('\n');
         }
-        self.flush_line()
+        self.0.flush_line()
     }
 
     /// Flushes the writer and returns it.
@@ -255,18 +243,8 @@ impl<W: Write> HistoryWriter<W> {
     /// assert!(bytes.starts_with(b"step,time,load_factor,zone,node,"));
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
-    pub fn finish(mut self) -> Result<W, SolverError> {
-        self.out
-            .flush()
-            .map_err(|e| io_error("contact history", e))?;
-        Ok(self.out)
-    }
-
-    /// Writes the buffered rows and clears the buffer.
-    fn flush_line(&mut self) -> Result<(), SolverError> {
-        let res = self.out.write_all(self.line.as_bytes());
-        self.line.clear();
-        res.map_err(|e| io_error("contact history", e))
+    pub fn finish(self) -> Result<W, SolverError> {
+        self.0.finish()
     }
 }
 
@@ -299,10 +277,7 @@ impl<W: Write> HistoryWriter<W> {
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```
 #[derive(Debug)]
-pub struct ReportWriter<W: Write> {
-    out: W,
-    line: String,
-}
+pub struct ReportWriter<W: Write>(Csv<W>);
 
 impl<W: Write> ReportWriter<W> {
     /// Starts a log on `out` and writes the header line.
@@ -318,14 +293,7 @@ impl<W: Write> ReportWriter<W> {
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
     pub fn new(out: W) -> Result<Self, SolverError> {
-        let mut w = Self {
-            out,
-            line: String::new(),
-        };
-        w.line.push_str(&REPORT_COLUMNS.join(","));
-        w.line.push('\n');
-        w.flush_line()?;
-        Ok(w)
+        Csv::new(out, "step log", &REPORT_COLUMNS.join(",")).map(Self)
     }
 
     /// Writes the row of one step.
@@ -343,7 +311,7 @@ impl<W: Write> ReportWriter<W> {
     /// # Ok(()) }
     /// ```
     pub fn write_report(&mut self, r: &StepReport) -> Result<(), SolverError> {
-        let line = &mut self.line;
+        let line = &mut self.0.line;
         let _ = write!(line, "{}", r.step);
         push_float(line, r.time);
         push_float(line, r.load_factor);
@@ -367,7 +335,7 @@ impl<W: Write> ReportWriter<W> {
             r.active_contacts
         );
         line.push('\n');
-        self.flush_line()
+        self.0.flush_line()
     }
 
     /// Flushes the writer and returns it.
@@ -383,15 +351,46 @@ impl<W: Write> ReportWriter<W> {
     /// assert!(bytes.starts_with(b"step,time,"));
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```
-    pub fn finish(mut self) -> Result<W, SolverError> {
-        self.out.flush().map_err(|e| io_error("step log", e))?;
-        Ok(self.out)
+    pub fn finish(self) -> Result<W, SolverError> {
+        self.0.finish()
+    }
+}
+
+/// A CSV sink: rows are built in `line`, reused across steps, and handed to `out` in one
+/// `write_all`; `what` names it in I/O errors.
+#[derive(Debug)]
+struct Csv<W: Write> {
+    out: W,
+    line: String,
+    what: &'static str,
+}
+
+impl<W: Write> Csv<W> {
+    /// Starts on `out` and writes the header line `head`.
+    fn new(out: W, what: &'static str, head: &str) -> Result<Self, SolverError> {
+        let line = format!("{head}\n");
+        let mut csv = Self { out, line, what };
+        csv.flush_line()?;
+        Ok(csv)
     }
 
+    /// Writes the buffered rows and clears the buffer.
     fn flush_line(&mut self) -> Result<(), SolverError> {
         let res = self.out.write_all(self.line.as_bytes());
         self.line.clear();
-        res.map_err(|e| io_error("step log", e))
+        res.map_err(|e| self.io_error(e))
+    }
+
+    fn finish(mut self) -> Result<W, SolverError> {
+        self.out.flush().map_err(|e| self.io_error(e))?;
+        Ok(self.out)
+    }
+
+    fn io_error(&self, e: std::io::Error) -> SolverError {
+        SolverError::Io {
+            what: format!("cannot write the {}", self.what),
+            source: Cause::new(e),
+        }
     }
 }
 
@@ -405,14 +404,6 @@ fn push_float(line: &mut String, x: f64) {
     } else {
         write!(line, ",{x:e}")
     };
-}
-
-/// An I/O error while writing `what`.
-fn io_error(what: &str, e: std::io::Error) -> SolverError {
-    SolverError::Io {
-        what: format!("cannot write the {what}"),
-        source: Cause::new(e),
-    }
 }
 
 #[cfg(test)]

@@ -145,9 +145,7 @@ fn direction<const T: usize>(v: [f64; 2], tiny: f64) -> [f64; 2] {
 /// is that of `g s − c_t x_t` (the natural map's argument with the dof stiffness `c_t`), not
 /// `−x_t / |x_t|` (`c_t → ∞`), which swings wildly for the small slips near a stick zone
 /// and does not converge. In 2D both are the sign of `s`. `c_t` is the dof stiffness times the
-/// global damping `scale_ct` times the contact's own factor in `swings` ([`Swing`]), halved
-/// each time its direction turns back and doubled (up to 1) each time it turns on the same
-/// way.
+/// global damping `scale_ct` times the contact's own factor in `swings` ([`Swing`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn guess_sets<L: ContactLaw, const T: usize>(
     step: &PrimalStep<'_, L>,

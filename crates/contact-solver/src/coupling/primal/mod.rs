@@ -14,12 +14,10 @@
 //!   `x_t = 0` on the tangential dof; sliding: the tangential dof is loaded by the Coulomb
 //!   force `r_t = ±g`, `g = μ r_n` of the previous iterate (the coupling is lagged by one
 //!   iteration, so every system stays symmetric positive definite); open: `r = 0`;
-//! * the guess: closed iff `σ_n = r_n − c x_n > 0` (`c` the diagonal stiffness of the dof); a
-//!   sticking node slides once `|r_t| > g`, in the direction of `r_t`; a sliding node keeps
-//!   sliding while it moves against its friction force and sticks otherwise (the semi-smooth
-//!   Newton guess with `σ_t = r_t − c_t x_t` in the limit `c_t → 0⁺`: a large `c_t` flips its
-//!   direction instead, which cycles between the two full-slip guesses when friction nearly
-//!   balances the drive); a node that has just closed slides in the direction it moves;
+//! * the guess (`guess.rs`): closed iff `σ_n = r_n − c x_n > 0` (`c` the diagonal
+//!   stiffness of the dof); a sticking node slides once `|r_t| > g`, in the direction of `r_t`;
+//!   a sliding node keeps sliding while it moves against its friction force and sticks
+//!   otherwise; a node that has just closed slides in the direction it moves;
 //! * the reactions of the Dirichlet dofs are the contact forces, `r_D = (K̃ w̃)_D`.
 //!
 //! The matrix with the Dirichlet rows and columns replaced by their diagonal keeps the

@@ -51,11 +51,8 @@ impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>
 where
     Dim<D>: ContactSpace<D>,
 {
-    /// Follows a renumbering of the structure's dofs (supports added or released between
-    /// steps change the numbering and the stiffness version): the rows of `H` are rebuilt
-    /// from the candidates and `u` from the nodal displacements of the last step, the cached
-    /// operators are dropped, and the change is counted. Returns the stiffness version of the
-    /// step.
+    /// Follows a renumbering of the structure's dofs ([`Interface::follow_numbering`]) with
+    /// `u` and the cached operators, counting the change. Returns the step's stiffness version.
     pub(super) fn follow_structure(&mut self) -> Result<u64, SolverError> {
         if self.interface.follow_numbering(&self.structure)? {
             self.accepted.renumber(&self.structure);

@@ -97,8 +97,7 @@ where
 }
 
 /// The base penalty `ρ⁰` of a contact from its `D × D` diagonal block `w` of `F*`
-/// (row-major): `1/λ_max` exactly in 2D, `1/‖w‖_∞` (a bound of `λ_max`) in 3D, as each
-/// dimension always had it.
+/// (row-major): `1/λ_max` exactly in 2D, `1/‖w‖_∞` (a bound of `λ_max`) in 3D.
 pub(super) fn rho0<const D: usize>(w: &[f64]) -> f64
 where
     Dim<D>: ContactSpace<D>,

@@ -169,10 +169,7 @@ where
             method: self.settings.tuning.adhesion_method,
             warm_start: self.settings.tuning.adhesion_warm_start && self.warm.enabled(),
         };
-        let mut r_warm: Vec<f64> = active
-            .iter()
-            .flat_map(|&i| self.accepted.r_bar[i])
-            .collect();
+        let mut r_warm = self.r_bar_of(active);
         let mut q = q0.clone();
         // one reduced solve at α, warm started from the last reactions
         let mut solve_at = |alpha: &[f64],
@@ -500,7 +497,7 @@ impl Floating {
             return None;
         }
         dir = dir.map(|v| v / length);
-        // an axis direction (to round-off) is the mode itself, reported as before
+        // an axis direction (to round-off) is the mode itself, reported as it is
         if translations
             .iter()
             .any(|&(_, e)| dot(e, dir).abs() >= 1.0 - 1e-9)

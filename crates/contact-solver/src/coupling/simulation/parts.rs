@@ -49,7 +49,7 @@ where
     ) -> Result<Self, SolverError> {
         let candidates = recognize(structure, &zones)?;
         if D == 3 {
-            // the stricter checks 3D always ran (every zone has a candidate, none is held)
+            // every zone has a candidate, none is held (2D refuses a held one in `h_rows_of`)
             check_candidates(structure, &zones, &candidates)?;
         }
         if candidates.is_empty() {

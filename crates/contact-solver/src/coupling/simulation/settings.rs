@@ -2,7 +2,7 @@
 //! tolerance and limit, the flexibility path, the right-hand sides per solve) and the
 //! [`SimulationTuning`] beside them.
 
-use super::tuning::{SimulationTuning, SkipRules};
+use super::tuning::{SimulationTuning, SkipRules, with_fields};
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::UzawaSettings;
@@ -173,58 +173,6 @@ impl SimulationSettings {
             .unwrap_or(<Dim<D> as ContactSpace<D>>::PENETRATION_TOL)
     }
 
-    /// These settings with [`solver`](Self::solver) replaced.
-    #[must_use]
-    pub fn with_solver(mut self, solver: UzawaSettings) -> Self {
-        self.solver = solver;
-        self
-    }
-
-    /// These settings with [`adhesion_tol`](Self::adhesion_tol) replaced.
-    #[must_use]
-    pub fn with_adhesion_tol(mut self, adhesion_tol: f64) -> Self {
-        self.adhesion_tol = adhesion_tol;
-        self
-    }
-
-    /// These settings with [`max_adhesion_iterations`](Self::max_adhesion_iterations) replaced.
-    #[must_use]
-    pub fn with_max_adhesion_iterations(mut self, max_adhesion_iterations: usize) -> Self {
-        self.max_adhesion_iterations = max_adhesion_iterations;
-        self
-    }
-
-    /// These settings with [`tuning.adhesion_anderson_window`](SimulationTuning::adhesion_anderson_window) replaced.
-    #[must_use]
-    pub fn with_adhesion_anderson_window(mut self, adhesion_anderson_window: usize) -> Self {
-        self.tuning.adhesion_anderson_window = adhesion_anderson_window;
-        self
-    }
-
-    /// These settings with [`tuning.adhesion_warm_start`](SimulationTuning::adhesion_warm_start) replaced.
-    #[must_use]
-    pub fn with_adhesion_warm_start(mut self, warm_start: bool) -> Self {
-        self.tuning.adhesion_warm_start = warm_start;
-        self
-    }
-
-    /// These settings with [`tuning.adhesion_method`](SimulationTuning::adhesion_method) replaced.
-    #[must_use]
-    pub fn with_adhesion_method(
-        mut self,
-        adhesion_method: crate::local::adhesion::AdhesionMethod,
-    ) -> Self {
-        self.tuning.adhesion_method = adhesion_method;
-        self
-    }
-
-    /// These settings with [`tuning.max_detection_passes`](SimulationTuning::max_detection_passes) replaced.
-    #[must_use]
-    pub fn with_max_detection_passes(mut self, max_detection_passes: usize) -> Self {
-        self.tuning.max_detection_passes = max_detection_passes;
-        self
-    }
-
     /// These settings with [`tuning.penetration_tol`](SimulationTuning::penetration_tol) set to
     /// `relative`.
     #[must_use]
@@ -233,48 +181,33 @@ impl SimulationSettings {
         self
     }
 
-    /// These settings with [`columns_per_solve`](Self::columns_per_solve) replaced.
-    #[must_use]
-    pub fn with_columns_per_solve(mut self, columns_per_solve: usize) -> Self {
-        self.columns_per_solve = columns_per_solve;
-        self
-    }
-
-    /// These settings with [`tuning.equilibrium_tol`](SimulationTuning::equilibrium_tol) replaced.
-    #[must_use]
-    pub fn with_equilibrium_tol(mut self, equilibrium_tol: f64) -> Self {
-        self.tuning.equilibrium_tol = equilibrium_tol;
-        self
-    }
-
-    /// These settings with
-    /// [`tuning.max_equilibrium_iterations`](SimulationTuning::max_equilibrium_iterations)
-    /// replaced.
-    #[must_use]
-    pub fn with_max_equilibrium_iterations(mut self, max_equilibrium_iterations: usize) -> Self {
-        self.tuning.max_equilibrium_iterations = max_equilibrium_iterations;
-        self
-    }
-
-    /// These settings with [`tuning.skip`](SimulationTuning::skip) replaced.
-    #[must_use]
-    pub fn with_skip(mut self, skip: SkipRules) -> Self {
-        self.tuning.skip = skip;
-        self
-    }
-
-    /// These settings with [`tuning`](Self::tuning) replaced.
-    #[must_use]
-    pub fn with_tuning(mut self, tuning: SimulationTuning) -> Self {
-        self.tuning = tuning;
-        self
-    }
-
-    /// These settings with [`flexibility`](Self::flexibility) replaced.
-    #[must_use]
-    pub fn with_flexibility(mut self, flexibility: FlexibilityMode) -> Self {
-        self.flexibility = flexibility;
-        self
+    with_fields! {
+        /// These settings with [`solver`](Self::solver) replaced.
+        fn with_solver(solver: UzawaSettings);
+        /// These settings with [`adhesion_tol`](Self::adhesion_tol) replaced.
+        fn with_adhesion_tol(adhesion_tol: f64);
+        /// These settings with [`max_adhesion_iterations`](Self::max_adhesion_iterations) replaced.
+        fn with_max_adhesion_iterations(max_adhesion_iterations: usize);
+        /// These settings with [`tuning.adhesion_anderson_window`](SimulationTuning::adhesion_anderson_window) replaced.
+        fn with_adhesion_anderson_window(tuning.adhesion_anderson_window: usize);
+        /// These settings with [`tuning.adhesion_warm_start`](SimulationTuning::adhesion_warm_start) replaced.
+        fn with_adhesion_warm_start(tuning.adhesion_warm_start: bool);
+        /// These settings with [`tuning.adhesion_method`](SimulationTuning::adhesion_method) replaced.
+        fn with_adhesion_method(tuning.adhesion_method: crate::local::adhesion::AdhesionMethod);
+        /// These settings with [`tuning.max_detection_passes`](SimulationTuning::max_detection_passes) replaced.
+        fn with_max_detection_passes(tuning.max_detection_passes: usize);
+        /// These settings with [`columns_per_solve`](Self::columns_per_solve) replaced.
+        fn with_columns_per_solve(columns_per_solve: usize);
+        /// These settings with [`tuning.equilibrium_tol`](SimulationTuning::equilibrium_tol) replaced.
+        fn with_equilibrium_tol(tuning.equilibrium_tol: f64);
+        /// These settings with [`tuning.max_equilibrium_iterations`](SimulationTuning::max_equilibrium_iterations) replaced.
+        fn with_max_equilibrium_iterations(tuning.max_equilibrium_iterations: usize);
+        /// These settings with [`tuning.skip`](SimulationTuning::skip) replaced.
+        fn with_skip(tuning.skip: SkipRules);
+        /// These settings with [`tuning`](Self::tuning) replaced.
+        fn with_tuning(tuning: SimulationTuning);
+        /// These settings with [`flexibility`](Self::flexibility) replaced.
+        fn with_flexibility(flexibility: FlexibilityMode);
     }
 }
 

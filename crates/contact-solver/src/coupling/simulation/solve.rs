@@ -86,10 +86,7 @@ where
             .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
             .collect();
         let q = self.q_of(active, free);
-        let r0: Vec<f64> = active
-            .iter()
-            .flat_map(|&i| self.accepted.r_bar[i])
-            .collect();
+        let r0 = self.r_bar_of(active);
         let step = PrimalStep {
             active,
             frames,
@@ -120,13 +117,8 @@ where
                 dt,
             };
             let options = self.adhesion_options();
-            let sol = dispatch::primal_adhesive(
-                &self.structure,
-                &mut self.cache.primal,
-                &step,
-                &data,
-                &options,
-            )?;
+            let (structure, cache) = (&self.structure, &mut self.cache.primal);
+            let sol = dispatch::primal_adhesive(structure, cache, &step, &data, &options)?;
             self.counters.active_set_steps += 1;
             self.counters.active_set_factorizations += self.cache.primal.factorizations - before;
             self.counters.active_set_solves += sol.solves;
@@ -177,17 +169,14 @@ where
         let states = self.states_of(active);
         let q = self.q_of(active, free);
         let rho0 = self.estimate_rho0(active)?;
-        let mut r: Vec<f64> = active
-            .iter()
-            .flat_map(|&i| self.accepted.r_bar[i])
-            .collect();
+        let mut r = self.r_bar_of(active);
         let mut x = vec![0.0; m];
         let rows: Vec<usize> = active
             .iter()
             .flat_map(|&i| (0..D).map(move |d| D * i + d))
             .collect();
         // rows that carry the contact's response: in 3D a decoupled tangential row is
-        // `x = q + r/ρ⁰` (its `r_t` stays 0); 2D applies every row, as it always did
+        // `x = q + r/ρ⁰` (its `r_t` stays 0); 2D applies every row
         let this = &*self;
         let applied: Vec<bool> = active
             .iter()
@@ -266,10 +255,7 @@ where
         let u_start = self.jumps_of(active);
         let areas = self.areas_of(active);
         let q = self.q_of(active, free);
-        let r_bar: Vec<f64> = active
-            .iter()
-            .flat_map(|&i| self.accepted.r_bar[i])
-            .collect();
+        let r_bar = self.r_bar_of(active);
         let step = AdhesiveStep {
             w: &self.cache.w,
             q: &q,
@@ -327,6 +313,14 @@ where
     /// The accepted jumps of the contacts of `active`.
     pub(super) fn jumps_of(&self, active: &[usize]) -> Vec<[f64; D]> {
         active.iter().map(|&i| self.accepted.jumps[i]).collect()
+    }
+
+    /// The accepted reactions `r̄` of the contacts of `active`, flat.
+    pub(super) fn r_bar_of(&self, active: &[usize]) -> Vec<f64> {
+        active
+            .iter()
+            .flat_map(|&i| self.accepted.r_bar[i])
+            .collect()
     }
 
     /// The tributary areas of the contacts of `active`.

@@ -6,6 +6,19 @@ use crate::coupling::space::ContactSpace;
 use crate::local::adhesion::{AdhesionMethod, DEFAULT_ANDERSON_WINDOW};
 use fem_core::Dim;
 
+/// The `with_*` builders: these settings with one field (a path under `self`) replaced.
+macro_rules! with_fields {
+    ($($(#[$doc:meta])* fn $name:ident($($field:ident).+: $ty:ty);)*) => {$(
+        $(#[$doc])*
+        #[must_use]
+        pub fn $name(mut self, value: $ty) -> Self {
+            self.$($field).+ = value;
+            self
+        }
+    )*};
+}
+pub(crate) use with_fields;
+
 /// The tuning of a simulation ([`SimulationSettings::tuning`](super::SimulationSettings::tuning)):
 /// the adhesion loop's method and acceleration, the penetration check, the skip rules and the
 /// floating bodies' equilibrium. Its defaults rarely need a change; the `with_*` methods of
@@ -124,34 +137,14 @@ impl SkipRules {
         }
     }
 
-    /// These settings with [`reuse_flexibility`](Self::reuse_flexibility) replaced.
-    #[must_use]
-    pub fn with_reuse_flexibility(mut self, reuse_flexibility: bool) -> Self {
-        self.reuse_flexibility = reuse_flexibility;
-        self
-    }
-
-    /// These settings with [`alert_distance`](Self::alert_distance) replaced.
-    #[must_use]
-    pub fn with_alert_distance(mut self, alert_distance: bool) -> Self {
-        self.alert_distance = alert_distance;
-        self
-    }
-
-    /// These settings with [`frictionless_normal_only`](Self::frictionless_normal_only) replaced.
-    #[must_use]
-    pub fn with_frictionless_normal_only(mut self, frictionless_normal_only: bool) -> Self {
-        self.frictionless_normal_only = frictionless_normal_only;
-        self
-    }
-
-    /// These settings with [`adhesion_loop_only_when_adhesive`](Self::adhesion_loop_only_when_adhesive) replaced.
-    #[must_use]
-    pub fn with_adhesion_loop_only_when_adhesive(
-        mut self,
-        adhesion_loop_only_when_adhesive: bool,
-    ) -> Self {
-        self.adhesion_loop_only_when_adhesive = adhesion_loop_only_when_adhesive;
-        self
+    with_fields! {
+        /// These settings with [`reuse_flexibility`](Self::reuse_flexibility) replaced.
+        fn with_reuse_flexibility(reuse_flexibility: bool);
+        /// These settings with [`alert_distance`](Self::alert_distance) replaced.
+        fn with_alert_distance(alert_distance: bool);
+        /// These settings with [`frictionless_normal_only`](Self::frictionless_normal_only) replaced.
+        fn with_frictionless_normal_only(frictionless_normal_only: bool);
+        /// These settings with [`adhesion_loop_only_when_adhesive`](Self::adhesion_loop_only_when_adhesive) replaced.
+        fn with_adhesion_loop_only_when_adhesive(adhesion_loop_only_when_adhesive: bool);
     }
 }

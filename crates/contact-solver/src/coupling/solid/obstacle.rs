@@ -9,7 +9,7 @@
 //! `t₁ = e_x` and `t₂ = e_y`.
 
 use crate::coupling::obstacle::{Obstacle, ObstaclePoint, ObstacleSide, finite_point};
-use crate::coupling::space::{cross, dot};
+use crate::coupling::space::{cross, dot, sub};
 use crate::error::SolverError;
 
 /// The closest point of a 3D obstacle: [`ObstaclePoint<3>`].
@@ -79,14 +79,7 @@ impl RigidPlane {
 
 impl Obstacle<3> for RigidPlane {
     fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint<3>> {
-        let gap = dot(
-            [
-                p[0] - self.point[0],
-                p[1] - self.point[1],
-                p[2] - self.point[2],
-            ],
-            self.normal,
-        );
+        let gap = dot(sub(p, self.point), self.normal);
         Some(ObstaclePoint {
             point: core::array::from_fn(|a| p[a] - gap * self.normal[a]),
             normal: self.normal,
@@ -120,11 +113,7 @@ impl RigidSphere {
 
 impl Obstacle<3> for RigidSphere {
     fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint<3>> {
-        let d = [
-            p[0] - self.center[0],
-            p[1] - self.center[1],
-            p[2] - self.center[2],
-        ];
+        let d = sub(p, self.center);
         let len = dot(d, d).sqrt();
         if len == 0.0 {
             return None; // the centre: every direction is as close
@@ -172,11 +161,7 @@ impl RigidCylinder {
 
 impl Obstacle<3> for RigidCylinder {
     fn project(&self, p: [f64; 3]) -> Option<ObstaclePoint<3>> {
-        let d = [
-            p[0] - self.point[0],
-            p[1] - self.point[1],
-            p[2] - self.point[2],
-        ];
+        let d = sub(p, self.point);
         let along = dot(d, self.axis);
         let radial: [f64; 3] = core::array::from_fn(|a| d[a] - along * self.axis[a]);
         let len = dot(radial, radial).sqrt();

@@ -1,15 +1,6 @@
 //! The 3D names of the contact zones, their targets and candidates: aliases of the generic
-//! [`zone`](crate::coupling::zone) types at `D = 3` (nodes of a body against a rigid
-//! [`Obstacle<3>`](crate::Obstacle), against the nodes of another body paired one to one, or
-//! against another body's triangle faces, node-to-face on a
-//! [`TriSurface`](super::TriSurface)).
-//!
-//! The tributary area of a contactor node (for pressures and for the adhesive springs of an
-//! RCCM interface) is given with [`ContactZone::with_areas`](crate::ContactZone::with_areas),
-//! e.g. the consistent `∫ N_i dA` of
-//! [`SolidMesh::nodal_areas`](fem_core::solid::SolidMesh::nodal_areas) over the contactor's
-//! own face set; a zone without areas counts 1 per node, and an adhesive zone without them is
-//! refused.
+//! [`zone`](crate::coupling::zone) types at `D = 3` (tributary areas:
+//! [`ContactZone::areas`](crate::ContactZone::areas)).
 
 use crate::coupling::zone::{
     Candidate, ContactZone, PairNormals, Target, check_candidates, recognize, supported_contactors,

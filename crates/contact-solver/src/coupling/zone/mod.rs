@@ -224,13 +224,8 @@ where
         law: L,
         alert_distance: f64,
     ) -> Self {
-        Self::new(
-            name,
-            contactor,
-            Target::Surface(surface),
-            law,
-            alert_distance,
-        )
+        let target = Target::Surface(surface);
+        Self::new(name, contactor, target, law, alert_distance)
     }
 
     /// This zone without the contactor nodes of `leave_out` (their paired target nodes, pair
@@ -440,10 +435,9 @@ where
         .collect())
 }
 
-/// The stricter checks of candidates the 3D simulation has always run after [`recognize`]
-/// (the 2D one checks the rigid zones with [`check_rigid_targets`] and refuses a held
-/// candidate when it builds `H`): every zone has a candidate, and no candidate is held along
-/// its normal ([`supported_contactors`]).
+/// The checks the 3D simulation runs after [`recognize`] (the 2D one runs
+/// [`check_rigid_targets`] and refuses a held candidate when it builds `H`): every zone has a
+/// candidate, and none is held along its normal ([`supported_contactors`]).
 ///
 /// # Errors
 /// [`SolverError::InvalidGeometry`] naming the zone (and the node).
