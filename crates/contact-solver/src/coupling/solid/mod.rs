@@ -12,9 +12,7 @@ pub use crate::coupling::output::write_interface_vtu_3d;
 use crate::coupling::simulation::{ContactRecord, ContactSimulation, StepResult};
 pub use obstacle::{ObstaclePoint3, RigidCylinder, RigidPlane, RigidSphere, Side3, tangent_frame};
 pub use surface::TriSurface;
-pub use zone::{
-    Candidate3, ContactZone3, PairNormals3, Target3, recognize_3d, supported_contactors_3d,
-};
+pub use zone::{Candidate3, ContactZone3, PairNormals3, Target3};
 
 /// A quasi-static 3D contact simulation: [`ContactSimulation<S, L, 3>`]. Its default settings
 /// are [`SimulationSettings::for_dimension`](crate::SimulationSettings::for_dimension)`::<3>()`.
