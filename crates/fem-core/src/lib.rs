@@ -52,6 +52,7 @@ pub mod quadrature;
 pub use element::{Element, Quad4, Quad8, Quad9, Stress, Tri3, Tri6};
 pub mod assembly;
 pub mod dirichlet;
+pub mod dynamic;
 pub mod linear_solver;
 pub mod model;
 pub mod ordering;

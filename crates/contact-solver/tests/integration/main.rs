@@ -30,6 +30,8 @@ mod issue_35_one_simulation;
 mod issue_35_penetration;
 mod issue_35_time_scheme;
 mod issue_36_traps;
+mod issue_39_dynamics;
+mod issue_39_sliding_block;
 mod issue_37_asymmetric;
 mod local_algorithms;
 mod matrix_free;
