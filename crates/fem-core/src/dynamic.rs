@@ -124,7 +124,11 @@ where
     /// has a density: [`Material::with_density`](crate::Material::with_density));
     /// [`FemError::InvalidParameter`] naming `alpha` or `beta` if one is negative or not
     /// finite.
-    pub fn new(model: ElasticModel<D>, mass: MassKind, damping: Rayleigh) -> Result<Self, FemError> {
+    pub fn new(
+        model: ElasticModel<D>,
+        mass: MassKind,
+        damping: Rayleigh,
+    ) -> Result<Self, FemError> {
         for (name, value) in [("alpha", damping.alpha), ("beta", damping.beta)] {
             crate::error::non_negative(name, value)?;
         }
@@ -156,7 +160,10 @@ where
     ///
     /// # Errors
     /// As [`Self::set_step`] when `M̂` is re-formed.
-    pub fn update<R>(&mut self, change: impl FnOnce(&mut ElasticModel<D>) -> R) -> Result<R, FemError> {
+    pub fn update<R>(
+        &mut self,
+        change: impl FnOnce(&mut ElasticModel<D>) -> R,
+    ) -> Result<R, FemError> {
         let out = change(&mut self.model);
         if self.model.stiffness_version() != self.model_version {
             self.follow_model()?;
@@ -243,7 +250,10 @@ where
         match self.mass_kind {
             MassKind::Consistent => mass.mul_into(x, y),
             MassKind::Lumped => {
-                assert!(x.len() == y.len() && x.len() == mass.lumped().len(), "lengths");
+                assert!(
+                    x.len() == y.len() && x.len() == mass.lumped().len(),
+                    "lengths"
+                );
                 for ((y, x), m) in y.iter_mut().zip(x).zip(mass.lumped()) {
                     *y = m * x;
                 }
@@ -363,7 +373,10 @@ where
 #[track_caller]
 fn symmetric_mul_into(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
     let n = a.ncols();
-    assert!(x.len() == n && y.len() == n, "x and y of the matrix's dimension");
+    assert!(
+        x.len() == n && y.len() == n,
+        "x and y of the matrix's dimension"
+    );
     y.fill(0.0);
     let (col_ptr, row_idx, values) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
     for (j, &x_j) in x.iter().enumerate() {
@@ -531,9 +544,13 @@ mod tests {
         ));
         let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 1, 1)).unwrap();
         let m = Material::new(100.0, 0.3, 0.0).unwrap();
-        let massless =
-            LinearElasticModel::floating(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
-                .unwrap();
+        let massless = LinearElasticModel::floating(
+            mesh,
+            Idealization::PlaneStrain,
+            &[(0, m)],
+            Supports::new(),
+        )
+        .unwrap();
         assert!(matches!(
             DynamicModel::new(massless, MassKind::Lumped, Rayleigh::default()),
             Err(FemError::MissingMethod { method: "mass", .. })

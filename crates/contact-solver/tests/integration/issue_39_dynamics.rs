@@ -109,7 +109,11 @@ fn issue_39_theta_one_balance_closes() {
         assert!(e.residual().abs() < 2e-11 * e0, "{e:?}");
     }
     // monotone decay: D_θ ≥ 0 each step
-    assert!(history.windows(2).all(|w| w[1].mechanical() <= w[0].mechanical()));
+    assert!(
+        history
+            .windows(2)
+            .all(|w| w[1].mechanical() <= w[0].mechanical())
+    );
 }
 
 /// The bar of (b): `L = 1`, width 0.1, thickness 1 (plane stress), `E = ρ = 1` (`c = 1`),
@@ -151,9 +155,7 @@ fn bar(nx: usize, h: f64, steps: usize, v0: f64, mass: MassKind) -> BarRun {
         ContactSimulation::with_scheme(body, vec![zone], SimulationSettings::default(), scheme)
             .unwrap();
     let n = sim.structure().dof_count();
-    let ones_x: Vec<f64> = (0..n)
-        .map(|i| if i % 2 == 0 { 1.0 } else { 0.0 })
-        .collect();
+    let ones_x: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { 1.0 } else { 0.0 }).collect();
     let mut m1 = vec![0.0; n];
     sim.structure().mass_mul_into(&ones_x, &mut m1);
     let total: f64 = m1.iter().zip(&ones_x).map(|(a, b)| a * b).sum();
@@ -192,10 +194,7 @@ fn issue_39_bar_impact_matches_wave_theory() {
     assert_eq!(in_contact.len(), last - first + 1, "{:?}", in_contact);
     let duration = (last - first + 1) as f64 * h;
     // the plateau: the middle 80 % of the contact
-    let (a, b) = (
-        first + (last - first) / 10,
-        last - (last - first) / 10,
-    );
+    let (a, b) = (first + (last - first) / 10, last - (last - first) / 10);
     let plateau = &run.force[a..=b];
     let mean = plateau.iter().sum::<f64>() / plateau.len() as f64;
     let spread = plateau.iter().fold(0.0_f64, |m, f| m.max((f - mean).abs())) / mean;
@@ -268,19 +267,20 @@ fn issue_39_free_flight_works_in_2d_and_3d() {
         .unwrap()
         .with_density(2.0)
         .unwrap();
-    let plane = LinearElasticModel::floating(
-        mesh,
-        Idealization::PlaneStrain,
-        &[(0, m)],
-        Supports::new(),
-    )
-    .unwrap();
+    let plane =
+        LinearElasticModel::floating(mesh, Idealization::PlaneStrain, &[(0, m)], Supports::new())
+            .unwrap();
     let far = RigidLine::new([-9.0, -5.0], [9.0, -5.0]).unwrap();
     let zone = ContactZone::rigid("far", bottom, far, Signorini, 0.1);
     let (u2, t2) = free_flight(plane, zone, [0.3, 0.4]);
 
-    let mesh = box_mesh(&lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2), SolidKind::Hex8)
-        .unwrap();
+    let mesh = box_mesh(
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.0, 2),
+        &lines(0.0, 1.0, 2),
+        SolidKind::Hex8,
+    )
+    .unwrap();
     let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
     let solid = SolidModel::floating(mesh, &[(0, m)], Supports::new()).unwrap();
     let far = RigidPlane::new([0.0, 0.0, -5.0], [0.0, 0.0, 1.0]).unwrap();

@@ -73,9 +73,8 @@ fn issue_39_sliding_block_stops_at_mu_g() {
     let mass: f64 = m1.iter().zip(&ones_x).map(|(a, b)| a * b).sum();
     let mut mz = vec![0.0; n];
     sim.structure().mass_mul_into(&ones_z, &mut mz);
-    let mean = |v: &[f64], m1: &[f64]| -> f64 {
-        m1.iter().zip(v).map(|(a, b)| a * b).sum::<f64>() / mass
-    };
+    let mean =
+        |v: &[f64], m1: &[f64]| -> f64 { m1.iter().zip(v).map(|(a, b)| a * b).sum::<f64>() / mass };
     let t_star = V0 / (MU * G);
     let (mut t_stop, mut worst_mid, mut after) = (None, 0.0_f64, 0.0_f64);
     let mut first_contact: Option<usize> = None;
@@ -112,7 +111,7 @@ fn issue_39_sliding_block_stops_at_mu_g() {
     );
     // the mean velocity first reaches 0 in the step that contains t* (one step: 1.5 % of t*)
     assert!(t_stop - H < t_star && t_star <= t_stop, "t_stop = {t_stop}");
-    // the deceleration is μ g to within the block's elastic vibration (measured 1e-5 v0)
+    // the deceleration is μ g to within the block's elastic vibration (measured 1.5e-4 v0)
     assert!(worst_mid < 1e-3, "{worst_mid}");
     // then it sticks: what is left is the elastic vibration the released friction strain
     // starts (measured 0.4 % of v0, decaying)

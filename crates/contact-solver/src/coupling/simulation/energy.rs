@@ -11,8 +11,8 @@
 //! D_C = h v_θᵀ C v_θ,       D_θ = (θ − ½) (ΔvᵀMΔv + ΔuᵀKΔu) ≥ 0
 //! ```
 //! For `θ = 1/2` without damping or contact `T + V` changes only by the work of the loads;
-//! `W_c ≤ 0` is what the contacts dissipate (impact and friction: Signorini with `e = 0`
-//! keeps `r_n v_n,θ = −½ r_n v_n,k ≥ 0` at an impact).
+//! `−W_c ≥ 0` is what the contacts dissipate (impact and friction: with `e = 0` and
+//! `θ = 1/2` a closed contact has `v_n = 0`, so `r_n v_n,θ = ½ r_n v_n,k ≤ 0` at an impact).
 
 use fem_core::Dim;
 use fem_core::dynamic::DynamicModel;
@@ -114,8 +114,12 @@ impl EnergyBalance {
         Dim<D>: ModelSpace<D>,
     {
         let n = f.v.len();
-        let v_theta: Vec<f64> =
-            f.v_k.iter().zip(f.v).map(|(a, b)| (1.0 - f.theta) * a + f.theta * b).collect();
+        let v_theta: Vec<f64> = f
+            .v_k
+            .iter()
+            .zip(f.v)
+            .map(|(a, b)| (1.0 - f.theta) * a + f.theta * b)
+            .collect();
         let du: Vec<f64> = f.u.iter().zip(f.u_k).map(|(a, b)| a - b).collect();
         let dv: Vec<f64> = f.v.iter().zip(f.v_k).map(|(a, b)| a - b).collect();
         let mut buffer = vec![0.0; n];

@@ -24,10 +24,10 @@
 //! Adhesive laws (RCCM) are not yet served at velocity level (their state update reads
 //! displacement jumps): the scheme is for Signorini, Coulomb and laws without adhesion.
 
+use super::ContactSimulation;
 use super::energy::EnergyBalance;
 use super::report::StepResult;
 use super::scheme::{SchemeStep, TimeScheme};
-use super::ContactSimulation;
 use crate::coupling::space::ContactSpace;
 use crate::coupling::zone::Candidate;
 use crate::error::SolverError;
@@ -353,8 +353,8 @@ where
         let (mut kx, mut cv) = (vec![0.0; n], vec![0.0; n]);
         structure.stiffness_mul_into(&predictor, &mut kx);
         structure.damping_mul_into(&self.velocity, &mut cv);
-        for i in 0..n {
-            free[i] = h * (self.load[i] - cv[i] - kx[i]);
+        for (((y, f), c), k) in free.iter_mut().zip(&self.load).zip(&cv).zip(&kx) {
+            *y = h * (f - c - k);
         }
         structure.solve_in_place(free)?;
         for (f, v) in free.iter_mut().zip(&self.velocity) {
@@ -378,7 +378,8 @@ where
         start: &[f64; D],
     ) -> [f64; D] {
         if self.contacts.len() <= index {
-            self.contacts.resize(index + 1, ContactVelocities::default());
+            self.contacts
+                .resize(index + 1, ContactVelocities::default());
         }
         let shift = match &self.initial_displacement {
             Some(u0) => self.local_of(candidate, u0),
