@@ -36,6 +36,19 @@ use std::time::Instant;
 /// A P2 cantilever 4 × 0.5 (8 × 2 cells), clamped on the left, moving with `v_y = 0.1 x/4`,
 /// a rigid line 10 beyond its tip (never reached); `n` steps of `h = 0.05` at weight `theta`.
 fn cantilever(theta: f64, n: usize) -> Vec<EnergyBalance> {
+    cantilever_from(n, |body| {
+        MoreauJean::new(theta)
+            .unwrap()
+            .with_velocity_field(body, |x| [0.0, 0.1 * x[0] / 4.0])
+            .unwrap()
+    })
+}
+
+/// The cantilever of [`cantilever`], the scheme (θ, initial state) made by `scheme`.
+fn cantilever_from(
+    n: usize,
+    scheme: impl FnOnce(&DynamicModel<2>) -> MoreauJean,
+) -> Vec<EnergyBalance> {
     let spec = RectangleSpec {
         kind: ElementKind::Tri6,
         ..RectangleSpec::new([0.0, 4.0], [0.0, 0.5], 8, 2)
@@ -54,10 +67,7 @@ fn cantilever(theta: f64, n: usize) -> Vec<EnergyBalance> {
     let model =
         LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports).unwrap();
     let body = DynamicModel::new(model, MassKind::Consistent, Rayleigh::default()).unwrap();
-    let scheme = MoreauJean::new(theta)
-        .unwrap()
-        .with_velocity_field(&body, |x| [0.0, 0.1 * x[0] / 4.0])
-        .unwrap();
+    let scheme = scheme(&body);
     let far = RigidLine::new([14.0, -1.0], [14.0, 2.0]).unwrap(); // normal −x
     let zone = ContactZone::rigid("far", right, far, Signorini, 0.1);
     let mut sim =
@@ -114,6 +124,79 @@ fn issue_39_theta_one_balance_closes() {
             .windows(2)
             .all(|w| w[1].mechanical() <= w[0].mechanical())
     );
+}
+
+#[test]
+fn issue_39_initial_displacement_works() {
+    // released from a bent shape u0 = (0, 0.01 (x/4)²) at rest: T0 = 0, V0 = ½ u0ᵀ K u0
+    let mut v0 = 0.0;
+    let history = cantilever_from(50, |body| {
+        let mut u0 = vec![0.0; body.dof_count()];
+        for node in 0..body.node_count() {
+            let x = body.node_position(node);
+            if let Some(i) = body.node_dofs(node)[1] {
+                u0[i] = 0.01 * (x[0] / 4.0).powi(2);
+            }
+        }
+        let mut ku = vec![0.0; u0.len()];
+        body.stiffness_mul_into(&u0, &mut ku);
+        v0 = 0.5 * u0.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
+        MoreauJean::new(0.5).unwrap().with_displacement(u0).unwrap()
+    });
+    let first = &history[0];
+    // the balance starts from the strain energy of u0 (same products: round-off)
+    assert!(
+        (first.initial - v0).abs() < 1e-14 * v0,
+        "{} vs {v0}",
+        first.initial
+    );
+    // released: energy moves into motion, and T + V stays V0 (as in the free vibration)
+    let last = history.last().unwrap();
+    assert!(last.kinetic > 0.01 * v0, "{last:?}");
+    for e in &history {
+        assert!((e.mechanical() - v0).abs() < 2e-11 * v0, "{e:?}");
+    }
+}
+
+#[test]
+fn issue_39_moreau_jean_rejects_bad_input() {
+    use contact_solver::SolverError;
+    for theta in [0.49, 1.01, f64::NAN] {
+        assert!(matches!(
+            MoreauJean::new(theta),
+            Err(SolverError::InvalidSetting { what: "theta", .. })
+        ));
+    }
+    for e in [-0.1, 1.5, f64::NAN] {
+        let s = MoreauJean::new(0.5).unwrap();
+        assert!(matches!(
+            s.with_restitution(e),
+            Err(SolverError::InvalidSetting {
+                what: "restitution",
+                ..
+            })
+        ));
+    }
+    assert!(matches!(
+        MoreauJean::new(0.5)
+            .unwrap()
+            .with_velocity(vec![0.0, f64::NAN]),
+        Err(SolverError::NonFinite {
+            what: "velocity",
+            index: 1,
+            ..
+        })
+    ));
+    assert!(matches!(
+        MoreauJean::new(0.5)
+            .unwrap()
+            .with_displacement(vec![f64::INFINITY]),
+        Err(SolverError::NonFinite {
+            what: "displacement",
+            index: 0,
+            ..
+        })
+    ));
 }
 
 /// The bar of (b): `L = 1`, width 0.1, thickness 1 (plane stress), `E = ρ = 1` (`c = 1`),
