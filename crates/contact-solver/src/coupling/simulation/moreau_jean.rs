@@ -52,7 +52,11 @@ struct ContactVelocities {
 /// between steps, and the energy balance of every accepted step.
 ///
 /// Run it on a [`DynamicModel`] with [`ContactSimulation::with_scheme`] and step with
-/// [`ContactSimulation::advance`] (which factorises `M̂` for the step size).
+/// [`ContactSimulation::advance`] (which factorises `M̂` for the step size). The velocity
+/// lives on the structure's free dofs, numbered as at the start: keep the supports of a
+/// dynamic run (a change of the dof count is refused at the next step,
+/// [`FemError::LengthMismatch`] naming `velocity`; following a renumbering is left to do).
+/// The contact unknowns `r` of a step are impulses (force × time).
 ///
 /// # Examples
 /// A P1 block falling from rest onto a rigid line under its own weight (`g = 10`): before the
