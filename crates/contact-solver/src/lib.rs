@@ -63,7 +63,7 @@ pub use coupling::simulation::{
     InterfaceStatus, SimulationSettings, SimulationTuning, SkipRules, StepReport, StepResult,
 };
 #[cfg(feature = "fe")]
-pub use coupling::simulation::{QuasiStatic, SchemeStep, TimeScheme};
+pub use coupling::simulation::{EnergyBalance, MoreauJean, QuasiStatic, SchemeStep, TimeScheme};
 #[cfg(feature = "fe")]
 pub use coupling::zone::{
     Candidate, ContactZone, PairNormals, Polyline, Target, check_rigid_targets, recognize,

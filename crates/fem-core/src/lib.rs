@@ -25,6 +25,8 @@
 //!   [`ElasticModel`] and by users' own FE codes, with its optional capabilities
 //!   [`Floating`] (rigid-body modes), [`Mass`] (inertia, for dynamics) and [`Nonlinear`]
 //!   (internal forces and a state-dependent tangent, for nonlinear materials).
+//! - **Dynamics** ([`dynamic`]): a model solved with `M̂ = M + hθC + h²θ²K`, for a
+//!   velocity-level time scheme (the contact solver's Moreau–Jean).
 //! - **Verification**: closed-form elasticity solutions ([`analytical`]).
 //!
 //! It knows nothing about contact. Errors are [`FemError`].
@@ -52,6 +54,7 @@ pub mod quadrature;
 pub use element::{Element, Quad4, Quad8, Quad9, Stress, Tri3, Tri6};
 pub mod assembly;
 pub mod dirichlet;
+pub mod dynamic;
 pub mod linear_solver;
 pub mod model;
 pub mod ordering;

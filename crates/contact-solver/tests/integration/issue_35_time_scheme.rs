@@ -85,14 +85,14 @@ where
     }
 
     fn free_jump(
-        &self,
+        &mut self,
         index: usize,
         candidate: &Candidate<D>,
         u_rel: [f64; D],
         start: &[f64; D],
     ) -> [f64; D] {
         bump(&self.free_jump);
-        TimeScheme::<S, D>::free_jump(&self.inner, index, candidate, u_rel, start)
+        TimeScheme::<S, D>::free_jump(&mut self.inner, index, candidate, u_rel, start)
     }
 
     fn rhs(&self, index: usize, free: &[f64; D], start: &[f64; D]) -> [f64; D] {
@@ -110,11 +110,17 @@ where
         TimeScheme::<S, D>::jump(&self.inner, index, x, start)
     }
 
-    fn accept(&mut self, step: &SchemeStep<'_>, solution: &[f64], displacement: &[f64]) {
+    fn accept(
+        &mut self,
+        structure: &S,
+        step: &SchemeStep<'_>,
+        solution: &[f64],
+        displacement: &[f64],
+    ) {
         self.accept += 1;
         // quasi-static: the solution is the displacement
         assert_eq!(solution, displacement);
-        TimeScheme::<S, D>::accept(&mut self.inner, step, solution, displacement)
+        self.inner.accept(structure, step, solution, displacement)
     }
 }
 

@@ -121,24 +121,32 @@ where
         settings: &SimulationSettings,
         accepted: &Accepted<L::State, D>,
         free: &[[f64; D]],
+        enters: impl Fn(usize, &[f64; D], &[f64; D], f64, bool) -> bool,
     ) -> Vec<usize> {
         let all = !settings.tuning.skip.alert_distance;
         (0..self.candidates.len())
             .filter(|&i| {
                 let c = &self.candidates[i];
                 let zone = &self.zones[c.zone];
-                all || zone.law.adhesion_active(&accepted.states[i])
-                    || accepted.jumps[i][0] <= zone.alert_distance
-                    || free[i][0] <= zone.alert_distance
+                zone.law.adhesion_active(&accepted.states[i])
+                    || enters(i, &accepted.jumps[i], &free[i], zone.alert_distance, all)
             })
             .collect()
     }
 
-    /// The candidates outside the solved active set `active` (sorted) whose gap under `jumps`
-    /// is below `−penetration_tol` ([`ContactSpace::PENETRATION_TOL`]: 0 in 2D).
-    pub(super) fn penetrating(&self, active: &[usize], jumps: &[[f64; D]]) -> Vec<usize> {
+    /// The candidates outside the solved active set `active` (sorted) that penetrate under
+    /// `jumps` as the scheme's `penetrates` says ([`TimeScheme::penetrates`], quasi-static: a
+    /// gap below `−penetration_tol`, [`ContactSpace::PENETRATION_TOL`]: 0 in 2D).
+    pub(super) fn penetrating(
+        &self,
+        active: &[usize],
+        jumps: &[[f64; D]],
+        penetrates: impl Fn(usize, &[f64; D], f64) -> bool,
+    ) -> Vec<usize> {
         (0..self.candidates.len())
-            .filter(|i| active.binary_search(i).is_err() && jumps[*i][0] < -self.penetration_tol)
+            .filter(|&i| {
+                active.binary_search(&i).is_err() && penetrates(i, &jumps[i], self.penetration_tol)
+            })
             .collect()
     }
 

@@ -109,8 +109,12 @@ where
         start: Instant,
     ) -> StepResult<D> {
         let step = clock.scheme_step(&self.accepted);
-        self.scheme
-            .accept(&step, &equilibrium.solution, equilibrium.displacement());
+        self.scheme.accept(
+            &self.structure,
+            &step,
+            &equilibrium.solution,
+            equilibrium.displacement(),
+        );
         let records = self.records(&equilibrium.jumps, &solved);
         let accepted = &mut self.accepted;
         for r in accepted.r_bar.iter_mut() {

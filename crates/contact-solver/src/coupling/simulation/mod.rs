@@ -43,10 +43,12 @@
 
 mod detection;
 mod dispatch;
+mod energy;
 mod equilibrium;
 mod flexibility;
 mod floating;
 mod last_problem;
+mod moreau_jean;
 mod parts;
 mod path;
 mod report;
@@ -55,6 +57,8 @@ mod settings;
 mod solve;
 mod tuning;
 
+pub use energy::EnergyBalance;
+pub use moreau_jean::MoreauJean;
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
 pub use scheme::{QuasiStatic, SchemeStep, TimeScheme};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings};
@@ -419,9 +423,13 @@ where
         let free = self.free_response(clock)?;
         self.force_check
             .check(&self.structure, force_factor, &free.y)?;
-        let mut active =
-            self.interface
-                .initial_active_set(&self.settings, &self.accepted, &free.jumps);
+        let scheme = &self.scheme;
+        let mut active = self.interface.initial_active_set(
+            &self.settings,
+            &self.accepted,
+            &free.jumps,
+            |i, start, free, alert, all| scheme.enters(i, start, free, alert, all),
+        );
         let mut report = StepReport::start(self.counters.steps + 1, time, force_factor);
         loop {
             report.detection_passes += 1;
@@ -438,9 +446,12 @@ where
             };
             // 4. equilibrium (the scheme's displacement), then the penetration check
             let equilibrium = self.equilibrium(clock, &free, &solved)?;
-            let penetrating = self
-                .interface
-                .penetrating(&solved.active, &equilibrium.jumps);
+            let scheme = &self.scheme;
+            let penetrating =
+                self.interface
+                    .penetrating(&solved.active, &equilibrium.jumps, |i, jump, tol| {
+                        scheme.penetrates(i, jump, tol)
+                    });
             if penetrating.is_empty() {
                 // 5. acceptance (the scheme's, then the carried state) and the report
                 return Ok(self.accept(clock, equilibrium, solved, report, start));

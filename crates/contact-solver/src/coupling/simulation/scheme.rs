@@ -75,10 +75,11 @@ impl<'a> SchemeStep<'a> {
 ///
 /// # Contract
 /// Per step the simulation calls, in this order: [`free_response`](Self::free_response)
-/// once; [`free_jump`](Self::free_jump) once per candidate; then per detection pass
+/// once; [`free_jump`](Self::free_jump) once per candidate; [`enters`](Self::enters) once
+/// per candidate (the initial active set); then per detection pass
 /// [`rhs`](Self::rhs) per active contact (several times per pass for floating structures),
-/// [`displacement`](Self::displacement) once and [`jump`](Self::jump) per active contact;
-/// and [`accept`](Self::accept) once when the step is accepted (not on an error). Contacts are
+/// [`displacement`](Self::displacement) once, [`jump`](Self::jump) per active contact and
+/// [`penetrates`](Self::penetrates) per inactive candidate; and [`accept`](Self::accept) once when the step is accepted (not on an error). Contacts are
 /// named by their candidate index (stable over the simulation), local vectors are
 /// `[n, t…]` in the candidate's frame ([`Candidate::frame`]), and *jumps* are always
 /// displacement-level: `[gap, u_t…]` with the gap `g₀ + n·u_rel` (signs:
@@ -107,8 +108,8 @@ impl<'a> SchemeStep<'a> {
 /// where QuasiStatic: TimeScheme<S, D> {
 ///     fn free_response(&mut self, s: &S, step: &SchemeStep<'_>, free: &mut [f64])
 ///         -> Result<(), SolverError> { self.inner.free_response(s, step, free) }
-///     fn free_jump(&self, i: usize, c: &Candidate<D>, u_rel: [f64; D], start: &[f64; D])
-///         -> [f64; D] { TimeScheme::<S, D>::free_jump(&self.inner, i, c, u_rel, start) }
+///     fn free_jump(&mut self, i: usize, c: &Candidate<D>, u_rel: [f64; D], start: &[f64; D])
+///         -> [f64; D] { TimeScheme::<S, D>::free_jump(&mut self.inner, i, c, u_rel, start) }
 ///     fn rhs(&self, i: usize, free: &[f64; D], start: &[f64; D]) -> [f64; D] {
 ///         TimeScheme::<S, D>::rhs(&self.inner, i, free, start)
 ///     }
@@ -118,9 +119,9 @@ impl<'a> SchemeStep<'a> {
 ///     fn jump(&self, i: usize, x: &[f64; D], start: &[f64; D]) -> [f64; D] {
 ///         TimeScheme::<S, D>::jump(&self.inner, i, x, start)
 ///     }
-///     fn accept(&mut self, step: &SchemeStep<'_>, y: &[f64], u: &[f64]) {
+///     fn accept(&mut self, s: &S, step: &SchemeStep<'_>, y: &[f64], u: &[f64]) {
 ///         self.accepted += 1;
-///         TimeScheme::<S, D>::accept(&mut self.inner, step, y, u)
+///         self.inner.accept(s, step, y, u)
 ///     }
 /// }
 ///
@@ -166,9 +167,10 @@ pub trait TimeScheme<S: ?Sized, const D: usize> {
     /// at the end of the step, from the relative value `u_rel` of the free response at its
     /// nodes (global axes, prescribed components included) and its accepted jump `start`.
     /// Detection compares its gap with the zone's alert distance. [`QuasiStatic`]:
-    /// `candidate.local(u_rel)`.
+    /// `candidate.local(u_rel)`. A scheme may keep what it computes per candidate (a
+    /// velocity-level scheme keeps the relative velocities the step's `q` and jumps need).
     fn free_jump(
-        &self,
+        &mut self,
         index: usize,
         candidate: &Candidate<D>,
         u_rel: [f64; D],
@@ -195,10 +197,48 @@ pub trait TimeScheme<S: ?Sized, const D: usize> {
     /// [`QuasiStatic`]: `[x_n, start_t + x_t]`.
     fn jump(&self, index: usize, x: &[f64; D], start: &[f64; D]) -> [f64; D];
 
-    /// Accepts the step: called once, after the last pass, with the step's `solution` and the
-    /// `displacement` the simulation keeps (the place for a velocity-level scheme to keep its
-    /// velocity). Not called when the step fails. [`QuasiStatic`]: nothing to keep.
-    fn accept(&mut self, step: &SchemeStep<'_>, solution: &[f64], displacement: &[f64]);
+    /// Accepts the step: called once, after the last pass, with the `structure`, the step's
+    /// `solution` and the `displacement` the simulation keeps (the place for a velocity-level
+    /// scheme to keep its velocity and its energy balance). Not called when the step fails.
+    /// [`QuasiStatic`]: nothing to keep.
+    fn accept(
+        &mut self,
+        structure: &S,
+        step: &SchemeStep<'_>,
+        solution: &[f64],
+        displacement: &[f64],
+    );
+
+    /// Whether candidate `index` enters the reduced problem at the start of the step, from
+    /// its accepted jump `start`, the jump `free` the free response predicts
+    /// ([`free_jump`](Self::free_jump)), its zone's alert distance, and `all` (`true` when
+    /// the alert-distance skip rule is off, [`SkipRules`](super::SkipRules)). Adhesive
+    /// candidates enter whatever it says. The default, the quasi-static rule: `all`, or
+    /// either gap within the alert distance. A velocity-level scheme answers with its index
+    /// set instead (a contact in the problem has its velocity constrained, open or not).
+    #[inline]
+    fn enters(
+        &self,
+        index: usize,
+        start: &[f64; D],
+        free: &[f64; D],
+        alert_distance: f64,
+        all: bool,
+    ) -> bool {
+        let _ = index;
+        all || start[0] <= alert_distance || free[0] <= alert_distance
+    }
+
+    /// Whether inactive candidate `index`, whose jump at the end of the pass is `jump`,
+    /// penetrates so that the step must be redone with it active. The default, the
+    /// quasi-static check: `gap < −tolerance` (the simulation's penetration tolerance). A
+    /// velocity-level scheme, whose index set is decided at the start of the step and which
+    /// allows an `O(h)` interpenetration, answers `false`.
+    #[inline]
+    fn penetrates(&self, index: usize, jump: &[f64; D], tolerance: f64) -> bool {
+        let _ = index;
+        jump[0] < -tolerance
+    }
 }
 
 /// Today's scheme: load steps, each an equilibrium `K u = f + Hᵀ r` at the step's force
@@ -232,7 +272,7 @@ impl<S: Structure<D> + ?Sized, const D: usize> TimeScheme<S, D> for QuasiStatic 
 
     #[inline]
     fn free_jump(
-        &self,
+        &mut self,
         _index: usize,
         candidate: &Candidate<D>,
         u_rel: [f64; D],
@@ -257,5 +297,12 @@ impl<S: Structure<D> + ?Sized, const D: usize> TimeScheme<S, D> for QuasiStatic 
     }
 
     #[inline]
-    fn accept(&mut self, _step: &SchemeStep<'_>, _solution: &[f64], _displacement: &[f64]) {}
+    fn accept(
+        &mut self,
+        _structure: &S,
+        _step: &SchemeStep<'_>,
+        _solution: &[f64],
+        _displacement: &[f64],
+    ) {
+    }
 }
