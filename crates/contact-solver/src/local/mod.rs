@@ -205,6 +205,7 @@ pub mod newton;
 mod plain;
 pub mod problem;
 mod residual;
+mod residual_stop;
 mod settings;
 mod solver;
 pub mod stall;

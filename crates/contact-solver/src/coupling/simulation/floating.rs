@@ -232,6 +232,7 @@ where
                     iterations,
                     residual: worst / scale,
                     history,
+                    best: None,
                 });
             }
             iterations += 1;
