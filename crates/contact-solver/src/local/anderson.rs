@@ -289,7 +289,7 @@ impl AndersonScratch {
             let rho0 = sweeps.rho0();
             run.residual = natural_residual::<L, DT>(laws, states, rho0, &self.g, &self.xg) / denom;
             // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
-            let on_residual = streak.met(run.iterations, run.residual, tol);
+            let on_residual = streak.met(run.iterations, run.residual, run.change, tol);
             if (run.change <= tol && run.residual <= tol) || on_residual {
                 // x(g) was built incrementally: confirm on the exact x = W g + q.
                 problem.displacement_into(&self.g, &mut self.xg);

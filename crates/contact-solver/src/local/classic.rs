@@ -366,7 +366,7 @@ impl ClassicScratch {
                     break;
                 }
                 if sweeps % RESIDUAL_CHECK_EVERY == 0
-                    && streak.met(run.iterations, relative(r, x), tol)
+                    && streak.met(run.iterations, relative(r, x), change_n, tol)
                 {
                     on_residual = true;
                     break;
@@ -405,7 +405,7 @@ impl ClassicScratch {
                         break;
                     }
                     if sweeps % RESIDUAL_CHECK_EVERY == 0
-                        && streak.met(run.iterations, relative(r, x), tol)
+                        && streak.met(run.iterations, relative(r, x), change_t, tol)
                     {
                         on_residual = true;
                         break;
@@ -422,7 +422,7 @@ impl ClassicScratch {
             run.change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
             let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
             run.residual = natural_residual::<L, DT>(laws, states, rho0, r, x) / denom;
-            on_residual |= streak.met(run.iterations, run.residual, tol);
+            on_residual |= streak.met(run.iterations, run.residual, run.change, tol);
             if (run.change <= tol && run.residual <= tol) || on_residual {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);

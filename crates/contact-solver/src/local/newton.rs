@@ -604,7 +604,7 @@ impl NewtonScratch {
             run.residual =
                 relative_residual::<L, DT>(sweeps, laws, states, exact_rho, phi, denom_q, r, x);
             // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
-            let on_residual = streak.met(run.iterations, run.residual, tol);
+            let on_residual = streak.met(run.iterations, run.residual, run.change, tol);
             if (run.residual <= tol && run.change <= tol) || on_residual {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);

@@ -57,7 +57,7 @@ pub(crate) fn run<L: ContactLaw, const DT: usize>(
         let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
         run.residual = natural_residual::<L, DT>(laws, states, &sweeps.rho0, r, x) / denom;
         // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
-        let on_residual = streak.met(run.iterations, run.residual, st.tol);
+        let on_residual = streak.met(run.iterations, run.residual, run.change, st.tol);
         let both = run.change <= st.tol && run.residual <= st.tol;
         if (both || on_residual) && st.algorithm != Algorithm::Uzawa {
             // x was updated incrementally: confirm on the exact x = W r + q.

@@ -7,19 +7,25 @@
 //! may keep moving `r` along that set while every iterate already solves the problem to
 //! `tol`: the change need not vanish. So a run also stops as converged when its residual has
 //! stayed `≤ tol` for a *streak* of iterations as long as the run before it (and at least
-//! `MIN_RESIDUAL_STREAK`), the residual then confirmed on the exact `x = W r + q`:
+//! `MIN_RESIDUAL_STREAK`) over which its change has not halved either (a change still
+//! decaying will meet the first test), the residual then confirmed on the exact
+//! `x = W r + q`:
 //!
 //! ```text
-//! stop at k   ⇔   res_j ≤ tol for every j in [s, k]   and   k − s ≥ max(MIN_RESIDUAL_STREAK, s)
+//! stop at k   ⇔   res_i ≤ tol for every i in [s, k],   change_k > change_j / 2,
+//!                 k − max(s, j) ≥ max(MIN_RESIDUAL_STREAK, s)
 //! ```
-//! The first test (both change and residual) is tried first and is unchanged, so every run
-//! that met it still stops at the same iteration with the same answer: a converging run whose
-//! change reaches `tol` later than twice the iteration at which its residual did would be the
-//! only one to stop earlier (none in the test suite; on the box stacks of
-//! `tests/integration/issue_37_rank_deficient.rs` the change follows the residual within 2 %
-//! of the run). A run that ends (at `max_iterations` or stalled) with a residual `≤ tol` on
-//! the exact `x` is converged too (the dispatcher's [`UzawaSolver`](crate::UzawaSolver)
-//! tests it), and the independent check of the answer stays.
+//! (`j`: the last iteration at which the change halved, as the stall detector tracks the
+//! residual.) The first test (both change and residual) is tried first and is unchanged, so
+//! every run that met it before this one fires stops at the same iteration with the same
+//! answer. Over `cargo test -p contact-solver --test integration` every printed number and
+//! iteration count stays as it was (the seed's sweep table included) but one: the error of a
+//! floating block pushed beyond its friction limit (no equilibrium; `issue_35_floating_3d`),
+//! some of whose reduced solves now stop on their residual alone, and
+//! whose reported direction moves by 2e-10. A run that ends (at `max_iterations` or
+//! stalled) with a residual `≤ tol` on the exact `x` is converged too (the dispatcher's
+//! [`UzawaSolver`](crate::UzawaSolver) tests it), and the independent check of the answer
+//! stays.
 //!
 //! The residual is the one the loops compute anyway (every iteration; every
 //! `RESIDUAL_CHECK_EVERY` sweeps inside the classical solver's sub-problems), so the rule costs
@@ -38,18 +44,24 @@ pub(crate) const RESIDUAL_CHECK_EVERY: usize = 4;
 pub(crate) struct ResidualStop {
     /// The first iteration of the current streak of residuals `≤ tol`.
     since: Option<usize>,
+    /// The change of reference and the iteration it was set (when the change halved).
+    change_ref: f64,
+    change_since: usize,
 }
 
 impl ResidualStop {
     /// Records the residual of iteration `k`; `true` when the streak is long enough to stop
     /// (the caller confirms on the exact `x`, and calls [`reset`](Self::reset) if that fails).
-    pub(crate) fn met(&mut self, k: usize, residual: f64, tol: f64) -> bool {
+    pub(crate) fn met(&mut self, k: usize, residual: f64, change: f64, tol: f64) -> bool {
+        if self.change_since == 0 || change <= 0.5 * self.change_ref || change.is_nan() {
+            (self.change_ref, self.change_since) = (change, k);
+        }
         if residual.is_nan() || residual > tol {
             self.since = None;
             return false;
         }
         let since = *self.since.get_or_insert(k);
-        k - since >= MIN_RESIDUAL_STREAK.max(since)
+        k - since.max(self.change_since) >= MIN_RESIDUAL_STREAK.max(since)
     }
 
     /// Starts over (the exact residual did not confirm the streak).
@@ -66,14 +78,18 @@ mod tests {
     fn residual_stop_works() {
         let mut s = ResidualStop::default();
         // above tol: never
-        assert!(!(1..50).any(|k| s.met(k, 1e-3, 1e-8)));
-        // a streak from 50: stops at 150 (max(100, 50) iterations later), not before
-        assert!(!(50..150).any(|k| s.met(k, 1e-9, 1e-8)));
-        assert!(s.met(150, 1e-9, 1e-8));
+        assert!(!(1..50).any(|k| s.met(k, 1e-3, 1e-6, 1e-8)));
+        // a streak from 50 at a constant change: stops at 150 (max(100, 50) later), not before
+        assert!(!(50..150).any(|k| s.met(k, 1e-9, 1e-6, 1e-8)));
+        assert!(s.met(150, 1e-9, 1e-6, 1e-8));
         // a residual above tol (or NaN) restarts the streak; a streak from 300 needs 300 more
-        assert!(!s.met(151, f64::NAN, 1e-8));
+        assert!(!s.met(151, f64::NAN, 1e-6, 1e-8));
         s.reset();
-        assert!(!(300..600).any(|k| s.met(k, 1e-9, 1e-8)));
-        assert!(s.met(600, 1e-9, 1e-8));
+        assert!(!(300..600).any(|k| s.met(k, 1e-9, 1e-6, 1e-8)));
+        assert!(s.met(600, 1e-9, 1e-6, 1e-8));
+        // a change that halves every 50 iterations (still converging) never stops it
+        let mut s = ResidualStop::default();
+        let halving = |k: usize| 1e-6 * 0.5f64.powf(k as f64 / 50.0);
+        assert!(!(1..2000).any(|k| s.met(k, 1e-9, halving(k), 1e-8)));
     }
 }
