@@ -348,12 +348,18 @@ impl SolverError {
     ///
     /// # Examples
     /// ```
-    /// use contact_solver::{ReducedProblem, UzawaSettings, solve_coulomb};
-    /// let p = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-1.0, 0.5], vec![0.2])?;
-    /// let st = UzawaSettings::default().with_max_iterations(1).with_fallback(false);
+    /// use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, solve_coulomb};
+    /// // two coupled contacts, both pressed: one Gauss–Seidel sweep does not solve them
+    /// #[rustfmt::skip]
+    /// let w = vec![2.0, 0.0, 1.0, 0.0,  0.0, 2.0, 0.0, 0.5,  1.0, 0.0, 2.0, 0.0,  0.0, 0.5, 0.0, 2.0];
+    /// let p = ReducedProblem::new(w, vec![-1.0, 0.5, -1.0, -0.3], vec![0.3, 0.3])?;
+    /// let st = UzawaSettings::default()
+    ///     .with_algorithm(Algorithm::GaussSeidel)
+    ///     .with_max_iterations(1)
+    ///     .with_fallback(false);
     /// let e = solve_coulomb(&p, &st).unwrap_err();
     /// let best = e.best_iterate().expect("a best iterate");
-    /// assert_eq!((best.r.len(), best.x.len()), (2, 2));
+    /// assert_eq!((best.r.len(), best.x.len()), (4, 4));
     /// assert!(best.residual > 1e-10);
     /// # Ok::<(), contact_solver::SolverError>(())
     /// ```

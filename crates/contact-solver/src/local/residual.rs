@@ -8,23 +8,7 @@
 //! Every per-contact helper is generic over the tangent dimension `DT` (1 in 2D, 2 in 3D):
 //! contact `i`'s unknowns are `v[(DT+1) i ..][..DT+1]`, the normal first.
 //!
-//! # Our tolerance beside Siconos'
-//! The `tol` of [`UzawaSettings`](crate::UzawaSettings) bounds the *relative* natural residual
-//! that [`UzawaReport::residual`](crate::UzawaReport::residual) reports (the
-//! [stopping rule](crate::local#stopping-rule)); for a Coulomb law the modified velocity is
-//! De Saxcé's, `v(x) = −(x_t + (x_n + μ‖x_t‖) n)`, so per contact it is Siconos' map:
-//!
-//! ```text
-//! ours     ‖r − P_K(r − ρ⁰_i (x + μ‖x_t‖ n))‖ / max(‖r‖, max_i ρ⁰_i ‖q‖),   ρ⁰_i = 1/λ_max(W_ii)
-//! Siconos  ‖r − P_K(r − ρ (u + μ‖u_T‖ e_n))‖ / ‖q‖,   ρ = 1,   u = W r + q
-//! ```
-//! (Siconos numerics, `fc3d_compute_error` and `fc3d_unitary_compute_and_add_error`: the
-//! absolute error is divided by the `norm` its caller passes, `‖q‖`; Siconos 3 divided by
-//! `1 + ‖q‖`.) The two differ by the step (`ρ⁰_i` is the largest non-expansive local step;
-//! Siconos' `ρ = 1` makes its error carry the units of `r` and of `x` mixed) and by the scale
-//! (ours is relative to the reactions, Siconos' to the free velocities), so on a problem whose
-//! `W` is far from unit size the same number means different accuracies. [`siconos_error`]
-//! computes Siconos' for an answer of ours, to compare like with like.
+//! The residual beside Siconos' error: [`siconos_error`].
 
 use super::problem::ReducedProblem;
 use contact_laws::{ContactLaw, ContactStatus, LocalVec};
@@ -225,10 +209,27 @@ pub(crate) fn penetration<const DT: usize>(q: &[f64], x: &[f64]) -> (f64, f64) {
     (pen, scale)
 }
 
-/// Siconos' error of the reactions `r` of a Coulomb `problem` (see the
-/// [module docs](self#our-tolerance-beside-siconos)): `u = W r + q`, then
+/// Siconos' error of the reactions `r` of a Coulomb `problem`: `u = W r + q`, then
 /// `‖r − P_K(r − (u + μ‖u_t‖ n))‖ / ‖q‖` (absolute when `q = 0`), what Siconos'
 /// `fc3d_compute_error` returns for the same `(r, u)`, in 2D and 3D.
+///
+/// # Our tolerance beside Siconos'
+/// The `tol` of [`UzawaSettings`](crate::UzawaSettings) bounds the *relative* natural residual
+/// that [`UzawaReport::residual`](crate::UzawaReport::residual) reports (the
+/// [stopping rule](crate::local#stopping-rule)); for a Coulomb law the modified velocity is
+/// De Saxcé's, `v(x) = −(x_t + (x_n + μ‖x_t‖) n)`, so per contact it is Siconos' map:
+///
+/// ```text
+/// ours     ‖r − P_K(r − ρ⁰_i (x + μ‖x_t‖ n))‖ / max(‖r‖, max_i ρ⁰_i ‖q‖),   ρ⁰_i = 1/λ_max(W_ii)
+/// Siconos  ‖r − P_K(r − ρ (u + μ‖u_T‖ e_n))‖ / ‖q‖,   ρ = 1,   u = W r + q
+/// ```
+/// (Siconos numerics, `fc3d_compute_error` and `fc3d_unitary_compute_and_add_error`: the
+/// absolute error is divided by the `norm` its caller passes, "norm of a vector (problem->q)
+/// for relative error"; the sources of 2016 divided by `1 + ‖q‖`.) The two differ by the step (`ρ⁰_i` is the largest non-expansive local step;
+/// Siconos' `ρ = 1` makes its error carry the units of `r` and of `x` mixed) and by the scale
+/// (ours is relative to the reactions, Siconos' to the free velocities), so on a problem whose
+/// `W` is far from unit size the same number means different accuracies. This function
+/// computes Siconos' for an answer of ours, to compare like with like.
 ///
 /// # Panics
 /// If `r.len() != problem.size()`.
