@@ -79,6 +79,7 @@ error, as is any unknown key, missing node set or region, NaN or out-of-range pa
 Examples:
   bipo solve-local out/hertz_reduced.json
   bipo solve-local problem.json --tol 1e-12 --json > solution.json
+  bipo solve-local problem.json --tol 1e-8 --write-best > best.json   (if it fails: the best iterate)
   bipo solve-local problem.hdf5     (FCLIB; needs a bipo built with --features fclib)
 
 The problem, n_c contacts in dimension d = \"dim\" (2 or 3; 2 when the key is left out):
@@ -114,6 +115,11 @@ back to rccm-classic (the output says so)."
         /// kept as given.
         #[arg(long)]
         keep_asymmetric: bool,
+        /// When the tolerance is not reached, print the best iterate (the reactions with the
+        /// smallest natural-map residual of the algorithm and its fallbacks) as JSON
+        /// {r, x, residual, tol, converged: false}, then fail as without it (exit status 1).
+        #[arg(long)]
+        write_best: bool,
     },
     /// Write a commented template scene.
     #[command(after_help = "\
@@ -216,13 +222,14 @@ pub fn main() -> ExitCode {
             algorithm,
             json,
             keep_asymmetric,
+            write_best,
         } => finish(
             solve_local(
                 &problem,
                 tol,
                 max_iterations,
                 algorithm,
-                json,
+                (json, write_best),
                 keep_asymmetric,
             ),
             None,
@@ -664,7 +671,7 @@ fn solve_local(
     tol: f64,
     max_iterations: usize,
     algorithm: AlgorithmArg,
-    json: bool,
+    (json, write_best): (bool, bool),
     keep_asymmetric: bool,
 ) -> CliResult<()> {
     use contact_solver::error::chain;
@@ -688,8 +695,16 @@ fn solve_local(
         .with_tol(tol)
         .with_max_iterations(max_iterations)
         .with_algorithm(algorithm.algorithm());
-    let sol = solve_coulomb(&problem, &settings)
-        .map_err(|e| CliError::failed(format!("{}: {}", path.display(), chain(&e))))?;
+    let sol = solve_coulomb(&problem, &settings).map_err(|e| {
+        if let (true, Some(best)) = (write_best, e.best_iterate()) {
+            let v = serde_json::json!({
+                "r": best.r, "x": best.x, "residual": best.residual, "tol": tol,
+                "converged": false,
+            });
+            out::outln!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        }
+        CliError::failed(format!("{}: {}", path.display(), chain(&e)))
+    })?;
     if json {
         let rep = &sol.report;
         let v = serde_json::json!({

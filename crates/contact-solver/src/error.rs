@@ -181,6 +181,8 @@ pub enum SolverError {
         residual: f64,
         /// Natural-map residual of every iteration.
         history: Vec<f64>,
+        /// The best iterate the runs returned (see [`BestIterate`]), when the solver had one.
+        best: Option<Box<BestIterate>>,
     },
     /// The [stall detector](crate::local::stall) stopped the iteration: its residual had not
     /// halved over the last [`stall_window`](crate::UzawaTuning::stall_window) iterations
@@ -208,6 +210,8 @@ pub enum SolverError {
         best_residual: f64,
         /// Natural-map residual of every iteration (of both runs with a fallback).
         history: Vec<f64>,
+        /// The best iterate the runs returned (see [`BestIterate`]), when the solver had one.
+        best: Option<Box<BestIterate>>,
     },
     /// A contact zone or obstacle whose geometry makes no sense (zero-length LINE, node out of
     /// range, empty node set, …).
@@ -325,7 +329,7 @@ impl SolverError {
     /// # Examples
     /// ```
     /// use contact_solver::SolverError;
-    /// let e = SolverError::NotConverged { iterations: 3, residual: 0.1, history: vec![1.0, 0.5, 0.1] };
+    /// let e = SolverError::NotConverged { iterations: 3, residual: 0.1, history: vec![1.0, 0.5, 0.1], best: None };
     /// assert_eq!(e.history(), Some(&[1.0, 0.5, 0.1][..]));
     /// ```
     pub fn history(&self) -> Option<&[f64]> {
@@ -335,6 +339,57 @@ impl SolverError {
             | Self::AdhesionNotConverged { history, .. } => Some(history),
             _ => None,
         }
+    }
+
+    /// The best-effort answer of a reduced solve that did not reach its tolerance
+    /// ([`NotConverged`](Self::NotConverged) or [`Stalled`](Self::Stalled)): the iterate with
+    /// the smallest natural-map residual among those the runs (the algorithm and its
+    /// fallbacks) returned; `None` for the other variants and for errors built without one.
+    ///
+    /// # Examples
+    /// ```
+    /// use contact_solver::{Algorithm, ReducedProblem, UzawaSettings, solve_coulomb};
+    /// // two coupled contacts, both pressed: one Gauss–Seidel sweep does not solve them
+    /// #[rustfmt::skip]
+    /// let w = vec![2.0, 0.0, 1.0, 0.0,  0.0, 2.0, 0.0, 0.5,  1.0, 0.0, 2.0, 0.0,  0.0, 0.5, 0.0, 2.0];
+    /// let p = ReducedProblem::new(w, vec![-1.0, 0.5, -1.0, -0.3], vec![0.3, 0.3])?;
+    /// let st = UzawaSettings::default()
+    ///     .with_algorithm(Algorithm::GaussSeidel)
+    ///     .with_max_iterations(1)
+    ///     .with_fallback(false);
+    /// let e = solve_coulomb(&p, &st).unwrap_err();
+    /// let best = e.best_iterate().expect("a best iterate");
+    /// assert_eq!((best.r.len(), best.x.len()), (4, 4));
+    /// assert!(best.residual > 1e-10);
+    /// # Ok::<(), contact_solver::SolverError>(())
+    /// ```
+    pub fn best_iterate(&self) -> Option<&BestIterate> {
+        match self {
+            Self::NotConverged { best, .. } | Self::Stalled { best, .. } => best.as_deref(),
+            _ => None,
+        }
+    }
+}
+
+/// The best-effort answer a failed reduced solve carries ([`SolverError::best_iterate`]):
+/// reactions, the displacements `x = W r + q` recomputed from them, and the relative
+/// natural-map residual at that point (the definition of
+/// [`UzawaReport::residual`](crate::UzawaReport::residual), above the tolerance asked for).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct BestIterate {
+    /// Reactions, normal first per contact.
+    pub r: Vec<f64>,
+    /// `x = W r + q`.
+    pub x: Vec<f64>,
+    /// The relative natural-map residual at `(r, x)`.
+    pub residual: f64,
+}
+
+impl BestIterate {
+    /// A best iterate from its parts.
+    pub fn new(r: Vec<f64>, x: Vec<f64>, residual: f64) -> Self {
+        Self { r, x, residual }
     }
 }
 
@@ -455,12 +510,17 @@ impl fmt::Debug for SolverError {
                 iterations,
                 residual,
                 history,
-            } => f
-                .debug_struct("NotConverged")
-                .field("iterations", iterations)
-                .field("residual", residual)
-                .field("history", &HistoryTail(history))
-                .finish(),
+                best,
+            } => {
+                let mut d = f.debug_struct("NotConverged");
+                d.field("iterations", iterations)
+                    .field("residual", residual)
+                    .field("history", &HistoryTail(history));
+                if let Some(b) = best {
+                    d.field("best_iterate_residual", &b.residual);
+                }
+                d.finish()
+            }
             Self::Stalled {
                 algorithm,
                 fallback_from,
@@ -468,15 +528,20 @@ impl fmt::Debug for SolverError {
                 residual,
                 best_residual,
                 history,
-            } => f
-                .debug_struct("Stalled")
-                .field("algorithm", algorithm)
-                .field("fallback_from", fallback_from)
-                .field("iterations", iterations)
-                .field("residual", residual)
-                .field("best_residual", best_residual)
-                .field("history", &HistoryTail(history))
-                .finish(),
+                best,
+            } => {
+                let mut d = f.debug_struct("Stalled");
+                d.field("algorithm", algorithm)
+                    .field("fallback_from", fallback_from)
+                    .field("iterations", iterations)
+                    .field("residual", residual)
+                    .field("best_residual", best_residual)
+                    .field("history", &HistoryTail(history));
+                if let Some(b) = best {
+                    d.field("best_iterate_residual", &b.residual);
+                }
+                d.finish()
+            }
             Self::InvalidGeometry(s) => f.debug_tuple("InvalidGeometry").field(s).finish(),
             Self::Unsupported(s) => f.debug_tuple("Unsupported").field(s).finish(),
             Self::UnknownZone { name, known } => f
@@ -637,6 +702,7 @@ mod tests {
                 iterations: 10_000,
                 residual: 9.27e-8,
                 history: history.clone(),
+                best: None,
             },
             SolverError::Stalled {
                 algorithm: "GaussSeidel",
@@ -645,6 +711,7 @@ mod tests {
                 residual: 9.27e-8,
                 best_residual: 9.2e-8,
                 history: history.clone(),
+                best: None,
             },
             SolverError::AdhesionNotConverged {
                 iterations: 10_000,
@@ -680,6 +747,7 @@ mod tests {
             iterations: 2,
             residual: 0.5,
             history: vec![1.0, 0.5],
+            best: None,
         };
         assert_eq!(
             format!("{e:?}"),

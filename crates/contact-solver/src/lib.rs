@@ -47,7 +47,7 @@ pub mod error;
 pub mod local;
 
 pub use contact_laws;
-pub use error::SolverError;
+pub use error::{BestIterate, SolverError};
 pub use local::{
     Algorithm, Asymmetry, CsrMatrix, ReducedProblem, Solution, UzawaReport, UzawaSettings,
     UzawaSolver, UzawaTuning, WView, solve_coulomb,

@@ -11,6 +11,7 @@ mod gmsh_2d;
 mod issue_35_one_run;
 mod issue_36_outputs;
 mod issue_36_traps;
+mod issue_37_write_best;
 mod local_algorithms_scenes;
 mod pile;
 mod pile_3d;

@@ -37,7 +37,8 @@
 //! **Stopping rule.** Each iteration is judged like a plain sweep: the change is that of
 //! the base step, `‖g_k − r_k‖/‖g_k‖`, and the natural residual (with `ρ⁰`) is taken at
 //! `g_k`, the projected point; `g_k` is what is returned (see
-//! [layer docs](crate::local#stopping-rule)). [`UzawaReport::iterations`](crate::UzawaReport)
+//! [layer docs](crate::local#stopping-rule)); or the residual alone after a long streak
+//! `≤ tol` (`residual_stop`). [`UzawaReport::iterations`](crate::UzawaReport)
 //! counts base steps (including rejected ones).
 //!
 //! # Examples
@@ -52,6 +53,7 @@
 
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm};
+use super::residual_stop::ResidualStop;
 use super::settings::UzawaSettings;
 use super::stall::StallDetector;
 use super::sweep::Sweeps;
@@ -252,6 +254,7 @@ impl AndersonScratch {
         // Plain steps still to do before mixing again, and the rejections so far.
         let (mut plain_left, mut rejections) = (0_usize, 0_u32);
         let mut stall = StallDetector::new(settings.tuning.stall_window);
+        let mut streak = ResidualStop::default();
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             self.g.copy_from_slice(r);
@@ -285,18 +288,23 @@ impl AndersonScratch {
             let denom = g_norm.max(denom_q).max(f64::MIN_POSITIVE);
             let rho0 = sweeps.rho0();
             run.residual = natural_residual::<L, DT>(laws, states, rho0, &self.g, &self.xg) / denom;
-            if run.change <= tol && run.residual <= tol {
+            // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
+            let on_residual = streak.met(run.iterations, run.residual, run.change, tol);
+            if (run.change <= tol && run.residual <= tol) || on_residual {
                 // x(g) was built incrementally: confirm on the exact x = W g + q.
                 problem.displacement_into(&self.g, &mut self.xg);
                 run.residual =
                     natural_residual::<L, DT>(laws, states, rho0, &self.g, &self.xg) / denom;
             }
             history.push(run.residual);
-            if run.change <= tol && run.residual <= tol {
+            if run.residual <= tol && (run.change <= tol || on_residual) {
                 r.copy_from_slice(&self.g);
                 x.copy_from_slice(&self.xg);
                 run.converged = true;
                 break;
+            }
+            if on_residual {
+                streak.reset();
             }
             if stall.stalled(run.iterations, run.residual) {
                 run.stalled = true;

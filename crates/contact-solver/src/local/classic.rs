@@ -39,7 +39,12 @@
 //! after each outer iteration: the relative change of the whole `r` over the outer iteration
 //! and the natural-map residual `‖r − P_K(r + ρ⁰ v(W r + q))‖`, computed with the laws'
 //! projection and the base `ρ⁰_i = 1/λ_max(W_ii)` exactly as for the bipotential sweeps, must
-//! both be `≤ tol`. So both algorithms stop on equal terms.
+//! both be `≤ tol`. So both algorithms stop on equal terms. Like theirs, a second way to stop
+//! is a long streak of residuals `≤ tol` (`residual_stop`), which this solver also checks every
+//! `RESIDUAL_CHECK_EVERY` sweeps inside the sub-problems: their own rule waits for the change
+//! of `r_n` (or `r_t`) over a sweep to vanish, which on a rank-deficient `W` (four corners of
+//! a box carrying what three would) it need not do while the whole problem is solved to
+//! `tol`.
 //!
 //! - [`UzawaReport::iterations`](crate::UzawaReport::iterations) counts **sweeps**: every
 //!   normal sweep and every tangential sweep of every outer iteration. One sweep is one pass
@@ -102,6 +107,7 @@
 use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm, pick, rho_of_block};
+use super::residual_stop::{RESIDUAL_CHECK_EVERY, ResidualStop};
 use super::settings::UzawaSettings;
 use super::stall::StallDetector;
 use crate::error::SolverError;
@@ -333,6 +339,15 @@ impl ClassicScratch {
         };
         let window = settings.tuning.stall_window;
         let mut stall = StallDetector::new(window);
+        // the second way to stop, on the residual alone (`residual_stop`), checked also inside
+        // the sub-problems, whose own rule waits for a change that a rank-deficient W need not
+        // give
+        let mut streak = ResidualStop::default();
+        let mut on_residual = false;
+        let relative = |r: &[f64], x: &[f64]| {
+            let denom = norm(r).max(denom_q).max(f64::MIN_POSITIVE);
+            natural_residual::<L, DT>(laws, states, rho0, r, x) / denom
+        };
         while run.iterations < max {
             self.r_prev.copy_from_slice(r);
             // 1. Signorini at fixed r_t.
@@ -350,8 +365,14 @@ impl ClassicScratch {
                     run.stalled = true;
                     break;
                 }
+                if sweeps % RESIDUAL_CHECK_EVERY == 0
+                    && streak.met(run.iterations, relative(r, x), change_n, tol)
+                {
+                    on_residual = true;
+                    break;
+                }
             }
-            if frictional {
+            if frictional && !on_residual {
                 // 2. Threshold from the new r_n.
                 for ((s, mu_bar), r_n) in self
                     .threshold
@@ -383,6 +404,12 @@ impl ClassicScratch {
                         run.stalled = true;
                         break;
                     }
+                    if sweeps % RESIDUAL_CHECK_EVERY == 0
+                        && streak.met(run.iterations, relative(r, x), change_t, tol)
+                    {
+                        on_residual = true;
+                        break;
+                    }
                 }
             }
             run.outer_iterations += 1;
@@ -395,16 +422,20 @@ impl ClassicScratch {
             run.change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
             let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
             run.residual = natural_residual::<L, DT>(laws, states, rho0, r, x) / denom;
-            let stop = |run: &ClassicRun| run.change <= tol && run.residual <= tol;
-            if stop(&run) {
+            on_residual |= streak.met(run.iterations, run.residual, run.change, tol);
+            if (run.change <= tol && run.residual <= tol) || on_residual {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);
                 run.residual = natural_residual::<L, DT>(laws, states, rho0, r, x) / denom;
             }
             history.push(run.residual);
-            if stop(&run) {
+            if run.residual <= tol && (run.change <= tol || on_residual) {
                 run.converged = true;
                 break;
+            }
+            if on_residual {
+                streak.reset();
+                on_residual = false;
             }
             run.stalled |= stall.stalled(run.outer_iterations, run.residual);
             if run.stalled {

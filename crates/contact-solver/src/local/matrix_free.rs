@@ -280,6 +280,7 @@ fn solve<L: ContactLaw, const DT: usize>(
             residual,
             best_residual,
             history,
+            best: None,
         });
     }
     if !converged && !settings.accept_non_converged {
@@ -287,6 +288,7 @@ fn solve<L: ContactLaw, const DT: usize>(
             iterations,
             residual,
             history,
+            best: None,
         });
     }
     Ok(MatrixFreeReport {

@@ -132,6 +132,13 @@
 //! with `ρ⁰` the *base* penalty (not the adapted one, nor the user's scale) and
 //! `tiny = f64::MIN_POSITIVE`. The residual is the natural map of the fixed point (zero
 //! exactly on solutions); [`UzawaReport::history`] records it at every iteration.
+//! Where the change does not vanish (a rank-deficient `W`: the solutions form a set, and the
+//! iteration may move along it), the residual alone stops a run after a long streak `≤ tol`
+//! (as long as the run before it, at least 100 iterations), and a run that ends at
+//! `max_iterations` or stalled with a residual `≤ tol` on the exact `x` is converged (issue 37;
+//! `residual_stop`). A run that fails leaves its best iterate in the error
+//! ([`SolverError::best_iterate`](crate::SolverError::best_iterate)). How this residual
+//! compares with Siconos' error: [`siconos_error`].
 
 //!
 //! # Problems as other codes export them
@@ -205,6 +212,7 @@ pub mod newton;
 mod plain;
 pub mod problem;
 mod residual;
+mod residual_stop;
 mod settings;
 mod solver;
 pub mod stall;
@@ -217,6 +225,7 @@ pub use delassus::WView;
 #[cfg(feature = "fe")]
 pub(crate) use dense::symmetrize;
 pub use problem::ReducedProblem;
+pub use residual::siconos_error;
 #[cfg(feature = "fe")]
 pub(crate) use residual::{contact_statuses, natural_residual, norm};
 pub use settings::{Algorithm, Solution, UzawaReport, UzawaSettings, UzawaTuning};

@@ -76,7 +76,8 @@
 //! length, often still large when the residual has already dropped to rounding; and going back
 //! to Newton at rounding level can cycle: when `r = 0` is the solution and `q` is rounding
 //! noise, the sweep reaches `r = 0` exactly, the Newton step does not — issue 8's stress case
-//! "nodes on the LINE, released to exactly 0".)
+//! "nodes on the LINE, released to exactly 0".) The residual alone also stops it after a long
+//! streak `≤ tol` (`residual_stop`).
 //! [`UzawaReport::iterations`](crate::UzawaReport) counts Newton steps and sweeps;
 //! [`UzawaReport::outer_iterations`](crate::UzawaReport) the Newton steps (LU
 //! factorisations).
@@ -95,6 +96,7 @@ use super::classic::friction_coefficients_into;
 use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{local, natural_residual, norm, pick, set_local};
+use super::residual_stop::ResidualStop;
 use super::settings::UzawaSettings;
 use super::stall::StallDetector;
 use super::sweep::Sweeps;
@@ -554,6 +556,7 @@ impl NewtonScratch {
         // Once the residual is ≤ tol, sweeps polish r until the change is ≤ tol too.
         let mut polishing = false;
         let mut stall = StallDetector::new(settings.tuning.stall_window);
+        let mut streak = ResidualStop::default();
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             let mut stepped = false;
@@ -600,7 +603,9 @@ impl NewtonScratch {
             }
             run.residual =
                 relative_residual::<L, DT>(sweeps, laws, states, exact_rho, phi, denom_q, r, x);
-            if run.residual <= tol && run.change <= tol {
+            // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
+            let on_residual = streak.met(run.iterations, run.residual, run.change, tol);
+            if (run.residual <= tol && run.change <= tol) || on_residual {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);
                 phi = self.refresh::<L, DT>(laws, states, r, x);
@@ -608,9 +613,12 @@ impl NewtonScratch {
                     relative_residual::<L, DT>(sweeps, laws, states, exact_rho, phi, denom_q, r, x);
             }
             history.push(run.residual);
-            if run.residual <= tol && run.change <= tol {
+            if run.residual <= tol && (run.change <= tol || on_residual) {
                 run.converged = true;
                 break;
+            }
+            if on_residual {
+                streak.reset();
             }
             if stall.stalled(run.iterations, run.residual) {
                 run.stalled = true;

@@ -1,8 +1,10 @@
 //! The plain bipotential iteration ([`Algorithm::Uzawa`] and [`Algorithm::GaussSeidel`]): base
-//! steps until both tests of the [stopping rule](crate::local#stopping-rule) hold.
+//! steps until both tests of the [stopping rule](crate::local#stopping-rule) hold, or the
+//! residual alone has stayed `≤ tol` for a long streak (`residual_stop`).
 
 use super::problem::ReducedProblem;
 use super::residual::{natural_residual, norm};
+use super::residual_stop::ResidualStop;
 use super::settings::{Algorithm, UzawaSettings};
 use super::stall::StallDetector;
 use super::sweep::Sweeps;
@@ -43,6 +45,7 @@ pub(crate) fn run<L: ContactLaw, const DT: usize>(
         change: f64::INFINITY,
     };
     let mut stall = StallDetector::new(st.tuning.stall_window);
+    let mut streak = ResidualStop::default();
     while run.iterations < st.max_iterations {
         run.iterations += 1;
         let dr2 = match st.algorithm {
@@ -53,15 +56,21 @@ pub(crate) fn run<L: ContactLaw, const DT: usize>(
         run.change = dr2.sqrt() / r_norm.max(f64::MIN_POSITIVE);
         let denom = r_norm.max(denom_q).max(f64::MIN_POSITIVE);
         run.residual = natural_residual::<L, DT>(laws, states, &sweeps.rho0, r, x) / denom;
-        if run.change <= st.tol && run.residual <= st.tol && st.algorithm != Algorithm::Uzawa {
+        // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
+        let on_residual = streak.met(run.iterations, run.residual, run.change, st.tol);
+        let both = run.change <= st.tol && run.residual <= st.tol;
+        if (both || on_residual) && st.algorithm != Algorithm::Uzawa {
             // x was updated incrementally: confirm on the exact x = W r + q.
             problem.displacement_into(r, x);
             run.residual = natural_residual::<L, DT>(laws, states, &sweeps.rho0, r, x) / denom;
         }
         history.push(run.residual);
-        if run.change <= st.tol && run.residual <= st.tol {
+        if run.residual <= st.tol && (run.change <= st.tol || on_residual) {
             run.converged = true;
             break;
+        }
+        if on_residual {
+            streak.reset();
         }
         if stall.stalled(run.iterations, run.residual) {
             run.stalled = true;

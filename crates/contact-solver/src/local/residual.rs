@@ -7,7 +7,10 @@
 //! ```
 //! Every per-contact helper is generic over the tangent dimension `DT` (1 in 2D, 2 in 3D):
 //! contact `i`'s unknowns are `v[(DT+1) i ..][..DT+1]`, the normal first.
+//!
+//! The residual beside Siconos' error: [`siconos_error`].
 
+use super::problem::ReducedProblem;
 use contact_laws::{ContactLaw, ContactStatus, LocalVec};
 
 /// Relative size of `‖P(τ) − τ‖/‖τ‖` under which a compressed contact is reported as stick.
@@ -204,6 +207,58 @@ pub(crate) fn penetration<const DT: usize>(q: &[f64], x: &[f64]) -> (f64, f64) {
         }
     }
     (pen, scale)
+}
+
+/// Siconos' error of the reactions `r` of a Coulomb `problem`: `u = W r + q`, then
+/// `‖r − P_K(r − (u + μ‖u_t‖ n))‖ / ‖q‖` (absolute when `q = 0`), what Siconos'
+/// `fc3d_compute_error` returns for the same `(r, u)`, in 2D and 3D.
+///
+/// # Our tolerance beside Siconos'
+/// The `tol` of [`UzawaSettings`](crate::UzawaSettings) bounds the *relative* natural residual
+/// that [`UzawaReport::residual`](crate::UzawaReport::residual) reports (the
+/// [stopping rule](crate::local#stopping-rule)); for a Coulomb law the modified velocity is
+/// De Saxcé's, `v(x) = −(x_t + (x_n + μ‖x_t‖) n)`, so per contact it is Siconos' map:
+///
+/// ```text
+/// ours     ‖r − P_K(r − ρ⁰_i (x + μ‖x_t‖ n))‖ / max(‖r‖, max_i ρ⁰_i ‖q‖),   ρ⁰_i = 1/λ_max(W_ii)
+/// Siconos  ‖r − P_K(r − ρ (u + μ‖u_T‖ e_n))‖ / ‖q‖,   ρ = 1,   u = W r + q
+/// ```
+/// (Siconos numerics, `fc3d_compute_error` and `fc3d_unitary_compute_and_add_error`: the
+/// absolute error is divided by the `norm` its caller passes, "norm of a vector (problem->q)
+/// for relative error"; the sources of 2016 divided by `1 + ‖q‖`.) The two differ by the step (`ρ⁰_i` is the largest non-expansive local step;
+/// Siconos' `ρ = 1` makes its error carry the units of `r` and of `x` mixed) and by the scale
+/// (ours is relative to the reactions, Siconos' to the free velocities), so on a problem whose
+/// `W` is far from unit size the same number means different accuracies. This function
+/// computes Siconos' for an answer of ours, to compare like with like.
+///
+/// # Panics
+/// If `r.len() != problem.size()`.
+///
+/// # Examples
+/// ```
+/// use contact_solver::{ReducedProblem, solve_coulomb, UzawaSettings};
+/// use contact_solver::local::siconos_error;
+/// let p = ReducedProblem::new(vec![4.0, 0.0, 0.0, 4.0], vec![-1.0, 0.5], vec![0.2])?;
+/// let sol = solve_coulomb(&p, &UzawaSettings::default())?;
+/// assert!(siconos_error(&p, &sol.r) < 1e-9);
+/// // r = 0 leaves the whole penetration: ‖(0 − P(1 − 0.1, −0.5))‖/‖q‖ is of order one
+/// assert!(siconos_error(&p, &[0.0, 0.0]) > 0.5);
+/// # Ok::<(), contact_solver::SolverError>(())
+/// ```
+#[track_caller]
+pub fn siconos_error(problem: &ReducedProblem, r: &[f64]) -> f64 {
+    let m = problem.size();
+    assert_eq!(r.len(), m, "r must have problem.size() entries");
+    let mut u = vec![0.0; m];
+    problem.displacement_into(r, &mut u);
+    let laws = problem.coulomb_laws();
+    let rho = vec![1.0; problem.contact_count()];
+    let absolute = match problem.dimension() {
+        3 => natural_residual::<_, 2>(&laws, &[()], &rho, r, &u),
+        _ => natural_residual::<_, 1>(&laws, &[()], &rho, r, &u),
+    };
+    let q = norm(problem.q());
+    if q > 0.0 { absolute / q } else { absolute }
 }
 
 #[cfg(test)]

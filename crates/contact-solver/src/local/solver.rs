@@ -16,7 +16,7 @@ use super::settings::{
 };
 use super::stall::MIN_STALL_WINDOW;
 use super::sweep::Sweeps;
-use crate::error::SolverError;
+use crate::error::{BestIterate, SolverError};
 use contact_laws::ContactLaw;
 
 mod skip_open;
@@ -222,6 +222,8 @@ impl UzawaSolver {
             return Ok(sol);
         }
         let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.clone())?;
+        let mut best_iterate = None;
+        self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, &mut best_iterate);
         self.check::<L, DT>(problem, laws, states, &mut sol, mu);
         // the smallest residual of the last run, for the stalled error
         let mut best = best_of(&sol.report.history);
@@ -248,6 +250,13 @@ impl UzawaSolver {
                     ..st
                 };
                 sol = self.attempt::<L, DT>(settings, problem, laws, states, r.clone())?;
+                self.accept_on_residual::<L, DT>(
+                    problem,
+                    laws,
+                    states,
+                    &mut sol,
+                    &mut best_iterate,
+                );
                 self.check::<L, DT>(problem, laws, states, &mut sol, mu);
                 let report = &mut sol.report;
                 best = best_of(&report.history);
@@ -269,16 +278,54 @@ impl UzawaSolver {
                     residual: report.residual,
                     best_residual: best,
                     history: report.history,
+                    best: best_iterate,
                 });
             }
             return Err(SolverError::NotConverged {
                 iterations: report.iterations,
                 residual: report.residual,
                 history: report.history,
+                best: best_iterate,
             });
         }
         sol.report.asymmetry = problem.asymmetry();
         Ok(sol)
+    }
+
+    /// Issue 37: a run that ended without meeting its rule (at `max_iterations`, or stalled)
+    /// with a relative natural residual `≤ tol` at its returned iterate (on the exact
+    /// `x = W r + q`, which [`attempt`](Self::attempt) recomputed) is converged: the rule's
+    /// change need not vanish on a rank-deficient `W` (`residual_stop`). Otherwise the iterate
+    /// becomes `best` when its residual is the smallest so far (the best-effort answer of
+    /// [`SolverError::best_iterate`]); converging runs copy nothing.
+    fn accept_on_residual<L: ContactLaw, const DT: usize>(
+        &self,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        sol: &mut Solution,
+        best: &mut Option<Box<BestIterate>>,
+    ) {
+        if sol.report.converged {
+            return;
+        }
+        let rho0 = &self.sweeps.rho0;
+        let rho_max = rho0.iter().fold(0.0_f64, |a, &b| a.max(b));
+        let denom = norm(&sol.r)
+            .max(rho_max * norm(problem.q()))
+            .max(f64::MIN_POSITIVE);
+        let residual = natural_residual::<L, DT>(laws, states, rho0, &sol.r, &sol.x) / denom;
+        if residual <= self.settings.tol {
+            sol.report.converged = true;
+            sol.report.stalled = false;
+            sol.report.residual = residual;
+        } else if residual.is_finite() && best.as_ref().is_none_or(|b| residual < b.residual) {
+            *best = Some(Box::new(BestIterate::new(
+                sol.r.clone(),
+                sol.x.clone(),
+                residual,
+            )));
+        }
     }
 
     /// The independent check of a converged answer, for Coulomb-type laws (`mu`): the

@@ -383,6 +383,7 @@ fn classic_captures_non_convergence() {
             iterations,
             residual,
             history,
+            ..
         }) => {
             assert_eq!(iterations, 5);
             assert!(!history.is_empty());

@@ -367,6 +367,7 @@ fn local_algorithms_capture_non_convergence() {
                 iterations,
                 residual,
                 history,
+                ..
             }) => {
                 assert_eq!(iterations, 2, "{algorithm:?}");
                 assert_eq!(history.len(), 2);

@@ -31,6 +31,7 @@ mod issue_35_penetration;
 mod issue_35_time_scheme;
 mod issue_36_traps;
 mod issue_37_asymmetric;
+mod issue_37_rank_deficient;
 mod issue_39_dynamics;
 mod issue_39_sliding_block;
 mod local_algorithms;

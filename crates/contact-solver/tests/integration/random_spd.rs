@@ -96,6 +96,7 @@ fn not_converged_carries_the_history() {
             iterations,
             residual,
             history,
+            ..
         }) => {
             assert!(iterations > 3 && history.len() > 3);
             assert_eq!(history.last(), Some(&residual));
@@ -110,6 +111,7 @@ fn not_converged_carries_the_history() {
             iterations,
             residual,
             history,
+            ..
         }) => {
             assert_eq!(iterations, 3);
             assert_eq!(history.len(), 3);

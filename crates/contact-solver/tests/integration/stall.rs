@@ -166,6 +166,7 @@ fn issue_14_unsolvable_problem_stalls_for_every_algorithm() {
                         residual,
                         best_residual,
                         history,
+                        ..
                     } = e
                     else {
                         unreachable!()

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests (`tests/integration/`); examples and benches include
 //! single files of them with `#[path]`. The FE scenes need the `fe` feature.
 
+pub mod box_stack;
 #[cfg(feature = "fe")]
 pub mod cylinders;
 #[cfg(feature = "fe")]

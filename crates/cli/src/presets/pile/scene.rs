@@ -261,6 +261,7 @@ where
                 iterations: r.contact_iterations,
                 residual: r.residual,
                 history: Vec::new(),
+                best: None,
             });
         }
         Ok(res)

@@ -101,6 +101,7 @@ impl Iterate {
                 iterations: self.done + 1,
                 residual: f64::NAN,
                 history: std::mem::take(&mut self.history),
+                best: None,
             });
         }
         // forces: reactions on Dirichlet dofs, the applied sliding force, zero elsewhere (the

@@ -533,6 +533,7 @@ fn solve_turned<S: Structure<N> + ?Sized, const N: usize, L: ContactLaw, const T
         iterations: it.done,
         residual: it.residual,
         history: it.history,
+        best: None,
     })
 }
 

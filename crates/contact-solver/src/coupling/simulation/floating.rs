@@ -229,6 +229,7 @@ where
                     iterations,
                     residual: worst / scale,
                     history,
+                    best: None,
                 });
             }
             iterations += 1;

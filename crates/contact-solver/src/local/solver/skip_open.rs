@@ -119,14 +119,16 @@ impl UzawaSolver {
                 .iter()
                 .flat_map(|&i| r_full[d * i..d * (i + 1)].iter().copied())
                 .collect();
-            let sol = self.solve_checked::<Coulomb, DT>(
-                sub_settings,
-                &sub,
-                &laws_sub,
-                &[()],
-                r_sub,
-                Some(&mu_sub),
-            )?;
+            let sol = self
+                .solve_checked::<Coulomb, DT>(
+                    sub_settings,
+                    &sub,
+                    &laws_sub,
+                    &[()],
+                    r_sub,
+                    Some(&mu_sub),
+                )
+                .map_err(drop_best)?;
             let report = &sol.report;
             iterations += report.iterations;
             outer += report.outer_iterations;
@@ -169,4 +171,13 @@ impl UzawaSolver {
         }
         Ok(None)
     }
+}
+
+/// The error of a solve on the contacts that may close, without its best iterate (which has
+/// the sub-problem's size, not the problem's).
+fn drop_best(mut e: SolverError) -> SolverError {
+    if let SolverError::NotConverged { best, .. } | SolverError::Stalled { best, .. } = &mut e {
+        *best = None;
+    }
+    e
 }
