@@ -44,9 +44,14 @@ pub enum Algorithm {
     Newton,
     /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
     /// [`Newton`](Self::Newton) when every law has a friction coefficient and, for a dense `W`,
-    /// there are at most 1000 contacts, for a sparse `W` at most 20 000 contacts whose graph
-    /// fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
-    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel).
+    /// there are at most 1000 contacts and fewer than half of its off-diagonal blocks are zero
+    /// (not a multibody Delassus operator), for a sparse `W` at most 20 000 contacts whose
+    /// graph fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel). A Newton chosen so that has not
+    /// converged in 30 iterations hands over to
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel) from the start (with or without
+    /// [`fallback`](UzawaSettings::fallback); the report's
+    /// [`fallback_from`](UzawaReport::fallback_from) says it happened).
     /// The report names the one that ran.
     Auto,
 }
@@ -89,6 +94,23 @@ pub(crate) const AUTO_NEWTON_MAX_FILL: f64 = 10.0;
 /// factorisation of the contact graph: 0.3–1.2 ms at 425–1000 contacts, 24 ms at 4000) only up
 /// to this many contacts; beyond, it picks the accelerated sweep.
 pub(crate) const AUTO_SPARSE_NEWTON_MAX_CONTACTS: usize = 20_000;
+
+/// [`Algorithm::Auto`] does not pick Newton on a dense `W` when at least this fraction of its
+/// off-diagonal blocks is exactly zero (a multibody Delassus operator `H M⁻¹ Hᵀ`; a condensed
+/// finite-element `F*` has none). Measured (`examples/auto_rule.rs`, `docs/benchmarks.md`
+/// "Auto on multibody problems"): shaken sphere piles and towers have 85–99 % zero blocks, and
+/// there the dense Newton is slower than the accelerated sweep or does not converge at all
+/// (a semi-definite `W`: Armijo steps that shrink for thousands of iterations); the FE and
+/// random problems of the table have none.
+pub(crate) const AUTO_MULTIBODY_ZERO_BLOCKS: f64 = 0.5;
+
+/// The iterations (sweeps and Newton steps) a Newton chosen by [`Algorithm::Auto`] may take
+/// before the accelerated sweep takes over from the start. Measured: Newton converges in
+/// 7–9 iterations on the FE problems of `docs/benchmarks.md` and in at most 16 on the sparse
+/// sphere piles it is chosen for; where it does not converge it creeps for thousands of
+/// iterations (1.5–3 ms each on a 170–300-contact pile stored sparse, against 16–90 ms for
+/// the whole sweep solve).
+pub(crate) const AUTO_NEWTON_BUDGET: usize = 30;
 
 /// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
 /// long, what to do when it fails), with the tuning of the iteration beside them in

@@ -11,8 +11,8 @@ use super::residual::{
     contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm, penetration,
 };
 use super::settings::{
-    AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm,
-    Solution, UzawaReport, UzawaSettings,
+    AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm, Solution, UzawaReport, UzawaSettings,
 };
 use super::stall::MIN_STALL_WINDOW;
 use super::sweep::Sweeps;
@@ -43,17 +43,92 @@ pub(crate) const KEPT_CHECK_FACTOR: f64 = 2.0;
 pub(crate) const RESCALE_ABOVE: f64 = 1e100;
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
-/// `AUTO_NEWTON_MAX_FILL`): Newton on a dense `W` up to `AUTO_NEWTON_MAX_CONTACTS`
-/// contacts, on a sparse `W` up to `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph
-/// fills a factorisation by at most `AUTO_NEWTON_MAX_FILL`.
+/// `AUTO_NEWTON_MAX_FILL` and `AUTO_MULTIBODY_ZERO_BLOCKS`): Newton on a dense `W` up to
+/// `AUTO_NEWTON_MAX_CONTACTS` contacts unless its blocks are mostly zero (a multibody
+/// Delassus operator, [`mostly_zero_blocks`]: `Auto` solves it stored sparse,
+/// [`sparse_twin_for_auto`]), on a sparse `W` up to
+/// `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph fills a factorisation by at most
+/// `AUTO_NEWTON_MAX_FILL`. Newton chosen here runs within `AUTO_NEWTON_BUDGET` iterations
+/// ([`auto_newton_budget`]).
 fn newton_pays(problem: &ReducedProblem) -> bool {
     let nc = problem.contact_count();
     match problem.w_sparse() {
-        None => nc <= AUTO_NEWTON_MAX_CONTACTS,
+        None => nc <= AUTO_NEWTON_MAX_CONTACTS && !mostly_zero_blocks(problem),
         Some(a) => {
             nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
                 && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
         }
+    }
+}
+
+/// Whether at least `AUTO_MULTIBODY_ZERO_BLOCKS` of the off-diagonal `d × d` blocks of a dense
+/// `W` are exactly zero: the pattern of a multibody Delassus operator `H M⁻¹ Hᵀ` (two contacts
+/// are coupled only through a body they share), never of a condensed finite-element
+/// flexibility `F*` (every entry non-zero: an elastic body couples all its nodes). One pass
+/// over `W` (the cost of one product `W r`), stopped as soon as the answer is known.
+fn mostly_zero_blocks(problem: &ReducedProblem) -> bool {
+    let Some(w) = problem.w_dense() else {
+        return false;
+    };
+    let (nc, d, m) = (problem.contact_count(), problem.dimension(), problem.size());
+    let pairs = nc * nc.saturating_sub(1);
+    if pairs == 0 {
+        return false;
+    }
+    let needed = (AUTO_MULTIBODY_ZERO_BLOCKS * pairs as f64).ceil() as usize;
+    let (mut zero, mut seen) = (0usize, 0usize);
+    for i in 0..nc {
+        for j in (0..nc).filter(|&j| j != i) {
+            seen += 1;
+            let is_zero = (0..d).all(|a| {
+                let row = &w[(d * i + a) * m + d * j..][..d];
+                row.iter().all(|&v| v == 0.0)
+            });
+            zero += usize::from(is_zero);
+            if zero >= needed {
+                return true;
+            }
+            if zero + (pairs - seen) < needed {
+                return false;
+            }
+        }
+    }
+    false
+}
+
+/// The same problem with `W` stored sparse, for [`Algorithm::Auto`] on a dense symmetric `W`
+/// that is mostly zero blocks ([`mostly_zero_blocks`]): every algorithm is faster on the
+/// sparse storage there (measured on sphere piles: the sweep 2–4×, Newton's sparse LU 4–20×
+/// against the dense LU, `docs/benchmarks.md` "Auto on multibody problems"), and the sparse
+/// rule of [`newton_pays`] applies. `None` when the problem is not such a one (or the copy
+/// fails, which a valid problem does not).
+fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedProblem> {
+    let w = problem.w_dense()?;
+    if !problem.is_symmetric() || !mostly_zero_blocks(problem) {
+        return None;
+    }
+    let m = problem.size();
+    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, &v) in w.iter().enumerate() {
+        if v != 0.0 {
+            rows.push(k / m);
+            cols.push(k % m);
+            vals.push(v);
+        }
+    }
+    let (q, mu) = (problem.q().to_vec(), problem.mu().to_vec());
+    ReducedProblem::from_triplets(problem.dimension(), &rows, &cols, &vals, q, mu).ok()
+}
+
+/// The settings of the first run of a Newton that [`Algorithm::Auto`] chose: at most
+/// `AUTO_NEWTON_BUDGET` iterations, after which the accelerated sweep takes over from the
+/// start (whatever `fallback` says: the switch is part of `Auto`), so that a wrong first
+/// choice costs a bounded fraction of the solve (issue 37: Newton ground for thousands of
+/// iterations on multibody stacks that the sweep solves in hundreds).
+fn auto_newton_budget(st: UzawaSettings) -> UzawaSettings {
+    UzawaSettings {
+        max_iterations: st.max_iterations.min(AUTO_NEWTON_BUDGET),
+        ..st
     }
 }
 
@@ -171,7 +246,14 @@ impl UzawaSolver {
         // μ has one owner, the law: the problem's coefficients may not disagree (friction.rs)
         problem.check_friction_of(laws, states)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
-        if st.algorithm == Algorithm::Auto {
+        let auto = st.algorithm == Algorithm::Auto;
+        if auto
+            && mu.is_some()
+            && let Some(sparse) = sparse_twin_for_auto(problem)
+        {
+            return self.solve_with_states(&sparse, laws, states, r_start);
+        }
+        if auto {
             st.algorithm = if mu.is_some() && newton_pays(problem) {
                 Algorithm::Newton
             } else {
@@ -192,17 +274,20 @@ impl UzawaSolver {
             return Ok(sol);
         }
         match problem.dimension() {
-            3 => self.solve_checked::<L, 2>(st, problem, laws, states, r, mu.as_deref()),
-            _ => self.solve_checked::<L, 1>(st, problem, laws, states, r, mu.as_deref()),
+            3 => self.solve_checked::<L, 2>(st, auto, problem, laws, states, r, mu.as_deref()),
+            _ => self.solve_checked::<L, 1>(st, auto, problem, laws, states, r, mu.as_deref()),
         }
     }
 
     /// The rest of [`solve_with_states`](Self::solve_with_states) once the inputs are checked,
-    /// the algorithm chosen and the magnitudes in range, for tangent dimension `DT`: the open
-    /// shortcut, the algorithm, the check of its answer and the fallback.
+    /// the algorithm chosen (by [`Algorithm::Auto`] when `auto`) and the magnitudes in range,
+    /// for tangent dimension `DT`: the open shortcut, the algorithm, the check of its answer
+    /// and the fallback.
+    #[allow(clippy::too_many_arguments)]
     fn solve_checked<L: ContactLaw, const DT: usize>(
         &mut self,
         st: UzawaSettings,
+        auto: bool,
         problem: &ReducedProblem,
         laws: &[L],
         states: &[L::State],
@@ -217,14 +302,32 @@ impl UzawaSolver {
         }
         if let Some(mu) = mu
             && let Some(sol) =
-                self.solve_skipping_open::<L, DT>(st, problem, laws, states, &r, mu)?
+                self.solve_skipping_open::<L, DT>(st, auto, problem, laws, states, &r, mu)?
         {
             return Ok(sol);
         }
-        let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.clone())?;
+        let auto_newton = auto && st.algorithm == Algorithm::Newton && mu.is_some();
+        let first = if auto_newton {
+            auto_newton_budget(st)
+        } else {
+            st
+        };
+        let mut sol = self.attempt::<L, DT>(first, problem, laws, states, r.clone())?;
         self.check::<L, DT>(problem, laws, states, &mut sol, mu);
         // the smallest residual of the last run, for the stalled error
         let mut best = best_of(&sol.report.history);
+        // Auto's Newton ran out of its budget: the accelerated sweep takes over
+        let switched = auto_newton && !sol.report.converged && !sol.report.stalled;
+        if switched {
+            let next = UzawaSettings {
+                algorithm: Algorithm::AndersonGaussSeidel,
+                ..st
+            };
+            let previous = sol.report.history.len();
+            sol =
+                self.run_after::<L, DT>(next, st.algorithm, sol, problem, laws, states, &r, mu)?;
+            best = best_of(&sol.report.history[previous..]);
+        }
         if !sol.report.converged
             && st.fallback
             && !st.accept_non_converged
@@ -233,7 +336,7 @@ impl UzawaSolver {
         {
             // Newton's fallback is first the accelerated sweep (it solves what Newton does,
             // without a Jacobian), then the classical split, like every other algorithm's.
-            let chain: &[Algorithm] = if st.algorithm == Algorithm::Newton {
+            let chain: &[Algorithm] = if st.algorithm == Algorithm::Newton && !switched {
                 &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm]
             } else {
                 &[Algorithm::ClassicRccm]
@@ -242,21 +345,22 @@ impl UzawaSolver {
                 if sol.report.converged {
                     break;
                 }
-                let first = sol.report;
                 let settings = UzawaSettings {
                     algorithm: next,
                     ..st
                 };
-                sol = self.attempt::<L, DT>(settings, problem, laws, states, r.clone())?;
-                self.check::<L, DT>(problem, laws, states, &mut sol, mu);
-                let report = &mut sol.report;
-                best = best_of(&report.history);
-                report.fallback_from = Some(st.algorithm);
-                report.iterations += first.iterations;
-                report.outer_iterations += first.outer_iterations;
-                let mut history = first.history;
-                history.append(&mut report.history);
-                report.history = history;
+                let previous = sol.report.history.len();
+                sol = self.run_after::<L, DT>(
+                    settings,
+                    st.algorithm,
+                    sol,
+                    problem,
+                    laws,
+                    states,
+                    &r,
+                    mu,
+                )?;
+                best = best_of(&sol.report.history[previous..]);
             }
         }
         if !sol.report.converged && !st.accept_non_converged {
@@ -278,6 +382,34 @@ impl UzawaSolver {
             });
         }
         sol.report.asymmetry = problem.asymmetry();
+        Ok(sol)
+    }
+
+    /// Runs `st.algorithm` from `r` after the run that ended in `before` (started as
+    /// `first`), checks its answer, and reports both: the iterations and histories added, the
+    /// first algorithm in [`fallback_from`](UzawaReport::fallback_from).
+    #[allow(clippy::too_many_arguments)]
+    fn run_after<L: ContactLaw, const DT: usize>(
+        &mut self,
+        st: UzawaSettings,
+        first: Algorithm,
+        before: Solution,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r: &[f64],
+        mu: Option<&[f64]>,
+    ) -> Result<Solution, SolverError> {
+        let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.to_vec())?;
+        self.check::<L, DT>(problem, laws, states, &mut sol, mu);
+        let earlier = before.report;
+        let report = &mut sol.report;
+        report.fallback_from = Some(first);
+        report.iterations += earlier.iterations;
+        report.outer_iterations += earlier.outer_iterations;
+        let mut history = earlier.history;
+        history.append(&mut report.history);
+        report.history = history;
         Ok(sol)
     }
 
@@ -670,6 +802,31 @@ mod tests {
             assert_eq!(rep.history.len(), rep.iterations);
             assert_eq!(rep.tangential_sweeps, 0);
         }
+    }
+
+    /// A block-diagonal `W` (two bodies, no shared contact) is mostly zero blocks; a full one
+    /// (every entry non-zero, like a condensed FE flexibility) is not; one contact has no
+    /// off-diagonal block; a sparse `W` is left to the fill rule.
+    #[test]
+    fn mostly_zero_blocks_works() {
+        let diag = ReducedProblem::new(
+            vec![
+                2.0, 0.5, 0.0, 0.0, //
+                0.5, 2.0, 0.0, 0.0, //
+                0.0, 0.0, 2.0, 0.0, //
+                0.0, 0.0, 0.0, 2.0,
+            ],
+            vec![-1.0; 4],
+            vec![0.3; 2],
+        )
+        .unwrap();
+        assert!(mostly_zero_blocks(&diag));
+        let full = crate::local::generate::random_problem_in(3, 20, 1);
+        assert!(!mostly_zero_blocks(&full));
+        let one = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-1.0, 0.0], vec![0.3]);
+        assert!(!mostly_zero_blocks(&one.unwrap()));
+        let sparse = crate::local::generate::random_sparse_problem(3, 50, 0, 2);
+        assert!(!mostly_zero_blocks(&sparse));
     }
 
     #[test]

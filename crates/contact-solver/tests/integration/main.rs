@@ -31,6 +31,7 @@ mod issue_35_penetration;
 mod issue_35_time_scheme;
 mod issue_36_traps;
 mod issue_37_asymmetric;
+mod issue_37_semidefinite;
 mod local_algorithms;
 mod matrix_free;
 mod multibody_3d;

@@ -45,9 +45,11 @@ const MAX_ROUNDS: usize = 8;
 impl UzawaSolver {
     /// The answer from the contacts that may close, or `None` when the restriction does not
     /// apply (too few contacts, too many may close, or the rounds ran out).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn solve_skipping_open<L: ContactLaw, const DT: usize>(
         &mut self,
         st: UzawaSettings,
+        auto: bool,
         problem: &ReducedProblem,
         laws: &[L],
         states: &[L::State],
@@ -121,6 +123,7 @@ impl UzawaSolver {
                 .collect();
             let sol = self.solve_checked::<Coulomb, DT>(
                 sub_settings,
+                auto,
                 &sub,
                 &laws_sub,
                 &[()],
