@@ -247,8 +247,11 @@ impl UzawaSolver {
         problem.check_friction_of(laws, states)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
         let auto = st.algorithm == Algorithm::Auto;
+        // a multibody W stored dense is solved stored sparse, unless the restriction to the
+        // contacts that may close pays (it needs the dense W)
         if auto
             && mu.is_some()
+            && !skip_open::restriction_pays(&st, problem, &r)
             && let Some(sparse) = sparse_twin_for_auto(problem)
         {
             return self.solve_with_states(&sparse, laws, states, r_start);
