@@ -10,7 +10,7 @@
 //!   iterations (Armijo steps that shrink on a semidefinite `W`) where the accelerated sweep
 //!   converges in 500–2100. `Auto` solves a dense multibody `W` (mostly zero blocks) stored
 //!   sparse, and gives a Newton it chose a budget of 30 iterations before the sweep.
-//!   Before the fix `Auto` took 5 600–7 200 iterations on these piles (Newton until the stall
+//!   Before the fix `Auto` took 5 500–6 500 iterations on these piles (Newton until the stall
 //!   detector, then the sweep): the iteration bounds below fail on that code.
 //! - The FE and random problems keep today's choice, Newton, with the same iterations.
 
@@ -146,7 +146,7 @@ fn family() -> Vec<(String, SpherePile, u64)> {
 /// same form, so 1e-6 leaves room for its `ρ` and denominator, never for a wrong answer) and
 /// complementarity to 1e-6 (the velocities of a converged answer are exact to about
 /// `tol · ‖W‖ ‖r‖`). `Auto` is a converging Newton or costs at most 30 iterations more than
-/// the sweep alone (before the fix it took 5 600 where the sweep takes 540).
+/// the sweep alone (before the fix it took 5 542 where the sweep takes 536).
 #[test]
 fn issue_37_semidefinite_families_solve() {
     let mut deficient = 0;
