@@ -144,8 +144,9 @@ Examples:
 
 #[derive(Clone, Copy, ValueEnum)]
 enum AlgorithmArg {
-    /// Newton up to 1000 contacts, else the Anderson-accelerated Gauss–Seidel sweep (measured
-    /// rule, docs/benchmarks.md).
+    /// Newton up to 1000 contacts (30 iterations, then the accelerated sweep), else the
+    /// Anderson-accelerated Gauss–Seidel sweep; a dense W of mostly zero blocks (multibody)
+    /// is solved stored sparse (measured rule, docs/benchmarks.md).
     Auto,
     /// Semi-smooth Newton on De Saxcé's projection equation.
     Newton,

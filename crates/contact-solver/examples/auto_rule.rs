@@ -14,7 +14,8 @@
 //! Problems: the 2D plane-strain Hertz scene (P2, `M × M` cells) frictionless and sliding
 //! (`μ = 0.3`, `q_t + 10⁻⁴`), random dense problems ([`random_problem_in`]), the 3D elastic
 //! half-space under a sliding sphere ([`half_space`]), shaken piles of rigid spheres
-//! ([`multibody`], rank-deficient `W`) stored dense and sparse, and random block-sparse
+//! ([`multibody`], rank-deficient `W`) stored dense and sparse, among them (issue 37) towers
+//! and piles in a box where Newton creeps for thousands of iterations, and random block-sparse
 //! problems ([`random_sparse_problem`]).
 //!
 //! [`half_space`]: contact_solver::local::generate::half_space
@@ -105,6 +106,14 @@ fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
             sparse_twin(&p)?,
         ));
     }
+    // issue 37: the multibody families of `docs/benchmarks.md` "Auto on multibody problems"
+    // (in a box: floor and four walls), where Newton converges and where it creeps
+    for (name, pile, seed) in multibody_families() {
+        let p = pile.generate(seed)?.problem;
+        let n = p.contact_count();
+        out.push((format!("3D {name} ({n}) dense"), p.clone()));
+        out.push((format!("3D {name} ({n}) sparse"), sparse_twin(&p)?));
+    }
     for (n, seed) in [(1000, 7), (4000, 8)] {
         out.push((
             format!("3D sparse random_{n}"),
@@ -112,6 +121,48 @@ fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
         ));
     }
     Ok(out)
+}
+
+/// Sphere piles and towers in a box (issue 37), each with its seed: a tower of 50, columns
+/// 3 × 3 × 16 and 4 × 4 × 8 shaken at two levels of disorder.
+fn multibody_families() -> Vec<(String, SpherePile, u64)> {
+    let base = SpherePile::default();
+    let loose = SpherePile {
+        jitter: 0.4,
+        threshold: 0.5,
+        initial_speed: 0.1,
+        ..base
+    };
+    let shaken = SpherePile {
+        jitter: 0.3,
+        threshold: 0.5,
+        initial_speed: 0.5,
+        mu: 0.3,
+        ..base
+    };
+    let tower = SpherePile {
+        nx: 1,
+        ny: 1,
+        layers: 50,
+        jitter: 0.1,
+        threshold: 0.2,
+        mu: 0.3,
+        ..base
+    };
+    let (c16, c8) = ((3, 16), (4, 8));
+    let grid = |p: SpherePile, (n, layers): (usize, usize)| SpherePile {
+        nx: n,
+        ny: n,
+        layers,
+        ..p
+    };
+    vec![
+        ("tower_50".into(), tower, 1),
+        ("box_3x3x16 shaken".into(), grid(shaken, c16), 2),
+        ("box_3x3x16 loose".into(), grid(loose, c16), 1),
+        ("box_4x4x8 loose".into(), grid(loose, c8), 1),
+        ("box_4x4x8 loose s2".into(), grid(loose, c8), 2),
+    ]
 }
 
 fn main() -> Result<(), Box<dyn Error>> {

@@ -90,7 +90,13 @@
 //!   graph fills a factorisation by at most `AUTO_NEWTON_MAX_FILL` (10; geometric graphs:
 //!   piles fill 3–5 and Newton is 1.3–1.9× faster) up to
 //!   `AUTO_SPARSE_NEWTON_MAX_CONTACTS`; else the accelerated Gauss–Seidel sweep (random
-//!   sparse couplings fill 27–87 and Newton is 3–20× slower). Random *dense* problems, which
+//!   sparse couplings fill 27–87 and Newton is 3–20× slower). A dense `W` whose off-diagonal
+//!   blocks are mostly exactly zero (`AUTO_MULTIBODY_ZERO_BLOCKS`: a multibody Delassus
+//!   operator, never a condensed FE flexibility) gets the sweep too, and a Newton chosen by
+//!   the rule hands over to the sweep after `AUTO_NEWTON_BUDGET` (30) iterations (issue 37:
+//!   on semidefinite multibody stacks the dense Newton crept for thousands of iterations where
+//!   the sweep converges in hundreds; `docs/benchmarks.md` "Auto on multibody problems").
+//!   Random *dense* problems, which
 //!   are well conditioned (the sweep converges in about 25 iterations), are the one class where
 //!   the rule picks the slower one (Newton 3–6× slower); FE and multibody problems are what
 //!   users bring. It is the default of `bipo solve-local`; the simulation's default stays the

@@ -44,9 +44,14 @@ pub enum Algorithm {
     Newton,
     /// Chosen per problem by the measured rule of the [layer docs](crate::local#which-algorithm):
     /// [`Newton`](Self::Newton) when every law has a friction coefficient and, for a dense `W`,
-    /// there are at most 1000 contacts, for a sparse `W` at most 20 000 contacts whose graph
-    /// fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
-    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel).
+    /// there are at most 1000 contacts and fewer than half of its off-diagonal blocks are zero
+    /// (not a multibody Delassus operator), for a sparse `W` at most 20 000 contacts whose
+    /// graph fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel). A Newton chosen so that has not
+    /// converged in 30 iterations hands over to
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel) from the start (with or without
+    /// [`fallback`](UzawaSettings::fallback); the report's
+    /// [`fallback_from`](UzawaReport::fallback_from) says it happened).
     /// The report names the one that ran.
     Auto,
 }
@@ -89,6 +94,26 @@ pub(crate) const AUTO_NEWTON_MAX_FILL: f64 = 10.0;
 /// factorisation of the contact graph: 0.3–1.2 ms at 425–1000 contacts, 24 ms at 4000) only up
 /// to this many contacts; beyond, it picks the accelerated sweep.
 pub(crate) const AUTO_SPARSE_NEWTON_MAX_CONTACTS: usize = 20_000;
+
+/// [`Algorithm::Auto`] solves a dense symmetric `W` stored sparse (and never runs the dense
+/// Newton on it) when at least this fraction of its off-diagonal blocks is exactly zero: a
+/// multibody Delassus operator `H M⁻¹ Hᵀ` (two contacts couple only through a body they
+/// share); a condensed finite-element `F*` has none. Measured (`examples/auto_rule.rs`,
+/// `docs/benchmarks.md` "Auto on multibody problems"): shaken sphere piles and towers have
+/// 97.6–98.7 % zero blocks, and there every algorithm is faster on the sparse storage (the
+/// sweep 2–4×, Newton 4–20×) while the dense Newton may not converge at all (a semi-definite
+/// `W`: Armijo steps that shrink for thousands of iterations); the FE and random problems of
+/// the table have none.
+pub(crate) const AUTO_MULTIBODY_ZERO_BLOCKS: f64 = 0.5;
+
+/// The iterations (sweeps and Newton steps) a Newton chosen by [`Algorithm::Auto`] may take
+/// before the accelerated sweep takes over from the start. Measured: Newton converges in
+/// 7–9 iterations on the FE problems of `docs/benchmarks.md` and in 11–16 on the sphere
+/// piles where it wins; where it does not converge it creeps for thousands of iterations
+/// (0.3–0.9 ms each on a 250–300-contact pile stored sparse, against 11–14 ms for the whole
+/// sweep solve). A tower of 50 spheres, where Newton converges slowly (53 iterations), pays
+/// the budget and the sweep: 2.3× Newton's time.
+pub(crate) const AUTO_NEWTON_BUDGET: usize = 30;
 
 /// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
 /// long, what to do when it fails), with the tuning of the iteration beside them in

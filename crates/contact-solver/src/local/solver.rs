@@ -4,22 +4,22 @@
 use super::anderson::{AndersonScratch, BaseMap};
 use super::classic::ClassicScratch;
 use super::dense::KeptLu;
-use super::newton::{NewtonScratch, factor_fill};
+use super::newton::NewtonScratch;
 use super::plain;
 use super::problem::ReducedProblem;
 use super::residual::{
     contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm, penetration,
 };
-use super::settings::{
-    AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_SPARSE_NEWTON_MAX_CONTACTS, Algorithm,
-    Solution, UzawaReport, UzawaSettings,
-};
+use super::settings::{Algorithm, Solution, UzawaReport, UzawaSettings};
 use super::stall::MIN_STALL_WINDOW;
 use super::sweep::Sweeps;
 use crate::error::{BestIterate, SolverError};
 use contact_laws::ContactLaw;
 
+mod auto;
 mod skip_open;
+
+use auto::{auto_newton_budget, newton_pays, sparse_twin_for_auto};
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
 /// checked without the modified velocity to this factor of the tolerance (relative), or it is
@@ -41,21 +41,6 @@ pub(crate) const KEPT_CHECK_FACTOR: f64 = 2.0;
 /// `W`, `q` or the reactions' scale `max|q|/max|W|` with magnitudes beyond
 /// `[1/RESCALE_ABOVE, RESCALE_ABOVE]` are rescaled internally (scale-invariant laws only).
 pub(crate) const RESCALE_ABOVE: f64 = 1e100;
-
-/// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
-/// `AUTO_NEWTON_MAX_FILL`): Newton on a dense `W` up to `AUTO_NEWTON_MAX_CONTACTS`
-/// contacts, on a sparse `W` up to `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph
-/// fills a factorisation by at most `AUTO_NEWTON_MAX_FILL`.
-fn newton_pays(problem: &ReducedProblem) -> bool {
-    let nc = problem.contact_count();
-    match problem.w_sparse() {
-        None => nc <= AUTO_NEWTON_MAX_CONTACTS,
-        Some(a) => {
-            nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
-                && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
-        }
-    }
-}
 
 /// The reduced-problem solver: settings plus scratch buffers reused across solves.
 ///
@@ -171,7 +156,17 @@ impl UzawaSolver {
         // μ has one owner, the law: the problem's coefficients may not disagree (friction.rs)
         problem.check_friction_of(laws, states)?;
         let mu = friction_coefficients(laws, states, problem.contact_count());
-        if st.algorithm == Algorithm::Auto {
+        let auto = st.algorithm == Algorithm::Auto;
+        // a multibody W stored dense is solved stored sparse, unless the restriction to the
+        // contacts that may close pays (it needs the dense W)
+        if auto
+            && mu.is_some()
+            && !skip_open::restriction_pays(&st, problem, &r)
+            && let Some(sparse) = sparse_twin_for_auto(problem)
+        {
+            return self.solve_with_states(&sparse, laws, states, r_start);
+        }
+        if auto {
             st.algorithm = if mu.is_some() && newton_pays(problem) {
                 Algorithm::Newton
             } else {
@@ -192,17 +187,20 @@ impl UzawaSolver {
             return Ok(sol);
         }
         match problem.dimension() {
-            3 => self.solve_checked::<L, 2>(st, problem, laws, states, r, mu.as_deref()),
-            _ => self.solve_checked::<L, 1>(st, problem, laws, states, r, mu.as_deref()),
+            3 => self.solve_checked::<L, 2>(st, auto, problem, laws, states, r, mu.as_deref()),
+            _ => self.solve_checked::<L, 1>(st, auto, problem, laws, states, r, mu.as_deref()),
         }
     }
 
     /// The rest of [`solve_with_states`](Self::solve_with_states) once the inputs are checked,
-    /// the algorithm chosen and the magnitudes in range, for tangent dimension `DT`: the open
-    /// shortcut, the algorithm, the check of its answer and the fallback.
+    /// the algorithm chosen (by [`Algorithm::Auto`] when `auto`) and the magnitudes in range,
+    /// for tangent dimension `DT`: the open shortcut, the algorithm, the check of its answer
+    /// and the fallback.
+    #[allow(clippy::too_many_arguments)]
     fn solve_checked<L: ContactLaw, const DT: usize>(
         &mut self,
         st: UzawaSettings,
+        auto: bool,
         problem: &ReducedProblem,
         laws: &[L],
         states: &[L::State],
@@ -217,16 +215,43 @@ impl UzawaSolver {
         }
         if let Some(mu) = mu
             && let Some(sol) =
-                self.solve_skipping_open::<L, DT>(st, problem, laws, states, &r, mu)?
+                self.solve_skipping_open::<L, DT>(st, auto, problem, laws, states, &r, mu)?
         {
             return Ok(sol);
         }
-        let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.clone())?;
+        let auto_newton = auto && st.algorithm == Algorithm::Newton && mu.is_some();
+        let first = if auto_newton {
+            auto_newton_budget(st)
+        } else {
+            st
+        };
+        let mut sol = self.attempt::<L, DT>(first, problem, laws, states, r.clone())?;
         let mut best_iterate = None;
         self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, &mut best_iterate);
         self.check::<L, DT>(problem, laws, states, &mut sol, mu);
         // the smallest residual of the last run, for the stalled error
         let mut best = best_of(&sol.report.history);
+        // Auto's Newton ran out of its budget: the accelerated sweep takes over
+        let switched = auto_newton && !sol.report.converged && !sol.report.stalled;
+        if switched {
+            let next = UzawaSettings {
+                algorithm: Algorithm::AndersonGaussSeidel,
+                ..st
+            };
+            let previous = sol.report.history.len();
+            sol = self.run_after::<L, DT>(
+                next,
+                st.algorithm,
+                sol,
+                problem,
+                laws,
+                states,
+                &r,
+                mu,
+                &mut best_iterate,
+            )?;
+            best = best_of(&sol.report.history[previous..]);
+        }
         if !sol.report.converged
             && st.fallback
             && !st.accept_non_converged
@@ -235,7 +260,7 @@ impl UzawaSolver {
         {
             // Newton's fallback is first the accelerated sweep (it solves what Newton does,
             // without a Jacobian), then the classical split, like every other algorithm's.
-            let chain: &[Algorithm] = if st.algorithm == Algorithm::Newton {
+            let chain: &[Algorithm] = if st.algorithm == Algorithm::Newton && !switched {
                 &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm]
             } else {
                 &[Algorithm::ClassicRccm]
@@ -244,28 +269,23 @@ impl UzawaSolver {
                 if sol.report.converged {
                     break;
                 }
-                let first = sol.report;
                 let settings = UzawaSettings {
                     algorithm: next,
                     ..st
                 };
-                sol = self.attempt::<L, DT>(settings, problem, laws, states, r.clone())?;
-                self.accept_on_residual::<L, DT>(
+                let previous = sol.report.history.len();
+                sol = self.run_after::<L, DT>(
+                    settings,
+                    st.algorithm,
+                    sol,
                     problem,
                     laws,
                     states,
-                    &mut sol,
+                    &r,
+                    mu,
                     &mut best_iterate,
-                );
-                self.check::<L, DT>(problem, laws, states, &mut sol, mu);
-                let report = &mut sol.report;
-                best = best_of(&report.history);
-                report.fallback_from = Some(st.algorithm);
-                report.iterations += first.iterations;
-                report.outer_iterations += first.outer_iterations;
-                let mut history = first.history;
-                history.append(&mut report.history);
-                report.history = history;
+                )?;
+                best = best_of(&sol.report.history[previous..]);
             }
         }
         if !sol.report.converged && !st.accept_non_converged {
@@ -326,6 +346,37 @@ impl UzawaSolver {
                 residual,
             )));
         }
+    }
+
+    /// Runs `st.algorithm` from `r` after the run that ended in `before` (started as
+    /// `first`), accepts it on its residual
+    /// or keeps it as the best iterate, checks its answer, and reports both: the iterations and histories added, the
+    /// first algorithm in [`fallback_from`](UzawaReport::fallback_from).
+    #[allow(clippy::too_many_arguments)]
+    fn run_after<L: ContactLaw, const DT: usize>(
+        &mut self,
+        st: UzawaSettings,
+        first: Algorithm,
+        before: Solution,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r: &[f64],
+        mu: Option<&[f64]>,
+        best_iterate: &mut Option<Box<BestIterate>>,
+    ) -> Result<Solution, SolverError> {
+        let mut sol = self.attempt::<L, DT>(st, problem, laws, states, r.to_vec())?;
+        self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, best_iterate);
+        self.check::<L, DT>(problem, laws, states, &mut sol, mu);
+        let earlier = before.report;
+        let report = &mut sol.report;
+        report.fallback_from = Some(first);
+        report.iterations += earlier.iterations;
+        report.outer_iterations += earlier.outer_iterations;
+        let mut history = earlier.history;
+        history.append(&mut report.history);
+        report.history = history;
+        Ok(sol)
     }
 
     /// The independent check of a converged answer, for Coulomb-type laws (`mu`): the

@@ -32,6 +32,7 @@ mod issue_35_time_scheme;
 mod issue_36_traps;
 mod issue_37_asymmetric;
 mod issue_37_rank_deficient;
+mod issue_37_semidefinite;
 mod issue_39_dynamics;
 mod issue_39_sliding_block;
 mod local_algorithms;

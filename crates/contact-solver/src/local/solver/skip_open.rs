@@ -42,12 +42,57 @@ pub(crate) const SKIP_OPEN_MAX_FRACTION: f64 = 0.5;
 /// Rounds of joining before the whole problem is solved instead.
 const MAX_ROUNDS: usize = 8;
 
+/// The contacts that may close: `q_n < 0` or a non-zero starting reaction.
+fn may_close(problem: &ReducedProblem, r: &[f64]) -> Vec<bool> {
+    let (d, q) = (problem.dimension(), problem.q());
+    (0..problem.contact_count())
+        .map(|i| q[d * i] < 0.0 || r[d * i..d * (i + 1)].iter().any(|&v| v != 0.0))
+        .collect()
+}
+
+/// Whether the restriction is tried on `problem` from `r`: switched on, a dense `W` of at
+/// least `SKIP_OPEN_MIN_CONTACTS` contacts, some but at most `SKIP_OPEN_MAX_FRACTION` of them
+/// may close, and a cheap prediction says none of the others would join: each pressed contact
+/// alone, `r_j ≈ −q_n,j / W_jj`, and only the couplings that close a gap (`W_ij < 0`: rigid
+/// bodies pushed into others). Where some would, the rounds of joining cost more than the
+/// smaller problem saves (measured on sphere piles: 0.56–0.70×): solve whole.
+pub(super) fn restriction_pays(st: &UzawaSettings, problem: &ReducedProblem, r: &[f64]) -> bool {
+    let nc = problem.contact_count();
+    let Some(w) = problem.w_dense() else {
+        return false;
+    };
+    if !st.tuning.skip_open || nc < SKIP_OPEN_MIN_CONTACTS {
+        return false;
+    }
+    let keep = may_close(problem, r);
+    let count = keep.iter().filter(|&&k| k).count();
+    if count == 0 || count as f64 > SKIP_OPEN_MAX_FRACTION * nc as f64 {
+        return false;
+    }
+    let (d, m, q) = (problem.dimension(), problem.size(), problem.q());
+    let pressed: Vec<(usize, f64)> = (0..nc)
+        .filter(|&j| keep[j] && q[d * j] < 0.0)
+        .map(|j| (d * j, -q[d * j] / w[d * j * m + d * j]))
+        .collect();
+    !(0..nc).filter(|&i| !keep[i]).any(|i| {
+        let row = &w[d * i * m..(d * i + 1) * m];
+        let predicted: f64 = q[d * i]
+            + pressed
+                .iter()
+                .map(|&(col, r)| row[col].min(0.0) * r)
+                .sum::<f64>();
+        predicted < 0.0
+    })
+}
+
 impl UzawaSolver {
     /// The answer from the contacts that may close, or `None` when the restriction does not
     /// apply (too few contacts, too many may close, or the rounds ran out).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn solve_skipping_open<L: ContactLaw, const DT: usize>(
         &mut self,
         st: UzawaSettings,
+        auto: bool,
         problem: &ReducedProblem,
         laws: &[L],
         states: &[L::State],
@@ -56,44 +101,10 @@ impl UzawaSolver {
     ) -> Result<Option<Solution>, SolverError> {
         let d = DT + 1;
         let nc = problem.contact_count();
-        let q = problem.q();
-        let mut keep: Vec<bool> = (0..nc)
-            .map(|i| q[d * i] < 0.0 || r[d * i..d * (i + 1)].iter().any(|&v| v != 0.0))
-            .collect();
-        let count = keep.iter().filter(|&&k| k).count();
-        if !st.tuning.skip_open
-            || problem.is_sparse()
-            || nc < SKIP_OPEN_MIN_CONTACTS
-            || count == 0
-            || count as f64 > SKIP_OPEN_MAX_FRACTION * nc as f64
-        {
+        if !restriction_pays(&st, problem, r) {
             return Ok(None);
         }
-        // a cheap prediction of who would join: each pressed contact alone,
-        // `r_j ≈ −q_n,j / W_jj`, and only the couplings that close a gap (`W_ij < 0`: rigid
-        // bodies pushed into others). Where some would, the rounds of joining cost more than
-        // the smaller problem saves (measured on sphere piles: 0.56–0.70×): solve whole.
-        if let Some(w) = problem.w_dense() {
-            let m = problem.size();
-            let pressed: Vec<(usize, f64)> = (0..nc)
-                .filter(|&j| keep[j] && q[d * j] < 0.0)
-                .map(|j| (d * j, -q[d * j] / w[d * j * m + d * j]))
-                .collect();
-            for i in 0..nc {
-                if keep[i] {
-                    continue;
-                }
-                let row = &w[d * i * m..(d * i + 1) * m];
-                let predicted: f64 = q[d * i]
-                    + pressed
-                        .iter()
-                        .map(|&(col, r)| row[col].min(0.0) * r)
-                        .sum::<f64>();
-                if predicted < 0.0 {
-                    return Ok(None);
-                }
-            }
-        }
+        let mut keep = may_close(problem, r);
         // ρ⁰ of the whole problem (`solve_checked` reset the sweeps for it; the check below
         // and the statuses use it)
         let rho0 = self.sweeps.rho0.clone();
@@ -122,6 +133,7 @@ impl UzawaSolver {
             let sol = self
                 .solve_checked::<Coulomb, DT>(
                     sub_settings,
+                    auto,
                     &sub,
                     &laws_sub,
                     &[()],

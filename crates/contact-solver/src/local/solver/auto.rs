@@ -1,0 +1,133 @@
+//! [`Algorithm::Auto`]'s choice for a Coulomb-type problem (issues 14 and 37): which
+//! algorithm runs first, on which storage of `W`, and how long a Newton it chose may run.
+//! The measurements behind each constant are in `docs/benchmarks.md` ("Which algorithm,
+//! measured" and "Auto on multibody problems").
+
+use super::super::newton::factor_fill;
+use super::super::problem::ReducedProblem;
+#[cfg(doc)]
+use super::super::settings::Algorithm;
+use super::super::settings::{
+    AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, UzawaSettings,
+};
+
+/// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
+/// `AUTO_NEWTON_MAX_FILL` and `AUTO_MULTIBODY_ZERO_BLOCKS`): Newton on a dense `W` up to
+/// `AUTO_NEWTON_MAX_CONTACTS` contacts unless its blocks are mostly zero (a multibody
+/// Delassus operator, [`mostly_zero_blocks`]: `Auto` solves it stored sparse,
+/// [`sparse_twin_for_auto`]), on a sparse `W` up to
+/// `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph fills a factorisation by at most
+/// `AUTO_NEWTON_MAX_FILL`. Newton chosen here runs within `AUTO_NEWTON_BUDGET` iterations
+/// ([`auto_newton_budget`]).
+pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
+    let nc = problem.contact_count();
+    match problem.w_sparse() {
+        None => nc <= AUTO_NEWTON_MAX_CONTACTS && !mostly_zero_blocks(problem),
+        Some(a) => {
+            nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
+                && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
+        }
+    }
+}
+
+/// Whether at least `AUTO_MULTIBODY_ZERO_BLOCKS` of the off-diagonal `d × d` blocks of a dense
+/// `W` are exactly zero: the pattern of a multibody Delassus operator `H M⁻¹ Hᵀ` (two contacts
+/// are coupled only through a body they share), never of a condensed finite-element
+/// flexibility `F*` (every entry non-zero: an elastic body couples all its nodes). One pass
+/// over `W` (the cost of one product `W r`), stopped as soon as the answer is known.
+fn mostly_zero_blocks(problem: &ReducedProblem) -> bool {
+    let Some(w) = problem.w_dense() else {
+        return false;
+    };
+    let (nc, d, m) = (problem.contact_count(), problem.dimension(), problem.size());
+    let pairs = nc * nc.saturating_sub(1);
+    if pairs == 0 {
+        return false;
+    }
+    let needed = (AUTO_MULTIBODY_ZERO_BLOCKS * pairs as f64).ceil() as usize;
+    let (mut zero, mut seen) = (0usize, 0usize);
+    for i in 0..nc {
+        for j in (0..nc).filter(|&j| j != i) {
+            seen += 1;
+            let is_zero = (0..d).all(|a| {
+                let row = &w[(d * i + a) * m + d * j..][..d];
+                row.iter().all(|&v| v == 0.0)
+            });
+            zero += usize::from(is_zero);
+            if zero >= needed {
+                return true;
+            }
+            if zero + (pairs - seen) < needed {
+                return false;
+            }
+        }
+    }
+    false
+}
+
+/// The same problem with `W` stored sparse, for [`Algorithm::Auto`] on a dense symmetric `W`
+/// that is mostly zero blocks ([`mostly_zero_blocks`]): every algorithm is faster on the
+/// sparse storage there (measured on sphere piles: the sweep 2–4×, Newton's sparse LU 4–20×
+/// against the dense LU, `docs/benchmarks.md` "Auto on multibody problems"), and the sparse
+/// rule of [`newton_pays`] applies. `None` when the problem is not such a one (or the copy
+/// fails, which a valid problem does not).
+pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedProblem> {
+    let w = problem.w_dense()?;
+    if !problem.is_symmetric() || !mostly_zero_blocks(problem) {
+        return None;
+    }
+    let m = problem.size();
+    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, &v) in w.iter().enumerate() {
+        if v != 0.0 {
+            rows.push(k / m);
+            cols.push(k % m);
+            vals.push(v);
+        }
+    }
+    let (q, mu) = (problem.q().to_vec(), problem.mu().to_vec());
+    ReducedProblem::from_triplets(problem.dimension(), &rows, &cols, &vals, q, mu).ok()
+}
+
+/// The settings of the first run of a Newton that [`Algorithm::Auto`] chose: at most
+/// `AUTO_NEWTON_BUDGET` iterations, after which the accelerated sweep takes over from the
+/// start (whatever `fallback` says: the switch is part of `Auto`), so that a wrong first
+/// choice costs a bounded fraction of the solve (issue 37: Newton ground for thousands of
+/// iterations on multibody stacks that the sweep solves in hundreds).
+pub(super) fn auto_newton_budget(st: UzawaSettings) -> UzawaSettings {
+    UzawaSettings {
+        max_iterations: st.max_iterations.min(AUTO_NEWTON_BUDGET),
+        ..st
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A block-diagonal `W` (two bodies, no shared contact) is mostly zero blocks; a full one
+    /// (every entry non-zero, like a condensed FE flexibility) is not; one contact has no
+    /// off-diagonal block; a sparse `W` is left to the fill rule.
+    #[test]
+    fn mostly_zero_blocks_works() {
+        let diag = ReducedProblem::new(
+            vec![
+                2.0, 0.5, 0.0, 0.0, //
+                0.5, 2.0, 0.0, 0.0, //
+                0.0, 0.0, 2.0, 0.0, //
+                0.0, 0.0, 0.0, 2.0,
+            ],
+            vec![-1.0; 4],
+            vec![0.3; 2],
+        )
+        .unwrap();
+        assert!(mostly_zero_blocks(&diag));
+        let full = crate::local::generate::random_problem_in(3, 20, 1);
+        assert!(!mostly_zero_blocks(&full));
+        let one = ReducedProblem::new(vec![1.0, 0.0, 0.0, 1.0], vec![-1.0, 0.0], vec![0.3]);
+        assert!(!mostly_zero_blocks(&one.unwrap()));
+        let sparse = crate::local::generate::random_sparse_problem(3, 50, 0, 2);
+        assert!(!mostly_zero_blocks(&sparse));
+    }
+}
