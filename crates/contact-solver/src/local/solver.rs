@@ -231,16 +231,33 @@ impl UzawaSolver {
         self.check::<L, DT>(problem, laws, states, &mut sol, mu);
         // the smallest residual of the last run, for the stalled error
         let mut best = best_of(&sol.report.history);
-        // Auto's Newton ran out of its budget: the accelerated sweep takes over
+        // What runs next while the answer is not converged: the accelerated sweep when Auto's
+        // Newton ran out of its budget; then the fallback — Newton's is first the accelerated
+        // sweep (it solves what Newton does, without a Jacobian), then the classical split,
+        // like every other algorithm's.
         let switched = auto_newton && !sol.report.converged && !sol.report.stalled;
-        if switched {
-            let next = UzawaSettings {
-                algorithm: Algorithm::AndersonGaussSeidel,
+        let fallback = st.fallback
+            && !st.accept_non_converged
+            && st.algorithm != Algorithm::ClassicRccm
+            && mu.is_some();
+        let newton = st.algorithm == Algorithm::Newton;
+        let chain: &[Algorithm] = match (switched || (fallback && newton), fallback) {
+            (true, true) => &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm],
+            (true, false) => &[Algorithm::AndersonGaussSeidel],
+            (false, true) => &[Algorithm::ClassicRccm],
+            (false, false) => &[],
+        };
+        for &next in chain {
+            if sol.report.converged {
+                break;
+            }
+            let settings = UzawaSettings {
+                algorithm: next,
                 ..st
             };
             let previous = sol.report.history.len();
             sol = self.run_after::<L, DT>(
-                next,
+                settings,
                 st.algorithm,
                 sol,
                 problem,
@@ -251,42 +268,6 @@ impl UzawaSolver {
                 &mut best_iterate,
             )?;
             best = best_of(&sol.report.history[previous..]);
-        }
-        if !sol.report.converged
-            && st.fallback
-            && !st.accept_non_converged
-            && st.algorithm != Algorithm::ClassicRccm
-            && mu.is_some()
-        {
-            // Newton's fallback is first the accelerated sweep (it solves what Newton does,
-            // without a Jacobian), then the classical split, like every other algorithm's.
-            let chain: &[Algorithm] = if st.algorithm == Algorithm::Newton && !switched {
-                &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm]
-            } else {
-                &[Algorithm::ClassicRccm]
-            };
-            for &next in chain {
-                if sol.report.converged {
-                    break;
-                }
-                let settings = UzawaSettings {
-                    algorithm: next,
-                    ..st
-                };
-                let previous = sol.report.history.len();
-                sol = self.run_after::<L, DT>(
-                    settings,
-                    st.algorithm,
-                    sol,
-                    problem,
-                    laws,
-                    states,
-                    &r,
-                    mu,
-                    &mut best_iterate,
-                )?;
-                best = best_of(&sol.report.history[previous..]);
-            }
         }
         if !sol.report.converged && !st.accept_non_converged {
             let report = sol.report;
