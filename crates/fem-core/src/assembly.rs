@@ -102,19 +102,13 @@ impl Pattern {
             x.len() == n && y.len() == n,
             "x and y of the matrix's dimension"
         );
-        y.fill(0.0);
-        let (col_ptr, row_idx) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
-        for (j, &x_j) in x.iter().enumerate() {
-            let mut y_j = 0.0;
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                let (i, a) = (row_idx[k], values[k]);
-                y[i] += a * x_j;
-                if i != j {
-                    y_j += a * x[i];
-                }
-            }
-            y[j] += y_j;
-        }
+        lower_symmetric_mul_into(
+            self.symbolic.col_ptr(),
+            self.symbolic.row_idx(),
+            values,
+            x,
+            y,
+        );
     }
 
     /// A faer view of the matrix with these `values`.
@@ -237,4 +231,27 @@ pub(crate) fn merge(mut entries: Vec<(usize, Dof, f64)>) -> PrescribedCoupling {
         }
     }
     PrescribedCoupling { entries: merged }
+}
+
+/// `y = A x` for the symmetric `A` whose lower triangle is stored by columns (`col_ptr`,
+/// `row_idx`, `values`); `x` and `y` of the matrix's dimension (checked by the callers).
+pub(crate) fn lower_symmetric_mul_into(
+    col_ptr: &[usize],
+    row_idx: &[usize],
+    values: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+) {
+    y.fill(0.0);
+    for (j, &x_j) in x.iter().enumerate() {
+        let mut y_j = 0.0;
+        for k in col_ptr[j]..col_ptr[j + 1] {
+            let (i, a) = (row_idx[k], values[k]);
+            y[i] += a * x_j;
+            if i != j {
+                y_j += a * x[i];
+            }
+        }
+        y[j] += y_j;
+    }
 }

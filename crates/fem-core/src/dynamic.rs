@@ -13,6 +13,7 @@
 //! `M̂` is positive definite whenever `M` is, so a body that only contact holds (built with
 //! `floating`) is no longer floating here: its rigid motions have inertia.
 
+use crate::assembly::lower_symmetric_mul_into;
 use crate::error::FemError;
 use crate::linear_solver::SpdSolver;
 use crate::model::{ElasticModel, ModelSpace};
@@ -377,19 +378,8 @@ fn symmetric_mul_into(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f6
         x.len() == n && y.len() == n,
         "x and y of the matrix's dimension"
     );
-    y.fill(0.0);
-    let (col_ptr, row_idx, values) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
-    for (j, &x_j) in x.iter().enumerate() {
-        let mut y_j = 0.0;
-        for p in col_ptr[j]..col_ptr[j + 1] {
-            let (i, v) = (row_idx[p], values[p]);
-            y[i] += v * x_j;
-            if i != j {
-                y_j += v * x[i];
-            }
-        }
-        y[j] += y_j;
-    }
+    let symbolic = a.symbolic();
+    lower_symmetric_mul_into(symbolic.col_ptr(), symbolic.row_idx(), a.val(), x, y);
 }
 
 /// `K` replaced by `M̂` in every solve; the geometry and dofs are the model's.

@@ -293,6 +293,15 @@ impl UzawaSolver {
         Ok(sol)
     }
 
+    /// The denominator of the relative natural residual of `r`: `max(‖r‖, ρ_max ‖q‖)` with the
+    /// sweeps' largest `ρ⁰_i` (never 0).
+    fn residual_scale(&self, problem: &ReducedProblem, r: &[f64]) -> f64 {
+        let rho_max = self.sweeps.rho0.iter().fold(0.0_f64, |a, &b| a.max(b));
+        norm(r)
+            .max(rho_max * norm(problem.q()))
+            .max(f64::MIN_POSITIVE)
+    }
+
     /// Issue 37: a run that ended without meeting its rule (at `max_iterations`, or stalled)
     /// with a relative natural residual `≤ tol` at its returned iterate (on the exact
     /// `x = W r + q`, which [`attempt`](Self::attempt) recomputed) is converged: the rule's
@@ -311,10 +320,7 @@ impl UzawaSolver {
             return;
         }
         let rho0 = &self.sweeps.rho0;
-        let rho_max = rho0.iter().fold(0.0_f64, |a, &b| a.max(b));
-        let denom = norm(&sol.r)
-            .max(rho_max * norm(problem.q()))
-            .max(f64::MIN_POSITIVE);
+        let denom = self.residual_scale(problem, &sol.r);
         let residual = natural_residual::<L, DT>(laws, states, rho0, &sol.r, &sol.x) / denom;
         if residual <= self.settings.tol {
             sol.report.converged = true;
@@ -380,10 +386,7 @@ impl UzawaSolver {
             return;
         }
         let rho0 = &self.sweeps.rho0;
-        let rho_max = rho0.iter().fold(0.0_f64, |a, &b| a.max(b));
-        let denom = norm(&sol.r)
-            .max(rho_max * norm(problem.q()))
-            .max(f64::MIN_POSITIVE);
+        let denom = self.residual_scale(problem, &sol.r);
         if !problem.is_symmetric() {
             problem.displacement_into(&sol.r, &mut sol.x);
             let residual = natural_residual::<L, DT>(laws, states, rho0, &sol.r, &sol.x) / denom;
