@@ -58,6 +58,7 @@ pub mod dynamic;
 pub mod linear_solver;
 pub mod model;
 pub mod ordering;
+pub mod plastic;
 pub mod rigid_modes;
 pub mod solid;
 pub mod space;
