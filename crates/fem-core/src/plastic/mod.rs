@@ -23,6 +23,12 @@
 
 use crate::error::{FemError, non_negative, positive};
 
+mod drucker_prager;
+#[cfg(test)]
+mod drucker_prager_tests;
+
+pub use drucker_prager::{ConeMatch, DruckerPrager, DruckerPragerParameters};
+
 /// A symmetric tensor in Voigt order `[xx, yy, zz, xy, yz, zx]` (module docs): engineering
 /// shears for strains, tensor shears for stresses.
 pub type Voigt = [f64; 6];
