@@ -243,7 +243,7 @@ impl DruckerPrager {
         cohesive + self.k_d * e_norm * (c - (self.tan_phi - self.tan_theta) * s_m)
     }
 
-    /// The consistent tangent of the smooth return (module docs of the theory):
+    /// The consistent tangent of the smooth return (`docs/theory.md`, section 15):
     /// `C − a ⊗ b / H − β (P − n ⊗ n)`.
     fn smooth_tangent(&self, n: &Voigt, dlambda: f64, s_trial_norm: f64, h: f64) -> VoigtMatrix {
         let (g, k) = (self.shear, self.bulk);

@@ -385,12 +385,12 @@ fn issue_40_consistent_tangent_matches_finite_differences() {
             minus[j] -= h;
             let (sp, _) = step(&dp, &committed, &plus);
             let (sm, _) = step(&dp, &committed, &minus);
-            for i in 0..6 {
+            for (i, row) in tangent.iter().enumerate() {
                 let fd = (sp.stress[i] - sm.stress[i]) / (2.0 * h);
                 assert!(
-                    (fd - tangent[i][j]).abs() <= 1e-6 * scale,
+                    (fd - row[j]).abs() <= 1e-6 * scale,
                     "φ = {phi}, θ = {theta}: D[{i}][{j}] = {} vs fd {fd}",
-                    tangent[i][j]
+                    row[j]
                 );
             }
         }
