@@ -111,6 +111,10 @@ pub struct DruckerPrager {
     k_d: f64,
     tan_phi: f64,
     tan_theta: f64,
+    /// `H = 2G / k_d² + K tan θ tan φ`, the denominator of the smooth return.
+    plastic_modulus: f64,
+    /// The elastic tangent `C`, kept (the hot loop starts every update from it).
+    elastic: VoigtMatrix,
 }
 
 impl DruckerPrager {
@@ -156,13 +160,20 @@ impl DruckerPrager {
             });
         }
         let (phi, theta) = (phi.to_radians(), theta.to_radians());
+        let (bulk, shear) = (
+            young / (3.0 * (1.0 - 2.0 * poisson)),
+            young / (2.0 * (1.0 + poisson)),
+        );
+        let (k_d, tan_phi, tan_theta) = (parameters.cone.k_d(phi), phi.tan(), theta.tan());
         Ok(Self {
             parameters,
-            bulk: young / (3.0 * (1.0 - 2.0 * poisson)),
-            shear: young / (2.0 * (1.0 + poisson)),
-            k_d: parameters.cone.k_d(phi),
-            tan_phi: phi.tan(),
-            tan_theta: theta.tan(),
+            bulk,
+            shear,
+            k_d,
+            tan_phi,
+            tan_theta,
+            plastic_modulus: 2.0 * shear / (k_d * k_d) + bulk * tan_theta * tan_phi,
+            elastic: isotropic_tangent(young, poisson),
         })
     }
 
@@ -247,7 +258,7 @@ impl DruckerPrager {
     /// `C − a ⊗ b / H − β (P − n ⊗ n)`.
     fn smooth_tangent(&self, n: &Voigt, dlambda: f64, s_trial_norm: f64, h: f64) -> VoigtMatrix {
         let (g, k) = (self.shear, self.bulk);
-        let mut tangent = isotropic_tangent(self.parameters.young, self.parameters.poisson);
+        let mut tangent = self.elastic;
         // a = 2G n / k_d + K tan θ δ (flow), b = 2G n / k_d + K tan φ δ (yield normal)
         let mut a = [0.0; 6];
         let mut b = [0.0; 6];
@@ -257,16 +268,20 @@ impl DruckerPrager {
             b[i] = 2.0 * g * n[i] / self.k_d + k * self.tan_phi * unit;
         }
         let beta = 4.0 * g * g * dlambda / (self.k_d * s_trial_norm);
+        let inv_h = 1.0 / h;
         for (i, row) in tangent.iter_mut().enumerate() {
             for (j, entry) in row.iter_mut().enumerate() {
-                // P maps engineering strains to the tensor deviator
-                let p = match (i < 3, j < 3) {
-                    (true, true) => f64::from(u8::from(i == j)) - 1.0 / 3.0,
-                    (false, false) if i == j => 0.5,
-                    _ => 0.0,
-                };
-                *entry -= a[i] * b[j] / h + beta * (p - n[i] * n[j]);
+                *entry -= a[i] * b[j] * inv_h - beta * n[i] * n[j];
             }
+        }
+        // − β P, P mapping engineering strains to the tensor deviator
+        for (i, row) in tangent.iter_mut().enumerate().take(3) {
+            for (j, entry) in row.iter_mut().enumerate().take(3) {
+                *entry -= beta * (f64::from(u8::from(i == j)) - 1.0 / 3.0);
+            }
+        }
+        for (i, row) in tangent.iter_mut().enumerate().skip(3) {
+            row[i] -= 0.5 * beta;
         }
         tangent
     }
@@ -313,7 +328,7 @@ fn strain_norm(strain: &Voigt) -> f64 {
 
 impl ConstitutivePoint for DruckerPrager {
     fn elastic_tangent(&self) -> VoigtMatrix {
-        isotropic_tangent(self.parameters.young, self.parameters.poisson)
+        self.elastic
     }
 
     /// The closed-form return of the module docs: elastic predictor, then the smooth return
@@ -359,7 +374,7 @@ impl ConstitutivePoint for DruckerPrager {
             *tangent = self.elastic_tangent();
             return Ok(());
         }
-        let h = 2.0 * g / (self.k_d * self.k_d) + k * self.tan_theta * self.tan_phi;
+        let h = self.plastic_modulus;
         let dlambda = f_trial / h;
         let a_new = a_trial - 2.0 * g * dlambda / self.k_d;
         let mut dp = [0.0; 6];

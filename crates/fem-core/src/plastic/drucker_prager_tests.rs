@@ -184,7 +184,8 @@ fn issue_40_triaxial_extension_matches_the_closed_form() {
 /// Simple shear `γ_xy = t` from 50 of confinement (plane strain): `τ = G γ` until
 /// `√2 τ / k_d − p0 tan φ = c`, then `τ̇ = G − √2 G λ̇ / k_d`, `ṡ_m = −K λ̇ tan θ`,
 /// `γ̇ᵖ = √2 λ̇ / k_d`, `ε̇ᵖ_v = λ̇ tan θ` with `λ̇ = √2 G / (k_d H)`; for θ = 0 the shear stress
-/// stays at its yield value. Tolerance 1e-10 relative (module docs).
+/// stays at its yield value; `ε̄ᵖ = √(2/3) ‖εᵖ‖` (parallel increments). Tolerance 1e-10
+/// relative (module docs).
 #[test]
 fn issue_40_simple_shear_matches_the_closed_form() {
     let p0 = 50.0;
@@ -232,6 +233,15 @@ fn issue_40_simple_shear_matches_the_closed_form() {
                     "stationary τ"
                 );
             }
+            // the increments are parallel: ε̄ᵖ = √(2/3) ‖εᵖ‖, ‖εᵖ‖² = ε_v²/3 + γᵖ²/2
+            let gamma_p = expected_plastic[3];
+            let equivalent =
+                (2.0 / 3.0 * (plastic_v * plastic_v / 3.0 + 0.5 * gamma_p * gamma_p)).sqrt();
+            assert!(
+                (trial.equivalent_plastic_strain - equivalent).abs() <= 1e-10 * t,
+                "ε̄ᵖ = {} vs {equivalent}",
+                trial.equivalent_plastic_strain
+            );
             committed = trial;
         }
     }
