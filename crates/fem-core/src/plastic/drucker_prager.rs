@@ -40,14 +40,16 @@ const MEMBERSHIP_TOLERANCE: f64 = 1e-12;
 #[non_exhaustive]
 pub enum ConeMatch {
     /// The seed's choice: with associated flow in plane strain (`ε̇ᵖ_zz = 0`) the cone gives
-    /// Mohr–Coulomb's limit states exactly.
+    /// Mohr–Coulomb's limit states exactly. It is also the cone inscribed in the pyramid
+    /// (tangent to its faces, `k_d = √6 cos φ / √(3 + sin²φ)`, the same number): the seed's
+    /// "cône tangentiel à l'intérieur de pyramide de Mohr–Coulomb".
     #[default]
     PlaneStrain,
     /// Through the compression meridians of the pyramid (triaxial compression,
     /// `σ₁ = σ₂ > σ₃`): the cone circumscribes the pyramid.
     Outer,
     /// Through the extension meridians of the pyramid (triaxial extension,
-    /// `σ₁ > σ₂ = σ₃`).
+    /// `σ₁ > σ₂ = σ₃`); partly outside the pyramid between them.
     Inner,
 }
 
@@ -368,6 +370,14 @@ impl ConstitutivePoint for DruckerPrager {
         let a_trial = stress_norm(&s_trial);
         let c = self.parameters.cohesion;
         let f_trial = a_trial / self.k_d + m_trial * self.tan_phi - c;
+        if !f_trial.is_finite() {
+            // a finite strain (or committed stress) whose elastic trial stress overflows
+            return Err(FemError::InvalidParameter {
+                name: "strain",
+                value: strain.iter().fold(0.0, |m, v| m.max(v.abs())),
+                expected: "a strain increment whose elastic trial stress is finite",
+            });
+        }
         if f_trial <= 0.0 {
             trial.stress = stress_trial;
             trial.yielding = false;
@@ -378,7 +388,9 @@ impl ConstitutivePoint for DruckerPrager {
         let dlambda = f_trial / h;
         let a_new = a_trial - 2.0 * g * dlambda / self.k_d;
         let mut dp = [0.0; 6];
-        if a_new > 0.0 {
+        // at φ = 0, a_new = k_d c > 0 (no apex) up to a round-off that a tiny c could expose
+        if a_new > 0.0 || self.tan_phi == 0.0 {
+            let a_new = a_new.max(0.0);
             // smooth return along n = s_trial / ‖s_trial‖, which it keeps
             let mut n = s_trial;
             for v in &mut n {

@@ -256,6 +256,13 @@ fn issue_40_plane_strain_cone_reproduces_mohr_coulomb() {
     for phi_deg in [0.0f64, 10.0, 20.0, 35.0, 50.0] {
         let (phi, c) = (phi_deg.to_radians(), 7.0);
         let dp = point(phi_deg, 0.0, c, ConeMatch::PlaneStrain);
+        // the same number as the cone inscribed in the pyramid (tangent to its faces)
+        let inscribed = 6f64.sqrt() * phi.cos() / (3.0 + phi.sin().powi(2)).sqrt();
+        assert!(
+            (dp.k_d() - inscribed).abs() < 1e-14,
+            "k_d = {} vs {inscribed}",
+            dp.k_d()
+        );
         for center in [-40.0, -5.0, 0.0] {
             // σ₁,₃ = p ± R on MC: R = c cos φ − p sin φ
             let radius = c * phi.cos() - center * phi.sin();
@@ -585,6 +592,24 @@ fn issue_40_drucker_prager_rejects_bad_parameters() {
         err,
         Err(FemError::InvalidParameter { name: "strain", .. })
     ));
+    let err = dp.update(
+        &PointState::default(),
+        &[1e300, -1e300, 0.0, 0.0, 0.0, 0.0],
+        &mut trial,
+        &mut tangent,
+    );
+    assert!(
+        matches!(err, Err(FemError::InvalidParameter { name: "strain", .. })),
+        "overflow"
+    );
+    // φ = 0 with a cohesion tiny beside the trial stress: no apex, no NaN
+    let tiny = point(0.0, 0.0, 1e-30, ConeMatch::PlaneStrain);
+    let (state, _) = step(
+        &tiny,
+        &PointState::default(),
+        &[1e-2, 0.0, 0.0, 1e-2, 0.0, 0.0],
+    );
+    assert!(state.stress.iter().all(|v| v.is_finite()) && state.yielding);
     assert_eq!(
         dp.bipotential(&[f64::NAN; 6], &isotropic(0.0)),
         f64::INFINITY
