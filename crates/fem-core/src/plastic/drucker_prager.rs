@@ -111,6 +111,10 @@ pub struct DruckerPrager {
     /// Shear modulus `G`.
     shear: f64,
     k_d: f64,
+    /// `1 / k_d`.
+    inv_k_d: f64,
+    /// Lamé's `λ = K − 2G/3`.
+    lame: f64,
     tan_phi: f64,
     tan_theta: f64,
     /// `H = 2G / k_d² + K tan θ tan φ`, the denominator of the smooth return.
@@ -172,6 +176,8 @@ impl DruckerPrager {
             bulk,
             shear,
             k_d,
+            inv_k_d: 1.0 / k_d,
+            lame: bulk - 2.0 * shear / 3.0,
             tan_phi,
             tan_theta,
             plastic_modulus: 2.0 * shear / (k_d * k_d) + bulk * tan_theta * tan_phi,
@@ -256,24 +262,34 @@ impl DruckerPrager {
         cohesive + self.k_d * e_norm * (c - (self.tan_phi - self.tan_theta) * s_m)
     }
 
-    /// The consistent tangent of the smooth return (`docs/theory.md`, section 15):
-    /// `C − a ⊗ b / H − β (P − n ⊗ n)`.
-    fn smooth_tangent(&self, n: &Voigt, dlambda: f64, s_trial_norm: f64, h: f64) -> VoigtMatrix {
+    /// Writes the consistent tangent of the smooth return (`docs/theory.md`, section 15),
+    /// `C − a ⊗ b / H − β (P − n ⊗ n)`, into `tangent`.
+    fn smooth_tangent_into(
+        &self,
+        n: &Voigt,
+        dlambda: f64,
+        s_trial_norm: f64,
+        tangent: &mut VoigtMatrix,
+    ) {
         let (g, k) = (self.shear, self.bulk);
-        let mut tangent = self.elastic;
-        // a = 2G n / k_d + K tan θ δ (flow), b = 2G n / k_d + K tan φ δ (yield normal)
+        let two_g_k_d = 2.0 * g * self.inv_k_d;
+        // a = 2G n / k_d + K tan θ δ (flow), b = (2G n / k_d + K tan φ δ) / H (yield normal)
+        let inv_h = 1.0 / self.plastic_modulus;
         let mut a = [0.0; 6];
         let mut b = [0.0; 6];
         for i in 0..6 {
-            let unit = if i < 3 { 1.0 } else { 0.0 };
-            a[i] = 2.0 * g * n[i] / self.k_d + k * self.tan_theta * unit;
-            b[i] = 2.0 * g * n[i] / self.k_d + k * self.tan_phi * unit;
+            a[i] = two_g_k_d * n[i];
+            b[i] = a[i] * inv_h;
         }
-        let beta = 4.0 * g * g * dlambda / (self.k_d * s_trial_norm);
-        let inv_h = 1.0 / h;
+        for i in 0..3 {
+            a[i] += k * self.tan_theta;
+            b[i] += k * self.tan_phi * inv_h;
+        }
+        let beta = 2.0 * g * two_g_k_d * dlambda / s_trial_norm;
+        *tangent = self.elastic;
         for (i, row) in tangent.iter_mut().enumerate() {
             for (j, entry) in row.iter_mut().enumerate() {
-                *entry -= a[i] * b[j] * inv_h - beta * n[i] * n[j];
+                *entry -= a[i] * b[j] - beta * n[i] * n[j];
             }
         }
         // − β P, P mapping engineering strains to the tensor deviator
@@ -285,7 +301,6 @@ impl DruckerPrager {
         for (i, row) in tangent.iter_mut().enumerate().skip(3) {
             row[i] -= 0.5 * beta;
         }
-        tangent
     }
 }
 
@@ -351,7 +366,7 @@ impl ConstitutivePoint for DruckerPrager {
             });
         }
         let (g, k) = (self.shear, self.bulk);
-        let lambda = k - 2.0 * g / 3.0;
+        let lambda = self.lame;
         let mut d = [0.0; 6];
         for (i, v) in d.iter_mut().enumerate() {
             *v = strain[i] - committed.strain[i];
@@ -369,7 +384,8 @@ impl ConstitutivePoint for DruckerPrager {
         let (m_trial, s_trial) = split(&stress_trial);
         let a_trial = stress_norm(&s_trial);
         let c = self.parameters.cohesion;
-        let f_trial = a_trial / self.k_d + m_trial * self.tan_phi - c;
+        let inv_k_d = self.inv_k_d;
+        let f_trial = a_trial * inv_k_d + m_trial * self.tan_phi - c;
         if !f_trial.is_finite() {
             // a finite strain (or committed stress) whose elastic trial stress overflows
             return Err(FemError::InvalidParameter {
@@ -384,26 +400,27 @@ impl ConstitutivePoint for DruckerPrager {
             *tangent = self.elastic_tangent();
             return Ok(());
         }
-        let h = self.plastic_modulus;
-        let dlambda = f_trial / h;
-        let a_new = a_trial - 2.0 * g * dlambda / self.k_d;
+        let dlambda = f_trial / self.plastic_modulus;
+        let a_new = a_trial - 2.0 * g * dlambda * inv_k_d;
         let mut dp = [0.0; 6];
         // at φ = 0, a_new = k_d c > 0 (no apex) up to a round-off that a tiny c could expose
         if a_new > 0.0 || self.tan_phi == 0.0 {
             let a_new = a_new.max(0.0);
             // smooth return along n = s_trial / ‖s_trial‖, which it keeps
-            let mut n = s_trial;
-            for v in &mut n {
-                *v /= a_trial;
-            }
+            let inv_a = 1.0 / a_trial;
+            let n = s_trial.map(|v| v * inv_a);
             let m_new = m_trial - k * dlambda * self.tan_theta;
-            for i in 0..6 {
-                let (unit, engineering) = if i < 3 { (1.0, 1.0) } else { (0.0, 2.0) };
-                trial.stress[i] = m_new * unit + a_new * n[i];
-                // Δεᵖ = Δλ (n / k_d + tan θ / 3 · 1), shears engineering
-                dp[i] = dlambda * (engineering * n[i] / self.k_d + unit * self.tan_theta / 3.0);
+            // Δεᵖ = Δλ (n / k_d + tan θ / 3 · 1), shears engineering
+            let (flow, dilation) = (dlambda * inv_k_d, dlambda * self.tan_theta / 3.0);
+            for i in 0..3 {
+                trial.stress[i] = m_new + a_new * n[i];
+                dp[i] = flow * n[i] + dilation;
             }
-            *tangent = self.smooth_tangent(&n, dlambda, a_trial, h);
+            for i in 3..6 {
+                trial.stress[i] = a_new * n[i];
+                dp[i] = 2.0 * flow * n[i];
+            }
+            self.smooth_tangent_into(&n, dlambda, a_trial, tangent);
         } else {
             // apex: a_new ≤ 0 needs tan φ > 0 (at φ = 0, a_new = k_d c > 0); Δεᵖ = C⁻¹(σ_trial −
             // σ_apex) lies in K_ε exactly when the smooth return fails (docs/theory.md)
