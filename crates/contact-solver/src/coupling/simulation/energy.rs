@@ -24,6 +24,8 @@
 //! E_adh    = ½ Σ A (k_n u_n² + k_t |u_t|²)                 (the springs' stored energy)
 //! D_damage = ½ Σ A ((k_n,k − k_n,k+1) u_n² + (k_t,k − k_t,k+1) |u_t|²)   (at the end jump u)
 //! D_θ,adh  = (θ − ½) Σ A (k_n,k Δu_n² + k_t,k |Δu_t|²)
+//! (with the states iterated within the step, AdhesionUpdate::Implicit, the springs are
+//!  k_{k+1}: D_damage is taken at the start jump u_k and D_θ,adh with k_{k+1})
 //! ⇒  ΔT + ΔV + ΔE_adh = W_ext − D_impact − D_friction − D_damage − D_C − D_θ − D_θ,adh
 //! ```
 //! The damage term is the energy the springs release at fixed jump when `β` drops: for the
@@ -94,7 +96,9 @@ pub(super) struct ContactTerms {
 impl ContactTerms {
     /// Adds a contact whose jump went from `start` to `end` under the impulses `r_bar` (the
     /// law's) in a step `h` at weight `theta`, with nodal springs `springs_start` (state at
-    /// the start) and `springs_end`.
+    /// the start) and `springs_end`; the step's springs were the end state's if `implicit`
+    /// (the damage is then counted at the start jump), the start state's otherwise (at the
+    /// end jump).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn add<const D: usize>(
         &mut self,
@@ -103,6 +107,7 @@ impl ContactTerms {
         end: &[f64; D],
         springs_start: [f64; 2],
         springs_end: [f64; 2],
+        implicit: bool,
         h: f64,
         theta: f64,
     ) {
@@ -116,8 +121,13 @@ impl ContactTerms {
                 self.friction += work;
             }
             let (k0, k1) = (k(springs_start, d), k(springs_end, d));
-            self.damage += 0.5 * (k0 - k1) * end[d] * end[d];
-            self.numerical += (theta - 0.5) * k0 * du * du;
+            let (at, used) = if implicit {
+                (start[d], k1)
+            } else {
+                (end[d], k0)
+            };
+            self.damage += 0.5 * (k0 - k1) * at * at;
+            self.numerical += (theta - 0.5) * used * du * du;
             self.interface_start += 0.5 * k0 * start[d] * start[d];
             self.interface_end += 0.5 * k1 * end[d] * end[d];
         }

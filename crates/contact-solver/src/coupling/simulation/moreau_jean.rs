@@ -36,8 +36,10 @@
 //! part `r̄` acts on the velocity `x` of the contacts in Moreau's index set (an open
 //! adhesive contact has only its springs), and `β` is updated once per accepted step from
 //! the step's displacement jumps `u_k → u`, by the law's update, as the quasi-static path
-//! does (there within its fixed point, here once: `β` lags a step). With `θ = 1` and a
-//! vanishing mass the step is the quasi-static one with that lag.
+//! does (there within its fixed point, here once: `β` lags a step,
+//! [`AdhesionUpdate::Lagged`]). [`AdhesionUpdate::Implicit`] iterates `β` within the step
+//! (the springs are then the end state's); with it, `θ = 1` and a vanishing mass the step is
+//! the quasi-static one.
 
 use super::ContactSimulation;
 use super::energy::{ContactTerms, EnergyBalance};
@@ -51,6 +53,21 @@ use fem_core::dynamic::DynamicModel;
 use fem_core::model::ModelSpace;
 use fem_core::{Dim, FemError, Structure};
 use std::borrow::Cow;
+
+/// How [`MoreauJean`] updates the states of adhesive laws (RCCM's `β`) in a step
+/// ([module docs](self#adhesion-rccm-at-velocity-level)).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AdhesionUpdate {
+    /// The springs of the state at the start of the step; the state updated once from the
+    /// step's jumps (it lags a step: an `O(h)` error, no iteration).
+    #[default]
+    Lagged,
+    /// The state iterated within the step (the quasi-static loop's plain fixed point, to
+    /// [`SimulationSettings::adhesion_tol`](super::SimulationSettings)): the springs of the
+    /// state at the end of the step, as a quasi-static step has them.
+    Implicit,
+}
 
 /// Per candidate, what a step keeps: the relative velocities `v_k` and `v_free` in the
 /// candidate's frame, the shift of an initial displacement, and the restitution.
@@ -104,6 +121,7 @@ struct ContactVelocities {
 pub struct MoreauJean {
     theta: f64,
     restitution: f64,
+    adhesion: AdhesionUpdate,
     /// Per zone (by index), a restitution in place of the scheme's.
     zone_restitution: Vec<Option<f64>>,
     /// `v_k` on the free dofs (empty: at rest).
@@ -145,6 +163,7 @@ impl MoreauJean {
         Ok(Self {
             theta,
             restitution: 0.0,
+            adhesion: AdhesionUpdate::Lagged,
             zone_restitution: Vec::new(),
             velocity: Vec::new(),
             initial_displacement: None,
@@ -170,6 +189,14 @@ impl MoreauJean {
     pub fn with_restitution(mut self, e: f64) -> Result<Self, SolverError> {
         self.restitution = check_restitution(e)?;
         Ok(self)
+    }
+
+    /// How the states of adhesive laws are updated in a step (default
+    /// [`AdhesionUpdate::Lagged`]).
+    #[must_use]
+    pub fn with_adhesion_update(mut self, update: AdhesionUpdate) -> Self {
+        self.adhesion = update;
+        self
     }
 
     /// The restitution of the zone of index `zone` (in the simulation's zone list).
@@ -525,7 +552,13 @@ where
             (u_k + h * theta * (1.0 - theta) * c.v_k[d] - restitution) / slope
         });
         let free_gap = start[0] + c.shift[0] + h * (1.0 - theta) * c.v_k[0];
-        Some(VelocitySprings::new(h * slope, offset, free_gap <= 0.0))
+        let implicit = self.adhesion == AdhesionUpdate::Implicit;
+        Some(VelocitySprings::new(
+            h * slope,
+            offset,
+            free_gap <= 0.0,
+            implicit,
+        ))
     }
 
     /// Keeps the contacts' impact, friction and damage terms for [`accept`](Self::accept).
@@ -540,6 +573,7 @@ where
                 &a.jump,
                 a.springs_start,
                 a.springs_end,
+                self.adhesion == AdhesionUpdate::Implicit,
                 self.h,
                 self.theta,
             );

@@ -276,15 +276,21 @@ pub struct VelocitySprings<const D: usize> {
     /// Whether the contact's velocity is constrained by its law (Moreau's index set):
     /// `false` leaves only the springs acting (`r̄ = 0`).
     pub constrained: bool,
+    /// Whether the states are iterated within the step to the end state (a fixed point, as
+    /// the quasi-static loop: the springs are those of the end state), or frozen at the start
+    /// state and updated once from the step's jumps (`false`).
+    pub implicit: bool,
 }
 
 impl<const D: usize> VelocitySprings<D> {
-    /// Springs `scale · A k(β)` acting on `x + offset`; `constrained` as the field.
-    pub fn new(scale: f64, offset: [f64; D], constrained: bool) -> Self {
+    /// Springs `scale · A k(β)` acting on `x + offset`; `constrained` and `implicit` as the
+    /// fields.
+    pub fn new(scale: f64, offset: [f64; D], constrained: bool, implicit: bool) -> Self {
         Self {
             scale,
             offset,
             constrained,
+            implicit,
         }
     }
 }

@@ -9,9 +9,11 @@
 //! r̄ ∈ the law's cone on the constrained contacts, r̄ = 0 on the others
 //! β_{k+1} = the law's update from the jumps at the start and the end of the step
 //! ```
-//! Moreau–Jean's `s` and `o` make `r_adh` the impulse `h r_adh(u_θ)` of the springs of `β_k`
-//! at `u_θ = (1−θ) u_k + θ u_{k+1}` (`moreau_jean.rs`). The states are not iterated within
-//! the step (the quasi-static loop's fixed point): they lag one step, an `O(h)` error.
+//! Moreau–Jean's `s` and `o` make `r_adh` the impulse `h r_adh(u_θ)` of the springs at
+//! `u_θ = (1−θ) u_k + θ u_{k+1}` (`moreau_jean.rs`). By default the springs are those of the
+//! start states `β_k` and the states are updated once (they lag a step, an `O(h)` error);
+//! [`VelocitySprings::implicit`] iterates them to the end states instead (the quasi-static
+//! loop's plain fixed point, to [`SimulationSettings::adhesion_tol`](super::SimulationSettings)).
 
 use super::ContactSimulation;
 use super::report::StepReport;
@@ -20,7 +22,7 @@ use super::solve::Solved;
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::ReducedProblem;
-use crate::local::adhesion::{condense, states_from_jumps};
+use crate::local::adhesion::{condense, largest_state_change, states_from_jumps};
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::{Dim, Structure};
 
@@ -51,15 +53,69 @@ where
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
-        let m = D * active.len();
         let laws = self.laws_of(active);
-        let states = self.states_of(active);
+        let start_states = self.states_of(active);
         let u_start = self.jumps_of(active);
+        let implicit = springs.iter().any(|v| v.implicit);
+        let mut states = start_states.clone();
+        let mut history = Vec::new();
+        loop {
+            let sol = self.velocity_pass(active, free, springs, &laws, &states, report)?;
+            // the states the step's jumps imply, once
+            let jumps: Vec<f64> = active
+                .iter()
+                .enumerate()
+                .flat_map(|(k, &i)| {
+                    let xk: [f64; D] = core::array::from_fn(|d| sol.x[D * k + d]);
+                    self.scheme.jump(i, &xk, &u_start[k])
+                })
+                .collect();
+            let implied = states_from_jumps(&laws, &start_states, &u_start, &jumps, dt);
+            report.adhesion_iterations += 1;
+            if !implicit {
+                return Ok(Solved {
+                    states: implied,
+                    ..sol
+                });
+            }
+            // the fixed point: the springs' states are the end states, to the tolerance
+            let change = largest_state_change(&laws, &implied, &states);
+            history.push(change);
+            if change <= self.settings.adhesion_tol {
+                return Ok(sol);
+            }
+            if history.len() >= self.settings.max_adhesion_iterations {
+                if self.settings.solver.accept_non_converged {
+                    report.converged = false;
+                    return Ok(sol);
+                }
+                return Err(SolverError::AdhesionNotConverged {
+                    iterations: history.len(),
+                    change,
+                    history,
+                });
+            }
+            states = implied;
+        }
+    }
+
+    /// One solve with the springs of `states`: `r̄` on the constrained contacts, `x` and the
+    /// total `r` on all; `states` in the answer.
+    fn velocity_pass(
+        &mut self,
+        active: &[usize],
+        free: &[[f64; D]],
+        springs: &[VelocitySprings<D>],
+        laws: &[L],
+        states: &[L::State],
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let m = D * active.len();
         let areas = self.areas_of(active);
         let q = self.q_of(active, free);
         let stiff: Vec<[f64; 2]> = laws
             .iter()
-            .zip(&states)
+            .zip(states)
             .zip(areas.iter().zip(springs))
             .map(|((l, s), (a, v))| l.adhesive_stiffness(s).map(|k| v.scale * a * k))
             .collect();
@@ -117,24 +173,13 @@ where
                 r_bar[i] - if i % D == 0 { kn } else { kt } * (x[i] + offset[i])
             })
             .collect();
-        // the states, once, from the step's jumps
-        let jumps: Vec<f64> = active
-            .iter()
-            .enumerate()
-            .flat_map(|(k, &i)| {
-                let xk: [f64; D] = core::array::from_fn(|d| x[D * k + d]);
-                self.scheme.jump(i, &xk, &u_start[k])
-            })
-            .collect();
-        let states = states_from_jumps(&laws, &states, &u_start, &jumps, dt);
-        report.adhesion_iterations += 1;
         Ok(Solved {
             active: active.to_vec(),
             r,
             r_bar,
             x,
             statuses,
-            states,
+            states: states.to_vec(),
             alpha: Vec::new(),
         })
     }
