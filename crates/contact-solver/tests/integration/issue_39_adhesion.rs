@@ -1,5 +1,5 @@
 //! Issue 39: an adhesive (RCCM) interface pulled dynamically ([`MoreauJean`] on a
-//! [`DynamicModel`], `moreau_jean.rs` "Adhesion at velocity level").
+//! [`DynamicModel`], `moreau_jean/mod.rs` "Adhesion at velocity level").
 //!
 //! A stiff block (`E = 1e5`, `ν = 0`, 2 × 1, P1 4 × 2) glued by the RCCM law (`C_n = C_t =
 //! 100`, `w = 0.01`, `α = 0`, `μ = 0.2`; Raous, Cangémi & Cocu 1999) to a rigid base, its top

@@ -1,7 +1,7 @@
 //! [`EnergyBalance`]: the energy bookkeeping of a [`MoreauJean`](super::MoreauJean) run,
 //! step by step.
 //!
-//! Dotting the step's equation (`moreau_jean.rs`) with `v_θ = (1−θ) v_k + θ v` (so that
+//! Dotting the step's equation (`moreau_jean/`) with `v_θ = (1−θ) v_k + θ v` (so that
 //! `h v_θ = u − u_k`) gives, exactly (Acary & Brogliato 2008 §10.1; Acary 2016):
 //!
 //! ```text

@@ -10,7 +10,7 @@
 //! β_{k+1} = the law's update from the jumps at the start and the end of the step
 //! ```
 //! Moreau–Jean's `s` and `o` make `r_adh` the impulse `h r_adh(u_θ)` of the springs at
-//! `u_θ = (1−θ) u_k + θ u_{k+1}` (`moreau_jean.rs`). By default the springs are those of the
+//! `u_θ = (1−θ) u_k + θ u_{k+1}` (`moreau_jean/`). By default the springs are those of the
 //! start states `β_k` and the states are updated once (they lag a step, an `O(h)` error);
 //! [`VelocitySprings::implicit`] iterates them to the end states instead (the quasi-static
 //! loop's plain fixed point, to [`SimulationSettings::adhesion_tol`](super::SimulationSettings)).
