@@ -1,5 +1,5 @@
 //! [`MoreauJean`]: the velocity-level θ-scheme of Moreau (1988) and Jean (1999) through the
-//! [`TimeScheme`] seam, on a [`DynamicModel`] (whose solves are with `M̂`).
+//! [`TimeScheme`](super::TimeScheme) seam, on a [`DynamicModel`] (whose solves are with `M̂`).
 //!
 //! ```text
 //! M (v − v_k) + h C v_θ + h K u_θ = h f_θ + Hᵀ r          (r: the step's contact impulses)
@@ -20,22 +20,54 @@
 //! problem whatever its alert distance, and the end-of-step gap is not checked (the scheme
 //! allows an `O(h)` interpenetration, which closes the next steps).
 //!
-//! The energy balance of each accepted step is kept in an [`EnergyBalance`] (`energy.rs`).
-//! Adhesive laws (RCCM) are not yet served at velocity level (their state update reads
-//! displacement jumps): the scheme is for Signorini, Coulomb and laws without adhesion.
+//! The energy balance of each accepted step is kept in an [`EnergyBalance`] (`energy.rs`),
+//! its contact dissipation split into impact, friction and damage.
+//!
+//! # Adhesion (RCCM) at velocity level
+//! An adhesive law's springs `r_adh = −A k(β) u` (a force) enter the step as the impulse of
+//! the springs of the state `β_k` at the start of the step, at `u_θ = (1−θ) u_k + θ u`:
+//!
+//! ```text
+//! r_adh·h = −h A k(β_k) u_θ,   u = u_k + h((1−θ) v_k + θ v),   v_n = x_n − e v_n,k
+//!         = −h²θ² A k(β_k) (x + o),   o = (u_k + hθ(1−θ) v_k − hθ² e v_n,k n) / (hθ²)
+//! ```
+//! so the springs are condensed into `x = W r + q` exactly as in a quasi-static step
+//! ([`VelocitySprings`](super::VelocitySprings), `velocity_adhesion.rs`): `q̃ = (I + W B)⁻¹ (q − W B o)`. The law's
+//! part `r̄` acts on the velocity `x` of the contacts in Moreau's index set (an open
+//! adhesive contact has only its springs), and `β` is updated once per accepted step from
+//! the step's displacement jumps `u_k → u`, by the law's update, as the quasi-static path
+//! does (there within its fixed point, here once: `β` lags a step,
+//! [`AdhesionUpdate::Lagged`]). [`AdhesionUpdate::Implicit`] iterates `β` within the step
+//! (the springs are then the end state's); with it, `θ = 1` and a vanishing mass the step is
+//! the quasi-static one.
+
+mod step;
 
 use super::ContactSimulation;
-use super::energy::EnergyBalance;
+use super::energy::{ContactTerms, EnergyBalance};
 use super::report::StepResult;
-use super::scheme::{SchemeStep, TimeScheme};
 use crate::coupling::space::ContactSpace;
 use crate::coupling::zone::Candidate;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
 use fem_core::dynamic::DynamicModel;
 use fem_core::model::ModelSpace;
-use fem_core::{Dim, FemError, Structure};
-use std::borrow::Cow;
+use fem_core::{Dim, Structure};
+
+/// How [`MoreauJean`] updates the states of adhesive laws (RCCM's `β`) in a step
+/// (`docs/theory.md` §14, "Adhesion at velocity level").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AdhesionUpdate {
+    /// The springs of the state at the start of the step; the state updated once from the
+    /// step's jumps (it lags a step: an `O(h)` error, no iteration).
+    #[default]
+    Lagged,
+    /// The state iterated within the step (the quasi-static loop's plain fixed point, to
+    /// [`SimulationSettings::adhesion_tol`](super::SimulationSettings)): the springs of the
+    /// state at the end of the step, as a quasi-static step has them.
+    Implicit,
+}
 
 /// Per candidate, what a step keeps: the relative velocities `v_k` and `v_free` in the
 /// candidate's frame, the shift of an initial displacement, and the restitution.
@@ -55,7 +87,7 @@ struct ContactVelocities {
 /// [`ContactSimulation::advance`] (which factorises `M̂` for the step size). The velocity
 /// lives on the structure's free dofs, numbered as at the start: keep the supports of a
 /// dynamic run (a change of the dof count is refused at the next step,
-/// [`FemError::LengthMismatch`] naming `velocity`; following a renumbering is left to do).
+/// [`FemError::LengthMismatch`](fem_core::FemError::LengthMismatch) naming `velocity`; following a renumbering is left to do).
 /// The contact unknowns `r` of a step are impulses (force × time).
 ///
 /// # Examples
@@ -89,6 +121,7 @@ struct ContactVelocities {
 pub struct MoreauJean {
     theta: f64,
     restitution: f64,
+    adhesion: AdhesionUpdate,
     /// Per zone (by index), a restitution in place of the scheme's.
     zone_restitution: Vec<Option<f64>>,
     /// `v_k` on the free dofs (empty: at rest).
@@ -107,6 +140,8 @@ pub struct MoreauJean {
     node_dofs: Vec<Option<usize>>,
     contacts: Vec<ContactVelocities>,
     accepted_steps: usize,
+    /// The contacts' energy terms of the step being accepted.
+    step_contacts: ContactTerms,
     energy: EnergyBalance,
     history: Vec<EnergyBalance>,
 }
@@ -128,6 +163,7 @@ impl MoreauJean {
         Ok(Self {
             theta,
             restitution: 0.0,
+            adhesion: AdhesionUpdate::Lagged,
             zone_restitution: Vec::new(),
             velocity: Vec::new(),
             initial_displacement: None,
@@ -139,6 +175,7 @@ impl MoreauJean {
             node_dofs: Vec::new(),
             contacts: Vec::new(),
             accepted_steps: 0,
+            step_contacts: ContactTerms::default(),
             energy: EnergyBalance::default(),
             history: Vec::new(),
         })
@@ -152,6 +189,47 @@ impl MoreauJean {
     pub fn with_restitution(mut self, e: f64) -> Result<Self, SolverError> {
         self.restitution = check_restitution(e)?;
         Ok(self)
+    }
+
+    /// How the states of adhesive laws are updated in a step (default
+    /// [`AdhesionUpdate::Lagged`]).
+    ///
+    /// # Examples
+    /// A block glued to a rigid line by the RCCM law, its top pulled up: the glue holds it
+    /// in tension, and the energy balance (the springs' energy and the damage included)
+    /// closes.
+    /// ```
+    /// use contact_solver::coupling::simulation::{AdhesionUpdate, MoreauJean};
+    /// use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
+    /// use contact_laws::{BetaScheme, Rccm, RccmParams};
+    /// use fem_core::dynamic::{DynamicModel, MassKind, Rayleigh};
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    /// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+    ///
+    /// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+    /// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+    /// let mut supports = Supports::new();
+    /// supports.prescribe(&top, Component::Y, 0.005)?.fix(&top, Component::X);
+    /// let m = Material::new(1e4, 0.0, 0.0)?.with_density(1.0)?;
+    /// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)?;
+    /// let body = DynamicModel::new(model, MassKind::Lumped, Rayleigh::default())?;
+    /// let glue = Rccm::new(RccmParams { c_n: 100.0, c_t: 100.0, w: 0.01, alpha: 0.0, mu: 0.2,
+    ///     m: 1, beta_0: 1.0, scheme: BetaScheme::ImplicitEuler })?;
+    /// let zone = ContactZone::rigid("glue", bottom, RigidLine::new([-1.0, 0.0], [2.0, 0.0])?,
+    ///     glue, 1e-3);
+    /// let scheme = MoreauJean::new(1.0)?.with_adhesion_update(AdhesionUpdate::Implicit);
+    /// let mut sim = ContactSimulation::with_scheme(body, vec![zone],
+    ///     SimulationSettings::default(), scheme)?;
+    /// let res = sim.advance(0.01)?;
+    /// assert!(res.contacts.iter().map(|c| c.r.n).sum::<f64>() < 0.0); // the glue pulls
+    /// let e = sim.scheme().energy();
+    /// assert!(e.interface > 0.0 && e.residual().abs() < 1e-10 * e.scale());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn with_adhesion_update(mut self, update: AdhesionUpdate) -> Self {
+        self.adhesion = update;
+        self
     }
 
     /// The restitution of the zone of index `zone` (in the simulation's zone list).
@@ -282,213 +360,6 @@ fn check_finite(what: &'static str, v: &[f64]) -> Result<(), SolverError> {
             value: v[index],
         }),
         None => Ok(()),
-    }
-}
-
-fn length(what: &'static str, expected: usize, got: usize) -> Result<(), SolverError> {
-    if expected == got {
-        Ok(())
-    } else {
-        Err(FemError::LengthMismatch {
-            what,
-            expected,
-            got,
-        }
-        .into())
-    }
-}
-
-impl<const D: usize> TimeScheme<DynamicModel<D>, D> for MoreauJean
-where
-    Dim<D>: ModelSpace<D>,
-{
-    /// `v_free = v_k + M̂⁻¹ h (f_θ − C v_k − K (u_k + hθ v_k))` (module docs).
-    fn free_response(
-        &mut self,
-        structure: &DynamicModel<D>,
-        step: &SchemeStep<'_>,
-        free: &mut [f64],
-    ) -> Result<(), SolverError> {
-        let Some((h, theta)) = structure.step() else {
-            return Err(FemError::InvalidParameter {
-                name: "h",
-                value: step.dt,
-                expected: "a step set on the structure: `ContactSimulation::advance` sets it",
-            }
-            .into());
-        };
-        if (step.dt - h).abs() > 1e-9 * h {
-            return Err(SolverError::InvalidSetting {
-                what: "dt",
-                value: step.dt,
-                expected: "the step `h` the structure's M̂ is factorised for \
-                           (`ContactSimulation::advance` sets both)",
-            });
-        }
-        if theta != self.theta {
-            return Err(SolverError::InvalidSetting {
-                what: "theta",
-                value: theta,
-                expected: "the scheme's θ in the structure's M̂ (`advance` sets both)",
-            });
-        }
-        let n = structure.dof_count();
-        if self.velocity.is_empty() {
-            self.velocity = vec![0.0; n];
-        }
-        length("velocity", n, self.velocity.len())?;
-        self.u_start = match &self.initial_displacement {
-            Some(u0) => u0.clone(),
-            None => step.displacement.to_vec(),
-        };
-        length("displacement", n, self.u_start.len())?;
-        self.h = h;
-        let lambda = (1.0 - theta) * self.force_factor.unwrap_or(step.force_factor)
-            + theta * step.force_factor;
-        self.load.resize(n, 0.0);
-        structure.load_into(lambda, &mut self.load)?;
-        // h (f_θ − C v_k − K (u_k + hθ v_k))
-        let predictor: Vec<f64> = self
-            .u_start
-            .iter()
-            .zip(&self.velocity)
-            .map(|(u, v)| u + h * theta * v)
-            .collect();
-        let (mut kx, mut cv) = (vec![0.0; n], vec![0.0; n]);
-        structure.stiffness_mul_into(&predictor, &mut kx);
-        structure.damping_mul_into(&self.velocity, &mut cv);
-        for (((y, f), c), k) in free.iter_mut().zip(&self.load).zip(&cv).zip(&kx) {
-            *y = h * (f - c - k);
-        }
-        structure.solve_in_place(free)?;
-        for (f, v) in free.iter_mut().zip(&self.velocity) {
-            *f += v;
-        }
-        self.v_free.clear();
-        self.v_free.extend_from_slice(free);
-        self.node_dofs = (0..structure.node_count())
-            .flat_map(|node| structure.node_dofs(node))
-            .collect();
-        Ok(())
-    }
-
-    /// Keeps the candidate's relative velocities and returns the jump predicted at
-    /// `u_k + h(1−θ) v_k`: `[g_k + h(1−θ) v_n,k, u_t,k + h(1−θ) v_t,k]`.
-    fn free_jump(
-        &mut self,
-        index: usize,
-        candidate: &Candidate<D>,
-        _u_rel: [f64; D],
-        start: &[f64; D],
-    ) -> [f64; D] {
-        if self.contacts.len() <= index {
-            self.contacts
-                .resize(index + 1, ContactVelocities::default());
-        }
-        let shift = match &self.initial_displacement {
-            Some(u0) => self.local_of(candidate, u0),
-            None => [0.0; 3],
-        };
-        let e = self
-            .zone_restitution
-            .get(candidate.zone)
-            .copied()
-            .flatten()
-            .unwrap_or(self.restitution);
-        let contact = ContactVelocities {
-            v_k: self.local_of(candidate, &self.velocity),
-            v_free: self.local_of(candidate, &self.v_free),
-            shift,
-            e,
-        };
-        self.contacts[index] = contact;
-        let weight = self.h * (1.0 - self.theta);
-        core::array::from_fn(|d| start[d] + contact.shift[d] + weight * contact.v_k[d])
-    }
-
-    /// `[v_free,n + e v_n,k, v_free,t…]`.
-    fn rhs(&self, index: usize, _free: &[f64; D], _start: &[f64; D]) -> [f64; D] {
-        let c = &self.contacts[index];
-        core::array::from_fn(|d| {
-            if d == 0 {
-                c.v_free[0] + c.e * c.v_k[0]
-            } else {
-                c.v_free[d]
-            }
-        })
-    }
-
-    /// `u = u_k + h((1−θ) v_k + θ v)`.
-    fn displacement<'y>(&self, _step: &SchemeStep<'_>, solution: &'y [f64]) -> Cow<'y, [f64]> {
-        let (h, theta) = (self.h, self.theta);
-        Cow::Owned(
-            self.u_start
-                .iter()
-                .zip(&self.velocity)
-                .zip(solution)
-                .map(|((u, v_k), v)| u + h * ((1.0 - theta) * v_k + theta * v))
-                .collect(),
-        )
-    }
-
-    /// `v_n = x_n − e v_n,k`, `v_t = x_t`, and the jump `start + h((1−θ) v_k + θ v)`.
-    fn jump(&self, index: usize, x: &[f64; D], start: &[f64; D]) -> [f64; D] {
-        let c = &self.contacts[index];
-        let (h, theta) = (self.h, self.theta);
-        core::array::from_fn(|d| {
-            let v = if d == 0 { x[0] - c.e * c.v_k[0] } else { x[d] };
-            start[d] + c.shift[d] + h * ((1.0 - theta) * c.v_k[d] + theta * v)
-        })
-    }
-
-    /// Keeps `v`, and adds the step's terms to the energy balance.
-    fn accept(
-        &mut self,
-        structure: &DynamicModel<D>,
-        step: &SchemeStep<'_>,
-        solution: &[f64],
-        displacement: &[f64],
-    ) {
-        if self.accepted_steps == 0 {
-            self.energy = EnergyBalance::initial(structure, &self.u_start, &self.velocity);
-        }
-        self.energy.add_step(
-            structure,
-            super::energy::StepFields {
-                h: self.h,
-                theta: self.theta,
-                u_k: &self.u_start,
-                u: displacement,
-                v_k: &self.velocity,
-                v: solution,
-                v_free: &self.v_free,
-                load: &self.load,
-            },
-        );
-        self.history.push(self.energy);
-        self.velocity.clear();
-        self.velocity.extend_from_slice(solution);
-        self.initial_displacement = None;
-        self.force_factor = Some(step.force_factor);
-        self.accepted_steps += 1;
-    }
-
-    /// Moreau's index set: the gap predicted at `u_k + h(1−θ) v_k` is closed (`≤ 0`); the
-    /// alert distance and the skip rule do not widen it.
-    fn enters(
-        &self,
-        _index: usize,
-        _start: &[f64; D],
-        free: &[f64; D],
-        _alert_distance: f64,
-        _all: bool,
-    ) -> bool {
-        free[0] <= 0.0
-    }
-
-    /// Never: the index set is the start of the step's (module docs).
-    fn penetrates(&self, _index: usize, _jump: &[f64; D], _tolerance: f64) -> bool {
-        false
     }
 }
 
