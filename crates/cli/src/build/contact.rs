@@ -17,6 +17,7 @@ use crate::scene::{
 };
 use crate::spec::{LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::coupling::simulation::TimeScheme;
 use contact_solver::coupling::space::ContactSpace;
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
@@ -407,6 +408,36 @@ where
     Dim<D>: SceneDim<D>,
 {
     let contact = KeyPath::root().key("contact");
+    build_with(
+        model,
+        plans,
+        |model, zones| {
+            ContactSimulation::new(model, zones, settings).map_err(|e| solver_error(&contact, e))
+        },
+        |s| s,
+    )
+}
+
+/// As [`build`], the simulation made by `make` from the model and the zones (another structure
+/// or time scheme: a dynamic scene's); `model_of` gives back the model inside its structure
+/// for the checks of candidates made after the simulation (3D).
+pub(super) fn build_with<const D: usize, S: fem_core::Structure<D>, T: TimeScheme<S, D>>(
+    model: ElasticModel<D>,
+    plans: &[ZonePlan<D>],
+    make: impl FnOnce(
+        ElasticModel<D>,
+        Vec<ContactZone<StandardLaw, D>>,
+    ) -> CliResult<ContactSimulation<S, StandardLaw, D, T>>,
+    model_of: impl Fn(&S) -> &ElasticModel<D>,
+) -> CliResult<(
+    ContactSimulation<S, StandardLaw, D, T>,
+    Vec<String>,
+    Vec<String>,
+)>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let contact = KeyPath::root().key("contact");
     let zones = plans
         .iter()
         .map(|z| zone(&model, z))
@@ -439,11 +470,15 @@ where
         let candidates = recognize(&model, &zones).map_err(|e| solver_error(&contact, e))?;
         check_candidates(&candidates, plans, &zones, &model)?;
         Dim::<D>::check_facing(&candidates, &zones, &model)?;
-        ContactSimulation::new(model, zones, settings).map_err(|e| solver_error(&contact, e))?
+        make(model, zones)?
     } else {
-        let sim = ContactSimulation::new(model, zones, settings)
-            .map_err(|e| solver_error(&contact, e))?;
-        check_candidates(sim.candidates(), plans, sim.zones(), sim.structure())?;
+        let sim = make(model, zones)?;
+        check_candidates(
+            sim.candidates(),
+            plans,
+            sim.zones(),
+            model_of(sim.structure()),
+        )?;
         sim
     };
     Ok((sim, zone_laws, warnings))
