@@ -208,10 +208,10 @@ pub fn main() -> ExitCode {
                 build::Built::Plane(study) => run_study(*study, loaded, out, quiet, threads),
                 build::Built::Solid(study) => run_study(*study, loaded, out, quiet, threads),
                 build::Built::PlaneDynamic(s) => {
-                    dynamic::run_study(*s, loaded, out, quiet, threads)
+                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
                 build::Built::SolidDynamic(s) => {
-                    dynamic::run_study(*s, loaded, out, quiet, threads)
+                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
             }
         }),
@@ -318,7 +318,7 @@ pub const SEQUENTIAL_BELOW_DOFS: usize = fem_core::linear_solver::SEQUENTIAL_BEL
 
 /// faer's parallelism for `bipo run`: `--threads`, else every core (while building, `dofs`
 /// unknown, and for models of at least [`SEQUENTIAL_BELOW_DOFS`]) or sequential.
-pub(crate) fn parallelism(threads: Option<u16>, dofs: Option<usize>) -> faer::Par {
+fn parallelism(threads: Option<u16>, dofs: Option<usize>) -> faer::Par {
     match (threads, dofs) {
         (Some(1), _) => faer::Par::Seq,
         (Some(n), _) => faer::Par::rayon(usize::from(n)),

@@ -9,19 +9,23 @@ use crate::run;
 use fem_core::{Dim, Structure};
 use std::path::PathBuf;
 
+/// How `bipo run` chooses faer's parallelism from `--threads` and the dof count (the app's
+/// rule, handed in so that the imports go one way).
+pub(crate) type Parallelism = fn(Option<u16>, Option<usize>) -> faer::Par;
+
 /// `bipo run` of a built dynamic study.
 pub(crate) fn run_study<const D: usize>(
     study: DynamicStudy<D>,
     loaded: &build::Loaded,
     out: Option<PathBuf>,
     quiet: bool,
-    threads: Option<u16>,
+    (threads, parallelism): (Option<u16>, Parallelism),
 ) -> CliResult<()>
 where
     Dim<D>: StudyDim<D>,
 {
     let dofs = study.sim.structure().dof_count();
-    faer::set_global_parallelism(crate::app::parallelism(threads, Some(dofs)));
+    faer::set_global_parallelism(parallelism(threads, Some(dofs)));
     let scene = &loaded.path;
     let out_dir = out
         .or_else(|| study.output.dir.as_ref().map(PathBuf::from))

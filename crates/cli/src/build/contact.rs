@@ -358,6 +358,14 @@ pub(super) type Simulation<const D: usize> = ContactSimulation<ElasticModel<D>, 
 /// The simulation, each zone's law name, and the warnings of [`build`].
 pub(super) type BuiltContact<const D: usize> = (Simulation<D>, Vec<String>, Vec<String>);
 
+/// What [`build_with`] gives: the simulation of structure `S` stepped by the scheme `T`, the
+/// laws' names and the warnings.
+pub(super) type BuiltWith<S, const D: usize, T> = (
+    ContactSimulation<S, StandardLaw, D, T>,
+    Vec<String>,
+    Vec<String>,
+);
+
 /// One zone on the model's sets: its contactor nodes (with their tributary areas where the
 /// set gives them or the zone's own lumping would be wrong) against its target.
 fn zone<const D: usize>(
@@ -429,11 +437,7 @@ pub(super) fn build_with<const D: usize, S: fem_core::Structure<D>, T: TimeSchem
         Vec<ContactZone<StandardLaw, D>>,
     ) -> CliResult<ContactSimulation<S, StandardLaw, D, T>>,
     model_of: impl Fn(&S) -> &ElasticModel<D>,
-) -> CliResult<(
-    ContactSimulation<S, StandardLaw, D, T>,
-    Vec<String>,
-    Vec<String>,
-)>
+) -> CliResult<BuiltWith<S, D, T>>
 where
     Dim<D>: SceneDim<D>,
 {

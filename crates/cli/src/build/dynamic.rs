@@ -67,7 +67,8 @@ where
         let plots = 2 + usize::from(!self.velocity_sets.is_empty());
         let vtk = if self.output.vtk {
             let every = self.output.every.max(1);
-            1 + self.spec.steps.div_ceil(every) + usize::from(self.spec.steps % every != 0)
+            // the .pvd, t = 0, every `every`-th step and the last
+            2 + self.spec.steps.div_ceil(every)
         } else {
             0
         };

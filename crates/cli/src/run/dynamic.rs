@@ -372,16 +372,17 @@ where
             error = Some(e);
             break;
         }
-        if study.output.vtk && (k % every == 0 || k == study.spec.steps) {
-            if let Err(e) = write_vtk(&study.sim, dir, t, &mut vtk) {
-                error = Some(e);
-                break;
-            }
+        let written = k.is_multiple_of(every) || k == study.spec.steps;
+        if study.output.vtk
+            && written
+            && let Err(e) = write_vtk(&study.sim, dir, t, &mut vtk)
+        {
+            error = Some(e);
+            break;
         }
         progress.step(t, res.report.contact_iterations, path_name(&res.report));
     }
     progress.finish();
-    drop(write_row);
     csv.flush().map_err(|e| io(&csv_path, e))?;
     let mut files = vec!["summary.json".to_string(), "dynamics.csv".to_string()];
     files.extend(write_plots(dir, &study, &hist)?);
