@@ -114,12 +114,12 @@ where
     );
     let s = &study.spec;
     out::outln!(
-        "  Moreau–Jean: {} steps of h = {} to t = {}, θ = {}, {:?} mass, Rayleigh α = {}, β = {}",
+        "  Moreau–Jean: {} steps of h = {} to t = {}, θ = {}, {} mass, Rayleigh α = {}, β = {}",
         s.steps,
         s.time_step,
         s.end_time,
         s.theta,
-        s.mass,
+        s.mass.name(),
         s.alpha,
         s.beta
     );

@@ -30,6 +30,16 @@ pub enum MassSpec {
     Lumped,
 }
 
+impl MassSpec {
+    /// The name in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            MassSpec::Consistent => "consistent",
+            MassSpec::Lumped => "lumped",
+        }
+    }
+}
+
 /// The most steps a dynamic scene may ask for (`end_time / time_step`): beyond, a typo in
 /// `time_step` would start a run that never ends.
 pub const MAX_DYNAMIC_STEPS: f64 = 10_000_000.0;
@@ -41,7 +51,8 @@ pub struct DynamicSpec {
     pub time_step: f64,
     /// The end of the run (it starts at 0).
     pub end_time: f64,
-    /// The number of steps, `⌈end_time / h⌉` (the last one ends at `end_time`).
+    /// The number of steps, `⌈end_time / h⌉`, each of `end_time / steps` (`h` itself when it
+    /// divides the end time).
     pub steps: usize,
     /// `θ ∈ [1/2, 1]`.
     pub theta: f64,
@@ -181,7 +192,7 @@ mod tests {
              mass = \"lumped\"\nrayleigh_beta = 0.1",
         );
         let d = a.dynamic(&p).unwrap().unwrap();
-        // ⌈1 / 0.3⌉ = 4 steps, the last one shorter
+        // ⌈1 / 0.3⌉ = 4 steps (of 0.25)
         assert_eq!(d.steps, 4);
         assert_eq!(
             (d.theta, d.mass, d.alpha, d.beta),

@@ -1,5 +1,5 @@
 //! `bipo run` of a dynamic scene (issue 39), 2D or 3D: the Moreau–Jean steps from 0 to
-//! `end_time`, each load scaled by its time function at the step's θ-point, and what the run
+//! `end_time` (all of one size, `end_time / steps`, so that `M̂` is factorised once), each load scaled by its time function at the step's θ-point, and what the run
 //! writes against time:
 //!
 //! - `dynamics.csv`: one row per step (and t = 0): the energy balance of
@@ -20,7 +20,6 @@ use super::progress::{Progress, path_name};
 use crate::build::{DynamicSim, DynamicStudy, StudyDim};
 use crate::error::{CliError, CliResult};
 use crate::plot::write_svg;
-use crate::raw::MassSpec;
 use crate::scene::Units;
 use contact_solver::StepResult;
 use contact_solver::coupling::simulation::EnergyBalance;
@@ -317,10 +316,11 @@ where
     let mut last_loads = None;
     let mut error: Option<CliError> = None;
     let every = study.output.every.max(1);
+    // one step size for the whole run: M̂ is factorised once
+    let h = study.spec.end_time / study.spec.steps as f64;
     for k in 1..=study.spec.steps {
         let t_prev = study.sim.time();
-        let t = study.phase.time(k);
-        let h = t - t_prev;
+        let t = t_prev + h;
         let t_theta = t_prev + study.spec.theta * h;
         let DynamicStudy {
             sim,
@@ -407,10 +407,7 @@ where
             time_step: spec.time_step,
             end_time: spec.end_time,
             theta: spec.theta,
-            mass: match spec.mass {
-                MassSpec::Consistent => "consistent",
-                MassSpec::Lumped => "lumped",
-            },
+            mass: spec.mass.name(),
             rayleigh_alpha: spec.alpha,
             rayleigh_beta: spec.beta,
         },
