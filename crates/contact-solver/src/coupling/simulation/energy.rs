@@ -10,9 +10,29 @@
 //! W_ext = (u − u_k)·f_θ,   W_c = v_θ·Hᵀ r = v_θ·M̂ (v − v_free),
 //! D_C = h v_θᵀ C v_θ,       D_θ = (θ − ½) (ΔvᵀMΔv + ΔuᵀKΔu) ≥ 0
 //! ```
-//! For `θ = 1/2` without damping or contact `T + V` changes only by the work of the loads;
-//! `−W_c ≥ 0` is what the contacts dissipate (impact and friction: with `e = 0` and
-//! `θ = 1/2` a closed contact has `v_n = 0`, so `r_n v_n,θ = ½ r_n v_n,k ≤ 0` at an impact).
+//! For `θ = 1/2` without damping or contact `T + V` changes only by the work of the loads.
+//!
+//! # The contacts' share, contact by contact
+//! `W_c = Σ r·(H v_θ)` over the contacts, and `h H v_θ = Δu` is the step's jump increment, so
+//! with the impulse `r = r̄ + r_adh` split into the law's part and the adhesive springs'
+//! (`r_adh = −h A k(β_k) u_θ`, `velocity_adhesion.rs`):
+//!
+//! ```text
+//! D_impact   = −Σ r̄_n Δu_n / h          (normal: Newton's impact law; 0 for e = 1, θ = ½)
+//! D_friction = −Σ r̄_t·Δu_t / h          (tangential: Coulomb's cone, ≥ 0)
+//! Σ r_adh·Δu / h = −(ΔE_adh + D_damage + D_θ,adh)
+//! E_adh    = ½ Σ A (k_n u_n² + k_t |u_t|²)                 (the springs' stored energy)
+//! D_damage = ½ Σ A ((k_n,k − k_n,k+1) u_n² + (k_t,k − k_t,k+1) |u_t|²)   (at the end jump u)
+//! D_θ,adh  = (θ − ½) Σ A (k_n,k Δu_n² + k_t,k |Δu_t|²)
+//! (with the states iterated within the step, AdhesionUpdate::Implicit, the springs are
+//!  k_{k+1}: D_damage is taken at the start jump u_k and D_θ,adh with k_{k+1})
+//! ⇒  ΔT + ΔV + ΔE_adh = W_ext − D_impact − D_friction − D_damage − D_C − D_θ − D_θ,adh
+//! ```
+//! The damage term is the energy the springs release at fixed jump when `β` drops: for the
+//! RCCM law (`k = β² C`, `β = w/(C u²)` past the critical jump) it sums to `w` per unit area
+//! over a full debonding, the law's fracture energy. [`EnergyBalance::residual`] closes this
+//! balance; the global `W_c` is kept beside it ([`EnergyBalance::contact_work`]) as a check of
+//! the split.
 
 use fem_core::Dim;
 use fem_core::dynamic::DynamicModel;
@@ -38,12 +58,80 @@ pub struct EnergyBalance {
     pub strain: f64,
     /// The work of the loads `Σ (u − u_k)·f_θ`.
     pub external_work: f64,
-    /// The work of the contact impulses `Σ v_θ·Hᵀ r` (`≤ 0`: impact and friction dissipate).
+    /// The work of the contact impulses `Σ v_θ·Hᵀ r` (`≤ 0`: impact and friction dissipate),
+    /// from the global fields; equal (to round-off) to
+    /// `−impact − friction − (interface − interface₀) − damage − D_θ,adh` (module docs).
     pub contact_work: f64,
+    /// The energy the normal impulses dissipated, `−Σ r̄_n Δu_n / h` (impact).
+    pub impact: f64,
+    /// The energy the tangential impulses dissipated, `−Σ r̄_t·Δu_t / h` (friction).
+    pub friction: f64,
+    /// The energy the adhesive springs released as `β` dropped (damage).
+    pub damage: f64,
+    /// The energy stored in the adhesive springs now, `½ Σ A (k_n u_n² + k_t |u_t|²)`.
+    pub interface: f64,
     /// The energy the Rayleigh damping dissipated, `Σ h v_θᵀ C v_θ`.
     pub damping: f64,
-    /// The energy the scheme dissipated, `Σ (θ − ½)(ΔvᵀMΔv + ΔuᵀKΔu)` (0 for `θ = 1/2`).
+    /// The energy the scheme dissipated, `Σ (θ − ½)(ΔvᵀMΔv + ΔuᵀKΔu)` plus the adhesive
+    /// springs' `D_θ,adh` (module docs; 0 for `θ = 1/2`).
     pub numerical: f64,
+    /// `E_adh` at the start.
+    interface_initial: f64,
+    /// The adhesive springs' part `D_θ,adh` of `numerical`.
+    adhesive_numerical: f64,
+}
+
+/// The contacts' terms of one step (module docs), summed over its contacts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct ContactTerms {
+    impact: f64,
+    friction: f64,
+    damage: f64,
+    numerical: f64,
+    /// `E_adh` at the start and at the end of the step.
+    interface_start: f64,
+    interface_end: f64,
+}
+
+impl ContactTerms {
+    /// Adds a contact whose jump went from `start` to `end` under the impulses `r_bar` (the
+    /// law's) in a step `h` at weight `theta`, with nodal springs `springs_start` (state at
+    /// the start) and `springs_end`; the step's springs were the end state's if `implicit`
+    /// (the damage is then counted at the start jump), the start state's otherwise (at the
+    /// end jump).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn add<const D: usize>(
+        &mut self,
+        r_bar: &[f64; D],
+        start: &[f64; D],
+        end: &[f64; D],
+        springs_start: [f64; 2],
+        springs_end: [f64; 2],
+        implicit: bool,
+        h: f64,
+        theta: f64,
+    ) {
+        let k = |s: [f64; 2], d: usize| if d == 0 { s[0] } else { s[1] };
+        for d in 0..D {
+            let du = end[d] - start[d];
+            let work = -r_bar[d] * du / h;
+            if d == 0 {
+                self.impact += work;
+            } else {
+                self.friction += work;
+            }
+            let (k0, k1) = (k(springs_start, d), k(springs_end, d));
+            let (at, used) = if implicit {
+                (start[d], k1)
+            } else {
+                (end[d], k0)
+            };
+            self.damage += 0.5 * (k0 - k1) * at * at;
+            self.numerical += (theta - 0.5) * used * du * du;
+            self.interface_start += 0.5 * k0 * start[d] * start[d];
+            self.interface_end += 0.5 * k1 * end[d] * end[d];
+        }
+    }
 }
 
 /// What one accepted step adds: its fields on the free dofs.
@@ -56,6 +144,7 @@ pub(super) struct StepFields<'a> {
     pub(super) v: &'a [f64],
     pub(super) v_free: &'a [f64],
     pub(super) load: &'a [f64],
+    pub(super) contacts: ContactTerms,
 }
 
 impl EnergyBalance {
@@ -69,11 +158,31 @@ impl EnergyBalance {
         -self.contact_work
     }
 
-    /// `T + V − (T + V)₀ − W_ext − W_c + D_C + D_θ`: zero but for round-off.
+    /// The energy the contacts dissipated by impact, friction and damage.
+    pub fn contact_dissipated(&self) -> f64 {
+        self.impact + self.friction + self.damage
+    }
+
+    /// `T + V + E_adh − (T + V + E_adh)₀ − W_ext + D_impact + D_friction + D_damage + D_C +
+    /// D_θ`: zero but for round-off (module docs).
     pub fn residual(&self) -> f64 {
-        self.mechanical() - self.initial - self.external_work - self.contact_work
+        self.mechanical() + self.interface - self.initial - self.external_work
+            + self.impact
+            + self.friction
+            + self.damage
             + self.damping
             + self.numerical
+    }
+
+    /// `W_c + D_impact + D_friction + D_damage + ΔE_adh + D_θ,adh`: how far the global work of
+    /// the contact impulses is from the contacts' split, zero but for round-off.
+    pub fn split_residual(&self) -> f64 {
+        self.contact_work
+            + self.impact
+            + self.friction
+            + self.damage
+            + (self.interface - self.interface_initial)
+            + self.adhesive_numerical
     }
 
     /// The scale the residual compares with: the largest term of the balance.
@@ -84,6 +193,10 @@ impl EnergyBalance {
             self.strain,
             self.external_work,
             self.contact_work,
+            self.impact,
+            self.friction,
+            self.damage,
+            self.interface,
             self.damping,
             self.numerical,
         ]
@@ -91,8 +204,14 @@ impl EnergyBalance {
         .fold(0.0_f64, |m, v| m.max(v.abs()))
     }
 
-    /// The balance at the start: `T₀ + V₀` from `u_0` and `v_0`.
-    pub(super) fn initial<const D: usize>(s: &DynamicModel<D>, u: &[f64], v: &[f64]) -> Self
+    /// The balance at the start: `T₀ + V₀` from `u_0` and `v_0`, and the adhesive springs'
+    /// `E_adh` at the start of the first step (`contacts`).
+    pub(super) fn initial<const D: usize>(
+        s: &DynamicModel<D>,
+        u: &[f64],
+        v: &[f64],
+        contacts: &ContactTerms,
+    ) -> Self
     where
         Dim<D>: ModelSpace<D>,
     {
@@ -100,10 +219,13 @@ impl EnergyBalance {
             quadratic(u.len(), v, |x, y| s.mass_mul_into(x, y)),
             quadratic(u.len(), u, |x, y| s.stiffness_mul_into(x, y)),
         );
+        let e = contacts.interface_start;
         Self {
-            initial: t + k,
+            initial: t + k + e,
             kinetic: t,
             strain: k,
+            interface: e,
+            interface_initial: e,
             ..Self::default()
         }
     }
@@ -140,7 +262,13 @@ impl EnergyBalance {
         self.external_work += dot(&du, f.load);
         self.contact_work += contact;
         self.damping += damping;
-        self.numerical += numerical;
+        let c = f.contacts;
+        self.numerical += numerical + c.numerical;
+        self.adhesive_numerical += c.numerical;
+        self.impact += c.impact;
+        self.friction += c.friction;
+        self.damage += c.damage;
+        self.interface += c.interface_end - c.interface_start;
     }
 }
 

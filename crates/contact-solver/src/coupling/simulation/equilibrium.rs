@@ -5,7 +5,7 @@
 use super::detection::FreeResponse;
 use super::parts::nodal;
 use super::report::{ContactRecord, InterfaceStatus, StepReport, StepResult};
-use super::scheme::TimeScheme;
+use super::scheme::{AcceptedContact, TimeScheme};
 use super::solve::Solved;
 use super::{Clock, ContactSimulation};
 use crate::coupling::space::ContactSpace;
@@ -108,6 +108,8 @@ where
         mut report: StepReport,
         start: Instant,
     ) -> StepResult<D> {
+        let contacts = self.accepted_contacts(&equilibrium.jumps, &solved);
+        self.scheme.accept_contacts(&contacts);
         let step = clock.scheme_step(&self.accepted);
         self.scheme.accept(
             &self.structure,
@@ -151,6 +153,35 @@ where
             report,
             contacts: records,
         }
+    }
+
+    /// What the scheme is told of each contact of the `solved` problem
+    /// ([`TimeScheme::accept_contacts`]), with the step's `jumps`.
+    fn accepted_contacts(
+        &self,
+        jumps: &[[f64; D]],
+        solved: &Solved<L::State>,
+    ) -> Vec<AcceptedContact<D>> {
+        solved
+            .active
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| {
+                let law = self.interface.law(i);
+                let area = self.interface.candidates[i].area;
+                AcceptedContact {
+                    index: i,
+                    r: core::array::from_fn(|d| solved.r[D * k + d]),
+                    r_bar: core::array::from_fn(|d| solved.r_bar[D * k + d]),
+                    start: self.accepted.jumps[i],
+                    jump: jumps[i],
+                    springs_start: law
+                        .adhesive_stiffness(&self.accepted.states[i])
+                        .map(|v| v * area),
+                    springs_end: law.adhesive_stiffness(&solved.states[k]).map(|v| v * area),
+                }
+            })
+            .collect()
     }
 
     /// The records of every candidate at the end of the step, from the step's `jumps` and the

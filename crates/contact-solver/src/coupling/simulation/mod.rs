@@ -56,11 +56,12 @@ mod scheme;
 mod settings;
 mod solve;
 mod tuning;
+mod velocity_adhesion;
 
 pub use energy::EnergyBalance;
-pub use moreau_jean::MoreauJean;
+pub use moreau_jean::{AdhesionUpdate, MoreauJean};
 pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
-pub use scheme::{QuasiStatic, SchemeStep, TimeScheme};
+pub use scheme::{AcceptedContact, QuasiStatic, SchemeStep, TimeScheme, VelocitySprings};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings};
 pub use tuning::{SimulationTuning, SkipRules};
 

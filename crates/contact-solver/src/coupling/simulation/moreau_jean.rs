@@ -20,14 +20,31 @@
 //! problem whatever its alert distance, and the end-of-step gap is not checked (the scheme
 //! allows an `O(h)` interpenetration, which closes the next steps).
 //!
-//! The energy balance of each accepted step is kept in an [`EnergyBalance`] (`energy.rs`).
-//! Adhesive laws (RCCM) are not yet served at velocity level (their state update reads
-//! displacement jumps): the scheme is for Signorini, Coulomb and laws without adhesion.
+//! The energy balance of each accepted step is kept in an [`EnergyBalance`] (`energy.rs`),
+//! its contact dissipation split into impact, friction and damage.
+//!
+//! # Adhesion (RCCM) at velocity level
+//! An adhesive law's springs `r_adh = −A k(β) u` (a force) enter the step as the impulse of
+//! the springs of the state `β_k` at the start of the step, at `u_θ = (1−θ) u_k + θ u`:
+//!
+//! ```text
+//! r_adh·h = −h A k(β_k) u_θ,   u = u_k + h((1−θ) v_k + θ v),   v_n = x_n − e v_n,k
+//!         = −h²θ² A k(β_k) (x + o),   o = (u_k + hθ(1−θ) v_k − hθ² e v_n,k n) / (hθ²)
+//! ```
+//! so the springs are condensed into `x = W r + q` exactly as in a quasi-static step
+//! ([`VelocitySprings`], `velocity_adhesion.rs`): `q̃ = (I + W B)⁻¹ (q − W B o)`. The law's
+//! part `r̄` acts on the velocity `x` of the contacts in Moreau's index set (an open
+//! adhesive contact has only its springs), and `β` is updated once per accepted step from
+//! the step's displacement jumps `u_k → u`, by the law's update, as the quasi-static path
+//! does (there within its fixed point, here once: `β` lags a step,
+//! [`AdhesionUpdate::Lagged`]). [`AdhesionUpdate::Implicit`] iterates `β` within the step
+//! (the springs are then the end state's); with it, `θ = 1` and a vanishing mass the step is
+//! the quasi-static one.
 
 use super::ContactSimulation;
-use super::energy::EnergyBalance;
+use super::energy::{ContactTerms, EnergyBalance};
 use super::report::StepResult;
-use super::scheme::{SchemeStep, TimeScheme};
+use super::scheme::{AcceptedContact, SchemeStep, TimeScheme, VelocitySprings};
 use crate::coupling::space::ContactSpace;
 use crate::coupling::zone::Candidate;
 use crate::error::SolverError;
@@ -36,6 +53,21 @@ use fem_core::dynamic::DynamicModel;
 use fem_core::model::ModelSpace;
 use fem_core::{Dim, FemError, Structure};
 use std::borrow::Cow;
+
+/// How [`MoreauJean`] updates the states of adhesive laws (RCCM's `β`) in a step
+/// ([module docs](self#adhesion-rccm-at-velocity-level)).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AdhesionUpdate {
+    /// The springs of the state at the start of the step; the state updated once from the
+    /// step's jumps (it lags a step: an `O(h)` error, no iteration).
+    #[default]
+    Lagged,
+    /// The state iterated within the step (the quasi-static loop's plain fixed point, to
+    /// [`SimulationSettings::adhesion_tol`](super::SimulationSettings)): the springs of the
+    /// state at the end of the step, as a quasi-static step has them.
+    Implicit,
+}
 
 /// Per candidate, what a step keeps: the relative velocities `v_k` and `v_free` in the
 /// candidate's frame, the shift of an initial displacement, and the restitution.
@@ -89,6 +121,7 @@ struct ContactVelocities {
 pub struct MoreauJean {
     theta: f64,
     restitution: f64,
+    adhesion: AdhesionUpdate,
     /// Per zone (by index), a restitution in place of the scheme's.
     zone_restitution: Vec<Option<f64>>,
     /// `v_k` on the free dofs (empty: at rest).
@@ -107,6 +140,8 @@ pub struct MoreauJean {
     node_dofs: Vec<Option<usize>>,
     contacts: Vec<ContactVelocities>,
     accepted_steps: usize,
+    /// The contacts' energy terms of the step being accepted.
+    step_contacts: ContactTerms,
     energy: EnergyBalance,
     history: Vec<EnergyBalance>,
 }
@@ -128,6 +163,7 @@ impl MoreauJean {
         Ok(Self {
             theta,
             restitution: 0.0,
+            adhesion: AdhesionUpdate::Lagged,
             zone_restitution: Vec::new(),
             velocity: Vec::new(),
             initial_displacement: None,
@@ -139,6 +175,7 @@ impl MoreauJean {
             node_dofs: Vec::new(),
             contacts: Vec::new(),
             accepted_steps: 0,
+            step_contacts: ContactTerms::default(),
             energy: EnergyBalance::default(),
             history: Vec::new(),
         })
@@ -152,6 +189,14 @@ impl MoreauJean {
     pub fn with_restitution(mut self, e: f64) -> Result<Self, SolverError> {
         self.restitution = check_restitution(e)?;
         Ok(self)
+    }
+
+    /// How the states of adhesive laws are updated in a step (default
+    /// [`AdhesionUpdate::Lagged`]).
+    #[must_use]
+    pub fn with_adhesion_update(mut self, update: AdhesionUpdate) -> Self {
+        self.adhesion = update;
+        self
     }
 
     /// The restitution of the zone of index `zone` (in the simulation's zone list).
@@ -449,8 +494,10 @@ where
         solution: &[f64],
         displacement: &[f64],
     ) {
+        let contacts = std::mem::take(&mut self.step_contacts);
         if self.accepted_steps == 0 {
-            self.energy = EnergyBalance::initial(structure, &self.u_start, &self.velocity);
+            self.energy =
+                EnergyBalance::initial(structure, &self.u_start, &self.velocity, &contacts);
         }
         self.energy.add_step(
             structure,
@@ -463,6 +510,7 @@ where
                 v: solution,
                 v_free: &self.v_free,
                 load: &self.load,
+                contacts,
             },
         );
         self.history.push(self.energy);
@@ -489,6 +537,48 @@ where
     /// Never: the index set is the start of the step's (module docs).
     fn penetrates(&self, _index: usize, _jump: &[f64; D], _tolerance: f64) -> bool {
         false
+    }
+
+    /// The springs' impulse at `u_θ`: scale `h²θ²`, offset
+    /// `(u_k + hθ(1−θ) v_k − hθ² e v_n,k n) / (hθ²)`; constrained in Moreau's index set
+    /// (module docs).
+    fn velocity_springs(&self, index: usize, start: &[f64; D]) -> Option<VelocitySprings<D>> {
+        let c = &self.contacts[index];
+        let (h, theta) = (self.h, self.theta);
+        let slope = h * theta * theta;
+        let offset = core::array::from_fn(|d| {
+            let u_k = start[d] + c.shift[d];
+            let restitution = if d == 0 { slope * c.e * c.v_k[0] } else { 0.0 };
+            (u_k + h * theta * (1.0 - theta) * c.v_k[d] - restitution) / slope
+        });
+        let free_gap = start[0] + c.shift[0] + h * (1.0 - theta) * c.v_k[0];
+        let implicit = self.adhesion == AdhesionUpdate::Implicit;
+        Some(VelocitySprings::new(
+            h * slope,
+            offset,
+            free_gap <= 0.0,
+            implicit,
+        ))
+    }
+
+    /// Keeps the contacts' impact, friction and damage terms for [`accept`](Self::accept).
+    fn accept_contacts(&mut self, contacts: &[AcceptedContact<D>]) {
+        let mut terms = ContactTerms::default();
+        for a in contacts {
+            let shift = self.contacts[a.index].shift;
+            let start: [f64; D] = core::array::from_fn(|d| a.start[d] + shift[d]);
+            terms.add(
+                &a.r_bar,
+                &start,
+                &a.jump,
+                a.springs_start,
+                a.springs_end,
+                self.adhesion == AdhesionUpdate::Implicit,
+                self.h,
+                self.theta,
+            );
+        }
+        self.step_contacts = terms;
     }
 }
 

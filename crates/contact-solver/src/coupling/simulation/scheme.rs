@@ -239,6 +239,81 @@ pub trait TimeScheme<S: ?Sized, const D: usize> {
         let _ = index;
         jump[0] < -tolerance
     }
+
+    /// A velocity-level scheme: how the adhesive springs of contact `index`'s law (accepted
+    /// jump `start`) enter its reduced problem, [`VelocitySprings`]; the simulation then
+    /// solves an adhesive step with the states frozen at the start of the step and updates
+    /// them once from the step's jumps. `None` (the default, [`QuasiStatic`]): the
+    /// displacement-level adhesion loop, where `x` is the jump itself.
+    #[inline]
+    fn velocity_springs(&self, index: usize, start: &[f64; D]) -> Option<VelocitySprings<D>> {
+        let _ = (index, start);
+        None
+    }
+
+    /// Told, just before [`accept`](Self::accept), what every contact of the accepted
+    /// reduced problem did (the place for a scheme's energy bookkeeping). The default
+    /// ignores it.
+    #[inline]
+    fn accept_contacts(&mut self, contacts: &[AcceptedContact<D>]) {
+        let _ = contacts;
+    }
+}
+
+/// How a velocity-level scheme takes a contact's adhesive springs (nodal stiffnesses
+/// `A k(β)`, [`ContactLaw::adhesive_stiffness`](contact_laws::ContactLaw::adhesive_stiffness)
+/// at the start state) into the reduced problem `x = W r + q`: the springs add
+/// `r_adh = −scale · A k(β) (x + offset)` to the contact's unknown, which is condensed
+/// exactly ([`crate::local::adhesion::condense`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct VelocitySprings<const D: usize> {
+    /// The factor on the nodal springs: `h²θ²` for Moreau–Jean (an impulse `h r_adh` of the
+    /// springs at `u_θ`, which is `hθ²` times `x` plus a known part).
+    pub scale: f64,
+    /// The offset `o` of `x` the springs act on.
+    pub offset: [f64; D],
+    /// Whether the contact's velocity is constrained by its law (Moreau's index set):
+    /// `false` leaves only the springs acting (`r̄ = 0`).
+    pub constrained: bool,
+    /// Whether the states are iterated within the step to the end state (a fixed point, as
+    /// the quasi-static loop: the springs are those of the end state), or frozen at the start
+    /// state and updated once from the step's jumps (`false`).
+    pub implicit: bool,
+}
+
+impl<const D: usize> VelocitySprings<D> {
+    /// Springs `scale · A k(β)` acting on `x + offset`; `constrained` and `implicit` as the
+    /// fields.
+    pub fn new(scale: f64, offset: [f64; D], constrained: bool, implicit: bool) -> Self {
+        Self {
+            scale,
+            offset,
+            constrained,
+            implicit,
+        }
+    }
+}
+
+/// One contact of an accepted step's reduced problem, as [`TimeScheme::accept_contacts`] is
+/// told it: local vectors `[n, t…]` in the candidate's frame (signs: [`contact_laws`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct AcceptedContact<const D: usize> {
+    /// The candidate's index.
+    pub index: usize,
+    /// The total reaction `r = r̄ + r_adh` (impulses for a velocity-level scheme).
+    pub r: [f64; D],
+    /// The law's part `r̄`.
+    pub r_bar: [f64; D],
+    /// The accepted jump `[gap, u_t…]` at the start of the step.
+    pub start: [f64; D],
+    /// The jump at the end of the step.
+    pub jump: [f64; D],
+    /// The nodal adhesive springs `A [k_n, k_t]` in the state at the start of the step.
+    pub springs_start: [f64; 2],
+    /// The same in the state at the end of the step.
+    pub springs_end: [f64; 2],
 }
 
 /// Today's scheme: load steps, each an equilibrium `K u = f + Hᵀ r` at the step's force

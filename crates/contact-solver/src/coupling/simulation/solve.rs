@@ -77,6 +77,11 @@ where
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
+        if self.velocity_springs_of(active).is_some() {
+            return Err(SolverError::Unsupported(
+                "adhesion at velocity level on the active-set path (use a dense F*)".into(),
+            ));
+        }
         let laws = self.laws_of(active);
         let states = self.states_of(active);
         let tangent: Vec<bool> = active.iter().map(|&i| self.tangent_needed(i)).collect();
@@ -250,6 +255,9 @@ where
         dt: f64,
         report: &mut StepReport,
     ) -> Result<Solved<L::State>, SolverError> {
+        if let Some(springs) = self.velocity_springs_of(active) {
+            return self.solve_velocity_adhesive(active, free, &springs, dt, report);
+        }
         let laws = self.laws_of(active);
         let start_states = self.states_of(active);
         let u_start = self.jumps_of(active);
