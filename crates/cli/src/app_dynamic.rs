@@ -47,8 +47,9 @@ where
     let e = &s.energy;
     out::outln!(
         "done: {} steps in {:.3} s (t = {}), {} contact iterations; energy: kinetic {:.6e}, \
-         strain {:.6e}, work of the loads {:.6e}, dissipated by contact {:.6e}, damping \
-         {:.6e}, scheme {:.6e}; balance residual {:.1e} (relative, largest over the run)",
+         strain {:.6e}, work of the loads {:.6e}, dissipated by impact {:.6e}, friction \
+         {:.6e}, damage {:.6e}, damping {:.6e}, scheme {:.6e}, in adhesive springs {:.6e}; \
+         balance residual {:.1e} (relative, largest over the run)",
         s.steps,
         s.wall_time_s,
         s.time,
@@ -56,9 +57,12 @@ where
         e.kinetic,
         e.strain,
         e.external_work,
-        e.contact_dissipation,
+        e.impact,
+        e.friction,
+        e.damage,
         e.damping,
         e.numerical,
+        e.interface,
         s.max_residual_relative
     );
     for z in &s.zones {

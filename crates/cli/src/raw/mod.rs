@@ -456,11 +456,6 @@ impl RawLaw {
         self.restitution
     }
 
-    /// Whether the law is RCCM (adhesive).
-    pub fn is_rccm(&self) -> bool {
-        self.kind == LawKind::Rccm
-    }
-
     /// The law.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<LawSpec> {
         let present = present!(self; mu, c_n, c_t, w, alpha, m, beta_0, scheme, theta);

@@ -3,11 +3,12 @@
 //! writes against time:
 //!
 //! - `dynamics.csv`: one row per step (and t = 0): the energy balance of
-//!   [`EnergyBalance`] (kinetic, strain, work of the loads, dissipated by the contacts, by the
-//!   damping and by the scheme, the balance's residual, absolute and relative to its largest
-//!   term), each zone's normal and tangential contact force resultants (impulse / h), the
-//!   bodies' mean velocity (momentum / mass) and each `output.velocity_sets` set's mean
-//!   velocity;
+//!   [`EnergyBalance`] (kinetic, strain, work of the loads, the contacts' work `−W_c` and its
+//!   split into impact, friction and damage, the energy stored in adhesive springs, dissipated
+//!   by the damping and by the scheme, the balance's residual, absolute and relative to its
+//!   largest term), each zone's normal and tangential contact force resultants (impulse / h)
+//!   and, for an RCCM zone, its mean adhesion intensity β, the bodies' mean velocity
+//!   (momentum / mass) and each `output.velocity_sets` set's mean velocity;
 //! - `mesh.pvd` and `mesh_NNNN.vtu` every `output.every` steps (and the last): displacement
 //!   `u` and velocity `v` at the nodes;
 //! - `energies.svg`, `contact_force.svg` (and `velocity.svg` with velocity sets);
@@ -79,6 +80,14 @@ pub struct EnergyFacts {
     pub strain: f64,
     pub external_work: f64,
     pub contact_dissipation: f64,
+    /// Dissipated by the normal impulses (impact).
+    pub impact: f64,
+    /// Dissipated by the tangential impulses (friction).
+    pub friction: f64,
+    /// Released by the adhesive springs as β dropped (damage).
+    pub damage: f64,
+    /// Stored in the adhesive springs now.
+    pub interface: f64,
     pub damping: f64,
     pub numerical: f64,
     pub residual: f64,
@@ -93,6 +102,10 @@ impl From<&EnergyBalance> for EnergyFacts {
             strain: e.strain,
             external_work: e.external_work,
             contact_dissipation: e.contact_dissipation(),
+            impact: e.impact,
+            friction: e.friction,
+            damage: e.damage,
+            interface: e.interface,
             damping: e.damping,
             numerical: e.numerical,
             residual: e.residual(),
@@ -114,6 +127,8 @@ pub struct DynamicZone {
     /// The end of the first and of the last step with a normal impulse.
     pub first_contact_time: Option<f64>,
     pub last_contact_time: Option<f64>,
+    /// An RCCM zone: the mean adhesion intensity β over its contacts at the end.
+    pub mean_beta: Option<f64>,
 }
 
 /// The balance's residual relative to its largest term (0 for a balance of zeros).
@@ -156,6 +171,19 @@ fn mean<const D: usize>(v: &[[f64; D]], nodes: &[usize]) -> [f64; D] {
     core::array::from_fn(|c| nodes.iter().map(|&n| v[n][c]).sum::<f64>() / k)
 }
 
+/// Per zone, the mean adhesion intensity β over its contacts (0 for a zone without any).
+fn zone_betas<const D: usize>(res: &StepResult<D>, zones: usize) -> Vec<f64>
+where
+    Dim<D>: StudyDim<D>,
+{
+    let mut sum = vec![(0.0, 0_usize); zones];
+    for c in &res.contacts {
+        sum[c.zone].0 += c.beta;
+        sum[c.zone].1 += 1;
+    }
+    sum.iter().map(|(b, n)| b / (*n).max(1) as f64).collect()
+}
+
 /// Per zone, the normal and tangential resultants of a step's impulses over `h`.
 fn zone_forces<const D: usize>(res: &StepResult<D>, zones: usize, h: f64) -> Vec<(f64, f64)>
 where
@@ -193,11 +221,16 @@ where
     let axes = ["x", "y", "z"];
     let mut csv = create(dir, "dynamics.csv")?;
     let mut head = String::from(
-        "step,time,kinetic,strain,external_work,contact_dissipation,damping,numerical,\
-         balance_residual,balance_relative",
+        "step,time,kinetic,strain,external_work,contact_dissipation,impact,friction,damage,\
+         interface,damping,numerical,balance_residual,balance_relative",
     );
-    for z in &study.zone_names {
+    // the zones whose law has adhesion (β)
+    let adhesive: Vec<bool> = study.zone_laws.iter().map(|l| l == "rccm").collect();
+    for (z, a) in study.zone_names.iter().zip(&adhesive) {
         head += &format!(",normal_force_{z},tangential_force_{z}");
+        if *a {
+            head += &format!(",beta_{z}");
+        }
     }
     for a in &axes[..D] {
         head += &format!(",v_body_{a}");
@@ -244,6 +277,7 @@ where
             contact_steps: 0,
             first_contact_time: None,
             last_contact_time: None,
+            mean_beta: None,
         })
         .collect();
 
@@ -254,22 +288,30 @@ where
                          t: f64,
                          e: &EnergyBalance,
                          forces: &[(f64, f64)],
+                         betas: &[f64],
                          hist: &mut History|
      -> CliResult<()> {
         let v = sim.scheme().velocity();
         let mut line = format!(
-            "{step},{t},{},{},{},{},{},{},{},{}",
+            "{step},{t},{},{},{},{},{},{},{},{},{},{},{},{}",
             e.kinetic,
             e.strain,
             e.external_work,
             e.contact_dissipation() + 0.0, // −0 at rest is written 0
+            e.impact,
+            e.friction,
+            e.damage,
+            e.interface,
             e.damping,
             e.numerical,
             e.residual(),
             relative(e)
         );
-        for (fn_, ft) in forces {
+        for (z, (fn_, ft)) in forces.iter().enumerate() {
             line += &format!(",{fn_},{ft}");
+            if adhesive[z] {
+                line += &format!(",{}", betas[z]);
+            }
         }
         for (m1, total) in &mass_axes {
             let p: f64 = m1.iter().zip(v).map(|(x, y)| x * y).sum();
@@ -290,7 +332,7 @@ where
         hist.strain.push(e.strain);
         hist.external.push(e.external_work);
         hist.dissipated
-            .push(e.contact_dissipation() + e.damping + e.numerical);
+            .push(e.contact_dissipated() + e.damping + e.numerical);
         for (z, (fn_, _)) in forces.iter().enumerate() {
             hist.normal[z].push(*fn_);
         }
@@ -304,7 +346,22 @@ where
     let t0 = 0.5 * v0.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>();
     let mut e0 = EnergyBalance::default();
     (e0.initial, e0.kinetic) = (t0, t0);
-    write_row(&study.sim, 0, 0.0, &e0, &vec![(0.0, 0.0); zones], &mut hist)?;
+    let beta0 = study
+        .sim
+        .states()
+        .iter()
+        .zip(study.sim.candidates())
+        .fold(vec![(0.0, 0_usize); zones], |mut acc, (s, c)| {
+            acc[c.zone].0 +=
+                contact_laws::ContactLaw::adhesion_intensity(&study.sim.zones()[c.zone].law, s);
+            acc[c.zone].1 += 1;
+            acc
+        })
+        .iter()
+        .map(|(b, n)| b / (*n).max(1) as f64)
+        .collect::<Vec<f64>>();
+    let rest = vec![(0.0, 0.0); zones];
+    write_row(&study.sim, 0, 0.0, &e0, &rest, &beta0, &mut hist)?;
 
     let mut vtk = Vec::new();
     if study.output.vtk {
@@ -357,6 +414,10 @@ where
         steps = k;
         iterations += res.report.contact_iterations;
         let forces = zone_forces(&res, zones, h);
+        let betas = zone_betas(&res, zones);
+        for (z, b) in betas.iter().enumerate() {
+            zone_facts[z].mean_beta = adhesive[z].then_some(*b);
+        }
         for (z, &(f, _)) in forces.iter().enumerate() {
             let facts = &mut zone_facts[z];
             facts.peak_normal_force = facts.peak_normal_force.max(f);
@@ -368,7 +429,7 @@ where
         }
         let e = *sim.scheme().energy();
         max_rel = max_rel.max(relative(&e).abs());
-        if let Err(e) = write_row(sim, k, t, &e, &forces, &mut hist) {
+        if let Err(e) = write_row(sim, k, t, &e, &forces, &betas, &mut hist) {
             error = Some(e);
             break;
         }

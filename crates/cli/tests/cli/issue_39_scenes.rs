@@ -12,9 +12,10 @@
 //!   free flight until the gap closes at t = 0.05, then the same wave as the bar (contact
 //!   2L/c = 0.2, rebound v0).
 //! - `examples/scenes/pile_hammer.toml`: a 2 ms force pulse (500 kN peak) on the head of the
-//!   seed's pile (steel, 7.85 t/m³, c = √(E/ρ) ≈ 1955 m/s) in its soil: the head moves at
-//!   σ/(ρ c) under the pulse (the impedance relation of a bar, Graff 1975 §2.1) and the wave,
-//!   reflected at the soft tip, is back at the head 2 L_p / c ≈ 13.3 ms later.
+//!   seed's pile (steel, 7.85 t/m³, c = √(E/ρ) ≈ 1955 m/s) in its soil, its shaft glued by the
+//!   seed's RCCM interface: the head moves at σ/(ρ c) under the pulse (the impedance relation
+//!   of a bar, Graff 1975 §2.1), the wave, reflected at the soft tip, is back at the head
+//!   2 L_p / c ≈ 13.3 ms later, and the shaft debonds progressively.
 //!
 //! ```text
 //!   wall |<- v0  [===== bar =====]            ┌─┐
@@ -193,7 +194,17 @@ fn issue_39_pile_hammer_shows_the_wave_and_its_reflection() {
     assert!(v2 < -0.5 * v1.abs(), "{v2}");
     assert!((t2 - (0.001 + 26.0 / c)).abs() < 0.05 * 26.0 / c, "{t2}");
     assert!(worst_balance(&rows) <= 1e-8);
-    assert_eq!(summary(&out)["status"], "completed");
+    // the RCCM shaft debonds progressively as the waves pass: β never rises (damage is
+    // irreversible), falls well below 1 (measured 0.33 at 40 ms), and the energy it releases
+    // is in the balance (measured 3.8e-3 of the blow's 3.0e-2)
+    let beta: Vec<f64> = rows.iter().map(|r| num(r, "beta_shaft")).collect();
+    assert_eq!(beta[0], 1.0);
+    assert!(beta.windows(2).all(|w| w[1] <= w[0] + 1e-12));
+    assert!(*beta.last().unwrap() < 0.5, "{:?}", beta.last());
+    assert!(num(rows.last().unwrap(), "damage") > 0.0);
+    let s = summary(&out);
+    assert_eq!(s["status"], "completed");
+    assert!(s["zones"][0]["mean_beta"].as_f64().unwrap() < 0.5);
 }
 
 /// `block_drop.toml` with each `(from, to)` replaced, written to a fresh directory and run;
@@ -325,9 +336,13 @@ fn issue_39_scenes_captures_errors() {
         "materials[0].initial_velocity",
     );
     // what the dynamic path does not serve, at its key
-    let law = "law = { type = \"signorini\", restitution = 0.0 }";
-    let rccm = "law = { type = \"rccm\", c_n = 1.0, c_t = 1.0, w = 1.0, alpha = 1.0, mu = 0.0 }";
-    refused(law, rccm, "contact[0].law.type");
+    let geostatic = "[initial_stress]\ntype = \"geostatic\"\ngamma = 1.0\nk0 = 0.5\n\n[output]";
+    refused("[output]", geostatic, "initial_stress");
+    refused(
+        "[output]",
+        "[[supports]]\nset = \"right\"\ncomponent = \"y\"\nvalue = 0.1\n\n[output]",
+        "supports[0].value",
+    );
     refused(
         "[output]",
         "[steps]\ncount = 2\nduration = 1.0\n\n[output]",
