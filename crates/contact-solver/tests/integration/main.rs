@@ -33,6 +33,8 @@ mod issue_36_traps;
 mod issue_37_asymmetric;
 mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
+mod issue_39_adhesion;
+mod issue_39_contactors;
 mod issue_39_dynamics;
 mod issue_39_sliding_block;
 mod local_algorithms;

@@ -55,7 +55,7 @@ use fem_core::{Dim, FemError, Structure};
 use std::borrow::Cow;
 
 /// How [`MoreauJean`] updates the states of adhesive laws (RCCM's `β`) in a step
-/// ([module docs](self#adhesion-rccm-at-velocity-level)).
+/// (`docs/theory.md` §14, "Adhesion at velocity level").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum AdhesionUpdate {
@@ -193,6 +193,39 @@ impl MoreauJean {
 
     /// How the states of adhesive laws are updated in a step (default
     /// [`AdhesionUpdate::Lagged`]).
+    ///
+    /// # Examples
+    /// A block glued to a rigid line by the RCCM law, its top pulled up: the glue holds it
+    /// in tension, and the energy balance (the springs' energy and the damage included)
+    /// closes.
+    /// ```
+    /// use contact_solver::coupling::simulation::{AdhesionUpdate, MoreauJean};
+    /// use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
+    /// use contact_laws::{BetaScheme, Rccm, RccmParams};
+    /// use fem_core::dynamic::{DynamicModel, MassKind, Rayleigh};
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    /// use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+    ///
+    /// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+    /// let (top, bottom) = (mesh.node_set("top")?.to_vec(), mesh.node_set("bottom")?.to_vec());
+    /// let mut supports = Supports::new();
+    /// supports.prescribe(&top, Component::Y, 0.005)?.fix(&top, Component::X);
+    /// let m = Material::new(1e4, 0.0, 0.0)?.with_density(1.0)?;
+    /// let model = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, m)], supports)?;
+    /// let body = DynamicModel::new(model, MassKind::Lumped, Rayleigh::default())?;
+    /// let glue = Rccm::new(RccmParams { c_n: 100.0, c_t: 100.0, w: 0.01, alpha: 0.0, mu: 0.2,
+    ///     m: 1, beta_0: 1.0, scheme: BetaScheme::ImplicitEuler })?;
+    /// let zone = ContactZone::rigid("glue", bottom, RigidLine::new([-1.0, 0.0], [2.0, 0.0])?,
+    ///     glue, 1e-3);
+    /// let scheme = MoreauJean::new(1.0)?.with_adhesion_update(AdhesionUpdate::Implicit);
+    /// let mut sim = ContactSimulation::with_scheme(body, vec![zone],
+    ///     SimulationSettings::default(), scheme)?;
+    /// let res = sim.advance(0.01)?;
+    /// assert!(res.contacts.iter().map(|c| c.r.n).sum::<f64>() < 0.0); // the glue pulls
+    /// let e = sim.scheme().energy();
+    /// assert!(e.interface > 0.0 && e.residual().abs() < 1e-10 * e.scale());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     #[must_use]
     pub fn with_adhesion_update(mut self, update: AdhesionUpdate) -> Self {
         self.adhesion = update;
