@@ -1,5 +1,6 @@
 //! The `bipo` command line (the binary `src/main.rs` calls [`main`]).
 
+use crate::app_dynamic as dynamic;
 use crate::error::{CliError, CliResult};
 use crate::{build, error, out, run, templates};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -206,12 +207,20 @@ pub fn main() -> ExitCode {
             match build::build(loaded)? {
                 build::Built::Plane(study) => run_study(*study, loaded, out, quiet, threads),
                 build::Built::Solid(study) => run_study(*study, loaded, out, quiet, threads),
+                build::Built::PlaneDynamic(s) => {
+                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
+                build::Built::SolidDynamic(s) => {
+                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
             }
         }),
         Command::Check { scene } => with_scene(&scene, |loaded| {
             let (steps, files) = match build::build(loaded)? {
                 build::Built::Plane(study) => check_study(&study, loaded),
                 build::Built::Solid(study) => check_study(&study, loaded),
+                build::Built::PlaneDynamic(s) => dynamic::check_study(&s, loaded),
+                build::Built::SolidDynamic(s) => dynamic::check_study(&s, loaded),
             };
             out::outln!("ok: the scene is valid ({steps} steps to run, {files} files to write)");
             Ok(())
@@ -386,6 +395,8 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
     let (steps, files) = match build::build(&loaded).map_err(render)? {
         build::Built::Plane(study) => (study.total_steps(), study.output_files()),
         build::Built::Solid(study) => (study.total_steps(), study.output_files()),
+        build::Built::PlaneDynamic(s) => (s.spec.steps, s.output_files()),
+        build::Built::SolidDynamic(s) => (s.spec.steps, s.output_files()),
     };
     Ok(CheckedScene { steps, files })
 }

@@ -9,6 +9,7 @@
 #![warn(missing_docs)]
 
 pub mod app;
+mod app_dynamic;
 mod build;
 mod error;
 mod out;

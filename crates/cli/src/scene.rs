@@ -106,6 +106,11 @@ pub struct MaterialSpec {
     /// Unit weight (for gravity loads).
     #[serde(default)]
     pub unit_weight: f64,
+    /// Mass density (required in a dynamic scene; > 0).
+    pub density: Option<f64>,
+    /// The velocity of the material's regions at t = 0 (a dynamic scene; two or three
+    /// numbers by dimension).
+    pub initial_velocity: Option<crate::spec::Coords>,
 }
 
 /// Which displacement components a support constrains.
@@ -309,6 +314,8 @@ pub struct OutputSpec {
     pub profile_steps: Option<Vec<usize>>,
     /// `pressure.csv`, and the recovered pressure in the interface VTK.
     pub pressure: bool,
+    /// A dynamic scene: node sets whose mean velocity `dynamics.csv` writes against time.
+    pub velocity_sets: Option<Vec<String>>,
 }
 
 impl OutputSpec {
@@ -333,6 +340,7 @@ impl Default for OutputSpec {
             nodes: None,
             profile_steps: None,
             pressure: true,
+            velocity_sets: None,
         }
     }
 }

@@ -17,6 +17,7 @@ use crate::scene::{
 };
 use crate::spec::{LawSpec, RccmSpec, SchemeSpec, TargetSpec};
 use contact_laws::{BetaScheme, ContactLaw, Coulomb, Rccm, RccmParams, Signorini, StandardLaw};
+use contact_solver::coupling::simulation::TimeScheme;
 use contact_solver::coupling::space::ContactSpace;
 use contact_solver::local::adhesion::AdhesionMethod;
 use contact_solver::local::stall::MIN_STALL_WINDOW;
@@ -357,6 +358,14 @@ pub(super) type Simulation<const D: usize> = ContactSimulation<ElasticModel<D>, 
 /// The simulation, each zone's law name, and the warnings of [`build`].
 pub(super) type BuiltContact<const D: usize> = (Simulation<D>, Vec<String>, Vec<String>);
 
+/// What [`build_with`] gives: the simulation of structure `S` stepped by the scheme `T`, the
+/// laws' names and the warnings.
+pub(super) type BuiltWith<S, const D: usize, T> = (
+    ContactSimulation<S, StandardLaw, D, T>,
+    Vec<String>,
+    Vec<String>,
+);
+
 /// One zone on the model's sets: its contactor nodes (with their tributary areas where the
 /// set gives them or the zone's own lumping would be wrong) against its target.
 fn zone<const D: usize>(
@@ -407,6 +416,32 @@ where
     Dim<D>: SceneDim<D>,
 {
     let contact = KeyPath::root().key("contact");
+    build_with(
+        model,
+        plans,
+        |model, zones| {
+            ContactSimulation::new(model, zones, settings).map_err(|e| solver_error(&contact, e))
+        },
+        |s| s,
+    )
+}
+
+/// As [`build`], the simulation made by `make` from the model and the zones (another structure
+/// or time scheme: a dynamic scene's); `model_of` gives back the model inside its structure
+/// for the checks of candidates made after the simulation (3D).
+pub(super) fn build_with<const D: usize, S: fem_core::Structure<D>, T: TimeScheme<S, D>>(
+    model: ElasticModel<D>,
+    plans: &[ZonePlan<D>],
+    make: impl FnOnce(
+        ElasticModel<D>,
+        Vec<ContactZone<StandardLaw, D>>,
+    ) -> CliResult<ContactSimulation<S, StandardLaw, D, T>>,
+    model_of: impl Fn(&S) -> &ElasticModel<D>,
+) -> CliResult<BuiltWith<S, D, T>>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let contact = KeyPath::root().key("contact");
     let zones = plans
         .iter()
         .map(|z| zone(&model, z))
@@ -439,11 +474,15 @@ where
         let candidates = recognize(&model, &zones).map_err(|e| solver_error(&contact, e))?;
         check_candidates(&candidates, plans, &zones, &model)?;
         Dim::<D>::check_facing(&candidates, &zones, &model)?;
-        ContactSimulation::new(model, zones, settings).map_err(|e| solver_error(&contact, e))?
+        make(model, zones)?
     } else {
-        let sim = ContactSimulation::new(model, zones, settings)
-            .map_err(|e| solver_error(&contact, e))?;
-        check_candidates(sim.candidates(), plans, sim.zones(), sim.structure())?;
+        let sim = make(model, zones)?;
+        check_candidates(
+            sim.candidates(),
+            plans,
+            sim.zones(),
+            model_of(sim.structure()),
+        )?;
         sim
     };
     Ok((sim, zone_laws, warnings))

@@ -342,10 +342,11 @@ impl SceneDim<2> for Dim<2> {
 }
 
 impl SceneDim<3> for Dim<3> {
-    /// Nothing: a 3D scene has no idealisation and does not float yet.
-    type Options = ();
+    /// Whether the body may float (rigid-body modes accepted): a dynamic scene's, whose
+    /// inertia holds them; a static 3D scene does not float yet.
+    type Options = bool;
 
-    fn idealization(_: &()) -> Option<Idealization> {
+    fn idealization(_: &bool) -> Option<Idealization> {
         None
     }
 
@@ -362,11 +363,15 @@ impl SceneDim<3> for Dim<3> {
 
     fn model(
         mesh: SolidMesh,
-        _: &(),
+        &floating: &bool,
         materials: &[(u32, Material)],
         supports: Supports,
     ) -> Result<SolidModel, FemError> {
-        SolidModel::new(mesh, materials, supports)
+        if floating {
+            SolidModel::floating(mesh, materials, supports)
+        } else {
+            SolidModel::new(mesh, materials, supports)
+        }
     }
 
     fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<3> {

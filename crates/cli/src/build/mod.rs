@@ -18,6 +18,7 @@ mod checks;
 mod contact;
 mod curves;
 mod dim;
+mod dynamic;
 mod hertz;
 mod mesh;
 mod model;
@@ -31,6 +32,7 @@ mod validate;
 
 pub use checks::kind_name;
 pub(crate) use dim::SceneDim;
+pub use dynamic::{DynamicSim, DynamicStudy};
 pub use hertz::{HertzPlan, HertzShape};
 pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
@@ -85,6 +87,10 @@ pub enum Built {
     Plane(Box<Study>),
     /// A 3D study (`[analysis] type = "3d"`).
     Solid(Box<Study<3>>),
+    /// A 2D dynamic study (`[analysis] dynamic = true`).
+    PlaneDynamic(Box<DynamicStudy<2>>),
+    /// A 3D dynamic study.
+    SolidDynamic(Box<DynamicStudy<3>>),
 }
 
 /// The study's title: the scene's `title`, else the file's stem.
@@ -101,6 +107,14 @@ fn title(loaded: &Loaded) -> String {
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
 pub fn build(loaded: &Loaded) -> CliResult<Built> {
     let scene = &loaded.scene;
+    if let Some(a) = scene.analysis.as_ref().filter(|a| a.is_dynamic()) {
+        return Ok(if a.is_solid() {
+            Built::SolidDynamic(Box::new(dynamic::build::<3>(loaded)?))
+        } else {
+            Built::PlaneDynamic(Box::new(dynamic::build::<2>(loaded)?))
+        });
+    }
+    dynamic::refuse_in_static(scene)?;
     if scene.preset.is_none() && scene.analysis.as_ref().is_some_and(|a| a.is_solid()) {
         return Ok(Built::Solid(Box::new(solid::build(loaded)?)));
     }

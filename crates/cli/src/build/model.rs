@@ -22,6 +22,8 @@ pub(super) struct MaterialPlan {
     pub(super) regions: Vec<(KeyPath, u32)>,
     /// `materials[i].young`, where an overflowing stiffness is reported.
     pub(super) young: KeyPath,
+    /// `initial_velocity` (a dynamic scene) and its key path, as written.
+    pub(super) initial_velocity: Option<(KeyPath, crate::spec::Coords)>,
 }
 
 /// A support, checked; its node set is looked up in the mesh at build.
@@ -114,13 +116,34 @@ fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
     }
     let mut plans = Vec::new();
     let mut any_weight = false;
+    let dynamic = scene.analysis.as_ref().is_some_and(|a| a.is_dynamic());
     for (i, m) in scene.materials.iter().enumerate() {
         let p = root.key("materials").index(i);
         let young = positive(&p.key("young"), m.young)?;
         let poisson = poisson(&p.key("poisson"), m.poisson)?;
         let weight = non_negative(&p.key("unit_weight"), m.unit_weight)?;
         any_weight |= weight > 0.0;
-        let material = Material::new(young, poisson, weight).map_err(|e| fem(&p, e))?;
+        let mut material = Material::new(young, poisson, weight).map_err(|e| fem(&p, e))?;
+        match m.density {
+            Some(rho) => {
+                let rho = positive(&p.key("density"), rho)?;
+                material = material.with_density(rho).map_err(|e| fem(&p, e))?;
+            }
+            None if dynamic => {
+                bail!(
+                    p,
+                    "`{p}` needs `density` (> 0): every material of a dynamic scene has a mass"
+                );
+            }
+            None => {}
+        }
+        if !dynamic && m.initial_velocity.is_some() {
+            let vp = p.key("initial_velocity");
+            bail!(
+                vp,
+                "`{vp}` is a key of a dynamic scene (set `dynamic = true` in [analysis])"
+            );
+        }
         let regions: Vec<(KeyPath, u32)> = match (&m.region, &m.regions) {
             (Some(r), None) => vec![(p.key("region"), *r)],
             (None, Some(rs)) if !rs.is_empty() => rs
@@ -139,6 +162,10 @@ fn validate_materials(scene: &Scene) -> CliResult<(Vec<MaterialPlan>, bool)> {
             material,
             regions,
             young: p.key("young"),
+            initial_velocity: m
+                .initial_velocity
+                .clone()
+                .map(|v| (p.key("initial_velocity"), v)),
         });
     }
     Ok((plans, any_weight))
@@ -171,7 +198,11 @@ fn validate_supports(
             },
         });
     }
-    let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());
+    // a dynamic body needs no support: its inertia holds its rigid-body modes
+    let floating = scene
+        .analysis
+        .as_ref()
+        .is_some_and(|a| a.floating() || a.is_dynamic());
     if supports.is_empty() && !floating {
         bail!(
             root,

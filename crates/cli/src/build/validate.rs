@@ -36,6 +36,24 @@ pub(super) struct Plan {
     pub(super) contact: ContactPlan<2>,
 }
 
+/// The 2D idealisation of `[analysis]` (its thickness checked).
+pub(super) fn idealization(analysis: Analysis) -> CliResult<Idealization> {
+    let root = KeyPath::root();
+    Ok(match analysis {
+        Analysis::PlaneStrain {} => Idealization::PlaneStrain,
+        Analysis::PlaneStress { thickness } => Idealization::PlaneStress {
+            thickness: positive(&root.key("analysis").key("thickness"), thickness)?,
+        },
+        Analysis::Axisymmetric {} => Idealization::Axisymmetric,
+        Analysis::Solid {} => {
+            bail!(
+                root.key("analysis"),
+                "a 3D scene is built by the 3D builder (internal routing error)"
+            );
+        }
+    })
+}
+
 /// Checks every value of the scene that does not need the mesh, in the order of the file's
 /// sections (so that the first error reported is the first one met);
 /// `path` is the scene file's (Gmsh files are relative to it).
@@ -69,20 +87,7 @@ pub(super) fn validate(scene: &Scene, path: &Path) -> CliResult<Validated> {
             "the scene has no [analysis] (type = \"plane_strain\", \"plane_stress\" or \"axisymmetric\")",
         )
     })?;
-    let analysis = analysis.resolve(&root.key("analysis"))?;
-    let idealization = match analysis {
-        Analysis::PlaneStrain {} => Idealization::PlaneStrain,
-        Analysis::PlaneStress { thickness } => Idealization::PlaneStress {
-            thickness: positive(&root.key("analysis").key("thickness"), thickness)?,
-        },
-        Analysis::Axisymmetric {} => Idealization::Axisymmetric,
-        Analysis::Solid {} => {
-            bail!(
-                root.key("analysis"),
-                "a 3D scene is built by the 3D builder (internal routing error)"
-            );
-        }
-    };
+    let idealization = idealization(analysis.resolve(&root.key("analysis"))?)?;
     let mesh = mesh::validate(&mp, mesh_spec, Some(idealization), &base_dir)?;
 
     let floating = scene.analysis.as_ref().is_some_and(|a| a.floating());

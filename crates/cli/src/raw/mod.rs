@@ -12,10 +12,12 @@
 //! [`keys`] holds the two checks of keys; `[mesh]` and `[preset]`, the two largest tables, have
 //! a file each.
 
+mod dynamic;
 mod keys;
 mod mesh;
 mod preset;
 
+pub use dynamic::{DynamicSpec, MassSpec, restitution};
 pub use mesh::RawMesh;
 pub use preset::RawPreset;
 
@@ -43,6 +45,14 @@ pub struct RawAnalysis {
     kind: AnalysisKind,
     thickness: Option<f64>,
     floating: Option<bool>,
+    /// `dynamic = true`: a Moreau–Jean run ([`dynamic`] reads the keys below).
+    dynamic: Option<bool>,
+    time_step: Option<f64>,
+    end_time: Option<f64>,
+    theta: Option<f64>,
+    mass: Option<MassSpec>,
+    rayleigh_alpha: Option<f64>,
+    rayleigh_beta: Option<f64>,
 }
 
 impl RawAnalysis {
@@ -436,9 +446,16 @@ pub struct RawLaw {
     beta_0: Option<f64>,
     scheme: Option<SchemeSpec>,
     theta: Option<f64>,
+    /// Newton's restitution `e` of a dynamic scene (any law type).
+    restitution: Option<f64>,
 }
 
 impl RawLaw {
+    /// `restitution`, as written (a key of a dynamic scene, for every law type).
+    pub fn restitution(&self) -> Option<f64> {
+        self.restitution
+    }
+
     /// The law.
     pub fn resolve(&self, p: &KeyPath) -> CliResult<LawSpec> {
         let present = present!(self; mu, c_n, c_t, w, alpha, m, beta_0, scheme, theta);

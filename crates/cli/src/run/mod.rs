@@ -12,6 +12,7 @@
 mod csv;
 mod dim;
 mod driver;
+mod dynamic;
 mod errors;
 mod plane;
 mod plots;
@@ -24,6 +25,7 @@ mod solid;
 mod summary;
 mod vtk;
 
+pub use dynamic::run_dynamic;
 pub use summary::{Peak, StepTotals, Summary};
 
 use crate::build::{self, Body, Phase, Study, StudyDim, on_sim};

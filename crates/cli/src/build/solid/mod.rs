@@ -47,7 +47,7 @@ pub(super) fn build(loaded: &Loaded) -> CliResult<Study<3>> {
     if let Some(a) = &scene.analysis {
         a.resolve(&root.key("analysis"))?;
     }
-    let plan = model::validate(scene, &functions, &phases, ())?;
+    let plan = model::validate(scene, &functions, &phases, false)?;
     let contact = contact::validate::<3>(scene)?;
     refuse_unsupported(scene)?;
 
