@@ -34,6 +34,8 @@ mod issue_37_asymmetric;
 mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
 mod issue_39_dynamics;
+mod issue_39_hertz_impact;
+mod issue_39_integrator;
 mod issue_39_sliding_block;
 mod local_algorithms;
 mod matrix_free;
