@@ -2,22 +2,28 @@
 //! 1 000 contacts: a P2 strip `50 × 2.5` (500 × 25 cells, 102 102 dofs, plane strain,
 //! `E = 1e4`, `ν = 0.3`, `ρ = 1`, its own weight `ρ g = 10`) resting on a rigid line, its
 //! 1 001 bottom nodes the candidates, dropped at `v0 = 0.01` from contact (`θ = 1/2`, `e = 0`,
-//! `h = 1e-3`, consistent mass, Gauss–Seidel as set by default).
+//! `h = 1e-3`, consistent mass), on two paths: `active_set` (the default `Auto`, which takes
+//! the primal active set beyond 500 contacts: no `F*`, its own factorisations of `M̂` with the
+//! closed contacts as Dirichlet rows) and `dense` (`FlexibilityMode::Dense`: `F*` built once
+//! with one back-substitution per column, then Gauss–Seidel on it).
 //!
 //! Run: `cargo bench -p contact-solver --bench dynamics` (or, sharing the release build of
 //! the examples, `cargo bench --profile release -p contact-solver --bench dynamics`).
 //!
-//! Before the timed loop the bench steps 10 times (the first builds `F* = H M̂⁻¹ Hᵀ`), then
-//! counts the back-substitutions with `M̂` of 20 more steps
-//! ([`DynamicModel::solve_count`](fem_core::dynamic::DynamicModel::solve_count)) and prints
-//! their mean per step: the issue's bound is 3 (the free velocity, the recovery
-//! `M̂⁻¹ Hᵀ r`, and one spare). One thread (`faer::Par::Seq`). Each iteration is a whole
+//! Before each timed loop the bench steps 10 times (the first builds `F* = H M̂⁻¹ Hᵀ` on the
+//! dense path), then counts over 20 more steps the back-substitutions with `M̂`
+//! ([`DynamicModel::solve_count`](fem_core::dynamic::DynamicModel::solve_count)) and the
+//! path's own work ([`Counters`](contact_solver::Counters)) and prints their means per step:
+//! the issue's bound is 3 back-substitutions (the free velocity, the recovery `M̂⁻¹ Hᵀ r`, and
+//! one spare) plus the local solve. One thread (`faer::Par::Seq`). Each iteration is a whole
 //! step (`ContactSimulation::advance`: free response, detection, local solve, recovery,
 //! energy balance); a step allocates its report.
 
 use contact_laws::Signorini;
 use contact_solver::coupling::simulation::MoreauJean;
-use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
+use contact_solver::{
+    ContactSimulation, ContactZone, FlexibilityMode, RigidLine, SimulationSettings,
+};
 use criterion::{Criterion, criterion_group, criterion_main};
 use fem_core::dynamic::{DynamicModel, MassKind, Rayleigh};
 use fem_core::generate::{RectangleSpec, rectangle};
@@ -27,8 +33,8 @@ use std::time::Instant;
 
 type Sim = ContactSimulation<DynamicModel<2>, Signorini, 2, MoreauJean>;
 
-/// The strip of the module docs, not yet stepped.
-fn strip() -> Sim {
+/// The strip of the module docs with the flexibility path `mode`, not yet stepped.
+fn strip(mode: FlexibilityMode) -> Sim {
     let spec = RectangleSpec {
         kind: ElementKind::Tri6,
         ..RectangleSpec::new([0.0, 50.0], [0.0, 2.5], 500, 25)
@@ -48,16 +54,13 @@ fn strip() -> Sim {
         .expect("valid scheme");
     let ground = RigidLine::new([-1.0, 0.0], [51.0, 0.0]).expect("a line"); // normal +y
     let zone = ContactZone::rigid("ground", bottom, ground, Signorini, 0.01);
-    ContactSimulation::with_scheme(body, vec![zone], SimulationSettings::default(), scheme)
-        .expect("valid scene")
+    let settings = SimulationSettings::default().with_flexibility(mode);
+    ContactSimulation::with_scheme(body, vec![zone], settings, scheme).expect("valid scene")
 }
 
-fn bench_dynamics(c: &mut Criterion) {
-    faer::set_global_parallelism(faer::Par::Seq);
-    let h = 1e-3;
-    let start = Instant::now();
-    let mut sim = strip();
-    let built = start.elapsed();
+/// Steps `sim` 10 times, then prints the mean back-substitutions with `M̂` and the path's own
+/// work (active-set factorisations and solves, `F*` columns) over 20 more.
+fn count(name: &str, sim: &mut Sim, h: f64) {
     let start = Instant::now();
     let first = sim.advance(h).expect("a step");
     let first_time = start.elapsed();
@@ -65,25 +68,52 @@ fn bench_dynamics(c: &mut Criterion) {
     for _ in 0..9 {
         sim.advance(h).expect("a step");
     }
-    let (before, start) = (sim.structure().solve_count(), Instant::now());
+    let (before, counters, start) = (
+        sim.structure().solve_count(),
+        sim.counters(),
+        Instant::now(),
+    );
     let mut active = 0;
     for _ in 0..20 {
         active = sim.advance(h).expect("a step").report.active_contacts;
     }
-    let per_step = (sim.structure().solve_count() - before) as f64 / 20.0;
+    let elapsed = start.elapsed() / 20;
+    let after = sim.counters();
+    let per = |a: usize, b: usize| (a - b) as f64 / 20.0;
     eprintln!(
-        "moreau_jean_step: {} dofs, {} candidates, {active} active; model + M̂ {built:.2?}, \
-         first step {first_time:.2?} ({after_first} back-substitutions, F* included), then \
-         {per_step:.2} back-substitutions per step, {:.2?} per step",
+        "{name}: {} dofs, {} candidates, {active} active; first step {first_time:.2?} \
+         ({after_first} back-substitutions with M̂, F* {} columns); then per step: \
+         {:.2} back-substitutions with M̂, {:.2} active-set factorisations, {:.2} active-set \
+         solves, {:.2} F* columns, {:.2} contact iterations; {elapsed:.2?} per step",
         sim.structure().dof_count(),
         first.contacts.len(),
-        start.elapsed() / 20
+        counters.flexibility_columns,
+        per(sim.structure().solve_count(), before),
+        per(
+            after.active_set_factorizations,
+            counters.active_set_factorizations
+        ),
+        per(after.active_set_solves, counters.active_set_solves),
+        per(after.flexibility_columns, counters.flexibility_columns),
+        per(after.contact_iterations, counters.contact_iterations),
     );
+}
+
+fn bench_dynamics(c: &mut Criterion) {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let h = 1e-3;
     let mut g = c.benchmark_group("solver/moreau_jean_step");
     g.sample_size(10);
-    g.bench_function("strip_1e5_dofs_1000_contacts", |b| {
-        b.iter(|| black_box(sim.advance(h).expect("a step")))
-    });
+    for (name, mode) in [
+        ("active_set", FlexibilityMode::Auto { dense_limit: 500 }),
+        ("dense", FlexibilityMode::Dense),
+    ] {
+        let mut sim = strip(mode);
+        count(name, &mut sim, h);
+        g.bench_function(format!("strip_1e5_dofs_1000_contacts_{name}"), |b| {
+            b.iter(|| black_box(sim.advance(h).expect("a step")))
+        });
+    }
     g.finish();
 }
 

@@ -20,10 +20,10 @@
 use contact_laws::Signorini;
 use contact_solver::coupling::simulation::MoreauJean;
 use contact_solver::{ContactSimulation, ContactZone, RigidLine, SimulationSettings};
+use fem_core::Supports;
 use fem_core::dynamic::{DynamicModel, MassKind, Rayleigh};
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::{ElementKind, Idealization, LinearElasticModel, Material, Mesh, Structure};
-use fem_core::Supports;
 use serde_json::json;
 use std::time::Instant;
 

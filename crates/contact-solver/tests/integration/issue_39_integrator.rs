@@ -59,8 +59,7 @@ fn simulation(
 ) -> ContactSimulation<DynamicModel<2>, Signorini, 2, MoreauJean> {
     let far = RigidLine::new([14.0, -1.0], [14.0, 2.0]).unwrap(); // normal −x, 10 away
     let zone = ContactZone::rigid("far", right, far, Signorini, 0.1);
-    ContactSimulation::with_scheme(body, vec![zone], SimulationSettings::default(), scheme)
-        .unwrap()
+    ContactSimulation::with_scheme(body, vec![zone], SimulationSettings::default(), scheme).unwrap()
 }
 
 /// The dense `n × n` matrix of the product `mul` (column j = `mul(e_j)`).
@@ -129,7 +128,9 @@ fn issue_39_theta_method_recurrence_matches_moreau_jean() {
         let res = sim.step(s as f64 * h, lambda(s)).unwrap();
         assert_eq!(res.report.active_contacts, 0); // event-free
         let f_theta = ((1.0 - theta) * lambda_k + theta * lambda(s)) * col(&f1);
-        let rhs = &m * &v - (h * (1.0 - theta)) * (&c * &v) - h * (&k * &u)
+        let rhs = &m * &v
+            - (h * (1.0 - theta)) * (&c * &v)
+            - h * (&k * &u)
             - (h * h * theta * (1.0 - theta)) * (&k * &v)
             + h * f_theta;
         let v_next = lu.solve(&rhs);
@@ -146,7 +147,11 @@ fn issue_39_theta_method_recurrence_matches_moreau_jean() {
     );
     // two exact solutions of one linear recurrence, computed two ways (sparse Cholesky of
     // M̂ with v_free, dense LU): round-off of 12 steps on a matrix of condition ~1e4
-    assert!(worst_u < 1e-12 && worst_v < 1e-12, "{worst_u:e} {worst_v:e}");
+    // (measured 4.0e-15 on u, 1.7e-14 on v)
+    assert!(
+        worst_u < 1e-12 && worst_v < 1e-12,
+        "{worst_u:e} {worst_v:e}"
+    );
 }
 
 #[test]
@@ -204,7 +209,7 @@ fn issue_39_one_mode_keeps_its_period_and_energy() {
     // the dense eigenvector is exact to ~1e-13 of its norm; the other modes it carries at
     // that level rotate at their own φ_h but stay at that level (the map is an isometry in
     // the energy norm): 200 steps of round-off on top (measured 4.4e-11)
-    assert!(worst < 1e-10, "{worst:e}");
+    assert!(worst < 2e-10, "{worst:e}");
     // the discrete period is the closed form's, not the ODE's (the test can tell them apart)
     assert!(elongation > 1e-3);
     // θ = 1/2: T + V is conserved by the trapezoidal rule; what is left is the round-off of

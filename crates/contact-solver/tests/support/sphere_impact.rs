@@ -115,10 +115,7 @@ fn material() -> Material {
 
 /// The axisymmetric sphere on `mesh` ([`meridian`]) with `u_r = 0` on the axis, and its
 /// contact zone on the plane `z = −R` (touching the pole).
-pub fn axisymmetric(
-    mesh: Mesh,
-    mass: MassKind,
-) -> (DynamicModel<2>, ContactZone<Signorini, 2>) {
+pub fn axisymmetric(mesh: Mesh, mass: MassKind) -> (DynamicModel<2>, ContactZone<Signorini, 2>) {
     let (axis, bottom) = (
         mesh.node_set("left").unwrap().to_vec(),
         mesh.node_set("bottom").unwrap().to_vec(),
@@ -191,7 +188,9 @@ where
 {
     let scheme = MoreauJean::new(0.5)
         .unwrap()
-        .with_velocity_field(&body, |_| core::array::from_fn(|d| if d == D - 1 { -v0 } else { 0.0 }))
+        .with_velocity_field(&body, |_| {
+            core::array::from_fn(|d| if d == D - 1 { -v0 } else { 0.0 })
+        })
         .unwrap();
     let n = body.dof_count();
     let mut ones = vec![0.0; n];
@@ -208,11 +207,15 @@ where
     let (mut force, mut velocity) = (Vec::new(), Vec::new());
     for _ in 0..steps {
         let res = sim.advance(h).unwrap();
-        force.push(copies * res
-            .contacts
-            .iter()
-            .map(|c| <Dim<D> as ContactSpace<D>>::components(&c.r)[0])
-            .sum::<f64>() / h);
+        force.push(
+            copies
+                * res
+                    .contacts
+                    .iter()
+                    .map(|c| <Dim<D> as ContactSpace<D>>::components(&c.r)[0])
+                    .sum::<f64>()
+                / h,
+        );
         let v = sim.scheme().velocity();
         velocity.push(m1.iter().zip(v).map(|(a, b)| a * b).sum::<f64>() / mass);
     }
