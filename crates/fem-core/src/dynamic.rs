@@ -194,7 +194,9 @@ where
     /// [`Structure::solve_in_place`], one per column of [`Structure::solve_many_in_place`]
     /// (a relaxed atomic counter, so the cost of a solve is unchanged). A velocity-level scheme
     /// needs two per step without contact changes (`v_free`, then `M̂⁻¹ Hᵀ r`); building
-    /// `F* = H M̂⁻¹ Hᵀ` adds one per contact column, once per step size.
+    /// `F* = H M̂⁻¹ Hᵀ` adds one per contact column, once per step size. A solver that
+    /// factorises `M̂` itself (through [`Structure::stiffness_matrix`], as the contact
+    /// solver's primal active set does) counts its own solves.
     ///
     /// # Examples
     /// ```
