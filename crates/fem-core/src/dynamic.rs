@@ -20,6 +20,7 @@ use crate::model::{ElasticModel, ModelSpace};
 use crate::space::Dim;
 use crate::structure::{Mass, Structure};
 use crate::{Idealization, error::positive};
+use core::sync::atomic::{AtomicUsize, Ordering};
 use faer::MatMut;
 use faer::sparse::SparseColMatRef;
 
@@ -96,6 +97,8 @@ where
     /// The model's stiffness version `M̂` was formed with.
     model_version: u64,
     version: u64,
+    /// Back-substitutions with `M̂` so far ([`DynamicModel::solve_count`]).
+    solves: AtomicUsize,
 }
 
 impl<const D: usize> core::fmt::Debug for DynamicModel<D>
@@ -109,6 +112,7 @@ where
             .field("damping", &self.damping)
             .field("step", &self.step)
             .field("version", &self.version)
+            .field("solves", &self.solve_count())
             .finish()
     }
 }
@@ -146,6 +150,7 @@ where
             solver: None,
             model_version: 0,
             version: 0,
+            solves: AtomicUsize::new(0),
         };
         dynamic.follow_model()?;
         Ok(dynamic)
@@ -183,6 +188,34 @@ where
     /// The Rayleigh damping.
     pub fn damping(&self) -> Rayleigh {
         self.damping
+    }
+
+    /// The number of back-substitutions with `M̂` since construction: one per
+    /// [`Structure::solve_in_place`], one per column of [`Structure::solve_many_in_place`]
+    /// (a relaxed atomic counter, so the cost of a solve is unchanged). A velocity-level scheme
+    /// needs two per step without contact changes (`v_free`, then `M̂⁻¹ Hᵀ r`); building
+    /// `F* = H M̂⁻¹ Hᵀ` adds one per contact column, once per step size. A solver that
+    /// factorises `M̂` itself (through [`Structure::stiffness_matrix`], as the contact
+    /// solver's primal active set does) counts its own solves.
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::dynamic::{DynamicModel, MassKind, Rayleigh};
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    /// use fem_core::{Idealization, LinearElasticModel, Material, Structure, Supports};
+    /// let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [0.0, 1.0], 2, 2))?;
+    /// let m = Material::new(200.0, 0.3, 0.0)?.with_density(2.0)?;
+    /// let model = LinearElasticModel::floating(mesh, Idealization::PlaneStrain,
+    ///     &[(0, m)], Supports::new())?;
+    /// let mut dynamic = DynamicModel::new(model, MassKind::Lumped, Rayleigh::default())?;
+    /// dynamic.set_step(0.1, 0.5)?;
+    /// let mut b = vec![1.0; dynamic.dof_count()];
+    /// dynamic.solve_in_place(&mut b)?;
+    /// assert_eq!(dynamic.solve_count(), 1);
+    /// # Ok::<(), fem_core::FemError>(())
+    /// ```
+    pub fn solve_count(&self) -> usize {
+        self.solves.load(Ordering::Relaxed)
     }
 
     /// The `(h, θ)` that `M̂` is factorised for, `None` before the first [`Self::set_step`].
@@ -418,12 +451,15 @@ where
     /// Solves `M̂ x = b`.
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
         self.factored()?.solve_in_place(rhs);
+        self.solves.fetch_add(1, Ordering::Relaxed);
         Ok(())
     }
 
     /// Solves `M̂ X = B`.
     fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+        let columns = rhs.ncols();
         self.factored()?.solve_many_in_place(rhs);
+        self.solves.fetch_add(columns, Ordering::Relaxed);
         Ok(())
     }
 
@@ -504,6 +540,20 @@ mod tests {
         assert_eq!(d.stiffness_version(), v);
         d.set_step(0.05, 0.5).unwrap();
         assert_eq!(d.stiffness_version(), v + 1);
+    }
+
+    #[test]
+    fn solve_count_works() {
+        // one per single solve, one per column of a many-solve; a failed solve (no step) none
+        let mut d = DynamicModel::new(square(), MassKind::Lumped, Rayleigh::default()).unwrap();
+        let n = d.dof_count();
+        assert!(d.solve_in_place(&mut vec![1.0; n]).is_err());
+        assert_eq!(d.solve_count(), 0);
+        d.set_step(0.1, 0.5).unwrap();
+        d.solve_in_place(&mut vec![1.0; n]).unwrap();
+        let mut many = faer::Mat::<f64>::zeros(n, 3);
+        d.solve_many_in_place(many.as_mut()).unwrap();
+        assert_eq!(d.solve_count(), 4);
     }
 
     #[test]

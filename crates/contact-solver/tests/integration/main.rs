@@ -36,6 +36,8 @@ mod issue_37_semidefinite;
 mod issue_39_adhesion;
 mod issue_39_contactors;
 mod issue_39_dynamics;
+mod issue_39_hertz_impact;
+mod issue_39_integrator;
 mod issue_39_sliding_block;
 mod local_algorithms;
 mod matrix_free;

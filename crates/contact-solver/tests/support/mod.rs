@@ -9,5 +9,7 @@ pub mod hertz_revolved;
 #[cfg(feature = "fe")]
 pub mod hertz_scene;
 #[cfg(feature = "fe")]
+pub mod sphere_impact;
+#[cfg(feature = "fe")]
 pub mod stress_cases;
 pub mod twins;
