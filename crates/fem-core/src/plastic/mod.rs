@@ -23,6 +23,9 @@
 
 use crate::error::{FemError, non_negative, positive};
 
+mod drucker_prager;
+#[cfg(test)]
+mod drucker_prager_tests;
 mod model;
 mod model_initial;
 mod model_post;
@@ -30,6 +33,7 @@ mod model_post;
 mod model_tests;
 pub mod newton;
 
+pub use drucker_prager::{ConeMatch, DruckerPrager, DruckerPragerParameters};
 pub use model::PlasticModel;
 pub use model_post::PlasticOutputs;
 
