@@ -21,7 +21,6 @@ use crate::structure::{Nonlinear, Structure};
 
 /// The settings of [`solve`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
 pub struct NewtonSettings {
     /// The number of equal load steps from `start` to `end` (before any cut); at least 1.
     pub steps: usize,
