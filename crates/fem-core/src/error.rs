@@ -367,7 +367,7 @@ pub enum FemError {
         /// The step cuts made.
         cuts: usize,
         /// The residual history of every step tried.
-        report: Box<crate::plastic::newton::NewtonReport>,
+        report: Box<crate::convergence::NewtonReport>,
     },
 }
 

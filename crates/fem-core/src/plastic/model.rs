@@ -185,7 +185,9 @@ where
             };
             law_of.push(law);
             mesh.element_coords_into(e, &mut coords);
-            let rule = elastic.element_at(e).stiffness_rule(elastic.setting(), &coords);
+            let rule = elastic
+                .element_at(e)
+                .stiffness_rule(elastic.setting(), &coords);
             offsets.push(offsets[e] + rule.len());
         }
         let points = offsets[mesh.element_count()];

@@ -37,7 +37,9 @@ fn plane(kind: ElementKind, idealization: Idealization, x0: f64) -> LinearElasti
     let right: Vec<usize> = right.into_iter().filter(|n| !bottom.contains(n)).collect();
     let top_left = mesh.node_set("top_left").unwrap()[0];
     let mut supports = Supports::new();
-    supports.fix(&bottom, Component::X).fix(&bottom, Component::Y);
+    supports
+        .fix(&bottom, Component::X)
+        .fix(&bottom, Component::Y);
     supports.prescribe(&right, Component::X, 0.01).unwrap();
     let mut model =
         LinearElasticModel::new(mesh, idealization, &[(0, material(20.0))], supports).unwrap();
@@ -126,18 +128,27 @@ fn commit_and_rollback_round_trip_works() {
     body.internal_force_into(&u_1, &mut f_1).unwrap();
     body.rollback();
     assert!(
-        body.committed_states().iter().all(|s| *s == PointState::default()),
+        body.committed_states()
+            .iter()
+            .all(|s| *s == PointState::default()),
         "an evaluation leaves the committed state alone"
     );
     body.internal_force_into(&u_1, &mut f_1).unwrap();
     body.update_tangent().unwrap();
-    assert!(body.stiffness_version() > version, "a new tangent, a new version");
+    assert!(
+        body.stiffness_version() > version,
+        "a new tangent, a new version"
+    );
     body.commit();
     let committed = body.committed_states().to_vec();
     assert!(committed.iter().any(|s| s.strain != [0.0; 6]));
     body.internal_force_into(&u_2, &mut f_2).unwrap();
     body.rollback();
-    assert_eq!(body.committed_states(), &committed[..], "rollback keeps the commit");
+    assert_eq!(
+        body.committed_states(),
+        &committed[..],
+        "rollback keeps the commit"
+    );
     // from the committed state at u_1, u_1 again is a zero increment: σ = σ_c exactly
     body.internal_force_into(&u_1, &mut f_again).unwrap();
     assert_eq!(f_again, f_1);
@@ -164,7 +175,9 @@ fn ground(kind: ElementKind, idealization: Idealization) -> LinearElasticModel {
         .flat_map(|s| mesh.node_set(s).unwrap().to_vec())
         .collect();
     let mut supports = Supports::new();
-    supports.fix(&bottom, Component::X).fix(&bottom, Component::Y);
+    supports
+        .fix(&bottom, Component::X)
+        .fix(&bottom, Component::Y);
     supports.fix(&sides, Component::X);
     let m = material(20.0);
     let mut model =
@@ -185,7 +198,10 @@ fn issue_40_geostatic_state_is_in_equilibrium_works() {
         (ElementKind::Tri6, Idealization::Axisymmetric),
     ] {
         let settlement = ground(kind, idealization).solve(1.0).unwrap();
-        let scale = settlement.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let scale = settlement
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
         let laws = [(0, elastic_point()), (1, elastic_point())];
         let mut body = PlasticModel::new(ground(kind, idealization), &laws).unwrap();
         body.set_geostatic(2.0, &[(0, 0.6), (1, 0.6)]).unwrap();
@@ -195,12 +211,19 @@ fn issue_40_geostatic_state_is_in_equilibrium_works() {
         body.internal_force_into(&vec![0.0; n], &mut f_int).unwrap();
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
         let r: Vec<f64> = f_ext.iter().zip(&f_int).map(|(e, i)| e - i).collect();
-        assert!(norm(&r) < 1e-12 * norm(&f_ext), "{kind:?}: {:e}", norm(&r) / norm(&f_ext));
+        assert!(
+            norm(&r) < 1e-12 * norm(&f_ext),
+            "{kind:?}: {:e}",
+            norm(&r) / norm(&f_ext)
+        );
         body.update_tangent().unwrap();
         let mut du = r;
         body.solve_in_place(&mut du).unwrap();
         let moved = du.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        assert!(moved < 1e-12 * scale, "{kind:?}: moved {moved:e} of {scale:e}");
+        assert!(
+            moved < 1e-12 * scale,
+            "{kind:?}: moved {moved:e} of {scale:e}"
+        );
         let outputs = body.element_outputs();
         // the mean vertical stress of an element is −γ × its mean depth: negative
         assert!(outputs.stress.iter().all(|s| s[1] < 0.0));
@@ -305,7 +328,10 @@ fn plastic_model_rejects_bad_input() {
     let mut f = vec![0.0; n];
     assert!(matches!(
         body.internal_force_into(&u, &mut f),
-        Err(FemError::NonFiniteSolve { what: "displacement", .. })
+        Err(FemError::NonFiniteSolve {
+            what: "displacement",
+            ..
+        })
     ));
     u.fill(0.0);
     let bad = NewtonSettings {
@@ -314,7 +340,10 @@ fn plastic_model_rejects_bad_input() {
     };
     assert!(matches!(
         newton::solve(&mut body, &mut u, 0.0, 1.0, &bad),
-        Err(FemError::InvalidParameter { name: "tolerance", .. })
+        Err(FemError::InvalidParameter {
+            name: "tolerance",
+            ..
+        })
     ));
     assert!(matches!(
         newton::solve(&mut body, &mut u, 0.0, f64::NAN, &NewtonSettings::default()),
@@ -363,10 +392,16 @@ fn issue_40_newton_cuts_steps_and_keeps_the_last_converged_state() {
     let right = mesh.node_set("right").unwrap().to_vec();
     let bottom_left = mesh.node_set("bottom_left").unwrap().to_vec();
     let mut supports = Supports::new();
-    supports.fix(&left, Component::X).fix(&bottom_left, Component::Y);
-    let mut elastic =
-        LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, material(0.0))], supports)
-            .unwrap();
+    supports
+        .fix(&left, Component::X)
+        .fix(&bottom_left, Component::Y);
+    let mut elastic = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(0, material(0.0))],
+        supports,
+    )
+    .unwrap();
     // E A ε = F with A = 0.1 (ν = 0): half the force on each right node
     for &node in &right {
         elastic

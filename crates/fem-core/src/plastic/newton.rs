@@ -15,6 +15,7 @@
 //! tried is kept in the [`NewtonReport`]; with the consistent tangent of an associated law
 //! they fall quadratically.
 
+pub use crate::convergence::{NewtonReport, NewtonStep};
 use crate::error::{FemError, finite, positive};
 use crate::space::{Dim, Space};
 use crate::structure::{Nonlinear, Structure};
@@ -51,38 +52,6 @@ impl NewtonSettings {
             steps,
             ..Self::default()
         }
-    }
-}
-
-/// One load step tried: its load factor and the relative residual before each solve and
-/// after the last (so `residuals.len() − 1` solves when it converged).
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct NewtonStep {
-    /// The load factor at the end of the step.
-    pub load_factor: f64,
-    /// The relative residual of every iterate (module docs).
-    pub residuals: Vec<f64>,
-    /// Whether the step converged (else it was cut, or the path failed).
-    pub converged: bool,
-}
-
-/// The history of a Newton load path ([`solve`]).
-#[derive(Clone, Debug, Default, PartialEq)]
-#[non_exhaustive]
-pub struct NewtonReport {
-    /// Every step tried, in order (the cut ones included, with `converged: false`).
-    pub steps: Vec<NewtonStep>,
-    /// The step halvings made.
-    pub cuts: usize,
-    /// The load factor of the last converged state.
-    pub load_factor: f64,
-}
-
-impl NewtonReport {
-    /// The converged steps.
-    pub fn converged_steps(&self) -> impl Iterator<Item = &NewtonStep> {
-        self.steps.iter().filter(|s| s.converged)
     }
 }
 
@@ -154,8 +123,16 @@ where
             report.load_factor + step
         };
         let mut residuals = Vec::with_capacity(settings.max_iterations + 1);
-        let converged = iterate(structure, u, target, tolerance, settings, &mut buffers, &mut residuals)
-            .unwrap_or(false);
+        let converged = iterate(
+            structure,
+            u,
+            target,
+            tolerance,
+            settings,
+            &mut buffers,
+            &mut residuals,
+        )
+        .unwrap_or(false);
         report.steps.push(NewtonStep {
             load_factor: target,
             residuals,

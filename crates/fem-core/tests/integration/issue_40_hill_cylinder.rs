@@ -91,7 +91,11 @@ fn hill_radius(p: f64) -> f64 {
     let (mut lo, mut hi) = (A, B);
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if pressure(mid) < p { lo = mid } else { hi = mid }
+        if pressure(mid) < p {
+            lo = mid
+        } else {
+            hi = mid
+        }
     }
     0.5 * (lo + hi)
 }
@@ -138,7 +142,10 @@ fn issue_40_hill_thick_cylinder_works() {
         lambda = p;
         check_quadratic(&report);
         let (c, expected) = (plastic_radius(&body), hill_radius(p * K));
-        assert!((c - expected).abs() < 0.01 * expected, "p = {p}: c = {c}, Hill {expected}");
+        assert!(
+            (c - expected).abs() < 0.01 * expected,
+            "p = {p}: c = {c}, Hill {expected}"
+        );
     }
     // on to 1.01 p_L: the path must stop converging between 0.99 p_L and 1.01 p_L
     let limit = 2.0 * K * (B / A).ln();
