@@ -40,14 +40,16 @@ const MEMBERSHIP_TOLERANCE: f64 = 1e-12;
 #[non_exhaustive]
 pub enum ConeMatch {
     /// The seed's choice: with associated flow in plane strain (`ε̇ᵖ_zz = 0`) the cone gives
-    /// Mohr–Coulomb's limit states exactly.
+    /// Mohr–Coulomb's limit states exactly. It is also the cone inscribed in the pyramid
+    /// (tangent to its faces, `k_d = √6 cos φ / √(3 + sin²φ)`, the same number): the seed's
+    /// "cône tangentiel à l'intérieur de pyramide de Mohr–Coulomb".
     #[default]
     PlaneStrain,
     /// Through the compression meridians of the pyramid (triaxial compression,
     /// `σ₁ = σ₂ > σ₃`): the cone circumscribes the pyramid.
     Outer,
     /// Through the extension meridians of the pyramid (triaxial extension,
-    /// `σ₁ > σ₂ = σ₃`).
+    /// `σ₁ > σ₂ = σ₃`); partly outside the pyramid between them.
     Inner,
 }
 
@@ -109,8 +111,16 @@ pub struct DruckerPrager {
     /// Shear modulus `G`.
     shear: f64,
     k_d: f64,
+    /// `1 / k_d`.
+    inv_k_d: f64,
+    /// Lamé's `λ = K − 2G/3`.
+    lame: f64,
     tan_phi: f64,
     tan_theta: f64,
+    /// `H = 2G / k_d² + K tan θ tan φ`, the denominator of the smooth return.
+    plastic_modulus: f64,
+    /// The elastic tangent `C`, kept (the hot loop starts every update from it).
+    elastic: VoigtMatrix,
 }
 
 impl DruckerPrager {
@@ -156,13 +166,22 @@ impl DruckerPrager {
             });
         }
         let (phi, theta) = (phi.to_radians(), theta.to_radians());
+        let (bulk, shear) = (
+            young / (3.0 * (1.0 - 2.0 * poisson)),
+            young / (2.0 * (1.0 + poisson)),
+        );
+        let (k_d, tan_phi, tan_theta) = (parameters.cone.k_d(phi), phi.tan(), theta.tan());
         Ok(Self {
             parameters,
-            bulk: young / (3.0 * (1.0 - 2.0 * poisson)),
-            shear: young / (2.0 * (1.0 + poisson)),
-            k_d: parameters.cone.k_d(phi),
-            tan_phi: phi.tan(),
-            tan_theta: theta.tan(),
+            bulk,
+            shear,
+            k_d,
+            inv_k_d: 1.0 / k_d,
+            lame: bulk - 2.0 * shear / 3.0,
+            tan_phi,
+            tan_theta,
+            plastic_modulus: 2.0 * shear / (k_d * k_d) + bulk * tan_theta * tan_phi,
+            elastic: isotropic_tangent(young, poisson),
         })
     }
 
@@ -243,32 +262,45 @@ impl DruckerPrager {
         cohesive + self.k_d * e_norm * (c - (self.tan_phi - self.tan_theta) * s_m)
     }
 
-    /// The consistent tangent of the smooth return (`docs/theory.md`, section 15):
-    /// `C − a ⊗ b / H − β (P − n ⊗ n)`.
-    fn smooth_tangent(&self, n: &Voigt, dlambda: f64, s_trial_norm: f64, h: f64) -> VoigtMatrix {
+    /// Writes the consistent tangent of the smooth return (`docs/theory.md`, section 15),
+    /// `C − a ⊗ b / H − β (P − n ⊗ n)`, into `tangent`.
+    fn smooth_tangent_into(
+        &self,
+        n: &Voigt,
+        dlambda: f64,
+        s_trial_norm: f64,
+        tangent: &mut VoigtMatrix,
+    ) {
         let (g, k) = (self.shear, self.bulk);
-        let mut tangent = isotropic_tangent(self.parameters.young, self.parameters.poisson);
-        // a = 2G n / k_d + K tan θ δ (flow), b = 2G n / k_d + K tan φ δ (yield normal)
+        let two_g_k_d = 2.0 * g * self.inv_k_d;
+        // a = 2G n / k_d + K tan θ δ (flow), b = (2G n / k_d + K tan φ δ) / H (yield normal)
+        let inv_h = 1.0 / self.plastic_modulus;
         let mut a = [0.0; 6];
         let mut b = [0.0; 6];
         for i in 0..6 {
-            let unit = if i < 3 { 1.0 } else { 0.0 };
-            a[i] = 2.0 * g * n[i] / self.k_d + k * self.tan_theta * unit;
-            b[i] = 2.0 * g * n[i] / self.k_d + k * self.tan_phi * unit;
+            a[i] = two_g_k_d * n[i];
+            b[i] = a[i] * inv_h;
         }
-        let beta = 4.0 * g * g * dlambda / (self.k_d * s_trial_norm);
+        for i in 0..3 {
+            a[i] += k * self.tan_theta;
+            b[i] += k * self.tan_phi * inv_h;
+        }
+        let beta = 2.0 * g * two_g_k_d * dlambda / s_trial_norm;
+        *tangent = self.elastic;
         for (i, row) in tangent.iter_mut().enumerate() {
             for (j, entry) in row.iter_mut().enumerate() {
-                // P maps engineering strains to the tensor deviator
-                let p = match (i < 3, j < 3) {
-                    (true, true) => f64::from(u8::from(i == j)) - 1.0 / 3.0,
-                    (false, false) if i == j => 0.5,
-                    _ => 0.0,
-                };
-                *entry -= a[i] * b[j] / h + beta * (p - n[i] * n[j]);
+                *entry -= a[i] * b[j] - beta * n[i] * n[j];
             }
         }
-        tangent
+        // − β P, P mapping engineering strains to the tensor deviator
+        for (i, row) in tangent.iter_mut().enumerate().take(3) {
+            for (j, entry) in row.iter_mut().enumerate().take(3) {
+                *entry -= beta * (f64::from(u8::from(i == j)) - 1.0 / 3.0);
+            }
+        }
+        for (i, row) in tangent.iter_mut().enumerate().skip(3) {
+            row[i] -= 0.5 * beta;
+        }
     }
 }
 
@@ -313,7 +345,7 @@ fn strain_norm(strain: &Voigt) -> f64 {
 
 impl ConstitutivePoint for DruckerPrager {
     fn elastic_tangent(&self) -> VoigtMatrix {
-        isotropic_tangent(self.parameters.young, self.parameters.poisson)
+        self.elastic
     }
 
     /// The closed-form return of the module docs: elastic predictor, then the smooth return
@@ -334,7 +366,7 @@ impl ConstitutivePoint for DruckerPrager {
             });
         }
         let (g, k) = (self.shear, self.bulk);
-        let lambda = k - 2.0 * g / 3.0;
+        let lambda = self.lame;
         let mut d = [0.0; 6];
         for (i, v) in d.iter_mut().enumerate() {
             *v = strain[i] - committed.strain[i];
@@ -352,31 +384,43 @@ impl ConstitutivePoint for DruckerPrager {
         let (m_trial, s_trial) = split(&stress_trial);
         let a_trial = stress_norm(&s_trial);
         let c = self.parameters.cohesion;
-        let f_trial = a_trial / self.k_d + m_trial * self.tan_phi - c;
+        let inv_k_d = self.inv_k_d;
+        let f_trial = a_trial * inv_k_d + m_trial * self.tan_phi - c;
+        if !f_trial.is_finite() {
+            // a finite strain (or committed stress) whose elastic trial stress overflows
+            return Err(FemError::InvalidParameter {
+                name: "strain",
+                value: strain.iter().fold(0.0, |m, v| m.max(v.abs())),
+                expected: "a strain increment whose elastic trial stress is finite",
+            });
+        }
         if f_trial <= 0.0 {
             trial.stress = stress_trial;
             trial.yielding = false;
             *tangent = self.elastic_tangent();
             return Ok(());
         }
-        let h = 2.0 * g / (self.k_d * self.k_d) + k * self.tan_theta * self.tan_phi;
-        let dlambda = f_trial / h;
-        let a_new = a_trial - 2.0 * g * dlambda / self.k_d;
+        let dlambda = f_trial / self.plastic_modulus;
+        let a_new = a_trial - 2.0 * g * dlambda * inv_k_d;
         let mut dp = [0.0; 6];
-        if a_new > 0.0 {
+        // at φ = 0, a_new = k_d c > 0 (no apex) up to a round-off that a tiny c could expose
+        if a_new > 0.0 || self.tan_phi == 0.0 {
+            let a_new = a_new.max(0.0);
             // smooth return along n = s_trial / ‖s_trial‖, which it keeps
-            let mut n = s_trial;
-            for v in &mut n {
-                *v /= a_trial;
-            }
+            let inv_a = 1.0 / a_trial;
+            let n = s_trial.map(|v| v * inv_a);
             let m_new = m_trial - k * dlambda * self.tan_theta;
-            for i in 0..6 {
-                let (unit, engineering) = if i < 3 { (1.0, 1.0) } else { (0.0, 2.0) };
-                trial.stress[i] = m_new * unit + a_new * n[i];
-                // Δεᵖ = Δλ (n / k_d + tan θ / 3 · 1), shears engineering
-                dp[i] = dlambda * (engineering * n[i] / self.k_d + unit * self.tan_theta / 3.0);
+            // Δεᵖ = Δλ (n / k_d + tan θ / 3 · 1), shears engineering
+            let (flow, dilation) = (dlambda * inv_k_d, dlambda * self.tan_theta / 3.0);
+            for i in 0..3 {
+                trial.stress[i] = m_new + a_new * n[i];
+                dp[i] = flow * n[i] + dilation;
             }
-            *tangent = self.smooth_tangent(&n, dlambda, a_trial, h);
+            for i in 3..6 {
+                trial.stress[i] = a_new * n[i];
+                dp[i] = 2.0 * flow * n[i];
+            }
+            self.smooth_tangent_into(&n, dlambda, a_trial, tangent);
         } else {
             // apex: a_new ≤ 0 needs tan φ > 0 (at φ = 0, a_new = k_d c > 0); Δεᵖ = C⁻¹(σ_trial −
             // σ_apex) lies in K_ε exactly when the smooth return fails (docs/theory.md)

@@ -184,7 +184,8 @@ fn issue_40_triaxial_extension_matches_the_closed_form() {
 /// Simple shear `γ_xy = t` from 50 of confinement (plane strain): `τ = G γ` until
 /// `√2 τ / k_d − p0 tan φ = c`, then `τ̇ = G − √2 G λ̇ / k_d`, `ṡ_m = −K λ̇ tan θ`,
 /// `γ̇ᵖ = √2 λ̇ / k_d`, `ε̇ᵖ_v = λ̇ tan θ` with `λ̇ = √2 G / (k_d H)`; for θ = 0 the shear stress
-/// stays at its yield value. Tolerance 1e-10 relative (module docs).
+/// stays at its yield value; `ε̄ᵖ = √(2/3) ‖εᵖ‖` (parallel increments). Tolerance 1e-10
+/// relative (module docs).
 #[test]
 fn issue_40_simple_shear_matches_the_closed_form() {
     let p0 = 50.0;
@@ -232,6 +233,15 @@ fn issue_40_simple_shear_matches_the_closed_form() {
                     "stationary τ"
                 );
             }
+            // the increments are parallel: ε̄ᵖ = √(2/3) ‖εᵖ‖, ‖εᵖ‖² = ε_v²/3 + γᵖ²/2
+            let gamma_p = expected_plastic[3];
+            let equivalent =
+                (2.0 / 3.0 * (plastic_v * plastic_v / 3.0 + 0.5 * gamma_p * gamma_p)).sqrt();
+            assert!(
+                (trial.equivalent_plastic_strain - equivalent).abs() <= 1e-10 * t,
+                "ε̄ᵖ = {} vs {equivalent}",
+                trial.equivalent_plastic_strain
+            );
             committed = trial;
         }
     }
@@ -246,6 +256,13 @@ fn issue_40_plane_strain_cone_reproduces_mohr_coulomb() {
     for phi_deg in [0.0f64, 10.0, 20.0, 35.0, 50.0] {
         let (phi, c) = (phi_deg.to_radians(), 7.0);
         let dp = point(phi_deg, 0.0, c, ConeMatch::PlaneStrain);
+        // the same number as the cone inscribed in the pyramid (tangent to its faces)
+        let inscribed = 6f64.sqrt() * phi.cos() / (3.0 + phi.sin().powi(2)).sqrt();
+        assert!(
+            (dp.k_d() - inscribed).abs() < 1e-14,
+            "k_d = {} vs {inscribed}",
+            dp.k_d()
+        );
         for center in [-40.0, -5.0, 0.0] {
             // σ₁,₃ = p ± R on MC: R = c cos φ − p sin φ
             let radius = c * phi.cos() - center * phi.sin();
@@ -575,6 +592,24 @@ fn issue_40_drucker_prager_rejects_bad_parameters() {
         err,
         Err(FemError::InvalidParameter { name: "strain", .. })
     ));
+    let err = dp.update(
+        &PointState::default(),
+        &[1e300, -1e300, 0.0, 0.0, 0.0, 0.0],
+        &mut trial,
+        &mut tangent,
+    );
+    assert!(
+        matches!(err, Err(FemError::InvalidParameter { name: "strain", .. })),
+        "overflow"
+    );
+    // φ = 0 with a cohesion tiny beside the trial stress: no apex, no NaN
+    let tiny = point(0.0, 0.0, 1e-30, ConeMatch::PlaneStrain);
+    let (state, _) = step(
+        &tiny,
+        &PointState::default(),
+        &[1e-2, 0.0, 0.0, 1e-2, 0.0, 0.0],
+    );
+    assert!(state.stress.iter().all(|v| v.is_finite()) && state.yielding);
     assert_eq!(
         dp.bipotential(&[f64::NAN; 6], &isotropic(0.0)),
         f64::INFINITY
@@ -658,5 +693,44 @@ proptest! {
         let power = dot(&increment, &trial.stress);
         prop_assert!((b - power).abs() <= 1e-10 * max_abs(&trial.stress).max(dp.parameters().cohesion) * max_abs(&increment), "b = {b}, power = {power}");
         prop_assert_eq!(trial.yielding, max_abs(&increment) > 0.0);
+    }
+}
+
+/// 0 elastic, 1 smooth return, 2 apex.
+fn regime(state: &PointState) -> u8 {
+    let (_, s) = volumetric_deviatoric(&state.stress);
+    match (state.yielding, max_abs(&s) > 0.0) {
+        (false, _) => 0,
+        (true, true) => 1,
+        (true, false) => 2,
+    }
+}
+
+proptest! {
+    /// The consistent tangent along a random direction against central differences of
+    /// `update` (GetFEM's habit), for random laws, committed stresses and strains, where the
+    /// three updates share a regime and the deviator is not tiny (the curvature of `n` scales
+    /// as `1/‖s‖`): step 1e-9 on strains of 1e-2, truncation `(1e-9 / 1e-5)²` at worst,
+    /// round-off `1e-16 · 1e3 / 1e-9`; tolerance 1e-6 of `C`.
+    #[test]
+    fn issue_40_tangent_matches_finite_differences_along_random_directions(
+        dp in law(), raw_s in voigt(100.0), rho in 0.0..=1.0f64, strain in voigt(2e-2),
+        direction in voigt(1.0),
+    ) {
+        let committed = PointState::with_stress(admissible_stress(&dp, &raw_s, rho));
+        let (trial, tangent) = step(&dp, &committed, &strain);
+        let h = 1e-9;
+        let plus: Voigt = core::array::from_fn(|i| strain[i] + h * direction[i]);
+        let minus: Voigt = core::array::from_fn(|i| strain[i] - h * direction[i]);
+        let ((sp, _), (sm, _)) = (step(&dp, &committed, &plus), step(&dp, &committed, &minus));
+        let (_, s) = volumetric_deviatoric(&trial.stress);
+        prop_assume!(regime(&sp) == regime(&trial) && regime(&sm) == regime(&trial));
+        prop_assume!(regime(&trial) != 1 || max_abs(&s) > 1e-5 * dp.shear_modulus());
+        let scale = dp.elastic_tangent().iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (i, row) in tangent.iter().enumerate() {
+            let fd = (sp.stress[i] - sm.stress[i]) / (2.0 * h);
+            let exact = dot(row, &direction);
+            prop_assert!((fd - exact).abs() <= 1e-6 * scale, "row {i}: D·d = {exact}, fd {fd}");
+        }
     }
 }
