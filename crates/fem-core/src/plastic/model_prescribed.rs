@@ -89,7 +89,12 @@ where
             let stress = &self.committed[k].stress;
             for (a, &node) in cell.iter().enumerate() {
                 if member[node] {
-                    total += p.weight * b[D * a + c].iter().zip(stress).map(|(x, y)| x * y).sum::<f64>();
+                    total += p.weight
+                        * b[D * a + c]
+                            .iter()
+                            .zip(stress)
+                            .map(|(x, y)| x * y)
+                            .sum::<f64>();
                 }
             }
             Ok(())

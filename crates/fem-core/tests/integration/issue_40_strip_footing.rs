@@ -17,7 +17,15 @@
 //! `y = 0, x ≤ b`; rollers on `x = 0` and `x = W`, the base fixed. The footing is a uniform
 //! settlement `δ` of its nodes with `u_x = 0` (rough); the mean pressure is the reaction of
 //! those nodes over `b`. P2 triangles (6 nodes: P1 triangles lock under the isochoric plastic
-//! flow of `φ = 0`), straight-sided, on a grid graded towards the footing edge `(b, 0)`.
+//! flow of `φ = 0`; Quad8 and Quad9 with their full 3 × 3 rule came out 10 % high where P2
+//! triangles were 6 % high), straight-sided, on a grid graded towards the footing edge `(b, 0)`.
+//!
+//! The settlement goes in 20 equal steps, each predicted from the last converged increment,
+//! a step halved when its Newton needs more than 8 solves (and doubled back after). Measured
+//! on the CI mesh (`docs/validation.md`, "Plastic bodies"): `φ = 0` +2.0 % in 28 steps,
+//! `φ = 20°` +2.9 % in 27 steps; on the finer mesh +0.8 % and +1.2 %. The error is the mesh's
+//! at the singular footing edge: it fell from +6 % with 6 : 1 grading as the edge cells
+//! shrank.
 
 use fem_core::generate::{Grading, RectangleSpec, graded_points, rectangle};
 use fem_core::plastic::newton::{self, NewtonSettings};
@@ -31,23 +39,27 @@ use fem_core::{
 use std::sync::Arc;
 
 /// Half-width of the footing.
-pub const HALF_WIDTH: f64 = 1.0;
+const HALF_WIDTH: f64 = 1.0;
 /// Cohesion.
-pub const C: f64 = 1.0;
+const C: f64 = 1.0;
 
 /// The mesh of the half model and its refinement.
 #[derive(Clone, Copy, Debug)]
-pub struct FootingMesh {
-    /// Extent along x and depth.
-    pub width: f64,
-    pub depth: f64,
-    /// Cells under the footing, beside it, and over the depth.
-    pub under: usize,
-    pub beside: usize,
-    pub down: usize,
+struct FootingMesh {
+    /// Extent along x.
+    width: f64,
+    /// Depth.
+    depth: f64,
+    /// Cells under the footing, along x.
+    under: usize,
+    /// Cells beside the footing, along x.
+    beside: usize,
+    /// Cells over the depth.
+    down: usize,
     /// Ratio of the largest to the smallest cell along each graded line.
-    pub ratio: f64,
-    pub kind: ElementKind,
+    ratio: f64,
+    /// The element.
+    kind: ElementKind,
 }
 
 impl FootingMesh {
@@ -66,9 +78,14 @@ impl FootingMesh {
 
 /// Straight-sided grid: a uniform rectangle in cell indices mapped piecewise linearly onto
 /// graded lines (the midside nodes land on the midpoints of the edges).
-pub fn footing_mesh(m: &FootingMesh) -> Mesh {
+fn footing_mesh(m: &FootingMesh) -> Mesh {
     let mut xs = graded_points(0.0, HALF_WIDTH, m.under, Grading::fine_at_end(m.ratio)).unwrap();
-    let outer = graded_points(HALF_WIDTH, m.width, m.beside, Grading::fine_at_start(m.ratio));
+    let outer = graded_points(
+        HALF_WIDTH,
+        m.width,
+        m.beside,
+        Grading::fine_at_start(m.ratio),
+    );
     xs.extend_from_slice(&outer.unwrap()[1..]);
     let ys = graded_points(-m.depth, 0.0, m.down, Grading::fine_at_end(m.ratio)).unwrap();
     let (nx, ny) = (m.under + m.beside, m.down);
@@ -112,7 +129,7 @@ fn footing_nodes(mesh: &Mesh) -> Vec<usize> {
 
 /// The soil: `E = 10⁴ c`, `ν = 0.49` for `φ = 0` (nearly isochoric elastic part, as the
 /// plastic flow), `ν = 0.3` otherwise.
-pub fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn ConstitutivePoint> {
+fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn ConstitutivePoint> {
     let poisson = if friction_angle == 0.0 { 0.49 } else { 0.3 };
     Arc::new(
         DruckerPrager::new(DruckerPragerParameters {
@@ -128,7 +145,7 @@ pub fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn ConstitutivePo
 }
 
 /// The body with its footing nodes (prescribed at 0 in both directions).
-pub fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (PlasticModel<2>, Vec<usize>) {
+fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (PlasticModel<2>, Vec<usize>) {
     let mesh = footing_mesh(m);
     let footing = footing_nodes(&mesh);
     let set = |name: &str| mesh.node_set(name).unwrap().to_vec();
@@ -150,20 +167,20 @@ pub fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (Plasti
 
 /// One point of the load–settlement curve.
 #[derive(Clone, Debug)]
-pub struct FootingStep {
+struct FootingStep {
     /// Settlement over half-width.
-    pub settlement: f64,
+    settlement: f64,
     /// Mean pressure over cohesion.
-    pub pressure: f64,
+    pressure: f64,
     /// The relative residuals of the converged Newton step.
-    pub residuals: Vec<f64>,
+    residuals: Vec<f64>,
 }
 
 /// Pushes the footing down to `settlement · b` in `steps` equal increments (halved, up to
 /// `max_cuts` times along the path, when a step does not converge within
 /// `newton.max_iterations` solves to `newton.tolerance`, and doubled back after), and returns
 /// the converged points.
-pub fn push(
+fn push(
     body: &mut PlasticModel<2>,
     footing: &[usize],
     settlement: f64,
@@ -194,9 +211,6 @@ pub fn push(
             Ok(report) => {
                 let residuals = report.steps.last().unwrap().residuals.clone();
                 let pressure = -body.reaction(footing, Component::Y)? / HALF_WIDTH / C;
-                if std::env::var_os("FOOTING_TRACE").is_some() {
-                    eprintln!("{target:.6} {pressure:.4} {}", short(&residuals));
-                }
                 out.push(FootingStep {
                     settlement: target,
                     pressure,
@@ -210,10 +224,7 @@ pub fn push(
                 done = target;
                 step = (2.0 * step).min(first);
             }
-            Err(FemError::NotConverged { report, .. }) if cuts < max_cuts => {
-                if std::env::var_os("FOOTING_TRACE").is_some() {
-                    eprintln!("cut at {target:.6}: {}", short(&report.steps.last().unwrap().residuals));
-                }
+            Err(FemError::NotConverged { .. }) if cuts < max_cuts => {
                 cuts += 1;
                 step *= 0.5;
             }
@@ -224,13 +235,13 @@ pub fn push(
 }
 
 /// Residuals in short scientific notation, for traces and messages.
-pub fn short(residuals: &[f64]) -> String {
+fn short(residuals: &[f64]) -> String {
     let r: Vec<String> = residuals.iter().map(|r| format!("{r:.1e}")).collect();
     r.join(" ")
 }
 
 /// `N_c` of Prandtl–Reissner for `φ` in degrees.
-pub fn n_c(friction_angle: f64) -> f64 {
+fn n_c(friction_angle: f64) -> f64 {
     if friction_angle == 0.0 {
         return 2.0 + std::f64::consts::PI;
     }
@@ -252,13 +263,17 @@ fn collapse(m: &FootingMesh, friction_angle: f64, settlement: f64) -> Vec<Footin
 }
 
 /// The last pressure is on the plateau (the last two steps within 0.1 %), within `tolerance`
-/// of `c N_c`, and every converged step ended superlinearly: the last solve divides the
-/// residual by at least 100 (a tangent that is not the consistent one converges linearly,
-/// by factors of 2–10 here).
+/// of `c N_c`, and every converged step ended superlinearly: where the residual before the
+/// last solve is above 1e-8 (clear of the assembly's round-off floor, 1e-14 to 2e-11 here),
+/// the last solve divides it by at least 100 (a tangent that is not the consistent one
+/// converges linearly, by factors of 2–10 here).
 fn check_collapse(curve: &[FootingStep], friction_angle: f64, tolerance: f64) {
     let n = curve.len();
     let (q, q_before) = (curve[n - 1].pressure, curve[n - 2].pressure);
-    assert!((q - q_before).abs() < 1e-3 * q, "not on the plateau: {q_before} → {q}");
+    assert!(
+        (q - q_before).abs() < 1e-3 * q,
+        "not on the plateau: {q_before} → {q}"
+    );
     let expected = n_c(friction_angle);
     assert!(
         (q - expected).abs() < tolerance * expected,
@@ -266,7 +281,7 @@ fn check_collapse(curve: &[FootingStep], friction_angle: f64, tolerance: f64) {
     );
     for step in curve {
         let r = &step.residuals;
-        if r.len() > 2 {
+        if r.len() > 2 && r[r.len() - 2] > 1e-8 {
             assert!(
                 r[r.len() - 1] <= 1e-2 * r[r.len() - 2],
                 "δ/b = {}: {}",
@@ -298,14 +313,19 @@ fn issue_40_strip_footing_reissner_works() {
 fn issue_40_footing_loading_captures_errors() {
     let (mut body, footing) = footing_body(&FootingMesh::CI, soil(0.0, 0.0));
     let free = body.node_count() / 2;
-    let err = body.set_prescribed(&[free], Component::Y, -0.1).unwrap_err();
+    let err = body
+        .set_prescribed(&[free], Component::Y, -0.1)
+        .unwrap_err();
     assert!(matches!(err, FemError::Unsupported { .. }), "{err}");
     let beyond = body.node_count();
     assert!(matches!(
         body.set_prescribed(&[beyond], Component::Y, -0.1),
         Err(FemError::UnknownNode { .. })
     ));
-    assert!(body.set_prescribed(&footing, Component::Y, f64::NAN).is_err());
+    assert!(
+        body.set_prescribed(&footing, Component::Y, f64::NAN)
+            .is_err()
+    );
     assert!(matches!(
         body.reaction(&[beyond], Component::Y),
         Err(FemError::UnknownNode { .. })
@@ -314,46 +334,68 @@ fn issue_40_footing_loading_captures_errors() {
     assert_eq!(body.reaction(&footing, Component::Y).unwrap(), 0.0);
 }
 
+/// The finer run recorded in `docs/validation.md` (20 + 40 cells across, 28 down, graded
+/// 60 : 1; about 10 s each in a debug build): the same checks.
 #[test]
-fn issue_40_strip_footing_probe() {
-    let spec = std::env::var("FOOTING_MESH").unwrap_or("8,16,12,6,6".into());
-    let v: Vec<f64> = spec.split(',').map(|x| x.parse().unwrap()).collect();
-    let kind = match v[4] as usize {
-        6 => ElementKind::Tri6,
-        8 => ElementKind::Quad8,
-        _ => ElementKind::Quad9,
-    };
-    let m = FootingMesh {
-        under: v[0] as usize,
-        beside: v[1] as usize,
-        down: v[2] as usize,
-        ratio: v[3],
-        kind,
+#[ignore]
+fn issue_40_strip_footing_fine() {
+    let fine = FootingMesh {
+        under: 20,
+        beside: 40,
+        down: 28,
+        ratio: 60.0,
         ..FootingMesh::CI
     };
-    let its: usize = std::env::var("FOOTING_ITS").map_or(8, |v| v.parse().unwrap());
-    let tol: f64 = std::env::var("FOOTING_TOL").map_or(1e-10, |v| v.parse().unwrap());
-    let newton = NewtonSettings { max_iterations: its, tolerance: tol, ..NewtonSettings::default() };
-    for (phi, theta, settlement) in [(20.0, 10.0, 0.05), (20.0, 0.0, 0.05)] {
-        let (mut body, footing) = footing_body(&m, soil(phi, theta));
-        let t = std::time::Instant::now();
-        let curve = match push(&mut body, &footing, settlement, 20, &newton, 30) {
-            Ok(c) => c,
-            Err(FemError::NotConverged { converged_load_factor, report, .. }) => {
-                eprintln!("{spec} phi {phi} theta {theta} failed after {converged_load_factor}: {}", short(&report.steps.last().unwrap().residuals));
-                continue;
-            }
-            Err(e) => panic!("{e}"),
-        };
+    for (phi, settlement, tolerance) in [(0.0, 0.02, 0.03), (20.0, 0.05, 0.05)] {
+        let curve = collapse(&fine, phi, settlement);
         let last = curve.last().unwrap();
         let worst = curve.iter().map(|s| s.residuals.len() - 1).max().unwrap();
         eprintln!(
-            "{spec} phi {phi} theta {theta}: q/c {:.4} N_c {:.4} err {:+.2}% steps {} max it {worst} ({:?})",
+            "φ = {phi}: q/c = {:.4}, N_c = {:.4} ({:+.2} %), {} steps, at most {worst} solves",
             last.pressure,
             n_c(phi),
             100.0 * (last.pressure / n_c(phi) - 1.0),
-            curve.len(),
-            t.elapsed()
+            curve.len()
         );
+        check_collapse(&curve, phi, tolerance);
+    }
+}
+
+/// Non-associated flow (φ = 20°, θ = 10° and 0°) on the CI mesh: what the Newton with the
+/// symmetrised tangent reaches (measured, `docs/validation.md`): it stalls in a two-cycle
+/// soon after the footing edge yields, so the pressure printed is that of the last converged
+/// step, not a collapse load.
+#[test]
+#[ignore]
+fn issue_40_strip_footing_non_associated_measured() {
+    let newton = NewtonSettings {
+        max_iterations: 40,
+        tolerance: 1e-8,
+        ..NewtonSettings::default()
+    };
+    for theta in [10.0, 0.0] {
+        let (mut body, footing) = footing_body(&FootingMesh::CI, soil(20.0, theta));
+        match push(&mut body, &footing, 0.05, 20, &newton, 12) {
+            Ok(curve) => {
+                let last = curve.last().unwrap();
+                eprintln!(
+                    "θ = {theta}: q/c = {:.4} at δ/b = {}",
+                    last.pressure, last.settlement
+                );
+            }
+            Err(FemError::NotConverged {
+                converged_load_factor,
+                report,
+                ..
+            }) => {
+                let q = -body.reaction(&footing, Component::Y).unwrap() / HALF_WIDTH / C;
+                eprintln!(
+                    "θ = {theta}: stalled after δ/b = {converged_load_factor:.5} at q/c = {q:.4}; \
+                     last residuals {}",
+                    short(&report.steps.last().unwrap().residuals)
+                );
+            }
+            Err(e) => panic!("{e}"),
+        }
     }
 }
