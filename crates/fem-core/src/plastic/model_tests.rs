@@ -440,3 +440,98 @@ fn issue_40_newton_cuts_steps_and_keeps_the_last_converged_state() {
     let strain = body.committed_states()[0].strain[0];
     assert!((strain - 0.02 * 0.53125).abs() < 1e-12, "{strain}");
 }
+
+/// A strip load `q` on `0 ≤ x ≤ 0.5` of a block `[0, 2] × [0, 1]` (P2 triangles, base fixed,
+/// sides on rollers), Drucker–Prager `φ = 30°`, `c = 1`, `θ` given, loaded to `q = 5 c`
+/// (past first yield near `q = 3.5 c`, well below collapse, `N_c ≈ 30`) in 5 steps.
+fn footing(dilatancy_angle: f64) -> (PlasticModel<2>, newton::NewtonReport) {
+    let spec = RectangleSpec {
+        kind: ElementKind::Tri6,
+        ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 8, 4)
+    };
+    let mesh = rectangle(&spec).unwrap();
+    let bottom = mesh.node_set("bottom").unwrap().to_vec();
+    let sides: Vec<usize> = ["left", "right"]
+        .iter()
+        .flat_map(|s| mesh.node_set(s).unwrap().to_vec())
+        .collect();
+    let mut supports = Supports::new();
+    supports
+        .fix(&bottom, Component::X)
+        .fix(&bottom, Component::Y);
+    supports.fix(&sides, Component::X);
+    let mut elastic = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(0, material(0.0))],
+        supports,
+    )
+    .unwrap();
+    elastic
+        .add_edge_traction(
+            "top",
+            |[x, _]| if x < 0.5 { [0.0, -1.0] } else { [0.0, 0.0] },
+        )
+        .unwrap();
+    let law: Arc<dyn ConstitutivePoint> = Arc::new(
+        super::DruckerPrager::new(super::DruckerPragerParameters {
+            young: YOUNG,
+            poisson: POISSON,
+            friction_angle: 30.0,
+            dilatancy_angle,
+            cohesion: 1.0,
+            cone: super::ConeMatch::PlaneStrain,
+        })
+        .unwrap(),
+    );
+    let mut body = PlasticModel::new(elastic, &[(0, law)]).unwrap();
+    let mut u = vec![0.0; body.dof_count()];
+    let settings = NewtonSettings {
+        steps: 5,
+        max_iterations: 60,
+        ..NewtonSettings::default()
+    };
+    let report = newton::solve(&mut body, &mut u, 0.0, 5.0, &settings).unwrap();
+    (body, report)
+}
+
+/// The symmetric part of the tangent (the solver is a Cholesky): exact for the associated
+/// law (`θ = φ`), whose steps converge quadratically in a few solves; an approximation for the
+/// non-associated one (`θ = 0`), which still converges to the same tolerance, linearly (here
+/// 15 and 34 solves in the two plastic steps against 3 and 5).
+#[test]
+fn issue_40_non_associated_flow_converges_on_the_symmetric_part() {
+    let solves = |report: &newton::NewtonReport| -> Vec<usize> {
+        report.steps.iter().map(|s| s.residuals.len() - 1).collect()
+    };
+    let (associated, report) = footing(30.0);
+    assert_eq!(report.cuts, 0);
+    let yielded = |body: &PlasticModel<2>| {
+        body.committed_states()
+            .iter()
+            .filter(|s| s.equivalent_plastic_strain > 0.0)
+            .count()
+    };
+    assert!(yielded(&associated) > 0, "the load must reach plasticity");
+    let associated_solves = solves(&report);
+    assert!(
+        associated_solves.iter().all(|&n| n <= 8),
+        "{associated_solves:?}"
+    );
+    for step in &report.steps {
+        let r = &step.residuals;
+        for w in r.windows(2).skip(1) {
+            // quadratic past the first solve, to the round-off floor (1e-10)
+            assert!(w[1] <= 10.0 * w[0] * w[0] || w[1] < 1e-10, "{r:?}");
+        }
+    }
+    let (non_associated, report) = footing(0.0);
+    assert!(report.steps.iter().all(|s| s.converged), "no cut needed");
+    assert!(yielded(&non_associated) > 0);
+    let non_associated_solves = solves(&report);
+    let total = |v: &[usize]| v.iter().sum::<usize>();
+    assert!(
+        total(&non_associated_solves) > 2 * total(&associated_solves),
+        "{non_associated_solves:?} against {associated_solves:?}"
+    );
+}
