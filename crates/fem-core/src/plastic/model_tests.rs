@@ -535,3 +535,39 @@ fn issue_40_non_associated_flow_converges_on_the_symmetric_part() {
         "{non_associated_solves:?} against {associated_solves:?}"
     );
 }
+
+/// A displacement control: the prescribed pull of the right side raised after the first
+/// equilibrium, then a step at the same load factor: the elastic model's answer with the new
+/// value (1e-12 relative, as the reproduction test); a new support is refused.
+#[test]
+fn issue_40_displacement_control_works() {
+    let build = || plane(ElementKind::Quad4, Idealization::PlaneStrain, 0.0);
+    let mut body = PlasticModel::new(build(), &[(0, elastic_point())]).unwrap();
+    let mut u = vec![0.0; body.dof_count()];
+    let settings = NewtonSettings::default();
+    newton::solve(&mut body, &mut u, 0.0, 1.0, &settings).unwrap();
+    let right: Vec<usize> = {
+        let mesh = body.elastic().mesh();
+        let bottom = mesh.node_set("bottom").unwrap();
+        let right = mesh.node_set("right").unwrap();
+        right
+            .iter()
+            .copied()
+            .filter(|n| !bottom.contains(n))
+            .collect()
+    };
+    body.set_prescribed(&right, Component::X, 0.03).unwrap();
+    let report = newton::solve(&mut body, &mut u, 1.0, 1.0, &settings).unwrap();
+    assert_eq!(report.steps.len(), 1);
+    assert!(report.steps[0].converged);
+    let mut elastic = build();
+    elastic.set_prescribed(&right, Component::X, 0.03).unwrap();
+    let expected = elastic.solve(1.0).unwrap();
+    let diff = relative_difference(&body.nodal_displacements(&u), &expected);
+    assert!(diff < 1e-12, "relative difference {diff:e}");
+    let top_left = body.elastic().mesh().node_set("top_left").unwrap().to_vec();
+    assert!(matches!(
+        body.set_prescribed(&top_left, Component::Y, 0.1),
+        Err(FemError::Unsupported { .. })
+    ));
+}
