@@ -571,3 +571,77 @@ fn issue_40_displacement_control_works() {
         Err(FemError::Unsupported { .. })
     ));
 }
+
+/// Uniaxial compression under displacement control past yield, von Mises (`k = 1`, uniaxial
+/// yield stress `√3 k`), in 3D (one Hex8 on rollers) and in axisymmetry (a ring of Quad4,
+/// free radially): the homogeneous state is exact for these elements, so every point carries
+/// `σ_zz = −√3 k` once yielded and no other stress (1e-10: the return mapping's round-off
+/// on stresses of order 1 and strains of order 1e-3).
+#[test]
+fn issue_40_uniaxial_yield_in_3d_and_axisymmetry_works() {
+    let law = || -> Arc<dyn ConstitutivePoint> {
+        Arc::new(super::DruckerPrager::von_mises(YOUNG, POISSON, 1.0).unwrap())
+    };
+    let yield_stress = 3f64.sqrt();
+    // 3D
+    let mesh = box_mesh(&[0.0, 1.0], &[0.0, 1.0], &[0.0, 1.0], ElementKind::Hex8).unwrap();
+    let mut supports = Supports::new();
+    for (set, c) in [
+        ("x0", Component::X),
+        ("y0", Component::Y),
+        ("z0", Component::Z),
+    ] {
+        supports.fix(mesh.node_set(set).unwrap(), c);
+    }
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    supports.fix(&top, Component::Z);
+    let elastic = SolidModel::new(mesh, &[(0, material(0.0))], supports).unwrap();
+    let mut body = PlasticModel::new(elastic, &[(0, law())]).unwrap();
+    check_uniaxial(&mut body, &top, Component::Z, 2, yield_stress);
+    // axisymmetry: (r, z) in [1, 2] × [0, 1]
+    let spec = RectangleSpec {
+        kind: ElementKind::Quad4,
+        ..RectangleSpec::new([1.0, 2.0], [0.0, 1.0], 2, 2)
+    };
+    let mesh = rectangle(&spec).unwrap();
+    let mut supports = Supports::new();
+    supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
+    let top = mesh.node_set("top").unwrap().to_vec();
+    supports.fix(&top, Component::Y);
+    let elastic = LinearElasticModel::new(
+        mesh,
+        Idealization::Axisymmetric,
+        &[(0, material(0.0))],
+        supports,
+    )
+    .unwrap();
+    let mut body = PlasticModel::new(elastic, &[(0, law())]).unwrap();
+    check_uniaxial(&mut body, &top, Component::Y, 1, yield_stress);
+}
+
+/// Pulls `top` down along `c` in three strains (elastic, twice plastic) and checks the stress
+/// of every point: component `axis` (Voigt index of the axial stress) `E ε` then `−σ_y`.
+fn check_uniaxial<const D: usize>(
+    body: &mut PlasticModel<D>,
+    top: &[usize],
+    c: Component,
+    axis: usize,
+    yield_stress: f64,
+) where
+    Dim<D>: ModelSpace<D>,
+{
+    let mut u = vec![0.0; body.dof_count()];
+    for strain in [-1e-3, -3e-3, -5e-3] {
+        body.set_prescribed(top, c, strain).unwrap();
+        let report = newton::solve(body, &mut u, 0.0, 0.0, &NewtonSettings::default()).unwrap();
+        assert!(report.steps.iter().all(|s| s.residuals.len() <= 9));
+        let expected = (YOUNG * strain).max(-yield_stress);
+        for s in body.committed_states() {
+            for (i, &v) in s.stress.iter().enumerate() {
+                let want = if i == axis { expected } else { 0.0 };
+                assert!((v - want).abs() < 1e-10, "ε = {strain}: σ = {:?}", s.stress);
+            }
+            assert_eq!(s.equivalent_plastic_strain > 0.0, strain < -2e-3, "{s:?}");
+        }
+    }
+}
