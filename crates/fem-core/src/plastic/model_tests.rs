@@ -645,3 +645,32 @@ fn check_uniaxial<const D: usize>(
         }
     }
 }
+
+/// An initial stress set on the elastic model is taken over as the committed stress (and
+/// leaves the external force): the same state as `set_geostatic` (to round-off of the two
+/// evaluations of `−γ (z_s − z)`: 1e-12 relative).
+#[test]
+fn issue_40_initial_stress_of_the_elastic_model_is_taken_over() {
+    let laws = [(0, elastic_point()), (1, elastic_point())];
+    let mut elastic = ground(ElementKind::Tri3, Idealization::PlaneStrain);
+    elastic
+        .set_initial_stress(crate::model::geostatic(20.0, 0.6, 2.0))
+        .unwrap();
+    let taken = PlasticModel::new(elastic, &laws).unwrap();
+    let mut set =
+        PlasticModel::new(ground(ElementKind::Tri3, Idealization::PlaneStrain), &laws).unwrap();
+    set.set_geostatic(2.0, &[(0, 0.6), (1, 0.6)]).unwrap();
+    for (a, b) in taken.committed_states().iter().zip(set.committed_states()) {
+        for (x, y) in a.stress.iter().zip(&b.stress) {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{a:?} vs {b:?}");
+        }
+    }
+    let n = taken.dof_count();
+    let (mut f_a, mut f_b) = (vec![0.0; n], vec![0.0; n]);
+    taken.external_force_into(1.0, &mut f_a).unwrap();
+    set.external_force_into(1.0, &mut f_b).unwrap();
+    assert_eq!(
+        f_a, f_b,
+        "the initial stress is not a load of the plastic body"
+    );
+}
