@@ -54,9 +54,10 @@ pub enum ConeMatch {
 }
 
 impl ConeMatch {
-    /// The constant `k_d` of (4.12) for a friction angle `phi` in radians (table on
+    /// The constant `k_d` of (4.12) for a friction angle `phi_radians` (table on
     /// [`ConeMatch`]).
-    pub fn k_d(self, phi: f64) -> f64 {
+    pub fn k_d(self, phi_radians: f64) -> f64 {
+        let phi = phi_radians;
         match self {
             Self::PlaneStrain => (6.0 / (3.0 + 4.0 * phi.tan().powi(2))).sqrt(),
             Self::Outer => 2.0 * 6f64.sqrt() * phi.cos() / (3.0 - phi.sin()),
@@ -232,6 +233,23 @@ impl DruckerPrager {
     /// `+∞` when `σ ∉ K_σ` or `ε̇ᵖ ∉ K_ε` (to a relative round-off of `1e-12`), and, for
     /// `φ = 0`, when `ė_m > 0` (a von Mises material cannot dilate); `+∞` for non-finite
     /// input. `b_p(ε̇ᵖ, σ) ≥ ε̇ᵖ : σ` always, with equality on the law's pairs.
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::plastic::{ConeMatch, DruckerPrager, DruckerPragerParameters};
+    /// let soil = DruckerPrager::new(DruckerPragerParameters {
+    ///     young: 1e4, poisson: 0.3, friction_angle: 30.0, dilatancy_angle: 0.0,
+    ///     cohesion: 2.0, cone: ConeMatch::Outer,
+    /// })?;
+    /// // at the apex σ = (c / tan φ) 1, a purely volumetric rate is one of the law's pairs
+    /// let apex = soil.apex_mean_stress().unwrap();
+    /// let (stress, rate) = ([apex, apex, apex, 0.0, 0.0, 0.0], [1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0]);
+    /// let power = 3.0 * apex * 1e-3;
+    /// assert!((soil.bipotential(&rate, &stress) - power).abs() < 1e-12 * power);
+    /// // a compacting rate is outside the dilatancy cone K_ε
+    /// assert_eq!(soil.bipotential(&[-1e-3, 0.0, 0.0, 0.0, 0.0, 0.0], &stress), f64::INFINITY);
+    /// # Ok::<(), fem_core::FemError>(())
+    /// ```
     pub fn bipotential(&self, plastic_rate: &Voigt, stress: &Voigt) -> f64 {
         if plastic_rate.iter().chain(stress).any(|v| !v.is_finite()) {
             return f64::INFINITY;

@@ -245,6 +245,40 @@ where
         self.offsets[e]..self.offsets[e + 1]
     }
 
+    /// Changes the prescribed value of `component` on `nodes`, all of them already
+    /// constrained along it (the dof numbering of a plastic body is fixed): a displacement
+    /// control. The next [`Nonlinear::internal_force_into`] sees the new values; run
+    /// [`crate::plastic::newton::solve`] with `start == end` for the equilibrium at the same
+    /// load factor.
+    ///
+    /// # Errors
+    /// [`FemError::Unsupported`] for a node not yet constrained along `component`;
+    /// [`FemError::UnknownNode`], [`FemError::InvalidParameter`] for a non-finite value (as
+    /// [`ElasticModel::set_prescribed`]).
+    pub fn set_prescribed(
+        &mut self,
+        nodes: &[usize],
+        component: crate::Component,
+        value: f64,
+    ) -> Result<(), FemError> {
+        let supports = self.elastic.supports();
+        let node_count = self.elastic.mesh().node_count();
+        if let Some(&node) = nodes
+            .iter()
+            .find(|&&n| n < node_count && supports.value(n, component).is_none())
+        {
+            return Err(FemError::Unsupported {
+                what: format!(
+                    "a new support on node {node} ({component:?}) of a plastic body: its dof \
+                     numbering is fixed, constrain the dof before building it"
+                ),
+            });
+        }
+        self.elastic.set_prescribed(nodes, component, value)?;
+        self.prescribed = self.elastic.prescribed_values();
+        Ok(())
+    }
+
     /// Nodal displacements (`D` components per node) from the free-dof solution `u_free`
     /// and the prescribed values ([`ElasticModel::nodal_displacements`]).
     ///
@@ -343,12 +377,12 @@ where
                     }
                 } else {
                     let c = &tangents[k];
+                    // sym(C) = (C + Cᵀ) / 2: C itself for an associated law
+                    let c_sym: VoigtMatrix =
+                        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (c[i][j] + c[j][i])));
                     for (cb_a, b_a) in cb.iter_mut().zip(&b[..nd]) {
-                        // sym(C) b = (C b + Cᵀ b) / 2
-                        for (i, out) in cb_a.iter_mut().enumerate() {
-                            *out = (0..6)
-                                .map(|j| 0.5 * (c[i][j] + c[j][i]) * b_a[j])
-                                .sum::<f64>();
+                        for (out, row) in cb_a.iter_mut().zip(&c_sym) {
+                            *out = dot(row, b_a);
                         }
                     }
                     for a in 0..nd {

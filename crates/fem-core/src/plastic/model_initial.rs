@@ -3,11 +3,12 @@
 //! geostatic K0 state as such a field.
 //!
 //! ```text
-//! σ_v(x) = −γ (z_s − z)⁺     σ_h = K0 σ_v     no shear      (compression negative)
+//! σ_v(x) = −Σ_i γ_i h_i(z)     σ_h = K0 σ_v     no shear      (compression negative)
 //! ```
-//! with `z` the last coordinate (upwards), `z_s` the ground surface and `γ` the unit weight
-//! of the region's material. It balances the self-weight (`div σ + b = 0` with `b = −γ e_z`)
-//! when the sides are on rollers and the base fixed.
+//! with `z` the last coordinate (upwards), `h_i(z)` the thickness of layer `i` between `z`
+//! and the ground surface `z_s`, and `γ_i` the unit weight of its material (`−γ (z_s − z)⁺`
+//! in one layer). It balances the self-weight (`div σ + b = 0` with `b = −γ e_z`) when the
+//! sides are on rollers and the base fixed.
 
 use super::model::PlasticModel;
 use crate::element::VoigtStress;
@@ -105,9 +106,15 @@ where
     }
 
     /// Sets the geostatic K0 state (module docs) in each listed region, `(region, K0)`, for
-    /// a ground surface at `surface` (last coordinate, upwards), with the unit weight of the
-    /// region's material in the elastic model; one homogeneous layer per region (a layered
-    /// ground is a field per region for [`PlasticModel::set_initial_stress_by_region`]).
+    /// a ground surface at `surface` (last coordinate, upwards), with the unit weight of each
+    /// region's material in the elastic model.
+    ///
+    /// The listed regions are horizontal layers when their height ranges (over their
+    /// elements' nodes) do not overlap: the vertical stress at `z` then sums `γ h` over the
+    /// layers between `z` and the surface (`σ_v = −Σ γ_i h_i`; a surface above the top layer
+    /// adds no weight: a surcharge is a load). Listed regions side by side (overlapping
+    /// heights, e.g. two soils across a vertical boundary) each take `σ_v = −γ (z_s − z)⁺` with
+    /// their own `γ`. A region not listed keeps its state (a pile starts unstressed).
     ///
     /// # Errors
     /// [`FemError::InvalidParameter`] naming `surface` or `k0`; as
@@ -115,25 +122,54 @@ where
     /// is outside the yield surface is refused naming the region and the point).
     pub fn set_geostatic(&mut self, surface: f64, k0: &[(u32, f64)]) -> Result<(), FemError> {
         let surface = finite("surface", surface)?;
-        let regions = self.elastic.mesh().regions();
-        let mut fields: Vec<(u32, StressField<D>)> = Vec::with_capacity(k0.len());
+        let mesh = self.elastic.mesh();
+        let regions = mesh.regions();
+        // (region, K0, γ, lowest and highest node of the region)
+        let mut layers = Vec::with_capacity(k0.len());
         for &(region, k) in k0 {
             let k = non_negative("k0", k)?;
             let Some(e) = regions.iter().position(|r| *r == region) else {
                 return Err(FemError::UnknownRegion { region });
             };
             let gamma = self.elastic.material(e).unit_weight();
-            fields.push((
-                region,
-                Arc::new(move |x: [f64; D]| {
-                    let s_v = -gamma * (surface - x[D - 1]).max(0.0);
+            let heights = (0..mesh.element_count())
+                .filter(|&e| regions[e] == region)
+                .flat_map(|e| mesh.element(e).iter().map(|&n| mesh.nodes()[n][D - 1]));
+            let (lo, hi) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| {
+                (lo.min(z), hi.max(z))
+            });
+            layers.push((region, k, gamma, lo, hi));
+        }
+        let span = layers.iter().fold(0.0_f64, |m, l| m.max(l.4 - l.3));
+        let layered = layers.iter().enumerate().all(|(i, a)| {
+            layers[i + 1..]
+                .iter()
+                .all(|b| a.4.min(b.4) - a.3.max(b.3) <= 1e-9 * span)
+        });
+        let weights: Vec<(f64, f64, f64)> = layers.iter().map(|l| (l.2, l.3, l.4)).collect();
+        let fields: Vec<(u32, StressField<D>)> = layers
+            .iter()
+            .map(|&(region, k, gamma, _, _)| {
+                let weights = weights.clone();
+                let field: StressField<D> = Arc::new(move |x: [f64; D]| {
+                    let z = x[D - 1];
+                    let s_v = if layered {
+                        // −Σ γ_i |[z, z_s] ∩ [lo_i, hi_i]|
+                        -weights
+                            .iter()
+                            .map(|&(g, lo, hi)| g * (surface.min(hi) - z.max(lo)).max(0.0))
+                            .sum::<f64>()
+                    } else {
+                        -gamma * (surface - z).max(0.0)
+                    };
                     let mut s = [k * s_v; 6];
                     s[D - 1] = s_v;
                     s[3..].fill(0.0);
                     from_voigt::<D>(&s)
-                }),
-            ));
-        }
+                });
+                (region, field)
+            })
+            .collect();
         self.set_initial_stress_by_region(&fields)
     }
 }

@@ -156,8 +156,8 @@ fn commit_and_rollback_round_trip_works() {
 }
 
 /// A rectangle `[0, 4] × [0, 2]` of `kind` (two layers, regions 0 and 1, the upper one from
-/// `y = 1`), base fixed, sides on rollers, self-weight (γ = 20).
-fn ground(kind: ElementKind, idealization: Idealization) -> LinearElasticModel {
+/// `y = 1`), base fixed, sides on rollers, self-weight (γ = 20 below, `upper` above).
+fn layered_ground(kind: ElementKind, idealization: Idealization, upper: f64) -> LinearElasticModel {
     let mut spec = RectangleSpec {
         kind,
         ..RectangleSpec::new([0.0, 4.0], [0.0, 1.0], 4, 2)
@@ -179,17 +179,23 @@ fn ground(kind: ElementKind, idealization: Idealization) -> LinearElasticModel {
         .fix(&bottom, Component::X)
         .fix(&bottom, Component::Y);
     supports.fix(&sides, Component::X);
-    let m = material(20.0);
+    let (lower, upper) = (material(20.0), material(upper));
     let mut model =
-        LinearElasticModel::new(mesh, idealization, &[(0, m), (1, m)], supports).unwrap();
+        LinearElasticModel::new(mesh, idealization, &[(0, lower), (1, upper)], supports).unwrap();
     model.add_self_weight().unwrap();
     model
 }
 
-/// The K0 state balances the self-weight of one homogeneous ground: the residual at `u = 0`
-/// is round-off (1e-12 relative: the stress is linear in depth and the rules integrate
-/// `Bᵀ σ₀` and `Nᵀ γ` exactly) and Newton moves nothing beyond round-off of the settlement
-/// the same weight would cause without it.
+/// [`layered_ground`] with γ = 20 in both layers.
+fn ground(kind: ElementKind, idealization: Idealization) -> LinearElasticModel {
+    layered_ground(kind, idealization, 20.0)
+}
+
+/// The K0 state balances the self-weight of a layered ground (γ = 20 below, 12 above: the
+/// lower layer carries the upper one): the residual at `u = 0` is round-off (1e-12 relative:
+/// the stress is linear in depth in each layer, the layers meet on element sides, and the
+/// rules integrate `Bᵀ σ₀` and `Nᵀ γ` exactly) and Newton moves nothing beyond round-off of
+/// the settlement the same weight would cause without it.
 #[test]
 fn issue_40_geostatic_state_is_in_equilibrium_works() {
     for (kind, idealization) in [
@@ -197,13 +203,13 @@ fn issue_40_geostatic_state_is_in_equilibrium_works() {
         (ElementKind::Quad8, Idealization::PlaneStrain),
         (ElementKind::Tri6, Idealization::Axisymmetric),
     ] {
-        let settlement = ground(kind, idealization).solve(1.0).unwrap();
+        let settlement = layered_ground(kind, idealization, 12.0).solve(1.0).unwrap();
         let scale = settlement
             .iter()
             .flatten()
             .fold(0.0_f64, |m, v| m.max(v.abs()));
         let laws = [(0, elastic_point()), (1, elastic_point())];
-        let mut body = PlasticModel::new(ground(kind, idealization), &laws).unwrap();
+        let mut body = PlasticModel::new(layered_ground(kind, idealization, 12.0), &laws).unwrap();
         body.set_geostatic(2.0, &[(0, 0.6), (1, 0.6)]).unwrap();
         let n = body.dof_count();
         let (mut f_ext, mut f_int) = (vec![0.0; n], vec![0.0; n]);
@@ -439,4 +445,238 @@ fn issue_40_newton_cuts_steps_and_keeps_the_last_converged_state() {
     assert!((ux - 0.02 * 0.53125).abs() < 1e-12, "{ux}");
     let strain = body.committed_states()[0].strain[0];
     assert!((strain - 0.02 * 0.53125).abs() < 1e-12, "{strain}");
+}
+
+/// A strip load `q` on `0 ≤ x ≤ 0.5` of a block `[0, 2] × [0, 1]` (P2 triangles, base fixed,
+/// sides on rollers), Drucker–Prager `φ = 30°`, `c = 1`, `θ` given, loaded to `q = 5 c`
+/// (past first yield near `q = 3.5 c`, well below collapse, `N_c ≈ 30`) in 5 steps.
+fn footing(dilatancy_angle: f64) -> (PlasticModel<2>, newton::NewtonReport) {
+    let spec = RectangleSpec {
+        kind: ElementKind::Tri6,
+        ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 8, 4)
+    };
+    let mesh = rectangle(&spec).unwrap();
+    let bottom = mesh.node_set("bottom").unwrap().to_vec();
+    let sides: Vec<usize> = ["left", "right"]
+        .iter()
+        .flat_map(|s| mesh.node_set(s).unwrap().to_vec())
+        .collect();
+    let mut supports = Supports::new();
+    supports
+        .fix(&bottom, Component::X)
+        .fix(&bottom, Component::Y);
+    supports.fix(&sides, Component::X);
+    let mut elastic = LinearElasticModel::new(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(0, material(0.0))],
+        supports,
+    )
+    .unwrap();
+    elastic
+        .add_edge_traction(
+            "top",
+            |[x, _]| if x < 0.5 { [0.0, -1.0] } else { [0.0, 0.0] },
+        )
+        .unwrap();
+    let law: Arc<dyn ConstitutivePoint> = Arc::new(
+        super::DruckerPrager::new(super::DruckerPragerParameters {
+            young: YOUNG,
+            poisson: POISSON,
+            friction_angle: 30.0,
+            dilatancy_angle,
+            cohesion: 1.0,
+            cone: super::ConeMatch::PlaneStrain,
+        })
+        .unwrap(),
+    );
+    let mut body = PlasticModel::new(elastic, &[(0, law)]).unwrap();
+    let mut u = vec![0.0; body.dof_count()];
+    let settings = NewtonSettings {
+        steps: 5,
+        max_iterations: 60,
+        ..NewtonSettings::default()
+    };
+    let report = newton::solve(&mut body, &mut u, 0.0, 5.0, &settings).unwrap();
+    (body, report)
+}
+
+/// The symmetric part of the tangent (the solver is a Cholesky): exact for the associated
+/// law (`θ = φ`), whose steps converge quadratically in a few solves; an approximation for the
+/// non-associated one (`θ = 0`), which still converges to the same tolerance, linearly (here
+/// 15 and 34 solves in the two plastic steps against 3 and 5).
+#[test]
+fn issue_40_non_associated_flow_converges_on_the_symmetric_part() {
+    let solves = |report: &newton::NewtonReport| -> Vec<usize> {
+        report.steps.iter().map(|s| s.residuals.len() - 1).collect()
+    };
+    let (associated, report) = footing(30.0);
+    assert_eq!(report.cuts, 0);
+    let yielded = |body: &PlasticModel<2>| {
+        body.committed_states()
+            .iter()
+            .filter(|s| s.equivalent_plastic_strain > 0.0)
+            .count()
+    };
+    assert!(yielded(&associated) > 0, "the load must reach plasticity");
+    let associated_solves = solves(&report);
+    assert!(
+        associated_solves.iter().all(|&n| n <= 8),
+        "{associated_solves:?}"
+    );
+    for step in &report.steps {
+        let r = &step.residuals;
+        for w in r.windows(2).skip(1) {
+            // quadratic past the first solve, to the round-off floor (1e-10)
+            assert!(w[1] <= 10.0 * w[0] * w[0] || w[1] < 1e-10, "{r:?}");
+        }
+    }
+    let (non_associated, report) = footing(0.0);
+    assert!(report.steps.iter().all(|s| s.converged), "no cut needed");
+    assert!(yielded(&non_associated) > 0);
+    let non_associated_solves = solves(&report);
+    let total = |v: &[usize]| v.iter().sum::<usize>();
+    assert!(
+        total(&non_associated_solves) > 2 * total(&associated_solves),
+        "{non_associated_solves:?} against {associated_solves:?}"
+    );
+}
+
+/// A displacement control: the prescribed pull of the right side raised after the first
+/// equilibrium, then a step at the same load factor: the elastic model's answer with the new
+/// value (1e-12 relative, as the reproduction test); a new support is refused.
+#[test]
+fn issue_40_displacement_control_works() {
+    let build = || plane(ElementKind::Quad4, Idealization::PlaneStrain, 0.0);
+    let mut body = PlasticModel::new(build(), &[(0, elastic_point())]).unwrap();
+    let mut u = vec![0.0; body.dof_count()];
+    let settings = NewtonSettings::default();
+    newton::solve(&mut body, &mut u, 0.0, 1.0, &settings).unwrap();
+    let right: Vec<usize> = {
+        let mesh = body.elastic().mesh();
+        let bottom = mesh.node_set("bottom").unwrap();
+        let right = mesh.node_set("right").unwrap();
+        right
+            .iter()
+            .copied()
+            .filter(|n| !bottom.contains(n))
+            .collect()
+    };
+    body.set_prescribed(&right, Component::X, 0.03).unwrap();
+    let report = newton::solve(&mut body, &mut u, 1.0, 1.0, &settings).unwrap();
+    assert_eq!(report.steps.len(), 1);
+    assert!(report.steps[0].converged);
+    let mut elastic = build();
+    elastic.set_prescribed(&right, Component::X, 0.03).unwrap();
+    let expected = elastic.solve(1.0).unwrap();
+    let diff = relative_difference(&body.nodal_displacements(&u), &expected);
+    assert!(diff < 1e-12, "relative difference {diff:e}");
+    let top_left = body.elastic().mesh().node_set("top_left").unwrap().to_vec();
+    assert!(matches!(
+        body.set_prescribed(&top_left, Component::Y, 0.1),
+        Err(FemError::Unsupported { .. })
+    ));
+}
+
+/// Uniaxial compression under displacement control past yield, von Mises (`k = 1`, uniaxial
+/// yield stress `√3 k`), in 3D (one Hex8 on rollers) and in axisymmetry (a ring of Quad4,
+/// free radially): the homogeneous state is exact for these elements, so every point carries
+/// `σ_zz = −√3 k` once yielded and no other stress (1e-10: the return mapping's round-off
+/// on stresses of order 1 and strains of order 1e-3).
+#[test]
+fn issue_40_uniaxial_yield_in_3d_and_axisymmetry_works() {
+    let law = || -> Arc<dyn ConstitutivePoint> {
+        Arc::new(super::DruckerPrager::von_mises(YOUNG, POISSON, 1.0).unwrap())
+    };
+    let yield_stress = 3f64.sqrt();
+    // 3D
+    let mesh = box_mesh(&[0.0, 1.0], &[0.0, 1.0], &[0.0, 1.0], ElementKind::Hex8).unwrap();
+    let mut supports = Supports::new();
+    for (set, c) in [
+        ("x0", Component::X),
+        ("y0", Component::Y),
+        ("z0", Component::Z),
+    ] {
+        supports.fix(mesh.node_set(set).unwrap(), c);
+    }
+    let top = mesh.node_set("z1").unwrap().to_vec();
+    supports.fix(&top, Component::Z);
+    let elastic = SolidModel::new(mesh, &[(0, material(0.0))], supports).unwrap();
+    let mut body = PlasticModel::new(elastic, &[(0, law())]).unwrap();
+    check_uniaxial(&mut body, &top, Component::Z, 2, yield_stress);
+    // axisymmetry: (r, z) in [1, 2] × [0, 1]
+    let spec = RectangleSpec {
+        kind: ElementKind::Quad4,
+        ..RectangleSpec::new([1.0, 2.0], [0.0, 1.0], 2, 2)
+    };
+    let mesh = rectangle(&spec).unwrap();
+    let mut supports = Supports::new();
+    supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
+    let top = mesh.node_set("top").unwrap().to_vec();
+    supports.fix(&top, Component::Y);
+    let elastic = LinearElasticModel::new(
+        mesh,
+        Idealization::Axisymmetric,
+        &[(0, material(0.0))],
+        supports,
+    )
+    .unwrap();
+    let mut body = PlasticModel::new(elastic, &[(0, law())]).unwrap();
+    check_uniaxial(&mut body, &top, Component::Y, 1, yield_stress);
+}
+
+/// Pulls `top` down along `c` in three strains (elastic, twice plastic) and checks the stress
+/// of every point: component `axis` (Voigt index of the axial stress) `E ε` then `−σ_y`.
+fn check_uniaxial<const D: usize>(
+    body: &mut PlasticModel<D>,
+    top: &[usize],
+    c: Component,
+    axis: usize,
+    yield_stress: f64,
+) where
+    Dim<D>: ModelSpace<D>,
+{
+    let mut u = vec![0.0; body.dof_count()];
+    for strain in [-1e-3, -3e-3, -5e-3] {
+        body.set_prescribed(top, c, strain).unwrap();
+        let report = newton::solve(body, &mut u, 0.0, 0.0, &NewtonSettings::default()).unwrap();
+        assert!(report.steps.iter().all(|s| s.residuals.len() <= 9));
+        let expected = (YOUNG * strain).max(-yield_stress);
+        for s in body.committed_states() {
+            for (i, &v) in s.stress.iter().enumerate() {
+                let want = if i == axis { expected } else { 0.0 };
+                assert!((v - want).abs() < 1e-10, "ε = {strain}: σ = {:?}", s.stress);
+            }
+            assert_eq!(s.equivalent_plastic_strain > 0.0, strain < -2e-3, "{s:?}");
+        }
+    }
+}
+
+/// An initial stress set on the elastic model is taken over as the committed stress (and
+/// leaves the external force): the same state as `set_geostatic` (to round-off of the two
+/// evaluations of `−γ (z_s − z)`: 1e-12 relative).
+#[test]
+fn issue_40_initial_stress_of_the_elastic_model_is_taken_over() {
+    let laws = [(0, elastic_point()), (1, elastic_point())];
+    let mut elastic = ground(ElementKind::Tri3, Idealization::PlaneStrain);
+    elastic
+        .set_initial_stress(crate::model::geostatic(20.0, 0.6, 2.0))
+        .unwrap();
+    let taken = PlasticModel::new(elastic, &laws).unwrap();
+    let mut set =
+        PlasticModel::new(ground(ElementKind::Tri3, Idealization::PlaneStrain), &laws).unwrap();
+    set.set_geostatic(2.0, &[(0, 0.6), (1, 0.6)]).unwrap();
+    for (a, b) in taken.committed_states().iter().zip(set.committed_states()) {
+        for (x, y) in a.stress.iter().zip(&b.stress) {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{a:?} vs {b:?}");
+        }
+    }
+    let n = taken.dof_count();
+    let (mut f_a, mut f_b) = (vec![0.0; n], vec![0.0; n]);
+    taken.external_force_into(1.0, &mut f_a).unwrap();
+    set.external_force_into(1.0, &mut f_b).unwrap();
+    assert_eq!(
+        f_a, f_b,
+        "the initial stress is not a load of the plastic body"
+    );
 }

@@ -58,7 +58,9 @@ impl NewtonSettings {
 /// Solves the equilibrium of `structure` from load factor `start` to `end` (module docs),
 /// starting from the free displacements `u` in equilibrium with the committed state at
 /// `start` (zero for a fresh body), and leaves in `u` the displacements at `end` with the
-/// structure committed there.
+/// structure committed there. With `start == end` it makes one step at that load factor:
+/// the equilibrium after a change of prescribed values (a displacement control; a step that
+/// does not converge then cannot be cut smaller, it is retried as it is).
 ///
 /// # Errors
 /// - [`FemError::InvalidParameter`] naming `start`, `end`, `steps`, `tolerance` or
@@ -116,7 +118,10 @@ where
     let mut step = first;
     // a step counts as arrived within round-off of `end`
     let arrived = |lambda: f64| (end - lambda).abs() <= 1e-12 * (end - start).abs();
-    while !arrived(report.load_factor) {
+    // `start == end`: one step at that load factor (after a change of prescribed values),
+    // pending until it converges
+    let mut pending = start == end;
+    while pending || !arrived(report.load_factor) {
         let target = if (end - report.load_factor).abs() <= step.abs() * (1.0 + 1e-12) {
             end
         } else {
@@ -140,6 +145,7 @@ where
         });
         let body = structure.nonlinear().expect("checked above");
         if converged {
+            pending = false;
             body.commit();
             report.load_factor = target;
             buffers.u_converged.copy_from_slice(u);

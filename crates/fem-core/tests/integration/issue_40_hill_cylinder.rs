@@ -22,6 +22,7 @@
 use fem_core::generate::{RectangleSpec, rectangle};
 use fem_core::plastic::newton::{self, NewtonReport, NewtonSettings};
 use fem_core::plastic::{ConstitutivePoint, DruckerPrager, PlasticModel};
+use fem_core::vtk::Field;
 use fem_core::{
     Component, ElementKind, FemError, Idealization, LinearElasticModel, Material, Mesh, Structure,
     Supports,
@@ -147,6 +148,46 @@ fn issue_40_hill_thick_cylinder_works() {
             "p = {p}: c = {c}, Hill {expected}"
         );
     }
+    // per-element outputs at p = 1.3 (c = 1.6): the innermost elements have yielded
+    // throughout, the outermost not at all; they go to VTK as cell data
+    let out = body.element_outputs();
+    let mesh = body.elastic().mesh();
+    let mean_radius = |e: usize| {
+        let nodes = mesh.element(e);
+        let sum: f64 = nodes
+            .iter()
+            .map(|&n| mesh.nodes()[n][0].hypot(mesh.nodes()[n][1]))
+            .sum();
+        sum / nodes.len() as f64
+    };
+    for e in 0..mesh.element_count() {
+        let r = mean_radius(e);
+        if r < 1.5 {
+            assert_eq!(out.yielding[e], 1.0, "element {e} at r = {r}");
+            assert!(out.equivalent_plastic_strain[e] > 0.0);
+        } else if r > 1.7 {
+            assert_eq!(out.yielding[e], 0.0, "element {e} at r = {r}");
+            assert_eq!(out.equivalent_plastic_strain[e], 0.0);
+        }
+    }
+    let path =
+        std::env::temp_dir().join(format!("fem_core_issue_40_hill_{}.vtu", std::process::id()));
+    let displacements = body.nodal_displacements(&u);
+    fem_core::vtk::write_vtu(
+        &path,
+        mesh,
+        &[("u", Field::Vector(&displacements))],
+        &[
+            (
+                "equivalent_plastic_strain",
+                Field::Scalar(&out.equivalent_plastic_strain),
+            ),
+            ("yielding", Field::Scalar(&out.yielding)),
+            ("stress", Field::SymTensor(&out.stress)),
+        ],
+    )
+    .unwrap();
+    std::fs::remove_file(&path).unwrap();
     // on to 1.01 p_L: the path must stop converging between 0.99 p_L and 1.01 p_L
     let limit = 2.0 * K * (B / A).ln();
     let settings = NewtonSettings {
