@@ -54,7 +54,7 @@ def faces_where(mesh, keep):
     return np.array(chosen).T
 
 
-def run(case, max_res):
+def run(case, max_res, noisy=False):
     a, b, k = case["a"], case["b"], case["k"]
     young, nu = case["young"], case["poisson"]
     lam = young * nu / ((1 + nu) * (1 - 2 * nu))
@@ -111,17 +111,16 @@ def run(case, max_res):
         t = time.perf_counter()
         for s in range(1, n + 1):
             md.set_variable("p", [p_done + (p_level - p_done) * s / n])
-            out = md.solve("max_res", max_res, "max_iter", 40, *(["noisy"] if NOISY else []))
+            out = md.solve("max_res", max_res, "max_iter", 40, *(["noisy"] if noisy else []))
             its.append(int(out[0]) if isinstance(out, (tuple, list)) else int(out))
             md.small_strain_elastoplasticity_next_iter(mim, *law)
         seconds = time.perf_counter() - t
         p_done = p_level
         u_inner = float(md.interpolation("u", probe, mesh)[0])
-        if run_level_hook is not None:
-            run_level_hook(md, mimd_s)
         levels.append({"pressure": p_level, "u_inner": u_inner, "iterations": its,
-                       "seconds": seconds})
-    return md, mim, mimd_s, levels, build
+                       "seconds": seconds,
+                       "plastic_radius": plastic_radius_getfem(md, mimd_s, a, b)})
+    return levels, build
 
 
 def plastic_radius_getfem(md, mimd_s, a, b):
@@ -142,15 +141,13 @@ def main():
     ap.add_argument("--max-res", type=float, default=1e-8)
     ap.add_argument("--noisy", action="store_true")
     args = ap.parse_args()
-    global NOISY
-    NOISY = args.noisy
     gf.util_trace_level(0)
     gf.util_warning_level(0)
     with open(args.case) as f:
         case = json.load(f)
     a, b, k = case["a"], case["b"], case["k"]
     t0 = time.perf_counter()
-    md, mim, mimd_s, levels, build = run_with_radii(case, args.max_res)
+    levels, build = run(case, args.max_res, args.noisy)
     total = time.perf_counter() - t0
     for ours, theirs in zip(case["ours"]["levels"], levels):
         p = ours["pressure"]
@@ -163,24 +160,8 @@ def main():
             "u_inner_rel_diff": (ours["u_inner"] - theirs["u_inner"]) / theirs["u_inner"],
         }))
     print(json.dumps({"ours_total_seconds": case["ours"]["total_seconds"],
-                      "getfem_total_seconds": total, "getfem_build_seconds": build,
-                      "getfem_version": gf.__version__ if hasattr(gf, "__version__") else "?"}))
+                      "getfem_total_seconds": total, "getfem_build_seconds": build}))
 
-
-def run_with_radii(case, max_res):
-    """run(), reading the plastic radius after each level."""
-    global run_level_hook
-    radii = []
-    a, b = case["a"], case["b"]
-    run_level_hook = lambda md, mimd_s: radii.append(plastic_radius_getfem(md, mimd_s, a, b))
-    md, mim, mimd_s, levels, build = run(case, max_res)
-    for level, radius in zip(levels, radii):
-        level["plastic_radius"] = radius
-    return md, mim, mimd_s, levels, build
-
-
-run_level_hook = None
-NOISY = False
 
 if __name__ == "__main__":
     main()

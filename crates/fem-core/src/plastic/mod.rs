@@ -29,7 +29,7 @@ mod drucker_prager_tests;
 mod model;
 mod model_initial;
 mod model_post;
-mod model_prescribed;
+mod model_reaction;
 #[cfg(test)]
 mod model_tests;
 pub mod newton;

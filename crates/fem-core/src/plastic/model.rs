@@ -104,7 +104,7 @@ where
     /// The tangent's values on the elastic model's pattern.
     values: Vec<f64>,
     /// The prescribed values, in the dof map's order.
-    pub(super) prescribed: Vec<f64>,
+    prescribed: Vec<f64>,
     scratch: Scratch<D>,
 }
 
