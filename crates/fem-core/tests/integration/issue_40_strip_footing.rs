@@ -308,6 +308,54 @@ fn issue_40_strip_footing_reissner_works() {
     check_collapse(&curve, 20.0, 0.05);
 }
 
+/// `reaction` against a closed form: a linear-elastic block `2 × 1` (P2) confined laterally
+/// (`u_x = 0` on both sides, `u_y = 0` at the base), its top pushed down by `d`. The state is
+/// uniform, `ε_yy = −d`, `σ_yy = (λ + 2G) ε_yy`, `σ_xx = λ ε_yy`, so the top carries
+/// `R_y = 2 σ_yy` and the left side `R_x = −σ_xx` (the support pushes inwards). Tolerance
+/// 1e-12 relative: the solve and the sums are exact up to round-off.
+#[test]
+fn issue_40_reaction_works() {
+    use fem_core::plastic::LinearElasticPoint;
+    let spec = RectangleSpec {
+        kind: ElementKind::Tri6,
+        ..RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 4, 2)
+    };
+    let mesh = rectangle(&spec).unwrap();
+    let set = |name: &str| mesh.node_set(name).unwrap().to_vec();
+    let (top, left, right, bottom) = (set("top"), set("left"), set("right"), set("bottom"));
+    let mut supports = Supports::new();
+    supports
+        .fix(&left, Component::X)
+        .fix(&right, Component::X)
+        .fix(&bottom, Component::Y)
+        .fix(&top, Component::Y);
+    let (young, poisson) = (100.0, 0.3);
+    let material = Material::new(young, poisson, 0.0).unwrap();
+    let elastic =
+        LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(0, material)], supports)
+            .unwrap();
+    let point: Arc<dyn ConstitutivePoint> =
+        Arc::new(LinearElasticPoint::new(young, poisson).unwrap());
+    let mut body = PlasticModel::new(elastic, &[(0, point)]).unwrap();
+    let d = 1e-3;
+    body.set_prescribed(&top, Component::Y, -d).unwrap();
+    let mut u = vec![0.0; body.dof_count()];
+    newton::solve(&mut body, &mut u, 0.0, 1.0, &NewtonSettings::default()).unwrap();
+    let lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+    let g = young / (2.0 * (1.0 + poisson));
+    let (sigma_yy, sigma_xx) = (-(lambda + 2.0 * g) * d, -lambda * d);
+    let r_y = body.reaction(&top, Component::Y).unwrap();
+    let r_x = body.reaction(&left, Component::X).unwrap();
+    assert!(
+        (r_y - 2.0 * sigma_yy).abs() < 1e-12 * sigma_yy.abs(),
+        "{r_y}"
+    );
+    assert!((r_x + sigma_xx).abs() < 1e-12 * sigma_xx.abs(), "{r_x}");
+    // a node listed twice counts once
+    let twice: Vec<usize> = top.iter().chain(&top).copied().collect();
+    assert_eq!(body.reaction(&twice, Component::Y).unwrap(), r_y);
+}
+
 /// Displacement control refuses a free dof and an unknown node, by name.
 #[test]
 fn issue_40_footing_loading_captures_errors() {
