@@ -4,7 +4,7 @@
 Reads the JSON written by our example on the very same mesh,
 
     cargo run -p fem-core --example hill_cylinder -- hill.json
-    /usr/bin/python3 tools/peers/getfem_hill.py hill.json [--max-res 1e-10] [--repeat 3]
+    /usr/bin/python3 tools/peers/getfem_hill.py hill.json [--max-res 1e-8] [--noisy]
 
 and runs GetFEM's small-strain elastoplasticity brick ('plane strain Prandtl Reuss',
 DISPLACEMENT_ONLY: return mapping inside GetFEM's Newton, model.solve with its default
