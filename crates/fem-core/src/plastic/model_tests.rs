@@ -351,6 +351,17 @@ fn plastic_model_rejects_bad_input() {
             ..
         })
     ));
+    let loose = NewtonSettings {
+        tolerance: 1.0,
+        ..NewtonSettings::default()
+    };
+    assert!(matches!(
+        newton::solve(&mut body, &mut u, 0.0, 1.0, &loose),
+        Err(FemError::InvalidParameter {
+            name: "tolerance",
+            ..
+        })
+    ));
     assert!(matches!(
         newton::solve(&mut body, &mut u, 0.0, f64::NAN, &NewtonSettings::default()),
         Err(FemError::InvalidParameter { name: "end", .. })

@@ -88,6 +88,13 @@ where
     assert_eq!(u.len(), n, "displacement length");
     let (start, end) = (finite("start", start)?, finite("end", end)?);
     let tolerance = positive("tolerance", settings.tolerance)?;
+    if tolerance >= 1.0 {
+        return Err(FemError::InvalidParameter {
+            name: "tolerance",
+            value: tolerance,
+            expected: "a relative residual in (0, 1)",
+        });
+    }
     for (name, value) in [
         ("steps", settings.steps),
         ("max_iterations", settings.max_iterations),
