@@ -35,6 +35,8 @@ mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
 mod issue_39_dynamics;
 mod issue_39_sliding_block;
+mod issue_40_newton_chain;
+mod issue_40_newton_elastic;
 mod local_algorithms;
 mod matrix_free;
 mod multibody_3d;
