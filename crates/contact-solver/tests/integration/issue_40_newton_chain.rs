@@ -282,7 +282,10 @@ fn issue_40_chain_force_displacement_matches_the_closed_form() {
             let lambda = 0.05 * k as f64;
             let res = sim.step(lambda, lambda).unwrap();
             check_closed_form(&sim, &res, lambda, 20.0);
-            assert_eq!(res.report.active_set, flexibility == FlexibilityMode::ActiveSet);
+            assert_eq!(
+                res.report.active_set,
+                flexibility == FlexibilityMode::ActiveSet
+            );
             let report = res.report.newton.as_ref().unwrap();
             assert_eq!(report.cuts, 0, "λ {lambda}: {:?}", report.residuals);
             // at most 8 iterations per load step (issue 40's "must show")

@@ -60,7 +60,7 @@ mod tuning;
 
 pub use energy::EnergyBalance;
 pub use moreau_jean::MoreauJean;
-pub use newton::NewtonSettings;
+pub use newton::{NEWTON_DENSE_LIMIT, NewtonSettings};
 pub use report::{ContactRecord, Counters, InterfaceStatus, NewtonReport, StepReport, StepResult};
 pub use scheme::{QuasiStatic, SchemeStep, TimeScheme};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings};

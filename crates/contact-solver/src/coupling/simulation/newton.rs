@@ -33,6 +33,7 @@
 
 use super::report::{NewtonReport, StepReport, StepResult};
 use super::scheme::{QuasiStatic, TimeScheme};
+use super::settings::FlexibilityMode;
 use super::solve::Solved;
 use super::{Clock, ContactSimulation, check_step};
 use crate::coupling::space::ContactSpace;
@@ -48,6 +49,7 @@ use std::time::Instant;
 /// use contact_solver::NewtonSettings;
 /// let s = NewtonSettings::default().with_tol(1e-10).with_max_cuts(4);
 /// assert_eq!((s.tol, s.max_iterations, s.max_cuts), (1e-10, 12, 4));
+/// assert_eq!(s.dense_limit, contact_solver::coupling::simulation::NEWTON_DENSE_LIMIT);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -62,7 +64,20 @@ pub struct NewtonSettings {
     /// Halvings of a step allowed in one call of [`step`](ContactSimulation::step): 8 by
     /// default (a sub-step of 1/256 of the step).
     pub max_cuts: usize,
+    /// The largest active set solved with a dense `F*` in a Newton step when the settings'
+    /// flexibility is [`FlexibilityMode::Auto`] and the structure exposes its tangent
+    /// ([`Structure::stiffness_matrix`]); beyond, the primal active set. It replaces Auto's
+    /// own limit there: `F*` is rebuilt at every new tangent, so the active set wins much
+    /// earlier than between linear steps, which keep `F*` ([`NEWTON_DENSE_LIMIT`]).
+    pub dense_limit: usize,
 }
+
+/// Default [`NewtonSettings::dense_limit`], measured (`issue_40_measure_newton_paths`, guide
+/// "Newton around contact"): per Newton iteration on a block sliding on a rigid line, the
+/// dense `F*` and the primal active set cost the same at about 20–30 contacts (0.8 against
+/// 1.0 ms at 17, 6.0 against 4.6 ms at 33), and the active set is 2.5× faster at 65 and 6×
+/// at 257 contacts.
+pub const NEWTON_DENSE_LIMIT: usize = 24;
 
 impl Default for NewtonSettings {
     fn default() -> Self {
@@ -70,6 +85,7 @@ impl Default for NewtonSettings {
             tol: 1e-9,
             max_iterations: 12,
             max_cuts: 8,
+            dense_limit: NEWTON_DENSE_LIMIT,
         }
     }
 }
@@ -90,6 +106,12 @@ impl NewtonSettings {
     /// With at most `max_cuts` halvings per step.
     pub fn with_max_cuts(mut self, max_cuts: usize) -> Self {
         self.max_cuts = max_cuts;
+        self
+    }
+
+    /// With at most `dense_limit` contacts on the dense path under `Auto`.
+    pub fn with_dense_limit(mut self, dense_limit: usize) -> Self {
+        self.dense_limit = dense_limit;
         self
     }
 
@@ -146,7 +168,9 @@ where
     /// as in a linear step: `F*` is rebuilt whenever the tangent changes (its
     /// [`Structure::stiffness_version`]); the primal active set factorises the structure's
     /// [`Structure::stiffness_matrix`], which a nonlinear structure returns as its current
-    /// tangent. `Auto` (dense up to its limit) is the measured choice (guide).
+    /// tangent. Under `Auto` (the default) the Newton's own
+    /// [`dense_limit`](NewtonSettings::dense_limit) chooses between them, measured: beyond
+    /// about 24 contacts the active set is the faster.
     ///
     /// # Errors
     /// [`SolverError::InvalidSetting`] for bad settings; [`SolverError::Unsupported`] for a
@@ -405,7 +429,18 @@ where
                 |i, start, free, alert, all| scheme.enters(i, start, free, alert, all),
             );
             let mut report = StepReport::start(total.step, clock.time, clock.force_factor);
-            let (equilibrium, solved) = self.passes(clock, &free, active, version, &mut report)?;
+            // Auto's limit is the Newton's while it runs (settings docs)
+            let user = self.settings.flexibility;
+            if matches!(user, FlexibilityMode::Auto { .. })
+                && self.structure.stiffness_matrix().is_some()
+            {
+                self.settings.flexibility = FlexibilityMode::Auto {
+                    dense_limit: settings.dense_limit,
+                };
+            }
+            let outcome = self.passes(clock, &free, active, version, &mut report);
+            self.settings.flexibility = user;
+            let (equilibrium, solved) = outcome?;
             *iterations += 1;
             contact_residuals.push(report.residual);
             u.clear();
