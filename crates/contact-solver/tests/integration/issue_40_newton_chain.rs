@@ -366,6 +366,16 @@ fn issue_40_chain_failure_keeps_the_last_converged_state() {
     assert!(!failure.history.is_empty());
     assert_eq!(e.history(), Some(&failure.history[..]));
     assert!(e.to_string().contains("last converged state"), "{e}");
+    // past the limit A's tangent vanishes and the chain's K_t is singular: the cause
+    assert!(
+        matches!(
+            failure.cause.as_deref(),
+            Some(SolverError::Structure(FemError::NonPositivePivot { .. }))
+        ),
+        "{:?}",
+        failure.cause
+    );
+    assert!(contact_solver::error::chain(&e).contains("not positive definite"));
     // the simulation and the structure keep that state: the closed form at `reached`
     assert_eq!(sim.time(), failure.time);
     let (u0, u1, _) = closed_form(reached, 1.0);

@@ -138,3 +138,30 @@ fn issue_40_newton_refuses_bad_settings() {
         .expect("no correction is refused");
     assert!(e.to_string().contains("max_iterations"), "{e}");
 }
+
+#[test]
+fn issue_40_newton_refuses_a_floating_structure() {
+    // the block held by contact only (no support): its rigid-body modes are solved on the
+    // linear path only
+    let mesh = rectangle(&RectangleSpec::new([0.0, 2.0], [0.0, 1.0], 4, 2)).unwrap();
+    let bottom = mesh.node_set("bottom").unwrap().to_vec();
+    let model = LinearElasticModel::floating(
+        mesh,
+        Idealization::PlaneStrain,
+        &[(0, Material::new(1000.0, 0.3, 1.0).unwrap())],
+        Supports::new(),
+    )
+    .unwrap();
+    let ground = RigidLine::new([-1.0, 0.0], [3.0, 0.0]).unwrap();
+    let zone = ContactZone::rigid("base", bottom, ground, Coulomb::new(0.3).unwrap(), 0.1);
+    let sim = ContactSimulation::new(model, vec![zone], SimulationSettings::default()).unwrap();
+    let e = sim
+        .with_newton(NewtonSettings::default())
+        .err()
+        .expect("a floating structure is refused");
+    assert!(
+        matches!(e, contact_solver::SolverError::Unsupported(_)),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("floating"), "{e}");
+}
