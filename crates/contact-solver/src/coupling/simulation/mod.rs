@@ -10,7 +10,8 @@
 //! parts (`parts`): the interface (zones, candidates, `H`), the accepted state carried between
 //! steps, and the operator cache. What the time discretisation decides (the free response,
 //! `q`, the acceptance) goes through the [`TimeScheme`] seam (`scheme`), quasi-static below;
-//! `settings` and `report` hold the public data types.
+//! `settings` and `report` hold the public data types; `newton` iterates these stages on the
+//! tangent of a nonlinear structure ([`ContactSimulation::with_newton`]).
 //!
 //! ```text
 //! check_step(time, force_factor, now)                        -> Result<()>
@@ -386,7 +387,9 @@ where
     /// settings accept non-converged results; [`SolverError::StillPenetrating`] if candidates
     /// outside the reduced problem still penetrate after
     /// [`max_detection_passes`](SimulationTuning::max_detection_passes) passes. On error the simulation keeps the state of the
-    /// previous step.
+    /// previous step. With the global Newton ([`Self::with_newton`]) the step is cut on
+    /// those failures, and [`SolverError::NewtonNotConverged`] reports the load reached
+    /// (the simulation keeping the last converged sub-step).
     ///
     /// # Examples
     /// A block pressed by a prescribed displacement of its top: the displacement is ramped
@@ -418,8 +421,8 @@ where
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn step(&mut self, time: f64, force_factor: f64) -> Result<StepResult<D>, SolverError> {
-        if self.newton.is_some() {
-            return self.newton_step(time, force_factor);
+        if let Some(from) = self.newton.as_ref().map(newton::NewtonState::start) {
+            return self.newton_step(time, force_factor, from);
         }
         let start = Instant::now();
         check_step(time, force_factor, self.accepted.time)?;

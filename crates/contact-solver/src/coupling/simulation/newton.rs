@@ -145,6 +145,13 @@ pub(super) struct NewtonState<const D: usize> {
     reactions: Vec<[f64; D]>,
 }
 
+impl<const D: usize> NewtonState<D> {
+    /// What a step starts from: the settings and the last converged force factor.
+    pub(super) fn start(&self) -> (NewtonSettings, f64) {
+        (self.settings, self.load_factor)
+    }
+}
+
 /// What one attempt at a (sub-)step leaves when it fails: its error, residuals and
 /// corrections.
 struct Attempt {
@@ -252,14 +259,12 @@ where
         &mut self,
         time: f64,
         force_factor: f64,
+        (settings, lambda_0): (NewtonSettings, f64),
     ) -> Result<StepResult<D>, SolverError> {
         let start = Instant::now();
         check_step(time, force_factor, self.accepted.time)?;
         self.refuse_floating()?;
-        let Some(state) = self.newton.as_ref() else {
-            unreachable!("newton_step is called with the Newton chosen");
-        };
-        let (settings, lambda_0, time_0) = (state.settings, state.load_factor, self.accepted.time);
+        let time_0 = self.accepted.time;
         if force_factor != 1.0 {
             // issue 36's check, on the free response at the factor asked
             let mut y = vec![0.0; self.structure.dof_count()];
