@@ -336,6 +336,39 @@ pub enum FemError {
         #[source]
         source: Option<IoCause>,
     },
+    /// An initial (e.g. geostatic) stress lies outside the yield surface of its material at a
+    /// quadrature point (`yield_function > 0`): not a plastically admissible state.
+    #[error(
+        "the initial stress of region {region} is outside the yield surface at quadrature \
+         point {point} of element {element} (yield function {yield_function:e} > 0): lower K0 \
+         or raise the strength"
+    )]
+    OutsideYieldSurface {
+        /// The region of the element.
+        region: u32,
+        /// The element.
+        element: usize,
+        /// The quadrature point, in the element's stiffness rule.
+        point: usize,
+        /// The yield function there (units of stress).
+        yield_function: f64,
+    },
+    /// A Newton load path ([`crate::plastic::newton`]) could not converge at a load factor
+    /// after the allowed step cuts; the structure keeps the last converged state (committed).
+    #[error(
+        "Newton did not converge at load factor {load_factor} after {cuts} step cuts; the \
+         last converged state (load factor {converged_load_factor}) is kept"
+    )]
+    NotConverged {
+        /// The load factor of the failed step.
+        load_factor: f64,
+        /// The load factor of the last converged (committed) state.
+        converged_load_factor: f64,
+        /// The step cuts made.
+        cuts: usize,
+        /// The residual history of every step tried.
+        report: Box<crate::convergence::NewtonReport>,
+    },
 }
 
 /// The underlying error of a [`FemError::Io`] (an I/O error, the VTK writer's error), shared

@@ -36,6 +36,7 @@
 pub mod analytical;
 pub mod boundary_mass;
 mod component;
+mod convergence;
 pub mod error;
 pub mod generate;
 pub mod gmsh;

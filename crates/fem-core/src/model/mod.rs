@@ -12,6 +12,7 @@ mod mass;
 mod nonlinear;
 mod normals;
 mod post;
+mod tangent;
 
 pub use normals::ModelSpace;
 

@@ -23,6 +23,20 @@
 
 use crate::error::{FemError, non_negative, positive};
 
+mod drucker_prager;
+#[cfg(test)]
+mod drucker_prager_tests;
+mod model;
+mod model_initial;
+mod model_post;
+#[cfg(test)]
+mod model_tests;
+pub mod newton;
+
+pub use drucker_prager::{ConeMatch, DruckerPrager, DruckerPragerParameters};
+pub use model::PlasticModel;
+pub use model_post::PlasticOutputs;
+
 /// A symmetric tensor in Voigt order `[xx, yy, zz, xy, yz, zx]` (module docs): engineering
 /// shears for strains, tensor shears for stresses.
 pub type Voigt = [f64; 6];

@@ -14,6 +14,7 @@ mod gmsh_curves;
 mod hostile_input;
 mod issue_35_capabilities;
 mod issue_35_one_element_kind;
+mod issue_40_hill_cylinder;
 mod mesh_io;
 mod patch;
 mod quad_hex;
