@@ -38,6 +38,7 @@ mod issue_39_sliding_block;
 mod issue_40_newton_chain;
 mod issue_40_newton_elastic;
 mod issue_40_newton_paths;
+mod issue_40_newton_plastic;
 mod local_algorithms;
 mod matrix_free;
 mod multibody_3d;
