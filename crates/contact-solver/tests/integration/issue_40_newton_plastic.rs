@@ -96,7 +96,7 @@ fn issue_40_von_mises_block_pressed_on_a_rigid_base() {
             // iterations, before the asymptotic regime, up to ~400); a linear rate would
             // leave r_k+1 ~ ρ r_k, far above
             let r = &newton.residuals;
-            if let Some(w) = r.windows(2).filter(|w| w[1] > 1e-13).last() {
+            if let Some(w) = r.windows(2).rfind(|w| w[1] > 1e-13) {
                 assert!(w[1] <= 100.0 * w[0] * w[0], "{r:?}");
             }
         }
