@@ -3,7 +3,12 @@
 //! Problems are validated once, when a [`ReducedProblem`](crate::ReducedProblem) is built;
 //! the solver's loop then only fails by not converging.
 
+#[cfg(feature = "fe")]
+mod newton_failure;
+
 use contact_laws::LawError;
+#[cfg(feature = "fe")]
+pub use newton_failure::NewtonFailure;
 use std::error::Error;
 use std::fmt;
 use std::sync::Arc;
@@ -285,6 +290,12 @@ pub enum SolverError {
         /// The setting that bounds the passes.
         setting: &'static str,
     },
+    /// The global Newton around contact of a nonlinear structure did not converge after the
+    /// step was cut as often as allowed; the last converged state is kept ([`NewtonFailure`]:
+    /// the load reached and the residuals).
+    #[cfg(feature = "fe")]
+    #[error(transparent)]
+    NewtonNotConverged(Box<NewtonFailure>),
     /// The fixed point between the contact solve and the adhesion update did not converge.
     #[error(
         "the adhesion fixed point did not converge in {iterations} iterations (last change of beta {change:e}; {})",
@@ -307,7 +318,7 @@ fn fallback_note(from: &Option<&'static str>) -> String {
 }
 
 /// `last residuals: a, b, …` (the last [`HISTORY_SHOWN`] values of `history`), or `no history`.
-fn tail_note(what: &str, history: &[f64]) -> String {
+pub(crate) fn tail_note(what: &str, history: &[f64]) -> String {
     if history.is_empty() {
         return "no history".to_string();
     }
@@ -323,8 +334,9 @@ impl SolverError {
     /// The iteration history an error carries (the natural-map residual of every iteration
     /// for [`NotConverged`](Self::NotConverged) and [`Stalled`](Self::Stalled), the largest
     /// state change of every fixed-point iteration for
-    /// [`AdhesionNotConverged`](Self::AdhesionNotConverged)), whole; `None` for the other
-    /// variants.
+    /// [`AdhesionNotConverged`](Self::AdhesionNotConverged), the equilibrium residuals of the
+    /// last attempt for [`NewtonNotConverged`](Self::NewtonNotConverged)), whole; `None` for
+    /// the other variants.
     ///
     /// # Examples
     /// ```
@@ -337,6 +349,8 @@ impl SolverError {
             Self::NotConverged { history, .. }
             | Self::Stalled { history, .. }
             | Self::AdhesionNotConverged { history, .. } => Some(history),
+            #[cfg(feature = "fe")]
+            Self::NewtonNotConverged(failure) => Some(&failure.history),
             _ => None,
         }
     }
@@ -394,7 +408,7 @@ impl BestIterate {
 }
 
 /// A history in `Debug`: its length and its last [`HISTORY_SHOWN`] values.
-struct HistoryTail<'a>(&'a [f64]);
+pub(crate) struct HistoryTail<'a>(pub(crate) &'a [f64]);
 
 impl fmt::Debug for HistoryTail<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -590,6 +604,8 @@ impl fmt::Debug for SolverError {
                 .field("gap", gap)
                 .field("setting", setting)
                 .finish(),
+            #[cfg(feature = "fe")]
+            Self::NewtonNotConverged(n) => f.debug_tuple("NewtonNotConverged").field(n).finish(),
             Self::AdhesionNotConverged {
                 iterations,
                 change,

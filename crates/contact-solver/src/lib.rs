@@ -47,6 +47,8 @@ pub mod error;
 pub mod local;
 
 pub use contact_laws;
+#[cfg(feature = "fe")]
+pub use error::NewtonFailure;
 pub use error::{BestIterate, SolverError};
 pub use local::{
     Algorithm, Asymmetry, CsrMatrix, ReducedProblem, Solution, UzawaReport, UzawaSettings,
@@ -64,6 +66,8 @@ pub use coupling::simulation::{
 };
 #[cfg(feature = "fe")]
 pub use coupling::simulation::{EnergyBalance, MoreauJean, QuasiStatic, SchemeStep, TimeScheme};
+#[cfg(feature = "fe")]
+pub use coupling::simulation::{NewtonReport, NewtonSettings};
 #[cfg(feature = "fe")]
 pub use coupling::zone::{
     Candidate, ContactZone, PairNormals, Polyline, Target, check_rigid_targets, recognize,

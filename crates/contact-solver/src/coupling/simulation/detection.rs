@@ -91,6 +91,12 @@ where
         if let Some(floating) = self.structure.floating() {
             floating.rigid_body_load_into(clock.force_factor, &mut mode_load)?;
         }
+        Ok(self.free_of(y, mode_load))
+    }
+
+    /// The free response `y` (with the load `mode_load` along a floating structure's modes)
+    /// and the jumps it predicts for every candidate ([`TimeScheme::free_jump`]).
+    pub(super) fn free_of(&mut self, y: Vec<f64>, mode_load: Vec<f64>) -> FreeResponse<D> {
         let jumps = self
             .interface
             .candidates
@@ -101,11 +107,11 @@ where
                 self.scheme.free_jump(i, c, u_rel, &self.accepted.jumps[i])
             })
             .collect();
-        Ok(FreeResponse {
+        FreeResponse {
             y,
             jumps,
             mode_load,
-        })
+        }
     }
 }
 

@@ -10,7 +10,8 @@
 //! parts (`parts`): the interface (zones, candidates, `H`), the accepted state carried between
 //! steps, and the operator cache. What the time discretisation decides (the free response,
 //! `q`, the acceptance) goes through the [`TimeScheme`] seam (`scheme`), quasi-static below;
-//! `settings` and `report` hold the public data types.
+//! `settings` and `report` hold the public data types; `newton` iterates these stages on the
+//! tangent of a nonlinear structure ([`ContactSimulation::with_newton`]).
 //!
 //! ```text
 //! check_step(time, force_factor, now)                        -> Result<()>
@@ -49,6 +50,7 @@ mod flexibility;
 mod floating;
 mod last_problem;
 mod moreau_jean;
+mod newton;
 mod parts;
 mod path;
 mod report;
@@ -60,7 +62,8 @@ mod velocity_adhesion;
 
 pub use energy::EnergyBalance;
 pub use moreau_jean::{AdhesionUpdate, MoreauJean};
-pub use report::{ContactRecord, Counters, InterfaceStatus, StepReport, StepResult};
+pub use newton::{NEWTON_DENSE_LIMIT, NewtonSettings};
+pub use report::{ContactRecord, Counters, InterfaceStatus, NewtonReport, StepReport, StepResult};
 pub use scheme::{AcceptedContact, QuasiStatic, SchemeStep, TimeScheme, VelocitySprings};
 pub use settings::{DEFAULT_DENSE_LIMIT, FlexibilityMode, SimulationSettings};
 pub use tuning::{SimulationTuning, SkipRules};
@@ -72,10 +75,12 @@ use crate::error::SolverError;
 use crate::local::adhesion::WarmStartPacing;
 use crate::local::{ReducedProblem, UzawaSolver};
 use contact_laws::ContactLaw;
+use detection::FreeResponse;
 use detection::check_step;
+use equilibrium::Equilibrium;
 use fem_core::{Dim, Structure};
 use parts::{Accepted, Interface, OperatorCache};
-use solve::Pass;
+use solve::{Pass, Solved};
 use std::time::Instant;
 
 /// A quasi-static contact simulation: structure, zones, per-contact state and the cached `F*`.
@@ -135,6 +140,8 @@ where
     counters: Counters,
     /// The check of `step`'s force factor (until the structure shows applied forces).
     force_check: ForceFactorCheck,
+    /// The global Newton of a nonlinear structure, when chosen ([`Self::with_newton`]).
+    newton: Option<newton::NewtonState<D>>,
 }
 
 impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize> ContactSimulation<S, L, D>
@@ -189,6 +196,7 @@ where
             warm: WarmStartPacing::default(),
             counters: Counters::default(),
             force_check: ForceFactorCheck::default(),
+            newton: None,
         })
     }
 
@@ -380,7 +388,9 @@ where
     /// settings accept non-converged results; [`SolverError::StillPenetrating`] if candidates
     /// outside the reduced problem still penetrate after
     /// [`max_detection_passes`](SimulationTuning::max_detection_passes) passes. On error the simulation keeps the state of the
-    /// previous step.
+    /// previous step. With the global Newton ([`Self::with_newton`]) the step is cut on
+    /// those failures, and [`SolverError::NewtonNotConverged`] reports the load reached
+    /// (the simulation keeping the last converged sub-step).
     ///
     /// # Examples
     /// A block pressed by a prescribed displacement of its top: the displacement is ramped
@@ -412,6 +422,9 @@ where
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn step(&mut self, time: f64, force_factor: f64) -> Result<StepResult<D>, SolverError> {
+        if let Some(from) = self.newton.as_ref().map(newton::NewtonState::start) {
+            return self.newton_step(time, force_factor, from);
+        }
         let start = Instant::now();
         check_step(time, force_factor, self.accepted.time)?;
         let version = self.follow_structure()?;
@@ -425,17 +438,36 @@ where
         self.force_check
             .check(&self.structure, force_factor, &free.y)?;
         let scheme = &self.scheme;
-        let mut active = self.interface.initial_active_set(
+        let active = self.interface.initial_active_set(
             &self.settings,
             &self.accepted,
             &free.jumps,
             |i, start, free, alert, all| scheme.enters(i, start, free, alert, all),
         );
         let mut report = StepReport::start(self.counters.steps + 1, time, force_factor);
+        let (equilibrium, solved) = self.passes(clock, &free, active, version, &mut report)?;
+        // 5. acceptance (the scheme's, then the carried state) and the report
+        Ok(self.accept(clock, equilibrium, solved, report, start))
+    }
+
+    /// Stages 2–4 of a step from its `free` response and initial `active` set: the detection
+    /// passes (path, operator, local solve, equilibrium, penetration check) until no inactive
+    /// candidate penetrates; the last pass's equilibrium and reduced solution, not accepted.
+    ///
+    /// # Errors
+    /// As [`Self::step`].
+    fn passes(
+        &mut self,
+        clock: Clock,
+        free: &FreeResponse<D>,
+        mut active: Vec<usize>,
+        version: u64,
+        report: &mut StepReport,
+    ) -> Result<(Equilibrium<D>, Solved<L::State>), SolverError> {
         loop {
             report.detection_passes += 1;
             // 2–3. the path and its operator, then the local solve (with the adhesion loop)
-            let solved = match self.solve_pass(&active, &free, clock.dt, version, &mut report)? {
+            let solved = match self.solve_pass(&active, free, clock.dt, version, report)? {
                 Pass::Solved(solved) => solved,
                 Pass::Extend(more) => {
                     // a rigid motion of a floating body closes candidates outside the set
@@ -446,7 +478,7 @@ where
                 }
             };
             // 4. equilibrium (the scheme's displacement), then the penetration check
-            let equilibrium = self.equilibrium(clock, &free, &solved)?;
+            let equilibrium = self.equilibrium(clock, free, &solved)?;
             let scheme = &self.scheme;
             let penetrating =
                 self.interface
@@ -454,8 +486,7 @@ where
                         scheme.penetrates(i, jump, tol)
                     });
             if penetrating.is_empty() {
-                // 5. acceptance (the scheme's, then the carried state) and the report
-                return Ok(self.accept(clock, equilibrium, solved, report, start));
+                return Ok((equilibrium, solved));
             }
             if report.detection_passes >= self.settings.tuning.max_detection_passes {
                 // issue 35: accepting the step would return contacts that penetrate

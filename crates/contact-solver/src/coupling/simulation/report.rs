@@ -220,6 +220,41 @@ pub struct StepReport {
     pub converged: bool,
     /// Wall time of the step.
     pub wall_time: Duration,
+    /// The global Newton of a nonlinear structure
+    /// ([`ContactSimulation::with_newton`](crate::ContactSimulation::with_newton)): its
+    /// iterations and residuals; `None` on the linear path.
+    pub newton: Option<NewtonReport>,
+}
+
+/// What the global Newton around contact did in one
+/// [`step`](crate::ContactSimulation::step) ([`ContactSimulation::with_newton`](crate::ContactSimulation::with_newton)).
+///
+/// A step that was cut ran as several accepted sub-steps; `iterations` and the residuals are
+/// those of the last one, which ends at the step's time and force factor.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[non_exhaustive]
+pub struct NewtonReport {
+    /// Newton corrections of the last sub-step (one contact solve on the current tangent
+    /// each): 1 for a linear-elastic structure.
+    pub iterations: usize,
+    /// The relative equilibrium residual `‖f_ext + Hᵀ r − f_int(u)‖∞ / scale` of the last
+    /// sub-step at every evaluation: at its start (the last step's `u` and `r` under the new
+    /// load), then after each correction; the last is below
+    /// [`NewtonSettings::tol`](crate::NewtonSettings::tol). The scale is the largest of
+    /// `‖f_ext‖∞`, `‖f_int(u)‖∞` and `‖Hᵀ r‖∞`.
+    pub residuals: Vec<f64>,
+    /// The natural-map residual of the contact problem solved in each correction (the
+    /// reduced solver's own, below its tolerance unless the settings accept non-converged
+    /// solves).
+    pub contact_residuals: Vec<f64>,
+    /// Halvings of the step after a sub-step that did not converge.
+    pub cuts: usize,
+    /// Sub-steps accepted (1 when the step was not cut); each is counted in
+    /// [`Counters::steps`].
+    pub substeps: usize,
+    /// Newton corrections over the whole step, the attempts that were cut included.
+    pub total_iterations: usize,
 }
 
 /// Counters over the whole simulation: what work was done (and skipped).
@@ -319,6 +354,7 @@ impl StepReport {
             residual: 0.0,
             converged: true,
             wall_time: Duration::ZERO,
+            newton: None,
         }
     }
 }
