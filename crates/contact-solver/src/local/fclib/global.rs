@@ -39,30 +39,59 @@ pub(super) fn condense(
         rhs[(k, m)] = fk;
     }
     solve_mass(n, entries_m, &mut rhs)?;
-    // W = Hᵀ X, q = Hᵀ y + w, with [X | y] = M⁻¹ [H | f]
-    let mut q = w.to_vec();
-    for &(k, a, h) in entries_h {
-        let row = &mut wmat[a * m..(a + 1) * m];
-        for (b, wab) in row.iter_mut().enumerate() {
-            *wab += h * rhs[(k, b)];
-        }
-        q[a] += h * rhs[(k, m)];
-    }
+    let q = lower_products(n, entries_h, m, &rhs, w, &mut wmat);
     if let Some(k) = wmat.iter().chain(&q).position(|v| !v.is_finite()) {
         return Err(format!(
             "`fclib_global/M` is singular: the condensed {} is not finite",
             if k < m * m { "W" } else { "q" }
         ));
     }
-    // exactly symmetric: (W + Wᵀ)/2 removes the round-off of the two products
+    Ok((wmat, q))
+}
+
+/// `W = Hᵀ X` (exactly symmetric: the lower triangle, mirrored) and `q = Hᵀ y + w` from
+/// `[X | y] = M⁻¹ [H | f]` (`rhs`, column-major `n × (m + 1)`), `W` into `wmat` (row-major
+/// `m × m`, zeroed). `H` is gathered by columns once, so that each entry `W_ab` is a sparse
+/// dot product of column `a` of `H` with the contiguous column `b` of `X`: `nnz(H) · m / 2`
+/// multiply-adds in all, reading `X` in order (the entry-by-entry product it replaces read
+/// `X` across its rows, a cache miss per multiply-add, and computed both triangles).
+fn lower_products(
+    n: usize,
+    entries_h: &[(usize, usize, f64)],
+    m: usize,
+    rhs: &Mat<f64>,
+    w: &[f64],
+    wmat: &mut [f64],
+) -> Vec<f64> {
+    // H by columns: start[a]..start[a + 1] indexes the (row, value) pairs of column a
+    let mut start = vec![0usize; m + 1];
+    for &(_, a, _) in entries_h {
+        start[a + 1] += 1;
+    }
     for a in 0..m {
-        for b in (a + 1)..m {
-            let s = 0.5 * (wmat[a * m + b] + wmat[b * m + a]);
-            wmat[a * m + b] = s;
-            wmat[b * m + a] = s;
+        start[a + 1] += start[a];
+    }
+    let mut next = start.clone();
+    let mut by_col = vec![(0usize, 0.0); entries_h.len()];
+    for &(k, a, h) in entries_h {
+        by_col[next[a]] = (k, h);
+        next[a] += 1;
+    }
+    let column = |a: usize| &by_col[start[a]..start[a + 1]];
+    let dot = |a: usize, xb: &[f64]| column(a).iter().map(|&(k, h)| h * xb[k]).sum::<f64>();
+    for b in 0..m {
+        let xb = &rhs.col_as_slice(b)[..n];
+        for a in b..m {
+            let v = dot(a, xb);
+            wmat[a * m + b] = v;
+            wmat[b * m + a] = v;
         }
     }
-    Ok((wmat, q))
+    let y = &rhs.col_as_slice(m)[..n];
+    // q_a = w_a + Σ h y_k, summed in the order of the file's entries
+    (0..m)
+        .map(|a| column(a).iter().fold(w[a], |s, &(k, h)| s + h * y[k]))
+        .collect()
 }
 
 /// `rhs ← M⁻¹ rhs`: Cholesky of the lower triangle when `M` is symmetric, else (or when
