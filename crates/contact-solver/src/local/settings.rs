@@ -47,8 +47,9 @@ pub enum Algorithm {
     /// there are at most 1000 contacts and fewer than half of its off-diagonal blocks are zero
     /// (not a multibody Delassus operator), for a sparse `W` at most 20 000 contacts whose
     /// graph fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
-    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel). A Newton chosen so that has not
-    /// converged in 30 iterations hands over to
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel). A Newton chosen so that creeps
+    /// (a second Armijo step of at most 2⁻⁵ after its first, or 100 iterations without
+    /// converging) hands over to
     /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel) from the start (with or without
     /// [`fallback`](UzawaSettings::fallback); the report's
     /// [`fallback_from`](UzawaReport::fallback_from) says it happened).
