@@ -145,7 +145,7 @@ Examples:
 
 #[derive(Clone, Copy, ValueEnum)]
 enum AlgorithmArg {
-    /// Newton up to 1000 contacts (30 iterations, then the accelerated sweep), else the
+    /// Newton up to 1000 contacts (the accelerated sweep when it creeps), else the
     /// Anderson-accelerated Gauss–Seidel sweep; a dense W of mostly zero blocks (multibody)
     /// is solved stored sparse (measured rule, docs/benchmarks.md).
     Auto,

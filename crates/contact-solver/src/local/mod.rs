@@ -93,9 +93,11 @@
 //!   sparse couplings fill 27–87 and Newton is 3–20× slower). A dense `W` whose off-diagonal
 //!   blocks are mostly exactly zero (`AUTO_MULTIBODY_ZERO_BLOCKS`: a multibody Delassus
 //!   operator, never a condensed FE flexibility) gets the sweep too, and a Newton chosen by
-//!   the rule hands over to the sweep after `AUTO_NEWTON_BUDGET` (30) iterations (issue 37:
-//!   on semidefinite multibody stacks the dense Newton crept for thousands of iterations where
-//!   the sweep converges in hundreds; `docs/benchmarks.md` "Auto on multibody problems").
+//!   the rule hands over to the sweep on its second short Armijo step after the first
+//!   (`AUTO_NEWTON_SHORT_STEP` = 2⁻⁵) or after `AUTO_NEWTON_BUDGET` (100) iterations (issue
+//!   37: on semidefinite multibody stacks the Newton crept for thousands of iterations with
+//!   steps `t ≤ 2⁻⁶` where the sweep converges in hundreds, while every converging run takes
+//!   steps `t ≥ 2⁻⁴`; `docs/benchmarks.md` "Auto on multibody problems").
 //!   Random *dense* problems, which
 //!   are well conditioned (the sweep converges in about 25 iterations), are the one class where
 //!   the rule picks the slower one (Newton 3–6× slower); FE and multibody problems are what

@@ -97,7 +97,7 @@ use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{local, natural_residual, norm, pick, set_local};
 use super::residual_stop::ResidualStop;
-use super::settings::UzawaSettings;
+use super::settings::{AUTO_NEWTON_SHORT_STEP, AUTO_NEWTON_SHORT_STEPS, UzawaSettings};
 use super::stall::StallDetector;
 use super::sweep::Sweeps;
 use crate::error::SolverError;
@@ -211,6 +211,19 @@ pub(crate) struct NewtonScratch {
     /// Sparse `W`: the first unknown of each contact (`n_c + 1`) and the matrix's entries.
     first: Vec<usize>,
     triplets: Vec<Triplet<usize, usize, f64>>,
+    /// Set by [`Algorithm::Auto`](super::settings::Algorithm::Auto) for the run of a Newton it
+    /// chose: the run gives up (neither converged nor stalled) on its second short step
+    /// ([`creeps`]), so that the accelerated sweep takes over.
+    pub(crate) probe: bool,
+}
+
+/// Whether a Newton step of [`Algorithm::Auto`](super::settings::Algorithm::Auto)'s probe
+/// says that the semi-smooth Newton creeps: its line search failed (`!stepped`) or accepted
+/// only a step `t ≤ AUTO_NEWTON_SHORT_STEP` (measured in `docs/benchmarks.md` "Auto on
+/// multibody problems": after their first step, converging runs take `t ≥ 2⁻⁴`, the runs that
+/// creep for thousands of iterations `t ≤ 2⁻⁶` on most steps).
+fn creeps(stepped: bool, t: f64) -> bool {
+    !stepped || t <= AUTO_NEWTON_SHORT_STEP
 }
 
 /// Solves `a y = b` in place (`y` into `b`) by Gaussian elimination with partial pivoting;
@@ -557,6 +570,8 @@ impl NewtonScratch {
         let mut polishing = false;
         let mut stall = StallDetector::new(settings.tuning.stall_window);
         let mut streak = ResidualStop::default();
+        // Auto's probe: Newton steps so far, and the short ones after the first
+        let (mut steps_tried, mut short_steps) = (0usize, 0usize);
         while run.iterations < settings.max_iterations {
             run.iterations += 1;
             let mut stepped = false;
@@ -585,6 +600,16 @@ impl NewtonScratch {
                         break;
                     }
                     t *= 0.5;
+                }
+                steps_tried += 1;
+                if self.probe && steps_tried > 1 && creeps(stepped, t) {
+                    short_steps += 1;
+                    if short_steps >= AUTO_NEWTON_SHORT_STEPS {
+                        // give up without a step (the iteration is not counted): the
+                        // accelerated sweep takes over
+                        run.iterations -= 1;
+                        break;
+                    }
                 }
                 if stepped {
                     run.newton_steps += 1;

@@ -47,8 +47,9 @@ pub enum Algorithm {
     /// there are at most 1000 contacts and fewer than half of its off-diagonal blocks are zero
     /// (not a multibody Delassus operator), for a sparse `W` at most 20 000 contacts whose
     /// graph fills a factorisation by at most 10 (`nnz(L)/nnz(tril)`); else
-    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel). A Newton chosen so that has not
-    /// converged in 30 iterations hands over to
+    /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel). A Newton chosen so that creeps
+    /// (a second Armijo step of at most 2⁻⁵ after its first, or 100 iterations without
+    /// converging) hands over to
     /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel) from the start (with or without
     /// [`fallback`](UzawaSettings::fallback); the report's
     /// [`fallback_from`](UzawaReport::fallback_from) says it happened).
@@ -107,13 +108,27 @@ pub(crate) const AUTO_SPARSE_NEWTON_MAX_CONTACTS: usize = 20_000;
 pub(crate) const AUTO_MULTIBODY_ZERO_BLOCKS: f64 = 0.5;
 
 /// The iterations (sweeps and Newton steps) a Newton chosen by [`Algorithm::Auto`] may take
-/// before the accelerated sweep takes over from the start. Measured: Newton converges in
-/// 7–9 iterations on the FE problems of `docs/benchmarks.md` and in 11–16 on the sphere
-/// piles where it wins; where it does not converge it creeps for thousands of iterations
-/// (0.3–0.9 ms each on a 250–300-contact pile stored sparse, against 11–14 ms for the whole
-/// sweep solve). A tower of 50 spheres, where Newton converges slowly (53 iterations), pays
-/// the budget and the sweep: 2.3× Newton's time.
-pub(crate) const AUTO_NEWTON_BUDGET: usize = 30;
+/// before the accelerated sweep takes over from the start, whatever its steps look like
+/// (the probe, `AUTO_NEWTON_SHORT_STEPS`, usually decides sooner). Measured: Newton converges
+/// in 7–9 iterations on the FE problems of `docs/benchmarks.md`, in 11–16 on the sphere piles
+/// where it wins and in 53 on a tower of 50 spheres (where it is still 1.9× faster than the
+/// sweep, with steps `t ≥ 2⁻⁴`); 100 is about twice the longest converging run.
+pub(crate) const AUTO_NEWTON_BUDGET: usize = 100;
+
+/// A Newton step of [`Algorithm::Auto`]'s probe accepted with a step length at most this
+/// (five halvings or more of the Armijo line search) is *short*. Measured (the residual and
+/// the step of every Newton iteration on the rows of `docs/benchmarks.md` "Auto on multibody
+/// problems"): after the first Newton step (which may need up to 16 halvings on a tower,
+/// starting from the warm-up sweeps' active set), every run that converges takes steps
+/// `t ≥ 2⁻⁴` (FE and random problems `t ≥ 2⁻²`), while the loose piles, where Newton creeps
+/// for thousands of iterations, take `t ≤ 2⁻⁶` on most steps from their 4th–6th on.
+pub(crate) const AUTO_NEWTON_SHORT_STEP: f64 = 1.0 / 32.0;
+
+/// Short steps (`AUTO_NEWTON_SHORT_STEP`, or a failed line search) after its first step
+/// after which a Newton chosen by [`Algorithm::Auto`] gives up and the accelerated sweep takes
+/// over: two, so that one odd step does not decide (the loose piles give their second at
+/// iteration 8–10, none of the converging runs gives one).
+pub(crate) const AUTO_NEWTON_SHORT_STEPS: usize = 2;
 
 /// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
 /// long, what to do when it fails), with the tuning of the iteration beside them in

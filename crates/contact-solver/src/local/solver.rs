@@ -225,7 +225,10 @@ impl UzawaSolver {
         } else {
             st
         };
-        let mut sol = self.attempt::<L, DT>(first, problem, laws, states, r.clone())?;
+        self.newton.probe = auto_newton;
+        let first_run = self.attempt::<L, DT>(first, problem, laws, states, r.clone());
+        self.newton.probe = false;
+        let mut sol = first_run?;
         let mut best_iterate = None;
         self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, &mut best_iterate);
         self.check::<L, DT>(problem, laws, states, &mut sol, mu);

@@ -39,30 +39,59 @@ pub(super) fn condense(
         rhs[(k, m)] = fk;
     }
     solve_mass(n, entries_m, &mut rhs)?;
-    // W = Hᵀ X, q = Hᵀ y + w, with [X | y] = M⁻¹ [H | f]
-    let mut q = w.to_vec();
-    for &(k, a, h) in entries_h {
-        let row = &mut wmat[a * m..(a + 1) * m];
-        for (b, wab) in row.iter_mut().enumerate() {
-            *wab += h * rhs[(k, b)];
-        }
-        q[a] += h * rhs[(k, m)];
-    }
+    let q = lower_products(n, entries_h, m, &rhs, w, &mut wmat);
     if let Some(k) = wmat.iter().chain(&q).position(|v| !v.is_finite()) {
         return Err(format!(
             "`fclib_global/M` is singular: the condensed {} is not finite",
             if k < m * m { "W" } else { "q" }
         ));
     }
-    // exactly symmetric: (W + Wᵀ)/2 removes the round-off of the two products
+    Ok((wmat, q))
+}
+
+/// `W = Hᵀ X` (exactly symmetric: the lower triangle, mirrored) and `q = Hᵀ y + w` from
+/// `[X | y] = M⁻¹ [H | f]` (`rhs`, column-major `n × (m + 1)`), `W` into `wmat` (row-major
+/// `m × m`, zeroed). `H` is gathered by columns once, so that each entry `W_ab` is a sparse
+/// dot product of column `a` of `H` with the contiguous column `b` of `X`: `nnz(H) · m / 2`
+/// multiply-adds in all, reading `X` in order (the entry-by-entry product it replaces read
+/// `X` across its rows, a cache miss per multiply-add, and computed both triangles).
+fn lower_products(
+    n: usize,
+    entries_h: &[(usize, usize, f64)],
+    m: usize,
+    rhs: &Mat<f64>,
+    w: &[f64],
+    wmat: &mut [f64],
+) -> Vec<f64> {
+    // H by columns: start[a]..start[a + 1] indexes the (row, value) pairs of column a
+    let mut start = vec![0usize; m + 1];
+    for &(_, a, _) in entries_h {
+        start[a + 1] += 1;
+    }
     for a in 0..m {
-        for b in (a + 1)..m {
-            let s = 0.5 * (wmat[a * m + b] + wmat[b * m + a]);
-            wmat[a * m + b] = s;
-            wmat[b * m + a] = s;
+        start[a + 1] += start[a];
+    }
+    let mut next = start.clone();
+    let mut by_col = vec![(0usize, 0.0); entries_h.len()];
+    for &(k, a, h) in entries_h {
+        by_col[next[a]] = (k, h);
+        next[a] += 1;
+    }
+    let column = |a: usize| &by_col[start[a]..start[a + 1]];
+    let dot = |a: usize, xb: &[f64]| column(a).iter().map(|&(k, h)| h * xb[k]).sum::<f64>();
+    for b in 0..m {
+        let xb = &rhs.col_as_slice(b)[..n];
+        for a in b..m {
+            let v = dot(a, xb);
+            wmat[a * m + b] = v;
+            wmat[b * m + a] = v;
         }
     }
-    Ok((wmat, q))
+    let y = &rhs.col_as_slice(m)[..n];
+    // q_a = w_a + Σ h y_k, summed in the order of the file's entries
+    (0..m)
+        .map(|a| column(a).iter().fold(w[a], |s, &(k, h)| s + h * y[k]))
+        .collect()
 }
 
 /// `rhs ← M⁻¹ rhs`: Cholesky of the lower triangle when `M` is symmetric, else (or when
@@ -118,6 +147,106 @@ mod tests {
         let (w, q) = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.5, 0.0]).unwrap();
         assert_eq!(w, vec![0.25, 0.0, 0.0, 0.0625]);
         assert_eq!(q, vec![0.75, 0.125]);
+    }
+
+    /// A global problem of `bodies` rigid bodies (6 dofs each, `M` diagonal and positive)
+    /// and `contacts` 3D contacts between random pairs of them (`H`: 6 entries per body and
+    /// contact row, 12 per column), `f` and `w` random.
+    #[allow(clippy::type_complexity)]
+    fn rigid_bodies(
+        bodies: usize,
+        contacts: usize,
+    ) -> (
+        usize,
+        Vec<(usize, usize, f64)>,
+        Vec<(usize, usize, f64)>,
+        usize,
+    ) {
+        let mut g = crate::local::generate::SplitMix64::new(3);
+        let n = 6 * bodies;
+        let em = (0..n).map(|k| (k, k, g.uniform(1.0, 2.0))).collect();
+        let mut eh = Vec::new();
+        for c in 0..contacts {
+            let a = (g.uniform(0.0, bodies as f64) as usize).min(bodies - 1);
+            let b = (a + 1 + (g.uniform(0.0, (bodies - 1) as f64) as usize)) % bodies;
+            for col in 3 * c..3 * c + 3 {
+                for body in [a, b] {
+                    for k in 6 * body..6 * body + 6 {
+                        eh.push((k, col, g.uniform(-1.0, 1.0)));
+                    }
+                }
+            }
+        }
+        (n, em, eh, 3 * contacts)
+    }
+
+    /// The entry-by-entry product the column form replaced: `W_ab += h X_kb` for each entry
+    /// `(k, a, h)` of `H`, then `(W + Wᵀ)/2`, and `q_a += h y_k` from `w`.
+    fn products_by_entries(
+        entries_h: &[(usize, usize, f64)],
+        m: usize,
+        rhs: &Mat<f64>,
+        w: &[f64],
+    ) -> (Vec<f64>, Vec<f64>) {
+        let mut wmat = vec![0.0; m * m];
+        let mut q = w.to_vec();
+        for &(k, a, h) in entries_h {
+            for b in 0..m {
+                wmat[a * m + b] += h * rhs[(k, b)];
+            }
+            q[a] += h * rhs[(k, m)];
+        }
+        for a in 0..m {
+            for b in (a + 1)..m {
+                let s = 0.5 * (wmat[a * m + b] + wmat[b * m + a]);
+                (wmat[a * m + b], wmat[b * m + a]) = (s, s);
+            }
+        }
+        (wmat, q)
+    }
+
+    /// `W` and `q` of the column form match the entry-by-entry product to round-off
+    /// (`1e-14` of `max|W|`: the two differ only in `(W_ab + W_ba)/2` against `W_ab`, each a
+    /// sum of at most 12 products in the same order), and `q` bit for bit (the same sums in
+    /// the same order). `FCLIB_TIMING=1` prints both times (`--release` to measure).
+    #[test]
+    fn issue_37_column_products_match_the_entry_products() {
+        let (bodies, contacts) = if std::env::var_os("FCLIB_TIMING").is_some() {
+            (1000, 1500)
+        } else {
+            (30, 40)
+        };
+        let (n, em, eh, m) = rigid_bodies(bodies, contacts);
+        let mut g = crate::local::generate::SplitMix64::new(4);
+        let f: Vec<f64> = (0..n).map(|_| g.uniform(-1.0, 1.0)).collect();
+        let w: Vec<f64> = (0..m).map(|_| g.uniform(-1.0, 1.0)).collect();
+        let mut rhs = Mat::<f64>::zeros(n, m + 1);
+        for &(k, a, h) in &eh {
+            rhs[(k, a)] += h;
+        }
+        for (k, &fk) in f.iter().enumerate() {
+            rhs[(k, m)] = fk;
+        }
+        solve_mass(n, &em, &mut rhs).unwrap();
+        let t0 = std::time::Instant::now();
+        let (w_old, q_old) = products_by_entries(&eh, m, &rhs, &w);
+        let t1 = std::time::Instant::now();
+        let mut w_new = vec![0.0; m * m];
+        let q_new = lower_products(n, &eh, m, &rhs, &w, &mut w_new);
+        let t2 = std::time::Instant::now();
+        if std::env::var_os("FCLIB_TIMING").is_some() {
+            let t = condense(n, &em, &eh, m, &f, &w).map(|_| t2.elapsed());
+            println!(
+                "n = {n}, m = {m}: by entries {:?}, by columns {:?}, whole condense {t:?}",
+                t1 - t0,
+                t2 - t1
+            );
+        }
+        let scale = w_old.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+        for (a, b) in w_old.iter().zip(&w_new) {
+            assert!((a - b).abs() <= 1e-14 * scale, "{a} against {b}");
+        }
+        assert_eq!(q_old, q_new);
     }
 
     #[test]
