@@ -140,7 +140,8 @@ impl ExactTangent {
     /// Solves `K X = B` in place.
     ///
     /// # Errors
-    /// [`FemError::LinearAlgebra`] if no factorisation has succeeded since the last failure.
+    /// [`FemError::LinearAlgebra`] if no factorisation has succeeded since the last failure,
+    /// or if the solution is not finite (a numerically singular matrix).
     pub(super) fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
         let Some(lu) = &self.lu else {
             return Err(FemError::LinearAlgebra {
@@ -148,7 +149,22 @@ impl ExactTangent {
                     .into(),
             });
         };
-        lu.solve_in_place_with_conj(Conj::No, rhs);
+        let mut rhs = rhs;
+        lu.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+        // a numerically singular matrix (a zero pivot) leaves infinities or NaN
+        for j in 0..rhs.ncols() {
+            for i in 0..rhs.nrows() {
+                if !rhs[(i, j)].is_finite() {
+                    return Err(FemError::LinearAlgebra {
+                        detail: format!(
+                            "the exact plastic tangent is numerically singular (the LU solve \
+                             gave {} at row {i})",
+                            rhs[(i, j)]
+                        ),
+                    });
+                }
+            }
+        }
         Ok(())
     }
 }
