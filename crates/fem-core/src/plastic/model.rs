@@ -107,6 +107,8 @@ where
     values: Vec<f64>,
     /// The full tangent and its LU, when the kind is [`TangentKind::Exact`].
     exact: Option<ExactTangent>,
+    /// The successful LU factorisations, over every kind change (part of the version).
+    lu_updates: u64,
     /// The prescribed values, in the dof map's order.
     prescribed: Vec<f64>,
     scratch: Scratch<D>,
@@ -210,6 +212,7 @@ where
         };
         let mut body = Self {
             exact,
+            lu_updates: 0,
             values: vec![0.0; elastic.pattern().nnz()],
             prescribed: elastic.prescribed_values(),
             kinematics,
@@ -590,7 +593,11 @@ where
         }
         self.element_loop(None, &mut [])?;
         match &mut self.exact {
-            Some(exact) => exact.factor(),
+            Some(exact) => {
+                exact.factor()?;
+                self.lu_updates += 1;
+                Ok(())
+            }
             None => self.elastic.factor_values(&self.values),
         }
     }
@@ -680,7 +687,7 @@ where
     /// The elastic model's version plus the LU factorisations of the exact tangent: it
     /// changes at every tangent update of either kind.
     fn stiffness_version(&self) -> u64 {
-        self.elastic.stiffness_version() + self.exact.as_ref().map_or(0, |e| e.factorizations())
+        self.elastic.stiffness_version() + self.lu_updates
     }
 
     /// The symmetric part of the tangent of the last [`Nonlinear::update_tangent`] (lower

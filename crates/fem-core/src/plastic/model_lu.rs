@@ -42,14 +42,12 @@ pub(super) struct ExactTangent {
     pub(super) lower_to_full: Vec<[usize; 2]>,
     symbolic: SymbolicLu<usize>,
     lu: Option<Lu<usize, f64>>,
-    factorizations: u64,
 }
 
 impl core::fmt::Debug for ExactTangent {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("ExactTangent")
             .field("nnz", &self.values.len())
-            .field("factorizations", &self.factorizations)
             .finish()
     }
 }
@@ -99,7 +97,6 @@ impl ExactTangent {
             lower_to_full,
             symbolic,
             lu: None,
-            factorizations: 0,
         })
     }
 
@@ -128,13 +125,7 @@ impl ExactTangent {
                 },
             )?;
         self.lu = Some(lu);
-        self.factorizations += 1;
         Ok(())
-    }
-
-    /// How many numeric factorisations were done.
-    pub(super) fn factorizations(&self) -> u64 {
-        self.factorizations
     }
 
     /// Solves `K X = B` in place.

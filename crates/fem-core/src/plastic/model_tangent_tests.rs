@@ -209,4 +209,26 @@ fn issue_40_exact_tangent_solve_matches_a_dense_lu() {
         .sum::<f64>()
         .sqrt();
     assert!(error <= 1e-12 * norm, "{error} against {norm}");
+    // the stiffness version keeps rising across a change of kind (caches keyed on it)
+    let version = body.stiffness_version();
+    body.set_tangent_kind(TangentKind::Symmetric).unwrap();
+    assert!(body.exact_tangent().is_none());
+    assert!(body.stiffness_version() > version);
+}
+
+/// A singular exact tangent (here all zero) is an error naming the LU, never a NaN
+/// displacement: either the factorisation or the solve refuses it.
+#[test]
+fn issue_40_singular_exact_tangent_is_an_error() {
+    let (body, _) = footing(0.0, None);
+    let mut exact = super::model_lu::ExactTangent::new(body.elastic().pattern()).unwrap();
+    let n = body.dof_count();
+    let mut b = vec![1.0; n];
+    let result = exact.factor().and_then(|()| {
+        exact.solve_many_in_place(faer::MatMut::from_column_major_slice_mut(&mut b, n, 1))
+    });
+    assert!(
+        matches!(result, Err(crate::FemError::LinearAlgebra { .. })),
+        "{result:?}"
+    );
 }

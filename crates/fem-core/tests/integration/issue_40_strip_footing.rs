@@ -413,9 +413,8 @@ fn issue_40_strip_footing_fine() {
 /// the exact tangent (LU, the default) and with the symmetric part (measured,
 /// `docs/validation.md`). Neither reaches a collapse load yet: the symmetric part stalls in a
 /// two-cycle soon after the footing edge yields; the exact tangent goes about three times
-/// further, then diverges (`θ = 10°`) or meets a singular tangent (`θ = 0`: points at the
-/// apex, whose consistent tangent is 0). The pressure printed is that of the last converged
-/// step.
+/// further, then diverges (`θ = 10°`) or meets a numerically singular tangent (`θ = 0`).
+/// The pressure printed is that of the last converged step.
 #[test]
 #[ignore]
 fn issue_40_strip_footing_non_associated_measured() {
