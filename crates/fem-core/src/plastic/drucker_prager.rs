@@ -468,4 +468,9 @@ impl ConstitutivePoint for DruckerPrager {
         let (s_m, s) = split(stress);
         stress_norm(&s) / self.k_d + s_m * self.tan_phi - self.parameters.cohesion
     }
+
+    /// Associated (`θ = φ`): the consistent tangent is symmetric.
+    fn symmetric_tangent(&self) -> bool {
+        self.parameters.dilatancy_angle == self.parameters.friction_angle
+    }
 }

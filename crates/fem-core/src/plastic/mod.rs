@@ -28,14 +28,18 @@ mod drucker_prager;
 mod drucker_prager_tests;
 mod model;
 mod model_initial;
+mod model_lu;
 mod model_post;
 mod model_reaction;
+#[cfg(test)]
+mod model_tangent_tests;
 #[cfg(test)]
 mod model_tests;
 pub mod newton;
 
 pub use drucker_prager::{ConeMatch, DruckerPrager, DruckerPragerParameters};
 pub use model::PlasticModel;
+pub use model_lu::TangentKind;
 pub use model_post::PlasticOutputs;
 
 /// A symmetric tensor in Voigt order `[xx, yy, zz, xy, yz, zx]` (module docs): engineering
@@ -96,6 +100,13 @@ pub trait ConstitutivePoint: Send + Sync + core::fmt::Debug {
     /// The yield function at `stress`: `≤ 0` for an admissible stress (`0` on the surface),
     /// in units of stress. A law with no yield surface returns `f64::NEG_INFINITY`.
     fn yield_function(&self, stress: &Voigt) -> f64;
+
+    /// Whether the consistent tangent [`ConstitutivePoint::update`] writes is always
+    /// symmetric (an associated law): a body of such laws factorises it with a Cholesky
+    /// ([`TangentKind`]). `true` unless the law says otherwise.
+    fn symmetric_tangent(&self) -> bool {
+        true
+    }
 }
 
 /// Isotropic linear elasticity as a [`ConstitutivePoint`] (no yield surface): the plastic

@@ -12,16 +12,18 @@
 //! An initial stress is not a load: it is the committed stress of the points, so it enters
 //! `f_int` (`Σ Bᵀ σ₀ w` at `u = 0`).
 //!
-//! The tangent is symmetrised: the sparse solver is a Cholesky. For an associated law (von
-//! Mises, Drucker–Prager with `θ = φ`) `C_t` is symmetric and the tangent is the consistent
-//! one (quadratic Newton); for a non-associated law the symmetric part is an approximation
-//! and the Newton converges linearly.
+//! The tangent is [`TangentKind::Symmetric`] (`sym(C_t)`, the elastic model's Cholesky) or
+//! [`TangentKind::Exact`] (`C_t` itself in full storage, a sparse LU, `model_lu.rs`). For an
+//! associated law (von Mises, Drucker–Prager with `θ = φ`) `C_t` is symmetric and both are
+//! the consistent tangent; for a non-associated law only `Exact` is (quadratic Newton), the
+//! symmetric part converges linearly and may be indefinite, so `Exact` is then the default.
 //!
 //! Everything linear — the dof map, the pattern and its symbolic factorisation, the loads,
 //! the prescribed values, the mass — is the [`ElasticModel`]'s the body holds; the body
 //! only replaces the internal forces and the tangent. Post-processing is in
 //! `model_post.rs`, initial stresses in `model_initial.rs`.
 
+use super::model_lu::{ExactTangent, TangentKind};
 use super::{ConstitutivePoint, PointState, Voigt, VoigtMatrix};
 use crate::dirichlet::Dof;
 use crate::element::kernel::{self, Point};
@@ -101,8 +103,12 @@ where
     pub(super) tangents: Vec<VoigtMatrix>,
     /// Whether `trial` and `tangents` come from an evaluation since the last rollback.
     pub(super) trial_current: bool,
-    /// The tangent's values on the elastic model's pattern.
+    /// The tangent's values on the elastic model's pattern (the symmetric part).
     values: Vec<f64>,
+    /// The full tangent and its LU, when the kind is [`TangentKind::Exact`].
+    exact: Option<ExactTangent>,
+    /// The successful LU factorisations, over every kind change (part of the version).
+    lu_updates: u64,
     /// The prescribed values, in the dof map's order.
     prescribed: Vec<f64>,
     scratch: Scratch<D>,
@@ -147,7 +153,12 @@ where
     /// - [`FemError::MissingMaterial`] if a region of the mesh has no law;
     /// - [`FemError::Unsupported`] in plane stress, or for a floating elastic model;
     /// - [`FemError::OutsideYieldSurface`] if the initial stress is not admissible;
-    /// - the factorisation's ([`FemError::NotPositiveDefinite`]).
+    /// - the factorisation's ([`FemError::NotPositiveDefinite`] for the Cholesky,
+    ///   [`FemError::LinearAlgebra`] for the LU).
+    ///
+    /// The tangent is [`TangentKind::Exact`] when some law's
+    /// [`ConstitutivePoint::symmetric_tangent`] is `false`, [`TangentKind::Symmetric`]
+    /// otherwise ([`PlasticModel::set_tangent_kind`] changes it).
     pub fn new(
         mut elastic: ElasticModel<D>,
         laws: &[(u32, Arc<dyn ConstitutivePoint>)],
@@ -194,7 +205,14 @@ where
         let nodes = mesh.built_in_element().node_count();
         let nd = D * nodes;
         let initial = elastic.take_initial_stress();
+        let exact = if laws.iter().all(|(_, law)| law.symmetric_tangent()) {
+            None
+        } else {
+            Some(ExactTangent::new(elastic.pattern())?)
+        };
         let mut body = Self {
+            exact,
+            lu_updates: 0,
             values: vec![0.0; elastic.pattern().nnz()],
             prescribed: elastic.prescribed_values(),
             kinematics,
@@ -220,6 +238,38 @@ where
         }
         body.update_tangent()?;
         Ok(body)
+    }
+
+    /// The tangent the body assembles and factorises.
+    #[inline]
+    pub fn tangent_kind(&self) -> TangentKind {
+        if self.exact.is_some() {
+            TangentKind::Exact
+        } else {
+            TangentKind::Symmetric
+        }
+    }
+
+    /// Changes the tangent the body assembles and factorises, and refactorises it (at the
+    /// trial state of the last evaluation, else at the committed state).
+    ///
+    /// # Errors
+    /// The factorisation's, as [`PlasticModel::new`].
+    pub fn set_tangent_kind(&mut self, kind: TangentKind) -> Result<(), FemError> {
+        if kind == self.tangent_kind() {
+            return Ok(());
+        }
+        self.exact = match kind {
+            TangentKind::Symmetric => None,
+            TangentKind::Exact => Some(ExactTangent::new(self.elastic.pattern())?),
+        };
+        self.update_tangent()
+    }
+
+    /// The exact tangent of the last [`Nonlinear::update_tangent`] in full storage (both
+    /// triangles), when the kind is [`TangentKind::Exact`].
+    pub fn exact_tangent(&self) -> Option<faer::sparse::SparseColMatRef<'_, usize, f64>> {
+        self.exact.as_ref().map(ExactTangent::matrix)
     }
 
     /// The elastic model the body is built on (mesh, supports, loads).
@@ -323,6 +373,7 @@ where
             trial,
             tangents,
             values,
+            exact,
             prescribed,
             scratch,
             ..
@@ -375,6 +426,19 @@ where
                     for (f, b_a) in f_e.iter_mut().zip(&b[..nd]) {
                         *f += p.weight * dot(b_a, stress);
                     }
+                } else if exact.is_some() {
+                    // k_e[a][b] = b_a · C b_b: the full element tangent
+                    let c = &tangents[k];
+                    for (cb_a, b_a) in cb.iter_mut().zip(&b[..nd]) {
+                        for (out, row) in cb_a.iter_mut().zip(c) {
+                            *out = dot(row, b_a);
+                        }
+                    }
+                    for a in 0..nd {
+                        for bb in 0..nd {
+                            k_e[a * nd + bb] += p.weight * dot(&b[a], &cb[bb]);
+                        }
+                    }
                 } else {
                     let c = &tangents[k];
                     // sym(C) = (C + Cᵀ) / 2: C itself for an associated law
@@ -397,6 +461,23 @@ where
                 for (a, f) in f_e[..nd].iter().enumerate() {
                     if let Dof::Free(i) = dof(a) {
                         f_int[i] += f;
+                    }
+                }
+            } else if let Some(exact) = exact.as_mut() {
+                for a in 0..nd {
+                    let Dof::Free(i) = dof(a) else { continue };
+                    for bb in 0..nd {
+                        let Dof::Free(j) = dof(bb) else { continue };
+                        if i >= j {
+                            let pos = pattern.position(i, j);
+                            let (k_ab, k_ba) = (k_e[a * nd + bb], k_e[bb * nd + a]);
+                            values[pos] += 0.5 * (k_ab + k_ba);
+                            let [ij, ji] = exact.lower_to_full[pos];
+                            exact.values[ij] += k_ab;
+                            if i != j {
+                                exact.values[ji] += k_ba;
+                            }
+                        }
                     }
                 }
             } else {
@@ -500,14 +581,25 @@ where
     }
 
     /// Assembles `Σ Bᵀ sym(C_t) B w` on the elastic model's pattern and refactors it
-    /// (numeric only); the stiffness version changes.
+    /// (numeric only) — or, for [`TangentKind::Exact`], `Σ Bᵀ C_t B w` in full storage and
+    /// its LU; the stiffness version changes.
     fn update_tangent(&mut self) -> Result<(), FemError> {
         if !self.trial_current {
             self.refresh_from_committed()?;
         }
         self.values.fill(0.0);
+        if let Some(exact) = &mut self.exact {
+            exact.values.fill(0.0);
+        }
         self.element_loop(None, &mut [])?;
-        self.elastic.factor_values(&self.values)
+        match &mut self.exact {
+            Some(exact) => {
+                exact.factor()?;
+                self.lu_updates += 1;
+                Ok(())
+            }
+            None => self.elastic.factor_values(&self.values),
+        }
     }
 
     fn commit(&mut self) {
@@ -557,25 +649,49 @@ where
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
-        self.elastic.solve_in_place(rhs)
+        match &self.exact {
+            Some(exact) => {
+                let n = rhs.len();
+                exact.solve_many_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1))
+            }
+            None => self.elastic.solve_in_place(rhs),
+        }
     }
 
     fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
-        self.elastic.solve_many_in_place(rhs)
+        match &self.exact {
+            Some(exact) => exact.solve_many_in_place(rhs),
+            None => self.elastic.solve_many_in_place(rhs),
+        }
     }
 
     /// The linear response `K_t⁻¹ f_ext(λ)` with the current tangent, from the reference
     /// configuration (the initial stress, in `f_int`, is not in it); the equilibrium of
     /// the body is [`crate::plastic::newton`]'s.
     fn free_response_into(&self, load_factor: f64, u: &mut [f64]) -> Result<(), FemError> {
-        self.elastic.free_response_into(load_factor, u)
+        if self.exact.is_none() {
+            return self.elastic.free_response_into(load_factor, u);
+        }
+        self.elastic.external_force_into(load_factor, u)?;
+        self.solve_in_place(u)?;
+        match u.iter().position(|v| !v.is_finite()) {
+            None => Ok(()),
+            Some(i) => Err(FemError::NonFiniteSolve {
+                what: "displacement",
+                node: self.elastic.dof_map().free_dof_owner(i),
+                value: u[i],
+            }),
+        }
     }
 
+    /// The elastic model's version plus the LU factorisations of the exact tangent: it
+    /// changes at every tangent update of either kind.
     fn stiffness_version(&self) -> u64 {
-        self.elastic.stiffness_version()
+        self.elastic.stiffness_version() + self.lu_updates
     }
 
-    /// The (symmetrised) tangent of the last [`Nonlinear::update_tangent`].
+    /// The symmetric part of the tangent of the last [`Nonlinear::update_tangent`] (lower
+    /// triangle; the exact tangent itself is [`PlasticModel::exact_tangent`]).
     fn stiffness_matrix(&self) -> Option<faer::sparse::SparseColMatRef<'_, usize, f64>> {
         Some(self.elastic.pattern().view(&self.values))
     }
