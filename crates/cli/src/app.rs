@@ -266,25 +266,10 @@ where
 {
     use fem_core::Structure;
     faer::set_global_parallelism(parallelism(threads, Some(study.model().dof_count())));
-    let scene = &loaded.path;
-    let out_dir = out
-        .or_else(|| study.output.dir.as_ref().map(PathBuf::from))
-        .unwrap_or_else(|| {
-            PathBuf::from("out").join(
-                scene
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_else(|| "scene".into()),
-            )
-        });
-    let opts = run::RunOptions {
-        out_dir: out_dir.clone(),
-        quiet,
-        scene_file: scene.clone(),
-    };
+    let opts = run::RunOptions::new(out, study.output.dir.as_deref(), &loaded.path, quiet);
     print_header("run", loaded, &study);
     let summary = run::run(study, &opts)?;
-    print_summary(&summary, &out_dir);
+    print_summary(&summary, &opts.out_dir);
     Ok(())
 }
 

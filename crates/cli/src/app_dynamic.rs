@@ -26,22 +26,7 @@ where
 {
     let dofs = study.sim.structure().dof_count();
     faer::set_global_parallelism(parallelism(threads, Some(dofs)));
-    let scene = &loaded.path;
-    let out_dir = out
-        .or_else(|| study.output.dir.as_ref().map(PathBuf::from))
-        .unwrap_or_else(|| {
-            PathBuf::from("out").join(
-                scene
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_else(|| "scene".into()),
-            )
-        });
-    let opts = run::RunOptions {
-        out_dir: out_dir.clone(),
-        quiet,
-        scene_file: scene.clone(),
-    };
+    let opts = run::RunOptions::new(out, study.output.dir.as_deref(), &loaded.path, quiet);
     header("run", loaded, &study);
     let s = run::run_dynamic(study, &opts)?;
     let e = &s.energy;
@@ -77,7 +62,11 @@ where
             }
         );
     }
-    out::outln!("  outputs in {}: {}", out_dir.display(), s.files.join(", "));
+    out::outln!(
+        "  outputs in {}: {}",
+        opts.out_dir.display(),
+        s.files.join(", ")
+    );
     Ok(())
 }
 

@@ -48,6 +48,29 @@ pub struct RunOptions {
     pub scene_file: PathBuf,
 }
 
+impl RunOptions {
+    /// The options of `bipo run` on `scene`: the output directory is `out` (the command line),
+    /// else the scene's `[output] dir`, else `out/<scene stem>`.
+    pub fn new(
+        out: Option<PathBuf>,
+        scene_dir: Option<&str>,
+        scene: &std::path::Path,
+        quiet: bool,
+    ) -> Self {
+        let out_dir = out
+            .or_else(|| scene_dir.map(PathBuf::from))
+            .unwrap_or_else(|| {
+                let stem = scene.file_stem().map(|s| s.to_string_lossy().into_owned());
+                PathBuf::from("out").join(stem.unwrap_or_else(|| "scene".into()))
+            });
+        Self {
+            out_dir,
+            quiet,
+            scene_file: scene.to_path_buf(),
+        }
+    }
+}
+
 /// How a dimension's run steps its presets (2D: the library's seed studies, by their driver;
 /// 3D has none).
 pub(crate) trait Drive<const D: usize>: RunDim<D>

@@ -376,13 +376,7 @@ impl ConstitutivePoint for DruckerPrager {
         trial: &mut PointState,
         tangent: &mut VoigtMatrix,
     ) -> Result<(), FemError> {
-        if let Some(bad) = strain.iter().find(|v| !v.is_finite()) {
-            return Err(FemError::InvalidParameter {
-                name: "strain",
-                value: *bad,
-                expected: "finite components",
-            });
-        }
+        super::check_strain(strain)?;
         let (g, k) = (self.shear, self.bulk);
         let lambda = self.lame;
         let mut d = [0.0; 6];

@@ -136,6 +136,19 @@ impl LinearElasticPoint {
     }
 }
 
+/// Refuses a strain with a non-finite component ([`FemError::InvalidParameter`] naming
+/// `strain`): the first check of every update.
+pub(crate) fn check_strain(strain: &Voigt) -> Result<(), FemError> {
+    match strain.iter().find(|v| !v.is_finite()) {
+        Some(bad) => Err(FemError::InvalidParameter {
+            name: "strain",
+            value: *bad,
+            expected: "finite components",
+        }),
+        None => Ok(()),
+    }
+}
+
 /// The isotropic elastic tangent of `young` and `poisson` on Voigt vectors (engineering shears).
 pub fn isotropic_tangent(young: f64, poisson: f64) -> VoigtMatrix {
     let lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
@@ -163,13 +176,7 @@ impl ConstitutivePoint for LinearElasticPoint {
         trial: &mut PointState,
         tangent: &mut VoigtMatrix,
     ) -> Result<(), FemError> {
-        if let Some(bad) = strain.iter().find(|v| !v.is_finite()) {
-            return Err(FemError::InvalidParameter {
-                name: "strain",
-                value: *bad,
-                expected: "finite components",
-            });
-        }
+        check_strain(strain)?;
         *tangent = self.elastic_tangent();
         *trial = *committed;
         trial.strain = *strain;
