@@ -37,6 +37,7 @@ mod issue_39_adhesion;
 mod issue_39_contactors;
 mod issue_39_dynamics;
 mod issue_39_hertz_impact;
+mod issue_39_incline;
 mod issue_39_integrator;
 mod issue_39_sliding_block;
 mod issue_40_newton_chain;
