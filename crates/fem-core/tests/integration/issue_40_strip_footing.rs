@@ -39,13 +39,13 @@ use fem_core::{
 use std::sync::Arc;
 
 /// Half-width of the footing.
-const HALF_WIDTH: f64 = 1.0;
+pub(crate) const HALF_WIDTH: f64 = 1.0;
 /// Cohesion.
-const C: f64 = 1.0;
+pub(crate) const C: f64 = 1.0;
 
 /// The mesh of the half model and its refinement.
 #[derive(Clone, Copy, Debug)]
-struct FootingMesh {
+pub(crate) struct FootingMesh {
     /// Extent along x.
     width: f64,
     /// Depth.
@@ -129,7 +129,7 @@ fn footing_nodes(mesh: &Mesh) -> Vec<usize> {
 
 /// The soil: `E = 10⁴ c`, `ν = 0.49` for `φ = 0` (nearly isochoric elastic part, as the
 /// plastic flow), `ν = 0.3` otherwise.
-fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn ConstitutivePoint> {
+pub(crate) fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn ConstitutivePoint> {
     let poisson = if friction_angle == 0.0 { 0.49 } else { 0.3 };
     Arc::new(
         DruckerPrager::new(DruckerPragerParameters {
@@ -145,7 +145,7 @@ fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn ConstitutivePoint>
 }
 
 /// The body with its footing nodes (prescribed at 0 in both directions).
-fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (PlasticModel<2>, Vec<usize>) {
+pub(crate) fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (PlasticModel<2>, Vec<usize>) {
     let mesh = footing_mesh(m);
     let footing = footing_nodes(&mesh);
     let set = |name: &str| mesh.node_set(name).unwrap().to_vec();
@@ -167,20 +167,20 @@ fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (PlasticMod
 
 /// One point of the load–settlement curve.
 #[derive(Clone, Debug)]
-struct FootingStep {
+pub(crate) struct FootingStep {
     /// Settlement over half-width.
-    settlement: f64,
+    pub(crate) settlement: f64,
     /// Mean pressure over cohesion.
-    pressure: f64,
+    pub(crate) pressure: f64,
     /// The relative residuals of the converged Newton step.
-    residuals: Vec<f64>,
+    pub(crate) residuals: Vec<f64>,
 }
 
 /// Pushes the footing down to `settlement · b` in `steps` equal increments (halved, up to
 /// `max_cuts` times along the path, when a step does not converge within
 /// `newton.max_iterations` solves to `newton.tolerance`, and doubled back after), and returns
 /// the converged points.
-fn push(
+pub(crate) fn push(
     body: &mut PlasticModel<2>,
     footing: &[usize],
     settlement: f64,
@@ -202,10 +202,18 @@ fn push(
     while done < settlement * (1.0 - 1e-12) {
         let target = (done + step).min(settlement);
         body.set_prescribed(footing, Component::Y, -target * HALF_WIDTH)?;
-        // predictor: the last converged increment, scaled to this one
-        let scale = (target - done) / last;
-        for ((u, u_n), du) in u.iter_mut().zip(&u_n).zip(&du_n) {
-            *u = u_n + scale * du;
+        if out.is_empty() {
+            // first step: the elastic response to the settlement (the tangent of the
+            // committed, unstrained state), not the free dofs left at rest while the
+            // footing's nodes move (which strains only the cells under the footing)
+            body.update_tangent()?;
+            body.free_response_into(target, &mut u)?;
+        } else {
+            // predictor: the last converged increment, scaled to this one
+            let scale = (target - done) / last;
+            for ((u, u_n), du) in u.iter_mut().zip(&u_n).zip(&du_n) {
+                *u = u_n + scale * du;
+            }
         }
         match newton::solve(body, &mut u, done, target, &settings) {
             Ok(report) => {
@@ -235,13 +243,13 @@ fn push(
 }
 
 /// Residuals in short scientific notation, for traces and messages.
-fn short(residuals: &[f64]) -> String {
+pub(crate) fn short(residuals: &[f64]) -> String {
     let r: Vec<String> = residuals.iter().map(|r| format!("{r:.1e}")).collect();
     r.join(" ")
 }
 
 /// `N_c` of Prandtl–Reissner for `φ` in degrees.
-fn n_c(friction_angle: f64) -> f64 {
+pub(crate) fn n_c(friction_angle: f64) -> f64 {
     if friction_angle == 0.0 {
         return 2.0 + std::f64::consts::PI;
     }

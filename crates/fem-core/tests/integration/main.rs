@@ -16,6 +16,8 @@ mod issue_35_capabilities;
 mod issue_35_one_element_kind;
 mod issue_40_hill_cylinder;
 mod issue_40_strip_footing;
+mod issue_40_footing_diagnostic;
+mod issue_40_footing_non_associated;
 mod mesh_io;
 mod patch;
 mod quad_hex;
