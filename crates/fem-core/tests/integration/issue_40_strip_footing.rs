@@ -30,7 +30,7 @@
 use fem_core::generate::{Grading, RectangleSpec, graded_points, rectangle};
 use fem_core::plastic::newton::{self, NewtonSettings};
 use fem_core::plastic::{
-    ConeMatch, ConstitutivePoint, DruckerPrager, DruckerPragerParameters, PlasticModel, TangentKind,
+    ConeMatch, ConstitutivePoint, DruckerPrager, DruckerPragerParameters, PlasticModel,
 };
 use fem_core::{
     Component, ElementKind, FemError, Idealization, LinearElasticModel, Material, Mesh, Nonlinear,
@@ -145,7 +145,10 @@ pub(crate) fn soil(friction_angle: f64, dilatancy_angle: f64) -> Arc<dyn Constit
 }
 
 /// The body with its footing nodes (prescribed at 0 in both directions).
-pub(crate) fn footing_body(m: &FootingMesh, law: Arc<dyn ConstitutivePoint>) -> (PlasticModel<2>, Vec<usize>) {
+pub(crate) fn footing_body(
+    m: &FootingMesh,
+    law: Arc<dyn ConstitutivePoint>,
+) -> (PlasticModel<2>, Vec<usize>) {
     let mesh = footing_mesh(m);
     let footing = footing_nodes(&mesh);
     let set = |name: &str| mesh.node_set(name).unwrap().to_vec();
@@ -414,160 +417,5 @@ fn issue_40_strip_footing_fine() {
             curve.len()
         );
         check_collapse(&curve, phi, tolerance);
-    }
-}
-
-/// Non-associated flow (φ = 20°, θ = 10° and 0°) on the CI mesh: what the Newton reaches with
-/// the exact tangent (LU, the default) and with the symmetric part (measured,
-/// `docs/validation.md`). Neither reaches a collapse load yet: the symmetric part stalls in a
-/// two-cycle soon after the footing edge yields; the exact tangent goes about three times
-/// further, then diverges (`θ = 10°`) or meets a numerically singular tangent (`θ = 0`).
-/// The pressure printed is that of the last converged step.
-#[test]
-#[ignore]
-fn issue_40_strip_footing_non_associated_measured() {
-    let newton = NewtonSettings {
-        max_iterations: 40,
-        tolerance: 1e-8,
-        ..NewtonSettings::default()
-    };
-    for (theta, kind) in [
-        (10.0, TangentKind::Exact),
-        (0.0, TangentKind::Exact),
-        (10.0, TangentKind::Symmetric),
-        (0.0, TangentKind::Symmetric),
-    ] {
-        let (mut body, footing) = footing_body(&FootingMesh::CI, soil(20.0, theta));
-        body.set_tangent_kind(kind).unwrap();
-        let time = std::time::Instant::now();
-        let result = push(&mut body, &footing, 0.05, 20, &newton, 12);
-        eprintln!("θ = {theta}, {kind:?}: {:?}", time.elapsed());
-        match result {
-            Ok(curve) => {
-                let last = curve.last().unwrap();
-                let solves: Vec<usize> = curve.iter().map(|s| s.residuals.len() - 1).collect();
-                eprintln!(
-                    "θ = {theta}: q/c = {:.4} at δ/b = {}, {} steps, solves {solves:?}",
-                    last.pressure,
-                    last.settlement,
-                    curve.len()
-                );
-            }
-            Err(FemError::NotConverged {
-                converged_load_factor,
-                report,
-                ..
-            }) => {
-                let q = -body.reaction(&footing, Component::Y).unwrap() / HALF_WIDTH / C;
-                eprintln!(
-                    "θ = {theta}: stalled after δ/b = {converged_load_factor:.5} at q/c = {q:.4}; \
-                     last residuals {}",
-                    short(&report.steps.last().unwrap().residuals)
-                );
-            }
-            Err(e) => panic!("{e}"),
-        }
-    }
-}
-
-/// A Newton step with a backtracking line search on `‖f_ext − f_int‖₂` (the step halved up to
-/// 6 times until the residual falls by `1e-4 α`), written here on the public `Nonlinear`
-/// seam for the non-associated measurement: whether damping breaks the two-cycle of the
-/// symmetrised tangent. Returns the relative residuals, or `None` when `max_iterations` did
-/// not reach `tolerance` (the body is then rolled back).
-fn damped_newton(
-    body: &mut PlasticModel<2>,
-    u: &mut [f64],
-    tolerance: f64,
-    max_iterations: usize,
-) -> Result<Option<Vec<f64>>, FemError> {
-    let n = u.len();
-    let (mut f_ext, mut f_int, mut du, mut trial) =
-        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let mut residual = |body: &mut PlasticModel<2>, u: &[f64], r: &mut [f64]| {
-        body.external_force_into(0.0, &mut f_ext)?;
-        body.internal_force_into(u, &mut f_int)?;
-        let scale = norm(&f_ext).max(norm(&f_int));
-        for ((r, e), i) in r.iter_mut().zip(&f_ext).zip(&f_int) {
-            *r = e - i;
-        }
-        Ok::<f64, FemError>(norm(r) / scale)
-    };
-    let mut r = vec![0.0; n];
-    let mut history = vec![residual(body, u, &mut r)?];
-    for _ in 0..max_iterations {
-        let current = *history.last().unwrap();
-        if current <= tolerance {
-            body.commit();
-            return Ok(Some(history));
-        }
-        // the symmetric part of a non-associated tangent may be indefinite, the exact one
-        // singular (a region at the apex): a failed factorisation or solve ends the step as
-        // not converged
-        du.copy_from_slice(&r);
-        let solved = body
-            .update_tangent()
-            .and_then(|()| body.solve_in_place(&mut du));
-        if let Err(e) = solved {
-            eprintln!("  {e} after {} solves", history.len() - 1);
-            body.rollback();
-            return Ok(None);
-        }
-        let mut alpha = 1.0;
-        let mut next = f64::INFINITY;
-        for _ in 0..7 {
-            for ((t, u), d) in trial.iter_mut().zip(u.iter()).zip(&du) {
-                *t = u + alpha * d;
-            }
-            next = residual(body, &trial, &mut r)?;
-            if next <= (1.0 - 1e-4 * alpha) * current {
-                break;
-            }
-            alpha *= 0.5;
-        }
-        u.copy_from_slice(&trial);
-        history.push(next);
-    }
-    if *history.last().unwrap() <= tolerance {
-        body.commit();
-        return Ok(Some(history));
-    }
-    body.rollback();
-    Ok(None)
-}
-
-/// Non-associated footing with [`damped_newton`]: prints the load–settlement points.
-#[test]
-#[ignore]
-fn issue_40_strip_footing_non_associated_damped() {
-    for theta in [10.0, 0.0] {
-        let (mut body, footing) = footing_body(&FootingMesh::CI, soil(20.0, theta));
-        let mut u = vec![0.0; body.dof_count()];
-        let (mut done, settlement, first): (f64, f64, f64) = (0.0, 0.05, 0.05 / 40.0);
-        let mut step = first;
-        let mut u_n = u.clone();
-        while done < settlement * (1.0 - 1e-12) && step > first / 1024.0 {
-            let target = (done + step).min(settlement);
-            body.set_prescribed(&footing, Component::Y, -target * HALF_WIDTH)
-                .unwrap();
-            match damped_newton(&mut body, &mut u, 1e-8, 60).unwrap() {
-                Some(history) => {
-                    let q = -body.reaction(&footing, Component::Y).unwrap() / HALF_WIDTH / C;
-                    eprintln!(
-                        "θ = {theta}: δ/b = {target:.5}, q/c = {q:.4}, {} solves",
-                        history.len() - 1
-                    );
-                    done = target;
-                    u_n.copy_from_slice(&u);
-                    step = (2.0 * step).min(first);
-                }
-                None => {
-                    u.copy_from_slice(&u_n);
-                    step *= 0.5;
-                }
-            }
-        }
-        eprintln!("θ = {theta}: reached δ/b = {done}");
     }
 }
