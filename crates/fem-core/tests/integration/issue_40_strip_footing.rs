@@ -191,6 +191,37 @@ pub(crate) fn push(
     newton: &NewtonSettings,
     max_cuts: usize,
 ) -> Result<Vec<FootingStep>, FemError> {
+    let path = push_path(body, footing, settlement, steps, newton, max_cuts);
+    match path.stop {
+        None => Ok(path.curve),
+        Some(e) => Err(e),
+    }
+}
+
+/// A footing path as far as it went.
+#[derive(Debug)]
+pub(crate) struct FootingPath {
+    /// The converged points.
+    pub(crate) curve: Vec<FootingStep>,
+    /// The free displacements of the last converged point.
+    pub(crate) u: Vec<f64>,
+    /// The last converged increment of `u`.
+    pub(crate) du: Vec<f64>,
+    /// The last converged increment of the settlement over `b`.
+    pub(crate) last_increment: f64,
+    /// Why the path stopped short of the settlement asked (`None`: it arrived).
+    pub(crate) stop: Option<FemError>,
+}
+
+/// [`push`], keeping the last converged state and the error that stopped the path.
+pub(crate) fn push_path(
+    body: &mut PlasticModel<2>,
+    footing: &[usize],
+    settlement: f64,
+    steps: usize,
+    newton: &NewtonSettings,
+    max_cuts: usize,
+) -> FootingPath {
     let mut u = vec![0.0; body.dof_count()];
     // the last two converged states, for the predictor
     let (mut u_n, mut du_n) = (u.clone(), vec![0.0; u.len()]);
@@ -202,15 +233,24 @@ pub(crate) fn push(
     let first = settlement / steps as f64;
     let (mut done, mut step, mut last, mut cuts) = (0.0, first, first, 0);
     let mut out = Vec::new();
-    while done < settlement * (1.0 - 1e-12) {
+    let stop = loop {
+        if done >= settlement * (1.0 - 1e-12) {
+            break None;
+        }
         let target = (done + step).min(settlement);
-        body.set_prescribed(footing, Component::Y, -target * HALF_WIDTH)?;
+        if let Err(e) = body.set_prescribed(footing, Component::Y, -target * HALF_WIDTH) {
+            break Some(e);
+        }
         if out.is_empty() {
             // first step: the elastic response to the settlement (the tangent of the
             // committed, unstrained state), not the free dofs left at rest while the
             // footing's nodes move (which strains only the cells under the footing)
-            body.update_tangent()?;
-            body.free_response_into(target, &mut u)?;
+            let predicted = body
+                .update_tangent()
+                .and_then(|()| body.free_response_into(target, &mut u));
+            if let Err(e) = predicted {
+                break Some(e);
+            }
         } else {
             // predictor: the last converged increment, scaled to this one
             let scale = (target - done) / last;
@@ -221,7 +261,10 @@ pub(crate) fn push(
         match newton::solve(body, &mut u, done, target, &settings) {
             Ok(report) => {
                 let residuals = report.steps.last().unwrap().residuals.clone();
-                let pressure = -body.reaction(footing, Component::Y)? / HALF_WIDTH / C;
+                let pressure = match body.reaction(footing, Component::Y) {
+                    Ok(r) => -r / HALF_WIDTH / C,
+                    Err(e) => break Some(e),
+                };
                 out.push(FootingStep {
                     settlement: target,
                     pressure,
@@ -239,10 +282,16 @@ pub(crate) fn push(
                 cuts += 1;
                 step *= 0.5;
             }
-            Err(e) => return Err(e),
+            Err(e) => break Some(e),
         }
+    };
+    FootingPath {
+        curve: out,
+        u: u_n,
+        du: du_n,
+        last_increment: last,
+        stop,
     }
-    Ok(out)
 }
 
 /// Residuals in short scientific notation, for traces and messages.
