@@ -13,7 +13,9 @@
 //!   reaction); the first step now starts from the elastic response to the settlement;
 //! - (b) the global exact tangent is the Jacobian: `K Δu` matches central differences of
 //!   `f_int` along every Newton direction to 1e-9–1e-6 (1e-2 only where points change
-//!   regime inside the difference step);
+//!   regime inside the difference step); at one point, across the cone–apex switch, the
+//!   stress is continuous and each side's tangent matches central differences to 1e-8
+//!   (`issue_40_cone_apex_switch_tangent_matches_finite_differences`);
 //! - (c) what does not settle is the set of yielding points. From the last converged state
 //!   of the direct run, a step of half its last increment: the associated soil at the same
 //!   settlement switches 33, 3, 0 points and converges in 4 solves (`3e-4 … 3e-13`); with
@@ -275,6 +277,86 @@ fn issue_40_non_associated_flow_is_unstable() {
             assert!(work > -1e-9 && det > -1e-9, "θ = {theta}: {work}, {det}");
         } else {
             assert!(work < -1e-3, "θ = {theta}: {work}");
+        }
+    }
+}
+
+/// The cone–apex switch of the non-associated return (`φ = 20°`, `θ = 10°` and `0`; the
+/// associated cone beside them): along a strain path `ε(t) = t d` from a confining stress
+/// `−2c` with dilation and shear (plane strain), the switch `t*` is found by bisection
+/// (to 1e-14 relative); the stress is continuous there (the jump over `t* ± 1e-9 t*` is
+/// within `1e-9 t* ‖C d‖` times 10, the size of a Lipschitz step), and on each side, at
+/// `t* (1 ± 1e-3)`, the tangent along `d` matches central differences of the update (step
+/// `1e-8 t*`, well inside the side; tolerance `1e-6 ‖C d‖`: truncation `(1e-8 / 1e-3)²`
+/// times the curvature `1 / ‖s‖`, round-off `1e-16 / 1e-8` of stresses `~10 c`). On the
+/// apex side the tangent is zero and the stress the apex.
+#[test]
+fn issue_40_cone_apex_switch_tangent_matches_finite_differences() {
+    let direction: Voigt = [2e-3, 1e-3, 0.0, 1e-3, 0.0, 0.0];
+    let committed = PointState::with_stress([-2.0 * C, -2.0 * C, -2.0 * C, 0.0, 0.0, 0.0]);
+    let norm6 = |v: &Voigt| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    for theta in [20.0, 10.0, 0.0] {
+        let law = soil(20.0, theta);
+        let update = |t: f64| {
+            let strain = direction.map(|d| t * d);
+            let (mut trial, mut tangent) = (PointState::default(), [[0.0; 6]; 6]);
+            law.update(&committed, &strain, &mut trial, &mut tangent)
+                .unwrap();
+            let apex = trial.stress[..3].iter().all(|&v| v == trial.stress[0])
+                && trial.stress[3..].iter().all(|&v| v == 0.0);
+            (trial.stress, tangent, apex, trial.yielding)
+        };
+        // bracket the switch: smooth at t_low, apex at t_high
+        let (mut t_low, mut t_high) = (0.0, 1.0);
+        while !update(t_high).2 {
+            t_high *= 2.0;
+            assert!(t_high < 1e6, "θ = {theta}: no apex along the path");
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (t_low + t_high);
+            if update(mid).2 {
+                t_high = mid;
+            } else {
+                t_low = mid;
+            }
+            if t_high - t_low <= 1e-14 * t_high {
+                break;
+            }
+        }
+        let t = t_high;
+        let elastic = law.elastic_tangent();
+        let c_d: Voigt =
+            std::array::from_fn(|i| (0..6).map(|j| elastic[i][j] * direction[j]).sum());
+        let scale = norm6(&c_d);
+        let jump: Voigt = {
+            let (a, b) = (update(t * (1.0 - 1e-9)).0, update(t * (1.0 + 1e-9)).0);
+            std::array::from_fn(|i| a[i] - b[i])
+        };
+        assert!(
+            norm6(&jump) <= 10.0 * 2e-9 * t * scale,
+            "θ = {theta}: the stress jumps by {} at the switch t* = {t}",
+            norm6(&jump)
+        );
+        for side in [-1.0, 1.0] {
+            let at = t * (1.0 + side * 1e-3);
+            let h = 1e-8 * t;
+            let (_, tangent, apex, yielding) = update(at);
+            assert!(yielding, "θ = {theta}: elastic at side {side}");
+            assert_eq!(apex, side > 0.0, "θ = {theta}: side {side}");
+            let (plus, minus) = (update(at + h).0, update(at - h).0);
+            let error: Voigt = std::array::from_fn(|i| {
+                let analytic: f64 = (0..6).map(|j| tangent[i][j] * direction[j]).sum();
+                (plus[i] - minus[i]) / (2.0 * h) - analytic
+            });
+            eprintln!(
+                "θ = {theta}: switch at t* = {t:.6e}, side {side}: FD error {:.1e} of ‖C d‖",
+                norm6(&error) / scale
+            );
+            assert!(
+                norm6(&error) <= 1e-6 * scale,
+                "θ = {theta}, side {side}: FD error {}",
+                norm6(&error) / scale
+            );
         }
     }
 }
