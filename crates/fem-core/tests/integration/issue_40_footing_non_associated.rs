@@ -170,6 +170,9 @@ fn check_plateau_and_rate(curve: &[FootingStep], what: &str) {
 /// are equilibria of the law, a lower bound of its collapse load).
 #[test]
 fn issue_40_strip_footing_non_associated_works() {
+    // the equivalent soil of an associated cone is itself (round-off of a few operations)
+    let (phi, cohesion) = davis_equivalent(20.0, 20.0);
+    assert!((phi - 20.0).abs() < 1e-12 && (cohesion - 1.0).abs() < 1e-12);
     let associated = n_c(20.0);
     for (theta, low, high) in [(10.0, 0.90, 1.0), (0.0, 0.75, 0.90)] {
         let (phi_star, c_star) = davis_equivalent(20.0, theta);
