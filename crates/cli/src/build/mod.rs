@@ -114,6 +114,9 @@ fn title(loaded: &Loaded) -> String {
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
 pub fn build(loaded: &Loaded) -> CliResult<Built> {
     let scene = &loaded.scene;
+    if !plastic::is_plastic(scene) {
+        plastic::refuse_in_elastic(scene)?;
+    }
     if let Some(a) = scene.analysis.as_ref().filter(|a| a.is_dynamic()) {
         if let Some(i) = scene.materials.iter().position(|m| m.kind != crate::raw::MaterialKind::Elastic) {
             let p = KeyPath::root().key("materials").index(i).key("type");
@@ -133,7 +136,6 @@ pub fn build(loaded: &Loaded) -> CliResult<Built> {
             Built::PlanePlastic(Box::new(plastic::build::<2>(loaded)?))
         });
     }
-    plastic::refuse_in_elastic(scene)?;
     if scene.preset.is_none() && scene.analysis.as_ref().is_some_and(|a| a.is_solid()) {
         return Ok(Built::Solid(Box::new(solid::build(loaded)?)));
     }

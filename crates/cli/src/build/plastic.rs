@@ -99,8 +99,12 @@ pub(super) fn is_plastic(scene: &Scene) -> bool {
         .any(|m| m.kind != crate::raw::MaterialKind::Elastic)
 }
 
-/// Refuses `[analysis.newton]` in a scene without a plastic material.
+/// Refuses `[analysis.newton]` in a scene without a plastic material, and the plastic keys
+/// of its (elastic) materials.
 pub(super) fn refuse_in_elastic(scene: &Scene) -> CliResult<()> {
+    for (i, m) in scene.materials.iter().enumerate() {
+        plastic_law(&KeyPath::root().key("materials").index(i), m)?;
+    }
     if scene.analysis.as_ref().is_some_and(RawAnalysis::has_newton) {
         let p = KeyPath::root().key("analysis").key("newton");
         bail!(

@@ -355,6 +355,8 @@ where
                 step_start.elapsed().as_secs_f64()
             )
             .map_err(|e| io(&csv_path, e))?;
+            // a row per step as it comes (a long plastic run is watched through it)
+            csv.flush().map_err(|e| io(&csv_path, e))?;
             let disp = study.sim.nodal_displacements();
             let r = reactions(body, &reaction_sets)?;
             plots.record(
