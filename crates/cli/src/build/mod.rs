@@ -35,16 +35,15 @@ pub use checks::kind_name;
 pub(crate) use dim::SceneDim;
 pub use dynamic::{DynamicSim, DynamicStudy};
 pub use hertz::{HertzPlan, HertzShape};
-pub(crate) use plastic::add_load;
-pub use plastic::{PlasticSim, PlasticStudy};
 pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
+pub(crate) use plastic::add_load;
+pub use plastic::{PlasticSim, PlasticStudy};
 pub(crate) use study::on_sim;
 pub use study::{
-    Body, Custom, Library, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt,
-    released_at,
+    Body, Custom, Library, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt, released_at,
 };
 
 use crate::error::{CliError, CliResult, KeyPath};
@@ -118,9 +117,16 @@ pub fn build(loaded: &Loaded) -> CliResult<Built> {
         plastic::refuse_in_elastic(scene)?;
     }
     if let Some(a) = scene.analysis.as_ref().filter(|a| a.is_dynamic()) {
-        if let Some(i) = scene.materials.iter().position(|m| m.kind != crate::raw::MaterialKind::Elastic) {
+        if let Some(i) = scene
+            .materials
+            .iter()
+            .position(|m| m.kind != crate::raw::MaterialKind::Elastic)
+        {
             let p = KeyPath::root().key("materials").index(i).key("type");
-            crate::error::bail!(p, "`{p}`: a plastic material is not served by a dynamic scene");
+            crate::error::bail!(
+                p,
+                "`{p}`: a plastic material is not served by a dynamic scene"
+            );
         }
         return Ok(if a.is_solid() {
             Built::SolidDynamic(Box::new(dynamic::build::<3>(loaded)?))

@@ -1,6 +1,6 @@
 //! A scene with a plastic material (`[[materials]] type = "drucker-prager"` or
 //! `"von-mises"`, issue 40), 2D (plane strain, axisymmetric) or 3D through the same passes:
-//! the keys checked ([`crate::raw::plastic_law`], [`RawAnalysis::newton`]), what the plastic
+//! the keys checked ([`plastic_law`], [`RawAnalysis::newton`]), what the plastic
 //! path does not serve refused at its key ([`refuse_unserved`]), then the mesh, the elastic
 //! model (loads at their reference values, the geostatic stress of `[initial_stress]`), a
 //! [`PlasticModel`] on it with one law per region (elastic regions keep a
@@ -21,7 +21,10 @@ use super::phases::{Phase, TimeFunction, phases_of, time_functions};
 use super::study::{LoadKind, LoadRt, StudyDim, SupportRt};
 use super::{contact, validate};
 use crate::error::{CliError, CliResult, KeyPath, bail};
-use crate::raw::{NewtonSpec, RawAnalysis, plastic_law};
+use crate::error::err;
+use crate::raw::{MaterialKind, NewtonSpec, RawAnalysis};
+use crate::scene::MaterialSpec;
+use fem_core::plastic::{DruckerPrager, DruckerPragerParameters};
 use crate::scene::{OutputSpec, PlotSpec, Scene, Units};
 use contact_laws::StandardLaw;
 use contact_solver::{ContactSimulation, NewtonSettings};
@@ -96,7 +99,7 @@ pub(super) fn is_plastic(scene: &Scene) -> bool {
     scene
         .materials
         .iter()
-        .any(|m| m.kind != crate::raw::MaterialKind::Elastic)
+        .any(|m| m.kind != MaterialKind::Elastic)
 }
 
 /// Refuses `[analysis.newton]` in a scene without a plastic material, and the plastic keys
@@ -155,7 +158,10 @@ impl PlasticDim<3> for Dim<3> {
 fn refuse_unserved(scene: &Scene) -> CliResult<()> {
     let root = KeyPath::root();
     let not = |p: KeyPath, what: &str| -> CliResult<()> {
-        bail!(p, "`{p}`: {what} is not served by a scene with a plastic material");
+        bail!(
+            p,
+            "`{p}`: {what} is not served by a scene with a plastic material"
+        );
     };
     if scene.preset.is_some() {
         not(root.key("preset"), "a library preset")?;
@@ -176,6 +182,115 @@ fn refuse_unserved(scene: &Scene) -> CliResult<()> {
                 "resetting the displacements (the plastic strains would stay)",
             )?;
         }
+    }
+    Ok(())
+}
+
+/// The plastic law of material `m` (at `p`, `materials[i]`), or `None` for an elastic one
+/// (which refuses the plastic keys, naming them).
+///
+/// # Errors
+/// A message at the key: a plastic key on another type, `friction_angle` outside `[0, 90)`,
+/// `dilatancy_angle` outside `[0, φ]`, a negative `cohesion` (zero with `φ = 0`), a
+/// `yield_stress` not > 0, or a missing required key.
+pub(super) fn plastic_law(p: &KeyPath, m: &MaterialSpec) -> CliResult<Option<DruckerPrager>> {
+    let present = [
+        ("friction_angle", m.friction_angle.is_some()),
+        ("dilatancy_angle", m.dilatancy_angle.is_some()),
+        ("cohesion", m.cohesion.is_some()),
+        ("cone", m.cone.is_some()),
+        ("yield_stress", m.yield_stress.is_some()),
+    ];
+    let accepted = match m.kind {
+        MaterialKind::Elastic => "",
+        MaterialKind::DruckerPrager => "friction_angle dilatancy_angle cohesion cone",
+        MaterialKind::VonMises => "yield_stress",
+    };
+    let what = format!("a material of type \"{}\"", m.kind.name());
+    only(p, &what, &present, accepted)?;
+    let (young, poisson) = (m.young, m.poisson);
+    let law = match m.kind {
+        MaterialKind::Elastic => return Ok(None),
+        MaterialKind::VonMises => {
+            let sp = p.key("yield_stress");
+            let sigma_y = need(p, &m.yield_stress, "yield_stress", &what)?;
+            if !(sigma_y.is_finite() && sigma_y > 0.0) {
+                bail!(sp, "`{sp}` = {sigma_y:?}: expected a finite stress > 0");
+            }
+            // the shear yield stress k = σ_y / √3
+            DruckerPrager::von_mises(young, poisson, sigma_y / 3f64.sqrt())
+        }
+        MaterialKind::DruckerPrager => {
+            let (fp, dp, cp) = (
+                p.key("friction_angle"),
+                p.key("dilatancy_angle"),
+                p.key("cohesion"),
+            );
+            let phi = need(p, &m.friction_angle, "friction_angle", &what)?;
+            if !(phi.is_finite() && (0.0..90.0).contains(&phi)) {
+                bail!(
+                    fp,
+                    "`{fp}` = {phi:?}: expected a friction angle φ in [0, 90) degrees"
+                );
+            }
+            let theta = m.dilatancy_angle.unwrap_or(phi);
+            if !(theta.is_finite() && theta >= 0.0) {
+                bail!(
+                    dp,
+                    "`{dp}` = {theta:?}: expected a dilatancy angle θ ≥ 0 degrees"
+                );
+            }
+            if theta > phi {
+                bail!(
+                    dp,
+                    "`{dp}` = {theta:?}: the dilatancy angle θ must not exceed the friction \
+                     angle φ = `{fp}` = {phi:?} (θ = φ is associated flow)"
+                );
+            }
+            let c = need(p, &m.cohesion, "cohesion", &what)?;
+            if !(c.is_finite() && c >= 0.0) {
+                bail!(cp, "`{cp}` = {c:?}: expected a finite cohesion c ≥ 0");
+            }
+            if c == 0.0 && phi == 0.0 {
+                bail!(
+                    cp,
+                    "`{cp}` = 0 with `{fp}` = 0: a soil without friction needs a cohesion > 0"
+                );
+            }
+            DruckerPrager::new(DruckerPragerParameters {
+                young,
+                poisson,
+                friction_angle: phi,
+                dilatancy_angle: theta,
+                cohesion: c,
+                cone: m.cone.unwrap_or_default().cone_match(),
+            })
+        }
+    };
+    law.map(Some).map_err(|e| match e {
+        FemError::InvalidParameter {
+            name,
+            value,
+            expected,
+        } => {
+            let kp = p.key(name);
+            err!(kp, "`{kp}` = {value:?}: expected {expected}")
+        }
+        other => err!(p, "`{p}`: {other}"),
+    })
+}
+
+/// `need(path, &opt, "key", "what")`: the value, or "`path`: what needs `key`".
+fn need(path: &KeyPath, v: &Option<f64>, key: &str, what: &str) -> CliResult<f64> {
+    v.ok_or_else(|| err!(path, "`{path}`: {what} needs `{key}`"))
+}
+
+/// Refuses the keys present that `what` does not read (`accepted`, separated by spaces).
+fn only(path: &KeyPath, what: &str, present: &[(&str, bool)], accepted: &str) -> CliResult<()> {
+    let accepted: Vec<&str> = accepted.split_whitespace().collect();
+    if let Some((k, _)) = present.iter().find(|(k, p)| *p && !accepted.contains(k)) {
+        let p = path.key(k);
+        bail!(p, "`{p}` is not a key of {what}");
     }
     Ok(())
 }
@@ -296,7 +411,11 @@ where
     for (i, plot) in plots.iter().enumerate() {
         let pp = KeyPath::root().key("plots").index(i);
         check_plot_file(&pp, plot, &mut files)?;
-        let curves = plot.curves.iter().enumerate().map(|(k, c)| (pp.key("curves").index(k), c));
+        let curves = plot
+            .curves
+            .iter()
+            .enumerate()
+            .map(|(k, c)| (pp.key("curves").index(k), c));
         for (cp, c) in curves.chain(plot.x_quantity.iter().map(|c| (pp.key("x_quantity"), c))) {
             let q = c.quantity.as_str();
             let axis = |prefix: &str| {
@@ -312,7 +431,11 @@ where
                     _ => bail!(
                         cp,
                         "`{cp}`: `{q}` needs a node `set`{}",
-                        if q.starts_with("u_") { " or a `node` of the mesh" } else { "" }
+                        if q.starts_with("u_") {
+                            " or a `node` of the mesh"
+                        } else {
+                            ""
+                        }
                     ),
                 }
             } else if QUANTITIES_3D.contains(&q) {
@@ -393,7 +516,11 @@ where
         model,
         &contact_plan.zones,
         |model, zones| {
-            let body = PlasticModel::new(model, &laws).map_err(|e| plastic_error(scene, e))?;
+            let mut body = PlasticModel::new(model, &laws).map_err(|e| plastic_error(scene, e))?;
+            if let Some(kind) = newton.tangent {
+                body.set_tangent_kind(kind)
+                    .map_err(|e| fem(&ap.key("newton").key("tangent"), e))?;
+            }
             // the run cuts a step itself (its time, hence its prescribed values and force
             // factor): the library's own cuts keep the prescribed values whole
             let settings_n = NewtonSettings::default()
@@ -410,7 +537,10 @@ where
     check_plots(&scene.plots, &zone_names, sim.structure().elastic())?;
     if scene.output.every == 0 {
         let p = root.key("output").key("every");
-        bail!(p, "`{p}` = 0: expected a stride ≥ 1 (every k-th step is written)");
+        bail!(
+            p,
+            "`{p}` = 0: expected a stride ≥ 1 (every k-th step is written)"
+        );
     }
     let title = scene.title.clone().unwrap_or_else(|| {
         loaded
@@ -453,7 +583,9 @@ fn plastic_error(scene: &Scene, e: FemError) -> CliError {
             let material = scene
                 .materials
                 .iter()
-                .position(|m| m.region == Some(region) || m.regions.iter().flatten().any(|r| *r == region))
+                .position(|m| {
+                    m.region == Some(region) || m.regions.iter().flatten().any(|r| *r == region)
+                })
                 .map(|i| format!(" (`materials[{i}]`)"))
                 .unwrap_or_default();
             CliError::at(

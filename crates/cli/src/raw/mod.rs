@@ -20,7 +20,7 @@ mod preset;
 
 pub use dynamic::{DynamicSpec, MassSpec, restitution};
 pub use mesh::RawMesh;
-pub use plastic::{ConeSpec, MaterialKind, NewtonSpec, RawNewton, plastic_law};
+pub use plastic::{ConeSpec, MaterialKind, NewtonSpec, RawNewton};
 pub use preset::RawPreset;
 
 use crate::error::{CliResult, KeyPath, bail, err};

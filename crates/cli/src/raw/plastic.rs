@@ -1,4 +1,5 @@
-//! The keys of a plastic material and of the global Newton (issue 40), read and checked.
+//! The keys of a plastic material and of the global Newton (issue 40), read; the Newton's
+//! checked here, the material's by `build::plastic` (which reads the materials' table).
 //!
 //! ```text
 //! [[materials]]
@@ -16,13 +17,12 @@
 //! tol = 1e-9                   # relative equilibrium residual
 //! max_iterations = 12          # Newton corrections per step
 //! max_cuts = 8                 # halvings of a step that does not converge
+//! tangent = "exact"            # or "symmetric" (default: symmetric for associated laws)
 //! ```
 
 use super::RawAnalysis;
-use crate::error::{CliResult, KeyPath, bail, err};
-use crate::scene::MaterialSpec;
-use fem_core::FemError;
-use fem_core::plastic::{ConeMatch, DruckerPrager, DruckerPragerParameters};
+use crate::error::{CliResult, KeyPath, bail};
+use fem_core::plastic::ConeMatch;
 use serde::Deserialize;
 
 /// `[[materials]] type`.
@@ -63,6 +63,29 @@ pub enum ConeSpec {
     Inner,
 }
 
+impl ConeSpec {
+    /// The library's match.
+    pub fn cone_match(self) -> ConeMatch {
+        match self {
+            Self::PlaneStrain => ConeMatch::PlaneStrain,
+            Self::Outer => ConeMatch::Outer,
+            Self::Inner => ConeMatch::Inner,
+        }
+    }
+}
+
+/// `[analysis.newton] tangent`: which tangent the plastic body factorises
+/// ([`fem_core::plastic::TangentKind`]).
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum TangentSpec {
+    /// The symmetric part, by Cholesky (the default for associated laws).
+    Symmetric,
+    /// The consistent tangent itself, by LU (the default for a non-associated law; it also
+    /// factorises an indefinite tangent near collapse).
+    Exact,
+}
+
 /// `[analysis.newton]`, as read.
 #[derive(Debug, Deserialize, Clone, Copy, Default)]
 #[serde(deny_unknown_fields)]
@@ -70,6 +93,7 @@ pub struct RawNewton {
     tol: Option<f64>,
     max_iterations: Option<usize>,
     max_cuts: Option<usize>,
+    tangent: Option<TangentSpec>,
 }
 
 /// The Newton settings a plastic scene runs with, checked.
@@ -81,6 +105,8 @@ pub struct NewtonSpec {
     pub max_iterations: usize,
     /// Halvings of a step (the run's, over its time and its prescribed values).
     pub max_cuts: usize,
+    /// The tangent asked for (`None`: the body's default).
+    pub tangent: Option<fem_core::plastic::TangentKind>,
 }
 
 /// The most halvings of one step (a step of `2⁻⁴⁰` of its size is below any load's meaning).
@@ -120,104 +146,10 @@ impl RawAnalysis {
             tol,
             max_iterations,
             max_cuts,
+            tangent: raw.tangent.map(|t| match t {
+                TangentSpec::Symmetric => fem_core::plastic::TangentKind::Symmetric,
+                TangentSpec::Exact => fem_core::plastic::TangentKind::Exact,
+            }),
         })
     }
-}
-
-/// The plastic law of material `m` (at `p`, `materials[i]`), or `None` for an elastic one
-/// (which refuses the plastic keys, naming them).
-///
-/// # Errors
-/// A message at the key: a plastic key on another type, `friction_angle` outside `[0, 90)`,
-/// `dilatancy_angle` outside `[0, φ]`, a negative `cohesion` (zero with `φ = 0`), a
-/// `yield_stress` not > 0, or a missing required key.
-pub fn plastic_law(p: &KeyPath, m: &MaterialSpec) -> CliResult<Option<DruckerPrager>> {
-    let present = [
-        ("friction_angle", m.friction_angle.is_some()),
-        ("dilatancy_angle", m.dilatancy_angle.is_some()),
-        ("cohesion", m.cohesion.is_some()),
-        ("cone", m.cone.is_some()),
-        ("yield_stress", m.yield_stress.is_some()),
-    ];
-    let accepted = match m.kind {
-        MaterialKind::Elastic => "",
-        MaterialKind::DruckerPrager => "friction_angle dilatancy_angle cohesion cone",
-        MaterialKind::VonMises => "yield_stress",
-    };
-    let what = format!("a material of type \"{}\"", m.kind.name());
-    super::keys::only(p, &what, &present, accepted)?;
-    let (young, poisson) = (m.young, m.poisson);
-    let law = match m.kind {
-        MaterialKind::Elastic => return Ok(None),
-        MaterialKind::VonMises => {
-            let sp = p.key("yield_stress");
-            let sigma_y = super::keys::need(p, &m.yield_stress, "yield_stress", &what)?;
-            if !(sigma_y.is_finite() && sigma_y > 0.0) {
-                bail!(sp, "`{sp}` = {sigma_y:?}: expected a finite stress > 0");
-            }
-            // the shear yield stress k = σ_y / √3
-            DruckerPrager::von_mises(young, poisson, sigma_y / 3f64.sqrt())
-        }
-        MaterialKind::DruckerPrager => {
-            let (fp, dp, cp) = (
-                p.key("friction_angle"),
-                p.key("dilatancy_angle"),
-                p.key("cohesion"),
-            );
-            let phi = super::keys::need(p, &m.friction_angle, "friction_angle", &what)?;
-            if !(phi.is_finite() && (0.0..90.0).contains(&phi)) {
-                bail!(
-                    fp,
-                    "`{fp}` = {phi:?}: expected a friction angle φ in [0, 90) degrees"
-                );
-            }
-            let theta = m.dilatancy_angle.unwrap_or(phi);
-            if !(theta.is_finite() && theta >= 0.0) {
-                bail!(
-                    dp,
-                    "`{dp}` = {theta:?}: expected a dilatancy angle θ ≥ 0 degrees"
-                );
-            }
-            if theta > phi {
-                bail!(
-                    dp,
-                    "`{dp}` = {theta:?}: the dilatancy angle θ must not exceed the friction \
-                     angle φ = `{fp}` = {phi:?} (θ = φ is associated flow)"
-                );
-            }
-            let c = super::keys::need(p, &m.cohesion, "cohesion", &what)?;
-            if !(c.is_finite() && c >= 0.0) {
-                bail!(cp, "`{cp}` = {c:?}: expected a finite cohesion c ≥ 0");
-            }
-            if c == 0.0 && phi == 0.0 {
-                bail!(
-                    cp,
-                    "`{cp}` = 0 with `{fp}` = 0: a soil without friction needs a cohesion > 0"
-                );
-            }
-            DruckerPrager::new(DruckerPragerParameters {
-                young,
-                poisson,
-                friction_angle: phi,
-                dilatancy_angle: theta,
-                cohesion: c,
-                cone: match m.cone.unwrap_or_default() {
-                    ConeSpec::PlaneStrain => ConeMatch::PlaneStrain,
-                    ConeSpec::Outer => ConeMatch::Outer,
-                    ConeSpec::Inner => ConeMatch::Inner,
-                },
-            })
-        }
-    };
-    law.map(Some).map_err(|e| match e {
-        FemError::InvalidParameter {
-            name,
-            value,
-            expected,
-        } => {
-            let kp = p.key(name);
-            err!(kp, "`{kp}` = {value:?}: expected {expected}")
-        }
-        other => err!(p, "`{p}`: {other}"),
-    })
 }

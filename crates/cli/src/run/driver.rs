@@ -4,9 +4,8 @@
 
 use super::errors::{fem_failed, step_error};
 use crate::build::{
-    add_load,
-    Custom, Library, LoadRt, Phase, PresetStudy, SceneDim, StudyDim, SupportRt,
-    TimeFunction, function_value, released_at,
+    Custom, Library, LoadRt, Phase, PresetStudy, SceneDim, StudyDim, SupportRt, TimeFunction,
+    add_load, function_value, released_at,
 };
 use crate::error::{CliError, CliResult};
 use crate::presets::ShaftPoint;
@@ -266,8 +265,7 @@ where
         if !l.phases[p] {
             continue;
         }
-        add_load(model, &l.kind, f)
-        .map_err(|e| fem_failed("load", e))?;
+        add_load(model, &l.kind, f).map_err(|e| fem_failed("load", e))?;
     }
     *last = Some(factors);
     Ok(())

@@ -28,7 +28,7 @@ use crate::error::{CliError, CliResult};
 use crate::scene::Units;
 use contact_solver::{ContactRecord, SolverError, StepResult};
 use fem_core::plastic::PlasticModel;
-use fem_core::{Component, Dim, Reaction};
+use fem_core::{Component, Dim, Nonlinear, Reaction};
 use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
@@ -208,7 +208,10 @@ where
 }
 
 /// The reactions on the nodes of the plots' `reaction_*` sets, node by node.
-fn reactions<const D: usize>(body: &PlasticModel<D>, sets: &[Vec<usize>]) -> CliResult<Vec<Reaction>>
+fn reactions<const D: usize>(
+    body: &PlasticModel<D>,
+    sets: &[Vec<usize>],
+) -> CliResult<Vec<Reaction>>
 where
     Dim<D>: StudyDim<D>,
 {
@@ -259,6 +262,15 @@ where
                 iterations += f.iterations;
                 cuts += 1;
                 fraction *= 0.5;
+                // a factorisation that failed in the attempt is not left behind: the tangent
+                // at the committed state again (the next attempt's first solve uses it)
+                if f.cause.is_some() {
+                    study
+                        .sim
+                        .structure_mut()
+                        .update_tangent()
+                        .map_err(|e| fem_failed("the tangent at the last converged state", e))?;
+                }
             }
             Err(e) => {
                 // the supports back at the last converged state, which the outputs show

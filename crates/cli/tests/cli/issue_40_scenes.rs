@@ -2,8 +2,8 @@
 //! global Newton around contact, its collapse load against Prandtl, and its bad input refused
 //! at its key.
 //!
-//! - `examples/scenes/footing_dp.toml`: a rigid rough strip footing (its nodes prescribed) on a
-//!   weightless soil resting on a rigid base (the contact), with
+//! - `examples/scenes/footing_dp.toml`: a rigid rough strip footing (a tied set under a resultant
+//!   force) on a weightless soil resting on a rigid base (the contact), with
 //!   `φ = 0`, `c = 1` (von Mises, plane-strain cone: `k = c`), half model, the mesh of fem-core's
 //!   `issue_40_strip_footing` (P2, 840 elements graded 40 : 1 towards the footing edge).
 //!   Prandtl (1920): `q_u = (2 + π) c`; the mesh gives about +2 % (fem-core's measurement on the
@@ -104,7 +104,10 @@ fn issue_40_bad_plastic_keys_are_refused_at_their_key() {
         "dilatancy",
         &format!("{DP}\ndilatancy_angle = 35.0"),
         "",
-        &["materials[0].dilatancy_angle", "must not exceed the friction angle"],
+        &[
+            "materials[0].dilatancy_angle",
+            "must not exceed the friction angle",
+        ],
     );
     refused(
         "phi90",
@@ -122,7 +125,10 @@ fn issue_40_bad_plastic_keys_are_refused_at_their_key() {
         "elastic_keys",
         "cohesion = 1.0",
         "",
-        &["materials[0].cohesion", "is not a key of a material of type \"elastic\""],
+        &[
+            "materials[0].cohesion",
+            "is not a key of a material of type \"elastic\"",
+        ],
     );
     refused(
         "von_mises",
@@ -171,7 +177,10 @@ fn issue_40_plastic_block_runs_and_writes_its_fields() {
         let residuals = r["residuals"].as_array().unwrap();
         assert!(residuals.last().unwrap().as_f64().unwrap() <= 1e-8, "{r}");
     }
-    assert!(s["max_equivalent_plastic_strain"].as_f64().unwrap() > 0.0, "{s}");
+    assert!(
+        s["max_equivalent_plastic_strain"].as_f64().unwrap() > 0.0,
+        "{s}"
+    );
     let rows = csv(&out.join("steps.csv"));
     assert_eq!(rows.len(), 4);
     assert!(num(&rows[3], "newton_iterations") >= 1.0);
@@ -206,26 +215,94 @@ fn issue_40_step_that_does_not_converge_keeps_the_last_state() {
     assert!(out.join("mesh_0000.vtu").exists());
 }
 
-/// Prandtl's `(2 + π) c` within 3 % (module docs), on the plateau: the last two steps' footing
-/// forces within 1 % of each other.
+/// Prandtl's `(2 + π) c` within 3 % (module docs): the shipped scene loads the footing to
+/// `5.2 c b` (1.1 % above Prandtl, below the mesh's collapse) and completes; here its load is
+/// raised to `5.4 c b` (+5 %), so that the run stops where the soil collapses: a step that does
+/// not converge after 8 halvings, the last converged state written. Its load is the collapse
+/// load of the mesh to `0.26 / 2⁸` of a step.
 #[test]
 fn issue_40_footing_collapse_works() {
-    let out = tmp("footing_dp");
-    let o = bipo_on("run", &scenes().join("footing_dp.toml"), Some(&out));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = tmp("footing_dp");
+    let text = std::fs::read_to_string(scenes().join("footing_dp.toml")).unwrap();
+    let text = text.replace("value = [0.0, -5.2]", "value = [0.0, -5.4]");
+    assert!(text.contains("value = [0.0, -5.4]"));
+    let path = dir.join("footing_dp.toml");
+    std::fs::write(&path, text).unwrap();
+    std::fs::copy(scenes().join("footing_dp.msh"), dir.join("footing_dp.msh")).unwrap();
+    let out = dir.join("out");
+    let o = bipo_on("run", &path, Some(&out));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "the soil collapses before 5.4 c: {err}");
+    assert!(err.contains("did not converge"), "{err}");
+    let s = summary(&out);
+    assert_eq!(s["status"], "failed");
     let rows = csv(&out.join("curves.csv"));
-    let n = rows.len();
-    // the footing pushes down: its support's reaction is −q b (b = 1)
-    let (q, q_before) = (
-        -num(&rows[n - 1], "footing reaction"),
-        -num(&rows[n - 2], "footing reaction"),
-    );
+    let last = rows.last().unwrap();
+    let q = 5.4 * num(last, "load_factor");
     let prandtl = 2.0 + std::f64::consts::PI;
-    eprintln!("footing: q/c = {q} ({:+.2} %)", 100.0 * (q / prandtl - 1.0));
-    assert!((q - q_before).abs() < 1e-2 * q, "{q_before} → {q}");
+    eprintln!(
+        "footing: collapse at q/c = {q:.4} ({:+.2} %), settlement {:.3e}",
+        100.0 * (q / prandtl - 1.0),
+        -num(last, "footing u_y")
+    );
     assert!((q - prandtl).abs() < 0.03 * prandtl, "q/c = {q}");
-    // the rigid base carries the footing's force (the soil is weightless; tolerance: the
-    // Newton's residual, 1e-9 of the forces, with margin)
-    let base = num(&rows[n - 1], "base force");
-    assert!((base - q).abs() < 1e-6 * q, "{base} against {q}");
+    // at collapse: the last step settles at least 10 times more per unit load than the first
+    // (elastic) one
+    let n = rows.len();
+    let rate = |a: usize, b: usize| {
+        (num(&rows[b], "footing u_y") - num(&rows[a], "footing u_y"))
+            / (num(&rows[b], "load_factor") - num(&rows[a], "load_factor"))
+    };
+    let first = num(&rows[0], "footing u_y") / num(&rows[0], "load_factor");
+    assert!(rate(n - 2, n - 1) > 10.0 * first, "{} vs {first}", rate(n - 2, n - 1));
+    assert!(out.join("mesh.pvd").exists());
+}
+
+/// Investigation: fem-core's own Newton on the footing mesh, displacement steps without a
+/// predictor (as the contact-solver's Newton starts them).
+#[test]
+#[ignore]
+fn issue_40_footing_library_newton_probe() {
+    use fem_core::plastic::newton::{self, NewtonSettings};
+    use fem_core::plastic::{ConstitutivePoint, DruckerPrager, PlasticModel};
+    use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
+    use std::sync::Arc;
+    let mesh = fem_core::gmsh::read_msh(&scenes().join("footing_dp.msh")).unwrap();
+    let set = |n: &str| mesh.node_set(n).unwrap().to_vec();
+    let footing = set("footing");
+    let mut s = Supports::new();
+    s.fix(&set("left"), Component::X)
+        .fix(&set("right"), Component::X)
+        .fix(&set("bottom"), Component::X)
+        .fix(&set("bottom"), Component::Y)
+        .fix(&footing, Component::X)
+        .fix(&footing, Component::Y);
+    let nu: f64 = std::env::var("NU").map_or(0.3, |v| v.parse().unwrap());
+    let m = Material::new(1e4, nu, 0.0).unwrap();
+    let el = LinearElasticModel::new(mesh, Idealization::PlaneStrain, &[(1, m)], s).unwrap();
+    let law: Arc<dyn ConstitutivePoint> = Arc::new(DruckerPrager::von_mises(1e4, nu, 1.0).unwrap());
+    let mut body = PlasticModel::new(el, &[(1, law)]).unwrap();
+    let mut u = vec![0.0; fem_core::Structure::dof_count(&body)];
+    let settings = NewtonSettings {
+        steps: 1,
+        max_iterations: 30,
+        max_cuts: 0,
+        tolerance: 1e-9,
+    };
+    for k in 1..=20 {
+        let d = 0.001 * k as f64;
+        body.set_prescribed(&footing, Component::Y, -d).unwrap();
+        match newton::solve(&mut body, &mut u, 0.0, 0.0, &settings) {
+            Ok(r) => eprintln!(
+                "δ = {d}: {:?}, R = {}",
+                r.steps.last().unwrap().residuals,
+                body.reaction(&footing, Component::Y).unwrap()
+            ),
+            Err(fem_core::FemError::NotConverged { report, .. }) => {
+                eprintln!("δ = {d}: {:?}", report.steps.last().unwrap().residuals);
+                break;
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
 }
