@@ -216,53 +216,59 @@ fn issue_40_step_that_does_not_converge_keeps_the_last_state() {
 }
 
 /// Prandtl's `(2 + π) c` within 3 % (module docs): the shipped scene loads the footing to
-/// `5.2 c b` (1.1 % above Prandtl, below the mesh's collapse) and completes; here its load is
-/// raised to `5.4 c b` (+5 %), so that the run stops where the soil collapses: a step that does
-/// not converge after 8 halvings, the last converged state written. Its load is the collapse
-/// load of the mesh to `0.26 / 2⁸` of a step.
+/// `5.2 c b`, `+1.1 %` over Prandtl and below the mesh's own collapse load (`5.245 c b`, `+2.0 %`,
+/// fem-core's `issue_40_strip_footing_prandtl_works` on this mesh), and the soil carries it at
+/// the knee of its load–settlement curve: the last step settles at least 15 times more per unit
+/// load than the first, elastic, one (measured 22 times). Raising the force to `5.4 c b` (same
+/// 20 steps, 8 halvings) stops the run at `5.13 c b` (`−0.2 %`, measured once): with steps of
+/// `0.27 c b` the Newton stops converging just before the collapse load, so that run bounds
+/// nothing and the test keeps the completed one. Every step's Newton meets its tolerance.
 #[test]
 fn issue_40_footing_collapse_works() {
-    let dir = tmp("footing_dp");
-    let text = std::fs::read_to_string(scenes().join("footing_dp.toml")).unwrap();
-    let text = text.replace("value = [0.0, -5.2]", "value = [0.0, -5.4]");
-    assert!(text.contains("value = [0.0, -5.4]"));
-    let path = dir.join("footing_dp.toml");
-    std::fs::write(&path, text).unwrap();
-    std::fs::copy(scenes().join("footing_dp.msh"), dir.join("footing_dp.msh")).unwrap();
-    let out = dir.join("out");
-    let o = bipo_on("run", &path, Some(&out));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(1), "the soil collapses before 5.4 c: {err}");
-    assert!(err.contains("did not converge"), "{err}");
+    let out = tmp("footing_dp");
+    let o = bipo_on("run", &scenes().join("footing_dp.toml"), Some(&out));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s = summary(&out);
-    assert_eq!(s["status"], "failed");
+    assert_eq!(s["status"], "completed");
+    for r in s["step_reports"].as_array().unwrap() {
+        let last = r["residuals"]
+            .as_array()
+            .unwrap()
+            .last()
+            .unwrap()
+            .as_f64()
+            .unwrap();
+        assert!(last <= 1e-9, "{r}");
+    }
     let rows = csv(&out.join("curves.csv"));
-    let last = rows.last().unwrap();
-    let q = 5.4 * num(last, "load_factor");
+    let n = rows.len();
+    assert_eq!(n, 20);
+    let q = 5.2 * num(&rows[n - 1], "load_factor");
     let prandtl = 2.0 + std::f64::consts::PI;
+    let settle = |k: usize| -num(&rows[k], "footing u_y");
+    let load = |k: usize| 5.2 * num(&rows[k], "load_factor");
+    let first = settle(0) / load(0);
+    let last = (settle(n - 1) - settle(n - 2)) / (load(n - 1) - load(n - 2));
     eprintln!(
-        "footing: collapse at q/c = {q:.4} ({:+.2} %), settlement {:.3e}",
+        "footing: q/c = {q:.4} ({:+.2} %) carried, settlement {:.3e}, compliance {:.1} × the elastic",
         100.0 * (q / prandtl - 1.0),
-        -num(last, "footing u_y")
+        settle(n - 1),
+        last / first
     );
     assert!((q - prandtl).abs() < 0.03 * prandtl, "q/c = {q}");
-    // at collapse: the last step settles at least 10 times more per unit load than the first
-    // (elastic) one
-    let n = rows.len();
-    let rate = |a: usize, b: usize| {
-        (num(&rows[b], "footing u_y") - num(&rows[a], "footing u_y"))
-            / (num(&rows[b], "load_factor") - num(&rows[a], "load_factor"))
-    };
-    let first = num(&rows[0], "footing u_y") / num(&rows[0], "load_factor");
-    assert!(rate(n - 2, n - 1) > 10.0 * first, "{} vs {first}", rate(n - 2, n - 1));
+    assert!(last > 15.0 * first, "{last} vs {first}");
     assert!(out.join("mesh.pvd").exists());
 }
 
-/// Investigation: fem-core's own Newton on the footing mesh, displacement steps without a
-/// predictor (as the contact-solver's Newton starts them).
+/// Measured (why `footing_dp.toml` is load-controlled): fem-core's own Newton
+/// (`plastic::newton`) on the footing mesh with the footing's nodes prescribed, each step
+/// started from the last converged state without a predictor (as the contact-solver's Newton
+/// starts its steps). At `δ = 0.001 b` (ν = 0.3 or 0.49, `NU=…`) it diverges: relative
+/// residuals 0.97, 3.4e-4, 7.1e-4, 3.8e-3, 0.077, 0.999, then a tangent that is not positive
+/// definite (fem-core's `issue_40_strip_footing` predicts each step from the last increment).
 #[test]
 #[ignore]
-fn issue_40_footing_library_newton_probe() {
+fn issue_40_footing_displacement_control_measured() {
     use fem_core::plastic::newton::{self, NewtonSettings};
     use fem_core::plastic::{ConstitutivePoint, DruckerPrager, PlasticModel};
     use fem_core::{Component, Idealization, LinearElasticModel, Material, Supports};
