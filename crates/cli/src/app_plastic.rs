@@ -27,8 +27,8 @@ where
     header("run", loaded, &study);
     let s = run::run_plastic(study, &opts)?;
     out::outln!(
-        "done: {} steps in {:.3} s (t = {}), {} Newton iterations (at most {} in a step), {} \
-         cut(s), {} contact iterations",
+        "done: {} steps in {:.3} s (t = {}), {} Newton iterations (at most {} in one solve of a \
+         step or sub-step), {} cut(s), {} contact iterations",
         s.steps,
         s.wall_time_s,
         s.time,

@@ -55,7 +55,8 @@ pub struct PlasticSummary {
     /// The time of the last converged state.
     pub time: f64,
     pub wall_time_s: f64,
-    /// Newton iterations over the run, and the most in one (sub-)step.
+    /// Newton iterations over the run (every attempt, cut ones included), and the most in
+    /// one converged solve of a step or sub-step.
     pub newton_iterations: usize,
     pub max_newton_iterations: usize,
     /// Step halvings over the run.
