@@ -1,6 +1,7 @@
 //! The `bipo` command line (the binary `src/main.rs` calls [`main`]).
 
 use crate::app_dynamic as dynamic;
+use crate::app_plastic as plastic;
 use crate::error::{CliError, CliResult};
 use crate::{build, error, out, run, templates};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -213,6 +214,12 @@ pub fn main() -> ExitCode {
                 build::Built::SolidDynamic(s) => {
                     dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
+                build::Built::PlanePlastic(s) => {
+                    plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
+                build::Built::SolidPlastic(s) => {
+                    plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
             }
         }),
         Command::Check { scene } => with_scene(&scene, |loaded| {
@@ -221,6 +228,8 @@ pub fn main() -> ExitCode {
                 build::Built::Solid(study) => check_study(&study, loaded),
                 build::Built::PlaneDynamic(s) => dynamic::check_study(&s, loaded),
                 build::Built::SolidDynamic(s) => dynamic::check_study(&s, loaded),
+                build::Built::PlanePlastic(s) => plastic::check_study(&s, loaded),
+                build::Built::SolidPlastic(s) => plastic::check_study(&s, loaded),
             };
             out::outln!("ok: the scene is valid ({steps} steps to run, {files} files to write)");
             Ok(())
@@ -382,6 +391,8 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
         build::Built::Solid(study) => (study.total_steps(), study.output_files()),
         build::Built::PlaneDynamic(s) => (s.spec.steps, s.output_files()),
         build::Built::SolidDynamic(s) => (s.spec.steps, s.output_files()),
+        build::Built::PlanePlastic(s) => (s.total_steps(), s.output_files()),
+        build::Built::SolidPlastic(s) => (s.total_steps(), s.output_files()),
     };
     Ok(CheckedScene { steps, files })
 }

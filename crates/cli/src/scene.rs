@@ -111,6 +111,20 @@ pub struct MaterialSpec {
     /// The velocity of the material's regions at t = 0 (a dynamic scene; two or three
     /// numbers by dimension).
     pub initial_velocity: Option<crate::spec::Coords>,
+    /// `type`: `"elastic"` (the default), `"drucker-prager"` or `"von-mises"` (issue 40; the
+    /// plastic keys below are read by [`crate::raw::plastic_law`]).
+    #[serde(rename = "type", default)]
+    pub kind: crate::raw::MaterialKind,
+    /// Drucker–Prager: the friction angle φ in degrees.
+    pub friction_angle: Option<f64>,
+    /// Drucker–Prager: the dilatancy angle θ in degrees (default φ: associated).
+    pub dilatancy_angle: Option<f64>,
+    /// Drucker–Prager: the cohesion c.
+    pub cohesion: Option<f64>,
+    /// Drucker–Prager: how the cone matches Mohr–Coulomb.
+    pub cone: Option<crate::raw::ConeSpec>,
+    /// Von Mises: the uniaxial yield stress σ_y.
+    pub yield_stress: Option<f64>,
 }
 
 /// Which displacement components a support constrains.

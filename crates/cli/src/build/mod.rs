@@ -24,6 +24,7 @@ mod mesh;
 mod model;
 mod outputs;
 mod phases;
+mod plastic;
 mod presets;
 mod solid;
 mod study;
@@ -38,10 +39,11 @@ pub use phases::{
     Phase, PhaseLaw, TimeFunction, describe_laws, final_law, function_value, laws_by_phase,
     phase_law_names,
 };
+pub(crate) use plastic::add_load;
+pub use plastic::{PlasticSim, PlasticStudy};
 pub(crate) use study::on_sim;
 pub use study::{
-    Body, Custom, Library, LoadKind, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt,
-    released_at,
+    Body, Custom, Library, LoadRt, NoPreset, PresetStudy, Study, StudyDim, SupportRt, released_at,
 };
 
 use crate::error::{CliError, CliResult, KeyPath};
@@ -91,6 +93,10 @@ pub enum Built {
     PlaneDynamic(Box<DynamicStudy<2>>),
     /// A 3D dynamic study.
     SolidDynamic(Box<DynamicStudy<3>>),
+    /// A 2D study with a plastic material (plane strain or axisymmetric).
+    PlanePlastic(Box<PlasticStudy<2>>),
+    /// A 3D study with a plastic material.
+    SolidPlastic(Box<PlasticStudy<3>>),
 }
 
 /// The study's title: the scene's `title`, else the file's stem.
@@ -107,7 +113,21 @@ fn title(loaded: &Loaded) -> String {
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
 pub fn build(loaded: &Loaded) -> CliResult<Built> {
     let scene = &loaded.scene;
+    if !plastic::is_plastic(scene) {
+        plastic::refuse_in_elastic(scene)?;
+    }
     if let Some(a) = scene.analysis.as_ref().filter(|a| a.is_dynamic()) {
+        if let Some(i) = scene
+            .materials
+            .iter()
+            .position(|m| m.kind != crate::raw::MaterialKind::Elastic)
+        {
+            let p = KeyPath::root().key("materials").index(i).key("type");
+            crate::error::bail!(
+                p,
+                "`{p}`: a plastic material is not served by a dynamic scene"
+            );
+        }
         return Ok(if a.is_solid() {
             Built::SolidDynamic(Box::new(dynamic::build::<3>(loaded)?))
         } else {
@@ -115,6 +135,13 @@ pub fn build(loaded: &Loaded) -> CliResult<Built> {
         });
     }
     dynamic::refuse_in_static(scene)?;
+    if plastic::is_plastic(scene) {
+        return Ok(if scene.analysis.as_ref().is_some_and(|a| a.is_solid()) {
+            Built::SolidPlastic(Box::new(plastic::build::<3>(loaded)?))
+        } else {
+            Built::PlanePlastic(Box::new(plastic::build::<2>(loaded)?))
+        });
+    }
     if scene.preset.is_none() && scene.analysis.as_ref().is_some_and(|a| a.is_solid()) {
         return Ok(Built::Solid(Box::new(solid::build(loaded)?)));
     }

@@ -36,7 +36,7 @@ pub const QUANTITIES: &[(&str, &str)] = &[
 
 /// The quantities a 3D run plots: the step's counters and, per zone, Σ r_n, the closed
 /// contacts and β (mean, least).
-const QUANTITIES_3D: &[&str] = &[
+pub(super) const QUANTITIES_3D: &[&str] = &[
     "force_n",
     "beta_mean",
     "beta_min",

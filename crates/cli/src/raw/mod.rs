@@ -15,10 +15,12 @@
 mod dynamic;
 mod keys;
 mod mesh;
+mod plastic;
 mod preset;
 
 pub use dynamic::{DynamicSpec, MassSpec, restitution};
 pub use mesh::RawMesh;
+pub use plastic::{ConeSpec, MaterialKind, NewtonSpec, RawNewton};
 pub use preset::RawPreset;
 
 use crate::error::{CliResult, KeyPath, bail, err};
@@ -53,6 +55,8 @@ pub struct RawAnalysis {
     mass: Option<MassSpec>,
     rayleigh_alpha: Option<f64>,
     rayleigh_beta: Option<f64>,
+    /// `[analysis.newton]`: the global Newton of a scene with a plastic material (issue 40).
+    newton: Option<RawNewton>,
 }
 
 impl RawAnalysis {

@@ -4,8 +4,8 @@
 
 use super::errors::{fem_failed, step_error};
 use crate::build::{
-    Custom, Library, LoadKind, LoadRt, Phase, PresetStudy, SceneDim, StudyDim, SupportRt,
-    TimeFunction, function_value, released_at,
+    Custom, Library, LoadRt, Phase, PresetStudy, SceneDim, StudyDim, SupportRt, TimeFunction,
+    add_load, function_value, released_at,
 };
 use crate::error::{CliError, CliResult};
 use crate::presets::ShaftPoint;
@@ -265,21 +265,7 @@ where
         if !l.phases[p] {
             continue;
         }
-        let scaled = |v: &[f64; D]| v.map(|x| x * f);
-        match &l.kind {
-            LoadKind::Traction(set, v) => Dim::<D>::traction(model, set, scaled(v)),
-            LoadKind::Pressure(set, p) => Dim::<D>::pressure(model, set, p * f),
-            LoadKind::Nodal(nodes, v) => nodes
-                .iter()
-                .try_for_each(|&n| model.add_nodal_force(n, scaled(v))),
-            LoadKind::Resultant(node, v) => model.add_nodal_force(*node, scaled(v)),
-            LoadKind::Body(v) => {
-                let v = scaled(v);
-                model.add_body_force(|_| v)
-            }
-            LoadKind::Gravity => model.add_self_weight(),
-        }
-        .map_err(|e| fem_failed("load", e))?;
+        add_load(model, &l.kind, f).map_err(|e| fem_failed("load", e))?;
     }
     *last = Some(factors);
     Ok(())

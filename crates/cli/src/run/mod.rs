@@ -15,6 +15,7 @@ mod driver;
 mod dynamic;
 mod errors;
 mod plane;
+mod plastic;
 mod plots;
 mod pressure;
 mod profiles;
@@ -26,6 +27,8 @@ mod summary;
 mod vtk;
 
 pub use dynamic::run_dynamic;
+pub(crate) use plastic::PlasticRunDim;
+pub use plastic::run_plastic;
 pub use summary::{Peak, StepTotals, Summary};
 
 use crate::build::{self, Body, Phase, Study, StudyDim, on_sim};
