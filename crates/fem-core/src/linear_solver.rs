@@ -166,6 +166,12 @@ impl SpdSolver {
         }
     }
 
+    /// Whether the last [`SpdSolver::factor`] succeeded (a solve needs it).
+    #[inline]
+    pub fn is_factored(&self) -> bool {
+        self.factored
+    }
+
     /// Dimension of the system.
     #[inline]
     pub fn dim(&self) -> usize {

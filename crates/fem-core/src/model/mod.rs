@@ -339,6 +339,19 @@ where
         }
     }
 
+    /// [`FemError::LinearAlgebra`] when the stiffness (or a nonlinear model's tangent held
+    /// here) has no factorisation: the last one failed.
+    fn check_factored(&self) -> Result<(), FemError> {
+        if self.solver.is_factored() {
+            return Ok(());
+        }
+        Err(FemError::LinearAlgebra {
+            detail: "a solve with a stiffness whose last factorisation failed (factorise a \
+                     positive definite stiffness or tangent first)"
+                .into(),
+        })
+    }
+
     /// Names the node and component of a failed pivot: the solver reports a row of the
     /// reduced system, which the dof map turns into `(node, component)`.
     fn name_failed_dof(&self, e: FemError) -> FemError {
@@ -632,6 +645,7 @@ where
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
+        self.check_factored()?;
         if self.pinned.is_empty() {
             self.solver.solve_in_place(rhs);
         } else {
@@ -644,6 +658,7 @@ where
     }
 
     fn solve_many_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+        self.check_factored()?;
         if self.pinned.is_empty() {
             self.solver.solve_many_in_place(rhs);
         } else {

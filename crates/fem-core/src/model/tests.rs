@@ -291,3 +291,21 @@ fn issue_35_one_model_for_both_dimensions_works() {
     let m = Material::new(100.0, 0.25, 0.0).unwrap();
     reactions_balance(SolidModel::new(mesh, &[(0, m)], supports).unwrap(), top);
 }
+
+/// A solve after a failed factorisation (a non-positive-definite tangent) is an error naming
+/// the cause, never the solver's panic: the Newton around contact solves again after a failed
+/// step (issue 40, found by the CLI's plastic scenes).
+#[test]
+fn solve_after_failed_factorisation_is_an_error() {
+    let mut m = square_model(Idealization::PlaneStrain);
+    let negated: Vec<f64> = m.values.iter().map(|v| -v).collect();
+    assert!(m.factor_values(&negated).is_err());
+    let mut u = vec![0.0; m.dof_map().free_count()];
+    let e = Structure::free_response_into(&m, 1.0, &mut u).unwrap_err();
+    assert!(e.to_string().contains("last factorisation failed"), "{e}");
+    let mut b = vec![1.0; u.len()];
+    assert!(Structure::solve_in_place(&m, &mut b).is_err());
+    // a successful factorisation makes it solvable again
+    m.refactor().unwrap();
+    assert!(Structure::free_response_into(&m, 1.0, &mut u).is_ok());
+}
