@@ -38,7 +38,7 @@ struct Answer {
 struct Scene<L: ContactLaw> {
     mesh: SolidMesh,
     supports: Supports,
-    zone: Box<dyn Fn(&SolidMesh) -> Res<ContactZone3<L>>>,
+    zone: ContactZone3<L>,
     second: Vec<(Vec<usize>, Component, f64)>,
 }
 
@@ -66,17 +66,13 @@ fn block(cells: usize) -> Res<Scene<Coulomb>> {
         (top.clone(), Component::X, 0.05 * theta.cos()),
         (top, Component::Y, 0.05 * theta.sin()),
     ];
+    let (nodes, areas) = mesh.nodal_areas("z0")?;
+    let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0])?;
+    let zone = ContactZone3::rigid("base", nodes, plane, Coulomb::new(0.3)?, 0.1).with_areas(areas);
     Ok(Scene {
         mesh,
         supports,
-        zone: Box::new(|mesh| {
-            let (nodes, areas) = mesh.nodal_areas("z0")?;
-            let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0])?;
-            Ok(
-                ContactZone3::rigid("base", nodes, plane, Coulomb::new(0.3)?, 0.1)
-                    .with_areas(areas),
-            )
-        }),
+        zone,
         second,
     })
 }
@@ -100,14 +96,13 @@ fn hertz() -> Res<Scene<Signorini>> {
         .fix(mesh.node_set("y0")?, Component::Y)
         .prescribe(mesh.node_set("z0")?, Component::Z, 0.04)?;
     let bottom = mesh.node_set("z0")?.to_vec();
+    let (nodes, areas) = mesh.nodal_areas("z1")?;
+    let ball = RigidSphere::new([0.0, 0.0, 10.0], 10.0, Side3::Outside)?;
+    let zone = ContactZone3::rigid("top", nodes, ball, Signorini, 0.5).with_areas(areas);
     Ok(Scene {
         mesh,
         supports,
-        zone: Box::new(|mesh| {
-            let (nodes, areas) = mesh.nodal_areas("z1")?;
-            let ball = RigidSphere::new([0.0, 0.0, 10.0], 10.0, Side3::Outside)?;
-            Ok(ContactZone3::rigid("top", nodes, ball, Signorini, 0.5).with_areas(areas))
-        }),
+        zone,
         second: vec![(bottom, Component::Z, 0.06)],
     })
 }
@@ -159,7 +154,7 @@ fn compare<L: ContactLaw + Clone>(
     scene: Scene<L>,
     solver: LinearSolver,
 ) -> Res<()> {
-    let zone = (scene.zone)(&scene.mesh)?;
+    let zone = scene.zone;
     let serial = if petsc.rank() == 0 {
         let model = SolidModel::new(
             scene.mesh.clone(),
@@ -232,7 +227,7 @@ fn peak_rss_mib() -> f64 {
 
 fn scale(petsc: &Petsc, cells: usize, solver: LinearSolver) -> Res<()> {
     let scene = block(cells)?;
-    let zone = (scene.zone)(&scene.mesh)?;
+    let zone = scene.zone;
     let contacts = scene.mesh.node_set("z0")?.len();
     petsc.barrier()?;
     let t0 = Instant::now();

@@ -2,7 +2,12 @@
 //! (`petsc.h`, `mpi.h`). Object handles are opaque pointers; enums are `int`s with the values
 //! of PETSc 3.18's headers. `build.rs` checks the version and the index width.
 
-#![allow(non_camel_case_types, non_snake_case, missing_docs)]
+#![allow(
+    non_camel_case_types,
+    non_snake_case,
+    missing_docs,
+    clippy::upper_case_acronyms
+)]
 
 use std::ffi::{c_char, c_int, c_void};
 

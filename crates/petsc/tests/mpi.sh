@@ -2,7 +2,8 @@
 # The distributed checks of bipotential-petsc under mpirun, 1 and 2 ranks (the CI step runs
 # it; tests/mpi.rs runs the same through `cargo test --features petsc`). Each check compares
 # with the direct path to 1e-8 relative and exits non-zero otherwise; `fail` must end every
-# rank with the failing rank's message, within the timeout, not hang.
+# rank with the failing rank's message, within the timeout, not hang. Hertz runs with MUMPS:
+# its 441 candidates make ~900 solves for F*, ~0.2 s each with CG+GAMG here (minutes).
 #   usage: crates/petsc/tests/mpi.sh [path/to/petsc_check]
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
@@ -12,11 +13,11 @@ if [ -z "$bin" ]; then
   bin="${CARGO_TARGET_DIR:-target}/debug/examples/petsc_check"
 fi
 # root in a container, and more ranks than cores on the 2-core CI machine
-mpi=(mpirun --oversubscribe)
+mpi=(mpirun --oversubscribe --mca mpi_yield_when_idle 1)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 for n in 1 2; do
-  for scene in block hertz "block mumps"; do
+  for scene in block "block mumps" "hertz mumps"; do
     echo "== mpirun -n $n petsc_check $scene"
     # shellcheck disable=SC2086
     timeout 300 "${mpi[@]}" -n "$n" "$bin" $scene
