@@ -25,6 +25,7 @@ pub type Vec = *mut c_void;
 pub type KSP = *mut c_void;
 pub type PC = *mut c_void;
 pub type VecScatter = *mut c_void;
+pub type MatNullSpace = *mut c_void;
 
 pub const PETSC_DEFAULT: PetscInt = -2;
 pub const INSERT_VALUES: c_int = 1;
@@ -84,6 +85,15 @@ unsafe extern "C" {
     pub fn MatAssemblyBegin(mat: Mat, kind: c_int) -> PetscErrorCode;
     pub fn MatAssemblyEnd(mat: Mat, kind: c_int) -> PetscErrorCode;
     pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
+    pub fn MatNullSpaceCreate(
+        comm: MPI_Comm,
+        has_constant: PetscBool,
+        n: PetscInt,
+        vecs: *const Vec,
+        space: *mut MatNullSpace,
+    ) -> PetscErrorCode;
+    pub fn MatSetNearNullSpace(mat: Mat, space: MatNullSpace) -> PetscErrorCode;
+    pub fn MatNullSpaceDestroy(space: *mut MatNullSpace) -> PetscErrorCode;
 
     pub fn VecCreateMPI(
         comm: MPI_Comm,

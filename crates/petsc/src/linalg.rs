@@ -94,6 +94,58 @@ impl System {
         })
     }
 
+    /// Gives GAMG the near-null space of the operator: `modes`, whole orthonormal vectors in
+    /// the distributed numbering (the same on every rank), of which this rank sets the rows
+    /// `first..first + owned`.
+    pub(crate) fn set_near_null_space(
+        &self,
+        modes: &[Vec<f64>],
+        first: usize,
+    ) -> Result<(), PetscError> {
+        let mut vecs = vec![std::ptr::null_mut(); modes.len()];
+        // SAFETY: `b` exists; each duplicate's local array holds this rank's rows; the null
+        // space keeps its own references, so the vectors are destroyed here
+        unsafe {
+            let mut r = Ok(());
+            for (v, mode) in vecs.iter_mut().zip(modes) {
+                r = r.and_then(|()| check("VecDuplicate", ffi::VecDuplicate(self.b, v)));
+                let mut len: PetscInt = 0;
+                r = r.and_then(|()| check("VecGetLocalSize", ffi::VecGetLocalSize(*v, &mut len)));
+                let mut a = std::ptr::null_mut();
+                r = r.and_then(|()| check("VecGetArray", ffi::VecGetArray(*v, &mut a)));
+                if r.is_ok() && len > 0 {
+                    std::slice::from_raw_parts_mut(a, len as usize)
+                        .copy_from_slice(&mode[first..first + len as usize]);
+                }
+                r = r.and_then(|()| check("VecRestoreArray", ffi::VecRestoreArray(*v, &mut a)));
+            }
+            let mut space = std::ptr::null_mut();
+            r = r.and_then(|()| {
+                check(
+                    "MatNullSpaceCreate",
+                    ffi::MatNullSpaceCreate(
+                        ffi::PETSC_COMM_WORLD,
+                        0,
+                        vecs.len() as PetscInt,
+                        vecs.as_ptr(),
+                        &mut space,
+                    ),
+                )
+            });
+            r = r.and_then(|()| {
+                check(
+                    "MatSetNearNullSpace",
+                    ffi::MatSetNearNullSpace(self.mat, space),
+                )
+            });
+            ffi::MatNullSpaceDestroy(&mut space);
+            for v in &mut vecs {
+                ffi::VecDestroy(v);
+            }
+            r
+        }
+    }
+
     /// Ends the assembly (communicates the entries set on other ranks' rows) and sets up the
     /// KSP and its preconditioner (GAMG's hierarchy or MUMPS's factorisation), once.
     pub(crate) fn assemble_and_set_up(&mut self, solver: LinearSolver) -> Result<(), PetscError> {

@@ -127,6 +127,10 @@ impl<'p> PetscStructure<'p> {
         let owned = partition.offsets[rank + 1] - partition.offsets[rank];
         let mut system = System::new(owned, dofs.free_count(), &d_nnz, &o_nnz)?;
         let coupling = assemble(&mesh, &materials, &dofs, &partition, rank, &system)?;
+        if matches!(solver, LinearSolver::CgGamg { .. }) {
+            let modes = rigid_modes(&mesh, &dofs, &partition);
+            system.set_near_null_space(&modes, partition.offsets[rank])?;
+        }
         system.assemble_and_set_up(solver)?;
         let load = vec![0.0; 3 * mesh.node_count()];
         Ok(Self {
@@ -233,6 +237,55 @@ impl<'p> PetscStructure<'p> {
         self.iterations.set(self.iterations.get() + its);
         Ok(())
     }
+}
+
+/// The six rigid-body motions (three translations, three rotations about the centroid) on
+/// the free dofs, in the distributed numbering, orthonormalised (modified Gram–Schmidt; a mode
+/// the supports make dependent on the others is dropped): GAMG's near-null space, without
+/// which its coarse spaces miss the rotations and CG needs several times the iterations.
+fn rigid_modes(mesh: &SolidMesh, dofs: &DofMap<3>, partition: &Partition) -> Vec<Vec<f64>> {
+    let n = dofs.free_count();
+    let nodes = mesh.nodes();
+    let mut centre = [0.0; 3];
+    for p in nodes {
+        for a in 0..3 {
+            centre[a] += p[a] / nodes.len() as f64;
+        }
+    }
+    let mut modes: Vec<Vec<f64>> = Vec::new();
+    for k in 0..6 {
+        let mut v = vec![0.0; n];
+        for (node, p) in nodes.iter().enumerate() {
+            let x = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+            // translations e_k; rotations ω × x with ω = e_(k−3)
+            let u = match k {
+                0..3 => {
+                    let mut e = [0.0; 3];
+                    e[k] = 1.0;
+                    e
+                }
+                3 => [0.0, -x[2], x[1]],
+                4 => [x[2], 0.0, -x[0]],
+                _ => [-x[1], x[0], 0.0],
+            };
+            for (c, d) in dofs.free_dofs(node).into_iter().enumerate() {
+                if let Some(i) = d {
+                    v[partition.row[i]] = u[c];
+                }
+            }
+        }
+        let before = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        for m in &modes {
+            let dot: f64 = v.iter().zip(m).map(|(a, b)| a * b).sum();
+            v.iter_mut().zip(m).for_each(|(a, b)| *a -= dot * b);
+        }
+        let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        if norm > 1e-8 * before {
+            v.iter_mut().for_each(|a| *a /= norm);
+            modes.push(v);
+        }
+    }
+    modes
 }
 
 /// Nonzeros per owned row in the diagonal block (columns this rank owns) and off it: a row of
