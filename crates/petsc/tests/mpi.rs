@@ -5,7 +5,7 @@
 //!   4 × 4 × 2 Tet10 cells, μ = 0.3): pressed, then sheared until the contacts slide; the
 //!   reactions and the contact nodes' displacements of both steps equal the direct path's
 //!   (fem-core's `SolidModel`, Cholesky) to 1e-8 relative (the example checks; CG stops at a
-//!   residual of 1e-12 relative, and κ(K) ≈ 1e3 here).
+//!   residual of 1e-12 relative, and 4e-11 is measured).
 //! - **A failing rank** ends every rank with its message (`MPI_Abort`), where the other rank
 //!   waits in a barrier: a hang would be a timeout.
 //!
