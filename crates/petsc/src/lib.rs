@@ -1,0 +1,48 @@
+//! The bulk of a contact model solved by PETSc under MPI, the contact interface kept whole.
+//!
+//! With the feature `petsc` (the system PETSc 3.18 and Open MPI: Debian's
+//! `libpetsc-real-dev` and `libopenmpi-dev`), `PetscStructure` implements fem-core's
+//! [`Structure<3>`](fem_core::Structure) with a stiffness assembled as a distributed PETSc
+//! MPIAIJ matrix, each rank assembling its own elements of a geometric [`Partition`], and
+//! solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`). The contact solver
+//! (`contact-solver`) runs unchanged on every rank: the structure takes its right-hand sides
+//! from rank 0 and returns the same solution to every rank, so candidates, `F*` and the local
+//! solve are rank 0's, broadcast.
+//!
+//! A distributed program is the serial one, run by `mpirun -n N`, with three changes:
+//! `Petsc::init` first, `PetscStructure::new` in place of `SolidModel::new`, and the body
+//! inside `Petsc::or_abort` so that a rank that fails ends every rank with its error instead
+//! of leaving the others waiting. `examples/petsc_check.rs` is such a program.
+//!
+//! Without the feature the crate holds the partition only (pure Rust), so that the default
+//! build and `cargo test --workspace` need neither MPI nor PETSc.
+//!
+//! The C functions used are bound by hand (`ffi`), the version checked at build time.
+
+#![warn(missing_docs)]
+
+pub mod partition;
+
+pub use partition::Partition;
+
+#[cfg(feature = "petsc")]
+mod error;
+#[cfg(feature = "petsc")]
+mod ffi;
+#[cfg(feature = "petsc")]
+mod linalg;
+#[cfg(feature = "petsc")]
+mod runtime;
+#[cfg(feature = "petsc")]
+mod solver;
+#[cfg(feature = "petsc")]
+mod structure;
+
+#[cfg(feature = "petsc")]
+pub use error::PetscError;
+#[cfg(feature = "petsc")]
+pub use runtime::Petsc;
+#[cfg(feature = "petsc")]
+pub use solver::LinearSolver;
+#[cfg(feature = "petsc")]
+pub use structure::PetscStructure;

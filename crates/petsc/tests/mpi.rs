@@ -1,0 +1,94 @@
+//! The distributed structure under `mpirun` (issue 41), spawned from the test: the example
+//! `petsc_check` (built by `cargo test --features petsc`) on 1 and 2 ranks.
+//!
+//! - **Block with Coulomb contact** (the sliding block of contact-solver's `solid_contact.rs`,
+//!   4 × 4 × 2 Tet10 cells, μ = 0.3): pressed, then sheared until the contacts slide; the
+//!   reactions and the contact nodes' displacements of both steps equal the direct path's
+//!   (fem-core's `SolidModel`, Cholesky) to 1e-8 relative (the example checks; CG stops at a
+//!   residual of 1e-12 relative, and 4e-11 is measured).
+//! - **A failing rank** ends every rank with its message (`MPI_Abort`), where the other rank
+//!   waits in a barrier: a hang would be a timeout.
+//!
+//! `tests/mpi.sh` runs these and the Hertz sphere and MUMPS cases (the CI step).
+
+#![cfg(feature = "petsc")]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn example() -> PathBuf {
+    // target/debug/deps/mpi-<hash> -> target/debug/examples/petsc_check
+    let exe = std::env::current_exe().unwrap();
+    let path = exe
+        .parent()
+        .and_then(|d| d.parent())
+        .map(|d| d.join("examples").join("petsc_check"))
+        .unwrap();
+    assert!(
+        path.exists(),
+        "{} is missing: run `cargo test -p bipotential-petsc --features petsc` (it builds the \
+         examples)",
+        path.display()
+    );
+    path
+}
+
+/// `mpirun -n ranks petsc_check args`, killed after `limit`; `None` when it did not end.
+fn mpirun(ranks: usize, args: &[&str], limit: Duration) -> Option<Output> {
+    let mut cmd = Command::new("timeout");
+    cmd.arg(limit.as_secs().to_string()).args([
+        "mpirun",
+        "--oversubscribe",
+        "--mca",
+        "mpi_yield_when_idle",
+        "1",
+    ]);
+    // SAFETY of the flag: containers run the tests as root
+    if std::env::var("USER").as_deref() == Ok("root") || is_root() {
+        cmd.arg("--allow-run-as-root");
+    }
+    cmd.args(["-n", &ranks.to_string()])
+        .arg(example())
+        .args(args);
+    let out = cmd
+        .output()
+        .expect("mpirun runs (libopenmpi-dev installs it)");
+    (out.status.code() != Some(124)).then_some(out)
+}
+
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .map(|o| o.stdout.starts_with(b"0"))
+        .unwrap_or(false)
+}
+
+#[test]
+fn issue_41_block_on_one_and_two_ranks_matches_the_direct_path() {
+    for ranks in [1, 2] {
+        let out = mpirun(ranks, &["block"], Duration::from_secs(600)).expect("ends");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success() && stdout.contains("block: OK"),
+            "{ranks} ranks: {stdout}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        // both steps printed, each within 1e-8 (checked by the example, which fails else)
+        assert_eq!(stdout.matches("relative to the direct path").count(), 2);
+    }
+}
+
+#[test]
+fn issue_41_a_failing_rank_ends_every_rank() {
+    let start = Instant::now();
+    let out = mpirun(2, &["fail"], Duration::from_secs(60)).expect("no hang: mpirun ended");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "a failure is reported");
+    assert!(
+        stderr.contains("rank 1 of 2: error: a deliberate failure on rank 1"),
+        "{stderr}"
+    );
+    assert!(start.elapsed() < Duration::from_secs(60));
+}
