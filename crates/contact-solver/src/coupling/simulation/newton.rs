@@ -28,8 +28,8 @@
 //! solve or tangent fails) is rolled back ([`Nonlinear::rollback`]) and halved, up to
 //! [`NewtonSettings::max_cuts`] times in a call of
 //! [`step`](ContactSimulation::step); the sub-steps interpolate the time and the force factor
-//! from the last Newton step's (0 at the start); prescribed displacements are the structure's
-//! and enter at their values in every sub-step.
+//! from the last Newton step's (0 at the start), and the prescribed displacements from their
+//! committed values to those set for the step ([`Nonlinear::interpolate_prescribed`]).
 
 use super::report::{NewtonReport, StepReport, StepResult};
 use super::scheme::{QuasiStatic, TimeScheme};
@@ -177,7 +177,11 @@ where
     /// [`Structure::stiffness_matrix`], which a nonlinear structure returns as its current
     /// tangent. Under `Auto` (the default) the Newton's own
     /// [`dense_limit`](NewtonSettings::dense_limit) chooses between them, measured: beyond
-    /// about 24 contacts the active set is the faster.
+    /// about 24 contacts the active set is the faster. A structure whose tangent is not
+    /// symmetric ([`Nonlinear::symmetric_tangent`], a non-associated plastic body) stays on
+    /// the dense path under `Auto`: the active set factorises the symmetric
+    /// `stiffness_matrix()`, and the Newton would lose its quadratic rate (an explicit
+    /// [`FlexibilityMode::ActiveSet`] is obeyed, as an inexact Newton).
     ///
     /// # Errors
     /// [`SolverError::InvalidSetting`] for bad settings; [`SolverError::Unsupported`] for a
@@ -289,6 +293,13 @@ where
                     force_factor: lambda_0 + end * (force_factor - lambda_0),
                 }
             };
+            // the prescribed displacements follow the sub-steps: `end` of the step from its
+            // start is `(end − done) / (1 − done)` of what is left from the last commit
+            body(&mut self.structure)?.interpolate_prescribed(if end >= 1.0 {
+                1.0
+            } else {
+                (end - done) / (1.0 - done)
+            })?;
             match self.newton_increment(clock, &settings, start) {
                 Ok(mut result) => {
                     substeps += 1;
@@ -434,13 +445,21 @@ where
                 |i, start, free, alert, all| scheme.enters(i, start, free, alert, all),
             );
             let mut report = StepReport::start(total.step, clock.time, clock.force_factor);
-            // Auto's limit is the Newton's while it runs (settings docs)
+            // Auto's limit is the Newton's while it runs (settings docs); on a non-symmetric
+            // tangent the active set (which factorises the symmetric `stiffness_matrix()`)
+            // would make the Newton inexact, so Auto keeps to the paths that solve with the
+            // tangent itself
             let user = self.settings.flexibility;
+            let symmetric = body(&mut self.structure)?.symmetric_tangent();
             if matches!(user, FlexibilityMode::Auto { .. })
                 && self.structure.stiffness_matrix().is_some()
             {
                 self.settings.flexibility = FlexibilityMode::Auto {
-                    dense_limit: settings.dense_limit,
+                    dense_limit: if symmetric {
+                        settings.dense_limit
+                    } else {
+                        usize::MAX
+                    },
                 };
             }
             let outcome = self.passes(clock, &free, active, version, &mut report);
