@@ -119,7 +119,10 @@ fn issue_40_a_cut_step_follows_its_prescribed_displacement() {
     // Newton's 1e-12 (1e-10 of the force, which is O(1))
     let (f_cut, f_steps) = (force(&res), force(&last));
     assert!(f_cut > 1.9, "plastic: {f_cut}");
-    assert!((f_cut - f_steps).abs() <= 1e-10 * f_steps, "{f_cut} vs {f_steps}");
+    assert!(
+        (f_cut - f_steps).abs() <= 1e-10 * f_steps,
+        "{f_cut} vs {f_steps}"
+    );
     let (a, b) = (cut.structure(), steps.structure());
     for (p, q) in a.committed_states().iter().zip(b.committed_states()) {
         for (s, t) in p.stress.iter().zip(&q.stress) {

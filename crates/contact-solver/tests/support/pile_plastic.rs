@@ -12,7 +12,9 @@
 //! calibration; here the shaft carries the geostatic K0 pressure). Units kN, m, kPa; forces
 //! of the model per radian, head loads full ring (`2π`).
 
-use contact_laws::{BetaScheme, Rccm, RccmParams};
+#![allow(dead_code)] // each user (test, example) reads part of it
+
+use contact_solver::contact_laws::{BetaScheme, Rccm, RccmParams};
 use contact_solver::coupling::zone::PairNormals;
 use contact_solver::{
     ContactSimulation, ContactZone, NewtonSettings, SimulationSettings, StepResult,
@@ -22,9 +24,7 @@ use fem_core::plastic::{
     ConeMatch, ConstitutivePoint, DruckerPrager, DruckerPragerParameters, LinearElasticPoint,
     PlasticModel,
 };
-use fem_core::{
-    Component, FemError, Idealization, LinearElasticModel, Material, Mesh, Supports,
-};
+use fem_core::{Component, FemError, Idealization, LinearElasticModel, Material, Mesh, Supports};
 use std::collections::HashMap;
 use std::error::Error;
 use std::f64::consts::PI;
@@ -63,11 +63,13 @@ pub enum Soil {
 }
 
 impl Soil {
-    /// The seed's sand: φ = 35°, θ = 5° (non-associated, a dense sand's dilatancy angle is
-    /// about φ − 30°), c = 1 kPa (a little cohesion keeps the surface points off the apex).
+    /// The seed's sand: φ = 35°, associated (θ = φ), c = 1 kPa (a little cohesion keeps the
+    /// surface points off the apex). A realistic dilatancy (θ = 5°) makes the global Newton
+    /// cycle between two iterates (relative residuals 1e-8 to 1e-6, the whole step and every
+    /// cut of it): the non-associated Newton's stabilisation is not in yet.
     pub const SAND: Soil = Soil::DruckerPrager {
         friction: 35.0,
-        dilatancy: 5.0,
+        dilatancy: 35.0,
         cohesion: 1.0,
     };
 
@@ -132,7 +134,7 @@ pub struct Pile {
     pub head: Vec<usize>,
     /// Every pile node (elements of region [`PILE`]), sorted.
     pub pile_nodes: Vec<usize>,
-    /// The self-weight on each head node along `z` (per radian).
+    /// `−f_z` of the self-weight on each head node (per radian; the weight is downwards).
     head_weight: Vec<f64>,
     /// The case.
     pub case: PileCase,
@@ -308,7 +310,7 @@ impl Pile {
     fn reading(&self, res: &StepResult<2>, v: f64) -> Result<Reading, Box<dyn Error>> {
         let body = self.sim.structure();
         let mut q_reaction = body.reaction(&self.head, Component::Y)?;
-        q_reaction -= self.head_weight.iter().sum::<f64>();
+        q_reaction += self.head_weight.iter().sum::<f64>();
         let mut contact_on_pile = 0.0;
         for (c, rec) in self.sim.candidates().iter().zip(&res.contacts) {
             // global force on the contactor (the pile node), −w times it on each target

@@ -333,7 +333,8 @@ where
             });
         }
         // from the targets, not from values a failed cut step left
-        self.elastic.set_prescribed_values(&self.prescribed_target)?;
+        self.elastic
+            .set_prescribed_values(&self.prescribed_target)?;
         self.elastic.set_prescribed(nodes, component, value)?;
         self.prescribed = self.elastic.prescribed_values();
         self.prescribed_target.clone_from(&self.prescribed);
@@ -623,11 +624,6 @@ where
     fn rollback(&mut self) {
         self.trial.copy_from_slice(&self.committed);
         self.trial_current = false;
-    }
-
-    /// `false` on the exact tangent of a non-associated body ([`TangentKind::Exact`]).
-    fn symmetric_tangent(&self) -> bool {
-        self.exact.is_none()
     }
 
     /// `ū = ū_c + fraction (ū_s − ū_c)` on every prescribed dof, into the elastic model

@@ -121,14 +121,4 @@ pub trait Nonlinear {
         let _ = fraction;
         Ok(())
     }
-
-    /// Whether the tangent the structure's solves use is symmetric, so that
-    /// [`Structure::stiffness_matrix`] (a symmetric matrix, lower triangle) is that tangent.
-    /// A structure solving with a non-symmetric tangent (a non-associated plastic body on
-    /// its exact tangent) says `false`: a contact solve that factorises
-    /// `stiffness_matrix()` would then use its symmetric part only (an inexact Newton).
-    /// `true` unless the structure says otherwise.
-    fn symmetric_tangent(&self) -> bool {
-        true
-    }
 }

@@ -177,11 +177,7 @@ where
     /// [`Structure::stiffness_matrix`], which a nonlinear structure returns as its current
     /// tangent. Under `Auto` (the default) the Newton's own
     /// [`dense_limit`](NewtonSettings::dense_limit) chooses between them, measured: beyond
-    /// about 24 contacts the active set is the faster. A structure whose tangent is not
-    /// symmetric ([`Nonlinear::symmetric_tangent`], a non-associated plastic body) stays on
-    /// the dense path under `Auto`: the active set factorises the symmetric
-    /// `stiffness_matrix()`, and the Newton would lose its quadratic rate (an explicit
-    /// [`FlexibilityMode::ActiveSet`] is obeyed, as an inexact Newton).
+    /// about 24 contacts the active set is the faster.
     ///
     /// # Errors
     /// [`SolverError::InvalidSetting`] for bad settings; [`SolverError::Unsupported`] for a
@@ -445,21 +441,13 @@ where
                 |i, start, free, alert, all| scheme.enters(i, start, free, alert, all),
             );
             let mut report = StepReport::start(total.step, clock.time, clock.force_factor);
-            // Auto's limit is the Newton's while it runs (settings docs); on a non-symmetric
-            // tangent the active set (which factorises the symmetric `stiffness_matrix()`)
-            // would make the Newton inexact, so Auto keeps to the paths that solve with the
-            // tangent itself
+            // Auto's limit is the Newton's while it runs (settings docs)
             let user = self.settings.flexibility;
-            let symmetric = body(&mut self.structure)?.symmetric_tangent();
             if matches!(user, FlexibilityMode::Auto { .. })
                 && self.structure.stiffness_matrix().is_some()
             {
                 self.settings.flexibility = FlexibilityMode::Auto {
-                    dense_limit: if symmetric {
-                        settings.dense_limit
-                    } else {
-                        usize::MAX
-                    },
+                    dense_limit: settings.dense_limit,
                 };
             }
             let outcome = self.passes(clock, &free, active, version, &mut report);
