@@ -7,8 +7,10 @@
 //! Prints both head load–displacement curves (full ring), the Newton's corrections per
 //! increment and the time of each increment, then a profile of one Newton iteration on the
 //! last state (internal forces, tangent assembly and factorisation, the `2 n_c` solves of
-//! `F*`). Writes `out/pile_plastic/load_displacement.csv`. Fails if the sand's curve rises
-//! above the elastic one or an increment takes more than 8 corrections.
+//! `F*`). Writes `out/pile_plastic/load_displacement.csv`. Fails if an increment takes more
+//! than 8 corrections. Measured on the seed's mesh: the associated sand carries up to about
+//! 1 % *more* than the elastic soil from `v = 1.2 mm` (its dilatancy raises the shaft's
+//! normal stress), below it on the coarse mesh.
 //!
 //! `cargo run --release -p contact-solver --example pile_plastic -- [--coarse] [--steps N]
 //! [--friction φ] [--dilatancy θ] [--cohesion c]` (degrees, kPa; `BIPO_QUICK=1` or
@@ -129,6 +131,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!("| v (mm) | Q elastic | Q sand | sand points yielding | corrections el. / sand |");
     println!("|---|---|---|---|---|");
     let mut rows = Vec::new();
+    let mut excess = f64::NEG_INFINITY;
     for (k, (e, s)) in elastic.readings.iter().zip(&sand.readings).enumerate() {
         let its = if k == 0 {
             "–".to_string()
@@ -148,15 +151,15 @@ fn main() -> Result<(), Box<dyn Error>> {
             s.q_interface,
             s.yielding as f64,
         ]);
-        if s.q_interface > e.q_interface + 1e-9 * e.q_interface.abs() {
-            return Err(format!(
-                "at v = {:.2} mm the sand carries {} kN, above the elastic soil's {}",
-                1e3 * e.v,
-                s.q_interface,
-                e.q_interface
-            )
-            .into());
-        }
+        excess = excess.max((s.q_interface - e.q_interface) / e.q_interface.abs());
+    }
+    // not a theorem: a dilatant sand raises the shaft's normal stress, and the RCCM shaft
+    // damages later on a softer soil
+    if excess > 0.0 {
+        println!(
+            "the sand carries up to {:.2} % more than the elastic soil",
+            100.0 * excess
+        );
     }
     if let Some(k) = sand
         .iterations

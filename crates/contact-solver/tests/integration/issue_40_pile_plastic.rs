@@ -8,8 +8,10 @@
 //! `γ = 20 kN/m³`, `K0 = 0.43`; sand φ = 35°, associated (θ = φ; θ = 5° makes the Newton
 //! cycle, `Soil::SAND`), c = 1 kPa (plane-strain match). Head
 //! lifted 15 mm in 5 increments. Checks that can fail:
-//! - the plastic curve lies at or below the elastic one, and on it (1e-8) while no point
-//!   yields (the geostatic step);
+//! - the plastic curve lies on the elastic one (1e-8) while no point yields (the geostatic
+//!   step), and at or below it on this mesh and path — measured, not a theorem: on the seed's
+//!   mesh the dilatant sand raises the shaft's normal stress and carries up to about 1 % more
+//!   from `v = 1.2 mm` (`examples/pile_plastic.rs`);
 //! - the head load read at the head (its support reaction) equals the one read at the
 //!   interface (the pile's weight less the contact forces on it);
 //! - at most 8 Newton corrections per increment, no cut, and a quadratic rate at the end.
@@ -75,7 +77,8 @@ fn issue_40_pile_sand_pulls_out_below_the_elastic_soil() {
                 e.q_interface
             );
         } else {
-            // the softer soil carries less (1e-9 of the load for round-off)
+            // the softer soil carries less here (measured margin ≥ 0.5 kN of 250–333 kN;
+            // module docs), 1e-9 of the load for round-off
             assert!(
                 s.q_interface <= e.q_interface + 1e-9 * e.q_interface.abs(),
                 "{} above {}",
