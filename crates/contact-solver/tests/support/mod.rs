@@ -9,6 +9,8 @@ pub mod hertz_revolved;
 #[cfg(feature = "fe")]
 pub mod hertz_scene;
 #[cfg(feature = "fe")]
+pub mod pile_plastic;
+#[cfg(feature = "fe")]
 pub mod sphere_impact;
 #[cfg(feature = "fe")]
 pub mod stress_cases;

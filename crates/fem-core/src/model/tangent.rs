@@ -21,6 +21,21 @@ where
         self.dofs.prescribed_values(&self.supports)
     }
 
+    /// Sets the value of every prescribed dof, in [`crate::DofMap::prescribed`] order (the
+    /// order of [`Self::prescribed_values`]); no refactorisation.
+    ///
+    /// # Panics
+    /// If `values.len()` is not the number of prescribed dofs.
+    #[track_caller]
+    pub(crate) fn set_prescribed_values(&mut self, values: &[f64]) -> Result<(), FemError> {
+        let prescribed = self.dofs.prescribed();
+        assert_eq!(values.len(), prescribed.len(), "prescribed values length");
+        for (&(node, component), &v) in prescribed.iter().zip(values) {
+            self.supports.update(&[node], component, v)?;
+        }
+        Ok(())
+    }
+
     /// `v −= K_fp ū`: the coupling of the prescribed values `prescribed` with the free dofs,
     /// as the right-hand side of [`crate::Structure::free_response_into`] subtracts it.
     pub(crate) fn subtract_prescribed_coupling(&self, prescribed: &[f64], v: &mut [f64]) {

@@ -109,8 +109,12 @@ where
     exact: Option<ExactTangent>,
     /// The successful LU factorisations, over every kind change (part of the version).
     lu_updates: u64,
-    /// The prescribed values, in the dof map's order.
+    /// The prescribed values in use, in the dof map's order (the elastic model's).
     prescribed: Vec<f64>,
+    /// The prescribed values set for the coming step ([`PlasticModel::set_prescribed`]) and
+    /// those of the last commit: the ends of [`Nonlinear::interpolate_prescribed`].
+    prescribed_target: Vec<f64>,
+    prescribed_committed: Vec<f64>,
     scratch: Scratch<D>,
 }
 
@@ -215,6 +219,8 @@ where
             lu_updates: 0,
             values: vec![0.0; elastic.pattern().nnz()],
             prescribed: elastic.prescribed_values(),
+            prescribed_target: elastic.prescribed_values(),
+            prescribed_committed: elastic.prescribed_values(),
             kinematics,
             laws: laws.to_vec(),
             law_of,
@@ -297,7 +303,9 @@ where
 
     /// Changes the prescribed value of `component` on `nodes`, all of them already
     /// constrained along it (the dof numbering of a plastic body is fixed): a displacement
-    /// control. The next [`Nonlinear::internal_force_into`] sees the new values; run
+    /// control, the target of the coming step (a cut step reaches it in sub-steps,
+    /// [`Nonlinear::interpolate_prescribed`]). The next [`Nonlinear::internal_force_into`]
+    /// sees the new values; run
     /// [`crate::plastic::newton::solve`] with `start == end` for the equilibrium at the same
     /// load factor.
     ///
@@ -324,8 +332,12 @@ where
                 ),
             });
         }
+        // from the targets, not from values a failed cut step left
+        self.elastic
+            .set_prescribed_values(&self.prescribed_target)?;
         self.elastic.set_prescribed(nodes, component, value)?;
         self.prescribed = self.elastic.prescribed_values();
+        self.prescribed_target.clone_from(&self.prescribed);
         Ok(())
     }
 
@@ -605,12 +617,38 @@ where
     fn commit(&mut self) {
         if self.trial_current {
             self.committed.copy_from_slice(&self.trial);
+            self.prescribed_committed.clone_from(&self.prescribed);
         }
     }
 
     fn rollback(&mut self) {
         self.trial.copy_from_slice(&self.committed);
         self.trial_current = false;
+    }
+
+    /// `ū = ū_c + fraction (ū_s − ū_c)` on every prescribed dof, into the elastic model
+    /// too (its `f_ext` couples them, its nodes report them).
+    fn interpolate_prescribed(&mut self, fraction: f64) -> Result<(), FemError> {
+        if !(0.0..=1.0).contains(&fraction) {
+            return Err(FemError::InvalidParameter {
+                name: "fraction",
+                value: fraction,
+                expected: "a fraction of the step in [0, 1]",
+            });
+        }
+        for ((p, c), s) in self
+            .prescribed
+            .iter_mut()
+            .zip(&self.prescribed_committed)
+            .zip(&self.prescribed_target)
+        {
+            *p = if fraction == 1.0 {
+                *s
+            } else {
+                c + fraction * (s - c)
+            };
+        }
+        self.elastic.set_prescribed_values(&self.prescribed)
     }
 }
 

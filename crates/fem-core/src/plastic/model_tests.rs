@@ -493,6 +493,44 @@ fn issue_40_displacement_control_works() {
     ));
 }
 
+/// A cut step's prescribed values: `interpolate_prescribed` moves them from their values at
+/// the last commit to the targets of `set_prescribed`, and refuses a fraction outside [0, 1].
+#[test]
+fn issue_40_interpolate_prescribed_works() {
+    let build = plane(ElementKind::Tri3, Idealization::PlaneStrain, 0.0);
+    let mut body = PlasticModel::new(build, &[(0, elastic_point())]).unwrap();
+    // the right side is held at u_x = 0.01, the bottom at 0
+    let right: Vec<usize> = (0..body.node_count())
+        .filter(|&n| body.prescribed_displacement(n)[0] != 0.0)
+        .collect();
+    assert!(!right.is_empty());
+    let (u, mut f) = (vec![0.0; body.dof_count()], vec![0.0; body.dof_count()]);
+    body.internal_force_into(&u, &mut f).unwrap();
+    body.commit();
+    body.set_prescribed(&right, Component::X, 0.03).unwrap();
+    let at = |body: &PlasticModel<2>| body.prescribed_displacement(right[0])[0];
+    assert_eq!(at(&body), 0.03);
+    // a quarter of the way from 0.01; exact to round-off of values of order 1e-2
+    body.interpolate_prescribed(0.25).unwrap();
+    assert!((at(&body) - 0.015).abs() < 1e-16);
+    // committed there, the rest starts from 0.015
+    body.internal_force_into(&u, &mut f).unwrap();
+    body.commit();
+    body.interpolate_prescribed(0.5).unwrap();
+    assert!((at(&body) - 0.0225).abs() < 1e-16);
+    body.interpolate_prescribed(1.0).unwrap();
+    assert_eq!(at(&body), 0.03);
+    for bad in [1.5, -0.1, f64::NAN] {
+        assert!(matches!(
+            body.interpolate_prescribed(bad),
+            Err(FemError::InvalidParameter {
+                name: "fraction",
+                ..
+            })
+        ));
+    }
+}
+
 /// Uniaxial compression under displacement control past yield, von Mises (`k = 1`, uniaxial
 /// yield stress `√3 k`), in 3D (one Hex8 on rollers) and in axisymmetry (a ring of Quad4,
 /// free radially): the homogeneous state is exact for these elements, so every point carries

@@ -103,4 +103,22 @@ pub trait Nonlinear {
 
     /// Discards the trial state: the next evaluation starts from the committed state again.
     fn rollback(&mut self);
+
+    /// Moves the prescribed displacements `fraction` of the way from their values at the
+    /// last [`commit`](Self::commit) (`ū_c`) to the values set for the coming step (`ū_s`),
+    /// `ū = ū_c + fraction (ū_s − ū_c)`, for a step cut into sub-steps: a displacement
+    /// control is then followed as the loads are (`fraction = 1` restores `ū_s`). What
+    /// [`external_force_into`](Self::external_force_into),
+    /// [`internal_force_into`](Self::internal_force_into) and
+    /// [`Structure::prescribed_displacement`] see from then on.
+    ///
+    /// The default does nothing: right for a structure whose prescribed values do not change
+    /// between steps, or whose steps are never cut (a linear one, solved in one correction).
+    ///
+    /// # Errors
+    /// [`FemError::InvalidParameter`] naming `fraction` outside `[0, 1]`.
+    fn interpolate_prescribed(&mut self, fraction: f64) -> Result<(), FemError> {
+        let _ = fraction;
+        Ok(())
+    }
 }

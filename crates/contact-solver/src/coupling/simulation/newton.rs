@@ -28,8 +28,8 @@
 //! solve or tangent fails) is rolled back ([`Nonlinear::rollback`]) and halved, up to
 //! [`NewtonSettings::max_cuts`] times in a call of
 //! [`step`](ContactSimulation::step); the sub-steps interpolate the time and the force factor
-//! from the last Newton step's (0 at the start); prescribed displacements are the structure's
-//! and enter at their values in every sub-step.
+//! from the last Newton step's (0 at the start), and the prescribed displacements from their
+//! committed values to those set for the step ([`Nonlinear::interpolate_prescribed`]).
 
 use super::report::{NewtonReport, StepReport, StepResult};
 use super::scheme::{QuasiStatic, TimeScheme};
@@ -289,6 +289,13 @@ where
                     force_factor: lambda_0 + end * (force_factor - lambda_0),
                 }
             };
+            // the prescribed displacements follow the sub-steps: `end` of the step from its
+            // start is `(end − done) / (1 − done)` of what is left from the last commit
+            body(&mut self.structure)?.interpolate_prescribed(if end >= 1.0 {
+                1.0
+            } else {
+                (end - done) / (1.0 - done)
+            })?;
             match self.newton_increment(clock, &settings, start) {
                 Ok(mut result) => {
                     substeps += 1;
