@@ -296,10 +296,6 @@ impl<const D: usize> Serialize for Summary<D> {
         m.serialize_field("time", &self.time)?;
         m.serialize_field("wall_time_s", &self.wall_time_s)?;
         m.serialize_field("mesh", &self.mesh)?;
-        // issue 38: the path of the last step and why (the settings, or auto's rule)
-        let path = self.totals.path;
-        m.serialize_field("path", &path.map(|p| p.path.name()))?;
-        m.serialize_field("path_reason", &path.map(|p| p.reason.to_string()))?;
         if plane {
             m.serialize_field("counters", &self.counters)?;
             m.serialize_field("stages", &self.stages)?;
@@ -326,6 +322,11 @@ impl<const D: usize> Serialize for Summary<D> {
         if !plane {
             m.serialize_field("curves", &self.curves)?;
         }
+        // issue 38: the path of the last step and why (the settings, or auto's rule), last so
+        // that the keys before keep their order
+        let path = self.totals.path;
+        m.serialize_field("path", &path.map(|p| p.path.name()))?;
+        m.serialize_field("path_reason", &path.map(|p| p.reason.to_string()))?;
         m.end()
     }
 }
