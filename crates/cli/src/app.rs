@@ -492,6 +492,9 @@ fn print_summary<const D: usize>(s: &run::Summary<D>, dir: &Path) {
     } else {
         print_plane_work(s);
     }
+    if let Some(p) = s.totals.path {
+        out::outln!("  path of the last step: {p}");
+    }
     out::outln!("  outputs in {}: {}", dir.display(), s.files.join(", "));
 }
 

@@ -62,7 +62,8 @@ pub use coupling::output::{HistoryWriter, InterfaceSeries, ReportWriter, write_i
 #[cfg(feature = "fe")]
 pub use coupling::simulation::{
     ContactRecord, ContactSimulation, Counters, DEFAULT_DENSE_LIMIT, FlexibilityMode,
-    InterfaceStatus, SimulationSettings, SimulationTuning, SkipRules, StepReport, StepResult,
+    InterfaceStatus, PathChoice, PathReason, SimulationSettings, SimulationTuning, SkipRules,
+    SolvePath, StepReport, StepResult,
 };
 #[cfg(feature = "fe")]
 pub use coupling::simulation::{EnergyBalance, MoreauJean, QuasiStatic, SchemeStep, TimeScheme};

@@ -126,11 +126,5 @@ impl Progress {
 
 /// How a step was solved, for the progress lines.
 pub(super) fn path_name(rep: &contact_solver::StepReport) -> &'static str {
-    if rep.active_set {
-        "active set"
-    } else if rep.matrix_free {
-        "matrix-free"
-    } else {
-        "dense"
-    }
+    rep.path.path.name()
 }

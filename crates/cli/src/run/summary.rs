@@ -130,6 +130,9 @@ pub struct StepTotals {
     pub active_set_steps: usize,
     /// Numeric factorisations of the constrained stiffness by the active-set iteration.
     pub active_set_factorizations: usize,
+    /// The path of the last step and why (`summary.json`'s `path` and `path_reason`).
+    #[serde(skip)]
+    pub path: Option<contact_solver::PathChoice>,
 }
 
 impl StepTotals {
@@ -143,6 +146,7 @@ impl StepTotals {
         self.matrix_free_steps += usize::from(r.matrix_free);
         self.active_set_steps += usize::from(r.active_set);
         self.active_set_factorizations += a;
+        self.path = Some(r.path);
     }
 
     /// Numeric factorisations, of K and by the active set.
@@ -278,7 +282,7 @@ impl<const D: usize> Summary<D> {
 impl<const D: usize> Serialize for Summary<D> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let plane = D == 2;
-        let mut m = s.serialize_struct("Summary", 21)?;
+        let mut m = s.serialize_struct("Summary", 23)?;
         m.serialize_field("bipo_version", self.bipo_version)?;
         m.serialize_field("scene", &self.scene)?;
         m.serialize_field("title", &self.title)?;
@@ -318,6 +322,11 @@ impl<const D: usize> Serialize for Summary<D> {
         if !plane {
             m.serialize_field("curves", &self.curves)?;
         }
+        // issue 38: the path of the last step and why (the settings, or auto's rule), last so
+        // that the keys before keep their order
+        let path = self.totals.path;
+        m.serialize_field("path", &path.map(|p| p.path.name()))?;
+        m.serialize_field("path_reason", &path.map(|p| p.reason.to_string()))?;
         m.end()
     }
 }

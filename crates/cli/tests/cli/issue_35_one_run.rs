@@ -65,7 +65,9 @@ fn issue_35_one_run_keeps_each_dimensions_summary_keys() {
             "curves",
             "files",
             "rigid_motions",
-            "warnings"
+            "warnings",
+            "path",
+            "path_reason"
         ]
     );
     assert_eq!(
@@ -124,7 +126,9 @@ fn issue_35_one_run_keeps_each_dimensions_summary_keys() {
             "zones",
             "files",
             "warnings",
-            "curves"
+            "curves",
+            "path",
+            "path_reason"
         ]
     );
     assert_eq!(

@@ -321,3 +321,41 @@ fn scope_is_enforced_and_auto_falls_back() {
     assert!(auto[0].report.active_set);
     assert!(max_difference(&auto, &dense) < 1e-7);
 }
+
+#[test]
+fn issue_38_step_report_names_the_path_and_why() {
+    use contact_solver::{PathChoice, PathReason, SolvePath};
+    let path = |mode| hertz_quarter(Signorini, mode).report;
+    let dense = path(FlexibilityMode::Dense);
+    assert_eq!(
+        dense.path,
+        PathChoice {
+            path: SolvePath::Dense,
+            reason: PathReason::Requested
+        }
+    );
+    let n = dense.active_contacts;
+    let within = path(FlexibilityMode::Auto { dense_limit: n });
+    assert_eq!(within.path.path, SolvePath::Dense);
+    assert_eq!(
+        within.path.reason,
+        PathReason::WithinDenseLimit {
+            active: n,
+            limit: n
+        }
+    );
+    let above = path(FlexibilityMode::Auto { dense_limit: n - 1 });
+    assert!(above.active_set);
+    assert_eq!(above.path.path, SolvePath::ActiveSet);
+    assert_eq!(
+        above.path.to_string(),
+        format!(
+            "active set (auto: {n} active contacts > dense limit {})",
+            n - 1
+        )
+    );
+    let free = path(FlexibilityMode::MatrixFree);
+    assert!(free.matrix_free);
+    assert_eq!(free.path.path, SolvePath::MatrixFree);
+    assert_eq!(free.path.reason, PathReason::Requested);
+}

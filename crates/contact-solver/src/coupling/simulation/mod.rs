@@ -42,6 +42,7 @@
 //! 6. `u = u_free + K⁻¹ Hᵀ r` (one back-substitution, no refactorisation). Inactive candidates
 //!    that ended up penetrating are added to the active set and the step is redone.
 
+mod choice;
 mod detection;
 mod dispatch;
 mod energy;
@@ -60,6 +61,7 @@ mod solve;
 mod tuning;
 mod velocity_adhesion;
 
+pub use choice::{PathChoice, PathReason, SolvePath};
 pub use energy::EnergyBalance;
 pub use moreau_jean::{AdhesionUpdate, MoreauJean};
 pub use newton::{NEWTON_DENSE_LIMIT, NewtonSettings};

@@ -535,6 +535,7 @@ fn merge(total: &mut StepReport, report: StepReport) {
     total.flexibility_rebuilt |= report.flexibility_rebuilt;
     total.matrix_free = report.matrix_free;
     total.active_set = report.active_set;
+    total.path = report.path;
     total.residual = report.residual;
     total.converged &= report.converged;
 }

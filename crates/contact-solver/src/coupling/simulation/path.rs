@@ -3,6 +3,7 @@
 //! and the fallback when `Auto`'s active-set iteration does not converge.
 
 use super::ContactSimulation;
+use super::choice::{PathChoice, PathReason, SolvePath};
 use super::detection::FreeResponse;
 use super::report::StepReport;
 use super::scheme::TimeScheme;
@@ -22,6 +23,17 @@ pub(super) enum Path {
     ActiveSet(Vec<LocalFrame>),
 }
 
+impl Path {
+    /// The reported name of this path.
+    fn solve_path(&self) -> SolvePath {
+        match self {
+            Self::Dense => SolvePath::Dense,
+            Self::MatrixFree => SolvePath::MatrixFree,
+            Self::ActiveSet(_) => SolvePath::ActiveSet,
+        }
+    }
+}
+
 impl<S: Structure<D>, L: ContactLaw + Clone, const D: usize, T: TimeScheme<S, D>>
     ContactSimulation<S, L, D, T>
 where
@@ -39,7 +51,8 @@ where
         version: u64,
         report: &mut StepReport,
     ) -> Result<Pass<L::State>, SolverError> {
-        let mut path = self.path(active)?;
+        let (mut path, reason) = self.path(active)?;
+        report.path = PathChoice::new(path.solve_path(), reason);
         if let Path::ActiveSet(frames) = &path {
             self.cache.without_dense(active);
             match self.solve_active_set(active, &free.jumps, frames, dt, report) {
@@ -55,11 +68,15 @@ where
                     | SolverError::Unsupported(_),
                 ) if matches!(self.settings.flexibility, FlexibilityMode::Auto { .. }) => {
                     self.counters.active_set_fallbacks += 1;
-                    path = if active.len() <= <Dim<D> as ContactSpace<D>>::FALLBACK_DENSE_LIMIT {
+                    let limit = <Dim<D> as ContactSpace<D>>::FALLBACK_DENSE_LIMIT;
+                    path = if active.len() <= limit {
                         Path::Dense
                     } else {
                         Path::MatrixFree
                     };
+                    let active = active.len();
+                    let reason = PathReason::ActiveSetFallback { active, limit };
+                    report.path = PathChoice::new(path.solve_path(), reason);
                 }
                 Err(e) => return Err(e),
             }
@@ -89,8 +106,8 @@ where
             .map(Pass::Solved)
     }
 
-    /// How this step's active set is solved.
-    fn path(&self, active: &[usize]) -> Result<Path, SolverError> {
+    /// How this step's active set is solved, and why.
+    fn path(&self, active: &[usize]) -> Result<(Path, PathReason), SolverError> {
         let adhesive = active.iter().any(|&i| {
             let law = self.interface.law(i);
             law.has_adhesion() && law.adhesion_active(&self.accepted.states[i])
@@ -98,7 +115,8 @@ where
         if self.floats() {
             // the rigid-body amplitudes are solved for on a dense F* only
             return match self.settings.flexibility {
-                FlexibilityMode::Dense | FlexibilityMode::Auto { .. } => Ok(Path::Dense),
+                FlexibilityMode::Dense => Ok((Path::Dense, PathReason::Requested)),
+                FlexibilityMode::Auto { .. } => Ok((Path::Dense, PathReason::Floating)),
                 FlexibilityMode::MatrixFree | FlexibilityMode::ActiveSet => {
                     Err(SolverError::Unsupported(format!(
                         "the structure floats (it has rigid-body modes): \
@@ -109,28 +127,35 @@ where
                 }
             };
         }
+        let n = active.len();
         match self.settings.flexibility {
-            FlexibilityMode::Dense => Ok(Path::Dense),
-            FlexibilityMode::Auto { dense_limit } => {
-                if adhesive || active.len() <= dense_limit {
-                    Ok(Path::Dense)
-                } else if let Ok(f) = self.active_set_frames(active) {
-                    Ok(Path::ActiveSet(f))
-                } else {
-                    Ok(Path::MatrixFree)
-                }
-            }
+            FlexibilityMode::Dense => Ok((Path::Dense, PathReason::Requested)),
+            FlexibilityMode::Auto { dense_limit: limit } => Ok(if adhesive {
+                (Path::Dense, PathReason::Adhesive)
+            } else if n <= limit {
+                (
+                    Path::Dense,
+                    PathReason::WithinDenseLimit { active: n, limit },
+                )
+            } else if let Ok(f) = self.active_set_frames(active) {
+                let reason = PathReason::AboveDenseLimit { active: n, limit };
+                (Path::ActiveSet(f), reason)
+            } else {
+                let reason = PathReason::ActiveSetUnavailable { active: n, limit };
+                (Path::MatrixFree, reason)
+            }),
             FlexibilityMode::MatrixFree if adhesive => Err(SolverError::InvalidSetting {
                 what: "flexibility",
-                value: active.len() as f64,
+                value: n as f64,
                 expected: "Dense, ActiveSet or Auto for adhesive laws (MatrixFree has no place for the springs)",
             }),
-            FlexibilityMode::MatrixFree if active.is_empty() => Ok(Path::Dense),
-            FlexibilityMode::MatrixFree => Ok(Path::MatrixFree),
-            FlexibilityMode::ActiveSet if active.is_empty() => Ok(Path::Dense),
+            FlexibilityMode::MatrixFree | FlexibilityMode::ActiveSet if active.is_empty() => {
+                Ok((Path::Dense, PathReason::NoActiveContacts))
+            }
+            FlexibilityMode::MatrixFree => Ok((Path::MatrixFree, PathReason::Requested)),
             FlexibilityMode::ActiveSet => self
                 .active_set_frames(active)
-                .map(Path::ActiveSet)
+                .map(|f| (Path::ActiveSet(f), PathReason::Requested))
                 .map_err(SolverError::Unsupported),
         }
     }

@@ -1,6 +1,7 @@
 //! What a step reports: per contact ([`ContactRecord`]), per step ([`StepReport`]) and over the
 //! whole simulation ([`Counters`]).
 
+use super::choice::PathChoice;
 use crate::coupling::space::ContactSpace;
 use fem_core::Dim;
 use std::time::Duration;
@@ -209,6 +210,9 @@ pub struct StepReport {
     pub matrix_free: bool,
     /// Whether the step was solved by the primal active-set iteration (no `F*`).
     pub active_set: bool,
+    /// The path of the step's last pass and why it was taken (the settings, or `Auto`'s rule
+    /// and its numbers): see [`PathChoice`].
+    pub path: PathChoice,
     /// Floating structures: Newton iterations on the rigid-body amplitudes (0 otherwise).
     pub equilibrium_iterations: usize,
     /// Floating structures: reduced solves of those iterations, line-search trials included.
@@ -349,6 +353,7 @@ impl StepReport {
             flexibility_rebuilt: false,
             matrix_free: false,
             active_set: false,
+            path: PathChoice::default(),
             equilibrium_iterations: 0,
             equilibrium_solves: 0,
             residual: 0.0,
