@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes fclib_csc_h5py.hdf5: a 2-contact 2D FCLIB local problem as a third-party writer
 (h5py) stores it, W in compressed columns (nz = -1), 64-bit integers, scalar datasets for
-the sizes, no nzmax, and a solution group. tests/fclib.rs reads it back.
+the sizes, no nzmax, and a solution group. tests/integration/fclib.rs reads it back.
 
 Run (Debian: apt-get install -y python3-h5py):  /usr/bin/python3 make_fclib_csc.py
 """

@@ -2,7 +2,8 @@
 //! its own: one binary instead of 29 saves the link and, at `opt-level = 3` for this package
 //! in debug builds, most of the compile time of `cargo test`). Each module keeps its name, its
 //! tests and its doc; files that need the FE coupling carry `#![cfg(feature = "fe")]` (or
-//! `serde`) as before. `tests/fclib.rs` stays a binary of its own (feature `fclib`).
+//! `serde`) as before, and `fclib.rs` (a binary of its own until CI's build time was cut)
+//! carries `#![cfg(feature = "fclib")]`.
 //!
 //! The shared helpers stay in `tests/support/` (examples and benches include them with
 //! `#[path]`) and are reached as `crate::support`.
@@ -14,6 +15,7 @@ mod active_set;
 mod block_on_foundation;
 mod classic;
 mod coulomb_block;
+mod fclib;
 mod finiteness;
 mod floating_block;
 mod floating_glued;

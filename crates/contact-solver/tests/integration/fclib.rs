@@ -12,6 +12,8 @@
 //! - a sparse problem (issue 14, "Storage") is written from its compressed rows and read back
 //!   sparse (fewer than m²/4 entries), equal to the original, in every form.
 
+#![cfg(feature = "fclib")]
+
 use contact_solver::local::fclib::{
     FclibSource, SparseForm, read_fclib, write_fclib, write_fclib_as,
 };
