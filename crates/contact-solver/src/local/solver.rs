@@ -19,7 +19,7 @@ use contact_laws::ContactLaw;
 mod auto;
 mod skip_open;
 
-use auto::{auto_newton_budget, newton_pays, sparse_twin_for_auto};
+use auto::{auto_newton_budget, newton_pays, sparse_twin_for_auto, sweep_probe, sweep_promises};
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
 /// checked without the modified velocity to this factor of the tolerance (relative), or it is
@@ -220,6 +220,25 @@ impl UzawaSolver {
             return Ok(sol);
         }
         let auto_newton = auto && st.algorithm == Algorithm::Newton && mu.is_some();
+        // sweep first on a dense W (issue 37): when the probe's rate promises the tolerance
+        // soon, the sweep goes on from where it stopped and Newton never runs; else Newton runs
+        // from `r` as without the probe (the probe's sweeps are then only its cost)
+        if auto_newton && problem.w_dense().is_some() {
+            let probe = self.attempt::<L, DT>(sweep_probe(st), problem, laws, states, r.clone())?;
+            if sweep_promises(&probe.report.history, st.tol) {
+                let rest = UzawaSettings {
+                    algorithm: Algorithm::AndersonGaussSeidel,
+                    ..st
+                };
+                let mut sol =
+                    self.solve_checked::<L, DT>(rest, false, problem, laws, states, probe.r, mu)?;
+                let mut history = probe.report.history;
+                history.append(&mut sol.report.history);
+                sol.report.history = history;
+                sol.report.iterations += probe.report.iterations;
+                return Ok(sol);
+            }
+        }
         let first = if auto_newton {
             auto_newton_budget(st)
         } else {
