@@ -608,7 +608,10 @@ fn issue_37_global_rigid_bodies_are_read_sparse_and_solved() {
     for a in 0..m {
         for b in 0..m {
             let (x, y) = (sparse.get(a, b), w_hand[a * m + b]);
-            assert!((x - y).abs() <= 1e-14 * scale, "W[{a}, {b}]: {x} against {y}");
+            assert!(
+                (x - y).abs() <= 1e-14 * scale,
+                "W[{a}, {b}]: {x} against {y}"
+            );
         }
     }
     // solve, then judge (u, r) on the global equations
@@ -643,5 +646,8 @@ fn issue_37_global_rigid_bodies_are_read_sparse_and_solved() {
         }
     }
     let wmax = w.iter().fold(0.0_f64, |s, x| s.max(x.abs()));
-    assert!(worst <= 1e-6 * (1.0 + wmax), "natural-map residual {worst:e}");
+    assert!(
+        worst <= 1e-6 * (1.0 + wmax),
+        "natural-map residual {worst:e}"
+    );
 }

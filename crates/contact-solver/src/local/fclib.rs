@@ -274,7 +274,9 @@ fn read_global(
         global::CondensedW::Dense(wmat) => build_problem(f, spacedim, wmat, q, mu)?,
         global::CondensedW::Triplets { rows, cols, vals } => {
             let keep = Asymmetry::Keep;
-            ReducedProblem::from_triplets_with_asymmetry(spacedim, &rows, &cols, &vals, q, mu, keep)?
+            ReducedProblem::from_triplets_with_asymmetry(
+                spacedim, &rows, &cols, &vals, q, mu, keep,
+            )?
         }
     };
     Ok((problem, spacedim, FclibSource::Global { dofs: n }))

@@ -134,7 +134,11 @@ pub(super) fn condense(
     let (rows, cols, vals) = products(n, entries_h, m, &x_cols, symmetric);
     // q_a = w_a + Σ h y_k, summed in the order of the file's entries
     let q: Vec<f64> = (0..m)
-        .map(|a| by_col[start[a]..start[a + 1]].iter().fold(w[a], |s, &(k, h)| s + h * y[k]))
+        .map(|a| {
+            by_col[start[a]..start[a + 1]]
+                .iter()
+                .fold(w[a], |s, &(k, h)| s + h * y[k])
+        })
         .collect();
     if let Some(k) = vals.iter().chain(&q).position(|v| !v.is_finite()) {
         return Err(format!(
@@ -315,7 +319,11 @@ mod tests {
         let f: Vec<f64> = (0..n).map(|_| g.uniform(-1.0, 1.0)).collect();
         let w: Vec<f64> = (0..m).map(|_| g.uniform(-1.0, 1.0)).collect();
         let symmetric = em.iter().all(|&(r, c, v)| {
-            let t: f64 = em.iter().filter(|e| (e.0, e.1) == (c, r)).map(|e| e.2).sum();
+            let t: f64 = em
+                .iter()
+                .filter(|e| (e.0, e.1) == (c, r))
+                .map(|e| e.2)
+                .sum();
             r == c || v == t
         });
         let parts = Blocks::of(n, em);
@@ -360,7 +368,15 @@ mod tests {
         let first = 6 * bodies;
         let chain = 90;
         for k in first..first + chain {
-            em.push((k, k, if k == first || k == first + chain - 1 { 3.0 } else { 2.0 }));
+            em.push((
+                k,
+                k,
+                if k == first || k == first + chain - 1 {
+                    3.0
+                } else {
+                    2.0
+                },
+            ));
             if k + 1 < first + chain {
                 em.push((k, k + 1, -1.0));
                 em.push((k + 1, k, -1.0));

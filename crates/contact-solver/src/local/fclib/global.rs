@@ -150,7 +150,11 @@ fn lower_products(
 
 /// `rhs ← M⁻¹ rhs`: Cholesky of the lower triangle when `M` is symmetric, else (or when
 /// Cholesky fails) LU.
-pub(super) fn solve_mass(n: usize, entries: &[(usize, usize, f64)], rhs: &mut Mat<f64>) -> Result<(), String> {
+pub(super) fn solve_mass(
+    n: usize,
+    entries: &[(usize, usize, f64)],
+    rhs: &mut Mat<f64>,
+) -> Result<(), String> {
     let trips: Vec<_> = entries
         .iter()
         .map(|&(r, c, v)| Triplet::new(r, c, v))
@@ -327,7 +331,9 @@ pub(super) mod tests {
         let m_mat = RawSparse::from_dense(&m_dense, 2, 2, SparseForm::CompressedColumn);
         let em = m_mat.entries("M").unwrap();
         let eh = vec![(0, 0, 1.0), (1, 1, 1.0)];
-        let e = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.0, 0.0]).err().unwrap();
+        let e = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.0, 0.0])
+            .err()
+            .unwrap();
         assert!(e.starts_with("`fclib_global/M` is singular"), "{e}");
     }
 }
