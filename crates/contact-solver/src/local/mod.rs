@@ -98,7 +98,8 @@
 //!   37: on semidefinite multibody stacks the Newton crept for thousands of iterations with
 //!   steps `t ≤ 2⁻⁶` where the sweep converges in hundreds, while every converging run takes
 //!   steps `t ≥ 2⁻⁴`; `docs/benchmarks.md` "Auto on multibody problems").
-//!   On a dense `W` where the rule picks Newton, `Auto` sweeps first (issue 37): 8 accelerated
+//!   On a dense `W` where the rule picks Newton and at least half the contacts are pressed
+//!   (`AUTO_SWEEP_MIN_PRESSED`), `Auto` sweeps first (issue 37): 8 accelerated
 //!   sweeps (`AUTO_SWEEP_PROBE`), and when their rate over the last four promises the tolerance
 //!   within `AUTO_SWEEP_PREDICTED` (40) sweeps the sweep goes on from there and Newton never
 //!   runs (random dense problems, well conditioned: 21–26 sweeps, where Newton was 1.7–3.5×

@@ -136,6 +136,13 @@ pub(crate) const AUTO_NEWTON_SHORT_STEPS: usize = 2;
 /// of the FE problems' (54–74), whose Newton it delays.
 pub(crate) const AUTO_SWEEP_PROBE: usize = 8;
 
+/// The fraction of pressed contacts (`q_n < 0`) from which [`Algorithm::Auto`] sweeps first
+/// on a dense `W`: Newton's step works on the closed contacts, so it is cheap beside a sweep
+/// over the whole `W` when few are pressed (the 3D half-space under a sphere: Newton 2.7 ms
+/// against the sweep's 23.6, `docs/benchmarks.md` "Sweep first") and costs a factorisation of
+/// most of `W` when most are (random dense problems: 2/3 pressed, Newton 2–4× slower).
+pub(crate) const AUTO_SWEEP_MIN_PRESSED: f64 = 0.5;
+
 /// The sweeps (probe included) within which the probe's rate must promise the tolerance for
 /// [`Algorithm::Auto`] to keep sweeping rather than run Newton: the sweep costs `O(m²)` a
 /// sweep and Newton `O(m³)` an iteration on a dense `W`, and measured (`docs/benchmarks.md`,
