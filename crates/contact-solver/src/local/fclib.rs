@@ -50,6 +50,7 @@
 mod blocks;
 mod global;
 mod h5;
+mod mass;
 mod sparse;
 
 pub use sparse::{MAX_DENSE_ENTRIES, SparseForm};
@@ -271,8 +272,8 @@ fn read_global(
         global::condense(n, &entries_m, &entries_h, m, &rhs, &w).map_err(|r| f.error(r))?;
     let q = condensed.q;
     let problem = match condensed.w {
-        global::CondensedW::Dense(wmat) => build_problem(f, spacedim, wmat, q, mu)?,
-        global::CondensedW::Triplets { rows, cols, vals } => {
+        mass::CondensedW::Dense(wmat) => build_problem(f, spacedim, wmat, q, mu)?,
+        mass::CondensedW::Triplets { rows, cols, vals } => {
             let keep = Asymmetry::Keep;
             ReducedProblem::from_triplets_with_asymmetry(
                 spacedim, &rows, &cols, &vals, q, mu, keep,

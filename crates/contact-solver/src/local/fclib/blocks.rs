@@ -13,7 +13,7 @@
 //! rigid bodies in `n_c` contacts that is `O(n + n_c · k)` where the dense route was
 //! `O(n · n_c)` (`k` the contacts per body).
 
-use super::global::{Condensed, CondensedW, solve_mass};
+use super::mass::{Condensed, CondensedW, solve_mass};
 use super::sparse::zeroed;
 use faer::Mat;
 

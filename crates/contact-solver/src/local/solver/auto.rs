@@ -8,8 +8,8 @@ use super::super::problem::ReducedProblem;
 use super::super::settings::Algorithm;
 use super::super::settings::{
     AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
-    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE,
-    UzawaSettings,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_PREDICTED,
+    AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
@@ -114,9 +114,7 @@ pub(super) fn auto_newton_budget(st: UzawaSettings) -> UzawaSettings {
 pub(super) fn pressed_most(problem: &ReducedProblem) -> bool {
     let (d, nc) = (problem.dimension(), problem.contact_count());
     let pressed = (0..nc).filter(|&i| problem.q()[d * i] < 0.0).count();
-    problem.w_dense().is_some()
-        && nc > 0
-        && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
+    problem.w_dense().is_some() && nc > 0 && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
 }
 
 /// The settings of the sweep [`Algorithm::Auto`] runs first on a dense `W` where it would
