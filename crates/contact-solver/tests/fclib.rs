@@ -549,11 +549,11 @@ fn issue_37_global_rigid_bodies_are_read_sparse_and_solved() {
         let a = (next() * bodies as f64) as usize % bodies;
         let b = (a + 1 + (next() * (bodies - 1) as f64) as usize) % bodies;
         let (lo, hi_body) = (a.min(b), a.max(b));
-        for col in 3 * c..3 * c + 3 {
+        for column in h.iter_mut().skip(3 * c).take(3) {
             for body in [lo, hi_body] {
                 for k in 6 * body..6 * body + 6 {
                     let v = 2.0 * next() - 1.0;
-                    h[col].push((k, v));
+                    column.push((k, v));
                     hi.push(k as i32);
                     hx.push(v);
                 }
