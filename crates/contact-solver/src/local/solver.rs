@@ -227,9 +227,8 @@ impl UzawaSolver {
             return Ok(sol);
         }
         let auto_newton = auto && st.algorithm == Algorithm::Newton && mu.is_some();
-        // sweep first on a dense W (issue 37): when the probe's rate promises the tolerance
-        // soon, the sweep goes on from where it stopped and Newton never runs; else Newton runs
-        // from `r` as without the probe (the probe's sweeps are then only its cost)
+        // sweep first (issue 37): the sweep goes on from the probe when its rate promises the
+        // tolerance soon; else Newton runs from `r` as without the probe
         if auto_newton && self.sweep_first && problem.w_dense().is_some() {
             let probe = self.attempt::<L, DT>(sweep_probe(st), problem, laws, states, r.clone())?;
             if sweep_promises(&probe.report.history, st.tol) {
