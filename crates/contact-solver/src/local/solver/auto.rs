@@ -195,7 +195,7 @@ mod tests {
         assert!(sweep_promises(&[1.0, 1e-9], 1e-8));
         assert!(!sweep_promises(&[], 1e-8));
         assert!(!sweep_promises(
-            &[1.0, 0.5, 0.25, f64::NAN, 0.1, 0.05],
+            &[1.0, 0.5, 0.25, 0.1, 0.05, f64::NAN],
             1e-8
         ));
     }
