@@ -30,8 +30,11 @@
 //! read from any integer type (h5py writes 64-bit ones), values from any number type.
 //!
 //! A local `W` with fewer than `m²/4` entries is read into the sparse storage
-//! ([`ReducedProblem::from_triplets`]), a denser one dense; a global problem is condensed
-//! dense. A sparse problem is written from its compressed rows, never densified.
+//! ([`ReducedProblem::from_triplets`]), a denser one dense. A global problem whose `M` falls
+//! into several diagonal blocks (rigid bodies, several FE bodies) is condensed block by block
+//! at the cost of one factorisation per block, and its `W` stored by the same rule; one with a
+//! single block (one FE body) is condensed dense. A sparse problem is written from its
+//! compressed rows, never densified.
 //!
 //! We write `fclib_local` with `W` in compressed rows ([`write_fclib`]) or any form
 //! ([`write_fclib_as`]), every entry that is not `+0.0` kept, integers as 32-bit C `int`s like
@@ -44,8 +47,10 @@
 //! [`SolverError::Fclib`] naming the dataset, never a panic. Dense matrices are limited to
 //! [`MAX_DENSE_ENTRIES`].
 
+mod blocks;
 mod global;
 mod h5;
+mod mass;
 mod sparse;
 
 pub use sparse::{MAX_DENSE_ENTRIES, SparseForm};
@@ -263,9 +268,18 @@ fn read_global(
     let mu = f.reals(&v, vec_at, "mu", nc)?;
     let entries_m = mass.entries("fclib_global/M").map_err(|r| f.error(r))?;
     let entries_h = h.entries("fclib_global/H").map_err(|r| f.error(r))?;
-    let (wmat, q) =
+    let condensed =
         global::condense(n, &entries_m, &entries_h, m, &rhs, &w).map_err(|r| f.error(r))?;
-    let problem = build_problem(f, spacedim, wmat, q, mu)?;
+    let q = condensed.q;
+    let problem = match condensed.w {
+        mass::CondensedW::Dense(wmat) => build_problem(f, spacedim, wmat, q, mu)?,
+        mass::CondensedW::Triplets { rows, cols, vals } => {
+            let keep = Asymmetry::Keep;
+            ReducedProblem::from_triplets_with_asymmetry(
+                spacedim, &rows, &cols, &vals, q, mu, keep,
+            )?
+        }
+    };
     Ok((problem, spacedim, FclibSource::Global { dofs: n }))
 }
 

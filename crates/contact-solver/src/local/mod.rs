@@ -98,10 +98,13 @@
 //!   37: on semidefinite multibody stacks the Newton crept for thousands of iterations with
 //!   steps `t ≤ 2⁻⁶` where the sweep converges in hundreds, while every converging run takes
 //!   steps `t ≥ 2⁻⁴`; `docs/benchmarks.md` "Auto on multibody problems").
-//!   Random *dense* problems, which
-//!   are well conditioned (the sweep converges in about 25 iterations), are the one class where
-//!   the rule picks the slower one (Newton 3–6× slower); FE and multibody problems are what
-//!   users bring. It is the default of `bipo solve-local`; the simulation's default stays the
+//!   On a dense `W` where the rule picks Newton and at least half the contacts are pressed
+//!   (`AUTO_SWEEP_MIN_PRESSED`), `Auto` sweeps first (issue 37): 8 accelerated
+//!   sweeps (`AUTO_SWEEP_PROBE`), and when their rate over the last four promises the tolerance
+//!   within `AUTO_SWEEP_PREDICTED` (40) sweeps the sweep goes on from there and Newton never
+//!   runs (random dense problems, well conditioned: 21–26 sweeps, where Newton was 1.7–3.5×
+//!   slower); else Newton runs from the start as without the probe (FE problems: 54–74 sweeps,
+//!   Newton 2–3× faster), the probe's sweeps its only cost. It is the default of `bipo solve-local`; the simulation's default stays the
 //!   accelerated sweep, whose iteration counts the seed's tables and `docs/benchmarks.md`
 //!   quote.
 //!

@@ -130,6 +130,26 @@ pub(crate) const AUTO_NEWTON_SHORT_STEP: f64 = 1.0 / 32.0;
 /// iteration 8–10, none of the converging runs gives one).
 pub(crate) const AUTO_NEWTON_SHORT_STEPS: usize = 2;
 
+/// Sweeps of the accelerated Gauss–Seidel that [`Algorithm::Auto`] runs first on a dense `W`
+/// where it would pick Newton (issue 37, "sweep first"), to read the sweep's rate before
+/// choosing: 8, a third of what the random dense problems need in all (21–26) and an eighth
+/// of the FE problems' (54–74), whose Newton it delays.
+pub(crate) const AUTO_SWEEP_PROBE: usize = 8;
+
+/// The fraction of pressed contacts (`q_n < 0`) from which [`Algorithm::Auto`] sweeps first
+/// on a dense `W`: Newton's step works on the closed contacts, so it is cheap beside a sweep
+/// over the whole `W` when few are pressed (the 3D half-space under a sphere: Newton 2.7 ms
+/// against the sweep's 23.6, `docs/benchmarks.md` "Sweep first") and costs a factorisation of
+/// most of `W` when most are (random dense problems: 2/3 pressed, Newton 2–4× slower).
+pub(crate) const AUTO_SWEEP_MIN_PRESSED: f64 = 0.5;
+
+/// The sweeps (probe included) within which the probe's rate must promise the tolerance for
+/// [`Algorithm::Auto`] to keep sweeping rather than run Newton: the sweep costs `O(m²)` a
+/// sweep and Newton `O(m³)` an iteration on a dense `W`, and measured (`docs/benchmarks.md`,
+/// "Sweep first") the sweep wins where it needs at most about 30 sweeps (random dense
+/// problems: 21–26) and loses where it needs 54–74 (FE problems).
+pub(crate) const AUTO_SWEEP_PREDICTED: f64 = 40.0;
+
 /// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
 /// long, what to do when it fails), with the tuning of the iteration beside them in
 /// [`tuning`](Self::tuning). Build them from `Default` and the `with_*` setters (the struct is

@@ -19,7 +19,10 @@ use contact_laws::ContactLaw;
 mod auto;
 mod skip_open;
 
-use auto::{auto_newton_budget, newton_pays, sparse_twin_for_auto};
+use auto::{
+    auto_newton_budget, newton_pays, pressed_most, sparse_twin_for_auto, sweep_probe,
+    sweep_promises,
+};
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
 /// checked without the modified velocity to this factor of the tolerance (relative), or it is
@@ -62,6 +65,9 @@ pub struct UzawaSolver {
     newton: NewtonScratch,
     /// The factors of the adhesive Newton's last Jacobian, for its chord steps.
     kept_lu: KeptLu,
+    /// Whether [`Algorithm::Auto`]'s Newton on the problem being solved sweeps first
+    /// ([`pressed_most`]), set where `Auto` chooses.
+    sweep_first: bool,
 }
 
 /// Solves `problem` with one Coulomb law `Coulomb::new(μ_i)` per contact — the entry point for
@@ -172,6 +178,7 @@ impl UzawaSolver {
             } else {
                 Algorithm::AndersonGaussSeidel
             };
+            self.sweep_first = st.algorithm == Algorithm::Newton && pressed_most(problem);
         }
         // the Uzawa step is a projected gradient of the energy ½ rᵀ W r + qᵀ r: it needs W
         // symmetric (the sweeps and Newton need only the diagonal blocks, see `asymmetry`)
@@ -220,6 +227,24 @@ impl UzawaSolver {
             return Ok(sol);
         }
         let auto_newton = auto && st.algorithm == Algorithm::Newton && mu.is_some();
+        // sweep first (issue 37): the sweep goes on from the probe when its rate promises the
+        // tolerance soon; else Newton runs from `r` as without the probe
+        if auto_newton && self.sweep_first && problem.w_dense().is_some() {
+            let probe = self.attempt::<L, DT>(sweep_probe(st), problem, laws, states, r.clone())?;
+            if sweep_promises(&probe.report.history, st.tol) {
+                let rest = UzawaSettings {
+                    algorithm: Algorithm::AndersonGaussSeidel,
+                    ..st
+                };
+                let mut sol =
+                    self.solve_checked::<L, DT>(rest, false, problem, laws, states, probe.r, mu)?;
+                let mut history = probe.report.history;
+                history.append(&mut sol.report.history);
+                sol.report.history = history;
+                sol.report.iterations += probe.report.iterations;
+                return Ok(sol);
+            }
+        }
         let first = if auto_newton {
             auto_newton_budget(st)
         } else {

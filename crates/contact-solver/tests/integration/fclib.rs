@@ -522,3 +522,134 @@ fn issue_37_non_symmetric_w_is_read_as_given() {
         ));
     }
 }
+
+/// Issue 37: a global problem of rigid bodies (3D, 6 dofs each, `M` diagonal) in contact two
+/// by two is condensed block by block and read *sparse*: `W` equals `Hᵀ M⁻¹ H` formed here by
+/// hand to `1e-14 · max|W|` (sums of at most 12 products, in another order), and the answer
+/// solves the global problem: with `v = M⁻¹ (H r + f)` and `u = Hᵀ v + w` computed here, the
+/// natural-map residual `‖r − P_K(r − û)‖∞` is within `1e-6 · (1 + ‖w‖∞)` (the judge of the
+/// issue, outside the solver). `FCLIB_TIMING=<bodies>` times the reading of a larger file
+/// (`--release` to measure).
+#[test]
+fn issue_37_global_rigid_bodies_are_read_sparse_and_solved() {
+    let timing = std::env::var("FCLIB_TIMING").ok();
+    let bodies: usize = timing.as_deref().map_or(60, |s| s.parse().unwrap_or(2000));
+    let contacts = bodies / 2 * 3;
+    let (n, m) = (6 * bodies, 3 * contacts);
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mass: Vec<f64> = (0..n).map(|_| 1.0 + next()).collect();
+    // H in compressed columns: each contact between bodies a and a + 1 + j (wrapping)
+    let (mut hp, mut hi, mut hx) = (vec![0i32], Vec::new(), Vec::new());
+    let mut h = vec![Vec::new(); m]; // column a: (dof, value)
+    for c in 0..contacts {
+        let a = (next() * bodies as f64) as usize % bodies;
+        let b = (a + 1 + (next() * (bodies - 1) as f64) as usize) % bodies;
+        let (lo, hi_body) = (a.min(b), a.max(b));
+        for column in h.iter_mut().skip(3 * c).take(3) {
+            for body in [lo, hi_body] {
+                for k in 6 * body..6 * body + 6 {
+                    let v = 2.0 * next() - 1.0;
+                    column.push((k, v));
+                    hi.push(k as i32);
+                    hx.push(v);
+                }
+            }
+            hp.push(hi.len() as i32);
+        }
+    }
+    let f: Vec<f64> = (0..n).map(|_| 2.0 * next() - 1.0).collect();
+    let w: Vec<f64> = (0..m).map(|_| 2.0 * next() - 1.0).collect();
+    let mu: Vec<f64> = (0..contacts).map(|_| 0.1 + 0.5 * next()).collect();
+    let path = temp("issue_37_rigid_bodies.hdf5");
+    {
+        let file = hdf5::File::create(&path).unwrap();
+        let g = file.create_group("fclib_global").unwrap();
+        let spacedim = g.new_dataset_builder().with_data(&[3]);
+        spacedim.create("spacedim").unwrap();
+        let diag: Vec<i32> = (0..n as i32).collect();
+        let nn = n as i32;
+        matrix(&g, "M", [nn, nn, nn], &diag, &diag, &mass);
+        matrix(&g, "H", [nn, m as i32, -1], &hp, &hi, &hx);
+        let v = g.create_group("vectors").unwrap();
+        v.new_dataset_builder().with_data(&f).create("f").unwrap();
+        v.new_dataset_builder().with_data(&w).create("w").unwrap();
+        v.new_dataset_builder().with_data(&mu).create("mu").unwrap();
+    }
+    let t0 = std::time::Instant::now();
+    let back = read_fclib(&path).unwrap();
+    if timing.is_some() {
+        println!("n = {n}, m = {m}: read and condensed in {:?}", t0.elapsed());
+        return;
+    }
+    assert_eq!(back.source, FclibSource::Global { dofs: n });
+    let p = back.problem;
+    assert!(p.is_sparse() && p.is_symmetric());
+    // W by hand: W_ab = Σ_k H_ka H_kb / M_k
+    let mut by_dof = vec![Vec::new(); n];
+    for (a, col) in h.iter().enumerate() {
+        for &(k, v) in col {
+            by_dof[k].push((a, v));
+        }
+    }
+    let mut w_hand = vec![0.0; m * m];
+    for (k, row) in by_dof.iter().enumerate() {
+        for &(a, ha) in row {
+            for &(b, hb) in row {
+                w_hand[a * m + b] += ha * hb / mass[k];
+            }
+        }
+    }
+    let scale = w_hand.iter().fold(0.0_f64, |s, v| s.max(v.abs()));
+    let sparse = p.w_sparse().unwrap();
+    for a in 0..m {
+        for b in 0..m {
+            let (x, y) = (sparse.get(a, b), w_hand[a * m + b]);
+            assert!(
+                (x - y).abs() <= 1e-14 * scale,
+                "W[{a}, {b}]: {x} against {y}"
+            );
+        }
+    }
+    // solve, then judge (u, r) on the global equations
+    let r = solve_coulomb(&p, &UzawaSettings::default()).unwrap().r;
+    let mut v: Vec<f64> = f.clone();
+    for (a, col) in h.iter().enumerate() {
+        for &(k, hv) in col {
+            v[k] += hv * r[a];
+        }
+    }
+    v.iter_mut().zip(&mass).for_each(|(x, mk)| *x /= mk);
+    let u: Vec<f64> = (0..m)
+        .map(|a| h[a].iter().fold(w[a], |s, &(k, hv)| s + hv * v[k]))
+        .collect();
+    let mut worst = 0.0_f64;
+    for c in 0..contacts {
+        let (rc, uc) = (&r[3 * c..3 * c + 3], &u[3 * c..3 * c + 3]);
+        let ut = uc[1].hypot(uc[2]);
+        // z = r − û, û = u + μ‖u_t‖ n, projected on K_μ = {‖r_t‖ ≤ μ r_n}
+        let z = [rc[0] - uc[0] - mu[c] * ut, rc[1] - uc[1], rc[2] - uc[2]];
+        let zt = z[1].hypot(z[2]);
+        let pz = if zt <= mu[c] * z[0] {
+            z
+        } else if mu[c] * zt <= -z[0] {
+            [0.0; 3]
+        } else {
+            let pn = (z[0] + mu[c] * zt) / (1.0 + mu[c] * mu[c]);
+            [pn, mu[c] * pn * z[1] / zt, mu[c] * pn * z[2] / zt]
+        };
+        for k in 0..3 {
+            worst = worst.max((rc[k] - pz[k]).abs());
+        }
+    }
+    let wmax = w.iter().fold(0.0_f64, |s, x| s.max(x.abs()));
+    assert!(
+        worst <= 1e-6 * (1.0 + wmax),
+        "natural-map residual {worst:e}"
+    );
+}

@@ -152,6 +152,15 @@ impl HertzScene {
         ContactSimulation::new(model, vec![zone], settings).expect("valid scene")
     }
 
+    /// The reduced problem of one step of the whole `δ` with a dense `F*`, frictionless (the
+    /// FE rows of `docs/benchmarks.md` "Which algorithm, measured").
+    pub fn dense_problem(&self) -> contact_solver::ReducedProblem {
+        let dense = contact_solver::FlexibilityMode::Dense;
+        let mut sim = self.simulation(SimulationSettings::default().with_flexibility(dense));
+        sim.step(1.0, 1.0).expect("the Hertz step solves");
+        sim.last_reduced_problem().expect("a problem").clone()
+    }
+
     /// The force-controlled variant (issue 16): no support on the top, which carries a
     /// uniform traction whose resultant is the total load `p_total` (per unit length in plane
     /// strain, `P` over the whole sphere in axisymmetry); the body floats along `y` (its one

@@ -6,16 +6,20 @@
 //! eliminating v = M⁻¹ (H r + f):
 //!   u = W r + q,          W = Hᵀ M⁻¹ H,        q = Hᵀ M⁻¹ f + w
 //! ```
-//! (Siconos' `globalFrictionContact_reformulation_FrictionContact` does the same.) `M` is
-//! factorised sparse with faer: Cholesky when it is symmetric, LU otherwise or when Cholesky
-//! finds a non-positive pivot; `M⁻¹ H` is then `m` dense columns.
+//! (Siconos' `globalFrictionContact_reformulation_FrictionContact` does the same.) When `M`
+//! falls into several diagonal blocks (the connected components of its graph: rigid bodies,
+//! several FE bodies) the condensation goes block by block and `W` comes out sparse when it
+//! is ([`blocks`](super::blocks)). When `M` is one block (one FE body) it is factorised sparse
+//! with faer: Cholesky when it is symmetric, LU otherwise or when Cholesky finds a
+//! non-positive pivot; `M⁻¹ H` is then `m` dense columns and `W` dense.
 
+use super::blocks::{self, Blocks};
+use super::mass::{Condensed, CondensedW, is_symmetric, solve_mass};
 use super::sparse::zeroed;
-use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
+use faer::Mat;
 
-/// `(W, q)` of the local problem, `W` dense row-major `m × m` and exactly symmetric.
+/// `(W, q)` of the local problem: block by block when `M` has more than one diagonal block,
+/// else dense. `W` is exactly symmetric when `M` is symmetric.
 ///
 /// `entries_m`, `entries_h` are the checked entries of `M` (`n × n`) and `H` (`n × m`);
 /// `f` has `n` entries and `w` has `m` (the caller checked the sizes). The error is the reason
@@ -27,6 +31,29 @@ pub(super) fn condense(
     m: usize,
     f: &[f64],
     w: &[f64],
+) -> Result<Condensed, String> {
+    let symmetric = is_symmetric(entries_m);
+    let parts = Blocks::of(n, entries_m);
+    if parts.count() > 1 {
+        return blocks::condense(&parts, entries_m, entries_h, m, f, w, symmetric);
+    }
+    let (wmat, q) = condense_dense(n, entries_m, entries_h, m, f, w, symmetric)?;
+    Ok(Condensed {
+        w: CondensedW::Dense(wmat),
+        q,
+    })
+}
+
+/// The dense route: `[X | y] = M⁻¹ [H | f]` with `m + 1` dense right-hand sides, then `W`
+/// (dense row-major `m × m`) and `q` by [`lower_products`].
+pub(super) fn condense_dense(
+    n: usize,
+    entries_m: &[(usize, usize, f64)],
+    entries_h: &[(usize, usize, f64)],
+    m: usize,
+    f: &[f64],
+    w: &[f64],
+    symmetric: bool,
 ) -> Result<(Vec<f64>, Vec<f64>), String> {
     let mut wmat = zeroed(m, m, "fclib_global/H")?;
     zeroed(n, m + 1, "fclib_global/H")?; // the dense right-hand sides below, refused early
@@ -39,7 +66,7 @@ pub(super) fn condense(
         rhs[(k, m)] = fk;
     }
     solve_mass(n, entries_m, &mut rhs)?;
-    let q = lower_products(n, entries_h, m, &rhs, w, &mut wmat);
+    let q = lower_products(n, entries_h, m, &rhs, w, &mut wmat, symmetric);
     if let Some(k) = wmat.iter().chain(&q).position(|v| !v.is_finite()) {
         return Err(format!(
             "`fclib_global/M` is singular: the condensed {} is not finite",
@@ -49,7 +76,8 @@ pub(super) fn condense(
     Ok((wmat, q))
 }
 
-/// `W = Hᵀ X` (exactly symmetric: the lower triangle, mirrored) and `q = Hᵀ y + w` from
+/// `W = Hᵀ X` (with `symmetric`, exactly so: the lower triangle, mirrored; else both
+/// triangles) and `q = Hᵀ y + w` from
 /// `[X | y] = M⁻¹ [H | f]` (`rhs`, column-major `n × (m + 1)`), `W` into `wmat` (row-major
 /// `m × m`, zeroed). `H` is gathered by columns once, so that each entry `W_ab` is a sparse
 /// dot product of column `a` of `H` with the contiguous column `b` of `X`: `nnz(H) · m / 2`
@@ -62,6 +90,7 @@ fn lower_products(
     rhs: &Mat<f64>,
     w: &[f64],
     wmat: &mut [f64],
+    symmetric: bool,
 ) -> Vec<f64> {
     // H by columns: start[a]..start[a + 1] indexes the (row, value) pairs of column a
     let mut start = vec![0usize; m + 1];
@@ -81,10 +110,16 @@ fn lower_products(
     let dot = |a: usize, xb: &[f64]| column(a).iter().map(|&(k, h)| h * xb[k]).sum::<f64>();
     for b in 0..m {
         let xb = &rhs.col_as_slice(b)[..n];
-        for a in b..m {
-            let v = dot(a, xb);
-            wmat[a * m + b] = v;
-            wmat[b * m + a] = v;
+        if symmetric {
+            for a in b..m {
+                let v = dot(a, xb);
+                wmat[a * m + b] = v;
+                wmat[b * m + a] = v;
+            }
+        } else {
+            for a in 0..m {
+                wmat[a * m + b] = dot(a, xb);
+            }
         }
     }
     let y = &rhs.col_as_slice(m)[..n];
@@ -94,47 +129,24 @@ fn lower_products(
         .collect()
 }
 
-/// `rhs ← M⁻¹ rhs`: Cholesky of the lower triangle when `M` is symmetric, else (or when
-/// Cholesky fails) LU.
-fn solve_mass(n: usize, entries: &[(usize, usize, f64)], rhs: &mut Mat<f64>) -> Result<(), String> {
-    let trips: Vec<_> = entries
-        .iter()
-        .map(|&(r, c, v)| Triplet::new(r, c, v))
-        .collect();
-    let mass = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trips)
-        .map_err(|e| format!("`fclib_global/M` cannot be assembled: {e:?}"))?;
-    if is_symmetric(entries)
-        && let Ok(llt) = mass.sp_cholesky(Side::Lower)
-    {
-        llt.solve_in_place(rhs.as_mut());
-        return Ok(());
-    }
-    let lu = mass
-        .sp_lu()
-        .map_err(|e| format!("`fclib_global/M` is singular (sparse LU: {e:?})"))?;
-    lu.solve_in_place(rhs.as_mut());
-    Ok(())
-}
-
-/// Whether the entries (duplicates summed) form a symmetric matrix to `1e-12 · max|M|`.
-fn is_symmetric(entries: &[(usize, usize, f64)]) -> bool {
-    let mut sums = std::collections::HashMap::with_capacity(entries.len());
-    for &(r, c, v) in entries {
-        *sums.entry((r, c)).or_insert(0.0) += v;
-    }
-    let scale = sums
-        .values()
-        .fold(0.0_f64, |a: f64, v: &f64| a.max(v.abs()));
-    sums.iter().all(|(&(r, c), &v)| {
-        let t = sums.get(&(c, r)).copied().unwrap_or(0.0);
-        (v - t).abs() <= 1e-12 * scale
-    })
-}
-
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::local::fclib::sparse::{RawSparse, SparseForm};
+
+    /// `W` dense row-major `m × m`, whichever way it was condensed.
+    pub(in crate::local::fclib) fn dense(w: CondensedW, m: usize) -> Vec<f64> {
+        match w {
+            CondensedW::Dense(w) => w,
+            CondensedW::Triplets { rows, cols, vals } => {
+                let mut out = vec![0.0; m * m];
+                for ((r, c), v) in rows.into_iter().zip(cols).zip(vals) {
+                    out[r * m + c] += v;
+                }
+                out
+            }
+        }
+    }
 
     #[test]
     fn condense_works_on_one_mass() {
@@ -144,7 +156,8 @@ mod tests {
         let m_mat = RawSparse::from_dense(&m_dense, 2, 2, SparseForm::CompressedColumn);
         let em = m_mat.entries("M").unwrap();
         let eh = vec![(0, 0, 1.0), (1, 1, 1.0)];
-        let (w, q) = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.5, 0.0]).unwrap();
+        let c = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.5, 0.0]).unwrap();
+        let (w, q) = (dense(c.w, 2), c.q);
         assert_eq!(w, vec![0.25, 0.0, 0.0, 0.0625]);
         assert_eq!(q, vec![0.75, 0.125]);
     }
@@ -153,7 +166,7 @@ mod tests {
     /// and `contacts` 3D contacts between random pairs of them (`H`: 6 entries per body and
     /// contact row, 12 per column), `f` and `w` random.
     #[allow(clippy::type_complexity)]
-    fn rigid_bodies(
+    pub(in crate::local::fclib) fn rigid_bodies(
         bodies: usize,
         contacts: usize,
     ) -> (
@@ -232,12 +245,15 @@ mod tests {
         let (w_old, q_old) = products_by_entries(&eh, m, &rhs, &w);
         let t1 = std::time::Instant::now();
         let mut w_new = vec![0.0; m * m];
-        let q_new = lower_products(n, &eh, m, &rhs, &w, &mut w_new);
+        let q_new = lower_products(n, &eh, m, &rhs, &w, &mut w_new, true);
         let t2 = std::time::Instant::now();
         if std::env::var_os("FCLIB_TIMING").is_some() {
-            let t = condense(n, &em, &eh, m, &f, &w).map(|_| t2.elapsed());
+            let t = condense_dense(n, &em, &eh, m, &f, &w, true).map(|_| t2.elapsed());
+            let t3 = std::time::Instant::now();
+            let b = condense(n, &em, &eh, m, &f, &w).map(|_| t3.elapsed());
             println!(
-                "n = {n}, m = {m}: by entries {:?}, by columns {:?}, whole condense {t:?}",
+                "n = {n}, m = {m}: by entries {:?}, by columns {:?}, whole dense route {t:?}, \
+                 block route {b:?}",
                 t1 - t0,
                 t2 - t1
             );
@@ -255,7 +271,9 @@ mod tests {
         let m_mat = RawSparse::from_dense(&m_dense, 2, 2, SparseForm::CompressedColumn);
         let em = m_mat.entries("M").unwrap();
         let eh = vec![(0, 0, 1.0), (1, 1, 1.0)];
-        let e = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.0, 0.0]).unwrap_err();
+        let e = condense(2, &em, &eh, 2, &[1.0, 2.0], &[0.0, 0.0])
+            .err()
+            .unwrap();
         assert!(e.starts_with("`fclib_global/M` is singular"), "{e}");
     }
 }

@@ -5,11 +5,11 @@
 
 use super::super::newton::factor_fill;
 use super::super::problem::ReducedProblem;
-#[cfg(doc)]
 use super::super::settings::Algorithm;
 use super::super::settings::{
     AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
-    AUTO_SPARSE_NEWTON_MAX_CONTACTS, UzawaSettings,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_PREDICTED,
+    AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
@@ -107,6 +107,52 @@ pub(super) fn auto_newton_budget(st: UzawaSettings) -> UzawaSettings {
     }
 }
 
+/// Whether `W` is dense and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
+/// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
+/// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
+/// Newton's steps are small beside a sweep over the whole `W`, and `Auto` keeps Newton.
+pub(super) fn pressed_most(problem: &ReducedProblem) -> bool {
+    let (d, nc) = (problem.dimension(), problem.contact_count());
+    let pressed = (0..nc).filter(|&i| problem.q()[d * i] < 0.0).count();
+    problem.w_dense().is_some() && nc > 0 && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
+}
+
+/// The settings of the sweep [`Algorithm::Auto`] runs first on a dense `W` where it would
+/// pick Newton: the accelerated sweep for at most `AUTO_SWEEP_PROBE` sweeps.
+pub(super) fn sweep_probe(st: UzawaSettings) -> UzawaSettings {
+    UzawaSettings {
+        algorithm: Algorithm::AndersonGaussSeidel,
+        max_iterations: st.max_iterations.min(AUTO_SWEEP_PROBE),
+        ..st
+    }
+}
+
+/// Whether the sweep whose relative residuals are `history` (one a sweep) promises `tol`
+/// within `AUTO_SWEEP_PREDICTED` sweeps in all, at the rate of its last four sweeps:
+///
+/// ```text
+/// ρ = (h_k / h_{k−4})^{1/4},   k + ln(tol / h_k) / ln ρ ≤ AUTO_SWEEP_PREDICTED
+/// ```
+/// A history already at `tol` promises it; one shorter than five sweeps, or not contracting
+/// (`ρ ≥ 1`, a NaN), does not.
+pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
+    let k = history.len();
+    let Some(&last) = history.last() else {
+        return false;
+    };
+    if last <= tol {
+        return true;
+    }
+    if k < 5 {
+        return false;
+    }
+    let rate = (last / history[k - 5]).powf(0.25);
+    if rate.is_nan() || rate >= 1.0 || rate <= 0.0 {
+        return false;
+    }
+    k as f64 + (tol / last).ln() / rate.ln() <= AUTO_SWEEP_PREDICTED
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,5 +180,23 @@ mod tests {
         assert!(!mostly_zero_blocks(&one.unwrap()));
         let sparse = crate::local::generate::random_sparse_problem(3, 50, 0, 2);
         assert!(!mostly_zero_blocks(&sparse));
+    }
+
+    /// A sweep contracting by 0.5 a sweep from 1 reaches 1e-8 near sweep 27 (promised at 8
+    /// sweeps); by 0.8, near sweep 83 (not promised); a rising or short history promises
+    /// nothing; a history at the tolerance promises it.
+    #[test]
+    fn sweep_promises_works() {
+        let geometric = |rate: f64| (0..8).map(|k| rate.powi(k)).collect::<Vec<_>>();
+        assert!(sweep_promises(&geometric(0.5), 1e-8));
+        assert!(!sweep_promises(&geometric(0.8), 1e-8));
+        assert!(!sweep_promises(&geometric(1.1), 1e-8));
+        assert!(!sweep_promises(&[1.0, 0.1, 0.01], 1e-8));
+        assert!(sweep_promises(&[1.0, 1e-9], 1e-8));
+        assert!(!sweep_promises(&[], 1e-8));
+        assert!(!sweep_promises(
+            &[1.0, 0.5, 0.25, 0.1, 0.05, f64::NAN],
+            1e-8
+        ));
     }
 }
