@@ -2,7 +2,7 @@
 //! sand beside the elastic soil, axisymmetric, through the global Newton around contact: the
 //! scene of `crates/contact-solver/tests/support/pile_plastic.rs` (fem-core's pile-in-soil
 //! mesh, the tip detached, geostatic K0 state, no installation phase). Sand: φ = 35° (the
-//! seed's), θ = 5°, c = 1 kPa, the cone matched to Mohr–Coulomb in plane strain.
+//! seed's), associated (θ = φ), c = 1 kPa, the cone matched to Mohr–Coulomb in plane strain.
 //!
 //! Prints both head load–displacement curves (full ring), the Newton's corrections per
 //! increment and the time of each increment, then a profile of one Newton iteration on the
