@@ -164,7 +164,11 @@ fn refuse_unserved(scene: &Scene) -> CliResult<()> {
         );
     };
     if scene.preset.is_some() {
-        not(root.key("preset"), "a library preset")?;
+        not(
+            root.key("preset"),
+            "a library preset (a preset builds a linear elastic body: write the scene out key \
+             by key, as examples/scenes/pile_dp.toml does the pile preset's pull-out)",
+        )?;
     }
     if scene.analysis.as_ref().is_some_and(|a| a.floating()) {
         not(

@@ -208,21 +208,38 @@ where
     write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
 }
 
-/// The reactions on the nodes of the plots' `reaction_*` sets, node by node.
+/// The reactions on the nodes of the plots' `reaction_*` sets, node by node, at the loads'
+/// force factor `factor`: `Bᵀσ − f` (the elastic path's `K u − f`), the loads `f` (the
+/// self-weight on a pile's head, say) subtracted at the prescribed dofs.
 fn reactions<const D: usize>(
     body: &PlasticModel<D>,
     sets: &[Vec<usize>],
+    factor: f64,
 ) -> CliResult<Vec<Reaction>>
 where
     Dim<D>: StudyDim<D>,
 {
     let mut out = Vec::new();
+    if sets.iter().all(Vec::is_empty) {
+        return Ok(out);
+    }
+    // `K 0 − λ f = −λ f` at every prescribed dof (the plastic body holds the initial stress,
+    // the elastic model none)
+    let elastic = body.elastic();
+    let zero = vec![[0.0; D]; elastic.mesh().node_count()];
+    let loads = elastic
+        .reactions(&zero, factor)
+        .map_err(|e| fem_failed("reaction", e))?;
     for &n in sets.iter().flatten() {
         for c in Component::all::<D>() {
             let r = body
                 .reaction(&[n], c)
                 .map_err(|e| fem_failed("reaction", e))?;
-            out.push(((n, c), r));
+            let f = loads
+                .iter()
+                .find(|((m, k), _)| *m == n && *k == c)
+                .map_or(0.0, |(_, f)| *f);
+            out.push(((n, c), r + f));
         }
     }
     Ok(out)
@@ -371,7 +388,7 @@ where
             // a row per step as it comes (a long plastic run is watched through it)
             csv.flush().map_err(|e| io(&csv_path, e))?;
             let disp = study.sim.nodal_displacements();
-            let r = reactions(body, &reaction_sets)?;
+            let r = reactions(body, &reaction_sets, res.report.load_factor)?;
             plots.record(
                 (&res, Extras::default(), global),
                 Some(&disp),
