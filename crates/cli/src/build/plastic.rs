@@ -399,7 +399,8 @@ where
     }
 }
 
-/// Checks the plots of a plastic scene: the zone and step quantities of a 3D scene, and
+/// Checks the plots of a plastic scene: the zone and step quantities of a 3D scene (and
+/// `force_t` in 2D: the zone's tangential force), and
 /// `u_x`, `u_y`, `u_z` (mean over a node `set` or one `node`) and `reaction_x`, `reaction_y`,
 /// `reaction_z` (sum over a supported node `set`: the load–displacement curve).
 fn check_plots<const D: usize>(
@@ -442,7 +443,7 @@ where
                         }
                     ),
                 }
-            } else if QUANTITIES_3D.contains(&q) {
+            } else if QUANTITIES_3D.contains(&q) || (D == 2 && q == "force_t") {
                 if let Some(z) = &c.zone
                     && !zone_names.contains(z)
                 {
@@ -453,9 +454,10 @@ where
                 let p = cp.key("quantity");
                 bail!(
                     p,
-                    "`{p}` = \"{q}\": a scene with a plastic material plots {}, `u_*` and \
+                    "`{p}` = \"{q}\": a scene with a plastic material plots {}{}, `u_*` and \
                      `reaction_*` (with a `set`)",
-                    QUANTITIES_3D.join(", ")
+                    QUANTITIES_3D.join(", "),
+                    if D == 2 { ", force_t" } else { "" }
                 );
             }
         }
