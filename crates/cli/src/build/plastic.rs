@@ -473,6 +473,7 @@ where
     let scene = &loaded.scene;
     let root = KeyPath::root();
     let ap = root.key("analysis");
+    refuse_unserved(scene)?;
     let Some(analysis) = &scene.analysis else {
         bail!(
             root,
@@ -483,7 +484,6 @@ where
     let newton = analysis.newton(&ap)?;
     let functions = time_functions(scene)?;
     let phases = phases_of(scene, None)?;
-    refuse_unserved(scene)?;
     let (laws, materials) = laws(scene)?;
     let base_dir = loaded
         .path

@@ -75,3 +75,24 @@ fn issue_40_pile_dp_reaction_balances_the_interface() {
     assert!(last > weight + 1.0, "R = {last}, W = {weight}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A `[preset]` in a scene with a plastic material is refused at `preset` (a preset builds a
+/// linear elastic body), pointing at the scene written out key by key.
+#[test]
+fn issue_40_plastic_preset_is_refused_at_its_key() {
+    let dir = tmp("pile_dp_preset");
+    let scene = dir.join("preset.toml");
+    std::fs::write(
+        &scene,
+        "[preset]\nkind = \"pile\"\n\n[[materials]]\nregion = 0\ntype = \"drucker-prager\"\n\
+         young = 3e4\npoisson = 0.33\nfriction_angle = 35.0\ncohesion = 1.0\n",
+    )
+    .unwrap();
+    let o = bipo(&["check".as_ref(), scene.as_os_str()]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    for f in ["`preset`", "linear elastic", "pile_dp.toml"] {
+        assert!(err.contains(f), "{f} not in {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
