@@ -167,6 +167,9 @@ pub struct PileMeshSpec {
     pub grading_below_tip: Option<GradingSpec>,
     /// `split` or `shared`.
     pub tip_corner: Option<TipCornerSpec>,
+    /// Whether the pile's tip is detached from the soil below (its nodes at `r < R`
+    /// duplicated, node sets `tip_pile` and `tip_soil` paired by index), as the pile preset's.
+    pub detach_tip: bool,
 }
 
 /// The mesh: a generator or a Gmsh file.

@@ -191,7 +191,14 @@ impl SceneDim<2> for Dim<2> {
     fn generate(mp: &KeyPath, plan: MeshPlan) -> CliResult<Mesh> {
         match plan {
             MeshPlan::Rectangle(spec) => fem_core::generate::rectangle(&spec),
-            MeshPlan::Pile(s) => fem_core::generate::pile_in_soil(&s),
+            MeshPlan::Pile(s, detach) => fem_core::generate::pile_in_soil(&s).and_then(|m| {
+                if detach {
+                    let radius = 0.5 * s.diameter;
+                    crate::presets::pile::detach_tip(m, radius, s.length).map(|(m, _, _)| m)
+                } else {
+                    Ok(m)
+                }
+            }),
             _ => return Err(routing(mp)),
         }
         .map_err(|e| fem(mp, e))

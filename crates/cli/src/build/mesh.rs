@@ -23,8 +23,9 @@ pub const MAX_BOX_CELLS: usize = 200_000;
 pub(crate) enum MeshPlan {
     /// `fem_core::generate::rectangle` (2D).
     Rectangle(RectangleSpec),
-    /// `fem_core::generate::pile_in_soil` (2D).
-    Pile(PileSpec),
+    /// `fem_core::generate::pile_in_soil` (2D), and whether its tip is detached
+    /// ([`crate::presets::pile::detach_tip`]).
+    Pile(PileSpec, bool),
     /// `fem_core::solid::generate::box_mesh` (3D): the grid lines and the element.
     Box([Vec<f64>; 3], ElementKind),
     /// An existing Gmsh file and the element order it must hold.
@@ -331,7 +332,7 @@ fn pile(mp: &KeyPath, o: &PileMeshSpec, idealization: Option<Idealization>) -> C
             TipCornerSpec::Shared => TipCorner::Shared,
         };
     }
-    Ok(MeshPlan::Pile(s))
+    Ok(MeshPlan::Pile(s, o.detach_tip))
 }
 
 /// The pile's element, sizes and cell counts of `m` (at `mp`: `[mesh]` or `[preset] mesh`).

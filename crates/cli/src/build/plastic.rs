@@ -164,7 +164,11 @@ fn refuse_unserved(scene: &Scene) -> CliResult<()> {
         );
     };
     if scene.preset.is_some() {
-        not(root.key("preset"), "a library preset")?;
+        not(
+            root.key("preset"),
+            "a library preset (a preset builds a linear elastic body: write the scene out key \
+             by key, as examples/scenes/pile_dp.toml does the pile preset's pull-out)",
+        )?;
     }
     if scene.analysis.as_ref().is_some_and(|a| a.floating()) {
         not(
@@ -395,7 +399,8 @@ where
     }
 }
 
-/// Checks the plots of a plastic scene: the zone and step quantities of a 3D scene, and
+/// Checks the plots of a plastic scene: the zone and step quantities of a 3D scene (and
+/// `force_t` in 2D: the zone's tangential force), and
 /// `u_x`, `u_y`, `u_z` (mean over a node `set` or one `node`) and `reaction_x`, `reaction_y`,
 /// `reaction_z` (sum over a supported node `set`: the load–displacement curve).
 fn check_plots<const D: usize>(
@@ -438,7 +443,7 @@ where
                         }
                     ),
                 }
-            } else if QUANTITIES_3D.contains(&q) {
+            } else if QUANTITIES_3D.contains(&q) || (D == 2 && q == "force_t") {
                 if let Some(z) = &c.zone
                     && !zone_names.contains(z)
                 {
@@ -449,9 +454,10 @@ where
                 let p = cp.key("quantity");
                 bail!(
                     p,
-                    "`{p}` = \"{q}\": a scene with a plastic material plots {}, `u_*` and \
+                    "`{p}` = \"{q}\": a scene with a plastic material plots {}{}, `u_*` and \
                      `reaction_*` (with a `set`)",
-                    QUANTITIES_3D.join(", ")
+                    QUANTITIES_3D.join(", "),
+                    if D == 2 { ", force_t" } else { "" }
                 );
             }
         }
@@ -467,6 +473,7 @@ where
     let scene = &loaded.scene;
     let root = KeyPath::root();
     let ap = root.key("analysis");
+    refuse_unserved(scene)?;
     let Some(analysis) = &scene.analysis else {
         bail!(
             root,
@@ -477,7 +484,6 @@ where
     let newton = analysis.newton(&ap)?;
     let functions = time_functions(scene)?;
     let phases = phases_of(scene, None)?;
-    refuse_unserved(scene)?;
     let (laws, materials) = laws(scene)?;
     let base_dir = loaded
         .path

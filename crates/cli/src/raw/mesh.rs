@@ -104,6 +104,7 @@ pub struct RawMesh {
     grading_shaft: Option<RawGrading>,
     grading_below_tip: Option<RawGrading>,
     tip_corner: Option<TipCornerSpec>,
+    detach_tip: Option<bool>,
     // gmsh
     file: Option<String>,
 }
@@ -111,15 +112,15 @@ pub struct RawMesh {
 const RECTANGLE_KEYS: &str = "element x nx grading_x y ny grading_y region y0 layers";
 const PILE_KEYS: &str = "element diameter length width depth cells_pile_r cells_soil_r cells_shaft \
                          cells_below_tip grading_pile_r grading_soil_r grading_shaft \
-                         grading_below_tip tip_corner";
+                         grading_below_tip tip_corner detach_tip";
 const GMSH_KEYS: &str = "element file";
 const BOX_KEYS: &str = "element x nx grading_x y ny grading_y z nz grading_z";
 
 impl RawMesh {
-    fn present(&self) -> [(&'static str, bool); 27] {
+    fn present(&self) -> [(&'static str, bool); 28] {
         present!(self; element, x, nx, grading_x, y, ny, grading_y, region, y0, layers, diameter,
             length, width, depth, cells_pile_r, cells_soil_r, cells_shaft, cells_below_tip,
-            grading_pile_r, grading_soil_r, grading_shaft, grading_below_tip, tip_corner, file, z,
+            grading_pile_r, grading_soil_r, grading_shaft, grading_below_tip, tip_corner, detach_tip, file, z,
             nz, grading_z)
     }
 
@@ -206,6 +207,7 @@ impl RawMesh {
                         &self.grading_below_tip,
                     )?,
                     tip_corner: self.tip_corner,
+                    detach_tip: self.detach_tip.unwrap_or(false),
                 })
             }
             Generator::Gmsh => {

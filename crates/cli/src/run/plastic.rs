@@ -208,20 +208,53 @@ where
     write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
 }
 
-/// The reactions on the nodes of the plots' `reaction_*` sets, node by node.
+/// The reactions on the nodes of the plots' `reaction_*` sets, node by node, after step
+/// `res`: at a prescribed dof the force its support applies, `Bᵀσ − f − f_c` (the loads `f` at
+/// the step's force factor, the self-weight on a pile's head say, and the contact forces `f_c`
+/// on the node taken off); elsewhere `Bᵀσ`.
 fn reactions<const D: usize>(
-    body: &PlasticModel<D>,
+    sim: &PlasticSim<D>,
+    res: &StepResult<D>,
     sets: &[Vec<usize>],
 ) -> CliResult<Vec<Reaction>>
 where
     Dim<D>: StudyDim<D>,
 {
     let mut out = Vec::new();
+    if sets.iter().all(Vec::is_empty) {
+        return Ok(out);
+    }
+    let body = sim.structure();
+    // `K 0 − λ f = −λ f` at every prescribed dof (the plastic body holds the initial stress,
+    // the elastic model none)
+    let elastic = body.elastic();
+    let zero = vec![[0.0; D]; elastic.mesh().node_count()];
+    let loads = elastic
+        .reactions(&zero, res.report.load_factor)
+        .map_err(|e| fem_failed("reaction", e))?;
+    // the contact forces on the nodes: on the contactor, `−w` times it on each target
+    let mut contact = vec![[0.0; D]; elastic.mesh().node_count()];
+    for (c, rec) in sim.candidates().iter().zip(&res.contacts) {
+        let f = rec.force();
+        for a in 0..D {
+            contact[c.node][a] += f[a];
+        }
+        for &(t, w) in c.targets.iter().flatten() {
+            for a in 0..D {
+                contact[t][a] -= w * f[a];
+            }
+        }
+    }
     for &n in sets.iter().flatten() {
         for c in Component::all::<D>() {
             let r = body
                 .reaction(&[n], c)
                 .map_err(|e| fem_failed("reaction", e))?;
+            let held = loads.iter().find(|((m, k), _)| *m == n && *k == c);
+            let r = match held {
+                Some((_, minus_f)) => r + minus_f - contact[n][c as usize],
+                None => r,
+            };
             out.push(((n, c), r));
         }
     }
@@ -371,7 +404,7 @@ where
             // a row per step as it comes (a long plastic run is watched through it)
             csv.flush().map_err(|e| io(&csv_path, e))?;
             let disp = study.sim.nodal_displacements();
-            let r = reactions(body, &reaction_sets)?;
+            let r = reactions(&study.sim, &res, &reaction_sets)?;
             plots.record(
                 (&res, Extras::default(), global),
                 Some(&disp),

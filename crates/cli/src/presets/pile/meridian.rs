@@ -59,7 +59,7 @@ impl PulloutSpec {
 /// mesh (every set kept; `"axis"` gains the pile copy of the axis node; new node sets
 /// `"tip_pile"` and `"tip_soil"`) and the paired tip nodes, pile copies then soil originals,
 /// sorted by `r`.
-fn detach_tip(
+pub(crate) fn detach_tip(
     mesh: Mesh,
     radius: f64,
     length: f64,

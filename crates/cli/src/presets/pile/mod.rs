@@ -95,6 +95,7 @@ mod meridian;
 mod scene;
 mod solid;
 
+pub(crate) use meridian::detach_tip;
 use scene::Phase;
 pub use scene::{PileSpace, PulloutRun, PulloutScene, PulloutStep, ShaftPoint};
 
