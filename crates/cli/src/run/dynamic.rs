@@ -507,7 +507,8 @@ fn write_vtk<const D: usize>(
 where
     Dim<D>: StudyDim<D>,
 {
-    use fem_core::vtk::{Field, write_pvd, write_vtu};
+    use super::vtk::push_pvd;
+    use fem_core::vtk::{Field, write_vtu};
     let u = sim.nodal_displacements();
     let v = nodal(sim, sim.scheme().velocity());
     let name = format!("mesh_{:04}.vtu", entries.len());
@@ -519,10 +520,7 @@ where
         &[],
     )
     .map_err(|e| io(&path, e))?;
-    entries.push((t, name));
-    let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
-    let pvd = dir.join("mesh.pvd");
-    write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
+    push_pvd(dir, entries, t, name)
 }
 
 /// `energies.svg`, `contact_force.svg` and, with velocity sets, `velocity.svg`; returns their

@@ -179,7 +179,8 @@ fn write_vtk<const D: usize>(
 where
     Dim<D>: StudyDim<D>,
 {
-    use fem_core::vtk::{Field, write_pvd, write_vtu};
+    use super::vtk::push_pvd;
+    use fem_core::vtk::{Field, write_vtu};
     let body = sim.structure();
     let u = sim.nodal_displacements();
     let out = body.element_outputs();
@@ -202,10 +203,7 @@ where
         ],
     )
     .map_err(|e| io(&path, e))?;
-    entries.push((t, name));
-    let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
-    let pvd = dir.join("mesh.pvd");
-    write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
+    push_pvd(dir, entries, t, name)
 }
 
 /// The reactions on the nodes of the plots' `reaction_*` sets, node by node, after step

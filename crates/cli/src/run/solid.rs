@@ -13,6 +13,7 @@ use super::plots::Plots;
 use super::pressure::PressureRecorder;
 use super::rigid::RigidMotionSummary;
 use super::summary::{CurveSummary, ZoneSummary};
+use super::vtk::push_pvd;
 use crate::build::{HertzShape, Study, StudyDim};
 use crate::error::{CliError, CliResult};
 use contact_laws::{ContactLaw, RccmState};
@@ -21,7 +22,7 @@ use contact_solver::coupling::solid::write_interface_vtu_3d;
 use contact_solver::coupling::traction::{TractionField, write_interface_vtu_3d_with_traction};
 use contact_solver::{ContactRecord, StepResult};
 use fem_core::boundary_mass::BoundaryMass;
-use fem_core::vtk::{Field3, write_pvd, write_vtu_3d};
+use fem_core::vtk::{Field3, write_vtu_3d};
 use fem_core::{Dim, ElasticModel, FemError};
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -340,10 +341,7 @@ fn write_vtk(
         &[("stress", Field3::SymTensor(&stress))],
     )
     .map_err(|e| io(&path, e))?;
-    entries.push((t, name));
-    let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
-    let pvd = w.dir.join("mesh.pvd");
-    write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
+    push_pvd(&w.dir, entries, t, name)
 }
 
 /// The status of a 3D contact, named as 2D's `InterfaceStatus`: `inactive` (outside the

@@ -68,10 +68,7 @@ impl VtkWriter {
                 &[],
             )
             .map_err(|e| io(&path, e))?;
-            entries.push((t, name));
-            let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
-            let pvd = self.dir.join("mesh.pvd");
-            fem_core::vtk::write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))?;
+            push_pvd(&self.dir, entries, t, name)?;
         }
         Ok(())
     }
@@ -89,4 +86,17 @@ impl VtkWriter {
         }
         files
     }
+}
+
+/// Appends the step `(t, name)` to a `mesh.pvd` series in `dir` and rewrites the series.
+pub(super) fn push_pvd(
+    dir: &Path,
+    entries: &mut Vec<(f64, String)>,
+    t: f64,
+    name: String,
+) -> CliResult<()> {
+    entries.push((t, name));
+    let list: Vec<(f64, &str)> = entries.iter().map(|(t, f)| (*t, f.as_str())).collect();
+    let pvd = dir.join("mesh.pvd");
+    fem_core::vtk::write_pvd(&pvd, &list).map_err(|e| io(&pvd, e))
 }
