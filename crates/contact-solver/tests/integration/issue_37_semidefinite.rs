@@ -16,7 +16,6 @@
 //! - The FE and random problems keep today's choice, Newton, with the same iterations.
 
 use crate::support::twins::sparse_twin;
-use contact_solver::local::generate::half_space::{HalfSpace, Indenter};
 use contact_solver::local::generate::multibody::{SpherePile, Walls};
 use contact_solver::local::generate::random_problem_in;
 use contact_solver::{Algorithm, ReducedProblem, Solution, UzawaSettings, UzawaSolver};
@@ -294,10 +293,13 @@ fn issue_37_auto_within_bound() {
 /// needs 54 sweeps, Newton 8 iterations and is 2–3× faster) `Auto` still picks Newton on the
 /// dense `W`: its sweep-first probe does not promise the tolerance there, and Newton's run is
 /// the one it was without the probe, bit for bit. On the 3D half-space under a sphere few
-/// contacts are pressed (`AUTO_SWEEP_MIN_PRESSED`): no probe, Newton as before.
+/// contacts are pressed (`AUTO_SWEEP_MIN_PRESSED`): no probe, Newton as before. The scene is an
+/// FE one: the test needs the `fe` feature.
+#[cfg(feature = "fe")]
 #[test]
 fn issue_37_auto_keeps_newton_on_dense_fe_problems() {
     use crate::support::hertz_scene::HertzScene;
+    use contact_solver::local::generate::half_space::{HalfSpace, Indenter};
     use fem_core::{ElementKind, Idealization};
     let hertz = HertzScene::new(Idealization::PlaneStrain, ElementKind::Tri6, 16);
     let hs = HalfSpace {
