@@ -2,15 +2,18 @@
 //!
 //! With the feature `petsc` (the system PETSc 3.18 and Open MPI: Debian's
 //! `libpetsc-real-dev` and `libopenmpi-dev`), `PetscStructure` implements fem-core's
-//! [`Structure<3>`](fem_core::Structure) with a stiffness assembled as a distributed PETSc
-//! MPIAIJ matrix, each rank assembling its own elements of a geometric [`Partition`], and
-//! solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`). The contact solver
+//! [`Structure`](fem_core::Structure) (3D, or 2D in plane strain, plane stress or
+//! axisymmetry) with a stiffness assembled as a distributed PETSc MPIAIJ matrix from
+//! fem-core's element kernels, each rank assembling its own elements of a geometric
+//! [`Partition`], and solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`). The
+//! contact solver
 //! (`contact-solver`) runs unchanged on every rank: the structure takes its right-hand sides
 //! from rank 0 and returns the same solution to every rank, so candidates, `F*` and the local
 //! solve are rank 0's, broadcast.
 //!
 //! A distributed program is the serial one, run by `mpirun -n N`, with three changes:
-//! `Petsc::init` first, `PetscStructure::new` in place of `SolidModel::new`, and the body
+//! `Petsc::init` first, `PetscStructure::new` (or `::plane` in 2D) in place of `SolidModel::new` (or
+//! `LinearElasticModel::new`), and the body
 //! inside `Petsc::or_abort` so that a rank that fails ends every rank with its error instead
 //! of leaving the others waiting. `examples/petsc_check.rs` is such a program.
 //!
@@ -25,6 +28,8 @@ pub mod partition;
 
 pub use partition::Partition;
 
+#[cfg(feature = "petsc")]
+mod assembly;
 #[cfg(feature = "petsc")]
 mod error;
 #[cfg(feature = "petsc")]

@@ -1,5 +1,6 @@
-//! [`PetscStructure`]: a 3D linear elastic body whose stiffness is a distributed PETSc
-//! matrix, seen by the contact solver through fem-core's [`Structure`] trait.
+//! [`PetscStructure`]: a linear elastic body (3D, or 2D in plane strain, plane stress or
+//! axisymmetry) whose stiffness is a distributed PETSc matrix, seen by the contact solver
+//! through fem-core's [`Structure`] trait.
 //!
 //! ```text
 //! every rank      holds the whole mesh, the dof map and the partition (computed alike)
@@ -7,6 +8,10 @@
 //!                 travel at MatAssembly) and keeps K_fp of its elements (prescribed columns)
 //! a solve         rank 0's right-hand side -> distributed b (VecScatter from zero, reversed)
 //!                 -> KSPSolve -> x gathered whole on every rank (VecScatter to all)
+//! loads           f = factor · f_ext + f_σ₀ − K_fp ū: the nodal forces, body forces and
+//!                 self-weight (f_ext, scaled) and the initial stress's forces (f_σ₀, not
+//!                 scaled) integrated whole on every rank by fem-core's element kernels and
+//!                 applied from rank 0; K_fp ū from each rank's own elements
 //! ```
 //! The contact solver runs on every rank with the same data: its inputs to the structure are
 //! taken from rank 0 and its outputs are the same bits everywhere, so the interface (the
@@ -14,31 +19,41 @@
 //! collective: every rank must call it, in the same order (what running the same program on
 //! every rank gives).
 
+use crate::assembly::{self, Body, Coupling};
 use crate::error::PetscError;
 use crate::ffi::PetscInt;
-use crate::linalg::{System, int};
+use crate::linalg::System;
 use crate::partition::Partition;
 use crate::runtime::Petsc;
 use crate::solver::LinearSolver;
-use fem_core::dirichlet::Dof;
+use fem_core::element::{Element, Setting};
 use fem_core::faer::MatMut;
+use fem_core::model::ModelSpace;
 use fem_core::solid::SolidMesh;
-use fem_core::{Component, DofMap, FemError, Material, Structure, Supports};
+use fem_core::{
+    Component, Dim, DofMap, FemError, Idealization, Material, Mesh, Space, StressField, Structure,
+    Supports,
+};
 use std::cell::Cell;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::marker::PhantomData;
+use std::sync::OnceLock;
 
-/// A 3D linear elastic body solved by PETSc (module docs): the distributed counterpart of
-/// fem-core's [`SolidModel`](fem_core::solid::SolidModel) for a body held by its supports
-/// (positive definite `K`), with nodal forces and prescribed displacements as loads.
+/// A linear elastic body solved by PETSc (module docs): the distributed counterpart of
+/// fem-core's [`ElasticModel`](fem_core::ElasticModel) for a body held by its supports
+/// (positive definite `K`), in 3D ([`PetscStructure::new`], the default `D`) or in the plane
+/// ([`PetscStructure::plane`]: plane strain, plane stress, axisymmetry), with nodal forces,
+/// body forces, self-weight, an initial stress and prescribed displacements as loads.
 ///
-/// Its free-dof numbering is the [`DofMap`]'s, the same as a `SolidModel` built from the
-/// same mesh and supports, so the two give the same contact problem; its solves agree with
-/// the direct path to the solver's tolerance ([`LinearSolver`]).
+/// Its free-dof numbering is the [`DofMap`]'s, the same as an `ElasticModel` built from the
+/// same mesh and supports, so the two give the same contact problem; its element matrices
+/// and loads are fem-core's kernels, called as the `ElasticModel` calls them; its solves
+/// agree with the direct path to the solver's tolerance ([`LinearSolver`]).
 ///
 /// # Examples
 /// Run under `mpirun -n 2` (or alone): `crates/petsc/examples/petsc_check.rs` builds the
-/// block, steps Coulomb contact on it and compares with the direct path.
+/// block, steps Coulomb contact on it and compares with the direct path (and the seed's
+/// pile, axisymmetric, in `examples/support/pile.rs`).
 /// ```no_run
 /// use bipotential_petsc::{LinearSolver, Petsc, PetscStructure};
 /// use fem_core::solid::generate::{box_mesh, lines};
@@ -59,25 +74,39 @@ use std::marker::PhantomData;
 ///     Ok(())
 /// });
 /// ```
-pub struct PetscStructure<'p> {
-    mesh: SolidMesh,
+pub struct PetscStructure<'p, const D: usize = 3>
+where
+    Dim<D>: Space,
+{
+    mesh: Mesh<D>,
+    setting: Setting<D>,
+    materials: BTreeMap<u32, Material>,
     supports: Supports,
-    dofs: DofMap<3>,
+    dofs: DofMap<D>,
     partition: Partition,
     rank: usize,
     system: System,
-    /// `K_fp` of this rank's elements: (distributed row, node, component, value).
-    coupling: Vec<(PetscInt, usize, Component, f64)>,
-    /// Reference nodal forces, `3 × node_count` (rank 0's are the ones applied).
+    /// `K_fp` of this rank's elements.
+    coupling: Vec<Coupling>,
+    /// Reference external forces, `D × node_count` (rank 0's are the ones applied).
     load: Vec<f64>,
+    /// The initial stress's internal forces, `D × node_count` (not scaled).
+    initial_force: Vec<f64>,
+    /// Outward normals of the boundary nodes, computed at the first request.
+    normals: OnceLock<Vec<Option<[f64; D]>>>,
     solves: Cell<usize>,
     iterations: Cell<usize>,
     _petsc: PhantomData<&'p Petsc>,
 }
 
-impl core::fmt::Debug for PetscStructure<'_> {
+impl<const D: usize> core::fmt::Debug for PetscStructure<'_, D>
+where
+    Dim<D>: Space,
+{
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("PetscStructure")
+            .field("dimension", &<Dim<D> as Space>::NAME)
+            .field("setting", &self.setting)
             .field("nodes", &self.mesh.node_count())
             .field("free_dofs", &self.dofs.free_count())
             .field("rank", &self.rank)
@@ -86,7 +115,7 @@ impl core::fmt::Debug for PetscStructure<'_> {
     }
 }
 
-impl<'p> PetscStructure<'p> {
+impl<'p> PetscStructure<'p, 3> {
     /// Partitions the mesh over the ranks ([`Partition::slabs`]), assembles each rank's
     /// elements into the distributed stiffness and sets up the solver. Collective.
     ///
@@ -100,6 +129,61 @@ impl<'p> PetscStructure<'p> {
     pub fn new(
         petsc: &'p Petsc,
         mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        solver: LinearSolver,
+    ) -> Result<Self, PetscError> {
+        Self::build(petsc, mesh, (), materials, supports, solver)
+    }
+}
+
+impl<'p> PetscStructure<'p, 2> {
+    /// The 2D body under `idealization` (plane strain, plane stress with its thickness,
+    /// axisymmetry with `(r, z)` coordinates, forces per radian): as [`PetscStructure::new`].
+    /// Collective.
+    ///
+    /// # Errors
+    /// As [`PetscStructure::new`], and [`FemError::InvalidParameter`] for a plane-stress
+    /// thickness that is not finite and positive, [`FemError::NegativeRadius`] in axisymmetry
+    /// for a node at `r < 0`.
+    pub fn plane(
+        petsc: &'p Petsc,
+        mesh: Mesh<2>,
+        idealization: Idealization,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        solver: LinearSolver,
+    ) -> Result<Self, PetscError> {
+        match idealization {
+            Idealization::PlaneStress { thickness }
+                if !(thickness.is_finite() && thickness > 0.0) =>
+            {
+                return Err(FemError::InvalidParameter {
+                    name: "thickness",
+                    value: thickness,
+                    expected: "a finite value > 0",
+                }
+                .into());
+            }
+            Idealization::Axisymmetric => {
+                if let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0) {
+                    return Err(FemError::NegativeRadius { node, r: p[0] }.into());
+                }
+            }
+            _ => {}
+        }
+        Self::build(petsc, mesh, idealization, materials, supports, solver)
+    }
+}
+
+impl<'p, const D: usize> PetscStructure<'p, D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    fn build(
+        petsc: &'p Petsc,
+        mesh: Mesh<D>,
+        setting: Setting<D>,
         materials: &[(u32, Material)],
         supports: Supports,
         solver: LinearSolver,
@@ -120,40 +204,52 @@ impl<'p> PetscStructure<'p> {
                 .into());
             }
         }
-        let dofs = DofMap::<3>::numbered(mesh.node_count(), &supports)?;
+        let dofs = DofMap::<D>::numbered(mesh.node_count(), &supports)?;
         let (rank, size) = (petsc.rank(), petsc.size());
         let partition = Partition::slabs(&mesh, &dofs, size);
-        let (d_nnz, o_nnz) = preallocation(&mesh, &dofs, &partition, rank)?;
+        let (d_nnz, o_nnz) = assembly::preallocation(&mesh, &dofs, &partition, rank)?;
         let owned = partition.offsets[rank + 1] - partition.offsets[rank];
         let mut system = System::new(owned, dofs.free_count(), &d_nnz, &o_nnz)?;
-        let coupling = assemble(&mesh, &materials, &dofs, &partition, rank, &system)?;
+        let body = Body {
+            mesh: &mesh,
+            setting: &setting,
+            materials: &materials,
+            dofs: &dofs,
+            partition: &partition,
+        };
+        let coupling = assembly::assemble(&body, rank, &system)?;
         if matches!(solver, LinearSolver::CgGamg { .. }) {
-            let modes = rigid_modes(&mesh, &dofs, &partition);
+            let modes = assembly::rigid_modes(&mesh, &setting, &dofs, &partition);
             system.set_near_null_space(&modes, partition.offsets[rank])?;
         }
         system.assemble_and_set_up(solver)?;
-        let load = vec![0.0; 3 * mesh.node_count()];
+        let n = D * mesh.node_count();
         Ok(Self {
             mesh,
+            setting,
+            materials,
             supports,
             dofs,
             partition,
             rank,
             system,
             coupling,
-            load,
+            load: vec![0.0; n],
+            initial_force: vec![0.0; n],
+            normals: OnceLock::new(),
             solves: Cell::new(0),
             iterations: Cell::new(0),
             _petsc: PhantomData,
         })
     }
 
-    /// Adds a force on `node` to the reference load (scaled by the load factor).
+    /// Adds a force on `node` (`D` components; in 2D per unit thickness, thickness, or
+    /// radian as the idealisation says) to the reference load (scaled by the load factor).
     ///
     /// # Errors
     /// [`FemError::UnknownNode`] for a node outside the mesh, [`FemError::InvalidParameter`]
     /// for a non-finite force.
-    pub fn add_nodal_force(&mut self, node: usize, force: [f64; 3]) -> Result<(), PetscError> {
+    pub fn add_nodal_force(&mut self, node: usize, force: [f64; D]) -> Result<(), PetscError> {
         if node >= self.mesh.node_count() {
             return Err(FemError::UnknownNode {
                 node,
@@ -162,18 +258,126 @@ impl<'p> PetscStructure<'p> {
             }
             .into());
         }
+        for f in force {
+            finite("nodal force", f)?;
+        }
         for (c, f) in force.into_iter().enumerate() {
-            if !f.is_finite() {
-                return Err(FemError::InvalidParameter {
-                    name: "nodal force",
-                    value: f,
-                    expected: "a finite number",
-                }
-                .into());
-            }
-            self.load[3 * node + c] += f;
+            self.load[D * node + c] += f;
         }
         Ok(())
+    }
+
+    /// Adds the self-weight of every region (unit weight of its material, along the last
+    /// coordinate downwards: `−y` in 2D, `−z` in 3D) to the reference load, as
+    /// [`ElasticModel::add_self_weight`](fem_core::ElasticModel::add_self_weight) does.
+    ///
+    /// # Errors
+    /// [`FemError::InvertedElement`] for a curved element with a non-positive Jacobian.
+    pub fn add_self_weight(&mut self) -> Result<(), PetscError> {
+        let force = self.element_forces(|element, e, coords, setting, f_e| {
+            let gamma = self.materials[&self.mesh.regions()[e]].unit_weight();
+            let mut g = [0.0; D];
+            g[D - 1] = -gamma;
+            element.body_force_into(e, coords, setting, &|_| g, f_e)
+        })?;
+        self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
+        Ok(())
+    }
+
+    /// Adds a body force `b(x)` (force per volume, global frame) over the whole mesh to the
+    /// reference load, integrated with the element's load rule.
+    ///
+    /// # Errors
+    /// [`FemError::InvertedElement`]; [`FemError::InvalidParameter`] if `b` returns a
+    /// non-finite value.
+    pub fn add_body_force(&mut self, b: impl Fn([f64; D]) -> [f64; D]) -> Result<(), PetscError> {
+        let force = self.element_forces(|element, e, coords, setting, f_e| {
+            element.body_force_into(e, coords, setting, &b, f_e)
+        })?;
+        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
+            finite("body force", value)?;
+        }
+        self.load.iter_mut().zip(force).for_each(|(l, f)| *l += f);
+        Ok(())
+    }
+
+    /// Sets the initial stress field `σ₀` of every region (replacing any previous one): its
+    /// internal forces `−∫ Bᵀ σ₀ w dV` enter every free response, unscaled, as in
+    /// [`ElasticModel::set_initial_stress`](fem_core::ElasticModel::set_initial_stress).
+    ///
+    /// # Errors
+    /// As [`PetscStructure::set_initial_stress_by_region`].
+    pub fn set_initial_stress(&mut self, sigma_0: StressField<D>) -> Result<(), PetscError> {
+        let regions: BTreeSet<u32> = self.mesh.regions().iter().copied().collect();
+        let fields: Vec<_> = regions.into_iter().map(|r| (r, sigma_0.clone())).collect();
+        self.set_initial_stress_by_region(&fields)
+    }
+
+    /// Sets one initial stress field per region (replacing any previous one); elements of
+    /// regions not listed start unstressed (a geostatic soil around an unstressed pile).
+    ///
+    /// # Errors
+    /// [`FemError::UnknownRegion`] for a region no element has; [`FemError::InvertedElement`];
+    /// [`FemError::InvalidParameter`] if `σ₀` is not finite at a quadrature point.
+    pub fn set_initial_stress_by_region(
+        &mut self,
+        fields: &[(u32, StressField<D>)],
+    ) -> Result<(), PetscError> {
+        let regions = self.mesh.regions();
+        if let Some((region, _)) = fields.iter().find(|(r, _)| !regions.contains(r)) {
+            return Err(FemError::UnknownRegion { region: *region }.into());
+        }
+        let force = self.element_forces(|element, e, coords, setting, f_e| {
+            match fields.iter().find(|(r, _)| *r == regions[e]) {
+                Some((_, sigma_0)) => {
+                    element.initial_stress_force_into(e, coords, setting, &**sigma_0, f_e)
+                }
+                None => Ok(()),
+            }
+        })?;
+        if let Some(&value) = force.iter().find(|v| !v.is_finite()) {
+            finite("initial stress", value)?;
+        }
+        self.initial_force = force;
+        Ok(())
+    }
+
+    /// Removes every reference load (nodal forces, body forces, self-weight); the initial
+    /// stress stays.
+    pub fn clear_loads(&mut self) {
+        self.load.fill(0.0);
+    }
+
+    /// Integrates an element-level force over every element of the mesh (on every rank, so
+    /// that rank 0 holds the whole vector it applies) and scatters it into nodal components
+    /// (`D × node_count`); `f_e` is zeroed before each element.
+    fn element_forces(
+        &self,
+        integrate: impl Fn(
+            &dyn Element<D>,
+            usize,
+            &[[f64; D]],
+            &Setting<D>,
+            &mut [f64],
+        ) -> Result<(), FemError>,
+    ) -> Result<Vec<f64>, FemError> {
+        let element = self.mesh.built_in_element();
+        let mut force = vec![0.0; D * self.mesh.node_count()];
+        let mut coords = Vec::with_capacity(element.node_count());
+        let mut f_e = Vec::new();
+        for e in 0..self.mesh.element_count() {
+            let cell = self.mesh.element(e);
+            self.mesh.element_coords_into(e, &mut coords);
+            f_e.resize(D * cell.len(), 0.0);
+            f_e.fill(0.0);
+            integrate(element, e, &coords, &self.setting, &mut f_e)?;
+            for (a, &n) in cell.iter().enumerate() {
+                for c in 0..D {
+                    force[D * n + c] += f_e[D * a + c];
+                }
+            }
+        }
+        Ok(force)
     }
 
     /// Changes the value of prescribed displacements (no reassembly). Constraining a free
@@ -201,8 +405,13 @@ impl<'p> PetscStructure<'p> {
     }
 
     /// The mesh.
-    pub fn mesh(&self) -> &SolidMesh {
+    pub fn mesh(&self) -> &Mesh<D> {
         &self.mesh
+    }
+
+    /// The kinematic setting: the [`Idealization`] in 2D, `()` in 3D.
+    pub fn setting(&self) -> &Setting<D> {
+        &self.setting
     }
 
     /// The partition of the mesh over the ranks.
@@ -239,159 +448,23 @@ impl<'p> PetscStructure<'p> {
     }
 }
 
-/// The six rigid-body motions (three translations, three rotations about the centroid) on
-/// the free dofs, in the distributed numbering, orthonormalised (modified Gram–Schmidt; a mode
-/// the supports make dependent on the others is dropped): GAMG's near-null space, without
-/// which its coarse spaces miss the rotations and CG needs several times the iterations.
-fn rigid_modes(mesh: &SolidMesh, dofs: &DofMap<3>, partition: &Partition) -> Vec<Vec<f64>> {
-    let n = dofs.free_count();
-    let nodes = mesh.nodes();
-    let mut centre = [0.0; 3];
-    for p in nodes {
-        for a in 0..3 {
-            centre[a] += p[a] / nodes.len() as f64;
-        }
+/// [`FemError::InvalidParameter`] unless `value` is finite.
+fn finite(name: &'static str, value: f64) -> Result<f64, FemError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(FemError::InvalidParameter {
+            name,
+            value,
+            expected: "a finite number",
+        })
     }
-    let mut modes: Vec<Vec<f64>> = Vec::new();
-    for k in 0..6 {
-        let mut v = vec![0.0; n];
-        for (node, p) in nodes.iter().enumerate() {
-            let x = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
-            // translations e_k; rotations ω × x with ω = e_(k−3)
-            let u = match k {
-                0..3 => {
-                    let mut e = [0.0; 3];
-                    e[k] = 1.0;
-                    e
-                }
-                3 => [0.0, -x[2], x[1]],
-                4 => [x[2], 0.0, -x[0]],
-                _ => [-x[1], x[0], 0.0],
-            };
-            for (c, d) in dofs.free_dofs(node).into_iter().enumerate() {
-                if let Some(i) = d {
-                    v[partition.row[i]] = u[c];
-                }
-            }
-        }
-        let before = v.iter().map(|a| a * a).sum::<f64>().sqrt();
-        for m in &modes {
-            let dot: f64 = v.iter().zip(m).map(|(a, b)| a * b).sum();
-            v.iter_mut().zip(m).for_each(|(a, b)| *a -= dot * b);
-        }
-        let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
-        if norm > 1e-8 * before {
-            v.iter_mut().for_each(|a| *a /= norm);
-            modes.push(v);
-        }
-    }
-    modes
 }
 
-/// Nonzeros per owned row in the diagonal block (columns this rank owns) and off it: a row of
-/// node `n` couples with every free dof of the nodes sharing an element with `n`.
-fn preallocation(
-    mesh: &SolidMesh,
-    dofs: &DofMap<3>,
-    partition: &Partition,
-    rank: usize,
-) -> Result<(Vec<PetscInt>, Vec<PetscInt>), PetscError> {
-    let owned = partition.offsets[rank + 1] - partition.offsets[rank];
-    let (mut d_nnz, mut o_nnz) = (vec![0; owned], vec![0; owned]);
-    let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); mesh.node_count()];
-    for e in 0..mesh.element_count() {
-        let cell = mesh.element(e);
-        for &n in cell {
-            if partition.node_rank[n] == rank {
-                neighbours[n].extend_from_slice(cell);
-            }
-        }
-    }
-    for (n, list) in neighbours.iter_mut().enumerate() {
-        if partition.node_rank[n] != rank {
-            continue;
-        }
-        list.sort_unstable();
-        list.dedup();
-        let (mut d, mut o) = (0, 0);
-        for &m in list.iter() {
-            let free = dofs.free_dofs(m).into_iter().flatten().count();
-            if partition.node_rank[m] == rank {
-                d += free;
-            } else {
-                o += free;
-            }
-        }
-        for i in dofs.free_dofs(n).into_iter().flatten() {
-            let local = partition.row[i] - partition.offsets[rank];
-            d_nnz[local] = int("nonzeros of a row", d)?;
-            o_nnz[local] = int("nonzeros of a row", o)?;
-        }
-    }
-    Ok((d_nnz, o_nnz))
-}
-
-/// Adds this rank's element stiffnesses into the matrix; returns their `K_fp` entries.
-fn assemble(
-    mesh: &SolidMesh,
-    materials: &BTreeMap<u32, Material>,
-    dofs: &DofMap<3>,
-    partition: &Partition,
-    rank: usize,
-    system: &System,
-) -> Result<Vec<(PetscInt, usize, Component, f64)>, PetscError> {
-    let element = mesh.built_in_element();
-    let mut k_e = nalgebra::DMatrix::zeros(0, 0);
-    let mut coords = Vec::new();
-    let (mut rows, mut local, mut values) = (Vec::new(), Vec::new(), Vec::new());
-    let mut coupling = Vec::new();
-    for e in (0..mesh.element_count()).filter(|&e| partition.element_rank[e] == rank) {
-        mesh.element_coords_into(e, &mut coords);
-        let region = mesh.regions()[e];
-        let material = &materials[&region];
-        element.stiffness_into(e, &coords, material, &(), &mut k_e)?;
-        if k_e.iter().any(|v| !v.is_finite()) {
-            return Err(FemError::NonFiniteStiffness {
-                element: e,
-                region,
-                young: material.young(),
-            }
-            .into());
-        }
-        rows.clear();
-        local.clear();
-        let cell = mesh.element(e);
-        for (a, &n) in cell.iter().enumerate() {
-            for (c, dof) in dofs.dofs(n).into_iter().enumerate() {
-                if let Dof::Free(i) = dof {
-                    rows.push(int("free dof", partition.row[i])?);
-                    local.push(3 * a + c);
-                }
-            }
-        }
-        values.clear();
-        values.extend(
-            local
-                .iter()
-                .flat_map(|&i| local.iter().map(move |&j| (i, j)))
-                .map(|(i, j)| k_e[(i, j)]),
-        );
-        system.add_block(&rows, &values)?;
-        for (&row, &i) in rows.iter().zip(&local) {
-            for (b, &m) in cell.iter().enumerate() {
-                for (c, dof) in dofs.dofs(m).into_iter().enumerate() {
-                    let value = k_e[(i, 3 * b + c)];
-                    if matches!(dof, Dof::Prescribed(_)) && value != 0.0 {
-                        coupling.push((row, m, Component::all::<3>()[c], value));
-                    }
-                }
-            }
-        }
-    }
-    Ok(coupling)
-}
-
-impl Structure<3> for PetscStructure<'_> {
+impl<const D: usize> Structure<D> for PetscStructure<'_, D>
+where
+    Dim<D>: ModelSpace<D>,
+{
     fn dof_count(&self) -> usize {
         self.dofs.free_count()
     }
@@ -400,16 +473,27 @@ impl Structure<3> for PetscStructure<'_> {
         self.mesh.node_count()
     }
 
-    fn node_position(&self, node: usize) -> [f64; 3] {
+    fn node_position(&self, node: usize) -> [f64; D] {
         self.mesh.nodes()[node]
     }
 
-    fn node_dofs(&self, node: usize) -> [Option<usize>; 3] {
+    fn node_dofs(&self, node: usize) -> [Option<usize>; D] {
         self.dofs.free_dofs(node)
     }
 
-    fn prescribed_displacement(&self, node: usize) -> [f64; 3] {
-        Component::all::<3>().map(|c| self.supports.value(node, c).unwrap_or(0.0))
+    fn prescribed_displacement(&self, node: usize) -> [f64; D] {
+        Component::all::<D>().map(|c| self.supports.value(node, c).unwrap_or(0.0))
+    }
+
+    fn idealization(&self) -> Idealization {
+        <Dim<D> as Space>::idealization(&self.setting)
+            .copied()
+            .unwrap_or(Idealization::PlaneStrain)
+    }
+
+    fn outward_normal(&self, node: usize) -> Option<[f64; D]> {
+        self.normals
+            .get_or_init(|| <Dim<D> as ModelSpace<D>>::outward_normals(&self.mesh))[node]
     }
 
     /// Solves the columns one after the other with the one KSP (its preconditioner built
@@ -439,8 +523,8 @@ impl Structure<3> for PetscStructure<'_> {
         Ok(())
     }
 
-    /// `f = factor · f_ext − K_fp ū`: the forces from rank 0, `K_fp ū` from each rank's
-    /// elements.
+    /// `f = factor · f_ext + f_σ₀ − K_fp ū`: the forces from rank 0, `K_fp ū` from each
+    /// rank's elements.
     fn free_response_into(&self, load_factor: f64, u: &mut [f64]) -> Result<(), FemError> {
         assert_eq!(u.len(), self.dof_count(), "u length");
         if !load_factor.is_finite() {
@@ -459,7 +543,9 @@ impl Structure<3> for PetscStructure<'_> {
             for n in 0..self.mesh.node_count() {
                 for (c, d) in self.dofs.free_dofs(n).into_iter().enumerate() {
                     if let Some(i) = d {
-                        whole[self.partition.row[i]] += load_factor * self.load[3 * n + c];
+                        let k = D * n + c;
+                        whole[self.partition.row[i]] +=
+                            load_factor * self.load[k] + self.initial_force[k];
                     }
                 }
             }
