@@ -4,11 +4,14 @@
 //! mpirun -n N petsc_check block [mumps]   3D block, Coulomb contact (μ = 0.3) on a rigid plane:
 //!                                          pressed, then its top sheared until every contact slides
 //! mpirun -n N petsc_check hertz [mumps]   rigid sphere on a block (the quarter Hertz model)
+//! mpirun -n N petsc_check pile [mumps] [seed] [plane]
+//!                                          the seed's pile pull-out, axisymmetric, RCCM
+//!                                          interface (examples/support/pile.rs)
 //! mpirun -n N petsc_check fail            rank N−1 fails: every rank must end, with its message
 //! mpirun -n N petsc_check scale CELLS     the block at CELLS³ Tet10 cells: times and peak RSS
 //! ```
-//! `block` and `hertz` step the same scene with the [`PetscStructure`] and with fem-core's
-//! direct `SolidModel` (on rank 0) and print the largest difference of the reactions and the
+//! `block`, `hertz` and `pile` step the same scene with the [`PetscStructure`] and with
+//! fem-core's direct `SolidModel` (`LinearElasticModel` for the pile) on rank 0 and print the largest difference of the reactions and the
 //! contact nodes' displacements, relative to the largest value of each; above 1e-8 the program
 //! fails (on every rank, through `Petsc::or_abort`).
 
@@ -23,6 +26,9 @@ use fem_core::solid::{SolidKind, SolidMesh, SolidModel};
 use fem_core::{Component, Material, Structure, Supports};
 use std::error::Error;
 use std::time::Instant;
+
+#[path = "support/pile.rs"]
+mod pile;
 
 type Res<T> = Result<T, Box<dyn Error>>;
 
@@ -277,6 +283,10 @@ fn main() {
         match args.first().map(String::as_str) {
             Some("block") => compare(&petsc, "block", block(4)?, solver),
             Some("hertz") => compare(&petsc, "hertz", hertz()?, solver),
+            Some("pile") => {
+                let has = |word: &str| args.iter().any(|a| a == word);
+                pile::compare(&petsc, has("seed"), has("plane"), solver)
+            }
             Some("fail") => {
                 if petsc.rank() + 1 == petsc.size() {
                     return Err(format!("a deliberate failure on rank {}", petsc.rank()).into());
@@ -292,7 +302,10 @@ fn main() {
                     .ok_or("scale CELLS")?;
                 scale(&petsc, cells, solver)
             }
-            _ => Err("usage: petsc_check block|hertz|fail|scale CELLS [mumps]".into()),
+            _ => Err(
+                "usage: petsc_check block|hertz|pile|fail|scale CELLS [mumps] [seed] [plane]"
+                    .into(),
+            ),
         }
     });
 }

@@ -5,17 +5,16 @@
 //! [`Structure`](fem_core::Structure) (3D, or 2D in plane strain, plane stress or
 //! axisymmetry) with a stiffness assembled as a distributed PETSc MPIAIJ matrix from
 //! fem-core's element kernels, each rank assembling its own elements of a geometric
-//! [`Partition`], and solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`). The
-//! contact solver
-//! (`contact-solver`) runs unchanged on every rank: the structure takes its right-hand sides
-//! from rank 0 and returns the same solution to every rank, so candidates, `F*` and the local
-//! solve are rank 0's, broadcast.
+//! [`Partition`], and solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`).
+//! The contact solver (`contact-solver`) runs unchanged on every rank: the structure takes
+//! its right-hand sides from rank 0 and returns the same solution to every rank, so
+//! candidates, `F*` and the local solve are rank 0's, broadcast.
 //!
 //! A distributed program is the serial one, run by `mpirun -n N`, with three changes:
-//! `Petsc::init` first, `PetscStructure::new` (or `::plane` in 2D) in place of `SolidModel::new` (or
-//! `LinearElasticModel::new`), and the body
-//! inside `Petsc::or_abort` so that a rank that fails ends every rank with its error instead
-//! of leaving the others waiting. `examples/petsc_check.rs` is such a program.
+//! `Petsc::init` first, `PetscStructure::new` (or `PetscStructure::plane` in 2D) in place of
+//! `SolidModel::new` (or `LinearElasticModel::new`), and the body inside `Petsc::or_abort` so
+//! that a rank that fails ends every rank with its error instead of leaving the others
+//! waiting. `examples/petsc_check.rs` is such a program.
 //!
 //! Without the feature the crate holds the partition only (pure Rust), so that the default
 //! build and `cargo test --workspace` need neither MPI nor PETSc.

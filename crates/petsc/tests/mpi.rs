@@ -6,6 +6,13 @@
 //!   reactions and the contact nodes' displacements of both steps equal the direct path's
 //!   (fem-core's `SolidModel`, Cholesky) to 1e-8 relative (the example checks; CG stops at a
 //!   residual of 1e-12 relative, and 4e-11 is measured).
+//! - **The seed's pile pull-out** (chapter 6, Plancoët; `examples/support/pile.rs`):
+//!   axisymmetric P2, self-weight and the geostatic K0 stress, the RCCM shaft; the geostatic
+//!   step and 4 increments of the head lifted to 15 mm on the coarse mesh (8 shaft cells).
+//!   The head load–displacement curve, every contact's reactions and displacements equal the
+//!   direct path's (fem-core's `LinearElasticModel`) to 1e-8 relative (the example checks;
+//!   2e-10 is measured, CG stopping at 1e-12). The same meridian in plane strain checks the
+//!   other 2D setting.
 //! - **A failing rank** ends every rank with its message (`MPI_Abort`), where the other rank
 //!   waits in a barrier: a hang would be a timeout.
 //!
@@ -77,6 +84,26 @@ fn issue_41_block_on_one_and_two_ranks_matches_the_direct_path() {
         );
         // both steps printed, each within 1e-8 (checked by the example, which fails else)
         assert_eq!(stdout.matches("relative to the direct path").count(), 2);
+    }
+}
+
+#[test]
+fn issue_41_pile_on_one_and_two_ranks_matches_the_direct_path() {
+    for ranks in [1, 2] {
+        for (args, name) in [
+            (&["pile"][..], "pile"),
+            (&["pile", "plane"], "pile plane strain"),
+        ] {
+            let out = mpirun(ranks, args, Duration::from_secs(600)).expect("ends");
+            let stdout = String::from_utf8_lossy(&out.stdout);
+            assert!(
+                out.status.success() && stdout.contains(&format!("{name}: OK")),
+                "{ranks} ranks, {name}: {stdout}\n{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            // the whole curve compared, within 1e-8 (checked by the example, which fails else)
+            assert!(stdout.contains("relative to the direct path"), "{stdout}");
+        }
     }
 }
 

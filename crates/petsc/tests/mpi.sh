@@ -2,7 +2,8 @@
 # The distributed checks of bipotential-petsc under mpirun, 1 and 2 ranks (the CI step runs
 # it; tests/mpi.rs runs the same through `cargo test --features petsc`). Each check compares
 # with the direct path to 1e-8 relative and exits non-zero otherwise; `fail` must end every
-# rank with the failing rank's message, within the timeout, not hang. Hertz runs with MUMPS:
+# rank with the failing rank's message, within the timeout, not hang. `pile` is the seed's
+# axisymmetric pile pull-out (RCCM shaft, geostatic stress). Hertz runs with MUMPS:
 # its 441 candidates make ~900 solves for F*, ~0.2 s each with CG+GAMG here (minutes).
 #   usage: crates/petsc/tests/mpi.sh [path/to/petsc_check]
 set -euo pipefail
@@ -17,7 +18,7 @@ mpi=(mpirun --oversubscribe --mca mpi_yield_when_idle 1)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 # CHECKS: which scenes (the CI step leaves out `block` and `fail`, which tests/mpi.rs runs)
-checks=${CHECKS:-block block-mumps hertz-mumps fail}
+checks=${CHECKS:-block block-mumps hertz-mumps pile pile-mumps fail}
 for n in 1 2; do
   for scene in $checks; do
     [ "$scene" = fail ] && continue
