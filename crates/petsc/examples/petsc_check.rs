@@ -7,6 +7,7 @@
 //! mpirun -n N petsc_check pile [mumps] [seed] [plane]
 //!                                          the seed's pile pull-out, axisymmetric, RCCM
 //!                                          interface (examples/support/pile.rs)
+//! mpirun -n N petsc_check errors          the 2D constructor and loads refuse bad data
 //! mpirun -n N petsc_check fail            rank N−1 fails: every rank must end, with its message
 //! mpirun -n N petsc_check scale CELLS     the block at CELLS³ Tet10 cells: times and peak RSS
 //! ```
@@ -287,6 +288,7 @@ fn main() {
                 let has = |word: &str| args.iter().any(|a| a == word);
                 pile::compare(&petsc, has("seed"), has("plane"), solver)
             }
+            Some("errors") => pile::errors(&petsc),
             Some("fail") => {
                 if petsc.rank() + 1 == petsc.size() {
                     return Err(format!("a deliberate failure on rank {}", petsc.rank()).into());
@@ -303,7 +305,7 @@ fn main() {
                 scale(&petsc, cells, solver)
             }
             _ => Err(
-                "usage: petsc_check block|hertz|pile|fail|scale CELLS [mumps] [seed] [plane]"
+                "usage: petsc_check block|hertz|pile|errors|fail|scale CELLS [mumps] [seed] [plane]"
                     .into(),
             ),
         }

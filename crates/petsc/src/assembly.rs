@@ -219,3 +219,157 @@ where
     }
     Ok(coupling)
 }
+
+#[cfg(test)]
+mod tests {
+    //! The parts of the assembly that need no MPI: GAMG's near-null space and the
+    //! preallocation, against the serial element matrices (fem-core's kernels).
+    use super::*;
+    use fem_core::generate::{RectangleSpec, rectangle};
+    use fem_core::{ElementKind, Supports};
+    use nalgebra::DMatrix;
+
+    fn plane_mesh() -> Mesh<2> {
+        let mut spec = RectangleSpec::new([0.5, 2.0], [0.0, 1.0], 3, 2);
+        spec.kind = ElementKind::Tri6;
+        rectangle(&spec).unwrap()
+    }
+
+    /// The dense stiffness over the free dofs in the distributed numbering (one rank).
+    fn dense<const D: usize>(
+        mesh: &Mesh<D>,
+        setting: &Setting<D>,
+        dofs: &DofMap<D>,
+        partition: &Partition,
+    ) -> DMatrix<f64>
+    where
+        Dim<D>: Space,
+    {
+        let n = dofs.free_count();
+        let mut k = DMatrix::zeros(n, n);
+        let material = Material::new(100.0, 0.3, 0.0).unwrap();
+        let (mut k_e, mut coords) = (DMatrix::zeros(0, 0), Vec::new());
+        for e in 0..mesh.element_count() {
+            mesh.element_coords_into(e, &mut coords);
+            mesh.built_in_element()
+                .stiffness_into(e, &coords, &material, setting, &mut k_e)
+                .unwrap();
+            let cell = mesh.element(e);
+            for (a, &p) in cell.iter().enumerate() {
+                for (b, &q) in cell.iter().enumerate() {
+                    for (c, i) in dofs.free_dofs(p).into_iter().enumerate() {
+                        for (d, j) in dofs.free_dofs(q).into_iter().enumerate() {
+                            if let (Some(i), Some(j)) = (i, j) {
+                                k[(partition.row[i], partition.row[j])] +=
+                                    k_e[(D * a + c, D * b + d)];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        k
+    }
+
+    /// `‖K m‖ / ‖K‖` for each mode.
+    fn energies(k: &DMatrix<f64>, modes: &[Vec<f64>]) -> Vec<f64> {
+        modes
+            .iter()
+            .map(|m| (k * nalgebra::DVector::from_column_slice(m)).norm() / k.norm())
+            .collect()
+    }
+
+    fn assert_orthonormal(modes: &[Vec<f64>]) {
+        for (a, m) in modes.iter().enumerate() {
+            for (b, l) in modes.iter().enumerate() {
+                let dot: f64 = m.iter().zip(l).map(|(x, y)| x * y).sum();
+                // modified Gram–Schmidt on a few hundred entries: round-off only
+                assert!(
+                    (dot - f64::from(u8::from(a == b))).abs() < 1e-12,
+                    "{a} {b} {dot}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn plane_strain_modes_are_the_rigid_motions_works() {
+        let mesh = plane_mesh();
+        let dofs = DofMap::<2>::numbered(mesh.node_count(), &Supports::new()).unwrap();
+        let partition = Partition::slabs(&mesh, &dofs, 1);
+        let setting = Idealization::PlaneStrain;
+        let modes = rigid_modes(&mesh, &setting, &dofs, &partition);
+        assert_eq!(modes.len(), 3, "two translations and the rotation");
+        assert_orthonormal(&modes);
+        let k = dense(&mesh, &setting, &dofs, &partition);
+        for e in energies(&k, &modes) {
+            // exact rigid motions: K m vanishes to round-off
+            assert!(e < 1e-12, "{e}");
+        }
+    }
+
+    #[test]
+    fn axisymmetric_modes_are_the_two_translations_works() {
+        let mesh = plane_mesh();
+        let dofs = DofMap::<2>::numbered(mesh.node_count(), &Supports::new()).unwrap();
+        let partition = Partition::slabs(&mesh, &dofs, 1);
+        let setting = Idealization::Axisymmetric;
+        let modes = rigid_modes(&mesh, &setting, &dofs, &partition);
+        assert_eq!(modes.len(), 2, "u_r and u_z, no rotation");
+        assert_orthonormal(&modes);
+        let k = dense(&mesh, &setting, &dofs, &partition);
+        let e = energies(&k, &modes);
+        // u_z is rigid; u_r = const strains the hoop (u_r / r): not in the kernel
+        assert!(e[1] < 1e-12 && e[0] > 1e-3, "{e:?}");
+    }
+
+    #[test]
+    fn supports_drop_the_modes_they_remove_works() {
+        let mesh = plane_mesh();
+        let mut supports = Supports::new();
+        // every x fixed: only the y dofs are free
+        let all: Vec<usize> = (0..mesh.node_count()).collect();
+        supports.fix(&all, Component::X);
+        let dofs = DofMap::<2>::numbered(mesh.node_count(), &supports).unwrap();
+        let partition = Partition::slabs(&mesh, &dofs, 1);
+        let modes = rigid_modes(&mesh, &Idealization::PlaneStrain, &dofs, &partition);
+        // the x translation vanishes (dropped); the y translation and the rotation's x·e_y
+        // part stay
+        assert_eq!(modes.len(), 2);
+        assert_orthonormal(&modes);
+    }
+
+    #[test]
+    fn preallocation_counts_every_coupled_dof_works() {
+        let mesh = plane_mesh();
+        let mut supports = Supports::new();
+        supports.fix(mesh.node_set("bottom").unwrap(), Component::Y);
+        let dofs = DofMap::<2>::numbered(mesh.node_count(), &supports).unwrap();
+        for ranks in [1, 2] {
+            let partition = Partition::slabs(&mesh, &dofs, ranks);
+            let k = dense(&mesh, &Idealization::PlaneStrain, &dofs, &partition);
+            for rank in 0..ranks {
+                let (d, o) = preallocation(&mesh, &dofs, &partition, rank).unwrap();
+                let (lo, hi) = (partition.offsets[rank], partition.offsets[rank + 1]);
+                for row in lo..hi {
+                    let nonzero = |cols: &mut dyn Iterator<Item = usize>| {
+                        cols.filter(|&c| k[(row, c)] != 0.0).count() as PetscInt
+                    };
+                    let (in_d, in_o) = (
+                        nonzero(&mut (lo..hi)),
+                        nonzero(&mut (0..lo).chain(hi..k.ncols())),
+                    );
+                    // the pattern holds every nonzero (and the structural zeros of P2)
+                    assert!(d[row - lo] >= in_d && o[row - lo] >= in_o, "row {row}");
+                    assert!(d[row - lo] > 0, "row {row} couples with itself");
+                }
+                if ranks == 2 {
+                    assert!(
+                        o.iter().any(|&v| v > 0),
+                        "rank {rank} couples with the other"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -13,6 +13,7 @@
 //!   direct path's (fem-core's `LinearElasticModel`) to 1e-8 relative (the example checks;
 //!   2e-10 is measured, CG stopping at 1e-12). The same meridian in plane strain checks the
 //!   other 2D setting.
+//! - **Errors** of the 2D constructor and the loads (`errors`): fem-core's variants.
 //! - **A failing rank** ends every rank with its message (`MPI_Abort`), where the other rank
 //!   waits in a barrier: a hang would be a timeout.
 //!
@@ -105,6 +106,19 @@ fn issue_41_pile_on_one_and_two_ranks_matches_the_direct_path() {
             assert!(stdout.contains("relative to the direct path"), "{stdout}");
         }
     }
+}
+
+#[test]
+fn issue_41_plane_structure_captures_errors() {
+    // negative radius, plane-stress thickness, missing material, tie, non-finite body force,
+    // unknown region and node: each with its documented variant (the example checks)
+    let out = mpirun(1, &["errors"], Duration::from_secs(120)).expect("ends");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.contains("errors: OK (7 cases)"),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]

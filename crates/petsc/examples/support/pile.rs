@@ -360,3 +360,134 @@ fn detach_tip(
     let tip_pile = on_tip.iter().map(|n| copy[n]).collect();
     Ok((out, tip_pile, on_tip))
 }
+
+/// `petsc_check errors`: the 2D constructor and the loads refuse bad data with fem-core's
+/// variants, naming the parameter, before any PETSc call that could hang a rank.
+pub fn errors(petsc: &Petsc) -> Res<()> {
+    let scene = scene([2, 2, 2])?;
+    let build = |mesh: Mesh, idealization, supports: Supports| {
+        PetscStructure::plane(
+            petsc,
+            mesh,
+            idealization,
+            &materials()?,
+            supports,
+            LinearSolver::default(),
+        )
+        .map_err(Box::<dyn std::error::Error>::from)
+    };
+    let mut checks: Vec<(&str, bool)> = Vec::new();
+    // a node at r < 0 in axisymmetry
+    let mut nodes = scene.mesh.nodes().to_vec();
+    nodes[3][0] = -1.0;
+    let moved = Mesh::new(
+        nodes,
+        scene.mesh.kind(),
+        scene.mesh.connectivity().to_vec(),
+        scene.mesh.regions().to_vec(),
+    )?;
+    let e = build(moved, Idealization::Axisymmetric, scene.supports.clone()).unwrap_err();
+    checks.push((
+        "negative radius",
+        matches!(
+            e.downcast_ref(),
+            Some(bipotential_petsc::PetscError::Fem(
+                FemError::NegativeRadius { node: 3, .. }
+            ))
+        ),
+    ));
+    let e = build(
+        scene.mesh.clone(),
+        Idealization::PlaneStress {
+            thickness: f64::NAN,
+        },
+        scene.supports.clone(),
+    )
+    .unwrap_err();
+    checks.push((
+        "thickness",
+        e.to_string().contains("thickness")
+            && matches!(
+                e.downcast_ref(),
+                Some(bipotential_petsc::PetscError::Fem(
+                    FemError::InvalidParameter {
+                        name: "thickness",
+                        ..
+                    }
+                ))
+            ),
+    ));
+    let e = PetscStructure::plane(
+        petsc,
+        scene.mesh.clone(),
+        Idealization::Axisymmetric,
+        &materials()?[..1],
+        scene.supports.clone(),
+        LinearSolver::default(),
+    )
+    .unwrap_err();
+    checks.push((
+        "missing material",
+        matches!(
+            e,
+            bipotential_petsc::PetscError::Fem(FemError::MissingMaterial { region: PILE, .. })
+        ),
+    ));
+    let mut tied = scene.supports.clone();
+    tied.tie(&scene.head, Component::X)?;
+    let e = build(scene.mesh.clone(), Idealization::Axisymmetric, tied).unwrap_err();
+    checks.push((
+        "tie",
+        matches!(
+            e.downcast_ref(),
+            Some(bipotential_petsc::PetscError::Unsupported { .. })
+        ),
+    ));
+    // the loads, on a structure that builds
+    let mut body = build(
+        scene.mesh.clone(),
+        Idealization::Axisymmetric,
+        scene.supports.clone(),
+    )?;
+    let e = body.add_body_force(|_| [0.0, f64::NAN]);
+    checks.push((
+        "body force",
+        matches!(
+            e,
+            Err(bipotential_petsc::PetscError::Fem(
+                FemError::InvalidParameter {
+                    name: "body force",
+                    ..
+                }
+            ))
+        ),
+    ));
+    let e = body.set_initial_stress_by_region(&[(7, geostatic(SOIL_WEIGHT, K0, 0.0))]);
+    checks.push((
+        "unknown region",
+        matches!(
+            e,
+            Err(bipotential_petsc::PetscError::Fem(
+                FemError::UnknownRegion { region: 7 }
+            ))
+        ),
+    ));
+    let e = body.add_nodal_force(body.mesh().node_count(), [1.0, 0.0]);
+    checks.push((
+        "unknown node",
+        matches!(
+            e,
+            Err(bipotential_petsc::PetscError::Fem(
+                FemError::UnknownNode { .. }
+            ))
+        ),
+    ));
+    let failed: Vec<&str> = checks.iter().filter(|c| !c.1).map(|c| c.0).collect();
+    if !failed.is_empty() {
+        return Err(format!("errors not reported as documented: {failed:?}").into());
+    }
+    if petsc.rank() == 0 {
+        println!("errors: OK ({} cases)", checks.len());
+    }
+    Ok(())
+}
