@@ -146,6 +146,30 @@ impl<'p> PetscStructure<'p, 2> {
     /// As [`PetscStructure::new`], and [`FemError::InvalidParameter`] for a plane-stress
     /// thickness that is not finite and positive, [`FemError::NegativeRadius`] in axisymmetry
     /// for a node at `r < 0`.
+    ///
+    /// # Examples
+    /// A soil column under its weight and the geostatic stress it starts with (seed eq. 6.1),
+    /// run under `mpirun` (the seed's pile: `examples/support/pile.rs`):
+    /// ```no_run
+    /// use bipotential_petsc::{LinearSolver, Petsc, PetscStructure};
+    /// use fem_core::generate::{RectangleSpec, rectangle};
+    /// use fem_core::{Component, Idealization, Material, Structure, Supports, geostatic};
+    /// let petsc = Petsc::init().unwrap();
+    /// petsc.or_abort(|| -> Result<(), Box<dyn std::error::Error>> {
+    ///     let mesh = rectangle(&RectangleSpec::new([0.0, 1.0], [-4.0, 0.0], 2, 8))?;
+    ///     let mut s = Supports::new();
+    ///     s.fix(mesh.node_set("left")?, Component::X).fix(mesh.node_set("right")?, Component::X)
+    ///         .fix(mesh.node_set("bottom")?, Component::Y);
+    ///     let soil = Material::new(3e4, 0.33, 20.0)?; // E, ν, γ
+    ///     let mut body = PetscStructure::plane(&petsc, mesh, Idealization::Axisymmetric,
+    ///         &[(0, soil)], s, LinearSolver::Mumps)?;
+    ///     body.add_self_weight()?;
+    ///     body.set_initial_stress(geostatic(20.0, 0.43, 0.0))?;
+    ///     let mut u = vec![0.0; body.dof_count()];
+    ///     body.free_response_into(1.0, &mut u)?; // σ₀ balances the weight: u ≈ 0
+    ///     Ok(())
+    /// });
+    /// ```
     pub fn plane(
         petsc: &'p Petsc,
         mesh: Mesh<2>,
