@@ -1,8 +1,10 @@
 //! The `bipo` command line (the binary `src/main.rs` calls [`main`]).
 
 use crate::app_dynamic as dynamic;
+use crate::app_mpi as mpi;
 use crate::app_plastic as plastic;
 use crate::error::{CliError, CliResult};
+use crate::raw::LinearSolverSpec;
 use crate::{build, error, out, run, templates};
 use clap::{Parser, Subcommand, ValueEnum};
 use fem_core::Dim;
@@ -203,26 +205,60 @@ pub fn main() -> ExitCode {
             out,
             quiet,
             threads,
-        } => with_scene(&scene, |loaded| {
-            faer::set_global_parallelism(parallelism(threads, None));
-            match build::build(loaded)? {
-                build::Built::Plane(study) => run_study(*study, loaded, out, quiet, threads),
-                build::Built::Solid(study) => run_study(*study, loaded, out, quiet, threads),
-                build::Built::PlaneDynamic(s) => {
-                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                }
-                build::Built::SolidDynamic(s) => {
-                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                }
-                build::Built::PlanePlastic(s) => {
-                    plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                }
-                build::Built::SolidPlastic(s) => {
-                    plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                }
+        } => {
+            // under mpirun: the ranks other than 0 print nothing (rank 0 prints each line and
+            // each scene error once; a failure during a distributed run ends every rank)
+            let (rank, size) = mpi::launch();
+            if rank > 0 {
+                out::silence();
             }
-        }),
+            with_scene(&scene, |loaded| {
+                let linear = mpi::linear_solver(loaded, size)?;
+                let petsc = match linear {
+                    LinearSolverSpec::Petsc(spec) => Some(spec),
+                    LinearSolverSpec::Direct => None,
+                };
+                let analysis = error::KeyPath::root().key("analysis");
+                faer::set_global_parallelism(parallelism(threads, None));
+                match (build::build(loaded)?, petsc) {
+                    (build::Built::Solid(study), Some(spec)) => {
+                        mpi::run_study(*study, loaded, (out, quiet), spec)
+                    }
+                    (build::Built::Plane(_), Some(_)) => {
+                        Err(mpi::unsupported(analysis.key("type"), "a 2D scene"))
+                    }
+                    (build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_), Some(_)) => {
+                        Err(mpi::unsupported(analysis.key("dynamic"), "a dynamic scene"))
+                    }
+                    (build::Built::PlanePlastic(_) | build::Built::SolidPlastic(_), Some(_)) => {
+                        Err(mpi::unsupported(
+                            error::KeyPath::root().key("materials"),
+                            "a plastic material",
+                        ))
+                    }
+                    (build::Built::Plane(study), None) => {
+                        run_study(*study, loaded, out, quiet, threads)
+                    }
+                    (build::Built::Solid(study), None) => {
+                        run_study(*study, loaded, out, quiet, threads)
+                    }
+                    (build::Built::PlaneDynamic(s), None) => {
+                        dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                    }
+                    (build::Built::SolidDynamic(s), None) => {
+                        dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                    }
+                    (build::Built::PlanePlastic(s), None) => {
+                        plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                    }
+                    (build::Built::SolidPlastic(s), None) => {
+                        plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                    }
+                }
+            })
+        }
         Command::Check { scene } => with_scene(&scene, |loaded| {
+            mpi::scene_linear_solver(loaded)?;
             let (steps, files) = match build::build(loaded)? {
                 build::Built::Plane(study) => check_study(&study, loaded),
                 build::Built::Solid(study) => check_study(&study, loaded),
@@ -400,6 +436,7 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
 fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
     match result {
         Ok(()) => 0,
+        Err(e) if out::is_silent() => e.code.clamp(1, 255) as u8,
         Err(mut e) => {
             if e.span.is_none()
                 && let (Some(p), Some(src)) = (&e.path, source)
@@ -412,7 +449,7 @@ fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
     }
 }
 
-fn print_header<const D: usize>(cmd: &str, loaded: &build::Loaded, study: &build::Study<D>)
+pub(crate) fn print_header<const D: usize>(cmd: &str, loaded: &build::Loaded, study: &build::Study<D>)
 where
     Dim<D>: build::StudyDim<D>,
 {
@@ -486,7 +523,7 @@ fn print_phases(phases: &[build::Phase], set: &[Vec<(String, String)>]) {
 
 /// The final lines of `bipo run`: the work done (each dimension's counters) and each zone's
 /// results.
-fn print_summary<const D: usize>(s: &run::Summary<D>, dir: &Path) {
+pub(crate) fn print_summary<const D: usize>(s: &run::Summary<D>, dir: &Path) {
     if D == 3 {
         print_solid_work(s);
     } else {
