@@ -3,8 +3,8 @@
 use crate::app_dynamic as dynamic;
 use crate::app_mpi as mpi;
 use crate::app_plastic as plastic;
+use crate::build::Built;
 use crate::error::{CliError, CliResult};
-use crate::raw::LinearSolverSpec;
 use crate::{build, error, out, run, templates};
 use clap::{Parser, Subcommand, ValueEnum};
 use fem_core::Dim;
@@ -199,73 +199,47 @@ pub fn main() -> ExitCode {
         eprintln!("error: internal error in bipo, please report it: {msg}{at}");
     }));
     let cli = Cli::parse();
+    let size = mpi::launch_quietly();
     let code = match cli.command {
         Command::Run {
             scene,
             out,
             quiet,
             threads,
-        } => {
-            // under mpirun: the ranks other than 0 print nothing (rank 0 prints each line and
-            // each scene error once; a failure during a distributed run ends every rank)
-            let (rank, size) = mpi::launch();
-            if rank > 0 {
-                out::silence();
-            }
-            with_scene(&scene, |loaded| {
-                let linear = mpi::linear_solver(loaded, size)?;
-                let petsc = match linear {
-                    LinearSolverSpec::Petsc(spec) => Some(spec),
-                    LinearSolverSpec::Direct => None,
-                };
-                let analysis = error::KeyPath::root().key("analysis");
-                faer::set_global_parallelism(parallelism(threads, None));
-                match (build::build(loaded)?, petsc) {
-                    (build::Built::Solid(study), Some(spec)) => {
-                        mpi::run_study(*study, loaded, (out, quiet), spec)
-                    }
-                    (build::Built::Plane(_), Some(_)) => {
-                        Err(mpi::unsupported(analysis.key("type"), "a 2D scene"))
-                    }
-                    (build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_), Some(_)) => {
-                        Err(mpi::unsupported(analysis.key("dynamic"), "a dynamic scene"))
-                    }
-                    (build::Built::PlanePlastic(_) | build::Built::SolidPlastic(_), Some(_)) => {
-                        Err(mpi::unsupported(
-                            error::KeyPath::root().key("materials"),
-                            "a plastic material",
-                        ))
-                    }
-                    (build::Built::Plane(study), None) => {
-                        run_study(*study, loaded, out, quiet, threads)
-                    }
-                    (build::Built::Solid(study), None) => {
-                        run_study(*study, loaded, out, quiet, threads)
-                    }
-                    (build::Built::PlaneDynamic(s), None) => {
-                        dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                    }
-                    (build::Built::SolidDynamic(s), None) => {
-                        dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                    }
-                    (build::Built::PlanePlastic(s), None) => {
-                        plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                    }
-                    (build::Built::SolidPlastic(s), None) => {
-                        plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
-                    }
+        } => with_scene(&scene, |loaded| {
+            let petsc = mpi::petsc_spec(loaded, size)?;
+            faer::set_global_parallelism(parallelism(threads, None));
+            match (build::build(loaded)?, petsc) {
+                (Built::Solid(study), Some(spec)) => {
+                    let h = |s: &build::Study<3>| print_header("run", loaded, s);
+                    let prints: mpi::Prints = (&h, &print_summary::<3>);
+                    mpi::run_study(*study, loaded, (out, quiet), spec, prints)
                 }
-            })
-        }
+                (built, Some(_)) => Err(mpi::refuse(&built)),
+                (Built::Plane(study), None) => run_study(*study, loaded, out, quiet, threads),
+                (Built::Solid(study), None) => run_study(*study, loaded, out, quiet, threads),
+                (Built::PlaneDynamic(s), None) => {
+                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
+                (Built::SolidDynamic(s), None) => {
+                    dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
+                (Built::PlanePlastic(s), None) => {
+                    plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
+                (Built::SolidPlastic(s), None) => {
+                    plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
+                }
+            }
+        }),
         Command::Check { scene } => with_scene(&scene, |loaded| {
-            mpi::scene_linear_solver(loaded)?;
             let (steps, files) = match build::build(loaded)? {
-                build::Built::Plane(study) => check_study(&study, loaded),
-                build::Built::Solid(study) => check_study(&study, loaded),
-                build::Built::PlaneDynamic(s) => dynamic::check_study(&s, loaded),
-                build::Built::SolidDynamic(s) => dynamic::check_study(&s, loaded),
-                build::Built::PlanePlastic(s) => plastic::check_study(&s, loaded),
-                build::Built::SolidPlastic(s) => plastic::check_study(&s, loaded),
+                Built::Plane(study) => check_study(&study, loaded),
+                Built::Solid(study) => check_study(&study, loaded),
+                Built::PlaneDynamic(s) => dynamic::check_study(&s, loaded),
+                Built::SolidDynamic(s) => dynamic::check_study(&s, loaded),
+                Built::PlanePlastic(s) => plastic::check_study(&s, loaded),
+                Built::SolidPlastic(s) => plastic::check_study(&s, loaded),
             };
             out::outln!("ok: the scene is valid ({steps} steps to run, {files} files to write)");
             Ok(())
@@ -423,12 +397,12 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
         scene,
     };
     let (steps, files) = match build::build(&loaded).map_err(render)? {
-        build::Built::Plane(study) => (study.total_steps(), study.output_files()),
-        build::Built::Solid(study) => (study.total_steps(), study.output_files()),
-        build::Built::PlaneDynamic(s) => (s.spec.steps, s.output_files()),
-        build::Built::SolidDynamic(s) => (s.spec.steps, s.output_files()),
-        build::Built::PlanePlastic(s) => (s.total_steps(), s.output_files()),
-        build::Built::SolidPlastic(s) => (s.total_steps(), s.output_files()),
+        Built::Plane(study) => (study.total_steps(), study.output_files()),
+        Built::Solid(study) => (study.total_steps(), study.output_files()),
+        Built::PlaneDynamic(s) => (s.spec.steps, s.output_files()),
+        Built::SolidDynamic(s) => (s.spec.steps, s.output_files()),
+        Built::PlanePlastic(s) => (s.total_steps(), s.output_files()),
+        Built::SolidPlastic(s) => (s.total_steps(), s.output_files()),
     };
     Ok(CheckedScene { steps, files })
 }
@@ -449,7 +423,7 @@ fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
     }
 }
 
-pub(crate) fn print_header<const D: usize>(cmd: &str, loaded: &build::Loaded, study: &build::Study<D>)
+fn print_header<const D: usize>(cmd: &str, loaded: &build::Loaded, study: &build::Study<D>)
 where
     Dim<D>: build::StudyDim<D>,
 {
@@ -523,7 +497,7 @@ fn print_phases(phases: &[build::Phase], set: &[Vec<(String, String)>]) {
 
 /// The final lines of `bipo run`: the work done (each dimension's counters) and each zone's
 /// results.
-pub(crate) fn print_summary<const D: usize>(s: &run::Summary<D>, dir: &Path) {
+fn print_summary<const D: usize>(s: &run::Summary<D>, dir: &Path) {
     if D == 3 {
         print_solid_work(s);
     } else {

@@ -25,7 +25,23 @@
 
 use crate::build;
 use crate::error::{CliError, CliResult, KeyPath};
-use crate::raw::LinearSolverSpec;
+use crate::raw::{LinearSolverSpec, PetscSpec};
+use crate::run::Summary;
+use std::path::Path;
+
+/// How `bipo run` prints a 3D study's header and its summary (the command's, handed over).
+pub(crate) type Prints<'a> = (&'a dyn Fn(&build::Study<3>), &'a dyn Fn(&Summary<3>, &Path));
+
+/// [`launch`]'s number of ranks; the ranks other than 0 print nothing from now on (rank 0
+/// prints each line and each scene error once; a failure during a distributed run ends every
+/// rank with its message).
+pub(crate) fn launch_quietly() -> usize {
+    let (rank, size) = launch();
+    if rank > 0 {
+        crate::out::silence();
+    }
+    size
+}
 
 /// This process's rank and the number of ranks as the MPI launcher sets them in the
 /// environment (Open MPI's `OMPI_COMM_WORLD_RANK` / `_SIZE`, MPICH's `PMI_RANK` / `PMI_SIZE`),
@@ -36,9 +52,22 @@ pub(crate) fn launch() -> (usize, usize) {
             .iter()
             .find_map(|n| std::env::var(n).ok()?.trim().parse::<usize>().ok())
     };
-    let size = var(["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]).unwrap_or(1).max(1);
+    let size = var(["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"])
+        .unwrap_or(1)
+        .max(1);
     let rank = var(["OMPI_COMM_WORLD_RANK", "PMI_RANK"]).unwrap_or(0);
     (rank.min(size - 1), size)
+}
+
+/// PETSc's settings when the scene asks for it, checked as [`linear_solver`] does.
+///
+/// # Errors
+/// As [`linear_solver`].
+pub(crate) fn petsc_spec(loaded: &build::Loaded, size: usize) -> CliResult<Option<PetscSpec>> {
+    Ok(match linear_solver(loaded, size)? {
+        LinearSolverSpec::Petsc(spec) => Some(spec),
+        LinearSolverSpec::Direct => None,
+    })
 }
 
 /// The linear solver the scene asks for, checked against how `bipo` was built and launched
@@ -48,7 +77,11 @@ pub(crate) fn launch() -> (usize, usize) {
 /// At `analysis.linear_solver`: PETSc asked for in a `bipo` without the feature; several ranks
 /// for a scene that does not ask for PETSc.
 pub(crate) fn linear_solver(loaded: &build::Loaded, size: usize) -> CliResult<LinearSolverSpec> {
-    let spec = scene_linear_solver(loaded)?;
+    let p = KeyPath::root().key("analysis");
+    let spec = match &loaded.scene.analysis {
+        Some(a) => a.linear_solver(&p)?,
+        None => LinearSolverSpec::Direct,
+    };
     let key = KeyPath::root().key("analysis").key("linear_solver");
     match spec {
         LinearSolverSpec::Direct if size > 1 => Err(CliError::at(
@@ -71,15 +104,20 @@ pub(crate) fn linear_solver(loaded: &build::Loaded, size: usize) -> CliResult<Li
     }
 }
 
-/// The linear solver the scene asks for, its keys checked (`bipo check`).
-///
-/// # Errors
-/// The keys' (`analysis.petsc.rtol`, …).
-pub(crate) fn scene_linear_solver(loaded: &build::Loaded) -> CliResult<LinearSolverSpec> {
-    let p = KeyPath::root().key("analysis");
-    match &loaded.scene.analysis {
-        Some(a) => a.linear_solver(&p),
-        None => Ok(LinearSolverSpec::Direct),
+/// The refusal of a built study the distributed path does not serve (a 3D static one is
+/// served), naming the key that makes it what it is.
+pub(crate) fn refuse(built: &build::Built) -> CliError {
+    let analysis = KeyPath::root().key("analysis");
+    match built {
+        build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_) => {
+            unsupported(analysis.key("dynamic"), "a dynamic scene")
+        }
+        build::Built::PlanePlastic(_) | build::Built::SolidPlastic(_) => {
+            unsupported(KeyPath::root().key("materials"), "a plastic material")
+        }
+        build::Built::Plane(_) | build::Built::Solid(_) => {
+            unsupported(analysis.key("type"), "a 2D scene")
+        }
     }
 }
 
@@ -104,7 +142,8 @@ pub(crate) fn run_study(
     _: build::Study<3>,
     _: &build::Loaded,
     _: (Option<std::path::PathBuf>, bool),
-    _: crate::raw::PetscSpec,
+    _: PetscSpec,
+    _: Prints<'_>,
 ) -> CliResult<()> {
     Err(CliError::failed(
         "this bipo is built without the feature `petsc`",
@@ -113,8 +152,7 @@ pub(crate) fn run_study(
 
 #[cfg(feature = "petsc")]
 mod with_petsc {
-    use super::unsupported;
-    use crate::app::{print_header, print_summary};
+    use super::{Prints, unsupported};
     use crate::build::{self, Body, Study};
     use crate::error::{CliError, CliResult, KeyPath};
     use crate::raw::PetscSpec;
@@ -162,22 +200,24 @@ mod with_petsc {
         loaded: &build::Loaded,
         (out, quiet): (Option<PathBuf>, bool),
         spec: PetscSpec,
+        (print_header, print_summary): Prints<'_>,
     ) -> CliResult<()> {
         if !study.model().supports().ties().is_empty() {
-            return Err(unsupported(KeyPath::root().key("ties"), "a scene with ties"));
+            return Err(unsupported(
+                KeyPath::root().key("ties"),
+                "a scene with ties",
+            ));
         }
         // PETSc lives until the end of the program: the structure inside the study borrows it
         // for `'static`, and it is finalised below, once the study is gone
-        let petsc: &'static Petsc = Box::leak(Box::new(Petsc::init().map_err(|e| {
-            CliError::failed(format!("PETSc did not start: {e}"))
-        })?));
+        let petsc: &'static Petsc =
+            Box::leak(Box::new(Petsc::init().map_err(|e| {
+                CliError::failed(format!("PETSc did not start: {e}"))
+            })?));
         let (rank, size) = (petsc.rank(), petsc.size());
-        let dir = run::RunOptions::new(out, study.output.dir.as_deref(), &loaded.path, quiet)
-            .out_dir;
-        let scratch = std::env::temp_dir().join(format!(
-            "bipo-rank{rank}-{}",
-            std::process::id()
-        ));
+        let dir =
+            run::RunOptions::new(out, study.output.dir.as_deref(), &loaded.path, quiet).out_dir;
+        let scratch = std::env::temp_dir().join(format!("bipo-rank{rank}-{}", std::process::id()));
         let outcome: CliResult<()> = petsc.or_abort(|| -> Result<CliResult<()>, String> {
             let result = (|| -> CliResult<()> {
                 let structure = structure(petsc, study.model(), spec)?;
@@ -186,13 +226,17 @@ mod with_petsc {
                     .set_reduced_solver(Box::new(PetscSolve(structure)))
                     .map_err(|e| CliError::failed(format!("the PETSc solver: {e}")))?;
                 let mut opts = run::RunOptions::new(
-                    Some(if rank == 0 { dir.clone() } else { scratch.clone() }),
+                    Some(if rank == 0 {
+                        dir.clone()
+                    } else {
+                        scratch.clone()
+                    }),
                     None,
                     &loaded.path,
                     quiet || rank > 0,
                 );
                 opts.pieces = Some(Pieces::new(rank, size, &element_rank, dir.clone()));
-                print_header("run", loaded, &study);
+                print_header(&study);
                 crate::out::outln!("distributed: PETSc on {size} rank(s), {spec:?}");
                 let summary = run::run(study, &opts)?;
                 print_summary(&summary, &opts.out_dir);

@@ -98,7 +98,6 @@ fn kind(column: &str) -> Option<&str> {
         ("f_", "force"),
         ("force", "force"),
         ("reaction", "force"),
-        ("pressure", "force"),
         ("gap", "length"),
         ("slip", "length"),
     ] {
@@ -169,6 +168,7 @@ fn issue_41_block_on_one_and_two_ranks_gives_the_serial_answer() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", text(&out));
+    let scene = scene();
     for ranks in [1, 2] {
         let run = dir.join(format!("ranks{ranks}"));
         let args = [
@@ -176,13 +176,17 @@ fn issue_41_block_on_one_and_two_ranks_gives_the_serial_answer() {
             "--quiet",
             "--out",
             run.to_str().unwrap(),
-            scene().to_str().unwrap(),
+            scene.to_str().unwrap(),
         ];
         let out = mpirun(ranks, &args, Duration::from_secs(300)).expect("mpirun ended");
         assert!(out.status.success(), "{ranks} ranks: {}", text(&out));
         let stdout = String::from_utf8_lossy(&out.stdout);
         // rank 0 prints, once
-        assert_eq!(stdout.matches("distributed: PETSc on").count(), 1, "{stdout}");
+        assert_eq!(
+            stdout.matches("distributed: PETSc on").count(),
+            1,
+            "{stdout}"
+        );
         for file in ["steps.csv", "contacts.csv"] {
             let d = difference(&serial.join(file), &run.join(file));
             // CG's residual 1e-12 relative, κ(K) ≲ 1e4: ~1e-9 at worst; the issue's bar 1e-8
@@ -232,7 +236,10 @@ fn issue_41_refusals_name_the_key_once() {
     let out = mpirun(2, &args, Duration::from_secs(120)).expect("mpirun ended");
     let all = text(&out);
     assert!(!out.status.success(), "{all}");
-    assert!(all.contains("`analysis.linear_solver`: bipo runs under MPI on 2 ranks"), "{all}");
+    assert!(
+        all.contains("`analysis.linear_solver`: bipo runs under MPI on 2 ranks"),
+        "{all}"
+    );
     assert_eq!(all.matches("error:").count(), 1, "printed once: {all}");
     // a 2D scene asking for PETSc
     let plane = dir.join("plane.toml");
@@ -241,7 +248,10 @@ fn issue_41_refusals_name_the_key_once() {
     )
     .unwrap()
     .replace("[analysis]\n", "[analysis]\nlinear_solver = \"petsc\"\n");
-    assert!(text2d.contains("linear_solver"), "the example has [analysis]");
+    assert!(
+        text2d.contains("linear_solver"),
+        "the example has [analysis]"
+    );
     std::fs::write(&plane, text2d).unwrap();
     let out = Command::new(bipo())
         .args(["run", "--quiet", "--out"])

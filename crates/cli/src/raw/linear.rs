@@ -109,7 +109,10 @@ impl RawAnalysis {
                         let max_iterations = raw.max_iterations.unwrap_or(MAX_ITERATIONS);
                         if max_iterations == 0 || i32::try_from(max_iterations).is_err() {
                             let k = pp.key("max_iterations");
-                            bail!(k, "`{k}` = {max_iterations}: expected an integer in [1, 2^31)");
+                            bail!(
+                                k,
+                                "`{k}` = {max_iterations}: expected an integer in [1, 2^31)"
+                            );
                         }
                         PetscSpec::CgGamg {
                             rtol,
@@ -178,7 +181,11 @@ mod tests {
             ),
         ] {
             let e = analysis(s).linear_solver(&p).unwrap_err();
-            assert_eq!(e.path.as_ref().map(|k| k.to_string()).as_deref(), Some(key), "{s}");
+            assert_eq!(
+                e.path.as_ref().map(|k| k.to_string()).as_deref(),
+                Some(key),
+                "{s}"
+            );
         }
     }
 }

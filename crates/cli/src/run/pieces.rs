@@ -33,6 +33,8 @@ pub struct Pieces {
 impl Pieces {
     /// The pieces of `rank` for the partition `element_rank` (each element's rank) over
     /// `size` ranks, written in `dir`.
+    // made by the distributed run only, which the feature `petsc` builds
+    #[cfg_attr(not(feature = "petsc"), allow(dead_code))]
     pub fn new(rank: usize, size: usize, element_rank: &[usize], dir: PathBuf) -> Self {
         let mut counts = vec![0; size];
         element_rank.iter().for_each(|&r| counts[r] += 1);
@@ -81,8 +83,10 @@ impl Pieces {
             let coords = nodes.iter().map(|&n| mesh.nodes()[n]).collect();
             let part = Mesh::<D>::new(coords, mesh.kind(), connectivity, regions)
                 .map_err(|e| fem_failed("the mesh piece of this rank", e))?;
-            let point: Vec<(&str, Owned<D>)> =
-                point.iter().map(|(n, f)| (*n, restrict(f, &nodes))).collect();
+            let point: Vec<(&str, Owned<D>)> = point
+                .iter()
+                .map(|(n, f)| (*n, restrict(f, &nodes)))
+                .collect();
             let cell: Vec<(&str, Owned<D>)> = cell
                 .iter()
                 .map(|(n, f)| (*n, restrict(f, &self.elements)))
@@ -91,8 +95,14 @@ impl Pieces {
             write_vtu(
                 &path,
                 &part,
-                &point.iter().map(|(n, f)| (*n, f.field())).collect::<Vec<_>>(),
-                &cell.iter().map(|(n, f)| (*n, f.field())).collect::<Vec<_>>(),
+                &point
+                    .iter()
+                    .map(|(n, f)| (*n, f.field()))
+                    .collect::<Vec<_>>(),
+                &cell
+                    .iter()
+                    .map(|(n, f)| (*n, f.field()))
+                    .collect::<Vec<_>>(),
             )
             .map_err(|e| io(&path, e))?;
         }

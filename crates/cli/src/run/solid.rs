@@ -9,11 +9,11 @@
 
 use super::dim::{RunDim, Sim, StepRow, positions};
 use super::errors::{create, fem_failed, io};
+use super::pieces::Pieces;
 use super::plots::Plots;
 use super::pressure::PressureRecorder;
 use super::rigid::RigidMotionSummary;
 use super::summary::{CurveSummary, ZoneSummary};
-use super::pieces::Pieces;
 use super::vtk::push_pvd;
 use crate::build::{HertzShape, Study, StudyDim};
 use crate::error::{CliError, CliResult};
