@@ -175,8 +175,17 @@ mod with_petsc {
     unsafe impl Sync for PetscSolve {}
 
     impl ReducedSolver for PetscSolve {
+        /// PETSc's failure, with the scene's keys that change the solver.
         fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
-            self.0.solve_many_in_place(rhs)
+            self.0.solve_many_in_place(rhs).map_err(|e| match e {
+                FemError::LinearAlgebra { detail } => FemError::LinearAlgebra {
+                    detail: format!(
+                        "{detail}; in the scene: `analysis.petsc.max_iterations`, `rtol`, or \
+                         `method` = \"mumps\""
+                    ),
+                },
+                e => e,
+            })
         }
     }
 
