@@ -1,7 +1,9 @@
 //! The `bipo` command line (the binary `src/main.rs` calls [`main`]).
 
 use crate::app_dynamic as dynamic;
+use crate::app_mpi as mpi;
 use crate::app_plastic as plastic;
+use crate::build::Built;
 use crate::error::{CliError, CliResult};
 use crate::{build, error, out, run, templates};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -197,6 +199,7 @@ pub fn main() -> ExitCode {
         eprintln!("error: internal error in bipo, please report it: {msg}{at}");
     }));
     let cli = Cli::parse();
+    let size = mpi::launch_quietly();
     let code = match cli.command {
         Command::Run {
             scene,
@@ -204,32 +207,39 @@ pub fn main() -> ExitCode {
             quiet,
             threads,
         } => with_scene(&scene, |loaded| {
+            let petsc = mpi::petsc_spec(loaded, size)?;
             faer::set_global_parallelism(parallelism(threads, None));
-            match build::build(loaded)? {
-                build::Built::Plane(study) => run_study(*study, loaded, out, quiet, threads),
-                build::Built::Solid(study) => run_study(*study, loaded, out, quiet, threads),
-                build::Built::PlaneDynamic(s) => {
+            match (build::build(loaded)?, petsc) {
+                (Built::Solid(study), Some(spec)) => {
+                    let h = |s: &build::Study<3>| print_header("run", loaded, s);
+                    let prints: mpi::Prints = (&h, &print_summary::<3>);
+                    mpi::run_study(*study, loaded, (out, quiet), spec, prints)
+                }
+                (built, Some(_)) => Err(mpi::refuse(&built)),
+                (Built::Plane(study), None) => run_study(*study, loaded, out, quiet, threads),
+                (Built::Solid(study), None) => run_study(*study, loaded, out, quiet, threads),
+                (Built::PlaneDynamic(s), None) => {
                     dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
-                build::Built::SolidDynamic(s) => {
+                (Built::SolidDynamic(s), None) => {
                     dynamic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
-                build::Built::PlanePlastic(s) => {
+                (Built::PlanePlastic(s), None) => {
                     plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
-                build::Built::SolidPlastic(s) => {
+                (Built::SolidPlastic(s), None) => {
                     plastic::run_study(*s, loaded, out, quiet, (threads, parallelism))
                 }
             }
         }),
         Command::Check { scene } => with_scene(&scene, |loaded| {
             let (steps, files) = match build::build(loaded)? {
-                build::Built::Plane(study) => check_study(&study, loaded),
-                build::Built::Solid(study) => check_study(&study, loaded),
-                build::Built::PlaneDynamic(s) => dynamic::check_study(&s, loaded),
-                build::Built::SolidDynamic(s) => dynamic::check_study(&s, loaded),
-                build::Built::PlanePlastic(s) => plastic::check_study(&s, loaded),
-                build::Built::SolidPlastic(s) => plastic::check_study(&s, loaded),
+                Built::Plane(study) => check_study(&study, loaded),
+                Built::Solid(study) => check_study(&study, loaded),
+                Built::PlaneDynamic(s) => dynamic::check_study(&s, loaded),
+                Built::SolidDynamic(s) => dynamic::check_study(&s, loaded),
+                Built::PlanePlastic(s) => plastic::check_study(&s, loaded),
+                Built::SolidPlastic(s) => plastic::check_study(&s, loaded),
             };
             out::outln!("ok: the scene is valid ({steps} steps to run, {files} files to write)");
             Ok(())
@@ -387,12 +397,12 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
         scene,
     };
     let (steps, files) = match build::build(&loaded).map_err(render)? {
-        build::Built::Plane(study) => (study.total_steps(), study.output_files()),
-        build::Built::Solid(study) => (study.total_steps(), study.output_files()),
-        build::Built::PlaneDynamic(s) => (s.spec.steps, s.output_files()),
-        build::Built::SolidDynamic(s) => (s.spec.steps, s.output_files()),
-        build::Built::PlanePlastic(s) => (s.total_steps(), s.output_files()),
-        build::Built::SolidPlastic(s) => (s.total_steps(), s.output_files()),
+        Built::Plane(study) => (study.total_steps(), study.output_files()),
+        Built::Solid(study) => (study.total_steps(), study.output_files()),
+        Built::PlaneDynamic(s) => (s.spec.steps, s.output_files()),
+        Built::SolidDynamic(s) => (s.spec.steps, s.output_files()),
+        Built::PlanePlastic(s) => (s.total_steps(), s.output_files()),
+        Built::SolidPlastic(s) => (s.total_steps(), s.output_files()),
     };
     Ok(CheckedScene { steps, files })
 }
@@ -400,6 +410,7 @@ pub fn check_scene(source: &str, path: &Path) -> Result<CheckedScene, String> {
 fn finish(result: CliResult<()>, source: Option<&str>) -> u8 {
     match result {
         Ok(()) => 0,
+        Err(e) if out::is_silent() => e.code.clamp(1, 255) as u8,
         Err(mut e) => {
             if e.span.is_none()
                 && let (Some(p), Some(src)) = (&e.path, source)

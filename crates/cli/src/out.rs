@@ -4,9 +4,27 @@
 //! writing; any other write error is reported and exits with 1.
 
 use std::io::{ErrorKind, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Whether this process prints nothing (the ranks other than 0 of a distributed run).
+static SILENT: AtomicBool = AtomicBool::new(false);
+
+/// From now on [`line`] writes nothing, and `bipo`'s errors are not printed: a distributed
+/// run's ranks other than 0, so that each line and each scene error is printed once.
+pub(crate) fn silence() {
+    SILENT.store(true, Ordering::Relaxed);
+}
+
+/// Whether [`silence`] was called.
+pub(crate) fn is_silent() -> bool {
+    SILENT.load(Ordering::Relaxed)
+}
 
 /// Writes one line to standard output (see the module docs).
 pub fn line(args: std::fmt::Arguments<'_>) {
+    if is_silent() {
+        return;
+    }
     let mut out = std::io::stdout().lock();
     let written = out
         .write_fmt(args)

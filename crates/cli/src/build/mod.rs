@@ -113,6 +113,10 @@ fn title(loaded: &Loaded) -> String {
 /// Validates the scene and builds the study (mesh, model, zones, recognition, simulation).
 pub fn build(loaded: &Loaded) -> CliResult<Built> {
     let scene = &loaded.scene;
+    // `[analysis] linear_solver` (how bipo was built and launched is the command's to check)
+    if let Some(a) = &scene.analysis {
+        a.linear_solver(&KeyPath::root().key("analysis"))?;
+    }
     if !plastic::is_plastic(scene) {
         plastic::refuse_in_elastic(scene)?;
     }

@@ -14,11 +14,13 @@
 
 mod dynamic;
 mod keys;
+mod linear;
 mod mesh;
 mod plastic;
 mod preset;
 
 pub use dynamic::{DynamicSpec, MassSpec, restitution};
+pub use linear::{LinearSolverSpec, PetscSpec};
 pub use mesh::RawMesh;
 pub use plastic::{ConeSpec, MaterialKind, NewtonSpec, RawNewton};
 pub use preset::RawPreset;
@@ -57,6 +59,10 @@ pub struct RawAnalysis {
     rayleigh_beta: Option<f64>,
     /// `[analysis.newton]`: the global Newton of a scene with a plastic material (issue 40).
     newton: Option<RawNewton>,
+    /// `linear_solver = "petsc"`: the bulk solved by PETSc under MPI ([`linear`]).
+    linear_solver: Option<linear::LinearSolverKind>,
+    /// `[analysis.petsc]`: PETSc's method and tolerance.
+    petsc: Option<linear::RawPetsc>,
 }
 
 impl RawAnalysis {

@@ -44,8 +44,17 @@ where
     /// The writers of this dimension's CSV and VTK files.
     type Writers;
 
-    /// Creates the files written from the first step on, listed in `files`.
-    fn writers(study: &Study<D>, dir: &Path, files: &mut Vec<String>) -> CliResult<Self::Writers>;
+    /// Creates the files written from the first step on, listed in `files`; `pieces`: the
+    /// mesh series as this rank's parallel pieces (a distributed run).
+    ///
+    /// # Errors
+    /// A file that cannot be created; `pieces` where this dimension does not write them.
+    fn writers(
+        study: &Study<D>,
+        dir: &Path,
+        pieces: Option<super::Pieces>,
+        files: &mut Vec<String>,
+    ) -> CliResult<Self::Writers>;
 
     /// The tangential columns of `pressure.csv` (`t`; `t1`, `t2`).
     const SHEAR: &'static [&'static str];

@@ -14,6 +14,7 @@ mod dim;
 mod driver;
 mod dynamic;
 mod errors;
+mod pieces;
 mod plane;
 mod plastic;
 mod plots;
@@ -27,6 +28,7 @@ mod summary;
 mod vtk;
 
 pub use dynamic::run_dynamic;
+pub use pieces::Pieces;
 pub(crate) use plastic::PlasticRunDim;
 pub use plastic::run_plastic;
 pub use summary::{Peak, StepTotals, Summary};
@@ -49,6 +51,8 @@ pub struct RunOptions {
     pub quiet: bool,
     /// The scene file (for the summary).
     pub scene_file: PathBuf,
+    /// A distributed run's parallel VTK pieces of this rank (`None`: one `.vtu` per step).
+    pub pieces: Option<Pieces>,
 }
 
 impl RunOptions {
@@ -70,6 +74,7 @@ impl RunOptions {
             out_dir,
             quiet,
             scene_file: scene.to_path_buf(),
+            pieces: None,
         }
     }
 }
@@ -113,7 +118,7 @@ pub fn run<const D: usize>(mut study: Study<D>, opts: &RunOptions) -> CliResult<
 where
     Dim<D>: Drive<D>,
 {
-    let mut recorder = Recorder::new(&study, &opts.out_dir)?;
+    let mut recorder = Recorder::new(&study, &opts.out_dir, opts.pieces.clone())?;
     let start = Instant::now();
     let total = study.total_steps();
     let at_start = on_sim!(study, s => s.counters());

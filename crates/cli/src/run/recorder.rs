@@ -50,12 +50,17 @@ impl<const D: usize> Recorder<D>
 where
     Dim<D>: RunDim<D>,
 {
-    /// Creates `dir` and the files written from the first step on.
-    pub(super) fn new(study: &Study<D>, dir: &Path) -> CliResult<Self> {
+    /// Creates `dir` and the files written from the first step on (the mesh series as this
+    /// rank's `pieces` in a distributed run).
+    pub(super) fn new(
+        study: &Study<D>,
+        dir: &Path,
+        pieces: Option<super::Pieces>,
+    ) -> CliResult<Self> {
         std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
         let o = &study.output;
         let mut files = Vec::new();
-        let writers = Dim::<D>::writers(study, dir, &mut files)?;
+        let writers = Dim::<D>::writers(study, dir, pieces, &mut files)?;
         let zones_filter: Option<Vec<usize>> = o.zones.as_ref().map(|zs| {
             zs.iter()
                 .filter_map(|z| study.zone_names.iter().position(|n| n == z))

@@ -9,6 +9,7 @@
 
 use super::dim::{RunDim, Sim, StepRow, positions};
 use super::errors::{create, fem_failed, io};
+use super::pieces::Pieces;
 use super::plots::Plots;
 use super::pressure::PressureRecorder;
 use super::rigid::RigidMotionSummary;
@@ -36,6 +37,8 @@ pub(crate) struct SolidWriters {
     vtk: Option<Vec<(f64, String)>>,
     interface: Option<InterfaceSeries>,
     nodes_filter: Option<Vec<usize>>,
+    /// A distributed run's pieces of the mesh series (`mesh_NNNN.pvtu` in `mesh.pvd`).
+    pieces: Option<Pieces>,
     /// The support reactions `Σ R` (global axes) of the last step.
     reaction: [f64; 3],
 }
@@ -56,7 +59,12 @@ fn line(w: &mut BufWriter<File>, dir: &Path, name: &str, text: &str) -> CliResul
 impl RunDim<3> for Dim<3> {
     type Writers = SolidWriters;
 
-    fn writers(study: &Study<3>, dir: &Path, files: &mut Vec<String>) -> CliResult<SolidWriters> {
+    fn writers(
+        study: &Study<3>,
+        dir: &Path,
+        pieces: Option<Pieces>,
+        files: &mut Vec<String>,
+    ) -> CliResult<SolidWriters> {
         let o = &study.output;
         let steps = if o.report {
             let mut w = create(dir, "steps.csv")?;
@@ -98,6 +106,7 @@ impl RunDim<3> for Dim<3> {
             vtk: Dim::<3>::mesh_series(o).then(Vec::new),
             interface: o.vtk.then(|| InterfaceSeries::new(dir, "interface")),
             nodes_filter: o.nodes.clone(),
+            pieces,
             reaction: [0.0; 3],
         })
     }
@@ -317,8 +326,7 @@ fn write_vtk(
     let Some(entries) = w.vtk.as_mut() else {
         return Ok(());
     };
-    let name = format!("mesh_{:04}.vtu", entries.len());
-    let path = w.dir.join(&name);
+    let stem = format!("mesh_{:04}", entries.len());
     // the recovered pressure on the contactor surfaces (0 elsewhere)
     let mut field = vec![0.0; mesh.node_count()];
     for f in fields {
@@ -334,13 +342,16 @@ fn write_vtk(
     if !fields.is_empty() {
         point.push(("pressure_field", Field3::Scalar(&field)));
     }
-    write_vtu_3d(
-        &path,
-        mesh,
-        &point,
-        &[("stress", Field3::SymTensor(&stress))],
-    )
-    .map_err(|e| io(&path, e))?;
+    let cell = [("stress", Field3::SymTensor(&stress))];
+    let name = match &w.pieces {
+        Some(pieces) => pieces.write(&stem, mesh, &point, &cell)?,
+        None => {
+            let name = format!("{stem}.vtu");
+            let path = w.dir.join(&name);
+            write_vtu_3d(&path, mesh, &point, &cell).map_err(|e| io(&path, e))?;
+            name
+        }
+    };
     push_pvd(&w.dir, entries, t, name)
 }
 

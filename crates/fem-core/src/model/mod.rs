@@ -6,6 +6,7 @@
 //! the mass in `mass.rs`, the (trivial) state-dependent side in `nonlinear.rs`.
 
 mod elements;
+mod external;
 mod floating;
 mod loads;
 mod mass;
@@ -14,6 +15,7 @@ mod normals;
 mod post;
 mod tangent;
 
+pub use external::ReducedSolver;
 pub use normals::ModelSpace;
 
 use crate::assembly::{Pattern, PrescribedCoupling, merge, scatter};
@@ -119,6 +121,8 @@ where
     elements: RegionElements<D>,
     /// The mass, when every region's material has a density (reassembled with `K`).
     mass: Option<mass::MassValues>,
+    /// The solver of `K x = b` in place of `solver` ([`ElasticModel::set_reduced_solver`]).
+    external: Option<Box<dyn ReducedSolver>>,
 }
 
 impl<const D: usize> core::fmt::Debug for ElasticModel<D>
@@ -134,6 +138,7 @@ where
             .field("free_dofs", &self.dofs.free_count())
             .field("nnz", &self.pattern.nnz())
             .field("version", &self.version)
+            .field("external_solver", &self.external.is_some())
             .finish()
     }
 }
@@ -262,6 +267,7 @@ where
             mode_basis: Vec::new(),
             elements: RegionElements::default(),
             mass: with_mass.then(mass::MassValues::default),
+            external: None,
         };
         model.find_modes()?;
         model.assemble_and_factor()?;
@@ -269,6 +275,7 @@ where
     }
 
     fn assemble_and_factor(&mut self) -> Result<(), FemError> {
+        self.refuse_with_external("reassembling K")?;
         self.values.fill(0.0);
         let built_in = self.mesh.built_in_element();
         let mut k_e = DMatrix::zeros(0, 0);
@@ -495,6 +502,10 @@ where
     /// modes, and reassembles and refactors; on failure the supports `before` are restored
     /// (and the model with them).
     fn renumber(&mut self, before: Supports) -> Result<(), FemError> {
+        if let Err(e) = self.refuse_with_external("constraining or releasing a dof") {
+            self.supports = before;
+            return Err(e);
+        }
         let rebuilt = self.rebuild_numbering();
         if rebuilt.is_err() {
             self.supports = before;
@@ -645,6 +656,10 @@ where
     }
 
     fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), FemError> {
+        if let Some(external) = &self.external {
+            let n = rhs.len();
+            return external.solve_many_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1));
+        }
         self.check_factored()?;
         if self.pinned.is_empty() {
             self.solver.solve_in_place(rhs);
@@ -658,6 +673,9 @@ where
     }
 
     fn solve_many_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), FemError> {
+        if let Some(external) = &self.external {
+            return external.solve_many_in_place(rhs);
+        }
         self.check_factored()?;
         if self.pinned.is_empty() {
             self.solver.solve_many_in_place(rhs);

@@ -63,6 +63,7 @@ where
                 what: "a tangent of its own on a floating model".into(),
             });
         }
+        self.refuse_with_external("a tangent of its own")?;
         self.solver
             .factor(self.pattern.view(values))
             .map_err(|e| self.name_failed_dof(e))?;
