@@ -667,7 +667,9 @@ fn read_local_problem(
     })?;
     // a byte-order mark (some Windows editors write one) is not part of the JSON
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    let dat = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("dat"));
+    let dat = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dat"));
     if dat || text.trim_start().starts_with(|c: char| c.is_ascii_digit()) {
         return contact_solver::local::siconos_dat::read_siconos_dat(text)
             .map(|d| d.problem)

@@ -13,9 +13,9 @@
 //! `iterations`, `converged`, `residual` (ours) and `r`. The second writes our own multibody
 //! problems (sphere piles in a box, 3D, 64 to 1000 spheres) as `.dat` files into DIR.
 
-use contact_solver::local::generate::SpherePile;
+use contact_solver::local::generate::multibody::SpherePile;
 use contact_solver::local::siconos_dat::{DatSource, read_siconos_dat, write_siconos_dat};
-use contact_solver::{Algorithm, UzawaSettings, UzawaSolver};
+use contact_solver::{Algorithm, Asymmetry, ReducedProblem, UzawaSettings, UzawaSolver};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -29,7 +29,14 @@ const ALGORITHMS: [Algorithm; 7] = [
     Algorithm::Auto,
 ];
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("{e}");
+        std::process::exit(1);
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let flag = |name: &str, default: f64| -> f64 {
         args.iter()
@@ -50,8 +57,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ..SpherePile::default()
             }
             .generate(37)?;
+            // stored sparse, so that it is written in sparse blocks as multibody codes write it
+            let p = &pile.problem;
+            let (m, a) = (p.size(), p.w_dense().ok_or("dense W")?);
+            let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+            for (k, &v) in a.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                rows.push(k / m);
+                cols.push(k % m);
+                vals.push(v);
+            }
+            let sparse = ReducedProblem::from_triplets_with_asymmetry(
+                3,
+                &rows,
+                &cols,
+                &vals,
+                p.q().to_vec(),
+                p.mu().to_vec(),
+                Asymmetry::Keep,
+            )?;
             let name = format!("{dir}/pile_{}.dat", n * n * layers);
-            std::fs::write(&name, write_siconos_dat(&pile.problem))?;
+            std::fs::write(&name, write_siconos_dat(&sparse))?;
             println!("{name}: {} contacts", pile.problem.contact_count());
         }
         return Ok(());

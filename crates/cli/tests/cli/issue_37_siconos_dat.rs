@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use std::process::Command;
 
 fn siconos(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../contact-solver/tests/data/siconos").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../contact-solver/tests/data/siconos")
+        .join(name)
 }
 
 fn solve(path: &std::path::Path) -> std::process::Output {
@@ -19,7 +21,12 @@ fn solve(path: &std::path::Path) -> std::process::Output {
 
 #[test]
 fn issue_37_solve_local_reads_dat_files() {
-    for name in ["dense_2d.dat", "dense_3d.dat", "blocks_3d.dat", "global_3d.dat"] {
+    for name in [
+        "dense_2d.dat",
+        "dense_3d.dat",
+        "blocks_3d.dat",
+        "global_3d.dat",
+    ] {
         let out = solve(&siconos(name));
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(0), "{name}: {stderr}");
@@ -35,11 +42,18 @@ fn issue_37_solve_local_names_the_file_and_line_of_a_bad_dat() {
     let text = std::fs::read_to_string(siconos("dense_2d.dat")).unwrap();
     // no extension: recognised by its content
     let file = dir.join("problem");
-    std::fs::write(&file, text.replacen("2.000000000000000000000000e+00", "nan", 1)).unwrap();
+    std::fs::write(
+        &file,
+        text.replacen("2.000000000000000000000000e+00", "nan", 1),
+    )
+    .unwrap();
     let out = solve(&file);
     let _ = std::fs::remove_dir_all(&dir);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("problem") && stderr.contains("line 7"), "{stderr}");
+    assert!(
+        stderr.contains("problem") && stderr.contains("line 7"),
+        "{stderr}"
+    );
     assert!(!stderr.contains("panicked"), "{stderr}");
 }

@@ -41,14 +41,20 @@ fn issue_37_reads_siconos_written_dense_3d_as_given() {
     assert_eq!((w(p, 0, 2), w(p, 2, 0), w(p, 2, 5)), (0.2, 0.3, 0.5));
     assert_eq!(p.q(), &[-1.0, 0.5, 0.25, -2.0, 0.0, 1.0]);
     assert_eq!(p.mu(), &[0.3, 0.5]);
-    assert!(!p.is_symmetric(), "W[0][2] = 0.2 but W[2][0] = 0.3: kept as given");
+    assert!(
+        !p.is_symmetric(),
+        "W[0][2] = 0.2 but W[2][0] = 0.3: kept as given"
+    );
 }
 
 #[test]
 fn issue_37_reads_siconos_written_dense_2d() {
     let p = read_siconos_dat(&data("dense_2d.dat")).unwrap().problem;
     assert_eq!((p.dimension(), p.contact_count()), (2, 3));
-    assert_eq!((w(&p, 0, 1), w(&p, 1, 0), w(&p, 4, 5), w(&p, 5, 4)), (0.3, 0.2, 0.25, 0.0));
+    assert_eq!(
+        (w(&p, 0, 1), w(&p, 1, 0), w(&p, 4, 5), w(&p, 5, 4)),
+        (0.3, 0.2, 0.25, 0.0)
+    );
     assert_eq!(p.mu(), &[0.3, 0.5, 0.1]);
 }
 
@@ -60,9 +66,15 @@ fn issue_37_reads_sparse_blocks_column_by_column() {
     let a = read_siconos_dat(&data("blocks_3d_in.dat")).unwrap().problem;
     let b = read_siconos_dat(&data("blocks_3d.dat")).unwrap().problem;
     assert_eq!(a, b);
-    assert_eq!((w(&a, 1, 0), w(&a, 0, 1), w(&a, 0, 2), w(&a, 2, 0)), (0.1, 0.5, 0.2, 0.3));
+    assert_eq!(
+        (w(&a, 1, 0), w(&a, 0, 1), w(&a, 0, 2), w(&a, 2, 0)),
+        (0.1, 0.5, 0.2, 0.3)
+    );
     // the off-diagonal block (0, 1) and the empty block (1, 0)
-    assert_eq!((w(&a, 0, 3), w(&a, 1, 4), w(&a, 2, 5), w(&a, 3, 0)), (0.5, 0.25, -0.125, 0.0));
+    assert_eq!(
+        (w(&a, 0, 3), w(&a, 1, 4), w(&a, 2, 5), w(&a, 3, 0)),
+        (0.5, 0.25, -0.125, 0.0)
+    );
     assert_eq!((w(&a, 4, 5), w(&a, 5, 5)), (0.5, 2.0));
 }
 
@@ -79,7 +91,11 @@ fn issue_37_global_problem_condenses_to_the_hand_computed_w() {
         for j in 0..3 {
             let e = if i == j { expected_w[i] } else { 0.0 };
             // one LU solve of a diagonal M: round-off only
-            assert!((w(p, i, j) - e).abs() < 1e-15, "W[{i}][{j}] = {}", w(p, i, j));
+            assert!(
+                (w(p, i, j) - e).abs() < 1e-15,
+                "W[{i}][{j}] = {}",
+                w(p, i, j)
+            );
         }
     }
     for (got, e) in p.q().iter().zip([-0.6, 0.0, -0.4375]) {
@@ -125,7 +141,11 @@ fn with_token(text: &str, k: usize, by: &str) -> String {
             .split_whitespace()
             .map(|t| {
                 n += 1;
-                if n - 1 == k { by.to_string() } else { t.to_string() }
+                if n - 1 == k {
+                    by.to_string()
+                } else {
+                    t.to_string()
+                }
             })
             .collect();
         out.push_str(&toks.join(" "));
@@ -158,7 +178,11 @@ fn issue_37_read_siconos_dat_captures_errors() {
     // the repeated dense header disagrees
     assert!(reason(&with_token(&good, 5, "5")).contains("dense header says 5 x 6"));
     // truncated: the last line (mu) cut
-    let cut: String = good.lines().take(good.lines().count() - 1).collect::<Vec<_>>().join("\n");
+    let cut: String = good
+        .lines()
+        .take(good.lines().count() - 1)
+        .collect::<Vec<_>>()
+        .join("\n");
     assert!(reason(&cut).contains("`mu` needs 2 values"));
     // a rolling problem's mu_r line after mu
     let rolling = format!("{good} 0.1 0.1\n");
@@ -171,7 +195,7 @@ fn issue_37_read_siconos_dat_captures_errors() {
     // a negative μ: the problem's own check
     assert!(matches!(
         read_siconos_dat(&good.replace("2.999999999999999888977698e-01", "-0.3")),
-        Err(SolverError::InvalidFriction { .. })
+        Err(SolverError::InvalidLaw { contact: 0, .. })
     ));
     assert!(read_siconos_dat("").is_err());
 }
@@ -190,7 +214,7 @@ fn issue_37_sparse_block_errors_name_the_line() {
     assert!(reason(&with_token(&good, 18, "2")).contains("index2[1]"));
     let e = read_siconos_dat(&with_token(&good, 20, "1")).unwrap_err();
     assert!(e.to_string().contains("labelled 1"), "{e}");
-    assert_eq!(line_of(&e), 16);
+    assert_eq!(line_of(&e), 15);
     // the same block twice: (0, 1) and (0, 1)
     assert!(reason(&with_token(&good, 17, "1")).contains("twice"));
 }

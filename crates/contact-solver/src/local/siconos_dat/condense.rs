@@ -29,7 +29,10 @@ pub(super) fn condense(
             "the global problem ({n} dofs, {m} contact unknowns) is too large to condense densely"
         ));
     }
-    let trips: Vec<_> = mass.iter().map(|&(r, c, v)| Triplet::new(r, c, v)).collect();
+    let trips: Vec<_> = mass
+        .iter()
+        .map(|&(r, c, v)| Triplet::new(r, c, v))
+        .collect();
     let mat = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trips)
         .map_err(|e| format!("`M` cannot be assembled: {e:?}"))?;
     let lu = mat

@@ -171,7 +171,9 @@ fn read_blocks(
         if !expected_first || index1.last().is_some_and(|&p| v < p) {
             return Err(error(
                 line,
-                format!("`{name}` index1[{k}] = {v}: block-row pointers start at 0 and never decrease"),
+                format!(
+                    "`{name}` index1[{k}] = {v}: block-row pointers start at 0 and never decrease"
+                ),
             ));
         }
         index1.push(v);
@@ -179,7 +181,10 @@ fn read_blocks(
     if index1.last() != Some(&nb) {
         return Err(error(
             t.line(),
-            format!("`{name}` index1 ends at {:?}, not at the block count {nb}", index1.last()),
+            format!(
+                "`{name}` index1 ends at {:?}, not at the block count {nb}",
+                index1.last()
+            ),
         ));
     }
     let mut index2 = Vec::with_capacity(filled2);
@@ -189,7 +194,12 @@ fn read_blocks(
     let mut entries = Vec::new();
     for br in 0..bn0 {
         let (r0, r1) = (if br == 0 { 0 } else { bs0[br - 1] }, bs0[br]);
-        for (k, &bc) in index2.iter().enumerate().take(index1[br + 1]).skip(index1[br]) {
+        for (k, &bc) in index2
+            .iter()
+            .enumerate()
+            .take(index1[br + 1])
+            .skip(index1[br])
+        {
             let (c0, c1) = (if bc == 0 { 0 } else { bs1[bc - 1] }, bs1[bc]);
             let line = t.line();
             let label = t.count(&format!("the label of block {k} of `{name}`"), nb)?;

@@ -68,9 +68,9 @@ impl<'a> Tokens<'a> {
     /// The next token as a count in `0..=max` (`what` names it in errors).
     pub(super) fn count(&mut self, what: &str, max: usize) -> Result<usize, SolverError> {
         let (line, t) = self.next(what)?;
-        let v: i64 = t.parse().map_err(|_| {
-            error(line, format!("{what}: `{t}` is not an integer"))
-        })?;
+        let v: i64 = t
+            .parse()
+            .map_err(|_| error(line, format!("{what}: `{t}` is not an integer")))?;
         if v < 0 || v as u64 > max as u64 {
             return Err(error(
                 line,

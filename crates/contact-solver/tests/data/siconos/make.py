@@ -10,7 +10,6 @@ import os
 T=os.path.dirname(os.path.abspath(__file__))+"/"
 p=sn.frictionContact_new_from_filename(T+"blocks_3d_in.dat")
 sn.frictionContact_printInFilename(p,T+"blocks_3d.dat")
-print("sbm W", [[sn.NM_get_value(p.M,i,j) for j in range(6)] for i in range(6)])
 # 2D dense, non-symmetric (a skew coupling), 3 contacts
 W=np.array([[2.,0.3,0.1,0.,0.,0.],[0.2,1.,0.,0.,0.,0.],[0.1,0.,3.,0.4,0.,0.],[0.,0.,0.4,1.5,0.,0.],[0.,0.,0.,0.,1.,0.25],[0.,0.,0.,0.,0.,0.5]])
 q=np.array([-1.,0.5,-0.5,0.2,1.,0.]); mu=np.array([0.3,0.5,0.1])
@@ -20,12 +19,8 @@ W3=np.array([[2.,0.1,0.2,0.,0.,0.],[0.1,1.5,0.,0.,0.,0.],[0.3,0.,1.,0.,0.,0.5],[
 q3=np.array([-1.,0.5,0.25,-2.,0.,1.]); mu3=np.array([0.3,0.5])
 p=sn.FrictionContactProblem(3,W3,q3,mu3)
 sn.frictionContact_printInFilename(p,T+"dense_3d.dat")
-print([n for n in dir(sn) if n.startswith('GlobalFriction')])
 M=np.diag([2.,2.,2.,1.,1.,1.]); H=np.zeros((6,3)); H[0,0]=1.; H[1,1]=1.; H[2,2]=1.; H[3,0]=-1.; H[4,1]=-0.5; H[5,2]=0.25
 qg=np.array([0.,0.,-1.,0.5,0.,0.25]); b=np.array([-0.1,0.,0.])
-try:
-    g=sn.GlobalFrictionContactProblem(3,M,H,qg,b,np.array([0.4]))
-except Exception as e:
-    print("ctor",e); g=sn.GlobalFrictionContactProblem(); g.dimension=3; g.numberOfContacts=1; g.M=M; g.H=H; g.q=qg; g.b=b; g.mu=np.array([0.4])
+g=sn.GlobalFrictionContactProblem(); g.dimension=3; g.numberOfContacts=1; g.M=M; g.H=H; g.q=qg; g.b=b; g.mu=np.array([0.4])
 sn.globalFrictionContact_printInFileName(g,T+"global_3d.dat")
 Minv=np.linalg.inv(M); print("W",(H.T@Minv@H).tolist(),"q",(H.T@Minv@qg+b).tolist())
