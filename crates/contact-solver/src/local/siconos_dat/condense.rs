@@ -61,3 +61,28 @@ pub(super) fn condense(
     }
     Ok((w, q_loc))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn condense_works() {
+        // M = diag(2, 4), H = [1 0; 1 1] (2 dofs, m = 2): W = Hᵀ M⁻¹ H = [3/4 1/4; 1/4 1/4],
+        // q_loc = Hᵀ M⁻¹ q + b with q = (2, 4), b = (1, 0): (1 + 1 + 1, 1) = (3, 1)
+        let mass = [(0, 0, 2.0), (1, 1, 4.0)];
+        let h = [(0, 0, 1.0), (1, 0, 1.0), (1, 1, 1.0)];
+        let (w, q) = condense(2, &mass, &h, 2, &[2.0, 4.0], &[1.0, 0.0]).unwrap();
+        // exact in binary: halves and quarters
+        assert_eq!(w, vec![0.75, 0.25, 0.25, 0.25]);
+        assert_eq!(q, vec![3.0, 1.0]);
+    }
+
+    #[test]
+    fn condense_rejects_a_singular_mass() {
+        let mass = [(0, 0, 1.0)];
+        let h = [(0, 0, 1.0), (1, 1, 1.0)];
+        let e = condense(2, &mass, &h, 2, &[0.0, 0.0], &[0.0, 0.0]).unwrap_err();
+        assert!(e.contains("singular"), "{e}");
+    }
+}

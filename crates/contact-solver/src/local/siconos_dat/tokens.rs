@@ -107,3 +107,40 @@ impl<'a> Tokens<'a> {
         (0..n).map(|k| self.real(&format!("{what}[{k}]"))).collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tokens_work() {
+        let mut t = Tokens::new("3\n1 2\n\n4.5e0\n7\n");
+        assert!(t.next_is_lone_integer());
+        assert_eq!(t.count("a", 9).unwrap(), 3);
+        // `1` shares its line with `2`: not a lone integer
+        assert!(!t.next_is_lone_integer());
+        assert_eq!(t.reals("b", 2).unwrap(), vec![1.0, 2.0]);
+        assert_eq!(t.line(), 4);
+        assert_eq!(t.real("c").unwrap(), 4.5);
+        assert!(t.next_is_lone_integer());
+        assert_eq!(t.remaining(), 1);
+    }
+
+    #[test]
+    fn tokens_reject_bad_values() {
+        let line = |e: SolverError| match e {
+            SolverError::SiconosDat { line, .. } => line,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(line(Tokens::new("\n-1").count("n", 9).unwrap_err()), 2);
+        assert_eq!(line(Tokens::new("10").count("n", 9).unwrap_err()), 1);
+        assert_eq!(line(Tokens::new("1.5").count("n", 9).unwrap_err()), 1);
+        assert_eq!(line(Tokens::new("inf").real("x").unwrap_err()), 1);
+        assert_eq!(line(Tokens::new("1\n2").reals("x", 3).unwrap_err()), 1);
+        // the end of the file is reported at its last line
+        let mut t = Tokens::new("1\n2\n");
+        t.count("a", 9).unwrap();
+        t.count("b", 9).unwrap();
+        assert_eq!(line(t.count("c", 9).unwrap_err()), 2);
+    }
+}
