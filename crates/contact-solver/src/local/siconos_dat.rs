@@ -76,7 +76,7 @@ pub struct SiconosDat {
 /// let p = ReducedProblem::new(vec![2.0, 0.5, 0.5, 1.0], vec![-1.0, 0.2], vec![0.3])?;
 /// let text = write_siconos_dat(&p);
 /// assert_eq!(read_siconos_dat(&text)?.problem, p);
-/// let bad = text.replace("0.3", "NaN");
+/// let bad = text.replace("3e-1", "NaN"); // μ = 0.3, written in the shortest form
 /// assert!(read_siconos_dat(&bad).unwrap_err().to_string().contains("line"));
 /// # Ok::<(), contact_solver::SolverError>(())
 /// ```

@@ -87,9 +87,9 @@ fn issue_37_global_problem_condenses_to_the_hand_computed_w() {
     assert_eq!(d.source, DatSource::Global { dofs: 6 });
     let p = &d.problem;
     let expected_w = [1.5, 0.75, 0.5625];
-    for i in 0..3 {
+    for (i, &diagonal) in expected_w.iter().enumerate() {
         for j in 0..3 {
-            let e = if i == j { expected_w[i] } else { 0.0 };
+            let e = if i == j { diagonal } else { 0.0 };
             // one LU solve of a diagonal M: round-off only
             assert!(
                 (w(p, i, j) - e).abs() < 1e-15,
