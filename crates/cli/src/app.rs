@@ -75,8 +75,8 @@ error, as is any unknown key, missing node set or region, NaN or out-of-range pa
     },
     /// Solve a reduced contact problem x = W r + q with Coulomb friction, in 2D or 3D, read
     /// from JSON {"dim": 2 or 3, "W": [...], "q": [...], "mu": [...]} (the Siconos fc2d / fc3d
-    /// export format), or from an FCLIB HDF5 file (.h5, .hdf5; bipo built with --features
-    /// fclib).
+    /// export format), from Siconos' numerics text format (.dat, or any file that starts with a
+    /// number), or from an FCLIB HDF5 file (.h5, .hdf5; bipo built with --features fclib).
     #[command(
         name = "solve-local",
         after_help = "\
@@ -85,6 +85,7 @@ Examples:
   bipo solve-local problem.json --tol 1e-12 --json > solution.json
   bipo solve-local problem.json --tol 1e-8 --write-best > best.json   (if it fails: the best iterate)
   bipo solve-local problem.hdf5     (FCLIB; needs a bipo built with --features fclib)
+  bipo solve-local Capsules-i122-1617.dat   (Siconos' .dat, local or global, dense or blocks)
 
 The problem, n_c contacts in dimension d = \"dim\" (2 or 3; 2 when the key is left out):
   2D (dim 2): per contact (normal, tangent); m = 2 n_c
@@ -643,7 +644,7 @@ fn print_plane_work<const D: usize>(s: &run::Summary<D>) {
 }
 
 /// The reduced problem of `bipo solve-local`: FCLIB HDF5 for `.h5`/`.hdf5` (feature `fclib`),
-/// JSON otherwise.
+/// Siconos' `.dat` for `.dat` or a text that starts with a digit, JSON otherwise.
 fn read_local_problem(
     path: &Path,
     keep_asymmetric: bool,
@@ -677,6 +678,14 @@ fn read_local_problem(
     })?;
     // a byte-order mark (some Windows editors write one) is not part of the JSON
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let dat = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dat"));
+    if dat || text.trim_start().starts_with(|c: char| c.is_ascii_digit()) {
+        return contact_solver::local::siconos_dat::read_siconos_dat(text)
+            .map(|d| d.problem)
+            .map_err(|e| CliError::input(format!("{}: {}", path.display(), chain(&e))));
+    }
     let read = if keep_asymmetric {
         contact_solver::ReducedProblem::from_json_with_asymmetry(
             text,

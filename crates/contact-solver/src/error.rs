@@ -165,6 +165,15 @@ pub enum SolverError {
         #[source]
         source: Option<Cause>,
     },
+    /// A Siconos `.dat` friction-contact file (module `local::siconos_dat`) that cannot be
+    /// read, or that holds no supported problem: the line and what is wrong there.
+    #[error("Siconos .dat problem, line {line}: {reason}")]
+    SiconosDat {
+        /// The line (from 1) of the token at fault; the last line when the file ends early.
+        line: usize,
+        /// What is wrong, in the file's terms.
+        reason: String,
+    },
     /// Writing an output file or stream failed (the I/O error is the source).
     #[error("I/O error: {what}")]
     Io {
@@ -514,6 +523,11 @@ impl fmt::Debug for SolverError {
                 .field("path", path)
                 .field("reason", reason)
                 .field("source", source)
+                .finish(),
+            Self::SiconosDat { line, reason } => f
+                .debug_struct("SiconosDat")
+                .field("line", line)
+                .field("reason", reason)
                 .finish(),
             Self::Io { what, source } => f
                 .debug_struct("Io")

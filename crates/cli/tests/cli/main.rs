@@ -11,6 +11,7 @@ mod gmsh_2d;
 mod issue_35_one_run;
 mod issue_36_outputs;
 mod issue_36_traps;
+mod issue_37_siconos_dat;
 mod issue_37_write_best;
 mod issue_38_path;
 mod issue_39_scenes;

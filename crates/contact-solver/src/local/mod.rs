@@ -225,6 +225,7 @@ pub mod problem;
 mod residual;
 mod residual_stop;
 mod settings;
+pub mod siconos_dat;
 mod solver;
 pub mod stall;
 mod sweep;
