@@ -10,6 +10,7 @@
 
 pub mod app;
 mod app_dynamic;
+mod app_local;
 mod app_mpi;
 mod app_plastic;
 mod build;
