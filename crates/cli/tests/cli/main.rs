@@ -14,6 +14,7 @@ mod issue_36_traps;
 mod issue_37_write_best;
 mod issue_38_path;
 mod issue_39_scenes;
+mod issue_40_pile_3d;
 mod issue_40_pile_dp;
 mod issue_40_scenes;
 mod local_algorithms_scenes;
