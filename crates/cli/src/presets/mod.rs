@@ -11,7 +11,6 @@ pub mod seed;
 
 pub use pile::{
     BetaCoupling, Installation, PileSpace, PlasticPullout, PulloutRun, PulloutScene, PulloutSpec,
-    PulloutStep,
-    ShaftPoint,
+    PulloutStep, ShaftPoint,
 };
 pub use seed::{DelaminationSpec, Scene, ShearSpec};

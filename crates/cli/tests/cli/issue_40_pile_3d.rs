@@ -6,11 +6,18 @@
 //! matched to Mohr–Coulomb in plane strain (as the 2D `pile_dp.toml`).
 //!
 //! What is asserted, and why:
-//! - while no point of the 3D sand yields, its head load is the elastic 3D scene's to 1e-8:
-//!   the same body (mesh, supports, geostatic stress, interface), one stepped by the global
-//!   Newton at a tolerance of 1e-12 of the largest force (the soil's geostatic forces, ~1e4
-//!   kN), the other by the linear step, so the pile's few hundred free dofs leave the head
-//!   load within ~1e-8 of it;
+//! - while no point of the 3D sand yields, its head load is the elastic soil's to 1e-8: the
+//!   same plastic body (mesh, supports, geostatic stress at the stiffness's quadrature
+//!   points, interface) with a linear elastic soil (`build_plastic_3d(.., None, ..)`), both
+//!   stepped by the global Newton at a tolerance of 1e-12 of the largest force (the soil's
+//!   geostatic forces, ~1e4 kN), which leaves the head load within ~1e-8 of it;
+//! - that elastic curve is the elastic 3D scene's (`build_3d`, the linear step) within 1 % of
+//!   the peak: not to round-off, because the elastic model integrates the geostatic stress
+//!   into a load vector with its body-force rule while the plastic body holds it at the
+//!   stiffness's points, and on the quarter's curved P2 tetrahedra the two rules differ
+//!   (`pile_3d.rs`: the quarter is not exactly at rest after its geostatic step); measured
+//!   +0.3 % of `Q₀` at the geostatic step (the axisymmetric mesh, straight-sided, integrates
+//!   both exactly: 2D agrees to 1e-8, contact-solver's `issue_40_pile_plastic`);
 //! - the 3D and axisymmetric sand curves agree within 3 % of the peak load at every
 //!   increment: the bodies differ only by the quarter's angular discretisation (two sectors
 //!   of 45°), which moves the elastic curves by 0.36 % (`pile_3d.rs`), and by what it does to
@@ -61,58 +68,54 @@ type Curve = Vec<(f64, f64, usize)>;
 fn issue_40_pile_3d_sand_follows_the_elastic_and_axisymmetric_curves() {
     let spec = coarse();
     let settings3 = SimulationSettings::for_dimension::<3>();
-    let mut elastic = spec.build_3d(2, settings3).unwrap();
-    let geo = elastic.geostatic().unwrap();
-    let mut curve_e = vec![(0.0, elastic.head_load(&geo).unwrap())];
-    elastic.install().unwrap();
+    let mut scene = spec.build_3d(2, settings3).unwrap();
+    let geo = scene.geostatic().unwrap();
+    let mut linear = vec![(0.0, scene.head_load(&geo).unwrap(), 0)];
+    scene.install().unwrap();
     for k in 1..=spec.steps {
-        let s = elastic.pull(k).unwrap();
-        curve_e.push((s.head_displacement, s.head_load));
+        let s = scene.pull(k).unwrap();
+        linear.push((s.head_displacement, s.head_load, 0));
     }
-
-    let mut run = |d3: bool| -> Curve {
-        let mut out = Vec::new();
-        let check = |r: &contact_solver::StepResult<3>| {
-            let n = r.report.newton.as_ref().unwrap();
-            assert!(n.iterations <= 12, "{n:?}");
-            assert!(*n.residuals.last().unwrap() <= 1e-12, "{n:?}");
-        };
-        if d3 {
-            let mut pile = spec
-                .build_plastic_3d::<StandardLaw>(2, sand(&spec), (settings3, newton()))
-                .unwrap();
-            let geo = pile.geostatic().unwrap();
-            check(&geo);
-            out.push((0.0, pile.head_load(&geo).unwrap(), pile.yielding_points()));
-            for k in 1..=spec.steps {
-                let s = pile.pull(k).unwrap();
-                check(&s.result);
-                out.push((s.head_displacement, s.head_load, pile.yielding_points()));
-            }
-        } else {
-            let settings = (SimulationSettings::default(), newton());
-            let mut pile = spec
-                .build_plastic::<StandardLaw>(sand(&spec), settings)
-                .unwrap();
-            let geo = pile.geostatic().unwrap();
-            out.push((0.0, pile.head_load(&geo).unwrap(), pile.yielding_points()));
-            for k in 1..=spec.steps {
-                let s = pile.pull(k).unwrap();
-                out.push((s.head_displacement, s.head_load, pile.yielding_points()));
-            }
+    let check = |n: &contact_solver::NewtonReport| {
+        assert!(n.iterations <= 12, "{n:?}");
+        assert!(*n.residuals.last().unwrap() <= 1e-12, "{n:?}");
+    };
+    let run3 = |soil: Option<DruckerPrager>| -> Curve {
+        let mut pile = spec
+            .build_plastic_3d::<StandardLaw>(2, soil, (settings3, newton()))
+            .unwrap();
+        let geo = pile.geostatic().unwrap();
+        check(geo.report.newton.as_ref().unwrap());
+        let mut out = vec![(0.0, pile.head_load(&geo).unwrap(), pile.yielding_points())];
+        for k in 1..=spec.steps {
+            let s = pile.pull(k).unwrap();
+            check(s.result.report.newton.as_ref().unwrap());
+            out.push((s.head_displacement, s.head_load, pile.yielding_points()));
         }
         out
     };
-    let sand3 = run(true);
-    let sand2 = run(false);
+    let elastic3 = run3(None);
+    let sand3 = run3(Some(sand(&spec)));
+    let settings = (SimulationSettings::default(), newton());
+    let mut pile = spec
+        .build_plastic::<StandardLaw>(Some(sand(&spec)), settings)
+        .unwrap();
+    let geo = pile.geostatic().unwrap();
+    let mut sand2 = vec![(0.0, pile.head_load(&geo).unwrap(), pile.yielding_points())];
+    for k in 1..=spec.steps {
+        let s = pile.pull(k).unwrap();
+        check(s.result.report.newton.as_ref().unwrap());
+        sand2.push((s.head_displacement, s.head_load, pile.yielding_points()));
+    }
     let peak = sand2.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
-    let mut yielded = false;
-    let mut compared = 0;
-    for ((e, s3), s2) in curve_e.iter().zip(&sand3).zip(&sand2) {
+    let (mut yielded, mut compared, mut worst) = (false, 0, 0.0_f64);
+    for (((l, e), s3), s2) in linear.iter().zip(&elastic3).zip(&sand3).zip(&sand2) {
         eprintln!(
-            "v = {:.1} mm: Q elastic 3D {:.4} kN, sand 3D {:.4} kN ({} points yielding), sand \
-             axisymmetric {:.4} kN ({} yielding): 3D − axi {:+.3} % of the peak",
+            "v = {:.1} mm: Q elastic 3D scene {:.4} kN, elastic 3D {:.4} kN, sand 3D {:.4} kN \
+             ({} points yielding), sand axisymmetric {:.4} kN ({} yielding): sand 3D − axi \
+             {:+.3} % of the peak",
             1e3 * e.0,
+            l.1,
             e.1,
             s3.1,
             s3.2,
@@ -130,8 +133,14 @@ fn issue_40_pile_3d_sand_follows_the_elastic_and_axisymmetric_curves() {
                 e.1
             );
         }
-        assert!((s3.1 - s2.1).abs() <= 0.03 * peak, "{s3:?} vs {s2:?}");
+        worst = worst.max((s3.1 - s2.1).abs() / peak);
+        assert!((e.1 - l.1).abs() <= 0.01 * peak, "{e:?} vs {l:?}");
     }
+    eprintln!(
+        "sand: 3D against axisymmetric, at most {:.3} % of the peak",
+        100.0 * worst
+    );
+    assert!(worst <= 0.03, "{worst}");
     assert!(compared >= 1, "the geostatic step is elastic");
     assert!(yielded, "the sand yields during the pull-out");
 }

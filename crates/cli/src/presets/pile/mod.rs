@@ -97,8 +97,8 @@ mod scene;
 mod solid;
 
 pub(crate) use meridian::detach_tip;
-use scene::Phase;
 pub use plastic::PlasticPullout;
+use scene::Phase;
 pub use scene::{PileSpace, PulloutRun, PulloutScene, PulloutStep, ShaftPoint};
 
 /// How the installation (phase 2) is modelled: the imposed radial displacement `δ` of the soil's

@@ -51,7 +51,7 @@ use std::sync::Arc;
 ///     cone: ConeMatch::PlaneStrain,
 /// })?;
 /// let settings = (SimulationSettings::default(), NewtonSettings::default());
-/// let mut pile = spec.build_plastic::<contact_laws::StandardLaw>(sand, settings)?;
+/// let mut pile = spec.build_plastic::<contact_laws::StandardLaw>(Some(sand), settings)?;
 /// let geo = pile.geostatic()?;
 /// let q0 = spec.head_load_at_rest();
 /// assert!((pile.head_load(&geo)? - q0).abs() < 1e-6 * q0);
@@ -82,7 +82,8 @@ fn axial<const D: usize>() -> Component {
 
 impl PulloutSpec {
     /// The axisymmetric pull-out in a soil of law `soil` (module docs of
-    /// `presets::pile::plastic`), with the contact solver's and the Newton's `settings`.
+    /// `presets::pile::plastic`; `None`: linear elastic, the same body stepped by the same
+    /// Newton), with the contact solver's and the Newton's `settings`.
     ///
     /// # Errors
     /// [`PulloutSpec::build`]'s; [`SolverError::Unsupported`] for an installation other than
@@ -92,10 +93,10 @@ impl PulloutSpec {
     /// in [`SolverError::Structure`]).
     pub fn build_plastic<L: ContactLaw + Clone + From<Rccm>>(
         &self,
-        soil: DruckerPrager,
+        soil: Option<DruckerPrager>,
         settings: (SimulationSettings, NewtonSettings),
     ) -> Result<PlasticPullout<2, L>, SolverError> {
-        self.check_plastic(&soil)?;
+        self.check_plastic(soil.as_ref())?;
         let parts = self.axisymmetric_parts()?;
         self.plastic(parts, soil, settings)
     }
@@ -109,10 +110,10 @@ impl PulloutSpec {
     pub fn build_plastic_3d<L: ContactLaw + Clone + From<Rccm>>(
         &self,
         sectors: usize,
-        soil: DruckerPrager,
+        soil: Option<DruckerPrager>,
         settings: (SimulationSettings, NewtonSettings),
     ) -> Result<PlasticPullout<3, L>, SolverError> {
-        self.check_plastic(&soil)?;
+        self.check_plastic(soil.as_ref())?;
         if sectors == 0 {
             return Err(SolverError::InvalidSetting {
                 what: "sectors",
@@ -125,7 +126,7 @@ impl PulloutSpec {
     }
 
     /// What the plastic pull-out refuses, on top of [`Self::check`].
-    fn check_plastic(&self, soil: &DruckerPrager) -> Result<(), SolverError> {
+    fn check_plastic(&self, soil: Option<&DruckerPrager>) -> Result<(), SolverError> {
         self.check()?;
         if self.installation != Installation::None {
             return Err(SolverError::Unsupported(
@@ -141,7 +142,9 @@ impl PulloutSpec {
                     .into(),
             ));
         }
-        let p = soil.parameters();
+        let Some(p) = soil.map(DruckerPrager::parameters) else {
+            return Ok(());
+        };
         for (what, law, spec) in [
             ("soil law's young", p.young, self.soil_young),
             ("soil law's poisson", p.poisson, self.soil_poisson),
@@ -162,14 +165,18 @@ impl PulloutSpec {
     fn plastic<L: ContactLaw + Clone, const D: usize>(
         &self,
         parts: Parts<D, L>,
-        soil: DruckerPrager,
+        soil: Option<DruckerPrager>,
         (settings, newton): (SimulationSettings, NewtonSettings),
     ) -> Result<PlasticPullout<D, L>, SolverError>
     where
         Dim<D>: PileSpace<D>,
     {
+        let soil: Arc<dyn ConstitutivePoint> = match soil {
+            Some(law) => Arc::new(law),
+            None => Arc::new(LinearElasticPoint::new(self.soil_young, self.soil_poisson)?),
+        };
         let laws: [(u32, Arc<dyn ConstitutivePoint>); 2] = [
-            (SOIL, Arc::new(soil)),
+            (SOIL, soil),
             (
                 PILE,
                 Arc::new(LinearElasticPoint::new(self.pile_young, self.pile_poisson)?),
