@@ -11,18 +11,18 @@
 //!   points, interface) with a linear elastic soil (`build_plastic_3d(.., None, ..)`), both
 //!   stepped by the global Newton at a tolerance of 1e-12 of the largest force (the soil's
 //!   geostatic forces, ~1e4 kN), which leaves the head load within ~1e-8 of it;
-//! - that elastic curve is the elastic 3D scene's (`build_3d`, the linear step) within 1 % of
-//!   the peak: not to round-off, because the elastic model integrates the geostatic stress
+//! - that elastic curve is the elastic 3D scene's (`build_3d`, the linear step) within 0.5 %
+//!   of the peak (measured 0.04 %, 0.13 kN at the geostatic step): not to round-off, because the elastic model integrates the geostatic stress
 //!   into a load vector with its body-force rule while the plastic body holds it at the
 //!   stiffness's points, and on the quarter's curved P2 tetrahedra the two rules differ
 //!   (`pile_3d.rs`: the quarter is not exactly at rest after its geostatic step); measured
 //!   +0.3 % of `Q₀` at the geostatic step (the axisymmetric mesh, straight-sided, integrates
 //!   both exactly: 2D agrees to 1e-8, contact-solver's `issue_40_pile_plastic`);
-//! - the 3D and axisymmetric sand curves agree within 3 % of the peak load at every
+//! - the 3D and axisymmetric sand curves agree within 1 % of the peak load at every
 //!   increment: the bodies differ only by the quarter's angular discretisation (two sectors
 //!   of 45°), which moves the elastic curves by 0.36 % (`pile_3d.rs`), and by what it does to
 //!   the yielding zone along the shaft (a few elements wide on this mesh, in both models);
-//!   3 % is `examples/pile_3d.rs`'s bound, ten times the elastic difference;
+//!   measured 0.14 % (at v = 3 mm, where the sand starts to yield), 0.04 % at full slip;
 //! - each Newton meets its tolerance with at most 12 corrections (the default budget).
 
 use bipo::presets::{Installation, PulloutSpec};
@@ -134,13 +134,13 @@ fn issue_40_pile_3d_sand_follows_the_elastic_and_axisymmetric_curves() {
             );
         }
         worst = worst.max((s3.1 - s2.1).abs() / peak);
-        assert!((e.1 - l.1).abs() <= 0.01 * peak, "{e:?} vs {l:?}");
+        assert!((e.1 - l.1).abs() <= 0.005 * peak, "{e:?} vs {l:?}");
     }
     eprintln!(
         "sand: 3D against axisymmetric, at most {:.3} % of the peak",
         100.0 * worst
     );
-    assert!(worst <= 0.03, "{worst}");
+    assert!(worst <= 0.01, "{worst}");
     assert!(compared >= 1, "the geostatic step is elastic");
     assert!(yielded, "the sand yields during the pull-out");
 }
