@@ -50,6 +50,10 @@ use fem_core::plastic::DruckerPrager;
 use fem_core::{Component, Dim, FemError};
 use std::collections::BTreeMap;
 
+/// The most sectors of the quarter (16 make 5.6° sectors, the faceting far below the
+/// mesh's own error; more only multiply the dofs).
+const MAX_SECTORS: usize = 16;
+
 /// How a dimension builds the plastic pile: the axisymmetric meridian (no `sectors`) or the
 /// 3D quarter (`sectors`, 2 by default).
 pub(crate) trait PresetPileDim<const D: usize>: StudyDim<D> + PileSpace<D>
@@ -239,12 +243,13 @@ where
     };
     let solid = analysis.pile_preset_is_solid(&ap)?;
     if let Some(s) = o.sectors
-        && (!solid || s == 0)
+        && (!solid || s == 0 || s > MAX_SECTORS)
     {
         let sp = pp.key("sectors");
         bail!(
             sp,
-            "`{sp}` = {s}: the quarter's sectors, ≥ 1, with [analysis] type = \"3d\" only"
+            "`{sp}` = {s}: the quarter's sectors, 1 to {MAX_SECTORS}, with [analysis] type = \
+             \"3d\" only"
         );
     }
     let (mp, soil) = soil_law(scene)?;
