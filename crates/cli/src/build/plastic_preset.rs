@@ -152,7 +152,9 @@ fn spec_of(pp: &KeyPath, o: &PileOverride, mp: &KeyPath, scene: &Scene) -> CliRe
         );
     }
     let mut spec = pile(pp, o)?;
-    let m = &scene.materials[0];
+    let Some(m) = scene.materials.first() else {
+        bail!(mp, "`{mp}`: the soil's material is missing");
+    };
     spec.installation = Installation::None;
     (spec.soil_young, spec.soil_poisson, spec.soil_unit_weight) =
         (m.young, m.poisson, m.unit_weight);
@@ -171,7 +173,12 @@ fn soil_law(scene: &Scene) -> CliResult<(KeyPath, DruckerPrager)> {
         );
     }
     let mp = root.index(0);
-    let m = &scene.materials[0];
+    let Some(m) = scene.materials.first() else {
+        bail!(
+            root,
+            "`{root}`: the pile preset with a plastic soil needs the soil's [[materials]]"
+        );
+    };
     let soil_only = m.region.is_none_or(|r| r == SOIL)
         && m.regions
             .as_deref()
@@ -298,7 +305,10 @@ where
         function: Some("lift".into()),
         phases: vec![true; 2],
     };
-    let kind = scene.materials[0].kind;
+    let kind = scene
+        .materials
+        .first()
+        .map_or(MaterialKind::Elastic, |m| m.kind);
     Ok(PlasticStudy {
         title: scene
             .title
