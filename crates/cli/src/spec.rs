@@ -453,6 +453,8 @@ pub struct PileOverride {
     /// Interface law parameters (each optional).
     pub interface: Option<RccmOverride>,
     pub mesh: Option<PileMeshOverride>,
+    /// The 3D quarter's sectors (a plastic scene with `[analysis] type = "3d"`).
+    pub sectors: Option<usize>,
 }
 
 /// Which pile of the seed a pile preset starts from.

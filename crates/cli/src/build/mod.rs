@@ -25,6 +25,7 @@ mod model;
 mod outputs;
 mod phases;
 mod plastic;
+mod plastic_preset;
 mod presets;
 mod solid;
 mod study;
@@ -140,7 +141,15 @@ pub fn build(loaded: &Loaded) -> CliResult<Built> {
     }
     dynamic::refuse_in_static(scene)?;
     if plastic::is_plastic(scene) {
-        return Ok(if scene.analysis.as_ref().is_some_and(|a| a.is_solid()) {
+        let solid = scene.analysis.as_ref().is_some_and(|a| a.is_solid());
+        if scene.preset.is_some() {
+            return Ok(if solid {
+                Built::SolidPlastic(Box::new(plastic_preset::build::<3>(loaded)?))
+            } else {
+                Built::PlanePlastic(Box::new(plastic_preset::build::<2>(loaded)?))
+            });
+        }
+        return Ok(if solid {
             Built::SolidPlastic(Box::new(plastic::build::<3>(loaded)?))
         } else {
             Built::PlanePlastic(Box::new(plastic::build::<2>(loaded)?))

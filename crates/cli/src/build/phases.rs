@@ -17,6 +17,11 @@ pub struct TimeFunction {
 }
 
 impl TimeFunction {
+    /// The function of `[time, value]` points (times increasing strictly: the caller's).
+    pub(super) fn from_points(points: Vec<[f64; 2]>) -> Self {
+        Self { points }
+    }
+
     /// Value at `t`.
     pub fn eval(&self, t: f64) -> f64 {
         let p = &self.points;

@@ -163,13 +163,6 @@ fn refuse_unserved(scene: &Scene) -> CliResult<()> {
             "`{p}`: {what} is not served by a scene with a plastic material"
         );
     };
-    if scene.preset.is_some() {
-        not(
-            root.key("preset"),
-            "a library preset (a preset builds a linear elastic body: write the scene out key \
-             by key, as examples/scenes/pile_dp.toml does the pile preset's pull-out)",
-        )?;
-    }
     if scene.analysis.as_ref().is_some_and(|a| a.floating()) {
         not(
             root.key("analysis").key("floating"),
@@ -197,7 +190,7 @@ fn refuse_unserved(scene: &Scene) -> CliResult<()> {
 /// A message at the key: a plastic key on another type, `friction_angle` outside `[0, 90)`,
 /// `dilatancy_angle` outside `[0, φ]`, a negative `cohesion` (zero with `φ = 0`), a
 /// `yield_stress` not > 0, or a missing required key.
-pub(super) fn plastic_law(p: &KeyPath, m: &MaterialSpec) -> CliResult<Option<DruckerPrager>> {
+pub(crate) fn plastic_law(p: &KeyPath, m: &MaterialSpec) -> CliResult<Option<DruckerPrager>> {
     let present = [
         ("friction_angle", m.friction_angle.is_some()),
         ("dilatancy_angle", m.dilatancy_angle.is_some()),
@@ -403,7 +396,7 @@ where
 /// `force_t` in 2D: the zone's tangential force), and
 /// `u_x`, `u_y`, `u_z` (mean over a node `set` or one `node`) and `reaction_x`, `reaction_y`,
 /// `reaction_z` (sum over a supported node `set`: the load–displacement curve).
-fn check_plots<const D: usize>(
+pub(super) fn check_plots<const D: usize>(
     plots: &[PlotSpec],
     zone_names: &[String],
     model: &ElasticModel<D>,

@@ -124,13 +124,25 @@ pub(super) fn validate(scene: &Scene, preset: &Preset) -> CliResult<PresetPlan> 
             });
             PresetSpec::Shear(spec)
         }
-        Preset::Pile(o) => PresetSpec::Pile(Box::new(pile(&p, o)?)),
+        Preset::Pile(o) => {
+            if o.sectors.is_some() {
+                let sp = p.key("sectors");
+                bail!(
+                    sp,
+                    "`{sp}`: the 3D pile preset is served in a scene with a plastic soil (a \
+                     [[materials]] of type \"drucker-prager\" and [analysis] type = \"3d\"); \
+                     examples/pile_3d.rs runs the elastic one"
+                );
+            }
+            PresetSpec::Pile(Box::new(pile(&p, o)?))
+        }
     };
     Ok(PresetPlan { spec, settings })
 }
 
-/// The pile preset's spec with the overrides `o` (at `p`), checked.
-fn pile(p: &KeyPath, o: &PileOverride) -> CliResult<PulloutSpec> {
+/// The pile preset's spec with the overrides `o` (at `p`), checked (`sectors` is the plastic
+/// scene's, [`super::plastic_preset`], and is left to its caller).
+pub(super) fn pile(p: &KeyPath, o: &PileOverride) -> CliResult<PulloutSpec> {
     let mut spec = match o.site {
         Some(Site::Cran) => PulloutSpec::cran(),
         _ => PulloutSpec::plancoet(),

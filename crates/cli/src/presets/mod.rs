@@ -10,7 +10,7 @@ pub mod pile;
 pub mod seed;
 
 pub use pile::{
-    BetaCoupling, Installation, PileSpace, PulloutRun, PulloutScene, PulloutSpec, PulloutStep,
-    ShaftPoint,
+    BetaCoupling, Installation, PileSpace, PlasticPullout, PulloutRun, PulloutScene, PulloutSpec,
+    PulloutStep, ShaftPoint,
 };
 pub use seed::{DelaminationSpec, Scene, ShearSpec};

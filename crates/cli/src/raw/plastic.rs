@@ -152,4 +152,28 @@ impl RawAnalysis {
             }),
         })
     }
+    /// `[analysis]` (at `p`) of a scene with the pile preset and a plastic soil: its `type`
+    /// (`"axisymmetric"`, or `"3d"`: whether the quarter is built) and `newton`, no other key.
+    pub fn pile_preset_is_solid(&self, p: &KeyPath) -> CliResult<bool> {
+        let present = super::keys::present!(self; thickness, floating, dynamic, time_step,
+            end_time, theta, mass, rayleigh_alpha, rayleigh_beta, newton);
+        super::keys::only(
+            p,
+            "the [analysis] of a pile preset with a plastic soil",
+            &present,
+            "newton",
+        )?;
+        match self.kind {
+            super::AnalysisKind::Axisymmetric => Ok(false),
+            super::AnalysisKind::Solid => Ok(true),
+            _ => {
+                let tp = p.key("type");
+                crate::error::bail!(
+                    tp,
+                    "`{tp}`: the pile preset with a plastic soil is \"axisymmetric\" or \"3d\" \
+                     (a quarter of `[preset] sectors` sectors)"
+                );
+            }
+        }
+    }
 }

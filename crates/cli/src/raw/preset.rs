@@ -66,6 +66,7 @@ pub struct RawPreset {
     head_force: Option<f64>,
     alert_distance: Option<f64>,
     mesh: Option<PileMeshOverride>,
+    sectors: Option<usize>,
 }
 
 impl RawPreset {
@@ -89,7 +90,7 @@ impl RawPreset {
         let present = present!(self; length, height, young, poisson, nx, ny, element, lift, press,
             push, duration, steps, interface, site, coulomb, pile_young, pile_poisson,
             pile_unit_weight, soil_young, soil_poisson, soil_unit_weight, k0, installation,
-            head_displacement, head_force, alert_distance, mesh);
+            head_displacement, head_force, alert_distance, mesh, sectors);
         const COMMON: &str = "length height young poisson nx ny element duration steps interface";
         Ok(match self.kind {
             PresetKind::Delamination => {
@@ -120,7 +121,7 @@ impl RawPreset {
             PresetKind::Pile => {
                 let keys = "site coulomb pile_young pile_poisson pile_unit_weight soil_young \
                             soil_poisson soil_unit_weight k0 installation head_displacement \
-                            head_force steps alert_distance interface mesh";
+                            head_force steps alert_distance interface mesh sectors";
                 only(p, "the pile preset", &present, keys)?;
                 let installation = match self.installation {
                     None => None,
@@ -162,6 +163,7 @@ impl RawPreset {
                     alert_distance: self.alert_distance,
                     interface: self.interface,
                     mesh: self.mesh,
+                    sectors: self.sectors,
                 })
             }
         })

@@ -102,7 +102,7 @@ impl Plots {
         self.curves.iter().any(|c| {
             matches!(
                 c.spec.quantity.as_str(),
-                "u_x" | "u_y" | "reaction_x" | "reaction_y"
+                "u_x" | "u_y" | "u_z" | "reaction_x" | "reaction_y" | "reaction_z"
             )
         })
     }
@@ -278,9 +278,16 @@ where
                 None => f64::NAN,
             }
         }
-        "u_x" | "u_y" => {
-            let k = usize::from(q == "u_y");
+        "u_x" | "u_y" | "u_z" => {
+            // the axis (z only in 3D: the check of the plots refuses it in 2D)
+            let k = ["u_x", "u_y", "u_z"]
+                .iter()
+                .position(|a| *a == q)
+                .unwrap_or(0);
             let Some(d) = disp else { return f64::NAN };
+            if k >= D {
+                return f64::NAN;
+            }
             let nodes: Vec<usize> = match c.spec.node {
                 Some(n) => vec![n],
                 None => c.set_nodes.clone(),
@@ -290,11 +297,11 @@ where
             }
             nodes.iter().map(|&n| d[n][k]).sum::<f64>() / nodes.len() as f64
         }
-        "reaction_x" | "reaction_y" => {
-            let comp = if q == "reaction_x" {
-                Component::X
-            } else {
-                Component::Y
+        "reaction_x" | "reaction_y" | "reaction_z" => {
+            let comp = match q {
+                "reaction_x" => Component::X,
+                "reaction_y" => Component::Y,
+                _ => Component::Z,
             };
             reactions.map_or(f64::NAN, |r| {
                 r.iter()

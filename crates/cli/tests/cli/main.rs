@@ -15,6 +15,7 @@ mod issue_37_siconos_dat;
 mod issue_37_write_best;
 mod issue_38_path;
 mod issue_39_scenes;
+mod issue_40_pile_3d;
 mod issue_40_pile_dp;
 mod issue_40_scenes;
 mod local_algorithms_scenes;

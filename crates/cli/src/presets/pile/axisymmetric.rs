@@ -3,6 +3,7 @@
 
 use super::meridian::Meridian;
 use super::{Parts, PulloutScene, PulloutSpec, ZonePairs};
+use contact_laws::Rccm;
 use contact_solver::SolverError;
 use contact_solver::coupling::simulation::SimulationSettings;
 use contact_solver::coupling::zone::PairNormals;
@@ -24,6 +25,13 @@ impl PulloutSpec {
     /// [`TipCorner::Shared`](fem_core::generate::TipCorner::Shared).
     pub fn build(&self, settings: SimulationSettings) -> Result<PulloutScene, SolverError> {
         self.check()?;
+        let parts = self.axisymmetric_parts()?;
+        self.assemble(parts, settings)
+    }
+
+    /// The axisymmetric model, zones and installation calibration ([`Self::build`] less the
+    /// simulation), the spec checked by the caller.
+    pub(super) fn axisymmetric_parts<L: From<Rccm>>(&self) -> Result<Parts<2, L>, SolverError> {
         let (radius, length) = (self.radius(), self.mesh.length);
         let Meridian {
             mesh,
@@ -123,7 +131,7 @@ impl PulloutSpec {
                 .map(|(&n, &f)| (n, [f, 0.0]))
                 .collect(),
         };
-        self.assemble(parts, settings)
+        Ok(parts)
     }
 }
 

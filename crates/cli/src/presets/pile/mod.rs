@@ -92,10 +92,12 @@ use std::sync::Arc;
 
 mod axisymmetric;
 mod meridian;
+mod plastic;
 mod scene;
 mod solid;
 
 pub(crate) use meridian::detach_tip;
+pub use plastic::PlasticPullout;
 use scene::Phase;
 pub use scene::{PileSpace, PulloutRun, PulloutScene, PulloutStep, ShaftPoint};
 
@@ -371,10 +373,10 @@ impl PulloutSpec {
     ///
     /// # Errors
     /// [`SolverError::Law`] for invalid interface parameters.
-    fn zones<const D: usize>(
+    fn zones<L: From<Rccm>, const D: usize>(
         &self,
         [shaft, corner, tip]: [ZonePairs<D>; 3],
-    ) -> Result<Vec<ContactZone<Rccm, D>>, SolverError>
+    ) -> Result<Vec<ContactZone<L, D>>, SolverError>
     where
         Dim<D>: PileSpace<D>,
     {
@@ -396,8 +398,15 @@ impl PulloutSpec {
         Ok(zones
             .into_iter()
             .map(|(name, p, law)| {
-                ContactZone::node_pairs(name, p.pile, p.soil, p.normals, law, self.alert_distance)
-                    .with_areas(p.areas)
+                ContactZone::node_pairs(
+                    name,
+                    p.pile,
+                    p.soil,
+                    p.normals,
+                    L::from(law),
+                    self.alert_distance,
+                )
+                .with_areas(p.areas)
             })
             .collect())
     }
@@ -458,15 +467,15 @@ impl PulloutSpec {
 }
 
 /// What a dimension's builder makes ([`PulloutSpec::build`], [`PulloutSpec::build_3d`]) for
-/// [`PulloutSpec::assemble`] to finish.
-struct Parts<const D: usize>
+/// [`PulloutSpec::assemble`] (or the plastic pull-out's builder) to finish, its zones' law `L`.
+struct Parts<const D: usize, L = Rccm>
 where
     Dim<D>: PileSpace<D>,
 {
     /// The model with its self-weight and initial stress.
     model: ElasticModel<D>,
     /// Shaft, tip corner, tip.
-    zones: Vec<ContactZone<Rccm, D>>,
+    zones: Vec<ContactZone<L, D>>,
     /// The `pile_head` nodes, sorted.
     head: Vec<usize>,
     shaft_candidates: Vec<usize>,

@@ -30,6 +30,7 @@
 
 use super::meridian::Meridian;
 use super::{Parts, PulloutScene, PulloutSpec, ZonePairs};
+use contact_laws::Rccm;
 use contact_solver::coupling::zone::PairNormals;
 use contact_solver::{SimulationSettings, SolverError};
 use fem_core::generate::{PILE, SOIL};
@@ -99,6 +100,19 @@ impl PulloutSpec {
                 expected: "at least one sector",
             });
         }
+        let parts = self.quarter_parts(sectors, true)?;
+        self.assemble(parts, settings)
+    }
+
+    /// The quarter's model, zones and (with `installation`) the installation's unit solve
+    /// ([`Self::build_3d`] less the simulation), the spec and `sectors ≥ 1` checked by the
+    /// caller. Without `installation` the unit solve is skipped (`unit_normal = 1`, no
+    /// forces): the plastic pull-out has no installation phase.
+    pub(super) fn quarter_parts<L: From<Rccm>>(
+        &self,
+        sectors: usize,
+        installation: bool,
+    ) -> Result<Parts<3, L>, SolverError> {
         let Meridian {
             mesh: meridian,
             shaft_pile,
@@ -140,16 +154,18 @@ impl PulloutSpec {
         soil_interface.sort_unstable();
         soil_interface.dedup();
         let unit_delta = 1e-3;
-        let unit = SolidModel::new(
-            mesh.clone(),
-            &materials,
-            quarter_supports(&mesh, Some((&soil_interface, unit_delta)))?,
-        )?;
-        let reactions = unit.reactions(&unit.solve(1.0)?, 1.0)?;
         let mut unit_force: HashMap<usize, [f64; 3]> = HashMap::new();
-        for ((n, c), r) in reactions {
-            if soil_interface.binary_search(&n).is_ok() && c != Component::Z {
-                unit_force.entry(n).or_insert([0.0; 3])[c as usize] = r / unit_delta;
+        if installation {
+            let unit = SolidModel::new(
+                mesh.clone(),
+                &materials,
+                quarter_supports(&mesh, Some((&soil_interface, unit_delta)))?,
+            )?;
+            let reactions = unit.reactions(&unit.solve(1.0)?, 1.0)?;
+            for ((n, c), r) in reactions {
+                if soil_interface.binary_search(&n).is_ok() && c != Component::Z {
+                    unit_force.entry(n).or_insert([0.0; 3])[c as usize] = r / unit_delta;
+                }
             }
         }
 
@@ -227,14 +243,18 @@ impl PulloutSpec {
         );
         let mut unit_forces: Vec<(usize, [f64; 3])> = unit_force.into_iter().collect();
         unit_forces.sort_unstable_by_key(|(n, _)| *n);
-        let unit_normal: f64 = unit_forces
-            .iter()
-            .map(|(n, f)| {
-                let x = model.mesh().nodes()[*n];
-                let r = x[0].hypot(x[1]);
-                (f[0] * x[0] + f[1] * x[1]) / r
-            })
-            .sum();
+        let unit_normal: f64 = if installation {
+            unit_forces
+                .iter()
+                .map(|(n, f)| {
+                    let x = model.mesh().nodes()[*n];
+                    let r = x[0].hypot(x[1]);
+                    (f[0] * x[0] + f[1] * x[1]) / r
+                })
+                .sum()
+        } else {
+            1.0
+        };
         let parts = Parts {
             model,
             zones,
@@ -245,7 +265,7 @@ impl PulloutSpec {
             unit_forces,
             unit_normal,
         };
-        self.assemble(parts, settings)
+        Ok(parts)
     }
 }
 
