@@ -23,7 +23,7 @@
 
 pub mod partition;
 
-pub use partition::Partition;
+pub use partition::{Partition, Partitioner};
 
 #[cfg(feature = "petsc")]
 mod error;

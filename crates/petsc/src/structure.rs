@@ -17,7 +17,7 @@
 use crate::error::PetscError;
 use crate::ffi::PetscInt;
 use crate::linalg::{System, int};
-use crate::partition::Partition;
+use crate::partition::{Partition, Partitioner};
 use crate::runtime::Petsc;
 use crate::solver::LinearSolver;
 use fem_core::dirichlet::Dof;
@@ -104,6 +104,22 @@ impl<'p> PetscStructure<'p> {
         supports: Supports,
         solver: LinearSolver,
     ) -> Result<Self, PetscError> {
+        Self::with_partitioner(petsc, mesh, materials, supports, solver, Partitioner::Slabs)
+    }
+
+    /// [`new`](Self::new) with the partition chosen ([`Partitioner::Graph`] cuts fewer nodes
+    /// from three ranks on). Collective; the same errors as `new`.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn with_partitioner(
+        petsc: &'p Petsc,
+        mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        solver: LinearSolver,
+        partitioner: Partitioner,
+    ) -> Result<Self, PetscError> {
         solver.validate()?;
         if !supports.ties().is_empty() {
             return Err(PetscError::Unsupported {
@@ -122,7 +138,7 @@ impl<'p> PetscStructure<'p> {
         }
         let dofs = DofMap::<3>::numbered(mesh.node_count(), &supports)?;
         let (rank, size) = (petsc.rank(), petsc.size());
-        let partition = Partition::slabs(&mesh, &dofs, size);
+        let partition = partitioner.partition(&mesh, &dofs, size);
         let (d_nnz, o_nnz) = preallocation(&mesh, &dofs, &partition, rank)?;
         let owned = partition.offsets[rank + 1] - partition.offsets[rank];
         let mut system = System::new(owned, dofs.free_count(), &d_nnz, &o_nnz)?;

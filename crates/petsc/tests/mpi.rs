@@ -6,6 +6,8 @@
 //!   reactions and the contact nodes' displacements of both steps equal the direct path's
 //!   (fem-core's `SolidModel`, Cholesky) to 1e-8 relative (the example checks; CG stops at a
 //!   residual of 1e-12 relative, and 4e-11 is measured).
+//! - **The graph partition** (recursive bisection, four quadrants on 4 ranks) gives the slab
+//!   partition's answer (four slices) to 1e-10 relative, both steps.
 //! - **A failing rank** ends every rank with its message (`MPI_Abort`), where the other rank
 //!   waits in a barrier: a hang would be a timeout.
 //!
@@ -78,6 +80,20 @@ fn issue_41_block_on_one_and_two_ranks_matches_the_direct_path() {
         // both steps printed, each within 1e-8 (checked by the example, which fails else)
         assert_eq!(stdout.matches("relative to the direct path").count(), 2);
     }
+}
+
+#[test]
+fn issue_41_graph_partition_gives_the_slab_partitions_answer() {
+    // 4 ranks: slabs are four slices, the graph partition four quadrants
+    let out = mpirun(4, &["partitions"], Duration::from_secs(600)).expect("ends");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.contains("partitions: OK"),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // both steps compared, each within 1e-10 (checked by the example, which fails else)
+    assert_eq!(stdout.matches("graph against slabs").count(), 2);
 }
 
 #[test]
