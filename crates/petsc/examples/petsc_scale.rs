@@ -36,10 +36,12 @@ use std::time::Instant;
 
 type Res<T> = Result<T, Box<dyn Error>>;
 
-/// A structure whose solves are counted and timed (every other call passed through).
+/// A structure whose solves are counted and timed, wall and CPU (every other call passed
+/// through).
 struct Timed<S> {
     inner: S,
     seconds: Cell<f64>,
+    cpu: Cell<f64>,
     columns: Cell<usize>,
 }
 
@@ -48,15 +50,17 @@ impl<S> Timed<S> {
         Self {
             inner,
             seconds: Cell::new(0.0),
+            cpu: Cell::new(0.0),
             columns: Cell::new(0),
         }
     }
 
     fn time<T>(&self, columns: usize, f: impl FnOnce() -> T) -> T {
-        let start = Instant::now();
+        let (start, cpu) = (Instant::now(), cpu_s());
         let out = f();
         self.seconds
             .set(self.seconds.get() + start.elapsed().as_secs_f64());
+        self.cpu.set(self.cpu.get() + cpu_s() - cpu);
         self.columns.set(self.columns.get() + columns);
         out
     }
@@ -100,7 +104,7 @@ fn material() -> Material {
 /// The block of CELLS × CELLS × CELLS/2 Tet10 cells, its top pressed, and the zone of the
 /// `side × side` bottom nodes nearest the centre (`side` odd).
 fn patch_model(cells: usize, side: usize) -> Res<(SolidMesh, Supports, ContactZone3<Coulomb>)> {
-    if side % 2 == 0 || side > 2 * cells + 1 {
+    if side.is_multiple_of(2) || side > 2 * cells + 1 {
         return Err(format!("M = {side}: odd, at most 2 CELLS + 1").into());
     }
     let mesh = box_mesh(
@@ -145,30 +149,50 @@ fn peak_rss_mib() -> f64 {
         .map_or(f64::NAN, |kib| kib / 1024.0)
 }
 
+/// CPU time (user + system) of this process so far, in seconds (`/proc/self/stat`, clock
+/// ticks of 1/100 s): on the shared machine the figure the load changes least.
+fn cpu_s() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            // the fields after the command's closing parenthesis: utime is the 12th, stime the 13th
+            let rest = s.rsplit_once(')')?.1;
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some(f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?)
+        })
+        .map_or(f64::NAN, |ticks| ticks / 100.0)
+}
+
 /// One dense-F* step on `structure`; prints the figures with `head` before them and `tail`'s
 /// (of the structure after the step) after.
 fn step<S: Structure<3>>(
     head: &str,
     structure: S,
     zone: ContactZone3<Coulomb>,
-    setup: f64,
+    setup: (f64, f64),
     tail: impl Fn(&S) -> String,
 ) -> Res<()> {
-    let settings = SimulationSettings::for_dimension::<3>().with_flexibility(FlexibilityMode::Dense);
-    let start = Instant::now();
+    let settings =
+        SimulationSettings::for_dimension::<3>().with_flexibility(FlexibilityMode::Dense);
+    let (start, cpu) = (Instant::now(), cpu_s());
     let mut sim = SolidContactSimulation::new(Timed::new(structure), vec![zone], settings)?;
     let res = sim.step(1.0, 1.0)?;
-    let step = start.elapsed().as_secs_f64();
+    let (step, step_cpu) = (start.elapsed().as_secs_f64(), cpu_s() - cpu);
     let timed = sim.structure();
-    let (solve, columns) = (timed.seconds.get(), timed.columns.get());
+    let (solve, solve_cpu, columns) = (timed.seconds.get(), timed.cpu.get(), timed.columns.get());
     let force: f64 = res.contacts.iter().map(|c| c.r.n).sum();
     println!(
-        "{head} candidates={} closed={} setup_s={setup:.2} step_s={step:.2} solve_s={solve:.2} \
-         columns={columns} per_solve_s={:.4} interface_s={:.2} force={force:.9e} peak_rss_mib={:.0}{}",
+        "{head} candidates={} closed={} setup_s={:.2} setup_cpu_s={:.2} step_s={step:.2} \
+         step_cpu_s={step_cpu:.2} solve_s={solve:.2} solve_cpu_s={solve_cpu:.2} columns={columns} \
+         per_solve_cpu_s={:.4} interface_s={:.2} interface_cpu_s={:.2} force={force:.9e} \
+         peak_rss_mib={:.0}{}",
         res.report.active_contacts,
         res.report.closed_contacts,
-        solve / columns.max(1) as f64,
+        setup.0,
+        setup.1,
+        solve_cpu / columns.max(1) as f64,
         step - solve,
+        step_cpu - solve_cpu,
         peak_rss_mib(),
         tail(&timed.inner)
     );
@@ -190,7 +214,7 @@ fn patch(petsc: &Petsc, args: &[String]) -> Res<()> {
     };
     let (mesh, supports, zone) = patch_model(cells, side)?;
     petsc.barrier()?;
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), cpu_s());
     let body = PetscStructure::with_partitioner(
         petsc,
         mesh,
@@ -199,7 +223,7 @@ fn patch(petsc: &Petsc, args: &[String]) -> Res<()> {
         solver,
         partitioner,
     )?;
-    let setup = start.elapsed().as_secs_f64();
+    let setup = (start.elapsed().as_secs_f64(), cpu_s() - cpu);
     let interface = body.partition().interface_nodes(body.mesh());
     let head = format!(
         "patch cells={cells} dofs={} ranks={} rank={} partition={partitioner:?} interface_nodes={interface}",
@@ -222,9 +246,9 @@ fn direct(args: &[String]) -> Res<()> {
     let cells: usize = args.first().ok_or("direct CELLS M")?.parse()?;
     let side: usize = args.get(1).ok_or("direct CELLS M")?.parse()?;
     let (mesh, supports, zone) = patch_model(cells, side)?;
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), cpu_s());
     let model = SolidModel::new(mesh, &[(0, material())], supports)?;
-    let setup = start.elapsed().as_secs_f64();
+    let setup = (start.elapsed().as_secs_f64(), cpu_s() - cpu);
     let head = format!("direct cells={cells} dofs={}", model.dof_count());
     step(&head, model, zone, setup, |_| String::new())?;
     Ok(())
@@ -274,9 +298,9 @@ fn interface(args: &[String]) -> Res<()> {
     let (nodes, areas) = mesh.nodal_areas("z0")?;
     let plane = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0])?;
     let zone = ContactZone3::rigid("base", nodes, plane, Coulomb::new(0.3)?, 0.1).with_areas(areas);
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), cpu_s());
     let model = SolidModel::new(mesh, &[(0, material())], supports)?;
-    let setup = start.elapsed().as_secs_f64();
+    let setup = (start.elapsed().as_secs_f64(), cpu_s() - cpu);
     let before = peak_rss_mib();
     let head = format!(
         "interface cells={cells} dofs={} rss_before_step_mib={before:.0}",

@@ -390,8 +390,10 @@ mod tests {
             // each level's floor loses under one element: ⌈log2 ranks⌉ in all
             let levels = usize::BITS - (ranks - 1).leading_zeros();
             let (min, max) = (count.iter().min().unwrap(), count.iter().max().unwrap());
-            assert!(*min + 1 >= ne / ranks && *max <= ne / ranks + levels as usize + 1,
-                "{ranks} ranks: {count:?}");
+            assert!(
+                *min + 1 >= ne / ranks && *max <= ne / ranks + levels as usize + 1,
+                "{ranks} ranks: {count:?}"
+            );
             let mut rows = p.row.clone();
             rows.sort_unstable();
             assert_eq!(rows, (0..dofs.free_count()).collect::<Vec<_>>());
@@ -424,7 +426,10 @@ mod tests {
         assert_eq!(s2.interface_nodes(&mesh), 81);
         // slabs: 7 planes of 81; cubes: 3 planes of 81 less the 2 · 9 + 2 · 9 − ... union:
         // x = 0.5, y = 0.5, z = 0.5 planes, 3 · 81 − 3 · 9 + 1 nodes
-        assert_eq!(Partition::slabs(&mesh, &dofs, 8).interface_nodes(&mesh), 7 * 81);
+        assert_eq!(
+            Partition::slabs(&mesh, &dofs, 8).interface_nodes(&mesh),
+            7 * 81
+        );
         assert_eq!(
             Partition::graph(&mesh, &dofs, 8).interface_nodes(&mesh),
             3 * 81 - 3 * 9 + 1
