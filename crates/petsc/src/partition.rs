@@ -220,6 +220,19 @@ impl Partition {
     ///
     /// # Panics
     /// If `mesh` is not the partitioned mesh (another element count).
+    ///
+    /// # Examples
+    /// ```
+    /// use bipotential_petsc::Partition;
+    /// use fem_core::solid::generate::{box_mesh, lines};
+    /// use fem_core::solid::SolidKind;
+    /// use fem_core::{DofMap, Supports};
+    /// let mesh = box_mesh(&lines(0.0, 2.0, 2), &lines(0.0, 1.0, 1), &lines(0.0, 1.0, 1),
+    ///     SolidKind::Tet4).unwrap();
+    /// let dofs = DofMap::<3>::numbered(mesh.node_count(), &Supports::new()).unwrap();
+    /// // two cells along x, one per rank: the 4 nodes of the face x = 1 are shared
+    /// assert_eq!(Partition::slabs(&mesh, &dofs, 2).interface_nodes(&mesh), 4);
+    /// ```
     #[track_caller]
     pub fn interface_nodes<const D: usize>(&self, mesh: &Mesh<D>) -> usize
     where
@@ -258,6 +271,18 @@ impl Partitioner {
     ///
     /// # Panics
     /// As [`Partition::slabs`].
+    ///
+    /// # Examples
+    /// ```
+    /// use bipotential_petsc::{Partition, Partitioner};
+    /// use fem_core::solid::generate::{box_mesh, lines};
+    /// use fem_core::solid::SolidKind;
+    /// use fem_core::{DofMap, Supports};
+    /// let mesh = box_mesh(&lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2), &lines(0.0, 1.0, 2),
+    ///     SolidKind::Tet4).unwrap();
+    /// let dofs = DofMap::<3>::numbered(mesh.node_count(), &Supports::new()).unwrap();
+    /// assert_eq!(Partitioner::Graph.partition(&mesh, &dofs, 4), Partition::graph(&mesh, &dofs, 4));
+    /// ```
     #[track_caller]
     pub fn partition<const D: usize>(
         self,
