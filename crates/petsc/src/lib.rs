@@ -3,7 +3,8 @@
 //! With the feature `petsc` (the system PETSc 3.18 and Open MPI: Debian's
 //! `libpetsc-real-dev` and `libopenmpi-dev`), `PetscStructure` implements fem-core's
 //! [`Structure<3>`](fem_core::Structure) with a stiffness assembled as a distributed PETSc
-//! MPIAIJ matrix, each rank assembling its own elements of a geometric [`Partition`], and
+//! MPIAIJ matrix, each rank assembling its own elements of a [`Partition`] (slabs or a
+//! recursive bisection of the element graph: [`Partitioner`]), and
 //! solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`). The contact solver
 //! (`contact-solver`) runs unchanged on every rank: the structure takes its right-hand sides
 //! from rank 0 and returns the same solution to every rank, so candidates, `F*` and the local
