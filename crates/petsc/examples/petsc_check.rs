@@ -10,13 +10,15 @@
 //! mpirun -n N petsc_check errors          the 2D constructor and loads refuse bad data
 //! mpirun -n N petsc_check fail            rank N−1 fails: every rank must end, with its message
 //! mpirun -n N petsc_check scale CELLS     the block at CELLS³ Tet10 cells: times and peak RSS
+//! mpirun -n N petsc_check partitions      the block on the slab and on the graph partition:
+//!                                          the same answers to 1e-10 relative
 //! ```
 //! `block`, `hertz` and `pile` step the same scene with the [`PetscStructure`] and with
 //! fem-core's direct `SolidModel` (`LinearElasticModel` for the pile) on rank 0 and print the largest difference of the reactions and the
 //! contact nodes' displacements, relative to the largest value of each; above 1e-8 the program
 //! fails (on every rank, through `Petsc::or_abort`).
 
-use bipotential_petsc::{LinearSolver, Petsc, PetscStructure};
+use bipotential_petsc::{LinearSolver, Partitioner, Petsc, PetscStructure};
 use contact_laws::{ContactLaw, Coulomb, Signorini};
 use contact_solver::SimulationSettings;
 use contact_solver::coupling::solid::{
@@ -220,6 +222,59 @@ fn compare<L: ContactLaw + Clone>(
     Ok(())
 }
 
+/// The block stepped on the slab and on the graph partition: the answers agree to 1e-10
+/// relative (the partition changes GAMG's aggregates and the sums' order, not the problem;
+/// CG stops at 1e-12 relative).
+fn partitions(petsc: &Petsc, solver: LinearSolver) -> Res<()> {
+    let mut answers = Vec::new();
+    let mut ranks = Vec::new();
+    for partitioner in [Partitioner::Slabs, Partitioner::Graph] {
+        let scene = block(4)?;
+        let body = PetscStructure::with_partitioner(
+            petsc,
+            scene.mesh,
+            &[(0, material())],
+            scene.supports,
+            solver,
+            partitioner,
+        )?;
+        let interface = body.partition().interface_nodes(body.mesh());
+        ranks.push(body.partition().element_rank.clone());
+        if petsc.rank() == 0 {
+            println!(
+                "partitions {partitioner:?} ({} ranks): {interface} interface nodes",
+                petsc.size()
+            );
+        }
+        answers.push(run(body, scene.zone, &scene.second, |s, n, c, v| {
+            Ok(s.set_prescribed(n, c, v)?)
+        })?);
+    }
+    if petsc.size() > 2 && ranks[0] == ranks[1] {
+        return Err("the two partitions coincide: nothing compared".into());
+    }
+    for (step, (g, s)) in answers[1].iter().zip(&answers[0]).enumerate() {
+        let (er, eu) = (
+            relative(&g.reactions, &s.reactions),
+            relative(&g.displacements, &s.displacements),
+        );
+        if petsc.rank() == 0 {
+            println!(
+                "partitions step {}: graph against slabs: reactions {er:.2e}, displacements {eu:.2e}",
+                step + 1
+            );
+        }
+        // the promise: the partition does not change the answer (beyond the solver's 1e-12)
+        if !(er <= 1e-10 && eu <= 1e-10) || g.reactions.len() != s.reactions.len() {
+            return Err(format!("partitions step {}: {er:e}, {eu:e}", step + 1).into());
+        }
+    }
+    if petsc.rank() == 0 {
+        println!("partitions: OK");
+    }
+    Ok(())
+}
+
 /// Peak resident memory of this process (`VmHWM`), in MiB.
 fn peak_rss_mib() -> f64 {
     std::fs::read_to_string("/proc/self/status")
@@ -289,6 +344,7 @@ fn main() {
                 pile::compare(&petsc, has("seed"), has("plane"), solver)
             }
             Some("errors") => pile::errors(&petsc),
+            Some("partitions") => partitions(&petsc, solver),
             Some("fail") => {
                 if petsc.rank() + 1 == petsc.size() {
                     return Err(format!("a deliberate failure on rank {}", petsc.rank()).into());
@@ -305,7 +361,7 @@ fn main() {
                 scale(&petsc, cells, solver)
             }
             _ => Err(
-                "usage: petsc_check block|hertz|pile|errors|fail|scale CELLS [mumps] [seed] [plane]"
+                "usage: petsc_check block|hertz|pile|errors|partitions|fail|scale CELLS [mumps] [seed] [plane]"
                     .into(),
             ),
         }

@@ -4,8 +4,8 @@
 //! `libpetsc-real-dev` and `libopenmpi-dev`), `PetscStructure` implements fem-core's
 //! [`Structure`](fem_core::Structure) (3D, or 2D in plane strain, plane stress or
 //! axisymmetry) with a stiffness assembled as a distributed PETSc MPIAIJ matrix from
-//! fem-core's element kernels, each rank assembling its own elements of a geometric
-//! [`Partition`], and solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`).
+//! fem-core's element kernels, each rank assembling its own elements of a [`Partition`]
+//! (slabs or a recursive bisection of the element graph: [`Partitioner`]), and solved by CG with algebraic multigrid (or MUMPS: `LinearSolver`).
 //! The contact solver (`contact-solver`) runs unchanged on every rank: the structure takes
 //! its right-hand sides from rank 0 and returns the same solution to every rank, so
 //! candidates, `F*` and the local solve are rank 0's, broadcast.
@@ -25,7 +25,7 @@
 
 pub mod partition;
 
-pub use partition::Partition;
+pub use partition::{Partition, Partitioner};
 
 #[cfg(feature = "petsc")]
 mod assembly;

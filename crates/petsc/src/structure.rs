@@ -23,7 +23,7 @@ use crate::assembly::{self, Body, Coupling};
 use crate::error::PetscError;
 use crate::ffi::PetscInt;
 use crate::linalg::System;
-use crate::partition::Partition;
+use crate::partition::{Partition, Partitioner};
 use crate::runtime::Petsc;
 use crate::solver::LinearSolver;
 use fem_core::element::{Element, Setting};
@@ -133,7 +133,23 @@ impl<'p> PetscStructure<'p, 3> {
         supports: Supports,
         solver: LinearSolver,
     ) -> Result<Self, PetscError> {
-        Self::build(petsc, mesh, (), materials, supports, solver)
+        Self::with_partitioner(petsc, mesh, materials, supports, solver, Partitioner::Slabs)
+    }
+
+    /// [`new`](Self::new) with the partition chosen ([`Partitioner::Graph`] cuts fewer nodes
+    /// from three ranks on). Collective; the same errors as `new`.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn with_partitioner(
+        petsc: &'p Petsc,
+        mesh: SolidMesh,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        solver: LinearSolver,
+        partitioner: Partitioner,
+    ) -> Result<Self, PetscError> {
+        Self::build(petsc, mesh, (), materials, supports, (solver, partitioner))
     }
 }
 
@@ -196,7 +212,14 @@ impl<'p> PetscStructure<'p, 2> {
             }
             _ => {}
         }
-        Self::build(petsc, mesh, idealization, materials, supports, solver)
+        Self::build(
+            petsc,
+            mesh,
+            idealization,
+            materials,
+            supports,
+            (solver, Partitioner::Slabs),
+        )
     }
 }
 
@@ -210,7 +233,7 @@ where
         setting: Setting<D>,
         materials: &[(u32, Material)],
         supports: Supports,
-        solver: LinearSolver,
+        (solver, partitioner): (LinearSolver, Partitioner),
     ) -> Result<Self, PetscError> {
         solver.validate()?;
         if !supports.ties().is_empty() {
@@ -230,7 +253,7 @@ where
         }
         let dofs = DofMap::<D>::numbered(mesh.node_count(), &supports)?;
         let (rank, size) = (petsc.rank(), petsc.size());
-        let partition = Partition::slabs(&mesh, &dofs, size);
+        let partition = partitioner.partition(&mesh, &dofs, size);
         let (d_nnz, o_nnz) = assembly::preallocation(&mesh, &dofs, &partition, rank)?;
         let owned = partition.offsets[rank + 1] - partition.offsets[rank];
         let mut system = System::new(owned, dofs.free_count(), &d_nnz, &o_nnz)?;

@@ -14,6 +14,8 @@
 //!   2e-10 is measured, CG stopping at 1e-12). The same meridian in plane strain (with MUMPS)
 //!   checks the other 2D setting.
 //! - **Errors** of the 2D constructor and the loads (`errors`): fem-core's variants.
+//! - **The graph partition** (recursive bisection, four quadrants on 4 ranks) gives the slab
+//!   partition's answer (four slices) to 1e-10 relative, both steps.
 //! - **A failing rank** ends every rank with its message (`MPI_Abort`), where the other rank
 //!   waits in a barrier: a hang would be a timeout.
 //!
@@ -122,6 +124,20 @@ fn issue_41_plane_structure_captures_errors() {
         "{stdout}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+#[test]
+fn issue_41_graph_partition_gives_the_slab_partitions_answer() {
+    // 4 ranks: slabs are four slices, the graph partition four quadrants
+    let out = mpirun(4, &["partitions"], Duration::from_secs(600)).expect("ends");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.contains("partitions: OK"),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // both steps compared, each within 1e-10 (checked by the example, which fails else)
+    assert_eq!(stdout.matches("graph against slabs").count(), 2);
 }
 
 #[test]
