@@ -143,6 +143,9 @@ pub(super) struct NewtonState<const D: usize> {
     settings: NewtonSettings,
     load_factor: f64,
     reactions: Vec<[f64; D]>,
+    /// The springs on the closed contacts' normals (`newton_springs.rs`), per candidate,
+    /// once a step has needed them (empty before): every later tangent carries them.
+    pub(super) springs: Vec<f64>,
 }
 
 impl<const D: usize> NewtonState<D> {
@@ -224,6 +227,7 @@ where
             settings,
             load_factor: 0.0,
             reactions: vec![[0.0; D]; self.interface.candidates.len()],
+            springs: Vec::new(),
         });
         Ok(self)
     }
@@ -323,6 +327,11 @@ where
                     if !can_cut(&attempt.error) {
                         return Err(attempt.error);
                     }
+                    // a tangent singular but for the contact: the same sub-step again, with
+                    // springs on the closed contacts (`newton_springs.rs`), before any cut
+                    if self.start_springs() {
+                        continue;
+                    }
                     if cuts >= settings.max_cuts {
                         let reached = self.newton.as_ref().map_or(0.0, |s| s.load_factor);
                         let cause = match attempt.error {
@@ -387,6 +396,8 @@ where
         let mut contact_residuals = Vec::new();
         let mut total = StepReport::start(self.counters.steps + 1, clock.time, clock.force_factor);
         let mut solution = None;
+        let mut closed =
+            self.closed_of(last.iter().flatten().enumerate().map(|(i, r)| (i, &r[..])));
         loop {
             body(&mut self.structure)?.internal_force_into(&u, &mut f_int)?;
             let residual = relative_residual(&f_ext, &f_int, &contact);
@@ -424,6 +435,7 @@ where
                 return Err(not_converged());
             }
             // the tangent at u, then the free response on it and the contact problem
+            self.set_springs(&closed)?;
             body(&mut self.structure)?.update_tangent()?;
             let version = self.follow_structure()?;
             let mut y: Vec<f64> = f_ext.iter().zip(&f_int).map(|(e, i)| e - i).collect();
@@ -458,6 +470,7 @@ where
             u.clear();
             u.extend_from_slice(equilibrium.displacement());
             contact = self.contact_force(solved_reactions::<_, D>(&solved));
+            closed = self.closed_of(solved_reactions::<_, D>(&solved));
             merge(&mut total, report);
             solution = Some((equilibrium, solved));
         }
