@@ -25,7 +25,9 @@
 //! solves the step (the residual after it is round-off).
 //!
 //! A step that does not converge in [`NewtonSettings::max_iterations`] (or whose contact
-//! solve or tangent fails) is rolled back ([`Nonlinear::rollback`]) and halved, up to
+//! solve or tangent fails) is rolled back ([`Nonlinear::rollback`]); the first time, it is
+//! tried again with springs on the closed contacts' normals (`newton_springs.rs`: a body at
+//! its limit load has a tangent singular but for the contact), then halved, up to
 //! [`NewtonSettings::max_cuts`] times in a call of
 //! [`step`](ContactSimulation::step); the sub-steps interpolate the time and the force factor
 //! from the last Newton step's (0 at the start), and the prescribed displacements from their
@@ -328,8 +330,10 @@ where
                         return Err(attempt.error);
                     }
                     // a tangent singular but for the contact: the same sub-step again, with
-                    // springs on the closed contacts (`newton_springs.rs`), before any cut
-                    if self.start_springs() {
+                    // springs on the closed contacts (`newton_springs.rs`), before any cut;
+                    // not for a failure before the first correction (a material update that
+                    // refuses the step's start: no tangent was used)
+                    if attempt.iterations > 0 && self.start_springs() {
                         continue;
                     }
                     if cuts >= settings.max_cuts {
