@@ -330,10 +330,15 @@ where
                         return Err(attempt.error);
                     }
                     // a tangent singular but for the contact: the same sub-step again, with
-                    // springs on the closed contacts (`newton_springs.rs`), before any cut;
+                    // springs on the closed contacts (`newton_springs.rs`), before any cut,
+                    // when a tangent failed (its factorisation, or a contact solve on it);
                     // not for a failure before the first correction (a material update that
-                    // refuses the step's start: no tangent was used)
-                    if attempt.iterations > 0 && self.start_springs() {
+                    // refuses the step's start: no tangent was used), nor for a Newton that
+                    // ran out of iterations (a step too large: cut as before)
+                    if attempt.iterations > 0
+                        && !matches!(attempt.error, SolverError::NewtonNotConverged(_))
+                        && self.start_springs()
+                    {
                         continue;
                     }
                     if cuts >= settings.max_cuts {

@@ -17,9 +17,10 @@
 //! A contact that opens in the iteration makes that iteration a quasi-Newton one.
 //!
 //! The springs are a fallback, so that every step that converges without them is solved as
-//! before: once a sub-step fails after at least one correction, in a way a cut could cure
-//! ([`super::newton`]), it is tried again with springs before it is cut, and every later
-//! tangent of the simulation carries
+//! before: once a sub-step fails after at least one correction because a tangent failed (its
+//! factorisation, or a contact solve on it; not a Newton that ran out of iterations), it is
+//! tried again with springs before it is cut ([`super::newton`]), and every later tangent of
+//! the simulation carries
 //! them, on the contacts closed at each iterate (`r_n > 0`). Each spring is the tangent's
 //! own stiffness along the normal row when they were switched on, `p = Σ_d a_d² K_dd` (a
 //! stiffness of the body's scale, so that `K_t + P` is as well conditioned as the elastic
