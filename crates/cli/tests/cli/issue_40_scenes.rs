@@ -313,24 +313,46 @@ fn issue_40_footing_displacement_control_measured() {
     }
 }
 
-/// Measured, 3D and axisymmetric. `tests/solid/plastic_block_vm.toml` (a von Mises block of 48
-/// P2 tetrahedra, `σ_y = 1`, its top lowered by 0.05 in 4 steps onto a rigid plane) builds and
-/// steps through the same path as 2D, and the run stops at the first yield (t ≈ 0.2 of the
-/// ramp): the Newton's residual falls to 1.3e-5, then rises to 0.04 and 0.94 and the tangent
-/// is no longer positive definite (the same with the exact tangent and the dense path, where
-/// `W` is then indefinite). `tests/scenes/plastic_block_axi.toml` (the plane-strain block of
-/// `issue_40_plastic_block_runs_and_writes_its_fields`, axisymmetric) stops at its first yield
-/// too (t ≈ 0.04: the contact solve does not converge on the new tangent). Printed, not
-/// asserted, for the library's plastic work; plane strain converges (the tests above).
+/// 3D and axisymmetric limit loads through `bipo` (issue 40). `tests/solid/plastic_block_vm.toml`:
+/// a von Mises block of 48 P2 tetrahedra (`σ_y = 1`, `E = 100`, yield at `δ = 0.01`), its top
+/// lowered by 0.05 in 4 steps onto a frictionless rigid plane, lateral faces free: uniaxial
+/// stress, so every step past yield carries `σ_y A = 1`. `tests/scenes/plastic_block_axi.toml`:
+/// a Drucker–Prager cylinder (`φ = θ = 30°`, `c = 0.1`, radius and height 1, P2) pressed the
+/// same way: unconfined compression, `q = c / (√(2/3) / k_d − tan φ / 3) = 0.19943`, per
+/// radian `q / 2`. Before the Newton's springs on the closed contacts (`newton_springs.rs` in
+/// contact-solver) both runs stopped at their first yield (the tangent of a body at its limit
+/// load is singular but for the contact). 1e-7: the scenes' Newton tolerance (1e-8 of the
+/// forces) over the base's reactions.
 #[test]
-#[ignore]
-fn issue_40_plastic_block_3d_measured() {
-    let out = tmp("plastic_3d");
-    let scene = super::support::manifest("tests/solid/plastic_block_vm.toml");
-    let o = bipo_on("run", &scene, Some(&out));
-    eprintln!("{}", String::from_utf8_lossy(&o.stderr));
-    eprintln!(
-        "{}",
-        std::fs::read_to_string(out.join("steps.csv")).unwrap()
-    );
+fn issue_40_plastic_blocks_reach_their_limit_load_3d_and_axisymmetric() {
+    let phi = 30f64.to_radians();
+    let k_d = (6.0 / (3.0 + 4.0 * phi.tan().powi(2))).sqrt();
+    let q = 0.1 / ((2.0f64 / 3.0).sqrt() / k_d - phi.tan() / 3.0);
+    for (name, scene, limit) in [
+        ("plastic_3d", "tests/solid/plastic_block_vm.toml", 1.0),
+        (
+            "plastic_axi",
+            "tests/scenes/plastic_block_axi.toml",
+            0.5 * q,
+        ),
+    ] {
+        let out = tmp(name);
+        let scene = super::support::manifest(scene);
+        let o = bipo_on("run", &scene, Some(&out));
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let s = summary(&out);
+        assert_eq!(s["status"], "completed", "{name}");
+        assert_eq!(s["steps"], 4, "{name}");
+        let rows = csv(&out.join("curves.csv"));
+        let force = num(rows.last().unwrap(), "force_n (base)");
+        eprintln!("{name}: F = {force:.12} against {limit:.12}");
+        assert!(
+            (force - limit).abs() <= 1e-7 * limit,
+            "{name}: {force} vs {limit}"
+        );
+    }
 }

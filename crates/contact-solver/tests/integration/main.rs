@@ -48,6 +48,7 @@ mod issue_40_newton_elastic;
 mod issue_40_newton_paths;
 mod issue_40_newton_plastic;
 mod issue_40_pile_plastic;
+mod issue_40_plastic_limit;
 mod issue_40_prescribed_cut;
 mod local_algorithms;
 mod matrix_free;

@@ -31,6 +31,7 @@ mod model_initial;
 mod model_lu;
 mod model_post;
 mod model_reaction;
+mod model_springs;
 #[cfg(test)]
 mod model_tangent_tests;
 #[cfg(test)]

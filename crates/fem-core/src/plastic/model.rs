@@ -104,9 +104,9 @@ where
     /// Whether `trial` and `tangents` come from an evaluation since the last rollback.
     pub(super) trial_current: bool,
     /// The tangent's values on the elastic model's pattern (the symmetric part).
-    values: Vec<f64>,
+    pub(super) values: Vec<f64>,
     /// The full tangent and its LU, when the kind is [`TangentKind::Exact`].
-    exact: Option<ExactTangent>,
+    pub(super) exact: Option<ExactTangent>,
     /// The successful LU factorisations, over every kind change (part of the version).
     lu_updates: u64,
     /// The prescribed values in use, in the dof map's order (the elastic model's).
@@ -115,6 +115,9 @@ where
     /// those of the last commit: the ends of [`Nonlinear::interpolate_prescribed`].
     prescribed_target: Vec<f64>,
     prescribed_committed: Vec<f64>,
+    /// Springs added to every assembled tangent, `(lower position, value)`
+    /// ([`Nonlinear::set_tangent_springs`], `model_springs.rs`).
+    pub(super) springs: Vec<(usize, f64)>,
     scratch: Scratch<D>,
 }
 
@@ -221,6 +224,7 @@ where
             prescribed: elastic.prescribed_values(),
             prescribed_target: elastic.prescribed_values(),
             prescribed_committed: elastic.prescribed_values(),
+            springs: Vec::new(),
             kinematics,
             laws: laws.to_vec(),
             law_of,
@@ -604,6 +608,7 @@ where
             exact.values.fill(0.0);
         }
         self.element_loop(None, &mut [])?;
+        self.add_springs();
         match &mut self.exact {
             Some(exact) => {
                 exact.factor()?;
@@ -624,6 +629,10 @@ where
     fn rollback(&mut self) {
         self.trial.copy_from_slice(&self.committed);
         self.trial_current = false;
+    }
+
+    fn set_tangent_springs(&mut self, entries: &[(usize, usize, f64)]) -> Result<(), FemError> {
+        self.set_springs(entries)
     }
 
     /// `ū = ū_c + fraction (ū_s − ū_c)` on every prescribed dof, into the elastic model

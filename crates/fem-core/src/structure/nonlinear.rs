@@ -121,4 +121,29 @@ pub trait Nonlinear {
         let _ = fraction;
         Ok(())
     }
+
+    /// Sets springs that every later [`update_tangent`](Self::update_tangent) adds to the
+    /// tangent it factorises, `K_t + S`, until they are set again (an empty slice removes
+    /// them). `S` is symmetric, given by its lower triangle: `entries` are `(row, col, s)`
+    /// with `row ≥ col` on the free dofs (duplicates add up). They change the matrix of the
+    /// Newton's linear solves only, never `f_int` nor the equilibrium: a caller whose
+    /// solutions keep `S Δu = 0` (springs on dofs that the contact holds still) solves the
+    /// same corrections with a matrix that stays regular where `K_t` alone is singular (a
+    /// perfectly plastic body at its limit load, a mechanism that only the contact stops).
+    ///
+    /// The default refuses them.
+    ///
+    /// # Errors
+    /// [`FemError::Unsupported`] for a structure without them (the default) or an entry
+    /// outside the tangent's sparsity pattern; [`FemError::InvalidParameter`] naming
+    /// `springs` for a non-finite value or an entry above the diagonal or outside the free
+    /// dofs.
+    fn set_tangent_springs(&mut self, entries: &[(usize, usize, f64)]) -> Result<(), FemError> {
+        if entries.is_empty() {
+            return Ok(());
+        }
+        Err(FemError::Unsupported {
+            what: "springs on the tangent of this structure".into(),
+        })
+    }
 }

@@ -52,6 +52,7 @@ mod floating;
 mod last_problem;
 mod moreau_jean;
 mod newton;
+mod newton_springs;
 mod parts;
 mod path;
 mod report;

@@ -25,7 +25,9 @@
 //! solves the step (the residual after it is round-off).
 //!
 //! A step that does not converge in [`NewtonSettings::max_iterations`] (or whose contact
-//! solve or tangent fails) is rolled back ([`Nonlinear::rollback`]) and halved, up to
+//! solve or tangent fails) is rolled back ([`Nonlinear::rollback`]); the first time, it is
+//! tried again with springs on the closed contacts' normals (`newton_springs.rs`: a body at
+//! its limit load has a tangent singular but for the contact), then halved, up to
 //! [`NewtonSettings::max_cuts`] times in a call of
 //! [`step`](ContactSimulation::step); the sub-steps interpolate the time and the force factor
 //! from the last Newton step's (0 at the start), and the prescribed displacements from their
@@ -143,6 +145,9 @@ pub(super) struct NewtonState<const D: usize> {
     settings: NewtonSettings,
     load_factor: f64,
     reactions: Vec<[f64; D]>,
+    /// The springs on the closed contacts' normals (`newton_springs.rs`), per candidate,
+    /// once a step has needed them (empty before): every later tangent carries them.
+    pub(super) springs: Vec<f64>,
 }
 
 impl<const D: usize> NewtonState<D> {
@@ -224,6 +229,7 @@ where
             settings,
             load_factor: 0.0,
             reactions: vec![[0.0; D]; self.interface.candidates.len()],
+            springs: Vec::new(),
         });
         Ok(self)
     }
@@ -323,6 +329,18 @@ where
                     if !can_cut(&attempt.error) {
                         return Err(attempt.error);
                     }
+                    // a tangent singular but for the contact: the same sub-step again, with
+                    // springs on the closed contacts (`newton_springs.rs`), before any cut,
+                    // when a tangent failed (its factorisation, or a contact solve on it);
+                    // not for a failure before the first correction (a material update that
+                    // refuses the step's start: no tangent was used), nor for a Newton that
+                    // ran out of iterations (a step too large: cut as before)
+                    if attempt.iterations > 0
+                        && !matches!(attempt.error, SolverError::NewtonNotConverged(_))
+                        && self.start_springs()
+                    {
+                        continue;
+                    }
                     if cuts >= settings.max_cuts {
                         let reached = self.newton.as_ref().map_or(0.0, |s| s.load_factor);
                         let cause = match attempt.error {
@@ -387,6 +405,8 @@ where
         let mut contact_residuals = Vec::new();
         let mut total = StepReport::start(self.counters.steps + 1, clock.time, clock.force_factor);
         let mut solution = None;
+        let mut closed =
+            self.closed_of(last.iter().flatten().enumerate().map(|(i, r)| (i, &r[..])));
         loop {
             body(&mut self.structure)?.internal_force_into(&u, &mut f_int)?;
             let residual = relative_residual(&f_ext, &f_int, &contact);
@@ -424,6 +444,7 @@ where
                 return Err(not_converged());
             }
             // the tangent at u, then the free response on it and the contact problem
+            self.set_springs(&closed)?;
             body(&mut self.structure)?.update_tangent()?;
             let version = self.follow_structure()?;
             let mut y: Vec<f64> = f_ext.iter().zip(&f_int).map(|(e, i)| e - i).collect();
@@ -458,6 +479,7 @@ where
             u.clear();
             u.extend_from_slice(equilibrium.displacement());
             contact = self.contact_force(solved_reactions::<_, D>(&solved));
+            closed = self.closed_of(solved_reactions::<_, D>(&solved));
             merge(&mut total, report);
             solution = Some((equilibrium, solved));
         }
