@@ -35,6 +35,7 @@ mod issue_36_traps;
 mod issue_37_asymmetric;
 mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
+mod issue_38_one_factor;
 mod issue_39_adhesion;
 mod issue_39_contactors;
 mod issue_39_dynamics;
