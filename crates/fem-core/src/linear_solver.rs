@@ -26,6 +26,8 @@ pub struct SpdSolver {
     /// Numeric values of the factor `L` (valid when `factored`).
     values: Vec<f64>,
     factored: bool,
+    /// Whether the values were freed by [`SpdSolver::release`] (not a failed factorisation).
+    released: bool,
     dim: usize,
     factorizations: usize,
 }
@@ -91,6 +93,7 @@ impl SpdSolver {
             symbolic: Arc::new(symbolic),
             values: Vec::new(),
             factored: false,
+            released: false,
             factorizations: 0,
         }
     }
@@ -105,6 +108,7 @@ impl SpdSolver {
     /// - [`FemError::LinearAlgebra`] otherwise.
     pub fn factor(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> Result<(), FemError> {
         self.factored = false;
+        self.released = false;
         let symbolic = &*self.symbolic;
         let len_val = symbolic.len_val();
         self.values.clear();
@@ -164,6 +168,22 @@ impl SpdSolver {
                 ),
             },
         }
+    }
+
+    /// Frees the numeric factor's values, keeping the symbolic analysis: the solver is then
+    /// unfactored (as after a failed [`SpdSolver::factor`]) until the next factorisation,
+    /// which allocates them again. What a body does to lend its factor's memory
+    /// ([`crate::Structure::release_factor`]).
+    pub fn release(&mut self) {
+        self.factored = false;
+        self.released = true;
+        self.values = Vec::new();
+    }
+
+    /// Whether the factor was freed by [`SpdSolver::release`] and not redone since.
+    #[inline]
+    pub fn is_released(&self) -> bool {
+        self.released
     }
 
     /// Whether the last [`SpdSolver::factor`] succeeded (a solve needs it).
@@ -360,6 +380,25 @@ mod tests {
         let mut b = vec![1.0; 400];
         s.solve_in_place(&mut b);
         assert!(b.iter().all(|x| x.is_finite() && *x > 0.0));
+    }
+
+    /// Released, the solver is unfactored; refactored, it solves bit for bit as before (same
+    /// symbolic analysis, same values, same order of operations).
+    #[test]
+    fn issue_38_release_then_refactor_solves_the_same() {
+        let a = laplacian(20, 0, 0.0);
+        let mut s = solver(&a, SupernodalThreshold::FORCE_SUPERNODAL);
+        s.factor(a.as_ref()).unwrap();
+        let b: Vec<f64> = (0..400).map(|i| ((i * 7) % 13) as f64 - 6.0).collect();
+        let mut before = b.clone();
+        s.solve_in_place(&mut before);
+        s.release();
+        assert!(!s.is_factored() && s.is_released());
+        s.factor(a.as_ref()).unwrap();
+        assert!(s.is_factored() && !s.is_released());
+        let mut after = b;
+        s.solve_in_place(&mut after);
+        assert_eq!(before, after);
     }
 
     #[test]

@@ -218,7 +218,12 @@ where
         for k in 1..=phase.steps {
             let t = phase.time(k);
             let t_step = Instant::now();
-            let k0 = d.sim().structure().factorizations();
+            // K's factorisations: its changes, and its refactorisations after a 3D active
+            // set freed its factor (`Counters::structure_refactorizations`)
+            let k_of = |d: &Dr| {
+                d.sim().structure().factorizations() + d.sim().counters().structure_refactorizations
+            };
+            let k0 = k_of(d);
             let a0 = d.sim().counters().active_set_factorizations;
             let res = match d.step(phases, pi, k, t) {
                 Ok(r) => r,
@@ -228,7 +233,7 @@ where
                 }
             };
             global += 1;
-            let k_step = d.sim().structure().factorizations() - k0;
+            let k_step = k_of(d) - k0;
             let a_step = d.sim().counters().active_set_factorizations - a0;
             totals.add(&res.report, k_step, a_step);
             phase_totals.add(&res.report, k_step, a_step);

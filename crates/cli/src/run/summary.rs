@@ -476,6 +476,7 @@ pub(super) fn since(now: Counters, start: Counters) -> Counters {
     d.active_set_solves -= start.active_set_solves;
     d.active_set_inner_iterations -= start.active_set_inner_iterations;
     d.active_set_fallbacks -= start.active_set_fallbacks;
+    d.structure_refactorizations -= start.structure_refactorizations;
     d
 }
 

@@ -83,6 +83,14 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// ([`SimulationTuning::max_detection_passes`](super::simulation::SimulationTuning::max_detection_passes)):
     /// 5 in 2D, 20 in 3D.
     const MAX_DETECTION_PASSES: usize;
+    /// Whether the primal active-set path frees the structure's factor of `K` while it holds
+    /// its own of the constrained stiffness, and refactors `K` after
+    /// ([`Structure::release_factor`]): one factor at a time, for one more factorisation of
+    /// `K` a step and none of the active set's factor kept from step to step. `true` in 3D,
+    /// where the two factors dominate the peak memory (the 3D Hertz: 304 MB against the
+    /// dense path's 204 MB with both, `docs/benchmarks.md`, issue 38); `false` in 2D, whose
+    /// factors are small and whose many-step scenes reuse the active set's factor.
+    const ONE_FACTOR: bool;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.
     fn local_of(x: &[f64]) -> Self::Local;
@@ -188,6 +196,7 @@ impl ContactSpace<2> for Dim<2> {
     const FALLBACK_DENSE_LIMIT: usize = 8000;
     const COLUMNS_PER_SOLVE: usize = 64;
     const MAX_DETECTION_PASSES: usize = 5;
+    const ONE_FACTOR: bool = false;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<1> {
@@ -263,6 +272,7 @@ impl ContactSpace<3> for Dim<3> {
     const FALLBACK_DENSE_LIMIT: usize = 3000;
     const COLUMNS_PER_SOLVE: usize = 96;
     const MAX_DETECTION_PASSES: usize = 20;
+    const ONE_FACTOR: bool = true;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<2> {

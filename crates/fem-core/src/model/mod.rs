@@ -352,6 +352,13 @@ where
         if self.solver.is_factored() {
             return Ok(());
         }
+        if self.solver.is_released() {
+            return Err(FemError::LinearAlgebra {
+                detail: "a solve with a stiffness whose factor was released (call \
+                         Structure::restore_factor first)"
+                    .into(),
+            });
+        }
         Err(FemError::LinearAlgebra {
             detail: "a solve with a stiffness whose last factorisation failed (factorise a \
                      positive definite stiffness or tangent first)"
@@ -699,6 +706,29 @@ where
 
     fn floating(&self) -> Option<&dyn Floating> {
         (!self.modes.is_empty()).then_some(self)
+    }
+
+    fn release_factor(&mut self) -> bool {
+        if !self.solver.is_factored() {
+            return false;
+        }
+        self.solver.release();
+        true
+    }
+
+    fn restore_factor(&mut self) -> Result<(), FemError> {
+        if !self.solver.is_released() {
+            return Ok(());
+        }
+        // the values `assemble_and_factor` factorised; the version stays (same matrix)
+        let values = if self.pinned.is_empty() {
+            &self.values
+        } else {
+            &self.pinned_values
+        };
+        self.solver
+            .factor(self.pattern.view(values))
+            .map_err(|e| self.name_failed_dof(e))
     }
 
     fn stiffness_version(&self) -> u64 {

@@ -309,3 +309,24 @@ fn solve_after_failed_factorisation_is_an_error() {
     m.refactor().unwrap();
     assert!(Structure::free_response_into(&m, 1.0, &mut u).is_ok());
 }
+
+/// Issue 38: a released factor refuses solves (naming the release, never a panic), and the
+/// restored one gives the free response bit for bit as before, at the same stiffness version.
+#[test]
+fn issue_38_release_and_restore_factor_works() {
+    let mut model = square_model(Idealization::PlaneStress { thickness: 1.0 });
+    model.add_edge_traction("right", |_| [2.0, 0.5]).unwrap();
+    let before = model.solve(1.0).unwrap();
+    let version = model.stiffness_version();
+    // nothing to restore while the factor is held
+    model.restore_factor().unwrap();
+    assert!(model.release_factor());
+    assert!(!model.release_factor(), "released already");
+    match model.solve(1.0) {
+        Err(FemError::LinearAlgebra { detail }) => assert!(detail.contains("released")),
+        other => panic!("expected a refused solve, got {other:?}"),
+    }
+    model.restore_factor().unwrap();
+    assert_eq!(model.solve(1.0).unwrap(), before);
+    assert_eq!(model.stiffness_version(), version);
+}

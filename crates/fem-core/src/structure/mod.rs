@@ -41,6 +41,7 @@ use faer::sparse::SparseColMatRef;
 /// | [`idealization`](Self::idealization) | plane strain (unit weight) | 2D plane stress or axisymmetry (never asked in 3D) |
 /// | [`outward_normal`](Self::outward_normal) | `None` (not known) | the boundary normals are at hand |
 /// | [`stiffness_matrix`](Self::stiffness_matrix) | `None` (not assembled) | `K` is assembled (the active-set path needs it) |
+/// | [`release_factor`](Self::release_factor), [`restore_factor`](Self::restore_factor) | keep the factor | the factor of `K` may be freed while the 3D active set holds its own |
 /// | [`floating`](Self::floating) → [`Floating`] | `None` (`K` positive definite) | supports leave rigid-body modes |
 /// | [`mass`](Self::mass) → [`Mass`] | `None` (no inertia) | a dynamic scheme runs on it |
 /// | [`nonlinear`](Self::nonlinear) → [`Nonlinear`] | `None` (linear: `f_int = K u`) | the tangent and internal forces depend on the state |
@@ -88,6 +89,9 @@ use faer::sparse::SparseColMatRef;
 /// s.free_response_into(1.0, &mut u)?;
 /// assert_eq!(u, [0.5]); // f / k, through the provided `solve_in_place`
 /// assert!(s.floating().is_none() && s.stiffness_matrix().is_none() && s.mass().is_none());
+/// let mut s = s;
+/// assert!(!s.release_factor()); // the default keeps the factor
+/// s.restore_factor()?;
 /// # Ok::<(), FemError>(())
 /// ```
 pub trait Structure<const D: usize = 2> {
@@ -184,6 +188,31 @@ pub trait Structure<const D: usize = 2> {
     /// dofs of a node with every dof the node is coupled to (true of any assembled stiffness).
     fn stiffness_matrix(&self) -> Option<SparseColMatRef<'_, usize, f64>> {
         None
+    }
+
+    /// Frees the numeric factorisation of `K` (keeping what
+    /// [`restore_factor`](Self::restore_factor) needs to redo it) and returns whether it did.
+    ///
+    /// The primal active-set path in 3D factorises the constrained stiffness itself, a factor
+    /// of the same fill as `K`'s; it calls this before and
+    /// [`restore_factor`](Self::restore_factor) after its solve, dropping its own factor first,
+    /// so that one factor of that size is held at a time (`docs/benchmarks.md`, issue 38).
+    /// Between the two calls it asks for no solve. The default keeps the factor and returns
+    /// `false` (then `restore_factor` is not called): right for a structure whose solves do
+    /// not hold a factor, or that cannot refactor.
+    fn release_factor(&mut self) -> bool {
+        false
+    }
+
+    /// Refactorises `K` after [`release_factor`](Self::release_factor) returned `true`: the
+    /// same matrix, so every later solve gives the numbers it gave before the release, and
+    /// [`stiffness_version`](Self::stiffness_version) does not change. The default does
+    /// nothing.
+    ///
+    /// # Errors
+    /// A factorisation error (as the structure's first factorisation of `K` could give).
+    fn restore_factor(&mut self) -> Result<(), FemError> {
+        Ok(())
     }
 
     /// The structure as a floating body (its rigid-body modes and the load along them), or

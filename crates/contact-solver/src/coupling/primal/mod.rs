@@ -236,6 +236,14 @@ impl PrimalCache {
         Ok(())
     }
 
+    /// Frees the numeric factorisation and its correction columns (the next solve
+    /// refactorises); the rotated stiffness and the symbolic analysis stay.
+    pub(crate) fn drop_factor(&mut self) {
+        self.factor = None;
+        self.columns.clear();
+        self.column_of.fill(usize::MAX);
+    }
+
     /// The springs the last solve passed, if it was on `active` (empty otherwise).
     pub(crate) fn springs_for(&self, active: &[usize]) -> &[f64] {
         match &self.rotated_for {

@@ -288,6 +288,9 @@ pub struct Counters {
     pub active_set_steps: usize,
     /// Numeric factorisations of the constrained stiffness by the active-set iteration.
     pub active_set_factorizations: usize,
+    /// Refactorisations of the structure's `K` after a 3D active-set solve that freed its
+    /// factor (one factor held at a time: [`Structure::release_factor`](fem_core::Structure::release_factor)).
+    pub structure_refactorizations: usize,
     /// Solves with the constrained stiffness by the active-set iteration.
     pub active_set_solves: usize,
     /// Active-set iterations solved on the correction columns of a window around the moving

@@ -69,7 +69,31 @@ where
 {
     /// The primal active-set solve of the step (no `F*`), with the adhesion fixed point
     /// around it when a law is adhesive ([`crate::coupling::primal::adhesive`]).
+    ///
+    /// In 3D ([`ContactSpace::ONE_FACTOR`]) the structure's factor of `K` is freed while the
+    /// active set holds its own, and refactored after it, once the active set's is dropped:
+    /// one factor at a time, whether the solve succeeded or not (a failed step may go on
+    /// with a dense `F*`, which solves with `K`).
     pub(super) fn solve_active_set(
+        &mut self,
+        active: &[usize],
+        free: &[[f64; D]],
+        frames: &[LocalFrame],
+        dt: f64,
+        report: &mut StepReport,
+    ) -> Result<Solved<L::State>, SolverError> {
+        let released = <Dim<D> as ContactSpace<D>>::ONE_FACTOR && self.structure.release_factor();
+        let solved = self.solve_active_set_with(active, free, frames, dt, report);
+        if released {
+            self.cache.primal.drop_factor();
+            self.structure.restore_factor()?;
+            self.counters.structure_refactorizations += 1;
+        }
+        solved
+    }
+
+    /// [`Self::solve_active_set`] once the structure's factor is settled.
+    fn solve_active_set_with(
         &mut self,
         active: &[usize],
         free: &[[f64; D]],
