@@ -24,6 +24,7 @@
 //! stopped at the first yield (a tangent not positive definite, or a contact solve that
 //! stalled on a nearly singular `W`); it now switches them on in that step and reaches the
 //! plateau without a cut.
+#![cfg(feature = "fe")]
 
 use contact_laws::Signorini;
 use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
