@@ -527,17 +527,18 @@ where
                 .map_err(|e| fem(&root.key("supports"), e))?;
         }
     }
-    let mut model = Dim::<D>::model(mesh, &plan.options, &materials, sup, plan.solves).map_err(|e| {
-        let at = match &e {
-            FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
-            FemError::InvalidParameter {
-                name: "thickness", ..
-            } => Some(root.key("analysis").key("thickness")),
-            FemError::InvalidTie { .. } => Some(root.key("ties")),
-            _ => None,
-        };
-        fem(&at.unwrap_or_else(|| root.key("supports")), e)
-    })?;
+    let mut model =
+        Dim::<D>::model(mesh, &plan.options, &materials, sup, plan.solves).map_err(|e| {
+            let at = match &e {
+                FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
+                FemError::InvalidParameter {
+                    name: "thickness", ..
+                } => Some(root.key("analysis").key("thickness")),
+                FemError::InvalidTie { .. } => Some(root.key("ties")),
+                _ => None,
+            };
+            fem(&at.unwrap_or_else(|| root.key("supports")), e)
+        })?;
     if let Some((gamma, k0, z)) = plan.initial_stress {
         model
             .set_initial_stress(Dim::<D>::geostatic(gamma, k0, z))
