@@ -34,9 +34,12 @@ use crate::raw::{LinearSolverSpec, PetscSpec};
 use crate::run::Summary;
 use std::path::Path;
 
-/// How `bipo run` prints a study's header and its summary (the command's, handed over).
-pub(crate) type Prints<'a, const D: usize> =
-    (&'a dyn Fn(&build::Study<D>), &'a dyn Fn(&Summary<D>, &Path));
+/// How `bipo run` prints a study's header (`"run"`, the scene, the study) and its summary (the
+/// command's, handed over).
+pub(crate) type Prints<const D: usize> = (
+    fn(&str, &build::Loaded, &build::Study<D>),
+    fn(&Summary<D>, &Path),
+);
 
 /// [`launch`]'s number of ranks; the ranks other than 0 print nothing from now on (rank 0
 /// prints each line and each scene error once; a failure during a distributed run ends every
@@ -111,19 +114,20 @@ pub(crate) fn linear_solver(loaded: &build::Loaded, size: usize) -> CliResult<Li
 }
 
 /// The refusal of a built study the distributed path does not serve (a dynamic or plastic
-/// one; a static elastic one is served), naming the key that makes it what it is; `None` for
-/// a served one.
-pub(crate) fn refuse(built: &build::Built) -> Option<CliError> {
+/// one), naming the key that makes it what it is (a static elastic one is served: `bipo run`
+/// does not ask).
+pub(crate) fn refuse(built: &build::Built) -> CliError {
     match built {
-        build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_) => Some(unsupported(
+        build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_) => unsupported(
             KeyPath::root().key("analysis").key("dynamic"),
             "a dynamic scene",
-        )),
-        build::Built::PlanePlastic(_) | build::Built::SolidPlastic(_) => Some(unsupported(
-            KeyPath::root().key("materials"),
-            "a plastic material",
-        )),
-        build::Built::Plane(_) | build::Built::Solid(_) => None,
+        ),
+        build::Built::PlanePlastic(_) | build::Built::SolidPlastic(_) => {
+            unsupported(KeyPath::root().key("materials"), "a plastic material")
+        }
+        build::Built::Plane(_) | build::Built::Solid(_) => {
+            CliError::failed("a served study reached the refusal (internal routing error)")
+        }
     }
 }
 
@@ -149,7 +153,7 @@ pub(crate) fn run_study<const D: usize>(
     _: &build::Loaded,
     _: (Option<std::path::PathBuf>, bool),
     _: PetscSpec,
-    _: Prints<'_, D>,
+    _: Prints<D>,
 ) -> CliResult<()>
 where
     fem_core::Dim<D>: crate::run::Drive<D>,
@@ -224,7 +228,7 @@ mod with_petsc {
         loaded: &build::Loaded,
         (out, quiet): (Option<PathBuf>, bool),
         spec: PetscSpec,
-        (print_header, print_summary): Prints<'_, D>,
+        (print_header, print_summary): Prints<D>,
     ) -> CliResult<()>
     where
         Dim<D>: Drive<D>,
@@ -271,7 +275,7 @@ mod with_petsc {
                     quiet || rank > 0,
                 );
                 opts.pieces = Some(Pieces::new(rank, size, &element_rank, dir.clone()));
-                print_header(&study);
+                print_header("run", loaded, &study);
                 crate::out::outln!("distributed: PETSc on {size} rank(s), {spec:?}");
                 let summary = run::run(study, &opts)?;
                 print_summary(&summary, &opts.out_dir);

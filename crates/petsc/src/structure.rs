@@ -125,7 +125,7 @@ impl<'p> PetscStructure<'p, 3> {
     /// - [`PetscError::Unsupported`] for tied supports;
     /// - [`PetscError::InvalidSetting`] for a bad `solver`;
     /// - [`PetscError::Call`] if PETSc fails (then on every rank, or the failing rank
-    ///   should end all through [`Petsc::or_abort`]).
+    ///   should end all through [`Petsc::or_abort`](crate::Petsc::or_abort)).
     pub fn new(
         petsc: impl Into<PetscHandle<'p>>,
         mesh: SolidMesh,
