@@ -176,10 +176,13 @@ pub fn main() -> ExitCode {
             let petsc = mpi::petsc_spec(loaded, size)?;
             faer::set_global_parallelism(parallelism(threads, None));
             match (build::build(loaded)?, petsc) {
-                (Built::Solid(study), Some(spec)) => {
-                    let h = |s: &build::Study<3>| print_header("run", loaded, s);
-                    let prints: mpi::Prints = (&h, &print_summary::<3>);
-                    mpi::run_study(*study, loaded, (out, quiet), spec, prints)
+                (Built::Plane(s), Some(spec)) => {
+                    let prints = (print_header::<2> as _, print_summary::<2> as _);
+                    mpi::run_study(*s, loaded, (out, quiet), spec, prints)
+                }
+                (Built::Solid(s), Some(spec)) => {
+                    let prints = (print_header::<3> as _, print_summary::<3> as _);
+                    mpi::run_study(*s, loaded, (out, quiet), spec, prints)
                 }
                 (built, Some(_)) => Err(mpi::refuse(&built)),
                 (Built::Plane(study), None) => run_study(*study, loaded, out, quiet, threads),

@@ -12,11 +12,16 @@
 //! series is ParaView's parallel format (each rank's piece, `mesh_NNNN.pvtu`, `mesh.pvd`:
 //! `run::Pieces`); the other ranks write their other files in a scratch directory they remove.
 //!
-//! Refused, naming the key: a scene that asks for PETSc in a `bipo` built without it; a run
-//! under `mpirun` with more than one rank of a scene that does not ask for it (every rank would
-//! solve the whole model and write the same files); on the distributed path, a 2D scene
-//! (`analysis.type`: the distributed structure is 3D for now), a dynamic one
-//! (`analysis.dynamic`), a plastic material (`materials`) and ties (`ties`).
+//! Every rank holds the assembled `K` (the model is built without a factorisation:
+//! `ElasticModel::unfactored`) and its share of PETSc's distributed matrix and solver; the
+//! interface's data (`F*`, the local problem) are whole on every rank.
+//!
+//! 2D scenes (plane strain, plane stress, axisymmetry) and 3D ones are served. Refused, naming
+//! the key: a scene that asks for PETSc in a `bipo` built without it; a run under `mpirun`
+//! with more than one rank of a scene that does not ask for it (every rank would solve the
+//! whole model and write the same files); on the distributed path, a preset (`preset`), a
+//! dynamic scene (`analysis.dynamic`), a plastic material (`materials`), ties (`ties`) and a
+//! body that only contact holds (`analysis.floating`).
 //!
 //! Errors: a scene error is found alike by every rank before MPI starts and printed by rank 0
 //! only; a failure during the run ends every rank (`MPI_Abort`) with its message, rank 0's
@@ -29,8 +34,12 @@ use crate::raw::{LinearSolverSpec, PetscSpec};
 use crate::run::Summary;
 use std::path::Path;
 
-/// How `bipo run` prints a 3D study's header and its summary (the command's, handed over).
-pub(crate) type Prints<'a> = (&'a dyn Fn(&build::Study<3>), &'a dyn Fn(&Summary<3>, &Path));
+/// How `bipo run` prints a study's header (`"run"`, the scene, the study) and its summary (the
+/// command's, handed over).
+pub(crate) type Prints<const D: usize> = (
+    fn(&str, &build::Loaded, &build::Study<D>),
+    fn(&Summary<D>, &Path),
+);
 
 /// [`launch`]'s number of ranks; the ranks other than 0 print nothing from now on (rank 0
 /// prints each line and each scene error once; a failure during a distributed run ends every
@@ -104,19 +113,20 @@ pub(crate) fn linear_solver(loaded: &build::Loaded, size: usize) -> CliResult<Li
     }
 }
 
-/// The refusal of a built study the distributed path does not serve (a 3D static one is
-/// served), naming the key that makes it what it is.
+/// The refusal of a built study the distributed path does not serve (a dynamic or plastic
+/// one), naming the key that makes it what it is (a static elastic one is served: `bipo run`
+/// does not ask).
 pub(crate) fn refuse(built: &build::Built) -> CliError {
-    let analysis = KeyPath::root().key("analysis");
     match built {
-        build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_) => {
-            unsupported(analysis.key("dynamic"), "a dynamic scene")
-        }
+        build::Built::PlaneDynamic(_) | build::Built::SolidDynamic(_) => unsupported(
+            KeyPath::root().key("analysis").key("dynamic"),
+            "a dynamic scene",
+        ),
         build::Built::PlanePlastic(_) | build::Built::SolidPlastic(_) => {
             unsupported(KeyPath::root().key("materials"), "a plastic material")
         }
         build::Built::Plane(_) | build::Built::Solid(_) => {
-            unsupported(analysis.key("type"), "a 2D scene")
+            CliError::failed("a served study reached the refusal (internal routing error)")
         }
     }
 }
@@ -127,7 +137,7 @@ pub(crate) fn unsupported(key: KeyPath, what: &str) -> CliError {
         &key,
         format!(
             "`{key}`: {what} is not run distributed yet (`analysis.linear_solver` = \"petsc\" \
-             serves 3D static scenes with elastic materials); remove `analysis.linear_solver` to \
+             serves static scenes with elastic materials, key by key, held by supports); remove `analysis.linear_solver` to \
              run it in one process"
         ),
     )
@@ -138,13 +148,16 @@ pub(crate) use with_petsc::run_study;
 
 /// Without the feature `petsc` no scene gets here ([`linear_solver`] refuses it first).
 #[cfg(not(feature = "petsc"))]
-pub(crate) fn run_study(
-    _: build::Study<3>,
+pub(crate) fn run_study<const D: usize>(
+    _: build::Study<D>,
     _: &build::Loaded,
     _: (Option<std::path::PathBuf>, bool),
     _: PetscSpec,
-    _: Prints<'_>,
-) -> CliResult<()> {
+    _: Prints<D>,
+) -> CliResult<()>
+where
+    fem_core::Dim<D>: crate::run::Drive<D>,
+{
     Err(CliError::failed(
         "this bipo is built without the feature `petsc`",
     ))
@@ -156,25 +169,31 @@ mod with_petsc {
     use crate::build::{self, Body, Study};
     use crate::error::{CliError, CliResult, KeyPath};
     use crate::raw::PetscSpec;
-    use crate::run::{self, Pieces};
+    use crate::run::{self, Drive, Pieces};
     use bipotential_petsc::{LinearSolver, Petsc, PetscStructure};
     use fem_core::faer::MatMut;
     use fem_core::model::ReducedSolver;
-    use fem_core::{FemError, Material, SolidModel, Structure};
+    use fem_core::{Dim, ElasticModel, FemError, Material, Structure};
     use std::collections::BTreeMap;
     use std::path::PathBuf;
+    use std::sync::Arc;
 
     /// The distributed structure as the model's solver of `K x = b`.
-    struct PetscSolve(PetscStructure<'static>);
+    struct PetscSolve<const D: usize>(PetscStructure<'static, D>)
+    where
+        Dim<D>: Drive<D>;
 
     // SAFETY: bipo calls the model's solves from its main thread only (the contact steps are
     // sequential around them; faer's threads work inside factorisations and dense kernels, never
     // through the model), so the PETSc objects are never touched from two threads.
-    unsafe impl Send for PetscSolve {}
+    unsafe impl<const D: usize> Send for PetscSolve<D> where Dim<D>: Drive<D> {}
     // SAFETY: as for `Send`: no two threads ever hold the model at once.
-    unsafe impl Sync for PetscSolve {}
+    unsafe impl<const D: usize> Sync for PetscSolve<D> where Dim<D>: Drive<D> {}
 
-    impl ReducedSolver for PetscSolve {
+    impl<const D: usize> ReducedSolver for PetscSolve<D>
+    where
+        Dim<D>: Drive<D>,
+    {
         /// PETSc's failure, with the scene's keys that change the solver.
         fn solve_many_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), FemError> {
             self.0.solve_many_in_place(rhs).map_err(|e| match e {
@@ -203,37 +222,48 @@ mod with_petsc {
         }
     }
 
-    /// `bipo run` of a 3D study on every rank, the solves by PETSc (see the module docs).
-    pub(crate) fn run_study(
-        mut study: Study<3>,
+    /// `bipo run` of a study on every rank, the solves by PETSc (see the module docs).
+    pub(crate) fn run_study<const D: usize>(
+        mut study: Study<D>,
         loaded: &build::Loaded,
         (out, quiet): (Option<PathBuf>, bool),
         spec: PetscSpec,
-        (print_header, print_summary): Prints<'_>,
-    ) -> CliResult<()> {
+        (print_header, print_summary): Prints<D>,
+    ) -> CliResult<()>
+    where
+        Dim<D>: Drive<D>,
+    {
         if !study.model().supports().ties().is_empty() {
             return Err(unsupported(
                 KeyPath::root().key("ties"),
                 "a scene with ties",
             ));
         }
-        // PETSc lives until the end of the program: the structure inside the study borrows it
-        // for `'static`, and it is finalised below, once the study is gone
-        let petsc: &'static Petsc =
-            Box::leak(Box::new(Petsc::init().map_err(|e| {
-                CliError::failed(format!("PETSc did not start: {e}"))
-            })?));
+        if matches!(study.body, Body::Preset(_)) {
+            return Err(unsupported(KeyPath::root().key("preset"), "a preset"));
+        }
+        // shared with the structure, which the study's model holds: PETSc is finalised when
+        // the last of the two goes, after the structure's objects
+        let petsc = Arc::new(
+            Petsc::init().map_err(|e| CliError::failed(format!("PETSc did not start: {e}")))?,
+        );
         let (rank, size) = (petsc.rank(), petsc.size());
         let dir =
             run::RunOptions::new(out, study.output.dir.as_deref(), &loaded.path, quiet).out_dir;
         let scratch = std::env::temp_dir().join(format!("bipo-rank{rank}-{}", std::process::id()));
-        let outcome: CliResult<()> = petsc.or_abort(|| -> Result<CliResult<()>, String> {
+        petsc.or_abort(|| -> Result<CliResult<()>, String> {
             let result = (|| -> CliResult<()> {
-                let structure = structure(petsc, study.model(), spec)?;
+                let structure = structure(&petsc, study.model(), spec)?;
                 let element_rank = structure.partition().element_rank.clone();
-                model_mut(&mut study)
+                model_mut(&mut study)?
                     .set_reduced_solver(Box::new(PetscSolve(structure)))
-                    .map_err(|e| CliError::failed(format!("the PETSc solver: {e}")))?;
+                    .map_err(|e| match e {
+                        FemError::Unsupported { .. } => unsupported(
+                            KeyPath::root().key("analysis").key("floating"),
+                            "a body that only contact holds",
+                        ),
+                        e => CliError::failed(format!("the PETSc solver: {e}")),
+                    })?;
                 let mut opts = run::RunOptions::new(
                     Some(if rank == 0 {
                         dir.clone()
@@ -245,7 +275,7 @@ mod with_petsc {
                     quiet || rank > 0,
                 );
                 opts.pieces = Some(Pieces::new(rank, size, &element_rank, dir.clone()));
-                print_header(&study);
+                print_header("run", loaded, &study);
                 crate::out::outln!("distributed: PETSc on {size} rank(s), {spec:?}");
                 let summary = run::run(study, &opts)?;
                 print_summary(&summary, &opts.out_dir);
@@ -264,21 +294,19 @@ mod with_petsc {
                 }
                 result => Ok(result),
             }
-        });
-        // SAFETY: `petsc` came from `Box::leak` above; every PETSc object (the structure in
-        // the study's model) was dropped with the study inside the closure, and `petsc` is not
-        // used after this line
-        unsafe { drop(Box::from_raw(std::ptr::from_ref(petsc).cast_mut())) };
-        outcome
+        })
     }
 
-    /// The distributed structure of `model`'s mesh, materials and supports (its free-dof
-    /// numbering is the model's).
-    fn structure(
-        petsc: &'static Petsc,
-        model: &SolidModel,
+    /// The distributed structure of `model`'s mesh, setting, materials and supports (its
+    /// free-dof numbering is the model's), sharing `petsc`.
+    fn structure<const D: usize>(
+        petsc: &Arc<Petsc>,
+        model: &ElasticModel<D>,
         spec: PetscSpec,
-    ) -> CliResult<PetscStructure<'static>> {
+    ) -> CliResult<PetscStructure<'static, D>>
+    where
+        Dim<D>: Drive<D>,
+    {
         let mesh = model.mesh();
         let mut materials: BTreeMap<u32, Material> = BTreeMap::new();
         for e in 0..mesh.element_count() {
@@ -287,9 +315,10 @@ mod with_petsc {
                 .or_insert(*model.material(e));
         }
         let materials: Vec<(u32, Material)> = materials.into_iter().collect();
-        PetscStructure::new(
-            petsc,
+        PetscStructure::with_setting(
+            Arc::clone(petsc),
             mesh.clone(),
+            *model.setting(),
             &materials,
             model.supports().clone(),
             method(spec),
@@ -297,11 +326,15 @@ mod with_petsc {
         .map_err(|e| CliError::failed(format!("the PETSc structure: {e}")))
     }
 
-    /// The model inside the study's simulation.
-    fn model_mut(study: &mut Study<3>) -> &mut SolidModel {
+    /// The model inside the study's simulation (a scene's key by key: a preset is refused
+    /// before).
+    fn model_mut<const D: usize>(study: &mut Study<D>) -> CliResult<&mut ElasticModel<D>>
+    where
+        Dim<D>: Drive<D>,
+    {
         match &mut study.body {
-            Body::Custom(c) => c.sim.structure_mut(),
-            Body::Preset(p) => match **p {},
+            Body::Custom(c) => Ok(c.sim.structure_mut()),
+            Body::Preset(_) => Err(unsupported(KeyPath::root().key("preset"), "a preset")),
         }
     }
 }

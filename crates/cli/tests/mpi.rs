@@ -7,10 +7,12 @@
 //!   to 1e-8 relative: every value of `steps.csv` and `contacts.csv`, each compared with the
 //!   largest value of its kind (forces, displacements), except the wall times and the iteration
 //!   counters (CG stops at a residual of 1e-12 relative; the contact solver's residual is its
-//!   own rounding). The outputs are written once (no file of another rank beside rank 0's), the
+//!   own rounding). The same for `tests/mpi/axi.toml` (2D: an axisymmetric P2 cylinder under
+//!   self-weight on an RCCM floor, pressed then lifted until the adhesion is damaged). The outputs are written once (no file of another rank beside rank 0's), the
 //!   mesh series as parallel pieces: `mesh.pvd` → `mesh_NNNN.pvtu` → one `.vtu` per rank.
 //! - **Refusals.** A scene that does not ask for PETSc, run on 2 ranks, is refused at
-//!   `analysis.linear_solver`, printed once; a 2D scene that asks for it, at `analysis.type`.
+//!   `analysis.linear_solver`, printed once; a floating 2D body that asks for it, at
+//!   `analysis.floating`.
 //! - **A failing run ends every rank** (CG limited to one iteration: PETSc's solver does not
 //!   converge) with its message, not a hang.
 
@@ -27,6 +29,10 @@ fn bipo() -> &'static str {
 
 fn scene() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mpi/block.toml")
+}
+
+fn axi_scene() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mpi/axi.toml")
 }
 
 fn temp(name: &str) -> PathBuf {
@@ -145,9 +151,23 @@ fn difference(a: &Path, b: &Path) -> f64 {
 
 #[test]
 fn issue_41_block_on_one_and_two_ranks_gives_the_serial_answer() {
-    let dir = temp("block");
+    same_as_serial(&scene(), "block");
+}
+
+/// The 2D path: an axisymmetric cylinder under self-weight on an RCCM floor, pressed then
+/// lifted until the adhesion is damaged (`tests/mpi/axi.toml`).
+#[test]
+fn issue_41_axisymmetric_rccm_on_one_and_two_ranks_gives_the_serial_answer() {
+    same_as_serial(&axi_scene(), "axi");
+}
+
+/// `scene` (which asks for PETSc, CG at 1e-12) on 1 and 2 ranks against `bipo run` of the same
+/// scene without the PETSc keys: the CSV files to 1e-8 relative, the files written once, the
+/// mesh series as parallel pieces.
+fn same_as_serial(scene: &Path, name: &str) {
+    let dir = temp(name);
     // the serial scene: the same file without the PETSc keys
-    let source = std::fs::read_to_string(scene()).unwrap();
+    let source = std::fs::read_to_string(scene).unwrap();
     let serial_scene = dir.join("serial.toml");
     let serial_text: String = source
         .lines()
@@ -168,7 +188,6 @@ fn issue_41_block_on_one_and_two_ranks_gives_the_serial_answer() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", text(&out));
-    let scene = scene();
     for ranks in [1, 2] {
         let run = dir.join(format!("ranks{ranks}"));
         let args = [
@@ -189,7 +208,7 @@ fn issue_41_block_on_one_and_two_ranks_gives_the_serial_answer() {
         );
         for file in ["steps.csv", "contacts.csv"] {
             let d = difference(&serial.join(file), &run.join(file));
-            eprintln!("{ranks} rank(s), {file}: {d:.1e} relative to the serial run");
+            eprintln!("{name}, {ranks} rank(s), {file}: {d:.1e} relative to the serial run");
             // CG's residual 1e-12 relative, κ(K) ≲ 1e4: ~1e-9 at worst; the issue's bar 1e-8
             assert!(d <= 1e-8, "{ranks} ranks, {file}: {d:e} relative");
         }
@@ -242,26 +261,35 @@ fn issue_41_refusals_name_the_key_once() {
         "{all}"
     );
     assert_eq!(all.matches("error:").count(), 1, "printed once: {all}");
-    // a 2D scene asking for PETSc
-    let plane = dir.join("plane.toml");
-    let text2d = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/block.toml"),
-    )
-    .unwrap()
-    .replace("[analysis]\n", "[analysis]\nlinear_solver = \"petsc\"\n");
+    // a body that only contact holds (2D, `floating`): PETSc's K has no pinned modes
+    let floating = dir.join("floating.toml");
+    let source = std::fs::read_to_string(axi_scene())
+        .unwrap()
+        .replace(
+            "type = \"axisymmetric\"\n",
+            "type = \"axisymmetric\"\nfloating = true\n",
+        )
+        .replace(
+            "[[supports]]\nset = \"top\"\ncomponent = \"y\"\nvalue = -0.01\nfunction = \"path\"\n",
+            "",
+        );
     assert!(
-        text2d.contains("linear_solver"),
-        "the example has [analysis]"
+        !source.contains("set = \"top\""),
+        "the top's support removed"
     );
-    std::fs::write(&plane, text2d).unwrap();
+    std::fs::write(&floating, source).unwrap();
     let out = Command::new(bipo())
         .args(["run", "--quiet", "--out"])
         .arg(&out_dir)
-        .arg(&plane)
+        .arg(&floating)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("`analysis.type`: a 2D scene is not run distributed"));
+    let all = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{all}");
+    assert!(
+        all.contains("`analysis.floating`: a body that only contact holds is not run distributed"),
+        "{all}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

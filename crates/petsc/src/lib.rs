@@ -45,7 +45,7 @@ mod structure;
 #[cfg(feature = "petsc")]
 pub use error::PetscError;
 #[cfg(feature = "petsc")]
-pub use runtime::Petsc;
+pub use runtime::{Petsc, PetscHandle};
 #[cfg(feature = "petsc")]
 pub use solver::LinearSolver;
 #[cfg(feature = "petsc")]

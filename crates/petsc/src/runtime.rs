@@ -6,10 +6,13 @@ use crate::ffi;
 use std::ffi::{CString, c_char, c_int};
 use std::fmt::Display;
 use std::io::Write;
+use std::ops::Deref;
+use std::sync::Arc;
 
 /// PETSc initialised (`PetscInitialize` with the program's arguments, so that PETSc's options
 /// such as `-ksp_monitor` or `-pc_type` apply), finalised on drop. One per process; the
-/// structures borrow it, so they are destroyed before PETSc is finalised.
+/// structures borrow it or share it ([`PetscHandle`]), so they are destroyed before PETSc is
+/// finalised.
 #[derive(Debug)]
 pub struct Petsc {
     rank: usize,
@@ -136,5 +139,42 @@ impl Drop for Petsc {
         if code != 0 {
             eprintln!("PetscFinalize failed with error code {code}");
         }
+    }
+}
+
+/// A structure's hold on [`Petsc`]: borrowed (`&'p Petsc`, the caller keeps it alive longer)
+/// or shared (`Arc<Petsc>`: PETSc is finalised when its last holder, the caller's or a
+/// structure's, is dropped, after the structure's PETSc objects). The constructors of
+/// [`PetscStructure`](crate::PetscStructure) take either (`&petsc` or `Arc::clone(&petsc)`);
+/// a shared one makes a `PetscStructure<'static>`, which a program can hand to an owner that
+/// outlives its scope (`fem_core::ElasticModel::set_reduced_solver`).
+#[derive(Debug, Clone)]
+pub enum PetscHandle<'p> {
+    /// Borrowed for `'p`.
+    Borrowed(&'p Petsc),
+    /// Shared ownership.
+    Shared(Arc<Petsc>),
+}
+
+impl Deref for PetscHandle<'_> {
+    type Target = Petsc;
+
+    fn deref(&self) -> &Petsc {
+        match self {
+            PetscHandle::Borrowed(p) => p,
+            PetscHandle::Shared(p) => p,
+        }
+    }
+}
+
+impl<'p> From<&'p Petsc> for PetscHandle<'p> {
+    fn from(p: &'p Petsc) -> Self {
+        PetscHandle::Borrowed(p)
+    }
+}
+
+impl From<Arc<Petsc>> for PetscHandle<'static> {
+    fn from(p: Arc<Petsc>) -> Self {
+        PetscHandle::Shared(p)
     }
 }

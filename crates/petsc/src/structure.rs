@@ -24,7 +24,7 @@ use crate::error::PetscError;
 use crate::ffi::PetscInt;
 use crate::linalg::System;
 use crate::partition::{Partition, Partitioner};
-use crate::runtime::Petsc;
+use crate::runtime::PetscHandle;
 use crate::solver::LinearSolver;
 use fem_core::element::{Element, Setting};
 use fem_core::faer::MatMut;
@@ -36,7 +36,6 @@ use fem_core::{
 };
 use std::cell::Cell;
 use std::collections::{BTreeMap, BTreeSet};
-use std::marker::PhantomData;
 use std::sync::OnceLock;
 
 /// A linear elastic body solved by PETSc (module docs): the distributed counterpart of
@@ -96,7 +95,8 @@ where
     normals: OnceLock<Vec<Option<[f64; D]>>>,
     solves: Cell<usize>,
     iterations: Cell<usize>,
-    _petsc: PhantomData<&'p Petsc>,
+    /// Last: dropped after `system`'s PETSc objects (a shared handle may finalise PETSc).
+    _petsc: PetscHandle<'p>,
 }
 
 impl<const D: usize> core::fmt::Debug for PetscStructure<'_, D>
@@ -125,9 +125,9 @@ impl<'p> PetscStructure<'p, 3> {
     /// - [`PetscError::Unsupported`] for tied supports;
     /// - [`PetscError::InvalidSetting`] for a bad `solver`;
     /// - [`PetscError::Call`] if PETSc fails (then on every rank, or the failing rank
-    ///   should end all through [`Petsc::or_abort`]).
+    ///   should end all through [`Petsc::or_abort`](crate::Petsc::or_abort)).
     pub fn new(
-        petsc: &'p Petsc,
+        petsc: impl Into<PetscHandle<'p>>,
         mesh: SolidMesh,
         materials: &[(u32, Material)],
         supports: Supports,
@@ -142,14 +142,21 @@ impl<'p> PetscStructure<'p, 3> {
     /// # Errors
     /// As [`new`](Self::new).
     pub fn with_partitioner(
-        petsc: &'p Petsc,
+        petsc: impl Into<PetscHandle<'p>>,
         mesh: SolidMesh,
         materials: &[(u32, Material)],
         supports: Supports,
         solver: LinearSolver,
         partitioner: Partitioner,
     ) -> Result<Self, PetscError> {
-        Self::build(petsc, mesh, (), materials, supports, (solver, partitioner))
+        Self::build(
+            petsc.into(),
+            mesh,
+            (),
+            materials,
+            supports,
+            (solver, partitioner),
+        )
     }
 }
 
@@ -187,15 +194,37 @@ impl<'p> PetscStructure<'p, 2> {
     /// });
     /// ```
     pub fn plane(
-        petsc: &'p Petsc,
+        petsc: impl Into<PetscHandle<'p>>,
         mesh: Mesh<2>,
         idealization: Idealization,
         materials: &[(u32, Material)],
         supports: Supports,
         solver: LinearSolver,
     ) -> Result<Self, PetscError> {
-        match idealization {
-            Idealization::PlaneStress { thickness }
+        Self::with_setting(petsc, mesh, idealization, materials, supports, solver)
+    }
+}
+
+impl<'p, const D: usize> PetscStructure<'p, D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    /// [`PetscStructure::new`] (3D, `setting` = `()`) or [`PetscStructure::plane`] (2D,
+    /// `setting` the idealisation), for code written once over the dimension (a model's
+    /// `setting()`). Collective.
+    ///
+    /// # Errors
+    /// As [`PetscStructure::plane`].
+    pub fn with_setting(
+        petsc: impl Into<PetscHandle<'p>>,
+        mesh: Mesh<D>,
+        setting: Setting<D>,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        solver: LinearSolver,
+    ) -> Result<Self, PetscError> {
+        match <Dim<D> as Space>::idealization(&setting).copied() {
+            Some(Idealization::PlaneStress { thickness })
                 if !(thickness.is_finite() && thickness > 0.0) =>
             {
                 return Err(FemError::InvalidParameter {
@@ -205,7 +234,7 @@ impl<'p> PetscStructure<'p, 2> {
                 }
                 .into());
             }
-            Idealization::Axisymmetric => {
+            Some(Idealization::Axisymmetric) => {
                 if let Some((node, p)) = mesh.nodes().iter().enumerate().find(|(_, p)| p[0] < 0.0) {
                     return Err(FemError::NegativeRadius { node, r: p[0] }.into());
                 }
@@ -213,22 +242,17 @@ impl<'p> PetscStructure<'p, 2> {
             _ => {}
         }
         Self::build(
-            petsc,
+            petsc.into(),
             mesh,
-            idealization,
+            setting,
             materials,
             supports,
             (solver, Partitioner::Slabs),
         )
     }
-}
 
-impl<'p, const D: usize> PetscStructure<'p, D>
-where
-    Dim<D>: ModelSpace<D>,
-{
     fn build(
-        petsc: &'p Petsc,
+        petsc: PetscHandle<'p>,
         mesh: Mesh<D>,
         setting: Setting<D>,
         materials: &[(u32, Material)],
@@ -286,7 +310,7 @@ where
             normals: OnceLock::new(),
             solves: Cell::new(0),
             iterations: Cell::new(0),
-            _petsc: PhantomData,
+            _petsc: petsc,
         })
     }
 

@@ -11,6 +11,7 @@ use super::checks::{expect, solver_error};
 use super::checks::{fem, finite, finite_all, kind_name, list_names, node_set, positive};
 use super::curves;
 use super::mesh::MeshPlan;
+use super::model::Solves;
 use crate::error::{CliError, CliResult, KeyPath, bail, err};
 use crate::raw::vector;
 use crate::spec::{ArcSideSpec, Coords, Element, TargetSpec};
@@ -45,6 +46,7 @@ where
         options: &Self::Options,
         materials: &[(u32, Material)],
         supports: Supports,
+        solves: Solves,
     ) -> Result<ElasticModel<D>, FemError>;
     /// The geostatic initial stress (`gamma`, `k0`, the surface's height).
     fn geostatic(gamma: f64, k0: f64, z: f64) -> StressField<D>;
@@ -145,11 +147,17 @@ impl SceneDim<2> for Dim<2> {
         &(idealization, floating): &Self::Options,
         materials: &[(u32, Material)],
         supports: Supports,
+        solves: Solves,
     ) -> Result<LinearElasticModel, FemError> {
-        if floating {
-            LinearElasticModel::floating(mesh, idealization, materials, supports)
-        } else {
-            LinearElasticModel::new(mesh, idealization, materials, supports)
+        match (floating, solves) {
+            // a floating body's solves are its own (`K⁺`): an external solver is refused later
+            (true, _) => LinearElasticModel::floating(mesh, idealization, materials, supports),
+            (false, Solves::Factorised) => {
+                LinearElasticModel::new(mesh, idealization, materials, supports)
+            }
+            (false, Solves::External) => {
+                LinearElasticModel::unfactored(mesh, idealization, materials, supports)
+            }
         }
     }
 
@@ -373,11 +381,13 @@ impl SceneDim<3> for Dim<3> {
         &floating: &bool,
         materials: &[(u32, Material)],
         supports: Supports,
+        solves: Solves,
     ) -> Result<SolidModel, FemError> {
-        if floating {
-            SolidModel::floating(mesh, materials, supports)
-        } else {
-            SolidModel::new(mesh, materials, supports)
+        match (floating, solves) {
+            // a floating body's solves are its own (`K⁺`): an external solver is refused later
+            (true, _) => SolidModel::floating(mesh, materials, supports),
+            (false, Solves::Factorised) => SolidModel::new(mesh, materials, supports),
+            (false, Solves::External) => SolidModel::unfactored(mesh, (), materials, supports),
         }
     }
 

@@ -195,6 +195,13 @@ fn custom_study<const D: usize>(
 where
     fem_core::Dim<D>: StudyDim<D> + SceneDim<D>,
 {
+    let mut model = model;
+    // a run whose solves are PETSc's holds no factor (`app_mpi` sets the solver)
+    if let Some(a) = &loaded.scene.analysis
+        && let Ok(crate::raw::LinearSolverSpec::Petsc(_)) = a.linear_solver(&KeyPath::root())
+    {
+        model.solves = model::Solves::External;
+    }
     let (model, supports, loads) = model::build(mesh, model, &functions, &phases)?;
     let (sim, zone_laws, warnings) = contact::build(model, &contact.zones, contact.settings)?;
     let custom = Custom {

@@ -370,7 +370,19 @@ where
         loads,
         initial_stress: validate_initial_stress(scene)?,
         ties: validate_ties(scene, D)?,
+        solves: Solves::Factorised,
     })
+}
+
+/// Who solves the model's `K x = b`: its own Cholesky factorisation, or a solver set after
+/// the build (a distributed run's), for which the model is built without a factorisation
+/// (`ElasticModel::unfactored`: a rank holds `K`, not a factor).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Solves {
+    /// The model factorises `K` when it is built.
+    Factorised,
+    /// `K` is assembled, not factorised: the run sets the model's solver.
+    External,
 }
 
 /// What the model is built from.
@@ -386,6 +398,8 @@ where
     pub(super) initial_stress: InitialStressPlan,
     /// `[[ties]]`.
     pub(super) ties: Ties,
+    /// Who solves `K x = b` ([`Solves::Factorised`] unless the study sets it).
+    pub(super) solves: Solves,
 }
 
 /// `[[ties]]`: (key path of the set, set, components).
@@ -513,17 +527,18 @@ where
                 .map_err(|e| fem(&root.key("supports"), e))?;
         }
     }
-    let mut model = Dim::<D>::model(mesh, &plan.options, &materials, sup).map_err(|e| {
-        let at = match &e {
-            FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
-            FemError::InvalidParameter {
-                name: "thickness", ..
-            } => Some(root.key("analysis").key("thickness")),
-            FemError::InvalidTie { .. } => Some(root.key("ties")),
-            _ => None,
-        };
-        fem(&at.unwrap_or_else(|| root.key("supports")), e)
-    })?;
+    let mut model =
+        Dim::<D>::model(mesh, &plan.options, &materials, sup, plan.solves).map_err(|e| {
+            let at = match &e {
+                FemError::NonFiniteStiffness { region, .. } => young_keys.get(region).cloned(),
+                FemError::InvalidParameter {
+                    name: "thickness", ..
+                } => Some(root.key("analysis").key("thickness")),
+                FemError::InvalidTie { .. } => Some(root.key("ties")),
+                _ => None,
+            };
+            fem(&at.unwrap_or_else(|| root.key("supports")), e)
+        })?;
     if let Some((gamma, k0, z)) = plan.initial_stress {
         model
             .set_initial_stress(Dim::<D>::geostatic(gamma, k0, z))

@@ -48,7 +48,7 @@ where
     /// mesh series as this rank's parallel pieces (a distributed run).
     ///
     /// # Errors
-    /// A file that cannot be created; `pieces` where this dimension does not write them.
+    /// A file that cannot be created.
     fn writers(
         study: &Study<D>,
         dir: &Path,

@@ -37,18 +37,12 @@ fn axes(study: &Study) -> [&'static str; 2] {
 impl RunDim<2> for Dim<2> {
     type Writers = PlaneWriters;
 
-    /// Parallel pieces are 3D's only for now (the distributed structure is 3D).
     fn writers(
         study: &Study,
         dir: &Path,
         pieces: Option<super::Pieces>,
         files: &mut Vec<String>,
     ) -> CliResult<PlaneWriters> {
-        if pieces.is_some() {
-            return Err(crate::error::CliError::failed(
-                "a distributed run writes its VTK pieces in 3D only".to_string(),
-            ));
-        }
         let o = &study.output;
         let csv = CsvWriter::new(
             dir,
@@ -70,7 +64,7 @@ impl RunDim<2> for Dim<2> {
         };
         Ok(PlaneWriters {
             csv,
-            vtk: VtkWriter::new(dir, o.vtk, o.writes_mesh_vtk()),
+            vtk: VtkWriter::new(dir, o.vtk, o.writes_mesh_vtk(), pieces),
             rigid,
         })
     }

@@ -1,8 +1,9 @@
 //! The VTK series: the interface (`interface_*.vtu` + `interface.pvd`, through the library's
 //! [`InterfaceSeries`]) and the whole mesh (`mesh_*.vtu` + `mesh.pvd`: displacement and nodal
-//! stress).
+//! stress; a distributed run's as parallel pieces, `mesh_*.pvtu`, through [`Pieces`]).
 
 use super::errors::{fem_failed, io};
+use super::pieces::Pieces;
 use crate::error::CliResult;
 use contact_solver::coupling::traction::{TractionField, write_interface_vtu_with_traction};
 use contact_solver::{ContactRecord, InterfaceSeries};
@@ -14,15 +15,19 @@ pub(super) struct VtkWriter {
     dir: PathBuf,
     interface: Option<InterfaceSeries>,
     mesh_entries: Option<Vec<(f64, String)>>,
+    /// A distributed run's pieces of the mesh series (`mesh_NNNN.pvtu` in `mesh.pvd`).
+    pieces: Option<Pieces>,
 }
 
 impl VtkWriter {
-    /// The series asked for (nothing is written before the first step).
-    pub(super) fn new(dir: &Path, interface: bool, mesh: bool) -> Self {
+    /// The series asked for (nothing is written before the first step); the mesh series as
+    /// this rank's `pieces` in a distributed run.
+    pub(super) fn new(dir: &Path, interface: bool, mesh: bool, pieces: Option<Pieces>) -> Self {
         Self {
             dir: dir.to_path_buf(),
             interface: interface.then(|| InterfaceSeries::new(dir, "interface")),
             mesh_entries: mesh.then(Vec::new),
+            pieces,
         }
     }
 
@@ -56,18 +61,22 @@ impl VtkWriter {
             let stress = model
                 .nodal_stresses(d)
                 .map_err(|e| fem_failed("nodal stresses", e))?;
-            let name = format!("mesh_{:04}.vtu", entries.len());
-            let path = self.dir.join(&name);
-            fem_core::vtk::write_vtu(
-                &path,
-                model.mesh(),
-                &[
-                    ("u", fem_core::vtk::Field::Vector(d)),
-                    ("stress", fem_core::vtk::Field::SymTensor(&stress)),
-                ],
-                &[],
-            )
-            .map_err(|e| io(&path, e))?;
+            let stem = format!("mesh_{:04}", entries.len());
+            let point = [
+                ("u", fem_core::vtk::Field::Vector(d)),
+                ("stress", fem_core::vtk::Field::SymTensor(&stress)),
+            ];
+            let name = match &self.pieces {
+                Some(pieces) => pieces.write(&stem, model.mesh(), &point, &[])?,
+                None => {
+                    let name = format!("{stem}.vtu");
+                    let path = self.dir.join(&name);
+                    fem_core::vtk::write_vtu(&path, model.mesh(), &point, &[])
+                        .map_err(|e| io(&path, e))?;
+                    name
+                }
+            };
+            // each rank's own directory (rank 0's is the run's)
             push_pvd(&self.dir, entries, t, name)?;
         }
         Ok(())

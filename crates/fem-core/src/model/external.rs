@@ -10,8 +10,11 @@
 //! on, and so is a floating model (its pinned factorisation is `K⁺`, not `K⁻¹`).
 
 use super::{ElasticModel, ModelSpace};
+use crate::element::Setting;
 use crate::error::FemError;
+use crate::ordering::FillOrdering;
 use crate::space::Dim;
+use crate::{Material, Mesh, Supports};
 use faer::MatMut;
 
 /// Solves `K X = B` for the model's reduced stiffness `K` (free dofs, the model's numbering),
@@ -80,7 +83,60 @@ where
             });
         }
         self.external = Some(solver);
+        // never used again: the factor's memory goes back
+        self.solver = None;
         Ok(())
+    }
+
+    /// Builds the model as the constructors do (the dofs numbered, `K` assembled, the loads
+    /// empty) but does not factorise `K`, nor analyse its pattern for a factorisation: for a
+    /// model whose solves go to a [`ReducedSolver`] ([`Self::set_reduced_solver`]), so that
+    /// it never holds a Cholesky factor (a distributed run's rank holds `K` and its share of
+    /// the distributed matrix). Until a solver is set, solves fail
+    /// ([`FemError::LinearAlgebra`]); [`Self::refactor`] factorises it as
+    /// [`LinearElasticModel::new`](crate::LinearElasticModel::new) (2D, minimum-degree
+    /// ordering) or [`SolidModel::new`](crate::solid::SolidModel::new) (3D, nested
+    /// dissection) would have.
+    ///
+    /// `setting` is the [`Idealization`](crate::Idealization) in 2D, `()` in 3D.
+    ///
+    /// # Errors
+    /// As [`LinearElasticModel::new`](crate::LinearElasticModel::new), but for a stiffness
+    /// that is singular otherwise than by a rigid-body mode (a node no element connects, a
+    /// mechanism): no factorisation finds it (the external solver's does, or fails to
+    /// converge).
+    ///
+    /// # Examples
+    /// ```
+    /// use fem_core::solid::generate::{box_mesh, lines};
+    /// use fem_core::solid::{SolidKind, SolidModel};
+    /// use fem_core::{Component, FemError, Material, Structure, Supports};
+    /// let l = lines(0.0, 1.0, 2);
+    /// let mesh = box_mesh(&l, &l, &l, SolidKind::Tet4)?;
+    /// let mut s = Supports::new();
+    /// s.fix(mesh.node_set("z0")?, Component::Z)
+    ///     .fix(mesh.node_set("x0")?, Component::X)
+    ///     .fix(mesh.node_set("y0")?, Component::Y);
+    /// let materials = [(0, Material::new(1e3, 0.3, 0.0)?)];
+    /// let mut model = SolidModel::unfactored(mesh, (), &materials, s)?;
+    /// assert_eq!((model.factorizations(), model.factor_nnz()), (0, 0));
+    /// assert!(model.solve(1.0).is_err());
+    /// model.refactor()?;
+    /// assert_eq!(model.factorizations(), 1);
+    /// # Ok::<(), FemError>(())
+    /// ```
+    pub fn unfactored(
+        mesh: Mesh<D>,
+        setting: Setting<D>,
+        materials: &[(u32, Material)],
+        supports: Supports,
+    ) -> Result<Self, FemError> {
+        let ordering = if D == 2 {
+            FillOrdering::Amd
+        } else {
+            FillOrdering::default()
+        };
+        Self::assembled(mesh, setting, materials, supports, false, ordering)
     }
 
     /// Whether the model solves with an external [`ReducedSolver`].
@@ -100,6 +156,37 @@ where
                 ),
             }),
         }
+    }
+}
+
+/// The release and restore of the factor of `K` ([`Structure::release_factor`](crate::Structure::release_factor),
+/// [`Structure::restore_factor`](crate::Structure::restore_factor)): the 3D active set frees it while it holds its own.
+impl<const D: usize> ElasticModel<D>
+where
+    Dim<D>: ModelSpace<D>,
+{
+    pub(super) fn release_own_factor(&mut self) -> bool {
+        match &mut self.solver {
+            Some(solver) if solver.is_factored() => {
+                solver.release();
+                true
+            }
+            _ => false,
+        }
+    }
+
+    pub(super) fn restore_own_factor(&mut self) -> Result<(), FemError> {
+        // the values `assemble_and_factor` factorised; the version stays (same matrix)
+        let values = if self.pinned.is_empty() {
+            &self.values
+        } else {
+            &self.pinned_values
+        };
+        let result = match &mut self.solver {
+            Some(solver) if solver.is_released() => solver.factor(self.pattern.view(values)),
+            _ => return Ok(()),
+        };
+        result.map_err(|e| self.name_failed_dof(e))
     }
 }
 
@@ -160,5 +247,37 @@ mod tests {
             model.refactor(),
             Err(FemError::Unsupported { .. })
         ));
+    }
+
+    #[test]
+    fn issue_41_unfactored_model_solves_by_its_external_solver_only() {
+        let factored = block();
+        let serial = factored.solve(1.0).unwrap();
+        let l = lines(0.0, 1.0, 2);
+        let mesh = box_mesh(&l, &l, &l, SolidKind::Tet4).unwrap();
+        let mut model = SolidModel::unfactored(
+            mesh,
+            (),
+            &[(0, Material::new(1e3, 0.3, 0.0).unwrap())],
+            factored.supports().clone(),
+        )
+        .unwrap();
+        // no factor, no symbolic analysis; K assembled all the same (the same bits)
+        assert_eq!((model.factorizations(), model.factor_nnz()), (0, 0));
+        assert_eq!(model.stiffness().val(), factored.stiffness().val());
+        let e = model.solve(1.0).unwrap_err();
+        assert!(e.to_string().contains("set_reduced_solver"), "{e}");
+        model
+            .set_reduced_solver(Box::new(Twin(block(), 0.into())))
+            .unwrap();
+        assert_eq!(model.solve(1.0).unwrap(), serial);
+        // a factored model handed a solver lets its factor go
+        let mut handed = block();
+        assert!(handed.factor_nnz() > 0);
+        handed
+            .set_reduced_solver(Box::new(Twin(block(), 0.into())))
+            .unwrap();
+        assert_eq!(handed.factor_nnz(), 0);
+        assert_eq!(handed.solve(1.0).unwrap(), serial);
     }
 }

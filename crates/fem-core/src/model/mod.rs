@@ -96,7 +96,10 @@ where
     pattern: Pattern,
     values: Vec<f64>,
     coupling: PrescribedCoupling,
-    solver: SpdSolver,
+    /// The Cholesky factorisation of `K` (its symbolic part made at the first factorisation);
+    /// `None` for a model built for an external solver ([`ElasticModel::unfactored`]) or
+    /// handed one.
+    solver: Option<SpdSolver>,
     ordering: FillOrdering,
     /// Reference external loads per node component (`D × node_count`).
     load: Vec<f64>,
@@ -221,6 +224,22 @@ where
         may_float: bool,
         ordering: FillOrdering,
     ) -> Result<Self, FemError> {
+        let mut model = Self::assembled(mesh, setting, materials, supports, may_float, ordering)?;
+        model.factor()?;
+        Ok(model)
+    }
+
+    /// The model with `K` assembled (and the modes found), not factorised: what
+    /// [`Self::build`] factorises and [`ElasticModel::unfactored`] leaves for an external
+    /// solver.
+    fn assembled(
+        mesh: Mesh<D>,
+        setting: Setting<D>,
+        materials: &[(u32, Material)],
+        supports: Supports,
+        may_float: bool,
+        ordering: FillOrdering,
+    ) -> Result<Self, FemError> {
         let idealization = <Dim<D> as Space>::idealization(&setting).copied();
         if let Some(Idealization::PlaneStress { thickness }) = idealization {
             crate::error::positive("thickness", thickness)?;
@@ -242,7 +261,6 @@ where
         let with_mass = mass::has_mass(&mesh, &materials)?;
         let dofs = DofMap::<D>::numbered(mesh.node_count(), &supports)?;
         let pattern = Pattern::new(&dofs, (0..mesh.element_count()).map(|e| mesh.element(e)))?;
-        let solver = solver_for(&mesh, &dofs, &pattern, ordering)?;
         let n = D * mesh.node_count();
         let mut model = Self {
             values: vec![0.0; pattern.nnz()],
@@ -253,7 +271,7 @@ where
             dofs,
             pattern,
             coupling: PrescribedCoupling::default(),
-            solver,
+            solver: None,
             ordering,
             load: vec![0.0; n],
             initial_force: vec![0.0; n],
@@ -270,12 +288,18 @@ where
             external: None,
         };
         model.find_modes()?;
-        model.assemble_and_factor()?;
+        model.assemble()?;
         Ok(model)
     }
 
     fn assemble_and_factor(&mut self) -> Result<(), FemError> {
         self.refuse_with_external("reassembling K")?;
+        self.assemble()?;
+        self.factor()
+    }
+
+    /// Assembles `K` (and the mass) into the pattern's values.
+    fn assemble(&mut self) -> Result<(), FemError> {
         self.values.fill(0.0);
         let built_in = self.mesh.built_in_element();
         let mut k_e = DMatrix::zeros(0, 0);
@@ -305,14 +329,28 @@ where
             );
         }
         self.coupling = merge(coupling);
-        self.assemble_mass()?;
+        self.assemble_mass()
+    }
+
+    /// Factorises the assembled `K` (pinned when floating), its symbolic part made first
+    /// when the model has none.
+    fn factor(&mut self) -> Result<(), FemError> {
         let values = if self.pinned.is_empty() {
             &self.values
         } else {
             self.pin_values();
             &self.pinned_values
         };
-        self.solver
+        let solver = match &mut self.solver {
+            Some(solver) => solver,
+            None => self.solver.insert(solver_for(
+                &self.mesh,
+                &self.dofs,
+                &self.pattern,
+                self.ordering,
+            )?),
+        };
+        solver
             .factor(self.pattern.view(values))
             .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
@@ -348,22 +386,26 @@ where
 
     /// [`FemError::LinearAlgebra`] when the stiffness (or a nonlinear model's tangent held
     /// here) has no factorisation: the last one failed.
-    fn check_factored(&self) -> Result<(), FemError> {
-        if self.solver.is_factored() {
-            return Ok(());
-        }
-        if self.solver.is_released() {
-            return Err(FemError::LinearAlgebra {
+    fn check_factored(&self) -> Result<&SpdSolver, FemError> {
+        match &self.solver {
+            Some(solver) if solver.is_factored() => Ok(solver),
+            Some(solver) if solver.is_released() => Err(FemError::LinearAlgebra {
                 detail: "a solve with a stiffness whose factor was released (call \
                          Structure::restore_factor first)"
                     .into(),
-            });
+            }),
+            Some(_) => Err(FemError::LinearAlgebra {
+                detail: "a solve with a stiffness whose last factorisation failed (factorise a \
+                         positive definite stiffness or tangent first)"
+                    .into(),
+            }),
+            None => Err(FemError::LinearAlgebra {
+                detail: "a solve with a model built without a factorisation \
+                         (`ElasticModel::unfactored`): set its solver \
+                         (`set_reduced_solver`) or factorise it (`refactor`) first"
+                    .into(),
+            }),
         }
-        Err(FemError::LinearAlgebra {
-            detail: "a solve with a stiffness whose last factorisation failed (factorise a \
-                     positive definite stiffness or tangent first)"
-                .into(),
-        })
     }
 
     /// Names the node and component of a failed pivot: the solver reports a row of the
@@ -427,10 +469,12 @@ where
         self.pattern.nnz()
     }
 
-    /// Stored entries of the Cholesky factor of `K` (its fill with the model's ordering).
+    /// Stored entries of the Cholesky factor of `K` (its fill with the model's ordering); 0
+    /// for a model without one (built [`unfactored`](ElasticModel::unfactored) or handed a
+    /// [`ReducedSolver`]).
     #[inline]
     pub fn factor_nnz(&self) -> usize {
-        self.solver.factor_nnz()
+        self.solver.as_ref().map_or(0, SpdSolver::factor_nnz)
     }
 
     /// The reduced stiffness `K` (lower triangle, free dofs), as a faer view.
@@ -528,7 +572,7 @@ where
             &self.dofs,
             (0..mesh.element_count()).map(|e| mesh.element(e)),
         )?;
-        self.solver = solver_for(&self.mesh, &self.dofs, &self.pattern, self.ordering)?;
+        self.solver = None;
         self.values = vec![0.0; self.pattern.nnz()];
         self.find_modes()?;
         self.assemble_and_factor()
@@ -667,13 +711,13 @@ where
             let n = rhs.len();
             return external.solve_many_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1));
         }
-        self.check_factored()?;
+        let solver = self.check_factored()?;
         if self.pinned.is_empty() {
-            self.solver.solve_in_place(rhs);
+            solver.solve_in_place(rhs);
         } else {
             // x = P K⁺ P b (crate::rigid_modes)
             self.project(rhs, true);
-            self.solver.solve_in_place(rhs);
+            solver.solve_in_place(rhs);
             self.project(rhs, false);
         }
         Ok(())
@@ -683,14 +727,14 @@ where
         if let Some(external) = &self.external {
             return external.solve_many_in_place(rhs);
         }
-        self.check_factored()?;
+        let solver = self.check_factored()?;
         if self.pinned.is_empty() {
-            self.solver.solve_many_in_place(rhs);
+            solver.solve_many_in_place(rhs);
         } else {
             for c in 0..rhs.ncols() {
                 self.project_column(rhs.as_mut().col_mut(c), true);
             }
-            self.solver.solve_many_in_place(rhs.as_mut());
+            solver.solve_many_in_place(rhs.as_mut());
             for c in 0..rhs.ncols() {
                 self.project_column(rhs.as_mut().col_mut(c), false);
             }
@@ -709,26 +753,11 @@ where
     }
 
     fn release_factor(&mut self) -> bool {
-        if !self.solver.is_factored() {
-            return false;
-        }
-        self.solver.release();
-        true
+        self.release_own_factor()
     }
 
     fn restore_factor(&mut self) -> Result<(), FemError> {
-        if !self.solver.is_released() {
-            return Ok(());
-        }
-        // the values `assemble_and_factor` factorised; the version stays (same matrix)
-        let values = if self.pinned.is_empty() {
-            &self.values
-        } else {
-            &self.pinned_values
-        };
-        self.solver
-            .factor(self.pattern.view(values))
-            .map_err(|e| self.name_failed_dof(e))
+        self.restore_own_factor()
     }
 
     fn stiffness_version(&self) -> u64 {

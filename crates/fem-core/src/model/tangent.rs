@@ -64,7 +64,16 @@ where
             });
         }
         self.refuse_with_external("a tangent of its own")?;
-        self.solver
+        let solver = match &mut self.solver {
+            Some(solver) => solver,
+            None => self.solver.insert(super::solver_for(
+                &self.mesh,
+                &self.dofs,
+                &self.pattern,
+                self.ordering,
+            )?),
+        };
+        solver
             .factor(self.pattern.view(values))
             .map_err(|e| self.name_failed_dof(e))?;
         self.version += 1;
