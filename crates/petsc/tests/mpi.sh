@@ -27,6 +27,15 @@ for n in 1 2; do
     timeout 300 "${mpi[@]}" -n "$n" "$bin" ${scene/-/ }
   done
 done
+# petsc_scale (issue 41's measuring program): each mode once at a small size (SCALE=0 skips)
+scale="$(dirname "$bin")/petsc_scale"
+if [ "${SCALE:-1}" = 1 ] && [ -x "$scale" ]; then
+  echo "== petsc_scale patch 4 3 mumps (2 ranks), direct, partitions, interface"
+  timeout 300 "${mpi[@]}" -n 2 "$scale" patch 4 3 mumps
+  timeout 300 "$scale" direct 4 3
+  timeout 300 "$scale" partitions 4 2 4
+  timeout 300 "$scale" interface 4
+fi
 case " $checks " in *" fail "*) ;; *) echo "mpi checks: OK"; exit 0 ;; esac
 echo "== mpirun -n 2 petsc_check fail (must end both ranks with the message)"
 set +e
