@@ -4,6 +4,8 @@
 //! mpirun -n N petsc_check block [mumps]   3D block, Coulomb contact (μ = 0.3) on a rigid plane:
 //!                                          pressed, then its top sheared until every contact slides
 //! mpirun -n N petsc_check hertz [mumps]   rigid sphere on a block (the quarter Hertz model)
+//!                                          (`block` and `hertz`: `batch` or `loop` sets
+//!                                          how F*'s columns are solved, issue 41)
 //! mpirun -n N petsc_check pile [mumps] [seed] [plane]
 //!                                          the seed's pile pull-out, axisymmetric, RCCM
 //!                                          interface (examples/support/pile.rs)
@@ -177,13 +179,16 @@ fn compare<L: ContactLaw + Clone>(
         None
     };
     let start = Instant::now();
-    let body = PetscStructure::new(
+    let mut body = PetscStructure::new(
         petsc,
         scene.mesh,
         &[(0, material())],
         scene.supports,
         solver,
     )?;
+    if let Some(&on) = BATCHED.get() {
+        body.set_batched_solves(on);
+    }
     let dofs = body.dof_count();
     let distributed = run(body, zone, &scene.second, |s, n, c, v| {
         Ok(s.set_prescribed(n, c, v)?)
@@ -293,13 +298,16 @@ fn scale(petsc: &Petsc, cells: usize, solver: LinearSolver) -> Res<()> {
     let contacts = scene.mesh.node_set("z0")?.len();
     petsc.barrier()?;
     let t0 = Instant::now();
-    let body = PetscStructure::new(
+    let mut body = PetscStructure::new(
         petsc,
         scene.mesh,
         &[(0, material())],
         scene.supports,
         solver,
     )?;
+    if let Some(&on) = BATCHED.get() {
+        body.set_batched_solves(on);
+    }
     let setup = t0.elapsed().as_secs_f64();
     let dofs = body.dof_count();
     let t1 = Instant::now();
@@ -318,6 +326,10 @@ fn scale(petsc: &Petsc, cells: usize, solver: LinearSolver) -> Res<()> {
     Ok(())
 }
 
+/// `batch` or `loop` on the command line: how `F*`'s columns are solved (default: the
+/// solver's, `PetscStructure::set_batched_solves`).
+static BATCHED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+
 fn main() {
     let petsc = match Petsc::init() {
         Ok(p) => p,
@@ -330,6 +342,13 @@ fn main() {
         .skip(1)
         .filter(|a| !a.starts_with('-'))
         .collect();
+    if let Some(on) = args.iter().find_map(|a| match a.as_str() {
+        "batch" => Some(true),
+        "loop" => Some(false),
+        _ => None,
+    }) {
+        BATCHED.get_or_init(|| on);
+    }
     let solver = if args.iter().any(|a| a == "mumps") {
         LinearSolver::Mumps
     } else {
@@ -361,7 +380,7 @@ fn main() {
                 scale(&petsc, cells, solver)
             }
             _ => Err(
-                "usage: petsc_check block|hertz|pile|errors|partitions|fail|scale CELLS [mumps] [seed] [plane]"
+                "usage: petsc_check block|hertz|pile|errors|partitions|fail|scale CELLS [mumps] [batch|loop] [seed] [plane]"
                     .into(),
             ),
         }
