@@ -225,9 +225,9 @@ fn patch(petsc: &Petsc, args: &[String]) -> Res<()> {
     )?;
     // issue 41: `batch` or `loop` sets how F*'s columns are solved (default: the solver's)
     if args.iter().any(|a| a == "batch") {
-        body.set_batched_solves(true);
+        body.set_batched_solves(true)?;
     } else if args.iter().any(|a| a == "loop") {
-        body.set_batched_solves(false);
+        body.set_batched_solves(false)?;
     }
     let setup = (start.elapsed().as_secs_f64(), cpu_s() - cpu);
     let interface = body.partition().interface_nodes(body.mesh());

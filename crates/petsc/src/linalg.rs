@@ -288,8 +288,9 @@ impl System {
     }
 
     /// Solves `K X = B` for `k` columns at once: `KSPMatSolve` on MPI dense matrices (MUMPS
-    /// applies one multi-right-hand-side solve; a Krylov method iterates column by column
-    /// inside PETSc). `fill(whole)` runs on rank 0 only, on `B` whole and row-major in the
+    /// applies one multi-right-hand-side solve). For the direct solver only: a Krylov method
+    /// would iterate column by column inside PETSc and report the last column's convergence
+    /// alone. `fill(whole)` runs on rank 0 only, on `B` whole and row-major in the
     /// distributed numbering (`whole[k·r + c]`, zeroed first), which one scatter moves to the
     /// ranks; one scatter gathers `X`, laid out alike, whole on every rank for `read`.
     /// Returns the iterations of the last column.

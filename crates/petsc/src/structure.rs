@@ -98,6 +98,8 @@ where
     /// Whether [`Structure::solve_many_in_place`] solves its columns in blocks
     /// (`KSPMatSolve`) rather than one after the other.
     batched: bool,
+    /// Whether the solver is direct (MUMPS), the one that may batch.
+    direct: bool,
     /// Last: dropped after `system`'s PETSc objects (a shared handle may finalise PETSc).
     _petsc: PetscHandle<'p>,
 }
@@ -314,6 +316,7 @@ where
             solves: Cell::new(0),
             iterations: Cell::new(0),
             batched: matches!(solver, LinearSolver::Mumps),
+            direct: matches!(solver, LinearSolver::Mumps),
             _petsc: petsc,
         })
     }
@@ -496,15 +499,25 @@ where
 
     /// Solves the many right-hand sides of `F*` ([`Structure::solve_many_in_place`]) in
     /// blocks of [`BATCH_COLUMNS`] columns through `KSPMatSolve` (`on`), or one after the
-    /// other. The default batches with [`LinearSolver::Mumps`] (one multi-right-hand-side
-    /// solve per block) and loops with CG + GAMG (docs/benchmarks.md, "Issue 41"). Every
-    /// rank must set the same.
-    pub fn set_batched_solves(&mut self, on: bool) {
+    /// other. Batched is the default with [`LinearSolver::Mumps`] (one multi-right-hand-side
+    /// solve per block, about twice as fast: docs/benchmarks.md, "Issue 41"); CG + GAMG
+    /// solves one after the other. Every rank must set the same.
+    ///
+    /// # Errors
+    /// [`PetscError::Unsupported`] for `on` with CG + GAMG: PETSc would iterate the columns
+    /// one by one, slower than the loop, and report only the last column's convergence.
+    pub fn set_batched_solves(&mut self, on: bool) -> Result<(), PetscError> {
+        if on && !self.direct {
+            return Err(PetscError::Unsupported {
+                what: "batched solves with CG + GAMG (use LinearSolver::Mumps)",
+            });
+        }
         self.batched = on;
+        Ok(())
     }
 
     /// The solves made so far (one per right-hand side) and their Krylov iterations in all
-    /// (a batched block counts its last column's iterations for each of its columns).
+    /// (MUMPS counts one a solve, batched or not).
     pub fn solve_counts(&self) -> (usize, usize) {
         (self.solves.get(), self.iterations.get())
     }
