@@ -217,7 +217,7 @@ fn batches(petsc: &Petsc) -> Res<()> {
                     petsc.size()
                 );
             }
-            if !(error <= 1e-8) {
+            if error.is_nan() || error > 1e-8 {
                 return Err(format!("batched={on}, {solver:?}: {error:.2e} > 1e-8").into());
             }
             answers.push(Some(x));
@@ -225,7 +225,7 @@ fn batches(petsc: &Petsc) -> Res<()> {
         let solves = match (&answers[0], &answers[1]) {
             (Some(batched), Some(looped)) => {
                 let between = diff(batched, looped);
-                if !(between <= 1e-12) {
+                if between.is_nan() || between > 1e-12 {
                     return Err(
                         format!("{solver:?}: batch and loop differ by {between:.2e}").into(),
                     );
