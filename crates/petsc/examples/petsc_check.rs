@@ -4,9 +4,13 @@
 //! mpirun -n N petsc_check block [mumps]   3D block, Coulomb contact (μ = 0.3) on a rigid plane:
 //!                                          pressed, then its top sheared until every contact slides
 //! mpirun -n N petsc_check hertz [mumps]   rigid sphere on a block (the quarter Hertz model)
+//!                                          (`block` and `hertz`: `batch` or `loop` sets
+//!                                          how F*'s columns are solved, issue 41)
 //! mpirun -n N petsc_check pile [mumps] [seed] [plane]
 //!                                          the seed's pile pull-out, axisymmetric, RCCM
 //!                                          interface (examples/support/pile.rs)
+//! mpirun -n N petsc_check batches         70 right-hand sides, MUMPS batched and looped, CG looped:
+//!                                          the direct path's solve to 1e-8 (issue 41)
 //! mpirun -n N petsc_check errors          the 2D constructor and loads refuse bad data
 //! mpirun -n N petsc_check fail            rank N−1 fails: every rank must end, with its message
 //! mpirun -n N petsc_check scale CELLS     the block at CELLS³ Tet10 cells: times and peak RSS
@@ -18,7 +22,7 @@
 //! contact nodes' displacements, relative to the largest value of each; above 1e-8 the program
 //! fails (on every rank, through `Petsc::or_abort`).
 
-use bipotential_petsc::{LinearSolver, Partitioner, Petsc, PetscStructure};
+use bipotential_petsc::{LinearSolver, Partitioner, Petsc, PetscError, PetscStructure};
 use contact_laws::{ContactLaw, Coulomb, Signorini};
 use contact_solver::SimulationSettings;
 use contact_solver::coupling::solid::{
@@ -157,6 +161,90 @@ fn relative(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
     diff / scale.max(f64::MIN_POSITIVE)
 }
 
+/// Issue 41: 70 right-hand sides (two blocks of `BATCH_COLUMNS`, the second partial) on the
+/// block, solved by MUMPS batched and in the loop, and by CG in the loop (which refuses to
+/// batch); each equals the direct path's solve to 1e-8 relative (CG stops at a residual of
+/// 1e-12 relative), and MUMPS's two each other to 1e-12 (the same factors).
+fn batches(petsc: &Petsc) -> Res<()> {
+    use fem_core::faer::Mat;
+    let scene = block(4)?;
+    let direct = SolidModel::new(
+        scene.mesh.clone(),
+        &[(0, material())],
+        scene.supports.clone(),
+    )?;
+    let n = direct.dof_count();
+    let columns = 70;
+    assert!(columns > bipotential_petsc::BATCH_COLUMNS);
+    let rhs = Mat::from_fn(n, columns, |i, c| ((1 + i * (c + 3)) as f64 * 0.37).sin());
+    let mut expected = rhs.clone();
+    direct.solve_many_in_place(expected.as_mut())?;
+    let largest = |f: &dyn Fn(usize, usize) -> f64| {
+        (0..columns)
+            .flat_map(|c| (0..n).map(move |i| (i, c)))
+            .fold(0.0_f64, |m, (i, c)| m.max(f(i, c).abs()))
+    };
+    let scale = largest(&|i, c| expected[(i, c)]);
+    let diff = |a: &Mat<f64>, b: &Mat<f64>| largest(&|i, c| a[(i, c)] - b[(i, c)]) / scale;
+    for solver in [LinearSolver::default(), LinearSolver::Mumps] {
+        let mut body = PetscStructure::new(
+            petsc,
+            scene.mesh.clone(),
+            &[(0, material())],
+            scene.supports.clone(),
+            solver,
+        )?;
+        let mut answers = Vec::new();
+        for on in [true, false] {
+            if solver != LinearSolver::Mumps {
+                // CG refuses to batch (it would report the last column's convergence alone)
+                match body.set_batched_solves(on) {
+                    Err(PetscError::Unsupported { .. }) if on => {
+                        answers.push(None);
+                        continue;
+                    }
+                    other => other?,
+                }
+            } else {
+                body.set_batched_solves(on)?;
+            }
+            let mut x = rhs.clone();
+            body.solve_many_in_place(x.as_mut())?;
+            let error = diff(&x, &expected);
+            if petsc.rank() == 0 {
+                println!(
+                    "batches {solver:?} batched={on} ({} ranks, {columns} columns): {error:.2e} relative to the direct path",
+                    petsc.size()
+                );
+            }
+            if error.is_nan() || error > 1e-8 {
+                return Err(format!("batched={on}, {solver:?}: {error:.2e} > 1e-8").into());
+            }
+            answers.push(Some(x));
+        }
+        let solves = match (&answers[0], &answers[1]) {
+            (Some(batched), Some(looped)) => {
+                let between = diff(batched, looped);
+                if between.is_nan() || between > 1e-12 {
+                    return Err(
+                        format!("{solver:?}: batch and loop differ by {between:.2e}").into(),
+                    );
+                }
+                2 * columns
+            }
+            (None, Some(_)) => columns,
+            _ => return Err(format!("{solver:?}: batched {}", answers[0].is_some()).into()),
+        };
+        if body.solve_counts().0 != solves {
+            return Err(format!("{solver:?}: {:?} solves", body.solve_counts()).into());
+        }
+    }
+    if petsc.rank() == 0 {
+        println!("batches: OK");
+    }
+    Ok(())
+}
+
 fn compare<L: ContactLaw + Clone>(
     petsc: &Petsc,
     name: &str,
@@ -177,13 +265,16 @@ fn compare<L: ContactLaw + Clone>(
         None
     };
     let start = Instant::now();
-    let body = PetscStructure::new(
+    let mut body = PetscStructure::new(
         petsc,
         scene.mesh,
         &[(0, material())],
         scene.supports,
         solver,
     )?;
+    if let Some(&on) = BATCHED.get() {
+        body.set_batched_solves(on)?;
+    }
     let dofs = body.dof_count();
     let distributed = run(body, zone, &scene.second, |s, n, c, v| {
         Ok(s.set_prescribed(n, c, v)?)
@@ -293,13 +384,16 @@ fn scale(petsc: &Petsc, cells: usize, solver: LinearSolver) -> Res<()> {
     let contacts = scene.mesh.node_set("z0")?.len();
     petsc.barrier()?;
     let t0 = Instant::now();
-    let body = PetscStructure::new(
+    let mut body = PetscStructure::new(
         petsc,
         scene.mesh,
         &[(0, material())],
         scene.supports,
         solver,
     )?;
+    if let Some(&on) = BATCHED.get() {
+        body.set_batched_solves(on)?;
+    }
     let setup = t0.elapsed().as_secs_f64();
     let dofs = body.dof_count();
     let t1 = Instant::now();
@@ -318,6 +412,10 @@ fn scale(petsc: &Petsc, cells: usize, solver: LinearSolver) -> Res<()> {
     Ok(())
 }
 
+/// `batch` or `loop` on the command line: how `F*`'s columns are solved (default: the
+/// solver's, `PetscStructure::set_batched_solves`).
+static BATCHED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+
 fn main() {
     let petsc = match Petsc::init() {
         Ok(p) => p,
@@ -330,6 +428,13 @@ fn main() {
         .skip(1)
         .filter(|a| !a.starts_with('-'))
         .collect();
+    if let Some(on) = args.iter().find_map(|a| match a.as_str() {
+        "batch" => Some(true),
+        "loop" => Some(false),
+        _ => None,
+    }) {
+        BATCHED.get_or_init(|| on);
+    }
     let solver = if args.iter().any(|a| a == "mumps") {
         LinearSolver::Mumps
     } else {
@@ -339,6 +444,7 @@ fn main() {
         match args.first().map(String::as_str) {
             Some("block") => compare(&petsc, "block", block(4)?, solver),
             Some("hertz") => compare(&petsc, "hertz", hertz()?, solver),
+            Some("batches") => batches(&petsc),
             Some("pile") => {
                 let has = |word: &str| args.iter().any(|a| a == word);
                 pile::compare(&petsc, has("seed"), has("plane"), solver)
@@ -361,7 +467,7 @@ fn main() {
                 scale(&petsc, cells, solver)
             }
             _ => Err(
-                "usage: petsc_check block|hertz|pile|errors|partitions|fail|scale CELLS [mumps] [seed] [plane]"
+                "usage: petsc_check block|hertz|batches|pile|errors|partitions|fail|scale CELLS [mumps] [batch|loop] [seed] [plane]"
                     .into(),
             ),
         }

@@ -2,7 +2,7 @@
 //! one command per figure:
 //!
 //! ```text
-//! mpirun -n N petsc_scale patch CELLS M [graph] [mumps]
+//! mpirun -n N petsc_scale patch CELLS M [graph] [mumps] [batch|loop]
 //!     the block (CELLS × CELLS × CELLS/2 Tet10 cells, [0, 1]² × [0, 0.5]) pressed by its top
 //!     (−1e-3) on a rigid plane through an M × M patch of bottom nodes at its centre (M² Coulomb
 //!     candidates, μ = 0.3), one step with a dense F*, the bulk solved by PETSc (CG + GAMG by
@@ -215,7 +215,7 @@ fn patch(petsc: &Petsc, args: &[String]) -> Res<()> {
     let (mesh, supports, zone) = patch_model(cells, side)?;
     petsc.barrier()?;
     let (start, cpu) = (Instant::now(), cpu_s());
-    let body = PetscStructure::with_partitioner(
+    let mut body = PetscStructure::with_partitioner(
         petsc,
         mesh,
         &[(0, material())],
@@ -223,6 +223,12 @@ fn patch(petsc: &Petsc, args: &[String]) -> Res<()> {
         solver,
         partitioner,
     )?;
+    // issue 41: `batch` or `loop` sets how F*'s columns are solved (default: the solver's)
+    if args.iter().any(|a| a == "batch") {
+        body.set_batched_solves(true)?;
+    } else if args.iter().any(|a| a == "loop") {
+        body.set_batched_solves(false)?;
+    }
     let setup = (start.elapsed().as_secs_f64(), cpu_s() - cpu);
     let interface = body.partition().interface_nodes(body.mesh());
     let head = format!(
@@ -330,7 +336,7 @@ fn main() {
             Some("partitions") => partitions(rest),
             Some("interface") => interface(rest),
             _ => Err(
-                "usage: petsc_scale patch CELLS M [graph] [mumps] | direct CELLS M | \
+                "usage: petsc_scale patch CELLS M [graph] [mumps] [batch|loop] | direct CELLS M | \
                  partitions CELLS RANKS... | interface CELLS"
                     .into(),
             ),

@@ -28,6 +28,7 @@ pub type VecScatter = *mut c_void;
 pub type MatNullSpace = *mut c_void;
 
 pub const PETSC_DEFAULT: PetscInt = -2;
+pub const PETSC_DECIDE: PetscInt = -1;
 pub const INSERT_VALUES: c_int = 1;
 pub const ADD_VALUES: c_int = 2;
 pub const SCATTER_FORWARD: c_int = 0;
@@ -85,6 +86,18 @@ unsafe extern "C" {
     pub fn MatAssemblyBegin(mat: Mat, kind: c_int) -> PetscErrorCode;
     pub fn MatAssemblyEnd(mat: Mat, kind: c_int) -> PetscErrorCode;
     pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
+    pub fn MatCreateDense(
+        comm: MPI_Comm,
+        m: PetscInt,
+        n: PetscInt,
+        big_m: PetscInt,
+        big_n: PetscInt,
+        data: *mut f64,
+        mat: *mut Mat,
+    ) -> PetscErrorCode;
+    pub fn MatDenseGetArray(mat: Mat, a: *mut *mut f64) -> PetscErrorCode;
+    pub fn MatDenseRestoreArray(mat: Mat, a: *mut *mut f64) -> PetscErrorCode;
+    pub fn MatDenseGetLDA(mat: Mat, lda: *mut PetscInt) -> PetscErrorCode;
     pub fn MatNullSpaceCreate(
         comm: MPI_Comm,
         has_constant: PetscBool,
@@ -151,6 +164,7 @@ unsafe extern "C" {
     pub fn KSPSetFromOptions(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSetUp(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSolve(ksp: KSP, b: Vec, x: Vec) -> PetscErrorCode;
+    pub fn KSPMatSolve(ksp: KSP, b: Mat, x: Mat) -> PetscErrorCode;
     pub fn KSPGetConvergedReason(ksp: KSP, reason: *mut c_int) -> PetscErrorCode;
     pub fn KSPGetIterationNumber(ksp: KSP, its: *mut PetscInt) -> PetscErrorCode;
     pub fn KSPDestroy(ksp: *mut KSP) -> PetscErrorCode;

@@ -49,4 +49,4 @@ pub use runtime::{Petsc, PetscHandle};
 #[cfg(feature = "petsc")]
 pub use solver::LinearSolver;
 #[cfg(feature = "petsc")]
-pub use structure::PetscStructure;
+pub use structure::{BATCH_COLUMNS, PetscStructure};

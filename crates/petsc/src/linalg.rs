@@ -287,6 +287,135 @@ impl System {
         }
     }
 
+    /// Solves `K X = B` for `k` columns at once: `KSPMatSolve` on MPI dense matrices (MUMPS
+    /// applies one multi-right-hand-side solve). For the direct solver only: a Krylov method
+    /// would iterate column by column inside PETSc and report the last column's convergence
+    /// alone. `fill(whole)` runs on rank 0 only, on `B` whole and row-major in the
+    /// distributed numbering (`whole[k·r + c]`, zeroed first), which one scatter moves to the
+    /// ranks; one scatter gathers `X`, laid out alike, whole on every rank for `read`.
+    /// Returns the iterations of the last column.
+    pub(crate) fn solve_block(
+        &self,
+        k: usize,
+        fill: impl FnOnce(&mut [f64]),
+        read: impl FnOnce(&[f64]),
+    ) -> Result<usize, PetscError> {
+        let mut t = Block::default();
+        // SAFETY: handles created in `new`, the KSP set up; every handle of `t` is destroyed
+        // once, in its Drop; each array is restored before its object is used again
+        unsafe {
+            let comm = ffi::PETSC_COMM_WORLD;
+            let (mut n, mut big_n): (PetscInt, PetscInt) = (0, 0);
+            check("VecGetLocalSize", ffi::VecGetLocalSize(self.b, &mut n))?;
+            check(
+                "VecGetLocalSize",
+                ffi::VecGetLocalSize(self.all, &mut big_n),
+            )?;
+            let (n, big_n) = (n as usize, big_n as usize);
+            let columns = int("columns", k)?;
+            let local = int("block entries", n * k)?;
+            let global = int("block entries", big_n * k)?;
+            check(
+                "VecCreateMPI",
+                ffi::VecCreateMPI(comm, local, global, &mut t.big),
+            )?;
+            check(
+                "VecScatterCreateToZero",
+                ffi::VecScatterCreateToZero(t.big, &mut t.to_zero, &mut t.zero),
+            )?;
+            let mut fill = Some(fill);
+            with_array(t.zero, |whole| {
+                if !whole.is_empty() {
+                    whole.fill(0.0);
+                    (fill.take().expect("filled once"))(whole);
+                }
+            })?;
+            self.scatter(t.to_zero, t.zero, t.big, ffi::SCATTER_REVERSE)?;
+            for m in [&mut t.b, &mut t.x] {
+                check(
+                    "MatCreateDense",
+                    ffi::MatCreateDense(
+                        comm,
+                        n as PetscInt,
+                        ffi::PETSC_DECIDE,
+                        big_n as PetscInt,
+                        columns,
+                        std::ptr::null_mut(),
+                        m,
+                    ),
+                )?;
+            }
+            let mut lda: PetscInt = 0;
+            check("MatDenseGetLDA", ffi::MatDenseGetLDA(t.b, &mut lda))?;
+            let lda = lda as usize;
+            with_array(t.big, |rows| {
+                with_dense(t.b, lda * k, |m| {
+                    for (i, row) in rows.chunks_exact(k).enumerate() {
+                        for (c, &v) in row.iter().enumerate() {
+                            m[c * lda + i] = v;
+                        }
+                    }
+                })
+            })??;
+            for m in [t.b, t.x] {
+                check(
+                    "MatAssemblyBegin",
+                    ffi::MatAssemblyBegin(m, ffi::MAT_FINAL_ASSEMBLY),
+                )?;
+                check(
+                    "MatAssemblyEnd",
+                    ffi::MatAssemblyEnd(m, ffi::MAT_FINAL_ASSEMBLY),
+                )?;
+            }
+            check("KSPMatSolve", ffi::KSPMatSolve(self.ksp, t.b, t.x))?;
+            let its = self.converged()?;
+            let mut lda: PetscInt = 0;
+            check("MatDenseGetLDA", ffi::MatDenseGetLDA(t.x, &mut lda))?;
+            let lda = lda as usize;
+            with_array(t.big, |rows| {
+                with_dense(t.x, lda * k, |m| {
+                    for (i, row) in rows.chunks_exact_mut(k).enumerate() {
+                        for (c, v) in row.iter_mut().enumerate() {
+                            *v = m[c * lda + i];
+                        }
+                    }
+                })
+            })??;
+            check(
+                "VecScatterCreateToAll",
+                ffi::VecScatterCreateToAll(t.big, &mut t.to_all, &mut t.all),
+            )?;
+            self.scatter(t.to_all, t.big, t.all, ffi::SCATTER_FORWARD)?;
+            let mut read = Some(read);
+            with_array(t.all, |whole| (read.take().expect("read once"))(whole))?;
+            Ok(its)
+        }
+    }
+
+    /// The iterations of the last solve, or [`PetscError::NotConverged`].
+    fn converged(&self) -> Result<usize, PetscError> {
+        let mut reason: c_int = 0;
+        let mut its: PetscInt = 0;
+        // SAFETY: the KSP exists
+        unsafe {
+            check(
+                "KSPGetConvergedReason",
+                ffi::KSPGetConvergedReason(self.ksp, &mut reason),
+            )?;
+            check(
+                "KSPGetIterationNumber",
+                ffi::KSPGetIterationNumber(self.ksp, &mut its),
+            )?;
+        }
+        if reason < 0 {
+            return Err(PetscError::NotConverged {
+                reason,
+                iterations: its as i64,
+            });
+        }
+        Ok(its as usize)
+    }
+
     /// `VecScatterBegin` + `VecScatterEnd` with `INSERT_VALUES`.
     unsafe fn scatter(
         &self,
@@ -322,5 +451,92 @@ impl Drop for System {
             ffi::VecDestroy(&mut self.x);
             ffi::MatDestroy(&mut self.mat);
         }
+    }
+}
+
+/// The temporary PETSc objects of one [`System::solve_block`], destroyed together.
+struct Block {
+    /// `B`, then `X`, row-major and distributed as the rows are.
+    big: ffi::Vec,
+    to_zero: ffi::VecScatter,
+    zero: ffi::Vec,
+    to_all: ffi::VecScatter,
+    all: ffi::Vec,
+    b: ffi::Mat,
+    x: ffi::Mat,
+}
+
+impl Default for Block {
+    fn default() -> Self {
+        let null = std::ptr::null_mut();
+        Self {
+            big: null,
+            to_zero: null,
+            zero: null,
+            to_all: null,
+            all: null,
+            b: null,
+            x: null,
+        }
+    }
+}
+
+impl Drop for Block {
+    fn drop(&mut self) {
+        // SAFETY: each handle is null or owned by `self`; the destroy functions null them
+        unsafe {
+            ffi::VecScatterDestroy(&mut self.to_zero);
+            ffi::VecScatterDestroy(&mut self.to_all);
+            ffi::VecDestroy(&mut self.zero);
+            ffi::VecDestroy(&mut self.all);
+            ffi::VecDestroy(&mut self.big);
+            ffi::MatDestroy(&mut self.b);
+            ffi::MatDestroy(&mut self.x);
+        }
+    }
+}
+
+/// Runs `f` on the local array of `v` (empty where the rank holds none), then restores it.
+///
+/// # Safety
+/// `v` is a live vector.
+unsafe fn with_array<R>(v: ffi::Vec, f: impl FnOnce(&mut [f64]) -> R) -> Result<R, PetscError> {
+    // SAFETY: the caller's vector; the slice lives until the array is restored
+    unsafe {
+        let mut len: PetscInt = 0;
+        check("VecGetLocalSize", ffi::VecGetLocalSize(v, &mut len))?;
+        let mut a = std::ptr::null_mut();
+        check("VecGetArray", ffi::VecGetArray(v, &mut a))?;
+        let r = if len > 0 {
+            f(std::slice::from_raw_parts_mut(a, len as usize))
+        } else {
+            f(&mut [])
+        };
+        check("VecRestoreArray", ffi::VecRestoreArray(v, &mut a))?;
+        Ok(r)
+    }
+}
+
+/// Runs `f` on the local column-major array of the dense `m` (`len` = lda × columns
+/// entries), then restores it.
+///
+/// # Safety
+/// `m` is a live dense matrix whose local array holds `len` entries.
+unsafe fn with_dense<R>(
+    m: ffi::Mat,
+    len: usize,
+    f: impl FnOnce(&mut [f64]) -> R,
+) -> Result<R, PetscError> {
+    // SAFETY: the caller's matrix and length
+    unsafe {
+        let mut a = std::ptr::null_mut();
+        check("MatDenseGetArray", ffi::MatDenseGetArray(m, &mut a))?;
+        let r = if len > 0 {
+            f(std::slice::from_raw_parts_mut(a, len))
+        } else {
+            f(&mut [])
+        };
+        check("MatDenseRestoreArray", ffi::MatDenseRestoreArray(m, &mut a))?;
+        Ok(r)
     }
 }

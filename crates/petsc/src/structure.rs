@@ -95,6 +95,11 @@ where
     normals: OnceLock<Vec<Option<[f64; D]>>>,
     solves: Cell<usize>,
     iterations: Cell<usize>,
+    /// Whether [`Structure::solve_many_in_place`] solves its columns in blocks
+    /// (`KSPMatSolve`) rather than one after the other.
+    batched: bool,
+    /// Whether the solver is direct (MUMPS), the one that may batch.
+    direct: bool,
     /// Last: dropped after `system`'s PETSc objects (a shared handle may finalise PETSc).
     _petsc: PetscHandle<'p>,
 }
@@ -310,6 +315,8 @@ where
             normals: OnceLock::new(),
             solves: Cell::new(0),
             iterations: Cell::new(0),
+            batched: matches!(solver, LinearSolver::Mumps),
+            direct: matches!(solver, LinearSolver::Mumps),
             _petsc: petsc,
         })
     }
@@ -490,7 +497,27 @@ where
         &self.partition
     }
 
-    /// The solves made so far (one per right-hand side) and their Krylov iterations in all.
+    /// Solves the many right-hand sides of `F*` ([`Structure::solve_many_in_place`]) in
+    /// blocks of [`BATCH_COLUMNS`] columns through `KSPMatSolve` (`on`), or one after the
+    /// other. Batched is the default with [`LinearSolver::Mumps`] (one multi-right-hand-side
+    /// solve per block, about twice as fast: docs/benchmarks.md, "Issue 41"); CG + GAMG
+    /// solves one after the other. Every rank must set the same.
+    ///
+    /// # Errors
+    /// [`PetscError::Unsupported`] for `on` with CG + GAMG: PETSc would iterate the columns
+    /// one by one, slower than the loop, and report only the last column's convergence.
+    pub fn set_batched_solves(&mut self, on: bool) -> Result<(), PetscError> {
+        if on && !self.direct {
+            return Err(PetscError::Unsupported {
+                what: "batched solves with CG + GAMG (use LinearSolver::Mumps)",
+            });
+        }
+        self.batched = on;
+        Ok(())
+    }
+
+    /// The solves made so far (one per right-hand side) and their Krylov iterations in all
+    /// (MUMPS counts one a solve, batched or not).
     pub fn solve_counts(&self) -> (usize, usize) {
         (self.solves.get(), self.iterations.get())
     }
@@ -518,6 +545,10 @@ where
         Ok(())
     }
 }
+
+/// The most columns one batched solve holds (`F*`'s right-hand sides): bounds the dense
+/// blocks, `3 × BATCH_COLUMNS` whole vectors a rank at most.
+pub const BATCH_COLUMNS: usize = 64;
 
 /// [`FemError::InvalidParameter`] unless `value` is finite.
 fn finite(name: &'static str, value: f64) -> Result<f64, FemError> {
@@ -567,11 +598,39 @@ where
             .get_or_init(|| <Dim<D> as ModelSpace<D>>::outward_normals(&self.mesh))[node]
     }
 
-    /// Solves the columns one after the other with the one KSP (its preconditioner built
-    /// once).
+    /// Solves the columns with the one KSP (its preconditioner built once): in blocks of
+    /// [`BATCH_COLUMNS`] through `KSPMatSolve` if batched
+    /// ([`set_batched_solves`](PetscStructure::set_batched_solves)), else one after the other.
     fn solve_many_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), FemError> {
         assert_eq!(rhs.nrows(), self.dof_count(), "rhs rows");
         let row = &self.partition.row;
+        if self.batched {
+            let mut block = Vec::new();
+            for first in (0..rhs.ncols()).step_by(BATCH_COLUMNS) {
+                let k = BATCH_COLUMNS.min(rhs.ncols() - first);
+                block.clear();
+                block.resize(k * row.len(), 0.0);
+                for (i, &r) in row.iter().enumerate() {
+                    for c in 0..k {
+                        block[k * r + c] = rhs[(i, first + c)];
+                    }
+                }
+                let its = self.system.solve_block(
+                    k,
+                    |whole| whole.copy_from_slice(&block),
+                    |whole| {
+                        for (i, &r) in row.iter().enumerate() {
+                            for c in 0..k {
+                                rhs[(i, first + c)] = whole[k * r + c];
+                            }
+                        }
+                    },
+                )?;
+                self.solves.set(self.solves.get() + k);
+                self.iterations.set(self.iterations.get() + k * its);
+            }
+            return Ok(());
+        }
         let mut column = vec![0.0; rhs.nrows()];
         for c in 0..rhs.ncols() {
             for (i, v) in column.iter_mut().enumerate() {
