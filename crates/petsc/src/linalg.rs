@@ -256,35 +256,14 @@ impl System {
         // SAFETY: handles created in `new`, the KSP set up in `assemble_and_set_up`
         unsafe {
             check("KSPSolve", ffi::KSPSolve(self.ksp, self.b, self.x))?;
-            let mut reason: c_int = 0;
-            let mut its: PetscInt = 0;
-            check(
-                "KSPGetConvergedReason",
-                ffi::KSPGetConvergedReason(self.ksp, &mut reason),
-            )?;
-            check(
-                "KSPGetIterationNumber",
-                ffi::KSPGetIterationNumber(self.ksp, &mut its),
-            )?;
-            if reason < 0 {
-                return Err(PetscError::NotConverged {
-                    reason,
-                    iterations: its as i64,
-                });
-            }
-            self.scatter(self.to_all, self.x, self.all, ffi::SCATTER_FORWARD)?;
-            let mut len: PetscInt = 0;
-            check("VecGetLocalSize", ffi::VecGetLocalSize(self.all, &mut len))?;
-            let mut a = std::ptr::null_mut();
-            check("VecGetArray", ffi::VecGetArray(self.all, &mut a))?;
-            if len > 0 {
-                read(std::slice::from_raw_parts(a, len as usize));
-            } else {
-                read(&[]);
-            }
-            check("VecRestoreArray", ffi::VecRestoreArray(self.all, &mut a))?;
-            Ok(its as usize)
         }
+        let its = self.converged()?;
+        // SAFETY: `to_all` scatters `x` into `all`, both created in `new`
+        unsafe {
+            self.scatter(self.to_all, self.x, self.all, ffi::SCATTER_FORWARD)?;
+            with_array(self.all, |whole| read(whole))?;
+        }
+        Ok(its)
     }
 
     /// Solves `K X = B` for `k` columns at once: `KSPMatSolve` on MPI dense matrices (MUMPS
