@@ -3,7 +3,7 @@
 //! judges every answer with one residual computed outside both.
 //!
 //! ```text
-//! cargo run --release -p contact-solver --example siconos_dat_table -- OUT FILE.dat [--tol 1e-8] [--repeat 3]
+//! cargo run --release -p contact-solver --example siconos_dat_table -- OUT FILE.dat [--tol 1e-8] [--repeat 3] [--only ALG]
 //! cargo run --release -p contact-solver --example siconos_dat_table -- --export DIR
 //! ```
 //! The first form reads FILE (the read is timed apart), solves it with each algorithm
@@ -12,6 +12,9 @@
 //! `OUT/NAME.ours.json`: `source`, `read_ms`, and per run `algorithm`, `picked`, `ms`,
 //! `iterations`, `converged`, `residual` (ours) and `r`. The second writes our own multibody
 //! problems (sphere piles in a box, 3D, 64 to 1000 spheres) as `.dat` files into DIR.
+//! `--only ALG` (an [`Algorithm`] as `Debug` spells it: `GaussSeidel`, `Auto`, …) runs that one
+//! algorithm and writes `OUT/NAME.ALG.ours.json`, so that the script can cap each run's time by
+//! killing its process.
 
 use contact_solver::local::generate::multibody::SpherePile;
 use contact_solver::local::siconos_dat::{DatSource, read_siconos_dat, write_siconos_dat};
@@ -84,6 +87,20 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let (out, file) = (args.first().ok_or("OUT FILE")?, args.get(1).ok_or("FILE")?);
     let tol = flag("--tol", 1e-8);
     let repeat = flag("--repeat", 3.0) as usize;
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .map(|k| args.get(k + 1).ok_or("--only ALG"))
+        .transpose()?;
+    let algorithms: Vec<Algorithm> = match only {
+        None => ALGORITHMS.to_vec(),
+        Some(name) => vec![
+            *ALGORITHMS
+                .iter()
+                .find(|a| format!("{a:?}") == *name)
+                .ok_or_else(|| format!("--only {name}: not one of {ALGORITHMS:?}"))?,
+        ],
+    };
     let text = std::fs::read_to_string(file)?;
     let t0 = Instant::now();
     let dat = read_siconos_dat(&text)?;
@@ -101,7 +118,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         p.contact_count(),
         p.is_sparse()
     );
-    for (k, &algorithm) in ALGORITHMS.iter().enumerate() {
+    for (k, &algorithm) in algorithms.iter().enumerate() {
         let st = UzawaSettings::default()
             .with_algorithm(algorithm)
             .with_tol(tol)
@@ -155,6 +172,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|s| s.to_str())
         .ok_or("file name")?;
     std::fs::create_dir_all(out)?;
-    std::fs::write(format!("{out}/{stem}.ours.json"), json)?;
+    let name = match only {
+        Some(alg) => format!("{out}/{stem}.{alg}.ours.json"),
+        None => format!("{out}/{stem}.ours.json"),
+    };
+    std::fs::write(name, json)?;
     Ok(())
 }

@@ -13,8 +13,8 @@
 //! [`ReducedProblem`] (`x = W r + q`, `r_n ≥ 0` in compression; see
 //! [`contact_laws`](contact_laws#sign-conventions)). A matrix is written dense (storage 0,
 //! column by column) or in sparse blocks (storage 1); the layout is in `matrix.rs`. A global
-//! file is told from a local one by what follows the first matrix: a storage type alone on its
-//! line (global) or the line of `q` (local). Siconos' older files end with one more integer (a
+//! file is told from a local one by what follows the first matrix: exactly `m + n_c` values
+//! (`q`, `mu`; local), else a storage type alone on its line (global). Siconos' older files end with one more integer (a
 //! flag, `0` or `1`), which is skipped.
 //!
 //! Refused by name: the rolling-friction problems (`RFC3D`, `GRFC3D`: dimension 5, or a line
@@ -99,7 +99,12 @@ pub fn read_siconos_dat(text: &str) -> Result<SiconosDat, SolverError> {
     let m = dim * nc;
     let first_line = t.line();
     let first = read_matrix(&mut t, "W")?;
-    let (problem, source) = if t.next_is_lone_integer() {
+    // A local file has exactly `q` and `mu` left (and maybe the old trailing flag); a global
+    // one has `H`, `q`, `b` and `mu`, always more. The token count decides first: a local `q`
+    // of integers, one to a line, looks like a storage type (Siconos' `FrictionContact3D_1c`).
+    let left = t.remaining();
+    let local_fits = (first.rows, first.cols) == (m, m) && (left == m + nc || left == m + nc + 1);
+    let (problem, source) = if !local_fits && t.next_is_lone_integer() {
         global(&mut t, dim, nc, first)?
     } else {
         if (first.rows, first.cols) != (m, m) {

@@ -47,6 +47,27 @@ fn issue_37_reads_siconos_written_dense_3d_as_given() {
     );
 }
 
+/// A local file whose `q` holds integers one to a line, as Siconos' `FrictionContact3D_1c.dat`
+/// does: its first value after `W` looks like a global file's storage type, and the reader
+/// took it for one ("the storage type of `H` = -1 is out of range"). The values left (exactly
+/// `q` and `mu`) say it is local.
+#[test]
+fn issue_37_integer_q_one_per_line_is_local() {
+    let text = "3\n1\n\n0\n3\n3\n\n3\n3\n\n15\n-1\n-2\n\n-1\n14\n1\n\n-2\n1\n16\n\n\
+                -1\n2\n3\n\n0.1\n";
+    let d = read_siconos_dat(text).unwrap();
+    assert_eq!(d.source, DatSource::Local);
+    let p = &d.problem;
+    assert_eq!((p.dimension(), p.contact_count()), (3, 1));
+    // exact: small integers; dense storage is column by column, this W is symmetric
+    assert_eq!((w(p, 0, 0), w(p, 0, 1), w(p, 2, 0), w(p, 2, 2)), (15.0, -1.0, -2.0, 16.0));
+    assert_eq!(p.q(), &[-1.0, 2.0, 3.0]);
+    assert_eq!(p.mu(), &[0.1]);
+    // the older files' trailing flag after `mu` is still skipped
+    let d = read_siconos_dat(&format!("{text}\n1\n")).unwrap();
+    assert_eq!(d.source, DatSource::Local);
+}
+
 #[test]
 fn issue_37_reads_siconos_written_dense_2d() {
     let p = read_siconos_dat(&data("dense_2d.dat")).unwrap().problem;
