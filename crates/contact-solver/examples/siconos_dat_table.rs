@@ -8,7 +8,8 @@
 //! ```
 //! The first form reads FILE (the read is timed apart), solves it with each algorithm
 //! (fallback off, at most 5000 iterations, cold start) and with `Auto` (its defaults), each the
-//! median of `--repeat` in-process runs (one when the first takes over 2 s), and writes
+//! median of `--repeat` in-process runs (one when the first takes over 2 s; `Auto` with its
+//! fallbacks on, and when it fails, the error's best iterate), and writes
 //! `OUT/NAME.ours.json`: `source`, `read_ms`, and per run `algorithm`, `picked`, `ms`,
 //! `iterations`, `converged`, `residual` (ours) and `r`. The second writes our own multibody
 //! problems (sphere piles in a box, 3D, 64 to 1000 spheres) as `.dat` files into DIR.
@@ -119,14 +120,17 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         p.is_sparse()
     );
     for (k, &algorithm) in algorithms.iter().enumerate() {
+        // Auto as a user gets it (its fallbacks on: accepting a non-converged answer would
+        // switch them off); a failure is reported with the error's best iterate
         let st = UzawaSettings::default()
             .with_algorithm(algorithm)
-            .with_tol(tol)
-            .with_accept_non_converged(true);
+            .with_tol(tol);
         let st = if algorithm == Algorithm::Auto {
             st
         } else {
-            st.with_fallback(false).with_max_iterations(5000)
+            st.with_accept_non_converged(true)
+                .with_fallback(false)
+                .with_max_iterations(5000)
         };
         let mut times = Vec::new();
         let mut last = None;
@@ -154,6 +158,20 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                     sol.report.iterations,
                     sol.report.converged,
                     sol.report.residual,
+                    r.join(", ")
+                );
+            }
+            Err(e) if e.best_iterate().is_some() => {
+                let best = e.best_iterate().expect("checked");
+                let r: Vec<String> = best.r.iter().map(|v| format!("{v:e}")).collect();
+                let msg = e.to_string().replace('"', "'");
+                let msg = msg.lines().next().unwrap_or("");
+                let _ = write!(
+                    json,
+                    "{sep}{{\"algorithm\": \"{algorithm:?}\", \"picked\": \"failed: {msg}\", \
+                     \"ms\": {ms:e}, \"iterations\": 0, \"converged\": false, \
+                     \"residual\": {:e}, \"r\": [{}]}}",
+                    best.residual,
                     r.join(", ")
                 );
             }

@@ -83,7 +83,15 @@ pub struct SiconosDat {
 pub fn read_siconos_dat(text: &str) -> Result<SiconosDat, SolverError> {
     let mut t = Tokens::new(text);
     let line = t.line();
-    let dim = t.count("the dimension", 99)?;
+    let dim = t.count("the dimension", 99).map_err(|e| match e {
+        // Siconos' test data holds other inputs beside the problems (ACinputs.dat: 1000 lines
+        // of Alart–Curnier function arguments)
+        SolverError::SiconosDat { line, reason } => error(
+            line,
+            format!("{reason}: not a friction-contact problem (its first line is the dimension)"),
+        ),
+        e => e,
+    })?;
     match dim {
         2 | 3 => {}
         5 => {
@@ -93,7 +101,15 @@ pub fn read_siconos_dat(text: &str) -> Result<SiconosDat, SolverError> {
                  supported (only Coulomb friction in 2D or 3D)",
             ));
         }
-        d => return Err(error(line, format!("dimension {d}: expected 2 or 3"))),
+        d => {
+            return Err(error(
+                line,
+                format!(
+                    "dimension {d}: expected 2 or 3 (not a friction-contact problem? Siconos' \
+                     `.dat` files also hold lone matrices and other problem classes, MLCPs)"
+                ),
+            ));
+        }
     }
     let nc = t.count("the number of contacts", t.remaining())?;
     let m = dim * nc;

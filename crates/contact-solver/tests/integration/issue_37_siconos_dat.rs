@@ -68,6 +68,22 @@ fn issue_37_integer_q_one_per_line_is_local() {
     assert_eq!(d.source, DatSource::Local);
 }
 
+/// Siconos' test folders also hold files that are not friction-contact problems (a lone sparse
+/// block matrix, an MLCP, the arguments of a function test): each is refused on line 1 with a
+/// reason that says so, never read as a problem.
+#[test]
+fn issue_37_files_that_are_not_problems_are_refused_by_name() {
+    for (text, says) in [
+        ("1000\n0.0\n0.0\n-0.67\n", "not a friction-contact problem"),
+        ("4\n2\n2\n3\t6\n3\t6\n", "not a friction-contact problem"),
+        ("1\n1\n3\n4\n0 3 7\n", "MLCPs"),
+    ] {
+        let e = read_siconos_dat(text).unwrap_err();
+        assert!(matches!(e, SolverError::SiconosDat { line: 1, .. }), "{e}");
+        assert!(e.to_string().contains(says), "{e}");
+    }
+}
+
 #[test]
 fn issue_37_reads_siconos_written_dense_2d() {
     let p = read_siconos_dat(&data("dense_2d.dat")).unwrap().problem;
