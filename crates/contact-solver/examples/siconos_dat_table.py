@@ -87,6 +87,8 @@ def forked(fn, cap_s):
     pid = os.fork()
     if pid == 0:  # the child: run, send the answer, leave without cleaning up
         os.close(rd)
+        quiet = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(quiet, 1)  # Siconos' C code prints problems it reads to stdout
         try:
             data = pickle.dumps(fn())
         except BaseException:  # noqa: BLE001  (any failure is "no answer")
@@ -249,9 +251,14 @@ def main():
     for f in a.files:
         files += sorted(glob.glob(os.path.join(f, "*.dat"))) if os.path.isdir(f) else [f]
     files.sort(key=os.path.getsize)
-    rows = []
+    rows, seen = [], {}
     for path in files:
         stem = os.path.splitext(os.path.basename(path))[0]
+        with open(path, "rb") as f:
+            content = f.read()
+        if seen.get(stem) == content:  # the same file in two folders
+            continue
+        seen[stem] = content
         refused, auto = ours_run(a, path, "Auto")
         if refused is not None:
             rows.append({"file": stem, "refused": refused})
@@ -309,7 +316,7 @@ def best_of(runs, key):
 
 def failure(r, key):
     if "error" in r:
-        return f"{SHORT.get(r[key], r[key])}: {r['error'][:70]}"
+        return f"{SHORT.get(r[key], r[key])}: {r['error'].split(',')[0]}"
     return f"{SHORT.get(r[key], r[key])}: res {r['res']:.1e}"
 
 
@@ -325,8 +332,8 @@ def one_row(row):
     if "error" in auto:
         auto_txt = auto["error"][:60]
     else:
-        auto_txt = (f"{SHORT.get(auto['picked'], auto['picked'])} {auto['ms']:.3g} "
-                    f"({auto['res']:.1e})")
+        picked = auto["picked"].split(" (")[0]
+        auto_txt = f"{SHORT.get(picked, picked)} {auto['ms']:.3g} ({auto['res']:.1e})"
     auto_ok = auto.get("res", np.inf) <= SOLVED
     ratio = f"{auto['ms'] / best['ms']:.2f}" if auto_ok and best else "-"
     sic_txt = (f"{sbest['solver']} {sbest['ms']:.3g} ({sbest['res']:.1e})" if sbest else "none")

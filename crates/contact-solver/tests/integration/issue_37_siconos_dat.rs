@@ -60,7 +60,10 @@ fn issue_37_integer_q_one_per_line_is_local() {
     let p = &d.problem;
     assert_eq!((p.dimension(), p.contact_count()), (3, 1));
     // exact: small integers; dense storage is column by column, this W is symmetric
-    assert_eq!((w(p, 0, 0), w(p, 0, 1), w(p, 2, 0), w(p, 2, 2)), (15.0, -1.0, -2.0, 16.0));
+    assert_eq!(
+        (w(p, 0, 0), w(p, 0, 1), w(p, 2, 0), w(p, 2, 2)),
+        (15.0, -1.0, -2.0, 16.0)
+    );
     assert_eq!(p.q(), &[-1.0, 2.0, 3.0]);
     assert_eq!(p.mu(), &[0.1]);
     // the older files' trailing flag after `mu` is still skipped
