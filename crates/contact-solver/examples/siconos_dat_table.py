@@ -239,13 +239,19 @@ def ours_run(a, path, alg):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("out")
-    ap.add_argument("files", nargs="+", help=".dat files, or folders (every .dat in them)")
+    ap.add_argument("files", nargs="*", help=".dat files, or folders (every .dat in them)")
     ap.add_argument("--ours", default="target/release/examples/siconos_dat_table")
     ap.add_argument("--tol", type=float, default=1e-8)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--timeout", type=float, default=60.0,
                     help="seconds for each run (one algorithm of ours, one Siconos solver)")
+    ap.add_argument("--table", action="store_true",
+                    help="only print the table of OUT/table.json (an earlier run)")
     a = ap.parse_args()
+    if a.table:
+        with open(os.path.join(a.out, "table.json")) as f:
+            print_table(json.load(f))
+        return
     os.makedirs(a.out, exist_ok=True)
     files = []
     for f in a.files:
@@ -333,12 +339,19 @@ def one_row(row):
         auto_txt = auto["error"][:60]
     else:
         picked = auto["picked"].split(" (")[0]
+        if picked.startswith("failed"):  # the error's best iterate
+            why = "stalled" if "stalled" in picked else "not converged"
+            picked = f"error ({why}), best iterate:"
         auto_txt = f"{SHORT.get(picked, picked)} {auto['ms']:.3g} ({auto['res']:.1e})"
     auto_ok = auto.get("res", np.inf) <= SOLVED
     ratio = f"{auto['ms'] / best['ms']:.2f}" if auto_ok and best else "-"
     sic_txt = (f"{sbest['solver']} {sbest['ms']:.3g} ({sbest['res']:.1e})" if sbest else "none")
     vs = f"{sbest['ms'] / auto['ms']:.2f}" if sbest and auto_ok else "-"
-    fails = [failure(r, "algorithm") for r in row["ours"] if r.get("res", np.inf) > SOLVED]
+    bad = [r for r in row["ours"] if r.get("res", np.inf) > SOLVED]
+    symmetric = [SHORT[r["algorithm"]] for r in bad if "needs a symmetric W" in r.get("error", "")]
+    fails = [f"{', '.join(symmetric)}: need a symmetric W"] if symmetric else []
+    fails += [failure(r, "algorithm") for r in bad
+              if "needs a symmetric W" not in r.get("error", "")]
     fails += ["Siconos " + failure(r, "solver") for r in row["siconos"]
               if r.get("res", np.inf) > SOLVED]
     kind = f"{row['source']}, {row['dim']}D"
@@ -351,7 +364,12 @@ def print_table(rows):
           "Siconos best: ms (res) | Siconos best / Auto | fails |")
     print("|---|---|---|---|---|---|---|---|---|")
     for row in rows:
-        print(one_row(row))
+        if "refused" not in row:
+            print(one_row(row))
+    print("\nRefused:")
+    for row in rows:
+        if "refused" in row:
+            print(f"- `{row['file']}`: {row['refused']}")
 
 
 if __name__ == "__main__":
