@@ -10,7 +10,8 @@
 //! (fallback off, at most 5000 iterations, cold start) and with `Auto` (its defaults), each the
 //! median of `--repeat` in-process runs (one when the first takes over 2 s), and writes
 //! `OUT/NAME.ours.json`: `source`, `read_ms`, and per run `algorithm`, `picked`, `ms`,
-//! `iterations`, `converged`, `residual` (ours) and `r`. The second writes our own multibody
+//! `iterations`, `outer` (Newton steps), `fallback_from`, `converged`, `residual` (ours)
+//! and `r`. The second writes our own multibody
 //! problems (sphere piles in a box, 3D, 64 to 1000 spheres) as `.dat` files into DIR.
 
 use contact_solver::local::generate::multibody::SpherePile;
@@ -132,9 +133,12 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 let _ = write!(
                     json,
                     "{sep}{{\"algorithm\": \"{algorithm:?}\", \"picked\": \"{:?}\", \"ms\": {ms:e}, \
-                     \"iterations\": {}, \"converged\": {}, \"residual\": {:e}, \"r\": [{}]}}",
+                     \"iterations\": {}, \"outer\": {}, \"fallback_from\": \"{:?}\", \"converged\": {}, \
+                     \"residual\": {:e}, \"r\": [{}]}}",
                     sol.report.algorithm,
                     sol.report.iterations,
+                    sol.report.outer_iterations,
+                    sol.report.fallback_from,
                     sol.report.converged,
                     sol.report.residual,
                     r.join(", ")

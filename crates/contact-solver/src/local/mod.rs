@@ -220,6 +220,7 @@ pub mod generate;
 mod json;
 pub mod matrix_free;
 pub mod newton;
+mod one_contact;
 mod plain;
 pub mod problem;
 mod residual;
