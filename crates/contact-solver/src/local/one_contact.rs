@@ -86,10 +86,11 @@ fn stick(w: &[[f64; 3]; 3], q: &[f64]) -> Option<[f64; 3]> {
         }
         a.swap(col, piv);
         b.swap(col, piv);
+        let pivot = a[col];
         for row in col + 1..d {
-            let f = a[row][col] / a[col][col];
-            for k in col..d {
-                a[row][k] -= f * a[col][k];
+            let f = a[row][col] / pivot[col];
+            for (v, p) in a[row][col..d].iter_mut().zip(&pivot[col..d]) {
+                *v -= f * p;
             }
             b[row] -= f * b[col];
         }

@@ -88,7 +88,7 @@ impl UzawaSolver {
             let rho0 = &self.sweeps.rho0;
             let residual = natural_residual::<L, DT>(laws, states, rho0, &r, &x)
                 / self.residual_scale(problem, &r);
-            if !(residual <= self.settings.tol) {
+            if residual.is_nan() || residual > self.settings.tol {
                 continue;
             }
             let statuses = contact_statuses::<L, DT>(laws, states, rho0, &r, &x);
