@@ -11,7 +11,8 @@
 //! median of `--repeat` in-process runs (one when the first takes over 2 s; `Auto` with its
 //! fallbacks on, and when it fails, the error's best iterate), and writes
 //! `OUT/NAME.ours.json`: `source`, `read_ms`, and per run `algorithm`, `picked`, `ms`,
-//! `iterations`, `converged`, `residual` (ours) and `r`. The second writes our own multibody
+//! `iterations`, `outer` (Newton steps), `fallback_from`, `converged`, `residual` (ours)
+//! and `r`. The second writes our own multibody
 //! problems (sphere piles in a box, 3D, 64 to 1000 spheres) as `.dat` files into DIR.
 //! `--only ALG` (an [`Algorithm`] as `Debug` spells it: `GaussSeidel`, `Auto`, …) runs that one
 //! algorithm and writes `OUT/NAME.ALG.ours.json`, so that the script can cap each run's time by
@@ -153,9 +154,12 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 let _ = write!(
                     json,
                     "{sep}{{\"algorithm\": \"{algorithm:?}\", \"picked\": \"{:?}\", \"ms\": {ms:e}, \
-                     \"iterations\": {}, \"converged\": {}, \"residual\": {:e}, \"r\": [{}]}}",
+                     \"iterations\": {}, \"outer\": {}, \"fallback_from\": \"{:?}\", \"converged\": {}, \
+                     \"residual\": {:e}, \"r\": [{}]}}",
                     sol.report.algorithm,
                     sol.report.iterations,
+                    sol.report.outer_iterations,
+                    sol.report.fallback_from,
                     sol.report.converged,
                     sol.report.residual,
                     r.join(", ")

@@ -104,7 +104,12 @@
 //!   within `AUTO_SWEEP_PREDICTED` (40) sweeps the sweep goes on from there and Newton never
 //!   runs (random dense problems, well conditioned: 21–26 sweeps, where Newton was 1.7–3.5×
 //!   slower); else Newton runs from the start as without the probe (FE problems: 54–74 sweeps,
-//!   Newton 2–3× faster), the probe's sweeps its only cost. It is the default of `bipo solve-local`; the simulation's default stays the
+//!   Newton 2–3× faster), the probe's sweeps its only cost. One contact with a friction
+//!   coefficient is solved exactly by its case, with no iteration (`one_contact`: open, stick
+//!   or slip, the 3D slip direction a root of a trigonometric quadratic; issue 37: Siconos'
+//!   one-contact problems, where the set-up of an iteration was most of the time and a block
+//!   `diag(1e4, 1, 1e-4)` cost the sweeps 272 iterations), the answer checked like an
+//!   iterated one (else `Auto` iterates as before). It is the default of `bipo solve-local`; the simulation's default stays the
 //!   accelerated sweep, whose iteration counts the seed's tables and `docs/benchmarks.md`
 //!   quote.
 //!
@@ -220,6 +225,7 @@ pub mod generate;
 mod json;
 pub mod matrix_free;
 pub mod newton;
+mod one_contact;
 mod plain;
 pub mod problem;
 mod residual;

@@ -53,7 +53,9 @@ pub enum Algorithm {
     /// [`AndersonGaussSeidel`](Self::AndersonGaussSeidel) from the start (with or without
     /// [`fallback`](UzawaSettings::fallback); the report's
     /// [`fallback_from`](UzawaReport::fallback_from) says it happened).
-    /// The report names the one that ran.
+    /// The report names the one that ran; it names `Auto` itself (one iteration) when a
+    /// one-contact problem was solved exactly by its case (open, stick or slip) without
+    /// iterating.
     Auto,
 }
 

@@ -17,6 +17,7 @@ use crate::error::{BestIterate, SolverError};
 use contact_laws::ContactLaw;
 
 mod auto;
+mod direct;
 mod skip_open;
 
 use auto::{
@@ -217,6 +218,13 @@ impl UzawaSolver {
         self.sweeps.reset(problem, st.tuning.rho_scale);
         if r.iter().all(|&v| v == 0.0)
             && let Some(sol) = self.open_solution::<L, DT>(st.algorithm, problem, laws, states, mu)
+        {
+            return Ok(sol);
+        }
+        if auto
+            && let Some(mu) = mu
+            && problem.contact_count() == 1
+            && let Some(sol) = self.one_contact_solution::<L, DT>(problem, laws, states, mu)
         {
             return Ok(sol);
         }
@@ -435,49 +443,6 @@ impl UzawaSolver {
             sol.report.converged = false;
             sol.report.stalled = true;
         }
-    }
-
-    /// `r = 0` when it is the exact solution, with no iteration: every `q_n ≥ 0` for
-    /// Coulomb-type laws (`mu`), else a natural residual of exactly 0 at `r = 0`.
-    fn open_solution<L: ContactLaw, const DT: usize>(
-        &self,
-        algorithm: Algorithm,
-        problem: &ReducedProblem,
-        laws: &[L],
-        states: &[L::State],
-        mu: Option<&[f64]>,
-    ) -> Option<Solution> {
-        let (q, m) = (problem.q(), problem.size());
-        let r = vec![0.0; m];
-        let open = match mu {
-            Some(_) => q.iter().step_by(DT + 1).all(|&qn| qn >= 0.0),
-            None => natural_residual::<L, DT>(laws, states, &self.sweeps.rho0, &r, q) == 0.0,
-        };
-        if !open {
-            return None;
-        }
-        let x = q.to_vec();
-        let statuses = contact_statuses::<L, DT>(laws, states, &self.sweeps.rho0, &r, &x);
-        let rho = &self.sweeps.rho;
-        let report = UzawaReport {
-            algorithm,
-            iterations: 0,
-            outer_iterations: 0,
-            tangential_sweeps: 0,
-            converged: true,
-            stalled: false,
-            residual: 0.0,
-            change: 0.0,
-            history: Vec::new(),
-            rho_min: rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
-            rho_max: rho.iter().fold(0.0, |a, &b| a.max(b)),
-            statuses,
-            fallback_from: None,
-            asymmetry: problem.asymmetry(),
-            rescaled: false,
-            solved_contacts: 0,
-        };
-        Some(Solution { r, x, report })
     }
 
     /// Solves a problem whose `W` or `q` has magnitudes outside `[1e-100, 1e100]` on a copy
