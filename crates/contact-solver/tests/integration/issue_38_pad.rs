@@ -20,7 +20,7 @@ use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimu
 use contact_solver::{FlexibilityMode, PathReason, SimulationSettings, SolvePath, StepReport};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidModel};
-use fem_core::{Component, Material, Structure, Supports};
+use fem_core::{Component, Material, Supports};
 
 /// Cells per side and layers of the small pad.
 const CELLS: usize = 8;
@@ -28,7 +28,10 @@ const LAYERS: usize = 2;
 
 /// One step of the pad with `law` on `mode`: the report, each contact's reaction and the
 /// supports' total reaction in (x, z).
-fn pad<L: ContactLaw + Clone>(law: L, mode: FlexibilityMode) -> (StepReport, Vec<[f64; 3]>, [f64; 2]) {
+fn pad<L: ContactLaw + Clone>(
+    law: L,
+    mode: FlexibilityMode,
+) -> (StepReport, Vec<[f64; 3]>, [f64; 2]) {
     let h = LAYERS as f64 / CELLS as f64;
     let mesh = box_mesh(
         &lines(0.0, 1.0, CELLS),
@@ -43,8 +46,7 @@ fn pad<L: ContactLaw + Clone>(law: L, mode: FlexibilityMode) -> (StepReport, Vec
     s.prescribe(mesh.node_set("z1").unwrap(), Component::Z, -h / 100.0)
         .unwrap();
     let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
-    let model =
-        SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())], s).unwrap();
+    let model = SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())], s).unwrap();
     let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let zone = ContactZone3::rigid("base", nodes, floor, law, 0.1).with_areas(areas);
     let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
@@ -56,7 +58,11 @@ fn pad<L: ContactLaw + Clone>(law: L, mode: FlexibilityMode) -> (StepReport, Vec
         .unwrap();
     let total = |c: Component| -> f64 { supports.iter().filter(|r| r.0.1 == c).map(|r| r.1).sum() };
     let reactions = res.contacts.iter().map(|c| c.force()).collect();
-    (res.report, reactions, [total(Component::X), total(Component::Z)])
+    (
+        res.report,
+        reactions,
+        [total(Component::X), total(Component::Z)],
+    )
 }
 
 /// The largest relative imbalance of the contact reactions against the supports' (x, z).
@@ -80,10 +86,7 @@ fn issue_38_auto_picks_the_active_set_on_the_pad() {
     assert_eq!(report.path.path, SolvePath::ActiveSet);
     assert_eq!(
         report.path.reason,
-        PathReason::AboveDenseLimit {
-            active: 81,
-            limit
-        }
+        PathReason::AboveDenseLimit { active: 81, limit }
     );
     let (dense, r_dense, s_dense) = pad(mu, FlexibilityMode::Dense);
     assert_eq!(dense.path.path, SolvePath::Dense);
@@ -91,7 +94,10 @@ fn issue_38_auto_picks_the_active_set_on_the_pad() {
     // reactions are not all zero
     let t_max = r_dense.iter().fold(0.0_f64, |m, r| m.max(r[0].abs()));
     let scale = r_dense.iter().fold(0.0_f64, |m, r| m.max(r[2].abs()));
-    assert!(t_max > 1e-3 * scale, "no friction at work: {t_max} of {scale}");
+    assert!(
+        t_max > 1e-3 * scale,
+        "no friction at work: {t_max} of {scale}"
+    );
     // the dense path's reactions to the solver's tolerance (1e-10 relative on the residual,
     // amplified by the stick/slip split: 1e-7, as issue_38_one_factor.rs)
     for (a, d) in r_auto.iter().zip(&r_dense) {
@@ -101,8 +107,16 @@ fn issue_38_auto_picks_the_active_set_on_the_pad() {
     }
     // equilibrium with the supports on both paths: K u − f at the supports is exact up to the
     // solve's round-off (1e-12) and the reduced problem's tolerance (1e-8 relative)
-    assert!(imbalance(&r_auto, s_auto) < 1e-6, "{}", imbalance(&r_auto, s_auto));
-    assert!(imbalance(&r_dense, s_dense) < 1e-6, "{}", imbalance(&r_dense, s_dense));
+    assert!(
+        imbalance(&r_auto, s_auto) < 1e-6,
+        "{}",
+        imbalance(&r_auto, s_auto)
+    );
+    assert!(
+        imbalance(&r_dense, s_dense) < 1e-6,
+        "{}",
+        imbalance(&r_dense, s_dense)
+    );
 }
 
 #[test]
