@@ -73,7 +73,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let fine: Option<usize> = args
         .iter()
         .position(|a| a == "--fine")
-        .map(|i| args.get(i + 1).ok_or("--fine needs a cell count").map(|v| v.parse()))
+        .map(|i| {
+            args.get(i + 1)
+                .ok_or("--fine needs a cell count")
+                .map(|v| v.parse())
+        })
         .transpose()?
         .transpose()?;
     if fine.is_some_and(|n| n < 2) {

@@ -26,18 +26,29 @@ impl Pattern {
         elements: impl Iterator<Item = &'a [usize]>,
     ) -> Result<Self, FemError> {
         let n = dofs.free_count();
-        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
-        let mut local = Vec::with_capacity(32);
+        // the node graph first (10 × 10 pairs for a P2 tetrahedron, not its 30 × 31 / 2 dof
+        // pairs), each node's neighbours sorted and deduplicated once: the dof lists below are
+        // then built without repeats, so that the pattern's transient memory stays near its
+        // own (the 3D models' peak is the factor's; this keeps the assembly below it)
+        let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); dofs.node_count()];
         for cell in elements {
-            local.clear();
-            local.extend(cell.iter().flat_map(|&node| dofs.free_dofs(node)).flatten());
-            for &i in &local {
-                for &j in &local {
-                    if i >= j {
-                        cols[j].push(i);
-                    }
+            for &b in cell {
+                neighbours[b].extend_from_slice(cell);
+            }
+        }
+        for list in &mut neighbours {
+            list.sort_unstable();
+            list.dedup();
+            list.shrink_to_fit();
+        }
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (b, list) in neighbours.iter_mut().enumerate() {
+            for j in dofs.free_dofs(b).into_iter().flatten() {
+                for &a in list.iter() {
+                    cols[j].extend(dofs.free_dofs(a).into_iter().flatten().filter(|&i| i >= j));
                 }
             }
+            *list = Vec::new();
         }
         // Every free dof gets its diagonal, even if no element touches it, so that a missing
         // connection shows up as a zero pivot (NotPositiveDefinite), not a structural error.
