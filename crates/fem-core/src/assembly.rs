@@ -266,3 +266,49 @@ pub(crate) fn lower_symmetric_mul_into(
         y[j] += y_j;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Component, Supports};
+    use std::collections::BTreeSet;
+
+    /// The pattern built from the node graph is the set of dof pairs `i ≥ j` that share an
+    /// element, plus every free dof's diagonal, also where a tie gives two nodes one dof and
+    /// where a support leaves a node fewer dofs (brute force over the elements' dof pairs).
+    #[test]
+    fn issue_38_pattern_from_the_node_graph_is_the_elements_dof_pairs() {
+        let mut supports = Supports::new();
+        supports.fix(&[0], Component::X);
+        supports.tie(&[4, 6], Component::Z).unwrap();
+        // node 7 is in no element: its dofs get only their diagonal
+        let dofs = DofMap::<3>::numbered(8, &supports).unwrap();
+        let elements: [&[usize]; 3] = [&[0, 1, 2, 3], &[1, 2, 3, 4], &[5, 6, 3, 2]];
+        let pattern = Pattern::new(&dofs, elements.iter().copied()).unwrap();
+        let mut expected = BTreeSet::new();
+        for cell in elements {
+            let free: Vec<usize> = cell
+                .iter()
+                .flat_map(|&node| dofs.free_dofs(node))
+                .flatten()
+                .collect();
+            for &i in &free {
+                for &j in &free {
+                    if i >= j {
+                        expected.insert((j, i));
+                    }
+                }
+            }
+        }
+        expected.extend((0..dofs.free_count()).map(|j| (j, j)));
+        let s = pattern.symbolic();
+        let mut got = Vec::new();
+        for j in 0..dofs.free_count() {
+            let rows = s.row_idx_of_col_raw(j);
+            assert!(rows.windows(2).all(|w| w[0] < w[1]), "column {j}: {rows:?}");
+            got.extend(rows.iter().map(|&i| (j, i)));
+        }
+        assert_eq!(got, expected.into_iter().collect::<Vec<_>>());
+        assert_eq!(pattern.nnz(), got.len());
+    }
+}

@@ -241,4 +241,44 @@ mod tests {
         let on_line = |a: usize| last.iter().all(|&v| coords[v][a] == coords[last[0]][a]);
         assert!(on_line(0) || on_line(1), "{last:?}");
     }
+
+    /// A 4 × 30 grid graph whose x extent (3 × 10) is a little longer than its y extent
+    /// (29 × 1): the cut across x (the longest extent) has a separator of 30 vertices, the one
+    /// across y of 4, and the first separator (the last vertices eliminated) is the 4, one
+    /// grid line of constant y; across the longest extent it would have been a line of constant
+    /// x.
+    #[test]
+    fn issue_38_nested_dissection_cuts_across_the_smallest_separator() {
+        let (nx, ny) = (4, 30);
+        let id = |i: usize, j: usize| i + nx * j;
+        let mut col_ptr = vec![0];
+        let mut rows = Vec::new();
+        let mut coords = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                coords.push([10.0 * i as f64, j as f64, 0.0]);
+                rows.push(id(i, j));
+                if i + 1 < nx {
+                    rows.push(id(i + 1, j));
+                }
+                if j + 1 < ny {
+                    rows.push(id(i, j + 1));
+                }
+                rows[col_ptr[col_ptr.len() - 1]..].sort_unstable();
+                col_ptr.push(rows.len());
+            }
+        }
+        let n = nx * ny;
+        let p = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
+        let order = nested_dissection(p.as_ref(), &coords);
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..n).collect::<Vec<_>>());
+        let last = &order[n - nx..];
+        assert!(
+            last.iter().all(|&v| coords[v][1] == coords[last[0]][1]),
+            "{:?}",
+            last.iter().map(|&v| coords[v]).collect::<Vec<_>>()
+        );
+    }
 }
