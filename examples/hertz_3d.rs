@@ -9,7 +9,9 @@
 //! cell of the graded base grid); `--matrix-free`, `--active-set` or `--dense` chooses the
 //! reduced problem's path (default: the settings' `Auto`); `--svg DIR` draws each level's
 //! recovered pressure against the ellipse into `DIR/hertz_3d_pressure_<level>.svg`.
-//! `BIPO_QUICK=1` runs level 0 alone. Ends in an error when Hertz's radius is not between the
+//! `--fine N` grades the base grid with `N` fine cells across the contact (6 by default; 10
+//! gives ~1e5 DOF, the size of issue 38's check against GetFEM) and runs level 0 alone unless
+//! levels are given. `BIPO_QUICK=1` runs level 0 alone. Ends in an error when Hertz's radius is not between the
 //! farthest closed and the nearest open node, or the force inside `a_H/2` misses Hertz's by
 //! more than 10 %.
 //!
@@ -68,14 +70,32 @@ fn main() -> Result<(), Box<dyn Error>> {
         .position(|a| a == "--svg")
         .and_then(|i| args.get(i + 1))
         .map(std::path::PathBuf::from);
-    let levels: Vec<usize> = args
+    let fine: Option<usize> = args
         .iter()
-        .filter(|a| !a.starts_with("--") && Some(std::path::Path::new(a)) != svg_dir.as_deref())
-        .map(|a| a.parse())
+        .position(|a| a == "--fine")
+        .map(|i| {
+            args.get(i + 1)
+                .ok_or("--fine needs a cell count")
+                .map(|v| v.parse())
+        })
+        .transpose()?
+        .transpose()?;
+    if fine.is_some_and(|n| n < 2) {
+        return Err("--fine needs at least 2 fine cells".into());
+    }
+    let values: Vec<usize> = args
+        .iter()
+        .enumerate()
+        .filter(|(i, a)| {
+            !a.starts_with("--")
+                && Some(std::path::Path::new(a)) != svg_dir.as_deref()
+                && (*i == 0 || args[i - 1] != "--fine")
+        })
+        .map(|(_, a)| a.parse())
         .collect::<Result<_, _>>()?;
-    let levels = if !levels.is_empty() {
-        levels
-    } else if std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
+    let levels = if !values.is_empty() {
+        values
+    } else if fine.is_some() || std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
         vec![0]
     } else {
         vec![0, 1]
@@ -88,8 +108,12 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for level in levels {
-        let xy = refine(&graded(4.0, 6, 0.9, 4), level);
-        let mut z: Vec<f64> = refine(&graded(4.0, 4, 0.6, 4), level)
+        // the base grid: `n` fine cells up to 0.9 in x, y, and `2n/3` fine cells to 0.6 in
+        // depth and geometric ones beyond (n = 6 by default)
+        let n = fine.unwrap_or(6);
+        let m = (2 * n + 1) / 3;
+        let xy = refine(&graded(4.0, n, 0.9, m), level);
+        let mut z: Vec<f64> = refine(&graded(4.0, m, 0.6, m), level)
             .iter()
             .map(|v| -v)
             .collect();
@@ -111,6 +135,13 @@ fn main() -> Result<(), Box<dyn Error>> {
         let t = Instant::now();
         let res = sim.step(1.0, 1.0)?;
         let t_step = t.elapsed().as_secs_f64();
+        // the path on stderr, so that the table on stdout stays as it was
+        eprintln!(
+            "level {level}: path {}; K {} stored entries, its factor {}",
+            res.report.path,
+            sim.structure().nnz(),
+            sim.structure().factor_nnz()
+        );
         let p: f64 = 4.0 * res.contacts.iter().map(|c| c.r.n).sum::<f64>();
         let a_h = (3.0 * p * radius / (4.0 * e_star)).cbrt();
         let (mut inside, mut outside) = (0.0_f64, f64::INFINITY);

@@ -10,7 +10,7 @@ Frictionless contact of the top face z = 0 with the rigid sphere of radius R cen
 Usage:
     /usr/bin/python3 getfem_hertz3d.py [case.json] [--refine N] [--brick nodal|integral]
         [--r R_AUG] [--aug 1|2|3] [--lsolver mumps|superlu|auto] [--max-iter N]
-        [--max-res RES] [--noisy]
+        [--max-res RES] [--noisy] [--fine N]
 
 case.json = {"xs": [...], "ys": [...], "zs": [...], "R": 10, "E": 1000, "nu": 0.3,
              "d": 0.04}; without it the default graded case is used.  --refine N
@@ -45,6 +45,22 @@ def default_case():
             "d": 0.04}
 
 
+def fine_case(n):
+    """The grid of `examples/hertz_3d.rs --fine n`: n fine cells to 0.9 in x, y, m = (2n+1)//3
+    fine cells to 0.6 in depth, m geometric cells beyond each (n = 6 is the default case)."""
+    m = (2 * n + 1) // 3
+
+    def graded(l, nf, fine, nc):
+        v = [fine * i / nf for i in range(nf + 1)]
+        r = (l / fine) ** (1.0 / nc)
+        return v + [fine * r ** k for k in range(1, nc + 1)]
+
+    xs = graded(4.0, n, 0.9, m)
+    zs = sorted(-z for z in graded(4.0, m, 0.6, m))
+    return {"xs": xs, "ys": list(xs), "zs": zs, "R": 10.0, "E": 1000.0, "nu": 0.3,
+            "d": 0.04}
+
+
 def refine(v):
     v = np.asarray(v, float)
     out = np.empty(2 * len(v) - 1)
@@ -57,6 +73,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("case", nargs="?")
     ap.add_argument("--refine", type=int, default=0)
+    ap.add_argument("--fine", type=int, default=None,
+                    help="the grid of examples/hertz_3d.rs --fine N (10: ~1e5 DOF)")
     ap.add_argument("--brick", choices=["nodal", "integral"], default="nodal")
     ap.add_argument("--r", type=float, default=None,
                     help="augmentation parameter (default: E)")
@@ -70,7 +88,7 @@ def main():
     ap.add_argument("--dump", default=None, help="save top-face nodal data (.npz)")
     a = ap.parse_args()
 
-    case = default_case()
+    case = default_case() if a.fine is None else fine_case(a.fine)
     if a.case:
         with open(a.case) as f:
             case.update(json.load(f))

@@ -26,18 +26,29 @@ impl Pattern {
         elements: impl Iterator<Item = &'a [usize]>,
     ) -> Result<Self, FemError> {
         let n = dofs.free_count();
-        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
-        let mut local = Vec::with_capacity(32);
+        // the node graph first (10 × 10 pairs for a P2 tetrahedron, not its 30 × 31 / 2 dof
+        // pairs), each node's neighbours sorted and deduplicated once: the dof lists below are
+        // then built without repeats, so that the pattern's transient memory stays near its
+        // own (the 3D models' peak is the factor's; this keeps the assembly below it)
+        let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); dofs.node_count()];
         for cell in elements {
-            local.clear();
-            local.extend(cell.iter().flat_map(|&node| dofs.free_dofs(node)).flatten());
-            for &i in &local {
-                for &j in &local {
-                    if i >= j {
-                        cols[j].push(i);
-                    }
+            for &b in cell {
+                neighbours[b].extend_from_slice(cell);
+            }
+        }
+        for list in &mut neighbours {
+            list.sort_unstable();
+            list.dedup();
+            list.shrink_to_fit();
+        }
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (b, list) in neighbours.iter_mut().enumerate() {
+            for j in dofs.free_dofs(b).into_iter().flatten() {
+                for &a in list.iter() {
+                    cols[j].extend(dofs.free_dofs(a).into_iter().flatten().filter(|&i| i >= j));
                 }
             }
+            *list = Vec::new();
         }
         // Every free dof gets its diagonal, even if no element touches it, so that a missing
         // connection shows up as a zero pivot (NotPositiveDefinite), not a structural error.
@@ -253,5 +264,51 @@ pub(crate) fn lower_symmetric_mul_into(
             }
         }
         y[j] += y_j;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Component, Supports};
+    use std::collections::BTreeSet;
+
+    /// The pattern built from the node graph is the set of dof pairs `i ≥ j` that share an
+    /// element, plus every free dof's diagonal, also where a tie gives two nodes one dof and
+    /// where a support leaves a node fewer dofs (brute force over the elements' dof pairs).
+    #[test]
+    fn issue_38_pattern_from_the_node_graph_is_the_elements_dof_pairs() {
+        let mut supports = Supports::new();
+        supports.fix(&[0], Component::X);
+        supports.tie(&[4, 6], Component::Z).unwrap();
+        // node 7 is in no element: its dofs get only their diagonal
+        let dofs = DofMap::<3>::numbered(8, &supports).unwrap();
+        let elements: [&[usize]; 3] = [&[0, 1, 2, 3], &[1, 2, 3, 4], &[5, 6, 3, 2]];
+        let pattern = Pattern::new(&dofs, elements.iter().copied()).unwrap();
+        let mut expected = BTreeSet::new();
+        for cell in elements {
+            let free: Vec<usize> = cell
+                .iter()
+                .flat_map(|&node| dofs.free_dofs(node))
+                .flatten()
+                .collect();
+            for &i in &free {
+                for &j in &free {
+                    if i >= j {
+                        expected.insert((j, i));
+                    }
+                }
+            }
+        }
+        expected.extend((0..dofs.free_count()).map(|j| (j, j)));
+        let s = pattern.symbolic();
+        let mut got = Vec::new();
+        for j in 0..dofs.free_count() {
+            let rows = s.row_idx_of_col_raw(j);
+            assert!(rows.windows(2).all(|w| w[0] < w[1]), "column {j}: {rows:?}");
+            got.extend(rows.iter().map(|&i| (j, i)));
+        }
+        assert_eq!(got, expected.into_iter().collect::<Vec<_>>());
+        assert_eq!(pattern.nnz(), got.len());
     }
 }

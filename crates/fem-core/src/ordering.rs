@@ -4,16 +4,19 @@
 //! faer's default fill-reducing ordering is approximate minimum degree (AMD), which is close to
 //! the best on 2D meshes but leaves much more fill on 3D ones, where nested dissection has the
 //! optimal `O(n^{4/3})` factor and `O(n²)` work (George 1973; Lipton, Rose, Tarjan 1979). With
-//! node coordinates a separator is cheap to find: cut the vertex set at the median of its
-//! longest coordinate extent, and take as separator the vertices of one side that have a
-//! neighbour on the other (the side with fewer of them). Both halves are ordered first,
-//! recursively, then the separator; small sets (below [`LEAF`]) keep their order.
+//! node coordinates a separator is cheap to find: cut the vertex set at the median of one
+//! coordinate, and take as separator the vertices of one side that have a neighbour on the
+//! other (the side with fewer of them); of the three coordinates, the one whose separator is
+//! smallest (on graded meshes the longest extent is not it: issue 38 in `docs/benchmarks.md`,
+//! 17 % less fill on the 1e5-DOF Hertz block). Both halves are ordered first, recursively,
+//! then the separator; small sets (below [`LEAF`]) keep their order.
 //!
 //! ```text
 //! order(S):  |S| ≤ LEAF → S
-//!            a = argmax extent of x over S,  m = median of x_a over S
-//!            L = {v ∈ S : x_a(v) < m} (or ≤ m if that is empty),  R = S \ L
-//!            C = {v ∈ L : v has a neighbour in R}  or  {v ∈ R : neighbour in L}, the smaller
+//!            for each axis a:  m = median of x_a over S
+//!              L = {v ∈ S : x_a(v) < m} (or ≤ m if that is empty),  R = S \ L
+//!              C = {v ∈ L : v has a neighbour in R}  or  {v ∈ R : neighbour in L}, the smaller
+//!            keep the axis of the smallest C (the longest extent on a tie)
 //!            order(L \ C), order(R \ C), C
 //! ```
 //!
@@ -101,6 +104,8 @@ pub fn nested_dissection(
             }
             Task::Split(set) => set,
         };
+        // cut across each axis with some extent, at the median; keep the smallest separator
+        // (the longest axis first, so that a tie keeps it)
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for &v in &set {
             for a in 0..3 {
@@ -108,41 +113,23 @@ pub fn nested_dissection(
                 hi[a] = hi[a].max(coords[v][a]);
             }
         }
-        let axis = (0..3)
-            .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
-            .unwrap_or(0);
-        // cut at the median value: every vertex at that coordinate goes to the same side, so
-        // a cut through a plane of nodes takes that plane as its separator
-        set.sort_unstable_by(|&u, &v| coords[u][axis].total_cmp(&coords[v][axis]).then(u.cmp(&v)));
-        let m = coords[set[set.len() / 2]][axis];
-        let mut half = set.partition_point(|&v| coords[v][axis] < m);
-        if half == 0 {
-            half = set.partition_point(|&v| coords[v][axis] <= m);
+        let mut axes = [0, 1, 2];
+        axes.sort_by(|&a, &b| (hi[b] - lo[b]).total_cmp(&(hi[a] - lo[a])).then(b.cmp(&a)));
+        let mut best: Option<(Vec<usize>, usize, Vec<usize>)> = None;
+        for (k, &axis) in axes.iter().enumerate() {
+            if k > 0 && hi[axis] <= lo[axis] {
+                continue;
+            }
+            let mut sorted = set.clone();
+            let (half, sep) = median_cut(&mut sorted, axis, coords, &mut side, &neighbours);
+            if best.as_ref().is_none_or(|b| sep.len() < b.2.len()) {
+                best = Some((sorted, half, sep));
+            }
         }
-        let (left, right) = set.split_at(half);
-        for &v in left {
-            side[v] = 1;
-        }
-        for &v in right {
-            side[v] = 2;
-        }
-        let touches =
-            |v: usize, other: u8, side: &[u8]| neighbours(v).iter().any(|&w| side[w] == other);
-        let cut_left: Vec<usize> = left
-            .iter()
-            .copied()
-            .filter(|&v| touches(v, 2, &side))
-            .collect();
-        let cut_right: Vec<usize> = right
-            .iter()
-            .copied()
-            .filter(|&v| touches(v, 1, &side))
-            .collect();
-        let sep = if cut_left.len() <= cut_right.len() {
-            cut_left
-        } else {
-            cut_right
+        let Some((sorted, half, sep)) = best else {
+            continue;
         };
+        set = sorted;
         for &v in &set {
             side[v] = 0;
         }
@@ -175,6 +162,44 @@ pub fn nested_dissection(
         stack.push(Task::Split(l));
     }
     order
+}
+
+/// Sorts `set` along `axis` and cuts it at the median value (every vertex at that coordinate
+/// on the same side, so that a cut through a plane of nodes takes that plane as its
+/// separator): returns the size of the left part and the separator, the vertices of one side
+/// with a neighbour on the other (the smaller such side). `side` is all 0 on entry and return.
+fn median_cut<'a>(
+    set: &mut [usize],
+    axis: usize,
+    coords: &[[f64; 3]],
+    side: &mut [u8],
+    neighbours: &impl Fn(usize) -> &'a [usize],
+) -> (usize, Vec<usize>) {
+    set.sort_unstable_by(|&u, &v| coords[u][axis].total_cmp(&coords[v][axis]).then(u.cmp(&v)));
+    let m = coords[set[set.len() / 2]][axis];
+    let mut half = set.partition_point(|&v| coords[v][axis] < m);
+    if half == 0 {
+        half = set.partition_point(|&v| coords[v][axis] <= m);
+    }
+    let (left, right) = set.split_at(half);
+    for &v in left {
+        side[v] = 1;
+    }
+    for &v in right {
+        side[v] = 2;
+    }
+    let touches = |v: usize, other: u8| neighbours(v).iter().any(|&w| side[w] == other);
+    let cut_left: Vec<usize> = left.iter().copied().filter(|&v| touches(v, 2)).collect();
+    let cut_right: Vec<usize> = right.iter().copied().filter(|&v| touches(v, 1)).collect();
+    for &v in set.iter() {
+        side[v] = 0;
+    }
+    let sep = if cut_left.len() <= cut_right.len() {
+        cut_left
+    } else {
+        cut_right
+    };
+    (half, sep)
 }
 
 #[cfg(test)]
@@ -215,5 +240,45 @@ mod tests {
         let last = &order[n - m..];
         let on_line = |a: usize| last.iter().all(|&v| coords[v][a] == coords[last[0]][a]);
         assert!(on_line(0) || on_line(1), "{last:?}");
+    }
+
+    /// A 4 × 30 grid graph whose x extent (3 × 10) is a little longer than its y extent
+    /// (29 × 1): the cut across x (the longest extent) has a separator of 30 vertices, the one
+    /// across y of 4, and the first separator (the last vertices eliminated) is the 4, one
+    /// grid line of constant y; across the longest extent it would have been a line of constant
+    /// x.
+    #[test]
+    fn issue_38_nested_dissection_cuts_across_the_smallest_separator() {
+        let (nx, ny) = (4, 30);
+        let id = |i: usize, j: usize| i + nx * j;
+        let mut col_ptr = vec![0];
+        let mut rows = Vec::new();
+        let mut coords = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                coords.push([10.0 * i as f64, j as f64, 0.0]);
+                rows.push(id(i, j));
+                if i + 1 < nx {
+                    rows.push(id(i + 1, j));
+                }
+                if j + 1 < ny {
+                    rows.push(id(i, j + 1));
+                }
+                rows[col_ptr[col_ptr.len() - 1]..].sort_unstable();
+                col_ptr.push(rows.len());
+            }
+        }
+        let n = nx * ny;
+        let p = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
+        let order = nested_dissection(p.as_ref(), &coords);
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..n).collect::<Vec<_>>());
+        let last = &order[n - nx..];
+        assert!(
+            last.iter().all(|&v| coords[v][1] == coords[last[0]][1]),
+            "{:?}",
+            last.iter().map(|&v| coords[v]).collect::<Vec<_>>()
+        );
     }
 }
