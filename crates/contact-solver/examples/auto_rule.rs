@@ -18,6 +18,13 @@
 //! and piles in a box where Newton creeps for thousands of iterations, and random block-sparse
 //! problems ([`random_sparse_problem`]).
 //!
+//!
+//! `BIPO_QUICK=1` (as CI runs it, with `ROUNDS = 1`): the smallest problem of each kind (2D
+//! Hertz 16 cells, random 200 and sparse random 2 000, half-space 12, random 100, the 5 × 5 × 5
+//! pile, the tower and the 4 × 4 × 8 loose box, sparse random 1 000), every algorithm on each,
+//! the same table; the full list took 33 s of CI's debug build, most of it in the largest
+//! problems, where one run of the plain sweep can take seconds.
+//!
 //! [`half_space`]: contact_solver::local::generate::half_space
 //! [`multibody`]: contact_solver::local::generate::multibody
 
@@ -64,9 +71,12 @@ fn hertz(cells: usize) -> Result<[(String, ReducedProblem); 2], Box<dyn Error>> 
     ])
 }
 
-fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
+/// The problems, all of them or (`quick`) the smallest of each kind (module docs).
+fn problems(quick: bool) -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
+    // how many sizes of each kind: the first (smallest) alone when quick
+    let sizes = if quick { 1 } else { usize::MAX };
     let mut out = Vec::new();
-    for cells in [16, 32] {
+    for cells in [16, 32].into_iter().take(sizes) {
         out.extend(hertz(cells)?);
     }
     out.push(("2D random_200".into(), random_problem_in(2, 200, 5)));
@@ -74,7 +84,10 @@ fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
         "2D sparse random_2000".into(),
         random_sparse_problem(2, 2000, 4, 6),
     ));
-    for (name, cells) in [("3D halfspace_12", 12), ("3D halfspace_24", 24)] {
+    for (name, cells) in [("3D halfspace_12", 12), ("3D halfspace_24", 24)]
+        .into_iter()
+        .take(sizes)
+    {
         let hs = HalfSpace {
             cells_across: cells,
             indenter: Indenter::Sphere { radius: 2.5 },
@@ -83,14 +96,16 @@ fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
         out.push((name.into(), hs.generate()?.problem));
     }
     out.push(("3D random_100".into(), random_problem_in(3, 100, 1)));
-    out.push(("3D random_500".into(), random_problem_in(3, 500, 3)));
+    if !quick {
+        out.push(("3D random_500".into(), random_problem_in(3, 500, 3)));
+    }
     let shaken = SpherePile {
         jitter: 0.05,
         threshold: 0.2,
         initial_speed: 0.05,
         ..SpherePile::default()
     };
-    for (nx, layers, seed) in [(5, 5, 2), (7, 5, 3)] {
+    for (nx, layers, seed) in [(5, 5, 2), (7, 5, 3)].into_iter().take(sizes) {
         let p = SpherePile {
             nx,
             ny: nx,
@@ -108,13 +123,16 @@ fn problems() -> Result<Vec<(String, ReducedProblem)>, Box<dyn Error>> {
     }
     // issue 37: the multibody families of `docs/benchmarks.md` "Auto on multibody problems"
     // (in a box: floor and four walls), where Newton converges and where it creeps
-    for (name, pile, seed) in multibody_families() {
+    for (name, pile, seed) in multibody_families()
+        .into_iter()
+        .filter(|f| !quick || f.0 == "tower_50" || f.0 == "box_4x4x8 loose")
+    {
         let p = pile.generate(seed)?.problem;
         let n = p.contact_count();
         out.push((format!("3D {name} ({n}) dense"), p.clone()));
         out.push((format!("3D {name} ({n}) sparse"), sparse_twin(&p)?));
     }
-    for (n, seed) in [(1000, 7), (4000, 8)] {
+    for (n, seed) in [(1000, 7), (4000, 8)].into_iter().take(sizes) {
         out.push((
             format!("3D sparse random_{n}"),
             random_sparse_problem(3, n, 4, seed),
@@ -171,7 +189,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(5);
-    let problems = problems()?;
+    let quick = std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0");
+    let problems = problems(quick)?;
     let na = ALGORITHMS.len();
     let mut times = vec![vec![Vec::<f64>::new(); na]; problems.len()];
     let mut info = vec![vec![(0usize, false, Algorithm::Auto); na]; problems.len()];

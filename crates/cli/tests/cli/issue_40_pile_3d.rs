@@ -68,18 +68,23 @@ type Curve = Vec<(f64, f64, usize)>;
 fn issue_40_pile_3d_sand_follows_the_elastic_and_axisymmetric_curves() {
     let spec = coarse();
     let settings3 = SimulationSettings::for_dimension::<3>();
-    let mut scene = spec.build_3d(2, settings3).unwrap();
-    let geo = scene.geostatic().unwrap();
-    let mut linear = vec![(0.0, scene.head_load(&geo).unwrap(), 0)];
-    scene.install().unwrap();
-    for k in 1..=spec.steps {
-        let s = scene.pull(k).unwrap();
-        linear.push((s.head_displacement, s.head_load, 0));
-    }
     let check = |n: &contact_solver::NewtonReport| {
         assert!(n.iterations <= 12, "{n:?}");
         assert!(*n.residuals.last().unwrap() <= 1e-12, "{n:?}");
     };
+    // the elastic 3D scene (the linear step)
+    let run_linear = || -> Curve {
+        let mut scene = spec.build_3d(2, settings3).unwrap();
+        let geo = scene.geostatic().unwrap();
+        let mut out = vec![(0.0, scene.head_load(&geo).unwrap(), 0)];
+        scene.install().unwrap();
+        for k in 1..=spec.steps {
+            let s = scene.pull(k).unwrap();
+            out.push((s.head_displacement, s.head_load, 0));
+        }
+        out
+    };
+    // the plastic 3D body, with the elastic soil (`None`) or the sand
     let run3 = |soil: Option<DruckerPrager>| -> Curve {
         let mut pile = spec
             .build_plastic_3d::<StandardLaw>(2, soil, (settings3, newton()))
@@ -94,19 +99,36 @@ fn issue_40_pile_3d_sand_follows_the_elastic_and_axisymmetric_curves() {
         }
         out
     };
-    let elastic3 = run3(None);
-    let sand3 = run3(Some(sand(&spec)));
-    let settings = (SimulationSettings::default(), newton());
-    let mut pile = spec
-        .build_plastic::<StandardLaw>(Some(sand(&spec)), settings)
-        .unwrap();
-    let geo = pile.geostatic().unwrap();
-    let mut sand2 = vec![(0.0, pile.head_load(&geo).unwrap(), pile.yielding_points())];
-    for k in 1..=spec.steps {
-        let s = pile.pull(k).unwrap();
-        check(s.result.report.newton.as_ref().unwrap());
-        sand2.push((s.head_displacement, s.head_load, pile.yielding_points()));
-    }
+    // the axisymmetric sand
+    let run2 = || -> Curve {
+        let settings = (SimulationSettings::default(), newton());
+        let mut pile = spec
+            .build_plastic::<StandardLaw>(Some(sand(&spec)), settings)
+            .unwrap();
+        let geo = pile.geostatic().unwrap();
+        let mut out = vec![(0.0, pile.head_load(&geo).unwrap(), pile.yielding_points())];
+        for k in 1..=spec.steps {
+            let s = pile.pull(k).unwrap();
+            check(s.result.report.newton.as_ref().unwrap());
+            out.push((s.head_displacement, s.head_load, pile.yielding_points()));
+        }
+        out
+    };
+    // The four runs are independent (each builds its own model): they run side by side, so
+    // that this test, the longest of the binary, keeps both of CI's cores busy once the
+    // other tests are done (a panic in one fails the test when the scope joins it).
+    let (linear, elastic3, sand3, sand2) = std::thread::scope(|s| {
+        let sand3 = s.spawn(|| run3(Some(sand(&spec))));
+        let elastic3 = s.spawn(|| run3(None));
+        let linear = s.spawn(run_linear);
+        let sand2 = run2();
+        (
+            linear.join().unwrap(),
+            elastic3.join().unwrap(),
+            sand3.join().unwrap(),
+            sand2,
+        )
+    });
     let peak = sand2.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
     let (mut yielded, mut compared, mut worst) = (false, 0, 0.0_f64);
     for (((l, e), s3), s2) in linear.iter().zip(&elastic3).zip(&sand3).zip(&sand2) {
