@@ -21,8 +21,8 @@ mod direct;
 mod skip_open;
 
 use auto::{
-    auto_newton_budget, newton_pays, pressed_most, sparse_twin_for_auto, sweep_probe,
-    sweep_promises,
+    auto_newton_budget, newton_pays, newton_probes, pressed_most, sparse_twin_for_auto,
+    sweep_probe, sweep_promises,
 };
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
@@ -254,11 +254,11 @@ impl UzawaSolver {
             }
         }
         let first = if auto_newton {
-            auto_newton_budget(st)
+            auto_newton_budget(st, problem)
         } else {
             st
         };
-        self.newton.probe = auto_newton;
+        self.newton.probe = auto_newton && newton_probes(problem);
         let first_run = self.attempt::<L, DT>(first, problem, laws, states, r.clone());
         self.newton.probe = false;
         let mut sol = first_run?;

@@ -8,8 +8,8 @@ use super::super::problem::ReducedProblem;
 use super::super::settings::Algorithm;
 use super::super::settings::{
     AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
-    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_PREDICTED,
-    AUTO_SWEEP_PROBE, UzawaSettings,
+    AUTO_NEWTON_UNPROBED_BUDGET, AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED,
+    AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
@@ -18,17 +18,34 @@ use super::super::settings::{
 /// Delassus operator, [`mostly_zero_blocks`]: `Auto` solves it stored sparse,
 /// [`sparse_twin_for_auto`]), on a sparse `W` up to
 /// `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph fills a factorisation by at most
-/// `AUTO_NEWTON_MAX_FILL`. Newton chosen here runs as a probe: it gives up on its second
-/// short step and within `AUTO_NEWTON_BUDGET` iterations ([`auto_newton_budget`]).
+/// `AUTO_NEWTON_MAX_FILL`. A dense `W` kept non-symmetric takes Newton whatever its blocks
+/// (issue 37: Siconos' `OneObject` problems, a body with joints, 23–25 contacts and 70 % zero
+/// blocks, were left to the sweep, 4 023 sweeps where Newton takes 13 iterations). Newton
+/// chosen here runs within a budget ([`auto_newton_budget`]) and, on a symmetric or sparse
+/// `W`, as a probe that gives up on its second short step ([`newton_probes`]).
 pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
     let nc = problem.contact_count();
     match problem.w_sparse() {
-        None => nc <= AUTO_NEWTON_MAX_CONTACTS && !mostly_zero_blocks(problem),
+        None => {
+            nc <= AUTO_NEWTON_MAX_CONTACTS
+                && (!problem.is_symmetric() || !mostly_zero_blocks(problem))
+        }
         Some(a) => {
             nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
                 && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
         }
     }
+}
+
+/// Whether a Newton that [`Algorithm::Auto`] chose runs as a probe (it gives up on its second
+/// short Armijo step, `AUTO_NEWTON_SHORT_STEPS`): on a symmetric `W`, and on a sparse one kept
+/// non-symmetric; not on a dense `W` kept non-symmetric. Measured (issue 37, Siconos' rovers
+/// and `OneObject` problems, dense, asymmetry 1e-5 to 1e-3 of the scale): Newton's Armijo
+/// steps shrink to `t ≤ 2⁻⁵` early there and still converge within 7–18 iterations (95 on
+/// `OneObject-i100000-499`), while the sweep that took over needed 4 023 sweeps (80× Newton's
+/// time) on `OneObject-i1028-138`; the budget `AUTO_NEWTON_UNPROBED_BUDGET` bounds the run.
+pub(super) fn newton_probes(problem: &ReducedProblem) -> bool {
+    problem.is_symmetric() || problem.w_dense().is_none()
 }
 
 /// Whether at least `AUTO_MULTIBODY_ZERO_BLOCKS` of the off-diagonal `d × d` blocks of a dense
@@ -100,9 +117,17 @@ pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedPr
 /// the creeping runs give it at iteration 6–10, no converging run gives one, and a slow but
 /// converging Newton (a tower of 50 spheres, 53 iterations, still 1.9× faster than the
 /// sweep) runs to the end.
-pub(super) fn auto_newton_budget(st: UzawaSettings) -> UzawaSettings {
+///
+/// A Newton that runs without the probe ([`newton_probes`]: a dense `W` kept non-symmetric)
+/// has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`.
+pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) -> UzawaSettings {
+    let budget = if newton_probes(problem) {
+        AUTO_NEWTON_BUDGET
+    } else {
+        AUTO_NEWTON_UNPROBED_BUDGET
+    };
     UzawaSettings {
-        max_iterations: st.max_iterations.min(AUTO_NEWTON_BUDGET),
+        max_iterations: st.max_iterations.min(budget),
         ..st
     }
 }
