@@ -219,7 +219,8 @@ fn issue_37_auto_choice_on_a_multibody_like_problem() {
 fn issue_37_auto_newton_on_a_non_symmetric_multibody_like_problem() {
     use contact_solver::Asymmetry;
     // (block, μ, r_n, angle, slip speed, stick (`None`) or open (`r_n` = 0: the gap `x_n`))
-    let blocks: [([f64; 9], f64, f64, f64, Option<f64>); 5] = [
+    type Known = ([f64; 9], f64, f64, f64, Option<f64>);
+    let blocks: [Known; 5] = [
         (
             [2.0, 0.5, 0.0, 0.1, 1.0, 0.0, 0.0, 0.0, 1.5],
             0.5,

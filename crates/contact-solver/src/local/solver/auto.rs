@@ -113,10 +113,10 @@ pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedPr
 /// choice costs a bounded fraction of the solve (issue 37: Newton ground for thousands of
 /// iterations on multibody stacks that the sweep solves in hundreds). The run gives up
 /// sooner on its second short Armijo step after the first (`AUTO_NEWTON_SHORT_STEP`,
-/// `AUTO_NEWTON_SHORT_STEPS`; the solver sets the Newton's `probe` for this run): measured,
-/// the creeping runs give it at iteration 6–10, no converging run gives one, and a slow but
-/// converging Newton (a tower of 50 spheres, 53 iterations, still 1.9× faster than the
-/// sweep) runs to the end.
+/// `AUTO_NEWTON_SHORT_STEPS`; the solver sets the Newton's `probe` for this run where
+/// [`newton_probes`]): measured on symmetric `W`, the creeping runs give it at iteration
+/// 6–10, no converging run gives one, and a slow but converging Newton (a tower of 50
+/// spheres, 53 iterations, still 1.9× faster than the sweep) runs to the end.
 ///
 /// A Newton that runs without the probe ([`newton_probes`]: a dense `W` kept non-symmetric)
 /// has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`.
@@ -181,6 +181,7 @@ pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::local::Asymmetry;
 
     /// A block-diagonal `W` (two bodies, no shared contact) is mostly zero blocks; a full one
     /// (every entry non-zero, like a condensed FE flexibility) is not; one contact has no
@@ -205,6 +206,53 @@ mod tests {
         assert!(!mostly_zero_blocks(&one.unwrap()));
         let sparse = crate::local::generate::random_sparse_problem(3, 50, 0, 2);
         assert!(!mostly_zero_blocks(&sparse));
+    }
+
+    /// Issue 37, sixth part: a dense `W` kept non-symmetric runs Newton without the probe and
+    /// within `AUTO_NEWTON_UNPROBED_BUDGET`, whatever its zero blocks (`newton_pays`); the
+    /// same `W` symmetric, or kept non-symmetric but stored sparse, keeps the probe and
+    /// `AUTO_NEWTON_BUDGET`, and a symmetric block-diagonal one is left to the sparse twin.
+    #[test]
+    fn issue_37_dense_non_symmetric_w_runs_newton_unprobed() {
+        // two uncoupled contacts (every off-diagonal block zero), one block non-symmetric
+        let w = vec![
+            2.0, 0.5, 0.0, 0.0, //
+            0.1, 2.0, 0.0, 0.0, //
+            0.0, 0.0, 2.0, 0.0, //
+            0.0, 0.0, 0.0, 2.0,
+        ];
+        let (q, mu) = (vec![-1.0; 4], vec![0.3; 2]);
+        let kept =
+            ReducedProblem::with_asymmetry(2, w.clone(), q.clone(), mu.clone(), Asymmetry::Keep)
+                .unwrap();
+        assert!(!kept.is_symmetric() && mostly_zero_blocks(&kept));
+        assert!(newton_pays(&kept) && !newton_probes(&kept));
+        assert!(sparse_twin_for_auto(&kept).is_none());
+        let st = UzawaSettings::default();
+        let budget = auto_newton_budget(st, &kept).max_iterations;
+        assert_eq!(budget, AUTO_NEWTON_UNPROBED_BUDGET);
+        // symmetrised (the default policy): the multibody rule as before
+        let sym =
+            ReducedProblem::with_asymmetry(2, w, q, mu, Asymmetry::Symmetrise { tolerance: 1.0 })
+                .unwrap();
+        assert!(sym.is_symmetric() && newton_probes(&sym) && !newton_pays(&sym));
+        assert!(sparse_twin_for_auto(&sym).is_some());
+        assert_eq!(
+            auto_newton_budget(st, &sym).max_iterations,
+            AUTO_NEWTON_BUDGET
+        );
+        // kept non-symmetric, stored sparse: the probe stays
+        let sparse = ReducedProblem::from_triplets_with_asymmetry(
+            2,
+            &[0, 0, 1, 1, 2, 3],
+            &[0, 1, 0, 1, 2, 3],
+            &[2.0, 0.5, 0.1, 2.0, 2.0, 2.0],
+            vec![-1.0; 4],
+            vec![0.3; 2],
+            Asymmetry::Keep,
+        )
+        .unwrap();
+        assert!(!sparse.is_symmetric() && newton_probes(&sparse));
     }
 
     /// A sweep contracting by 0.5 a sweep from 1 reaches 1e-8 near sweep 27 (promised at 8
