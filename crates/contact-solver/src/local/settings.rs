@@ -119,10 +119,12 @@ pub(crate) const AUTO_NEWTON_BUDGET: usize = 100;
 
 /// The iterations a Newton chosen by [`Algorithm::Auto`] may take where it runs without the
 /// probe (a dense `W` kept non-symmetric, issue 37) before the accelerated sweep takes over
-/// from the start. Measured on Siconos' dense non-symmetric problems (`docs/benchmarks.md`,
-/// "Auto over Siconos' whole collection"): Newton converges in 7–18 iterations on the rovers
-/// and on `OneObject-i1028-138` / `-316`; on `OneObject-i100000-499` it needs 95 (2.6× the
-/// sweep's time), and 30 (about twice the longest fast run) caps that loss.
+/// from Newton's iterate. Measured on Siconos' dense non-symmetric problems
+/// (`docs/benchmarks.md`, "Auto over Siconos' whole collection", sixth part): Newton converges
+/// in 7–18 iterations on the rovers and on `OneObject-i1028-138` / `-316`; on
+/// `OneObject-i100000-499` it needs 95 (1.5× the sweep's time), and after 30 (about twice
+/// the longest fast run) the sweep finishes from Newton's iterate in 380 sweeps (1 133 from
+/// the start).
 pub(crate) const AUTO_NEWTON_UNPROBED_BUDGET: usize = 30;
 
 /// A Newton step of [`Algorithm::Auto`]'s probe accepted with a step length at most this

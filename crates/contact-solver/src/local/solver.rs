@@ -283,10 +283,18 @@ impl UzawaSolver {
             (false, true) => &[Algorithm::ClassicRccm],
             (false, false) => &[],
         };
+        // an unprobed Newton (a dense W kept non-symmetric) hands its iterate to the sweep
+        let mut from_newton = switched && !newton_probes(problem);
         for &next in chain {
             if sol.report.converged {
                 break;
             }
+            let start = if from_newton {
+                sol.r.clone()
+            } else {
+                r.clone()
+            };
+            from_newton = false;
             let settings = UzawaSettings {
                 algorithm: next,
                 ..st
@@ -299,7 +307,7 @@ impl UzawaSolver {
                 problem,
                 laws,
                 states,
-                &r,
+                &start,
                 mu,
                 &mut best_iterate,
             )?;

@@ -119,7 +119,8 @@ pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedPr
 /// spheres, 53 iterations, still 1.9× faster than the sweep) runs to the end.
 ///
 /// A Newton that runs without the probe ([`newton_probes`]: a dense `W` kept non-symmetric)
-/// has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`.
+/// has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`, and the sweep goes on from its
+/// iterate (the solver's hand-over).
 pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) -> UzawaSettings {
     let budget = if newton_probes(problem) {
         AUTO_NEWTON_BUDGET
