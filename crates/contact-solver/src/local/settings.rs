@@ -117,6 +117,16 @@ pub(crate) const AUTO_MULTIBODY_ZERO_BLOCKS: f64 = 0.5;
 /// sweep, with steps `t ≥ 2⁻⁴`); 100 is about twice the longest converging run.
 pub(crate) const AUTO_NEWTON_BUDGET: usize = 100;
 
+/// The iterations a Newton chosen by [`Algorithm::Auto`] may take where it runs without the
+/// probe (a dense `W` kept non-symmetric, issue 37) before the accelerated sweep takes over
+/// from Newton's iterate. Measured on Siconos' dense non-symmetric problems
+/// (`docs/benchmarks.md`, "Auto over Siconos' whole collection", sixth part): Newton converges
+/// in 7–18 iterations on the rovers and on `OneObject-i1028-138` / `-316`; on
+/// `OneObject-i100000-499` it needs 95 (1.5× the sweep's time), and after 30 (about twice
+/// the longest fast run) the sweep finishes from Newton's iterate in 380 sweeps (1 133 from
+/// the start).
+pub(crate) const AUTO_NEWTON_UNPROBED_BUDGET: usize = 30;
+
 /// A Newton step of [`Algorithm::Auto`]'s probe accepted with a step length at most this
 /// (five halvings or more of the Armijo line search) is *short*. Measured (the residual and
 /// the step of every Newton iteration on the rows of `docs/benchmarks.md` "Auto on multibody

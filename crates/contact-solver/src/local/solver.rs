@@ -21,8 +21,8 @@ mod direct;
 mod skip_open;
 
 use auto::{
-    auto_newton_budget, newton_pays, pressed_most, sparse_twin_for_auto, sweep_probe,
-    sweep_promises,
+    auto_newton_budget, newton_pays, newton_probes, pressed_most, sparse_twin_for_auto,
+    sweep_probe, sweep_promises,
 };
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
@@ -254,11 +254,11 @@ impl UzawaSolver {
             }
         }
         let first = if auto_newton {
-            auto_newton_budget(st)
+            auto_newton_budget(st, problem)
         } else {
             st
         };
-        self.newton.probe = auto_newton;
+        self.newton.probe = auto_newton && newton_probes(problem);
         let first_run = self.attempt::<L, DT>(first, problem, laws, states, r.clone());
         self.newton.probe = false;
         let mut sol = first_run?;
@@ -283,10 +283,18 @@ impl UzawaSolver {
             (false, true) => &[Algorithm::ClassicRccm],
             (false, false) => &[],
         };
+        // an unprobed Newton (a dense W kept non-symmetric) hands its iterate to the sweep
+        let mut from_newton = switched && !newton_probes(problem);
         for &next in chain {
             if sol.report.converged {
                 break;
             }
+            let start = if from_newton {
+                sol.r.clone()
+            } else {
+                r.clone()
+            };
+            from_newton = false;
             let settings = UzawaSettings {
                 algorithm: next,
                 ..st
@@ -299,7 +307,7 @@ impl UzawaSolver {
                 problem,
                 laws,
                 states,
-                &r,
+                &start,
                 mu,
                 &mut best_iterate,
             )?;

@@ -205,3 +205,125 @@ fn issue_37_auto_choice_on_a_multibody_like_problem() {
         );
     }
 }
+
+/// Auto's choice on a multibody-like dense `W` kept non-symmetric (a body with joints, as
+/// Siconos' `OneObject-i1028-138.dat`, where `Auto` swept 4 023 times against Newton's 13
+/// iterations): two contacts coupled one way (block `W_01 ≠ 0`, `W_10 = 0`) with
+/// non-symmetric diagonal blocks, and three open ones, so that 95 % of the off-diagonal blocks
+/// are zero and fewer than half the contacts are pressed (no sweep first). The old rule
+/// (mostly zero blocks: the sweep) picked the accelerated sweep; `Auto` now runs Newton, with
+/// no fallback, and returns the known answer (a slip, a stick, three open contacts,
+/// `q = x* − W r*` with the whole non-symmetric `W`) to 1e-7 absolute (the tolerance 1e-8
+/// relative, on answers of order 1).
+#[test]
+fn issue_37_auto_newton_on_a_non_symmetric_multibody_like_problem() {
+    let (p, r_star) = non_symmetric_multibody();
+    let auto = solve(&p, Algorithm::Auto);
+    assert_eq!(auto.report.algorithm, Algorithm::Newton);
+    assert_eq!(auto.report.fallback_from, None);
+    for (got, want) in auto.r.iter().zip(&r_star) {
+        assert!(
+            (got - want).abs() <= 1e-7,
+            "{:?} against {r_star:?}",
+            auto.r
+        );
+    }
+}
+
+/// Where the unprobed Newton of a dense non-symmetric `W` runs out of its budget, the sweep
+/// goes on from Newton's iterate (Siconos' `OneObject-i100000-499`: 380 sweeps after 30 Newton
+/// iterations, against 1 133 from the start). With `max_iterations` 2 (Newton's two warm-up
+/// sweeps, then two sweeps, fallback off), the sweep's first residual is not the one of the
+/// sweep from the start (the old hand-over, equal to the bit), and is below it.
+#[test]
+fn issue_37_auto_sweep_goes_on_from_the_unprobed_newton() {
+    let (p, _) = non_symmetric_multibody();
+    let st = |a: Algorithm| {
+        UzawaSettings::default()
+            .with_algorithm(a)
+            .with_fallback(false)
+            .with_max_iterations(2)
+    };
+    let history = |a: Algorithm| match UzawaSolver::new(st(a)).solve(&p, &p.coulomb_laws()) {
+        Err(contact_solver::SolverError::NotConverged { history, .. }) => history,
+        other => panic!("{a:?}: {other:?}"),
+    };
+    let alone = history(Algorithm::AndersonGaussSeidel);
+    let auto = history(Algorithm::Auto);
+    assert_eq!(auto.len(), 4, "{auto:?}");
+    assert!(auto[2] < alone[0], "{auto:?} against {alone:?}");
+}
+
+/// The problem of the two tests above and its known answer `r*`.
+fn non_symmetric_multibody() -> (ReducedProblem, Vec<f64>) {
+    use contact_solver::Asymmetry;
+    // (block, μ, r_n, angle, slip speed, stick (`None`) or open (`r_n` = 0: the gap `x_n`))
+    type Known = ([f64; 9], f64, f64, f64, Option<f64>);
+    let blocks: [Known; 5] = [
+        (
+            [2.0, 0.5, 0.0, 0.1, 1.0, 0.0, 0.0, 0.0, 1.5],
+            0.5,
+            1.0,
+            0.4,
+            Some(0.5),
+        ),
+        (
+            [1.0, 0.0, 0.3, 0.0, 1.0, 0.0, 0.1, 0.0, 1.0],
+            0.3,
+            2.0,
+            1.1,
+            None,
+        ),
+        (
+            [3.0, 0.2, 0.0, 0.0, 2.0, 0.1, 0.0, 0.0, 2.0],
+            0.4,
+            0.0,
+            -2.0,
+            Some(0.7),
+        ),
+        (
+            [1.0, 0.1, 0.1, 0.1, 1.0, 0.0, 0.0, 0.0, 1.0],
+            0.2,
+            0.0,
+            3.0,
+            Some(0.1),
+        ),
+        (
+            [1.5, 0.0, 0.2, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+            0.6,
+            0.0,
+            0.5,
+            Some(1.2),
+        ),
+    ];
+    let nc = blocks.len();
+    let m = 3 * nc;
+    let (mut w, mut x_star, mut mu, mut r_star) = (vec![0.0; m * m], vec![], vec![], vec![]);
+    for (i, &(b, mu_i, rn, phi, speed)) in blocks.iter().enumerate() {
+        for k in 0..3 {
+            for l in 0..3 {
+                w[(3 * i + k) * m + 3 * i + l] = b[3 * k + l];
+            }
+        }
+        let (s, c) = phi.sin_cos();
+        let (r, x) = match speed {
+            // open: no reaction, a gap and any tangential velocity
+            Some(v) if rn == 0.0 => ([0.0; 3], [v, 0.3 * c, 0.3 * s]),
+            Some(v) => ([rn, -mu_i * rn * c, -mu_i * rn * s], [0.0, v * c, v * s]),
+            None => ([rn, -0.5 * mu_i * rn * c, -0.5 * mu_i * rn * s], [0.0; 3]),
+        };
+        r_star.extend_from_slice(&r);
+        x_star.extend_from_slice(&x);
+        mu.push(mu_i);
+    }
+    // one-way coupling of contact 0 to contact 1 (small beside the diagonal)
+    for (k, l, v) in [(0, 0, 0.2), (1, 1, 0.1), (2, 0, -0.1)] {
+        w[k * m + 3 + l] = v;
+    }
+    let q: Vec<f64> = (0..m)
+        .map(|i| x_star[i] - (0..m).map(|j| w[i * m + j] * r_star[j]).sum::<f64>())
+        .collect();
+    let p = ReducedProblem::with_asymmetry(3, w, q, mu, Asymmetry::Keep).unwrap();
+    assert!(!p.is_symmetric() && !p.is_sparse());
+    (p, r_star)
+}

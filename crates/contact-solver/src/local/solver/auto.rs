@@ -8,8 +8,8 @@ use super::super::problem::ReducedProblem;
 use super::super::settings::Algorithm;
 use super::super::settings::{
     AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
-    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_PREDICTED,
-    AUTO_SWEEP_PROBE, UzawaSettings,
+    AUTO_NEWTON_UNPROBED_BUDGET, AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED,
+    AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
@@ -18,17 +18,34 @@ use super::super::settings::{
 /// Delassus operator, [`mostly_zero_blocks`]: `Auto` solves it stored sparse,
 /// [`sparse_twin_for_auto`]), on a sparse `W` up to
 /// `AUTO_SPARSE_NEWTON_MAX_CONTACTS` contacts whose graph fills a factorisation by at most
-/// `AUTO_NEWTON_MAX_FILL`. Newton chosen here runs as a probe: it gives up on its second
-/// short step and within `AUTO_NEWTON_BUDGET` iterations ([`auto_newton_budget`]).
+/// `AUTO_NEWTON_MAX_FILL`. A dense `W` kept non-symmetric takes Newton whatever its blocks
+/// (issue 37: Siconos' `OneObject` problems, a body with joints, 23–25 contacts and 70 % zero
+/// blocks, were left to the sweep, 4 023 sweeps where Newton takes 13 iterations). Newton
+/// chosen here runs within a budget ([`auto_newton_budget`]) and, on a symmetric or sparse
+/// `W`, as a probe that gives up on its second short step ([`newton_probes`]).
 pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
     let nc = problem.contact_count();
     match problem.w_sparse() {
-        None => nc <= AUTO_NEWTON_MAX_CONTACTS && !mostly_zero_blocks(problem),
+        None => {
+            nc <= AUTO_NEWTON_MAX_CONTACTS
+                && (!problem.is_symmetric() || !mostly_zero_blocks(problem))
+        }
         Some(a) => {
             nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
                 && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
         }
     }
+}
+
+/// Whether a Newton that [`Algorithm::Auto`] chose runs as a probe (it gives up on its second
+/// short Armijo step, `AUTO_NEWTON_SHORT_STEPS`): on a symmetric `W`, and on a sparse one kept
+/// non-symmetric; not on a dense `W` kept non-symmetric. Measured (issue 37, Siconos' rovers
+/// and `OneObject` problems, dense, asymmetry 1e-5 to 1e-3 of the scale): Newton's Armijo
+/// steps shrink to `t ≤ 2⁻⁵` early there and still converge within 7–18 iterations (95 on
+/// `OneObject-i100000-499`), while the sweep that took over needed 4 023 sweeps (80× Newton's
+/// time) on `OneObject-i1028-138`; the budget `AUTO_NEWTON_UNPROBED_BUDGET` bounds the run.
+pub(super) fn newton_probes(problem: &ReducedProblem) -> bool {
+    problem.is_symmetric() || problem.w_dense().is_none()
 }
 
 /// Whether at least `AUTO_MULTIBODY_ZERO_BLOCKS` of the off-diagonal `d × d` blocks of a dense
@@ -96,13 +113,22 @@ pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedPr
 /// choice costs a bounded fraction of the solve (issue 37: Newton ground for thousands of
 /// iterations on multibody stacks that the sweep solves in hundreds). The run gives up
 /// sooner on its second short Armijo step after the first (`AUTO_NEWTON_SHORT_STEP`,
-/// `AUTO_NEWTON_SHORT_STEPS`; the solver sets the Newton's `probe` for this run): measured,
-/// the creeping runs give it at iteration 6–10, no converging run gives one, and a slow but
-/// converging Newton (a tower of 50 spheres, 53 iterations, still 1.9× faster than the
-/// sweep) runs to the end.
-pub(super) fn auto_newton_budget(st: UzawaSettings) -> UzawaSettings {
+/// `AUTO_NEWTON_SHORT_STEPS`; the solver sets the Newton's `probe` for this run where
+/// [`newton_probes`]): measured on symmetric `W`, the creeping runs give it at iteration
+/// 6–10, no converging run gives one, and a slow but converging Newton (a tower of 50
+/// spheres, 53 iterations, still 1.9× faster than the sweep) runs to the end.
+///
+/// A Newton that runs without the probe ([`newton_probes`]: a dense `W` kept non-symmetric)
+/// has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`, and the sweep goes on from its
+/// iterate (the solver's hand-over).
+pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) -> UzawaSettings {
+    let budget = if newton_probes(problem) {
+        AUTO_NEWTON_BUDGET
+    } else {
+        AUTO_NEWTON_UNPROBED_BUDGET
+    };
     UzawaSettings {
-        max_iterations: st.max_iterations.min(AUTO_NEWTON_BUDGET),
+        max_iterations: st.max_iterations.min(budget),
         ..st
     }
 }
@@ -156,6 +182,7 @@ pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::local::Asymmetry;
 
     /// A block-diagonal `W` (two bodies, no shared contact) is mostly zero blocks; a full one
     /// (every entry non-zero, like a condensed FE flexibility) is not; one contact has no
@@ -180,6 +207,53 @@ mod tests {
         assert!(!mostly_zero_blocks(&one.unwrap()));
         let sparse = crate::local::generate::random_sparse_problem(3, 50, 0, 2);
         assert!(!mostly_zero_blocks(&sparse));
+    }
+
+    /// Issue 37, sixth part: a dense `W` kept non-symmetric runs Newton without the probe and
+    /// within `AUTO_NEWTON_UNPROBED_BUDGET`, whatever its zero blocks (`newton_pays`); the
+    /// same `W` symmetric, or kept non-symmetric but stored sparse, keeps the probe and
+    /// `AUTO_NEWTON_BUDGET`, and a symmetric block-diagonal one is left to the sparse twin.
+    #[test]
+    fn issue_37_dense_non_symmetric_w_runs_newton_unprobed() {
+        // two uncoupled contacts (every off-diagonal block zero), one block non-symmetric
+        let w = vec![
+            2.0, 0.5, 0.0, 0.0, //
+            0.1, 2.0, 0.0, 0.0, //
+            0.0, 0.0, 2.0, 0.0, //
+            0.0, 0.0, 0.0, 2.0,
+        ];
+        let (q, mu) = (vec![-1.0; 4], vec![0.3; 2]);
+        let kept =
+            ReducedProblem::with_asymmetry(2, w.clone(), q.clone(), mu.clone(), Asymmetry::Keep)
+                .unwrap();
+        assert!(!kept.is_symmetric() && mostly_zero_blocks(&kept));
+        assert!(newton_pays(&kept) && !newton_probes(&kept));
+        assert!(sparse_twin_for_auto(&kept).is_none());
+        let st = UzawaSettings::default();
+        let budget = auto_newton_budget(st, &kept).max_iterations;
+        assert_eq!(budget, AUTO_NEWTON_UNPROBED_BUDGET);
+        // symmetrised (the default policy): the multibody rule as before
+        let sym =
+            ReducedProblem::with_asymmetry(2, w, q, mu, Asymmetry::Symmetrise { tolerance: 1.0 })
+                .unwrap();
+        assert!(sym.is_symmetric() && newton_probes(&sym) && !newton_pays(&sym));
+        assert!(sparse_twin_for_auto(&sym).is_some());
+        assert_eq!(
+            auto_newton_budget(st, &sym).max_iterations,
+            AUTO_NEWTON_BUDGET
+        );
+        // kept non-symmetric, stored sparse: the probe stays
+        let sparse = ReducedProblem::from_triplets_with_asymmetry(
+            2,
+            &[0, 0, 1, 1, 2, 3],
+            &[0, 1, 0, 1, 2, 3],
+            &[2.0, 0.5, 0.1, 2.0, 2.0, 2.0],
+            vec![-1.0; 4],
+            vec![0.3; 2],
+            Asymmetry::Keep,
+        )
+        .unwrap();
+        assert!(!sparse.is_symmetric() && newton_probes(&sparse));
     }
 
     /// A sweep contracting by 0.5 a sweep from 1 reaches 1e-8 near sweep 27 (promised at 8
