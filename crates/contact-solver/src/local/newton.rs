@@ -48,10 +48,16 @@
 //! **Globalisation.** Armijo backtracking on `φ = ‖F‖²`: the step `t ∈ {1, ½, ¼, …}` is
 //! accepted when `φ(r + tΔr) ≤ (1 − 2σt) φ(r)`, `σ = 10⁻⁴`; `x` moves by `t W Δr` (one
 //! product per Newton step, none per trial). If the direction is not finite (a singular
-//! system) or no `t ≥ 2⁻²⁰` is accepted, the step is retried with a [proximal
-//! regularisation](proximal) of the Jacobian (`W + εI`, issue 37: it makes Newton converge on
-//! semidefinite and rank-deficient `W`), and when that fails too one projected Gauss–Seidel
-//! sweep is done instead.
+//! system) or no `t ≥ 2⁻²⁰` is accepted, the step is retried with a proximal regularisation
+//! of the Jacobian, and when that fails too one projected Gauss–Seidel sweep is done instead.
+//!
+//! **Proximal regularisation** (issue 37; `src/local/newton/proximal.rs`). On a semidefinite
+//! or rank-deficient `W` (redundant contacts of rigid bodies) the sticking rows `S W Δr` are
+//! singular and the steps creep. The Jacobian is then taken with `W + ε_i I`, `ε_i = η/ρ_i`
+//! (`F` keeps `W`): `η = 0` until a step fails or is short (`t ≤ 2⁻⁵`), then `η ← max(10 η,
+//! 10⁻⁶)` up to 1, a failed step retried at once (at most 3 times); a full step divides `η`
+//! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
+//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)".
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
@@ -541,50 +547,52 @@ impl NewtonScratch {
             let warming_up = run.iterations <= WARMUP_SWEEPS;
             let mut t = 0.0;
             let mut attempt = 0;
-            while !warming_up && !polishing {
-                if self.direction::<DT>(problem) {
-                    problem.columns().mul_into(&self.dr, &mut self.wdr);
-                    t = 1.0;
-                    for _ in 0..=MAX_HALVINGS {
-                        for k in 0..m {
-                            self.r_try[k] = r[k] + t * self.dr[k];
-                            self.x_try[k] = x[k] + t * self.wdr[k];
+            if !warming_up && !polishing {
+                loop {
+                    if self.direction::<DT>(problem) {
+                        problem.columns().mul_into(&self.dr, &mut self.wdr);
+                        t = 1.0;
+                        for _ in 0..=MAX_HALVINGS {
+                            for k in 0..m {
+                                self.r_try[k] = r[k] + t * self.dr[k];
+                                self.x_try[k] = x[k] + t * self.wdr[k];
+                            }
+                            let phi_try = eval::<L, DT>(
+                                laws,
+                                states,
+                                &self.rho,
+                                &self.mu_bar,
+                                &self.r_try,
+                                &self.x_try,
+                                &mut self.f_try,
+                                &mut self.cases_try,
+                            );
+                            if phi_try <= (1.0 - 2.0 * ARMIJO * t) * phi {
+                                stepped = true;
+                                phi = phi_try;
+                                break;
+                            }
+                            t *= 0.5;
                         }
-                        let phi_try = eval::<L, DT>(
-                            laws,
-                            states,
-                            &self.rho,
-                            &self.mu_bar,
-                            &self.r_try,
-                            &self.x_try,
-                            &mut self.f_try,
-                            &mut self.cases_try,
-                        );
-                        if phi_try <= (1.0 - 2.0 * ARMIJO * t) * phi {
-                            stepped = true;
-                            phi = phi_try;
-                            break;
+                        steps_tried += 1;
+                        if self.probe && steps_tried > 1 && creeps(stepped, t) {
+                            short_steps += 1;
+                            if short_steps >= AUTO_NEWTON_SHORT_STEPS {
+                                // give up without a step (the iteration is not counted): the
+                                // accelerated sweep takes over
+                                run.iterations -= 1;
+                                break 'outer;
+                            }
                         }
-                        t *= 0.5;
                     }
-                    steps_tried += 1;
-                    if self.probe && steps_tried > 1 && creeps(stepped, t) {
-                        short_steps += 1;
-                        if short_steps >= AUTO_NEWTON_SHORT_STEPS {
-                            // give up without a step (the iteration is not counted): the
-                            // accelerated sweep takes over
-                            run.iterations -= 1;
-                            break 'outer;
-                        }
+                    // the proximal regularisation: a failed step is retried with a larger η
+                    let retry;
+                    (self.eta, retry) = proximal::next_eta(self.eta, stepped, t);
+                    if stepped || !retry || attempt == proximal::RETRIES {
+                        break;
                     }
+                    attempt += 1;
                 }
-                // the proximal regularisation: a failed step is retried with a larger η
-                let retry;
-                (self.eta, retry) = proximal::next_eta(self.eta, stepped, t);
-                if stepped || !retry || attempt == proximal::RETRIES {
-                    break;
-                }
-                attempt += 1;
             }
             if stepped {
                 run.newton_steps += 1;

@@ -36,7 +36,7 @@ pub(super) fn next_eta(eta: f64, stepped: bool, t: f64) -> (f64, bool) {
         let down = if t >= 1.0 { eta / 10.0 } else { eta };
         (if down < ETA_MIN { 0.0 } else { down }, false)
     } else {
-        let up = (eta * 10.0).max(ETA_MIN).min(ETA_MAX);
+        let up = (eta * 10.0).clamp(ETA_MIN, ETA_MAX);
         (up, up > eta)
     }
 }
