@@ -48,7 +48,16 @@
 //! **Globalisation.** Armijo backtracking on `φ = ‖F‖²`: the step `t ∈ {1, ½, ¼, …}` is
 //! accepted when `φ(r + tΔr) ≤ (1 − 2σt) φ(r)`, `σ = 10⁻⁴`; `x` moves by `t W Δr` (one
 //! product per Newton step, none per trial). If the direction is not finite (a singular
-//! system) or no `t ≥ 2⁻²⁰` is accepted, one projected Gauss–Seidel sweep is done instead.
+//! system) or no `t ≥ 2⁻²⁰` is accepted, the step is retried with a proximal regularisation
+//! of the Jacobian, and when that fails too one projected Gauss–Seidel sweep is done instead.
+//!
+//! **Proximal regularisation** (issue 37; `src/local/newton/proximal.rs`). On a semidefinite
+//! or rank-deficient `W` (redundant contacts of rigid bodies) the sticking rows `S W Δr` are
+//! singular and the steps creep. The Jacobian is then taken with `W + ε_i I`, `ε_i = η/ρ_i`
+//! (`F` keeps `W`): `η = 0` until a step fails or is short (`t ≤ 2⁻⁵`), then `η ← max(10 η,
+//! 10⁻⁶)` up to 1, a failed step retried at once (at most 3 times); a full step divides `η`
+//! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
+//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)".
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
@@ -106,7 +115,10 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::Triplet;
 use faer::{MatMut, MatRef};
 
+mod lu;
+mod proximal;
 mod sparse;
+use lu::lu_solve_in_place;
 pub(crate) use sparse::factor_fill;
 
 /// Armijo's constant `σ` of the line search.
@@ -215,6 +227,9 @@ pub(crate) struct NewtonScratch {
     /// chose: the run gives up (neither converged nor stalled) on its second short step
     /// ([`creeps`]), so that the accelerated sweep takes over.
     pub(crate) probe: bool,
+    /// `η` of the [proximal regularisation](proximal) (`W + ε_i I`, `ε_i = η/ρ_i`, in the
+    /// Jacobian); 0 off.
+    eta: f64,
 }
 
 /// Whether a Newton step of [`Algorithm::Auto`](super::settings::Algorithm::Auto)'s probe
@@ -224,61 +239,6 @@ pub(crate) struct NewtonScratch {
 /// creep for thousands of iterations `t ≤ 2⁻⁶` on most steps).
 fn creeps(stepped: bool, t: f64) -> bool {
     !stepped || t <= AUTO_NEWTON_SHORT_STEP
-}
-
-/// Solves `a y = b` in place (`y` into `b`) by Gaussian elimination with partial pivoting;
-/// `a` is column-major `p × p` and is overwritten by its LU factors. Returns `false` on a zero
-/// pivot.
-///
-/// # Panics
-/// If `a.len() != p²` or `b.len() != p`.
-#[track_caller]
-fn lu_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
-    let p = b.len();
-    assert_eq!(a.len(), p * p, "a must be p × p");
-    for k in 0..p {
-        let (mut pivot, mut best) = (k, a[k * p + k].abs());
-        for i in k + 1..p {
-            if a[k * p + i].abs() > best {
-                (pivot, best) = (i, a[k * p + i].abs());
-            }
-        }
-        if best == 0.0 || !best.is_finite() {
-            return false;
-        }
-        if pivot != k {
-            for j in 0..p {
-                a.swap(j * p + k, j * p + pivot);
-            }
-            b.swap(k, pivot);
-        }
-        let inv = 1.0 / a[k * p + k];
-        a[k * p + k + 1..(k + 1) * p]
-            .iter_mut()
-            .for_each(|l| *l *= inv);
-        let (left, right) = a.split_at_mut((k + 1) * p);
-        let col_k = &left[k * p..];
-        for col in right.chunks_exact_mut(p) {
-            let a_kj = col[k];
-            if a_kj != 0.0 {
-                for (c, l) in col[k + 1..].iter_mut().zip(&col_k[k + 1..]) {
-                    *c -= l * a_kj;
-                }
-            }
-        }
-        let b_k = b[k];
-        for (c, l) in b[k + 1..].iter_mut().zip(&col_k[k + 1..]) {
-            *c -= l * b_k;
-        }
-    }
-    for k in (0..p).rev() {
-        b[k] /= a[k * p + k];
-        let b_k = b[k];
-        for (c, u) in b[..k].iter_mut().zip(&a[k * p..k * p + k]) {
-            *c -= u * b_k;
-        }
-    }
-    true
 }
 
 /// `F(r)` into `f` and the cases into `cases`; returns `‖F‖²`.
@@ -478,6 +438,9 @@ impl NewtonScratch {
             for (ir, (c, &(i, l, diagonal, _))) in col.iter_mut().zip(&self.rows).enumerate() {
                 let bi = d * i;
                 *c = (0..d).map(|k| l[k] * self.wcol[bi + k]).sum::<f64>();
+                if i == j && self.eta > 0.0 {
+                    *c += self.eta / self.rho[i] * (0..d).map(|k| l[k] * z[k]).sum::<f64>();
+                }
                 if ir == jc {
                     *c += diagonal;
                 }
@@ -510,6 +473,11 @@ impl NewtonScratch {
         let p = self.cols.len();
         if p > 0 {
             w.mul_into(&self.d, &mut self.wd);
+            if self.eta > 0.0 {
+                for (k, (o, dk)) in self.wd.iter_mut().zip(&self.d).enumerate() {
+                    *o += self.eta / self.rho[k / d] * dk;
+                }
+            }
             self.b.clear();
             self.b.extend(self.rows.iter().map(|&(i, l, _, rhs)| {
                 rhs - (0..d).map(|k| l[k] * self.wd[d * i + k]).sum::<f64>()
@@ -572,53 +540,67 @@ impl NewtonScratch {
         let mut streak = ResidualStop::default();
         // Auto's probe: Newton steps so far, and the short ones after the first
         let (mut steps_tried, mut short_steps) = (0usize, 0usize);
-        while run.iterations < settings.max_iterations {
+        self.eta = 0.0;
+        'outer: while run.iterations < settings.max_iterations {
             run.iterations += 1;
             let mut stepped = false;
             let warming_up = run.iterations <= WARMUP_SWEEPS;
-            if !warming_up && !polishing && self.direction::<DT>(problem) {
-                problem.columns().mul_into(&self.dr, &mut self.wdr);
-                let mut t = 1.0;
-                for _ in 0..=MAX_HALVINGS {
-                    for k in 0..m {
-                        self.r_try[k] = r[k] + t * self.dr[k];
-                        self.x_try[k] = x[k] + t * self.wdr[k];
+            let mut t = 0.0;
+            let mut attempt = 0;
+            if !warming_up && !polishing {
+                loop {
+                    if self.direction::<DT>(problem) {
+                        problem.columns().mul_into(&self.dr, &mut self.wdr);
+                        t = 1.0;
+                        for _ in 0..=MAX_HALVINGS {
+                            for k in 0..m {
+                                self.r_try[k] = r[k] + t * self.dr[k];
+                                self.x_try[k] = x[k] + t * self.wdr[k];
+                            }
+                            let phi_try = eval::<L, DT>(
+                                laws,
+                                states,
+                                &self.rho,
+                                &self.mu_bar,
+                                &self.r_try,
+                                &self.x_try,
+                                &mut self.f_try,
+                                &mut self.cases_try,
+                            );
+                            if phi_try <= (1.0 - 2.0 * ARMIJO * t) * phi {
+                                stepped = true;
+                                phi = phi_try;
+                                break;
+                            }
+                            t *= 0.5;
+                        }
+                        steps_tried += 1;
+                        if self.probe && steps_tried > 1 && creeps(stepped, t) {
+                            short_steps += 1;
+                            if short_steps >= AUTO_NEWTON_SHORT_STEPS {
+                                // give up without a step (the iteration is not counted): the
+                                // accelerated sweep takes over
+                                run.iterations -= 1;
+                                break 'outer;
+                            }
+                        }
                     }
-                    let phi_try = eval::<L, DT>(
-                        laws,
-                        states,
-                        &self.rho,
-                        &self.mu_bar,
-                        &self.r_try,
-                        &self.x_try,
-                        &mut self.f_try,
-                        &mut self.cases_try,
-                    );
-                    if phi_try <= (1.0 - 2.0 * ARMIJO * t) * phi {
-                        stepped = true;
-                        phi = phi_try;
+                    // the proximal regularisation: a failed step is retried with a larger η
+                    let retry;
+                    (self.eta, retry) = proximal::next_eta(self.eta, stepped, t);
+                    if stepped || !retry || attempt == proximal::RETRIES {
                         break;
                     }
-                    t *= 0.5;
+                    attempt += 1;
                 }
-                steps_tried += 1;
-                if self.probe && steps_tried > 1 && creeps(stepped, t) {
-                    short_steps += 1;
-                    if short_steps >= AUTO_NEWTON_SHORT_STEPS {
-                        // give up without a step (the iteration is not counted): the
-                        // accelerated sweep takes over
-                        run.iterations -= 1;
-                        break;
-                    }
-                }
-                if stepped {
-                    run.newton_steps += 1;
-                    r.copy_from_slice(&self.r_try);
-                    x.copy_from_slice(&self.x_try);
-                    std::mem::swap(&mut self.f, &mut self.f_try);
-                    std::mem::swap(&mut self.cases, &mut self.cases_try);
-                    run.change = t * norm(&self.dr) / norm(r).max(f64::MIN_POSITIVE);
-                }
+            }
+            if stepped {
+                run.newton_steps += 1;
+                r.copy_from_slice(&self.r_try);
+                x.copy_from_slice(&self.x_try);
+                std::mem::swap(&mut self.f, &mut self.f_try);
+                std::mem::swap(&mut self.cases, &mut self.cases_try);
+                run.change = t * norm(&self.dr) / norm(r).max(f64::MIN_POSITIVE);
             }
             if !stepped {
                 // Warm-up, polishing or fallback: one projected Gauss–Seidel sweep.

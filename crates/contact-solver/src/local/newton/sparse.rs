@@ -51,6 +51,13 @@ impl NewtonScratch {
                         }
                     }
                 }
+                if i == j && self.eta > 0.0 {
+                    // the proximal term of `W + ε_j I` (`proximal`)
+                    let eps = self.eta / self.rho[j];
+                    for l in 0..d {
+                        wz[l] += eps * z[l];
+                    }
+                }
                 for ir in lo..hi {
                     let (_, l, diagonal, _) = self.rows[ir];
                     let mut v = (0..d).map(|k| l[k] * wz[k]).sum::<f64>();
