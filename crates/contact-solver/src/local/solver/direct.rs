@@ -7,7 +7,7 @@ use super::super::problem::ReducedProblem;
 use super::super::residual::{contact_statuses, natural_residual};
 use super::super::settings::{Algorithm, Solution, UzawaReport};
 use super::UzawaSolver;
-use contact_laws::ContactLaw;
+use contact_laws::{ContactLaw, ContactStatus};
 
 impl UzawaSolver {
     /// `r = 0` when it is the exact solution, with no iteration: every `q_n ≥ 0` for
@@ -32,24 +32,11 @@ impl UzawaSolver {
         let x = q.to_vec();
         let statuses = contact_statuses::<L, DT>(laws, states, &self.sweeps.rho0, &r, &x);
         let rho = &self.sweeps.rho;
-        let report = UzawaReport {
-            algorithm,
-            iterations: 0,
-            outer_iterations: 0,
-            tangential_sweeps: 0,
-            converged: true,
-            stalled: false,
-            residual: 0.0,
-            change: 0.0,
-            history: Vec::new(),
-            rho_min: rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
-            rho_max: rho.iter().fold(0.0, |a, &b| a.max(b)),
-            statuses,
-            fallback_from: None,
-            asymmetry: problem.asymmetry(),
-            rescaled: false,
-            solved_contacts: 0,
-        };
+        let rho_range = (
+            rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
+            rho.iter().fold(0.0_f64, |a, &b| a.max(b)),
+        );
+        let report = direct_report(algorithm, 0, 0.0, rho_range, statuses, problem);
         Some(Solution { r, x, report })
     }
 
@@ -70,17 +57,9 @@ impl UzawaSolver {
     ) -> Option<Solution> {
         let d = problem.dimension();
         let q = problem.q();
-        // the block from the rows of W, whatever its storage (a kept non-symmetric W too)
-        let mut w = [[0.0; 3]; 3];
-        let (mut unit, mut col) = (vec![0.0; d], vec![0.0; d]);
-        for l in 0..d {
-            unit.fill(0.0);
-            unit[l] = 1.0;
-            problem.displacement_into(&unit, &mut col);
-            for (k, row) in w.iter_mut().enumerate().take(d) {
-                row[l] = col[k] - q[k];
-            }
-        }
+        // with one contact its diagonal block is the whole `W` (as stored: a kept
+        // non-symmetric `W` too)
+        let w = problem.diagonal_block(0);
         for cand in candidates(&w, q, mu[0]) {
             let r = cand[..d].to_vec();
             let mut x = vec![0.0; d];
@@ -92,24 +71,17 @@ impl UzawaSolver {
                 continue;
             }
             let statuses = contact_statuses::<L, DT>(laws, states, rho0, &r, &x);
-            let report = UzawaReport {
-                algorithm: Algorithm::Auto,
-                iterations: 1,
-                outer_iterations: 1,
-                tangential_sweeps: 0,
-                converged: true,
-                stalled: false,
+            let mut report = direct_report(
+                Algorithm::Auto,
+                1,
                 residual,
-                change: 0.0,
-                history: vec![residual],
-                rho_min: rho0[0],
-                rho_max: rho0[0],
+                (rho0[0], rho0[0]),
                 statuses,
-                fallback_from: None,
-                asymmetry: problem.asymmetry(),
-                rescaled: false,
-                solved_contacts: 1,
-            };
+                problem,
+            );
+            report.outer_iterations = 1;
+            report.history = vec![residual];
+            report.solved_contacts = 1;
             let mut sol = Solution { r, x, report };
             self.check::<L, DT>(problem, laws, states, &mut sol, Some(mu));
             if sol.report.converged {
@@ -117,5 +89,36 @@ impl UzawaSolver {
             }
         }
         None
+    }
+}
+
+/// The report of an answer found without iterating (`iterations` 0 for `r = 0`, 1 for the
+/// one-contact solve): converged, with the final `residual`, the penalty range `rho` and the
+/// contact statuses.
+fn direct_report(
+    algorithm: Algorithm,
+    iterations: usize,
+    residual: f64,
+    (rho_min, rho_max): (f64, f64),
+    statuses: Vec<ContactStatus>,
+    problem: &ReducedProblem,
+) -> UzawaReport {
+    UzawaReport {
+        algorithm,
+        iterations,
+        outer_iterations: 0,
+        tangential_sweeps: 0,
+        converged: true,
+        stalled: false,
+        residual,
+        change: 0.0,
+        history: Vec::new(),
+        rho_min,
+        rho_max,
+        statuses,
+        fallback_from: None,
+        asymmetry: problem.asymmetry(),
+        rescaled: false,
+        solved_contacts: 0,
     }
 }
