@@ -91,6 +91,12 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// dense path's 204 MB with both, `docs/benchmarks.md`, issue 38); `false` in 2D, whose
     /// factors are small and whose many-step scenes reuse the active set's factor.
     const ONE_FACTOR: bool;
+    /// Whether [`FlexibilityMode::Auto`](super::simulation::FlexibilityMode::Auto) weighs the
+    /// active contacts against the model's DOF below its `dense_limit` (the dense columns'
+    /// cost against the active set's factorisations, `simulation::choice`'s rule): `true` in
+    /// 3D, where it was measured (issue 38); `false` in 2D, whose limit of 500 contacts
+    /// already sits at the crossover.
+    const DENSE_BY_DOFS: bool;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.
     fn local_of(x: &[f64]) -> Self::Local;
@@ -197,6 +203,7 @@ impl ContactSpace<2> for Dim<2> {
     const COLUMNS_PER_SOLVE: usize = 64;
     const MAX_DETECTION_PASSES: usize = 5;
     const ONE_FACTOR: bool = false;
+    const DENSE_BY_DOFS: bool = false;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<1> {
@@ -273,6 +280,7 @@ impl ContactSpace<3> for Dim<3> {
     const COLUMNS_PER_SOLVE: usize = 96;
     const MAX_DETECTION_PASSES: usize = 20;
     const ONE_FACTOR: bool = true;
+    const DENSE_BY_DOFS: bool = true;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<2> {

@@ -455,7 +455,7 @@ mod tests {
         // W = [2 1; 1 2] (one contact), q = (−2, 1), r = 0 so x = q.
         let w = Delassus::Dense {
             m: 2,
-            w: vec![2.0, 1.0, 1.0, 2.0],
+            w: std::sync::Arc::new(vec![2.0, 1.0, 1.0, 2.0]),
         };
         let inv_diag = [0.5, 0.5];
         let (mut r, mut x) = ([0.0, 0.0], [-2.0, 1.0]);

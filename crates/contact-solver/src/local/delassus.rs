@@ -16,12 +16,14 @@
 //! columns of `W`; `x = W r + q` always reads the rows of `W`.
 
 use super::csr::CsrMatrix;
+use std::sync::Arc;
 
 /// The storage of `W` inside a [`ReducedProblem`](super::ReducedProblem).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Delassus {
-    /// Row-major `m × m`.
-    Dense { m: usize, w: Vec<f64> },
+    /// Row-major `m × m`, shared: the `F*` a simulation keeps and the problems it solves (and
+    /// their clones) hold one copy (issue 38).
+    Dense { m: usize, w: Arc<Vec<f64>> },
     /// Block-pattern CSR ([`CsrMatrix`]).
     Sparse(CsrMatrix),
 }
@@ -40,7 +42,7 @@ impl Delassus {
     /// The public view.
     pub(crate) fn view(&self) -> WView<'_> {
         match self {
-            Self::Dense { w, .. } => WView::Dense(w),
+            Self::Dense { w, .. } => WView::Dense(w.as_slice()),
             Self::Sparse(a) => WView::Sparse(a),
         }
     }
@@ -66,7 +68,7 @@ impl Delassus {
         match self {
             Self::Dense { m, w } => Self::Dense {
                 m: *m,
-                w: w.iter().map(|v| v * s).collect(),
+                w: Arc::new(w.iter().map(|v| v * s).collect()),
             },
             Self::Sparse(a) => Self::Sparse(a.scaled(s)),
         }
@@ -83,7 +85,7 @@ impl Delassus {
                         t[j * m + i] = w[i * m + j];
                     }
                 }
-                Self::Dense { m, w: t }
+                Self::Dense { m, w: Arc::new(t) }
             }
             Self::Sparse(a) => Self::Sparse(a.transposed()),
         }

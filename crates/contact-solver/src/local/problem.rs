@@ -22,6 +22,9 @@ use super::csr::CsrMatrix;
 use super::delassus::{Delassus, WView};
 use crate::error::SolverError;
 use contact_laws::{Coulomb, CoulombCone};
+use std::sync::Arc;
+
+mod shared;
 
 /// A validated reduced contact problem `x = W r + q` with friction coefficients `μ_i`, in
 /// dimension `d` = 2 or 3 (the size of a contact's block: one normal and `d − 1` tangents).
@@ -175,6 +178,18 @@ impl ReducedProblem {
         mu: Vec<f64>,
         asymmetry: Asymmetry,
     ) -> Result<Self, SolverError> {
+        Self::dense_validated(dim, Arc::new(w), q, mu, asymmetry)
+    }
+
+    /// [`with_asymmetry`](Self::with_asymmetry) on a shared `W`: kept as given (no copy)
+    /// unless it has to be symmetrised ([`from_shared`](Self::from_shared)).
+    pub(super) fn dense_validated(
+        dim: usize,
+        w: Arc<Vec<f64>>,
+        q: Vec<f64>,
+        mu: Vec<f64>,
+        asymmetry: Asymmetry,
+    ) -> Result<Self, SolverError> {
         let m = check_setup(dim, asymmetry, &q)?;
         if m.checked_mul(m).is_none() {
             return Err(SolverError::SizeMismatch {
@@ -262,7 +277,9 @@ impl ReducedProblem {
             Some(_) if worst > SYMMETRY_TOL => {
                 asymmetry = worst;
                 match &mut w {
-                    Delassus::Dense { m, w } => super::dense::symmetrize(w, *m),
+                    Delassus::Dense { m, w } => {
+                        super::dense::symmetrize(Arc::make_mut(w).as_mut_slice(), *m)
+                    }
                     Delassus::Sparse(a) => a.symmetrize(),
                 }
             }
@@ -403,7 +420,7 @@ impl ReducedProblem {
                 }
                 Delassus::Dense {
                     m: rows.len(),
-                    w: out,
+                    w: Arc::new(out),
                 }
             }
             Delassus::Sparse(a) => Delassus::Sparse(a.restricted(d, keep)),
@@ -474,7 +491,7 @@ impl ReducedProblem {
     #[inline]
     pub fn w_dense(&self) -> Option<&[f64]> {
         match &self.w {
-            Delassus::Dense { w, .. } => Some(w),
+            Delassus::Dense { w, .. } => Some(w.as_slice()),
             Delassus::Sparse(_) => None,
         }
     }

@@ -26,17 +26,27 @@ use fem_core::{Component, Material, Supports};
 const CELLS: usize = 8;
 const LAYERS: usize = 2;
 
-/// One step of the pad with `law` on `mode`: the report, each contact's reaction and the
-/// supports' total reaction in (x, z).
+/// One step of the small pad with `law` on `mode`: the report, each contact's reaction and
+/// the supports' total reaction in (x, z).
 fn pad<L: ContactLaw + Clone>(
     law: L,
     mode: FlexibilityMode,
 ) -> (StepReport, Vec<[f64; 3]>, [f64; 2]) {
-    let h = LAYERS as f64 / CELLS as f64;
+    pad_of(CELLS, LAYERS, law, mode)
+}
+
+/// [`pad`] with `cells` per side and `layers` (the thickness `layers / cells`).
+fn pad_of<L: ContactLaw + Clone>(
+    cells: usize,
+    layers: usize,
+    law: L,
+    mode: FlexibilityMode,
+) -> (StepReport, Vec<[f64; 3]>, [f64; 2]) {
+    let h = layers as f64 / cells as f64;
     let mesh = box_mesh(
-        &lines(0.0, 1.0, CELLS),
-        &lines(0.0, 1.0, CELLS),
-        &lines(0.0, h, LAYERS),
+        &lines(0.0, 1.0, cells),
+        &lines(0.0, 1.0, cells),
+        &lines(0.0, h, layers),
         SolidKind::Tet4,
     )
     .unwrap();
@@ -134,4 +144,37 @@ fn issue_38_frictionless_pad_carries_the_uniaxial_force() {
         assert!(imbalance(&r, s) < 1e-6, "{mode:?}: {}", imbalance(&r, s));
         assert_eq!(report.active_set, mode != FlexibilityMode::Dense);
     }
+}
+
+#[test]
+fn issue_38_auto_weighs_contacts_against_dofs() {
+    // The default 3D `Auto` (dense limit 3000). The small pad, 81 contacts: below the rule's
+    // floor (500), dense as before.
+    let auto = SimulationSettings::for_dimension::<3>().flexibility;
+    let (small, ..) = pad(Signorini, auto);
+    assert_eq!(small.path.path, SolvePath::Dense);
+    assert_eq!(
+        small.path.reason,
+        PathReason::WithinDenseLimit {
+            active: 81,
+            limit: 3000
+        }
+    );
+    // The 24 × 24 × 5 pad of `docs/benchmarks.md` (625 contacts, 10 325 free DOF): within the
+    // dense limit, above max(500, 0.5 · 10 325^(2/3) = 237), so the active set (measured 7×
+    // faster than dense there), and the report says why.
+    let mu = Coulomb::new(0.3).unwrap();
+    let (report, r, s) = pad_of(24, 5, mu, auto);
+    assert_eq!(report.active_contacts, 625);
+    assert_eq!(report.path.path, SolvePath::ActiveSet, "{}", report.path);
+    assert_eq!(
+        report.path.reason,
+        PathReason::AboveDofRule {
+            active: 625,
+            dofs: 10_325,
+            limit: 500
+        }
+    );
+    // its answer balances the supports (as the small pad's: 1e-6 of the force)
+    assert!(imbalance(&r, s) < 1e-6, "{}", imbalance(&r, s));
 }

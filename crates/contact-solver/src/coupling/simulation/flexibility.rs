@@ -36,7 +36,7 @@ where
             active: &self.cache.active,
         });
         // the columns solved: normals, and tangents where a law needs them
-        let (w, columns) = build_dense(
+        let (mut w, columns) = build_dense(
             &self.structure,
             &self.interface.h_rows,
             active,
@@ -44,17 +44,19 @@ where
             previous,
             self.settings.columns_per_solve,
         )?;
-        self.cache.w = w;
+        // the old F* is dropped here unless the last reduced problem still holds it
+        drop(old);
         // decoupled tangential unknowns of frictionless contacts (and, in 3D, of held
         // directions): W_tt = W_nn, nothing else
         for (k, &i) in active.iter().enumerate() {
-            let wnn = self.cache.w[D * k * m + D * k];
+            let wnn = w[D * k * m + D * k];
             for d in 1..D {
                 if !self.tangent_solved(i, d) {
-                    self.cache.w[(D * k + d) * m + D * k + d] = wnn;
+                    w[(D * k + d) * m + D * k + d] = wnn;
                 }
             }
         }
+        self.cache.w = std::sync::Arc::new(w);
         self.cache.active.clear();
         self.cache.active.extend_from_slice(active);
         self.counters.flexibility_builds += 1;

@@ -41,7 +41,9 @@ use super::scheme::TimeScheme;
 use super::solve::Pass;
 use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
-use crate::local::adhesion::{AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive};
+use crate::local::adhesion::{
+    AdhesionOptions, AdhesiveSolution, AdhesiveStep, solve_adhesive_shared,
+};
 use crate::local::norm;
 use contact_laws::ContactLaw;
 use fem_core::{Dim, RigidMode, RigidMotion, Structure};
@@ -188,7 +190,8 @@ where
                 areas: &areas,
                 dt,
             };
-            let sol = solve_adhesive(&mut self.solver, &step, Some(r_warm), &options)?;
+            let shared = Some(&self.cache.w);
+            let sol = solve_adhesive_shared(&mut self.solver, &step, shared, Some(r_warm), &options)?;
             report.contact_iterations += sol.contact_iterations;
             // every reduced solve of the equilibrium iteration runs the adhesion loop (issue
             // 36: these were not counted, and a damaging floating pile reported 0)

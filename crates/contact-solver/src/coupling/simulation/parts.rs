@@ -215,8 +215,9 @@ where
 pub(super) struct OperatorCache<L: ContactLaw, const D: usize> {
     /// Active set of the cached `F*` (and of the last solve).
     pub(super) active: Vec<usize>,
-    /// `F*` on `active`, row-major (empty after a solve without it).
-    pub(super) w: Vec<f64>,
+    /// `F*` on `active`, row-major (empty after a solve without it), shared with the reduced
+    /// problems solved on it (and the last one, kept for export): one copy (issue 38).
+    pub(super) w: std::sync::Arc<Vec<f64>>,
     /// Stiffness version `w` was built for.
     pub(super) version: Option<u64>,
     pub(super) primal: PrimalCache,
@@ -228,7 +229,7 @@ impl<L: ContactLaw, const D: usize> OperatorCache<L, D> {
     pub(super) fn new() -> Self {
         Self {
             active: Vec::new(),
-            w: Vec::new(),
+            w: std::sync::Arc::default(),
             version: None,
             primal: PrimalCache::default(),
             last_problem: LastProblem::None,
@@ -246,7 +247,8 @@ impl<L: ContactLaw, const D: usize> OperatorCache<L, D> {
         if active != self.active {
             self.active = active.to_vec();
         }
-        self.w.clear();
+        // freed, not cleared: a cleared Vec kept the old F*'s allocation
+        self.w = std::sync::Arc::default();
         self.version = None;
         self.last_problem = LastProblem::None;
     }

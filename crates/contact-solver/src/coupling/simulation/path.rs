@@ -3,7 +3,9 @@
 //! and the fallback when `Auto`'s active-set iteration does not converge.
 
 use super::ContactSimulation;
-use super::choice::{PathChoice, PathReason, SolvePath};
+use super::choice::{
+    DOF_RULE_FLOOR, PathChoice, PathReason, SolvePath, dense_contacts_for_dofs,
+};
 use super::detection::FreeResponse;
 use super::report::StepReport;
 use super::scheme::TimeScheme;
@@ -133,10 +135,7 @@ where
             FlexibilityMode::Auto { dense_limit: limit } => Ok(if adhesive {
                 (Path::Dense, PathReason::Adhesive)
             } else if n <= limit {
-                (
-                    Path::Dense,
-                    PathReason::WithinDenseLimit { active: n, limit },
-                )
+                self.within_dense_limit(active, limit)
             } else if let Ok(f) = self.active_set_frames(active) {
                 let reason = PathReason::AboveDenseLimit { active: n, limit };
                 (Path::ActiveSet(f), reason)
@@ -157,6 +156,41 @@ where
                 .active_set_frames(active)
                 .map(|f| (Path::ActiveSet(f), PathReason::Requested))
                 .map_err(SolverError::Unsupported),
+        }
+    }
+
+    /// `Auto`'s path for `active` within its dense limit: dense, unless in 3D the contacts
+    /// are above `max(500, 0.5 DOF^(2/3))` and the active set applies ([`super::choice`]).
+    fn within_dense_limit(&self, active: &[usize], limit: usize) -> (Path, PathReason) {
+        let n = active.len();
+        let within = (
+            Path::Dense,
+            PathReason::WithinDenseLimit { active: n, limit },
+        );
+        if !<Dim<D> as ContactSpace<D>>::DENSE_BY_DOFS || n <= DOF_RULE_FLOOR {
+            return within;
+        }
+        let dofs = self.structure.dof_count();
+        let by_dofs = dense_contacts_for_dofs(dofs);
+        if n <= by_dofs {
+            let reason = PathReason::WithinDofRule {
+                active: n,
+                dofs,
+                limit: by_dofs,
+            };
+            return (Path::Dense, reason);
+        }
+        match self.active_set_frames(active) {
+            Ok(f) => {
+                let reason = PathReason::AboveDofRule {
+                    active: n,
+                    dofs,
+                    limit: by_dofs,
+                };
+                (Path::ActiveSet(f), reason)
+            }
+            // the active set does not apply: dense, as within the limit before the rule
+            Err(_) => within,
         }
     }
 

@@ -15,7 +15,7 @@ use crate::coupling::space::ContactSpace;
 use crate::error::SolverError;
 use crate::local::ReducedProblem;
 use crate::local::adhesion::{
-    AdhesionOptions, AdhesiveSolution, AdhesiveStep, any_adhesion_active, solve_adhesive,
+    AdhesionOptions, AdhesiveSolution, AdhesiveStep, any_adhesion_active, solve_adhesive_shared,
 };
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::{Dim, Structure};
@@ -299,7 +299,8 @@ where
         };
         let mut options = self.adhesion_options();
         options.warm_start = options.warm_start && self.warm.enabled();
-        let sol = solve_adhesive(&mut self.solver, &step, Some(&r_bar), &options)?;
+        let shared = Some(&self.cache.w);
+        let sol = solve_adhesive_shared(&mut self.solver, &step, shared, Some(&r_bar), &options)?;
         report.contact_iterations += sol.contact_iterations;
         report.adhesion_iterations += sol.adhesion_iterations;
         let inputs = AdhesiveInputs {

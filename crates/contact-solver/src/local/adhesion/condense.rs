@@ -9,6 +9,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Conj, Mat};
+use std::sync::Arc;
 
 /// The condensed problem `x = W̃ r̄ + q̃` (springs of `states` condensed, `μ̄` of `states` per
 /// contact) of an adhesive step: the reduced problem whose solution is the step's `r̄` when
@@ -29,14 +30,16 @@ pub fn condensed_problem<L: ContactLaw, const D: usize>(
     check_len("u_start", na, step.u_start.len())?;
     check_len("areas", na, step.areas.len())?;
     let offset = start_offset(step.u_start);
-    Ok(condensed_with_springs(step, states, &offset)?.0)
+    Ok(condensed_with_springs(step, states, &offset, None)?.0)
 }
 
-/// The condensed problem of `states` and the nodal springs `A k(state)` per contact.
+/// The condensed problem of `states` and the nodal springs `A k(state)` per contact. Without
+/// springs the problem is `W` itself: held shared when `shared` holds `step.w` (no copy).
 pub(super) fn condensed_with_springs<L: ContactLaw, const D: usize>(
     step: &AdhesiveStep<'_, L, D>,
     states: &[L::State],
     offset: &[f64],
+    shared: Option<&Arc<Vec<f64>>>,
 ) -> Result<(ReducedProblem, Vec<[f64; 2]>), SolverError> {
     // nodal springs: the law's per-area stiffness times the tributary area
     let stiff: Vec<[f64; 2]> = step
@@ -46,14 +49,21 @@ pub(super) fn condensed_with_springs<L: ContactLaw, const D: usize>(
         .zip(step.areas)
         .map(|((l, s), &a)| l.adhesive_stiffness(s).map(|k| k * a))
         .collect();
-    let (w_eff, q_eff) = condense(step.w, step.q, offset, &stiff, step.q.len())?;
+    let condensed = condense_springs(step.w, step.q, offset, &stiff, step.q.len())?;
     let mu = step
         .laws
         .iter()
         .zip(states)
         .map(|(l, s)| l.friction_coefficient(s).unwrap_or(0.0))
         .collect();
-    Ok((ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?, stiff))
+    let problem = match (condensed, shared) {
+        (Some((w_eff, q_eff)), _) => ReducedProblem::with_dimension(D, w_eff, q_eff, mu)?,
+        (None, Some(w)) if std::ptr::eq(w.as_slice(), step.w) => {
+            ReducedProblem::from_shared(D, Arc::clone(w), step.q.to_vec(), mu)?
+        }
+        (None, _) => ReducedProblem::with_dimension(D, step.w.to_vec(), step.q.to_vec(), mu)?,
+    };
+    Ok((problem, stiff))
 }
 
 /// The springs act on the total tangential displacement: the offset of the jumps from `x`,
@@ -82,6 +92,17 @@ pub fn condense(
     stiff: &[[f64; 2]],
     m: usize,
 ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+    Ok(condense_springs(w, q, offset, stiff, m)?.unwrap_or_else(|| (w.to_vec(), q.to_vec())))
+}
+
+/// [`condense`], `None` (nothing copied) when no contact has a spring.
+fn condense_springs(
+    w: &[f64],
+    q: &[f64],
+    offset: &[f64],
+    stiff: &[[f64; 2]],
+    m: usize,
+) -> Result<Option<(Vec<f64>, Vec<f64>)>, SolverError> {
     let dim = if stiff.is_empty() { 2 } else { m / stiff.len() };
     if !(stiff.is_empty() || (dim * stiff.len() == m && (dim == 2 || dim == 3))) {
         return Err(SolverError::SizeMismatch {
@@ -100,7 +121,7 @@ pub fn condense(
         .filter(|&(_, b)| b > 0.0)
         .collect();
     if springs.is_empty() {
-        return Ok((w.to_vec(), q.to_vec()));
+        return Ok(None);
     }
     let na = springs.len();
     let sqrt: Vec<f64> = springs.iter().map(|&(_, b)| b.sqrt()).collect();
@@ -180,7 +201,7 @@ pub fn condense(
         z[i] -= col[m];
     }
     symmetrize(&mut w_eff, m);
-    Ok((w_eff, z))
+    Ok(Some((w_eff, z)))
 }
 
 #[cfg(test)]

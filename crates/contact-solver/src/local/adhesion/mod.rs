@@ -85,6 +85,7 @@ use crate::error::SolverError;
 use contact_laws::{ContactLaw, LocalVec2, LocalVec3};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
+use std::sync::Arc;
 
 /// One step of a reduced problem with adhesive laws, in 2D (`D = 2`, per contact `(n, t)`,
 /// the default) or 3D (`D = 3`, per contact `(n, t₁, t₂)`).
@@ -259,6 +260,19 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
     r_bar_start: Option<&[f64]>,
     options: &AdhesionOptions,
 ) -> Result<AdhesiveSolution<L::State>, SolverError> {
+    solve_adhesive_shared(solver, step, None, r_bar_start, options)
+}
+
+/// [`solve_adhesive`] where `shared`, when given, holds `step.w` (the same slice): a step
+/// without springs solves, and returns as its condensed problem, a problem on that allocation
+/// instead of a copy of `W` (issue 38: the simulation's `F*` is held once).
+pub(crate) fn solve_adhesive_shared<L: ContactLaw, const D: usize>(
+    solver: &mut UzawaSolver,
+    step: &AdhesiveStep<'_, L, D>,
+    shared: Option<&Arc<Vec<f64>>>,
+    r_bar_start: Option<&[f64]>,
+    options: &AdhesionOptions,
+) -> Result<AdhesiveSolution<L::State>, SolverError> {
     if D != 2 && D != 3 {
         return Err(SolverError::Unsupported(format!(
             "an adhesive step in dimension {D} (2 or 3)"
@@ -369,7 +383,7 @@ pub fn solve_adhesive<L: ContactLaw, const D: usize>(
         solver.kept_lu().forget();
     }
     loop {
-        let (problem, stiff) = condensed_with_springs(step, &states, &offset)?;
+        let (problem, stiff) = condensed_with_springs(step, &states, &offset, shared)?;
         let sol = if newton && adhesion_iterations == 0 {
             // Newton's start only needs the contact set: a loose solve
             let saved = *solver.settings();
