@@ -256,16 +256,19 @@ mod tests {
             dofs: 103_320,
             limit: 1_101,
         };
-        assert!(within.to_string().starts_with("auto: 600 active contacts ≤ 1101"));
+        assert!(
+            within
+                .to_string()
+                .starts_with("auto: 600 active contacts ≤ 1101")
+        );
         let above = PathReason::AboveDofRule {
             active: 625,
             dofs: 10_325,
             limit: 500,
         };
         let c = PathChoice::new(SolvePath::ActiveSet, above);
-        assert!(
-            c.to_string()
-                .starts_with("active set (auto: 625 active contacts > 500 = max(500, 0.5 DOF^(2/3)) at 10325 DOF")
-        );
+        assert!(c.to_string().starts_with(
+            "active set (auto: 625 active contacts > 500 = max(500, 0.5 DOF^(2/3)) at 10325 DOF"
+        ));
     }
 }

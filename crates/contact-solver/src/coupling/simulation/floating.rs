@@ -191,7 +191,8 @@ where
                 dt,
             };
             let shared = Some(&self.cache.w);
-            let sol = solve_adhesive_shared(&mut self.solver, &step, shared, Some(r_warm), &options)?;
+            let sol =
+                solve_adhesive_shared(&mut self.solver, &step, shared, Some(r_warm), &options)?;
             report.contact_iterations += sol.contact_iterations;
             // every reduced solve of the equilibrium iteration runs the adhesion loop (issue
             // 36: these were not counted, and a damaging floating pile reported 0)

@@ -3,9 +3,7 @@
 //! and the fallback when `Auto`'s active-set iteration does not converge.
 
 use super::ContactSimulation;
-use super::choice::{
-    DOF_RULE_FLOOR, PathChoice, PathReason, SolvePath, dense_contacts_for_dofs,
-};
+use super::choice::{DOF_RULE_FLOOR, PathChoice, PathReason, SolvePath, dense_contacts_for_dofs};
 use super::detection::FreeResponse;
 use super::report::StepReport;
 use super::scheme::TimeScheme;

@@ -85,6 +85,9 @@ mod tests {
         assert_eq!(d[1], d[2]);
         // the validation errors of `with_dimension`
         let e = ReducedProblem::from_shared(2, Arc::new(vec![1.0]), vec![-1.0, 0.5], vec![0.3]);
-        assert!(matches!(e, Err(SolverError::SizeMismatch { what: "W", .. })));
+        assert!(matches!(
+            e,
+            Err(SolverError::SizeMismatch { what: "W", .. })
+        ));
     }
 }
