@@ -95,6 +95,9 @@ pub fn condense(
     Ok(condense_springs(w, q, offset, stiff, m)?.unwrap_or_else(|| (w.to_vec(), q.to_vec())))
 }
 
+/// A condensed `(W̃, q̃)`, both row-major.
+type Condensed = (Vec<f64>, Vec<f64>);
+
 /// [`condense`], `None` (nothing copied) when no contact has a spring.
 fn condense_springs(
     w: &[f64],
@@ -102,7 +105,7 @@ fn condense_springs(
     offset: &[f64],
     stiff: &[[f64; 2]],
     m: usize,
-) -> Result<Option<(Vec<f64>, Vec<f64>)>, SolverError> {
+) -> Result<Option<Condensed>, SolverError> {
     let dim = if stiff.is_empty() { 2 } else { m / stiff.len() };
     if !(stiff.is_empty() || (dim * stiff.len() == m && (dim == 2 || dim == 3))) {
         return Err(SolverError::SizeMismatch {
