@@ -42,6 +42,28 @@ fn pad_of<L: ContactLaw + Clone>(
     law: L,
     mode: FlexibilityMode,
 ) -> (StepReport, Vec<[f64; 3]>, [f64; 2]) {
+    let mut sim = pad_simulation(cells, layers, law, mode);
+    let res = sim.step(1.0, 1.0).unwrap();
+    let supports = sim
+        .structure()
+        .reactions(&sim.nodal_displacements(), 1.0)
+        .unwrap();
+    let total = |c: Component| -> f64 { supports.iter().filter(|r| r.0.1 == c).map(|r| r.1).sum() };
+    let reactions = res.contacts.iter().map(|c| c.force()).collect();
+    (
+        res.report,
+        reactions,
+        [total(Component::X), total(Component::Z)],
+    )
+}
+
+/// The simulation of [`pad_of`], before its step.
+fn pad_simulation<L: ContactLaw + Clone>(
+    cells: usize,
+    layers: usize,
+    law: L,
+    mode: FlexibilityMode,
+) -> SolidContactSimulation<SolidModel, L> {
     let h = layers as f64 / cells as f64;
     let mesh = box_mesh(
         &lines(0.0, 1.0, cells),
@@ -60,19 +82,7 @@ fn pad_of<L: ContactLaw + Clone>(
     let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let zone = ContactZone3::rigid("base", nodes, floor, law, 0.1).with_areas(areas);
     let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
-    let mut sim = SolidContactSimulation::new(model, vec![zone], settings).unwrap();
-    let res = sim.step(1.0, 1.0).unwrap();
-    let supports = sim
-        .structure()
-        .reactions(&sim.nodal_displacements(), 1.0)
-        .unwrap();
-    let total = |c: Component| -> f64 { supports.iter().filter(|r| r.0.1 == c).map(|r| r.1).sum() };
-    let reactions = res.contacts.iter().map(|c| c.force()).collect();
-    (
-        res.report,
-        reactions,
-        [total(Component::X), total(Component::Z)],
-    )
+    SolidContactSimulation::new(model, vec![zone], settings).unwrap()
 }
 
 /// The largest relative imbalance of the contact reactions against the supports' (x, z).
@@ -177,4 +187,20 @@ fn issue_38_auto_weighs_contacts_against_dofs() {
     );
     // its answer balances the supports (as the small pad's: 1e-6 of the force)
     assert!(imbalance(&r, s) < 1e-6, "{}", imbalance(&r, s));
+}
+
+#[test]
+fn issue_38_dense_step_holds_f_star_once() {
+    // A dense step without springs solves on the simulation's own F*: the reduced problem kept
+    // for export shares its allocation with the simulation's operator cache (two holders of
+    // one W, where each held its own copy before), and a clone of it shares it too.
+    let mut sim = pad_simulation(CELLS, LAYERS, Signorini, FlexibilityMode::Dense);
+    sim.step(1.0, 1.0).unwrap();
+    let p = sim.last_reduced_problem().unwrap();
+    let w = p.w_shared().unwrap();
+    assert_eq!(p.size(), 3 * 81);
+    assert_eq!(std::sync::Arc::strong_count(w), 2);
+    let c = p.clone();
+    assert!(std::sync::Arc::ptr_eq(w, c.w_shared().unwrap()));
+    assert_eq!(std::sync::Arc::strong_count(w), 3);
 }
