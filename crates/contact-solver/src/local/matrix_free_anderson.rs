@@ -42,15 +42,18 @@ use contact_laws::ContactLaw;
 const DROP_TOL: f64 = 1e-12;
 
 /// A mixed iterate whose base step has a fixed-point residual `‖f‖` above this factor times
-/// the best since the last restart is rejected (measured: 1 accepts too little, Anderson's
-/// residual is not monotone — 311 products on the Hertz level 0 against 114 without any
-/// rejection; without any, a window of 20 or 40 diverges there for hundreds of steps —
-/// 884 and 2 939 products; 1.5, 2 and 4 give 119, 114 and 127 on the Hertz and 252 on the pad).
+/// the best since the last restart is rejected. Measured on the 3D Hertz level 0 (window 10):
+/// 1 rejects too much (Anderson's residual is not monotone; 311 products, with `2^j` plain steps
+/// after the `j`-th rejection), 1.5, 2 and 4 give 119, 123 and 127 products, none 114 — but
+/// without any, windows of 20 and 40 wander for hundreds of steps (884 and 2 939 products,
+/// against 103 and 103 with 2). The pad at 24 cells: 252 products for 1.5, 2 and 4.
 const RESTART_GROWTH: f64 = 2.0;
 
-/// Default depth of the Anderson memory of the matrix-free iteration, measured on the 3D
-/// Hertz and the pad of `docs/benchmarks.md` ("Matrix-free preconditioned (issue 38)").
-pub const DEFAULT_MATRIX_FREE_WINDOW: usize = 10;
+/// The depth of the Anderson memory measured best on the 3D Hertz level 0 and the pad of
+/// `docs/benchmarks.md` ("Matrix-free preconditioned (issue 38)"): products for windows 5, 10
+/// and 20: 120, 123, 103 (Hertz, 121 contacts) and 281, 263, 252 (pad, 1 369 contacts); the
+/// memory holds `4 × window` vectors of `3 n_c` values.
+pub const DEFAULT_MATRIX_FREE_WINDOW: usize = 20;
 
 /// [`solve_matrix_free`](super::matrix_free::solve_matrix_free) (2D: `r`, `x` with two
 /// components per contact) with Anderson mixing of depth `window` (`window ≥ 1`).
@@ -201,8 +204,12 @@ impl Memory {
         }
         for (j, &gj) in gamma.iter().enumerate() {
             if gj != 0.0 {
-                r.iter_mut().zip(&self.dg[j]).for_each(|(a, b)| *a -= gj * b);
-                x.iter_mut().zip(&self.dx[j]).for_each(|(a, b)| *a -= gj * b);
+                r.iter_mut()
+                    .zip(&self.dg[j])
+                    .for_each(|(a, b)| *a -= gj * b);
+                x.iter_mut()
+                    .zip(&self.dx[j])
+                    .for_each(|(a, b)| *a -= gj * b);
             }
         }
     }

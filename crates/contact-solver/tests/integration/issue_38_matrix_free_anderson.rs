@@ -17,7 +17,9 @@
 
 use contact_laws::{ContactLaw, Coulomb, Signorini};
 use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
-use contact_solver::local::matrix_free_anderson::solve_matrix_free_anderson_3d;
+use contact_solver::local::matrix_free_anderson::{
+    DEFAULT_MATRIX_FREE_WINDOW, solve_matrix_free_anderson_3d,
+};
 use contact_solver::{FlexibilityMode, SimulationSettings, SolverError, UzawaSettings};
 use fem_core::solid::generate::{box_mesh, lines};
 use fem_core::solid::{SolidKind, SolidModel};
@@ -88,11 +90,20 @@ fn issue_38_anderson_matrix_free_gives_the_dense_answer_with_fewer_products() {
     let mu = Coulomb::new(0.3).unwrap();
     let dense = pad(mu, FlexibilityMode::Dense, 0);
     let momentum = pad(mu, FlexibilityMode::MatrixFree, 0);
-    let anderson = pad(mu, FlexibilityMode::MatrixFree, 10);
+    let anderson = pad(mu, FlexibilityMode::MatrixFree, DEFAULT_MATRIX_FREE_WINDOW);
     assert!(!dense.matrix_free && momentum.matrix_free && anderson.matrix_free);
-    let scale = dense.reactions.iter().fold(0.0_f64, |m, r| m.max(r[2].abs()));
-    let t_max = dense.reactions.iter().fold(0.0_f64, |m, r| m.max(r[0].abs()));
-    assert!(t_max > 1e-3 * scale, "no friction at work: {t_max} of {scale}");
+    let scale = dense
+        .reactions
+        .iter()
+        .fold(0.0_f64, |m, r| m.max(r[2].abs()));
+    let t_max = dense
+        .reactions
+        .iter()
+        .fold(0.0_f64, |m, r| m.max(r[0].abs()));
+    assert!(
+        t_max > 1e-3 * scale,
+        "no friction at work: {t_max} of {scale}"
+    );
     // the dense path's reactions to the solver's tolerance (1e-10 relative on the residual,
     // amplified by the stick/slip split and the sampled ρ⁰: 1e-7, as issue_38_pad.rs)
     for run in [&momentum, &anderson] {
@@ -118,7 +129,11 @@ fn issue_38_anderson_matrix_free_gives_the_dense_answer_with_fewer_products() {
 fn issue_38_anderson_matrix_free_frictionless_pad_carries_the_uniaxial_force() {
     // E δ/h on the unit quarter: 1000 × 1/100
     let exact = 10.0;
-    let run = pad(Signorini, FlexibilityMode::MatrixFree, 10);
+    let run = pad(
+        Signorini,
+        FlexibilityMode::MatrixFree,
+        DEFAULT_MATRIX_FREE_WINDOW,
+    );
     let force: f64 = run.reactions.iter().map(|r| r[2]).sum();
     // P1 holds the uniform uniaxial stress exactly; the rest is the solver's tolerance
     assert!((force - exact).abs() < 1e-6 * exact, "{force}");
