@@ -7,7 +7,8 @@
 //!
 //! Run: `cargo run --release --example hertz_3d -- 0 1` (refinement levels: each halves every
 //! cell of the graded base grid); `--matrix-free`, `--active-set` or `--dense` chooses the
-//! reduced problem's path (default: the settings' `Auto`); `--svg DIR` draws each level's
+//! reduced problem's path (default: the settings' `Auto`; with `--matrix-free`, `--mf-window d`
+//! accelerates it by Anderson mixing of depth `d`); `--svg DIR` draws each level's
 //! recovered pressure against the ellipse into `DIR/hertz_3d_pressure_<level>.svg`.
 //! `--fine N` grades the base grid with `N` fine cells across the contact (6 by default; 10
 //! gives ~1e5 DOF, the size of issue 38's check against GetFEM) and runs level 0 alone unless
@@ -60,6 +61,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut settings = SimulationSettings::for_dimension::<3>();
     if args.iter().any(|a| a == "--matrix-free") {
         settings.flexibility = FlexibilityMode::MatrixFree;
+        if let Some(i) = args.iter().position(|a| a == "--mf-window") {
+            let depth = args.get(i + 1).ok_or("--mf-window needs a depth")?;
+            settings = settings.with_matrix_free_window(depth.parse()?);
+        }
     } else if args.iter().any(|a| a == "--active-set") {
         settings.flexibility = FlexibilityMode::ActiveSet;
     } else if args.iter().any(|a| a == "--dense") {
@@ -89,7 +94,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .filter(|(i, a)| {
             !a.starts_with("--")
                 && Some(std::path::Path::new(a)) != svg_dir.as_deref()
-                && (*i == 0 || args[i - 1] != "--fine")
+                && (*i == 0 || (args[i - 1] != "--fine" && args[i - 1] != "--mf-window"))
         })
         .map(|(_, a)| a.parse())
         .collect::<Result<_, _>>()?;
@@ -209,7 +214,8 @@ fn main() -> Result<(), Box<dyn Error>> {
             half / hertz_half,
             res.report.contact_iterations,
             if res.report.matrix_free {
-                " (matrix-free)".to_string()
+                let products = sim.counters().operator_applications;
+                format!(" (matrix-free, {products} products)")
             } else if res.report.active_set {
                 let factorizations = sim.counters().active_set_factorizations;
                 format!(" (active set, {factorizations} factorisations)")

@@ -3,7 +3,8 @@
 //!
 //! Run: `cargo run --release --example solid_contact_scaling -- 24 --dense` (`n`: cells per
 //! side, default 24, 6 with `BIPO_QUICK=1`; `--dense`, `--matrix-free`, `--active-set` or
-//! `--auto`; `--coulomb` for μ = 0.3; `--slab m` for the pad below, `m` layers of cells).
+//! `--auto`; `--coulomb` for μ = 0.3; `--slab m` for the pad below, `m` layers of cells;
+//! `--mf-window d` accelerates the matrix-free iteration by Anderson mixing of depth `d`).
 //!
 //! The ball (default). Quarter model: block `[0, 1]² × [−0.5, 0]`, `n × n × n/2` cells of six
 //! P1 tetrahedra, symmetry on x = 0 and y = 0, bottom pushed up by 0.03; ball R = 1 centred at
@@ -48,7 +49,7 @@ fn step<L: ContactLaw + Clone>(
     zone: ContactZone3<L>,
     settings: SimulationSettings,
     balance: bool,
-) -> Result<(SolidStepResult, usize, f64), Box<dyn Error>> {
+) -> Result<(SolidStepResult, usize, f64, usize), Box<dyn Error>> {
     let mut sim = SolidContactSimulation::new(model, vec![zone], settings)?;
     let res = sim.step(1.0, 1.0)?;
     let mut imbalance = 0.0;
@@ -61,7 +62,13 @@ fn step<L: ContactLaw + Clone>(
             imbalance = f64::max(imbalance, (support + contact).abs() / force);
         }
     }
-    Ok((res, sim.counters().active_set_factorizations, imbalance))
+    let c = sim.counters();
+    Ok((
+        res,
+        c.active_set_factorizations,
+        imbalance,
+        c.operator_applications,
+    ))
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -74,7 +81,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     let n: usize = args
         .iter()
         .enumerate()
-        .find(|(i, a)| !a.starts_with("--") && Some(*i) != value("--slab"))
+        .find(|(i, a)| {
+            !a.starts_with("--") && Some(*i) != value("--slab") && Some(*i) != value("--mf-window")
+        })
         .map_or(
             Ok(
                 if std::env::var_os("BIPO_QUICK").is_some_and(|v| v != "0") {
@@ -94,7 +103,13 @@ fn main() -> Result<(), Box<dyn Error>> {
     } else {
         FlexibilityMode::Dense
     };
-    let settings = SimulationSettings::for_dimension::<3>().with_flexibility(flexibility);
+    let window: usize = match value("--mf-window") {
+        Some(i) => args.get(i).ok_or("--mf-window needs a depth")?.parse()?,
+        None => 0,
+    };
+    let settings = SimulationSettings::for_dimension::<3>()
+        .with_flexibility(flexibility)
+        .with_matrix_free_window(window);
     let coulomb = args.iter().any(|a| a == "--coulomb");
     let start = Instant::now();
     let (z, alert) = match slab {
@@ -125,7 +140,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let t_build = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let balance = slab.is_some();
-    let (res, factorizations, imbalance) = match (slab, coulomb) {
+    let (res, factorizations, imbalance, products) = match (slab, coulomb) {
         (Some(_), true) => {
             let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0])?;
             let zone = ContactZone3::rigid("base", nodes, floor, Coulomb::new(0.3)?, alert);
@@ -158,6 +173,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         factorizations
     );
     println!("path: {}", res.report.path);
+    if res.report.matrix_free {
+        println!("matrix-free: {products} products F* r (window {window})");
+    }
     if balance {
         println!("equilibrium: support + contact reactions = {imbalance:.2e} of the force");
         if imbalance.is_nan() || imbalance > BALANCE_TOL {

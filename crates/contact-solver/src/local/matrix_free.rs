@@ -236,16 +236,9 @@ fn solve<L: ContactLaw, const DT: usize>(
         if (change <= settings.tol && residual <= settings.tol) || dr2 == 0.0 {
             // a relative residual of 0 with reactions grown without bound (no solution)
             // leaves x_n < 0 at the scale of q: one more product gives q = x(r = 0)
-            if coulomb_type && x.iter().step_by(dim).any(|&v| v < 0.0) {
-                let zero = vec![0.0; m];
-                let mut q = vec![0.0; m];
-                apply(&zero, &mut q)?;
-                applications += 1;
-                let (pen, scale) = penetration::<DT>(&q, x);
-                if pen > CHECK_FACTOR * settings.tol * scale {
-                    stalled = true;
-                    break;
-                }
+            if coulomb_type && no_solution::<DT>(&mut apply, settings.tol, x, &mut applications)? {
+                stalled = true;
+                break;
             }
             converged = true;
             break;
@@ -271,41 +264,84 @@ fn solve<L: ContactLaw, const DT: usize>(
             xy[k] = x[k] + beta * (x[k] - x_prev[k]);
         }
     }
-    if stalled && !settings.accept_non_converged {
+    conclude(
+        "MatrixFree",
+        MatrixFreeReport {
+            iterations,
+            applications,
+            converged,
+            stalled,
+            residual,
+            history,
+            restarts,
+            theta,
+        },
+        settings,
+    )
+}
+
+/// Whether an answer whose relative residual met the tolerance is that of a problem without a
+/// solution: with some `x_n < 0`, one more product gives `q = x(r = 0)` (counted in
+/// `applications`) and the penetration is judged at the scale of `q`.
+pub(super) fn no_solution<const DT: usize>(
+    apply: &mut impl FnMut(&[f64], &mut [f64]) -> Result<(), SolverError>,
+    tol: f64,
+    x: &[f64],
+    applications: &mut usize,
+) -> Result<bool, SolverError> {
+    if !x.iter().step_by(DT + 1).any(|&v| v < 0.0) {
+        return Ok(false);
+    }
+    let zero = vec![0.0; x.len()];
+    let mut q = vec![0.0; x.len()];
+    apply(&zero, &mut q)?;
+    *applications += 1;
+    let (pen, scale) = penetration::<DT>(&q, x);
+    Ok(pen > CHECK_FACTOR * tol * scale)
+}
+
+/// The report of a finished matrix-free solve, or the error of a stalled or non-converged one
+/// (unless `accept_non_converged`).
+pub(super) fn conclude(
+    algorithm: &'static str,
+    report: MatrixFreeReport,
+    settings: &UzawaSettings,
+) -> Result<MatrixFreeReport, SolverError> {
+    let MatrixFreeReport {
+        iterations,
+        residual,
+        history,
+        stalled,
+        converged,
+        ..
+    } = &report;
+    let (iterations, residual) = (*iterations, *residual);
+    if *stalled && !settings.accept_non_converged {
         let best_residual = history.iter().copied().fold(f64::INFINITY, f64::min);
         return Err(SolverError::Stalled {
-            algorithm: "MatrixFree",
+            algorithm,
             fallback_from: None,
             iterations,
             residual,
             best_residual,
-            history,
+            history: report.history,
             best: None,
         });
     }
-    if !converged && !settings.accept_non_converged {
+    if !*converged && !settings.accept_non_converged {
         return Err(SolverError::NotConverged {
             iterations,
             residual,
-            history,
+            history: report.history,
             best: None,
         });
     }
-    Ok(MatrixFreeReport {
-        iterations,
-        applications,
-        converged,
-        stalled,
-        residual,
-        history,
-        restarts,
-        theta,
-    })
+    Ok(report)
 }
 
 /// The sizes of a matrix-free solve (`n_c` laws and states, `dim n_c` reactions and jumps)
 /// and its base penalties (finite, positive).
-fn check_sizes(
+pub(super) fn check_sizes(
     dim: usize,
     n_laws: usize,
     n_states: usize,

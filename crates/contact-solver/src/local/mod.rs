@@ -14,7 +14,8 @@
 //!   toolbox every algorithm uses);
 //! - one file per algorithm: `uzawa`, `gauss_seidel` (the base sweeps, on the shared `sweep`
 //!   state), `plain` (their stopping loop), [`anderson`], [`newton`], [`classic`], and
-//!   [`matrix_free`] (the sweep on an operator instead of a matrix);
+//!   [`matrix_free`] (the sweep on an operator instead of a matrix) and
+//!   [`matrix_free_anderson`] (the same with Anderson mixing, fewer products);
 //! - `solver`: the dispatcher [`UzawaSolver`] (validates, runs the chosen algorithm, reports);
 //! - [`adhesion`]: the adhesive springs condensed on `W` and the β fixed point around a solve.
 //!
@@ -224,6 +225,7 @@ pub mod generate;
 #[cfg(feature = "serde")]
 mod json;
 pub mod matrix_free;
+pub mod matrix_free_anderson;
 pub mod newton;
 mod one_contact;
 mod plain;

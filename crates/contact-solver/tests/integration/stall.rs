@@ -33,7 +33,7 @@ const ALL: [Algorithm; 6] = [
 ];
 
 /// Two contacts on one rigid dof in opposite senses, both pressed: no solution.
-fn opposed_contacts() -> ReducedProblem {
+pub(crate) fn opposed_contacts() -> ReducedProblem {
     #[rustfmt::skip]
     let w = vec![
          1.0, 0.0, -1.0, 0.0,

@@ -12,6 +12,9 @@ use crate::local::UzawaSettings;
 use crate::local::adhesion::AdhesionOptions;
 use crate::local::contact_statuses;
 use crate::local::matrix_free::{MatrixFreeReport, solve_matrix_free, solve_matrix_free_3d};
+use crate::local::matrix_free_anderson::{
+    solve_matrix_free_anderson, solve_matrix_free_anderson_3d,
+};
 use contact_laws::{ContactLaw, ContactStatus};
 use fem_core::{Dim, Structure};
 
@@ -57,13 +60,16 @@ where
     }
 }
 
-/// The matrix-free sweep ([`solve_matrix_free`], [`solve_matrix_free_3d`]).
+/// The matrix-free sweep ([`solve_matrix_free`], [`solve_matrix_free_3d`]), or with
+/// `window > 0` its Anderson-accelerated twin ([`solve_matrix_free_anderson`],
+/// [`solve_matrix_free_anderson_3d`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn matrix_free<L: ContactLaw, const D: usize>(
     apply: impl FnMut(&[f64], &mut [f64]) -> Result<(), SolverError>,
     laws: &[L],
     states: &[L::State],
     rho0: &[f64],
+    window: usize,
     settings: &UzawaSettings,
     r: &mut [f64],
     x: &mut [f64],
@@ -71,7 +77,13 @@ pub(super) fn matrix_free<L: ContactLaw, const D: usize>(
 where
     Dim<D>: ContactSpace<D>,
 {
-    if spatial::<D>() {
+    if window > 0 {
+        if spatial::<D>() {
+            solve_matrix_free_anderson_3d(apply, laws, states, rho0, window, settings, r, x)
+        } else {
+            solve_matrix_free_anderson(apply, laws, states, rho0, window, settings, r, x)
+        }
+    } else if spatial::<D>() {
         solve_matrix_free_3d(apply, laws, states, rho0, settings, r, x)
     } else {
         solve_matrix_free(apply, laws, states, rho0, settings, r, x)

@@ -190,6 +190,8 @@ impl SimulationSettings {
         fn with_max_adhesion_iterations(max_adhesion_iterations: usize);
         /// These settings with [`tuning.adhesion_anderson_window`](SimulationTuning::adhesion_anderson_window) replaced.
         fn with_adhesion_anderson_window(tuning.adhesion_anderson_window: usize);
+        /// These settings with [`tuning.matrix_free_window`](SimulationTuning::matrix_free_window) replaced.
+        fn with_matrix_free_window(tuning.matrix_free_window: usize);
         /// These settings with [`tuning.adhesion_warm_start`](SimulationTuning::adhesion_warm_start) replaced.
         fn with_adhesion_warm_start(tuning.adhesion_warm_start: bool);
         /// These settings with [`tuning.adhesion_method`](SimulationTuning::adhesion_method) replaced.

@@ -249,6 +249,7 @@ where
             &laws,
             &states,
             &rho0,
+            self.settings.tuning.matrix_free_window,
             &self.settings.solver,
             &mut r,
             &mut x,
