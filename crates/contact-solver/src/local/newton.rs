@@ -57,7 +57,9 @@
 //! (`F` keeps `W`): `η = 0` until a step fails or is short (`t ≤ 2⁻⁵`), then `η ← max(10 η,
 //! 10⁻⁶)` up to 1, a failed step retried at once (at most 3 times); a full step divides `η`
 //! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
-//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)".
+//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)". When the steps
+//! keep creeping (10 short or failed ones), `ρ` is raised tenfold, up to `10⁴ ρ⁰`
+//! ([`rho_raise`]; `docs/benchmarks.md` "spheres in a box (issue 37)").
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
@@ -117,6 +119,7 @@ use faer::{MatMut, MatRef};
 
 mod lu;
 mod proximal;
+mod rho_raise;
 mod sparse;
 use lu::lu_solve_in_place;
 pub(crate) use sparse::factor_fill;
@@ -523,7 +526,8 @@ impl NewtonScratch {
         self.rho.clear();
         self.rho
             .extend(sweeps.rho0().iter().map(|a| a * settings.tuning.rho_scale));
-        let exact_rho = settings.tuning.rho_scale == 1.0;
+        let mut exact_rho = settings.tuning.rho_scale == 1.0;
+        let mut raise = rho_raise::RhoRaise::default();
         let tol = settings.tol;
         let mut run = NewtonRun {
             iterations: 0,
@@ -606,6 +610,11 @@ impl NewtonScratch {
                 // Warm-up, polishing or fallback: one projected Gauss–Seidel sweep.
                 let dr2 = sweeps.gauss_seidel_sweep::<L, DT>(problem, laws, states, r, x);
                 run.change = dr2.sqrt() / norm(r).max(f64::MIN_POSITIVE);
+                phi = self.refresh::<L, DT>(laws, states, r, x);
+            }
+            if !warming_up && !polishing && let Some(f) = raise.after(stepped, t) {
+                self.rho.iter_mut().for_each(|a| *a *= f);
+                exact_rho = false;
                 phi = self.refresh::<L, DT>(laws, states, r, x);
             }
             run.residual =
