@@ -612,7 +612,10 @@ impl NewtonScratch {
                 run.change = dr2.sqrt() / norm(r).max(f64::MIN_POSITIVE);
                 phi = self.refresh::<L, DT>(laws, states, r, x);
             }
-            if !warming_up && !polishing && let Some(f) = raise.after(stepped, t) {
+            if !warming_up
+                && !polishing
+                && let Some(f) = raise.after(stepped, t)
+            {
                 self.rho.iter_mut().for_each(|a| *a *= f);
                 exact_rho = false;
                 phi = self.refresh::<L, DT>(laws, states, r, x);

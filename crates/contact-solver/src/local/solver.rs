@@ -21,8 +21,8 @@ mod direct;
 mod skip_open;
 
 use auto::{
-    auto_newton_budget, newton_pays, newton_probes, pressed_most, sparse_twin_for_auto,
-    sweep_probe, sweep_promises,
+    auto_newton_budget, last_newton, newton_pays, newton_probes, pressed_most,
+    sparse_twin_for_auto, sweep_probe, sweep_promises,
 };
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
@@ -278,8 +278,14 @@ impl UzawaSolver {
             && mu.is_some();
         let newton = st.algorithm == Algorithm::Newton;
         let chain: &[Algorithm] = match (switched || (fallback && newton), fallback) {
+            // issue 37: after a switch, Newton again, unprobed (`last_newton`)
+            (true, true) if switched => &[
+                Algorithm::AndersonGaussSeidel,
+                Algorithm::Newton,
+                Algorithm::ClassicRccm,
+            ],
+            (true, false) => &[Algorithm::AndersonGaussSeidel, Algorithm::Newton],
             (true, true) => &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm],
-            (true, false) => &[Algorithm::AndersonGaussSeidel],
             (false, true) => &[Algorithm::ClassicRccm],
             (false, false) => &[],
         };
@@ -289,7 +295,8 @@ impl UzawaSolver {
             if sol.report.converged {
                 break;
             }
-            let start = if from_newton {
+            let again = next == Algorithm::Newton;
+            let start = if from_newton || again {
                 sol.r.clone()
             } else {
                 r.clone()
@@ -299,6 +306,7 @@ impl UzawaSolver {
                 algorithm: next,
                 ..st
             };
+            let settings = if again { last_newton(st) } else { settings };
             let previous = sol.report.history.len();
             sol = self.run_after::<L, DT>(
                 settings,

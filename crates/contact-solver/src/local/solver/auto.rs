@@ -133,6 +133,23 @@ pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) ->
     }
 }
 
+/// Iterations of the Newton that [`Algorithm::Auto`] runs again, unprobed, after its probe
+/// switched to the accelerated sweep and the sweep did not converge either (issue 37:
+/// FCLIB's `spheres-in-a-box-98`, where the sweep stalls at 1.5e-6 after 9 200 sweeps and
+/// Newton with its raised `ρ` (`newton/rho_raise.rs`) converges in 219 iterations). The
+/// budget bounds what a problem with no solution costs on its way to the refusal.
+const AUTO_LAST_NEWTON_BUDGET: usize = 1000;
+
+/// The settings of that last Newton: `st`'s, Newton, at most `AUTO_LAST_NEWTON_BUDGET`
+/// iterations. It starts from the sweep's iterate.
+pub(super) fn last_newton(st: UzawaSettings) -> UzawaSettings {
+    UzawaSettings {
+        algorithm: Algorithm::Newton,
+        max_iterations: st.max_iterations.min(AUTO_LAST_NEWTON_BUDGET),
+        ..st
+    }
+}
+
 /// Whether `W` is dense and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
 /// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
 /// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
