@@ -58,7 +58,7 @@
 //! 10⁻⁶)` up to 1, a failed step retried at once (at most 3 times); a full step divides `η`
 //! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
 //! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)". When the steps
-//! keep creeping (10 short or failed ones), `ρ` is raised tenfold, up to `10⁴ ρ⁰`
+//! keep creeping (10 short or failed ones), `ρ` is raised tenfold, up to `10³ ρ⁰`
 //! ([`rho_raise`]; `docs/benchmarks.md` "spheres in a box (issue 37)").
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
