@@ -57,9 +57,9 @@
 //! (`F` keeps `W`): `η = 0` until a step fails or is short (`t ≤ 2⁻⁵`), then `η ← max(10 η,
 //! 10⁻⁶)` up to 1, a failed step retried at once (at most 3 times); a full step divides `η`
 //! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
-//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)". When the steps
-//! keep creeping (10 short or failed ones), `ρ` is raised tenfold, up to `10³ ρ⁰`
-//! ([`rho_raise`]; `docs/benchmarks.md` "spheres in a box (issue 37)").
+//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)". In `Auto`'s
+//! last Newton, when the steps keep creeping (10 short or failed ones), `ρ` is raised tenfold,
+//! up to `10³ ρ⁰` ([`rho_raise`]; `docs/benchmarks.md` "spheres in a box (issue 37)").
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
@@ -230,6 +230,10 @@ pub(crate) struct NewtonScratch {
     /// chose: the run gives up (neither converged nor stalled) on its second short step
     /// ([`creeps`]), so that the accelerated sweep takes over.
     pub(crate) probe: bool,
+    /// Set by [`Algorithm::Auto`](super::settings::Algorithm::Auto) for its last Newton
+    /// (after the sweep it switched to failed too): `ρ` is raised when the steps creep
+    /// ([`rho_raise`]).
+    pub(crate) raise_rho: bool,
     /// `η` of the [proximal regularisation](proximal) (`W + ε_i I`, `ε_i = η/ρ_i`, in the
     /// Jacobian); 0 off.
     eta: f64,
@@ -612,7 +616,8 @@ impl NewtonScratch {
                 run.change = dr2.sqrt() / norm(r).max(f64::MIN_POSITIVE);
                 phi = self.refresh::<L, DT>(laws, states, r, x);
             }
-            if !warming_up
+            if self.raise_rho
+                && !warming_up
                 && !polishing
                 && let Some(f) = raise.after(stepped, t)
             {

@@ -278,7 +278,7 @@ impl UzawaSolver {
             && mu.is_some();
         let newton = st.algorithm == Algorithm::Newton;
         let chain: &[Algorithm] = match (switched || (fallback && newton), fallback) {
-            // issue 37: after a switch, Newton again, unprobed (`last_newton`)
+            // issue 37: after a probe's switch, Newton again, unprobed, `ρ` raised (`last_newton`)
             (true, true) if switched => &[
                 Algorithm::AndersonGaussSeidel,
                 Algorithm::Newton,
@@ -296,7 +296,10 @@ impl UzawaSolver {
                 break;
             }
             let again = next == Algorithm::Newton;
-            let start = if from_newton || again {
+            if again && !newton_probes(problem) {
+                continue; // the unprobed Newton already ran
+            }
+            let start = if from_newton {
                 sol.r.clone()
             } else {
                 r.clone()
@@ -308,7 +311,8 @@ impl UzawaSolver {
             };
             let settings = if again { last_newton(st) } else { settings };
             let previous = sol.report.history.len();
-            sol = self.run_after::<L, DT>(
+            self.newton.raise_rho = again;
+            let after = self.run_after::<L, DT>(
                 settings,
                 st.algorithm,
                 sol,
@@ -318,7 +322,9 @@ impl UzawaSolver {
                 &start,
                 mu,
                 &mut best_iterate,
-            )?;
+            );
+            self.newton.raise_rho = false;
+            sol = after?;
             best = best_of(&sol.report.history[previous..]);
         }
         if !sol.report.converged && !st.accept_non_converged {

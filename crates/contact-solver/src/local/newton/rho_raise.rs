@@ -12,11 +12,15 @@
 //! `docs/benchmarks.md` "spheres in a box (issue 37)"); Siconos' `NSN_AC` takes `ρ = 1`
 //! absolute here, `3·10⁴ … 6.6·10⁵ ρ⁰`.
 //!
-//! The rule: every `CREEPING_STEPS` creeping iterations (a failed line search or a step
-//! `t ≤ SHORT_STEP`, counted since the last raise) `ρ ← FACTOR ρ`, at most `MAX_RAISES`
-//! times (`ρ ≤ 10³ ρ⁰`). A run with fewer creeping steps than that (every well-posed problem
-//! of the test suite) is the plain Newton's, bit for bit. The stopping rule keeps measuring
-//! the residual with `ρ⁰`.
+//! The rule, in the last Newton of [`Algorithm::Auto`](crate::Algorithm::Auto) only (after
+//! its probe switched to the sweep and the sweep failed too): every `CREEPING_STEPS` creeping
+//! iterations (a failed line search or a step `t ≤ SHORT_STEP`, counted since the last raise)
+//! `ρ ← FACTOR ρ`, at most `MAX_RAISES` times (`ρ ≤ 10³ ρ⁰`). The stopping rule keeps
+//! measuring the residual with `ρ⁰`. Not in every Newton run: there it lost issue 8's tipping
+//! block and `random_sparse_problem(2, 1001, 2, 3)`, which converge with `ρ⁰` after long slow
+//! stretches (`tests/integration/local_algorithms.rs`, `sparse.rs`). A user's Newton reaches
+//! the same answers with [`UzawaTuning::rho_scale`](crate::UzawaTuning::rho_scale) (10 to
+//! `3·10⁴` on FCLIB's file).
 
 use super::proximal::SHORT_STEP;
 
