@@ -59,7 +59,8 @@
 //! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
 //! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)". In `Auto`'s
 //! last Newton, when the steps keep creeping (10 short or failed ones), `ρ` is raised tenfold,
-//! up to `10³ ρ⁰` ([`rho_raise`]; `docs/benchmarks.md` "spheres in a box (issue 37)").
+//! up to `10³ ρ⁰` (`src/local/newton/rho_raise.rs`; `docs/benchmarks.md` "spheres in a box
+//! (issue 37)").
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
