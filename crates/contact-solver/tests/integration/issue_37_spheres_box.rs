@@ -1,8 +1,8 @@
 //! Issue 37, "every problem Siconos solves is solved": FCLIB's `spheres-in-a-box-98` (98
 //! spheres, 256 contacts, `W = H M⁻¹ Hᵀ` of rank 567 of 768, diagonal blocks of `7·10³ …
 //! 6.6·10⁵` against global eigenvalues down to `2·10⁻⁵`) was solved by none of our algorithms;
-//! Newton crept with `ρ⁰ = 1/λ_max(W_ii)` and is solved once `ρ` is raised
-//! (`src/local/newton/rho_raise.rs`; `docs/benchmarks.md` "spheres in a box (issue 37)").
+//! Newton crept with `ρ⁰ = 1/λ_max(W_ii)` and is solved once `ρ` is raised (in `Auto`'s last
+//! Newton, `src/local/newton/rho_raise.rs`; `docs/benchmarks.md` "spheres in a box (issue 37)").
 //!
 //! The family here: spheres in a box (`SpherePile`, side walls and floor, jittered columns,
 //! contacts up to `threshold·R` apart: more contacts than body DOF, `W` rank-deficient) with a
@@ -228,7 +228,7 @@ fn squeezed_sphere(q_n: f64) -> ReducedProblem {
     ReducedProblem::with_dimension(3, w, q, vec![0.3, 0.3]).unwrap()
 }
 
-/// The squeezed sphere has no solution: Newton (with its raised `ρ`) and `Auto` (with its
+/// The squeezed sphere has no solution: Newton and `Auto` (with its
 /// last Newton) refuse it with an error, never an answer; pulled apart (`q_n > 0`) it is
 /// solved with `r = 0`.
 #[test]
