@@ -10,7 +10,8 @@
 //! Reads FILE with [`read_fclib`] (local, or global condensed to `W = Hᵀ M⁻¹ H`; the read and
 //! condensation timed apart, median of `--repeat`), solves it with ALGORITHM (a name of
 //! [`Algorithm`], e.g. `AndersonGaussSeidel`, `Auto`; fallback off and at most 5000 iterations
-//! (`--max-iterations`; `--stall-window N` sets the stall detector's window, 0 off)
+//! (`--max-iterations`; `--stall-window N` sets the stall detector's window, 0 off;
+//! `--rho-scale S` multiplies the base penalty)
 //! except for `Auto`, which runs with its defaults; cold start), the median of `--repeat`
 //! in-process runs (one when the first takes over 2 s), and writes
 //! `OUT/STEM.ALGORITHM.json`: `source`, `dofs`, `dim`, `contacts`, `sparse`, `read_ms`,
@@ -105,6 +106,13 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         st
     } else {
         st.with_tuning(st.tuning.with_stall_window(stall_window as usize))
+    };
+    // `--rho-scale S` multiplies the base penalty `ρ⁰_i` (a diagnostic)
+    let rho_scale = flag("--rho-scale", f64::NAN);
+    let st = if rho_scale.is_nan() {
+        st
+    } else {
+        st.with_tuning(st.tuning.with_rho_scale(rho_scale))
     };
     let mut times = Vec::new();
     let mut last = None;

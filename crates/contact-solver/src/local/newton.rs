@@ -57,7 +57,10 @@
 //! (`F` keeps `W`): `η = 0` until a step fails or is short (`t ≤ 2⁻⁵`), then `η ← max(10 η,
 //! 10⁻⁶)` up to 1, a failed step retried at once (at most 3 times); a full step divides `η`
 //! by 10, to 0 below 10⁻⁶. A run without failed or short steps is the plain Newton's, bit for
-//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)".
+//! bit. Measured in `docs/benchmarks.md` "Newton on semidefinite W (issue 37)". In `Auto`'s
+//! last Newton, when the steps keep creeping (10 short or failed ones), `ρ` is raised tenfold,
+//! up to `10³ ρ⁰` (`src/local/newton/rho_raise.rs`; `docs/benchmarks.md` "spheres in a box
+//! (issue 37)").
 //!
 //! **Warm-up.** `WARMUP_SWEEPS` = 2 projected Gauss–Seidel sweeps run before the first
 //! Newton step: they find most of the active set, which saves Newton steps (each a dense
@@ -117,6 +120,7 @@ use faer::{MatMut, MatRef};
 
 mod lu;
 mod proximal;
+mod rho_raise;
 mod sparse;
 use lu::lu_solve_in_place;
 pub(crate) use sparse::factor_fill;
@@ -227,6 +231,10 @@ pub(crate) struct NewtonScratch {
     /// chose: the run gives up (neither converged nor stalled) on its second short step
     /// ([`creeps`]), so that the accelerated sweep takes over.
     pub(crate) probe: bool,
+    /// Set by [`Algorithm::Auto`](super::settings::Algorithm::Auto) for its last Newton
+    /// (after the sweep it switched to failed too): `ρ` is raised when the steps creep
+    /// ([`rho_raise`]).
+    pub(crate) raise_rho: bool,
     /// `η` of the [proximal regularisation](proximal) (`W + ε_i I`, `ε_i = η/ρ_i`, in the
     /// Jacobian); 0 off.
     eta: f64,
@@ -523,7 +531,8 @@ impl NewtonScratch {
         self.rho.clear();
         self.rho
             .extend(sweeps.rho0().iter().map(|a| a * settings.tuning.rho_scale));
-        let exact_rho = settings.tuning.rho_scale == 1.0;
+        let mut exact_rho = settings.tuning.rho_scale == 1.0;
+        let mut raise = rho_raise::RhoRaise::default();
         let tol = settings.tol;
         let mut run = NewtonRun {
             iterations: 0,
@@ -606,6 +615,15 @@ impl NewtonScratch {
                 // Warm-up, polishing or fallback: one projected Gauss–Seidel sweep.
                 let dr2 = sweeps.gauss_seidel_sweep::<L, DT>(problem, laws, states, r, x);
                 run.change = dr2.sqrt() / norm(r).max(f64::MIN_POSITIVE);
+                phi = self.refresh::<L, DT>(laws, states, r, x);
+            }
+            if self.raise_rho
+                && !warming_up
+                && !polishing
+                && let Some(f) = raise.after(stepped, t)
+            {
+                self.rho.iter_mut().for_each(|a| *a *= f);
+                exact_rho = false;
                 phi = self.refresh::<L, DT>(laws, states, r, x);
             }
             run.residual =

@@ -21,8 +21,8 @@ mod direct;
 mod skip_open;
 
 use auto::{
-    auto_newton_budget, newton_pays, newton_probes, pressed_most, sparse_twin_for_auto,
-    sweep_probe, sweep_promises,
+    auto_newton_budget, last_newton, newton_pays, newton_probes, pressed_most,
+    sparse_twin_for_auto, sweep_probe, sweep_promises,
 };
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
@@ -278,8 +278,14 @@ impl UzawaSolver {
             && mu.is_some();
         let newton = st.algorithm == Algorithm::Newton;
         let chain: &[Algorithm] = match (switched || (fallback && newton), fallback) {
+            // issue 37: after a probe's switch, Newton again, unprobed, `ρ` raised (`last_newton`)
+            (true, true) if switched => &[
+                Algorithm::AndersonGaussSeidel,
+                Algorithm::Newton,
+                Algorithm::ClassicRccm,
+            ],
+            (true, false) => &[Algorithm::AndersonGaussSeidel, Algorithm::Newton],
             (true, true) => &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm],
-            (true, false) => &[Algorithm::AndersonGaussSeidel],
             (false, true) => &[Algorithm::ClassicRccm],
             (false, false) => &[],
         };
@@ -288,6 +294,10 @@ impl UzawaSolver {
         for &next in chain {
             if sol.report.converged {
                 break;
+            }
+            let again = next == Algorithm::Newton;
+            if again && !newton_probes(problem) {
+                continue; // the unprobed Newton already ran
             }
             let start = if from_newton {
                 sol.r.clone()
@@ -299,8 +309,10 @@ impl UzawaSolver {
                 algorithm: next,
                 ..st
             };
+            let settings = if again { last_newton(st) } else { settings };
             let previous = sol.report.history.len();
-            sol = self.run_after::<L, DT>(
+            self.newton.raise_rho = again;
+            let after = self.run_after::<L, DT>(
                 settings,
                 st.algorithm,
                 sol,
@@ -310,7 +322,9 @@ impl UzawaSolver {
                 &start,
                 mu,
                 &mut best_iterate,
-            )?;
+            );
+            self.newton.raise_rho = false;
+            sol = after?;
             best = best_of(&sol.report.history[previous..]);
         }
         if !sol.report.converged && !st.accept_non_converged {

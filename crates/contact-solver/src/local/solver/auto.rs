@@ -133,6 +133,27 @@ pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) ->
     }
 }
 
+/// Iterations of the Newton that [`Algorithm::Auto`] runs again, unprobed, after its probe
+/// switched to the accelerated sweep and the sweep did not converge either (issue 37:
+/// FCLIB's `spheres-in-a-box-98`, where the sweep stalls at 1.5e-6 after 9 200 sweeps and
+/// Newton with its raised `ρ` (`newton/rho_raise.rs`) converges in about 220 iterations;
+/// the manufactured spheres in a box of the tests need up to 1 614). The budget bounds what a
+/// problem with no solution costs on its way to the refusal.
+const AUTO_LAST_NEWTON_BUDGET: usize = 2000;
+
+/// The settings of that last Newton: `st`'s, Newton, at most `AUTO_LAST_NEWTON_BUDGET`
+/// iterations, `ρ` raised when its steps creep (`newton/rho_raise.rs`). It starts from the
+/// start of the solve (from the sweep's iterate it missed one of the manufactured spheres in
+/// a box of `tests/integration/issue_37_spheres_box.rs` in 1 000 iterations, measured; from
+/// the start every one, in at most 1 614).
+pub(super) fn last_newton(st: UzawaSettings) -> UzawaSettings {
+    UzawaSettings {
+        algorithm: Algorithm::Newton,
+        max_iterations: st.max_iterations.min(AUTO_LAST_NEWTON_BUDGET),
+        ..st
+    }
+}
+
 /// Whether `W` is dense and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
 /// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
 /// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
