@@ -33,6 +33,7 @@ mod issue_35_penetration;
 mod issue_35_time_scheme;
 mod issue_36_traps;
 mod issue_37_asymmetric;
+mod issue_37_auto_multibody;
 mod issue_37_auto_rule;
 mod issue_37_fclib_wild;
 mod issue_37_rank_deficient;
