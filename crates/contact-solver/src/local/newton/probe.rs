@@ -59,7 +59,8 @@ impl NewtonProbe {
         }
         let min = |h: &[f64]| h.iter().copied().fold(f64::INFINITY, f64::min);
         let (before, recent) = (min(&history[..k - w]), min(&history[k - w..]));
-        !(recent <= PROGRESS_FACTOR * before)
+        let progressed = recent <= PROGRESS_FACTOR * before;
+        !progressed
     }
 
     /// Whether the iteration whose last try ended with `stepped` and step `t` counts as a
