@@ -59,8 +59,9 @@ fn solve(p: &ReducedProblem, algorithm: Algorithm) -> contact_solver::Solution {
 /// iterations (it stops at the first confirmed residual `≤ tol`, Newton alone polishes
 /// further), where the accelerated sweep needs over ten times as many; the answer solves the
 /// problem on the real `W` to 1e-6 (Siconos' error, `tol` = 1e-8 on our own scale). Fails on
-/// the old rule: its step probe gave up after 8 Newton iterations and the sweep ran from the
-/// start (`fallback_from` Newton, 1 060 sweeps more).
+/// the old rule (run with the sources of `002f120`): its step probe gave up on Newton and the
+/// accelerated sweep ran from the start, `(AndersonGaussSeidel, Some(Newton))` after 554
+/// iterations on the first pile.
 #[test]
 fn issue_37_auto_lets_newton_finish_on_non_symmetric_piles() {
     for (nx, walls) in [(3, Walls::None), (4, Walls::Box)] {
