@@ -98,7 +98,10 @@
 //!   (`AUTO_NEWTON_SHORT_STEP` = 2⁻⁵) or after `AUTO_NEWTON_BUDGET` (100) iterations (issue
 //!   37: on semidefinite multibody stacks the Newton crept for thousands of iterations with
 //!   steps `t ≤ 2⁻⁶` where the sweep converges in hundreds, while every converging run takes
-//!   steps `t ≥ 2⁻⁴`; `docs/benchmarks.md` "Auto on multibody problems").
+//!   steps `t ≥ 2⁻⁴`; `docs/benchmarks.md` "Auto on multibody problems"). On a sparse `W`
+//!   kept non-symmetric it runs instead until its residual stops halving over
+//!   `AUTO_NEWTON_PROGRESS_WINDOW` (20) iterations, stops at the first residual `≤ tol`, and
+//!   hands its iterate to the plain sweep (issue 37, Siconos' capsules: `newton/probe.rs`).
 //!   On a dense `W` where the rule picks Newton and at least half the contacts are pressed
 //!   (`AUTO_SWEEP_MIN_PRESSED`), `Auto` sweeps first (issue 37): 8 accelerated
 //!   sweeps (`AUTO_SWEEP_PROBE`), and when their rate over the last four promises the tolerance

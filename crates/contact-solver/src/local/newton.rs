@@ -109,7 +109,7 @@ use super::delassus::Delassus;
 use super::problem::ReducedProblem;
 use super::residual::{local, natural_residual, norm, pick, set_local};
 use super::residual_stop::ResidualStop;
-use super::settings::{AUTO_NEWTON_SHORT_STEP, AUTO_NEWTON_SHORT_STEPS, UzawaSettings};
+use super::settings::{AUTO_NEWTON_SHORT_STEPS, UzawaSettings};
 use super::stall::StallDetector;
 use super::sweep::Sweeps;
 use crate::error::SolverError;
@@ -119,10 +119,12 @@ use faer::sparse::Triplet;
 use faer::{MatMut, MatRef};
 
 mod lu;
+mod probe;
 mod proximal;
 mod rho_raise;
 mod sparse;
 use lu::lu_solve_in_place;
+pub(crate) use probe::NewtonProbe;
 pub(crate) use sparse::factor_fill;
 
 /// Armijo's constant `σ` of the line search.
@@ -228,9 +230,9 @@ pub(crate) struct NewtonScratch {
     first: Vec<usize>,
     triplets: Vec<Triplet<usize, usize, f64>>,
     /// Set by [`Algorithm::Auto`](super::settings::Algorithm::Auto) for the run of a Newton it
-    /// chose: the run gives up (neither converged nor stalled) on its second short step
-    /// ([`creeps`]), so that the accelerated sweep takes over.
-    pub(crate) probe: bool,
+    /// chose: when the run gives up (neither converged nor stalled), so that the accelerated
+    /// sweep takes over ([`probe`]).
+    pub(crate) probe: NewtonProbe,
     /// Set by [`Algorithm::Auto`](super::settings::Algorithm::Auto) for its last Newton
     /// (after the sweep it switched to failed too): `ρ` is raised when the steps creep
     /// ([`rho_raise`]).
@@ -238,15 +240,6 @@ pub(crate) struct NewtonScratch {
     /// `η` of the [proximal regularisation](proximal) (`W + ε_i I`, `ε_i = η/ρ_i`, in the
     /// Jacobian); 0 off.
     eta: f64,
-}
-
-/// Whether a Newton step of [`Algorithm::Auto`](super::settings::Algorithm::Auto)'s probe
-/// says that the semi-smooth Newton creeps: its line search failed (`!stepped`) or accepted
-/// only a step `t ≤ AUTO_NEWTON_SHORT_STEP` (measured in `docs/benchmarks.md` "Auto on
-/// multibody problems": after their first step, converging runs take `t ≥ 2⁻⁴`, the runs that
-/// creep for thousands of iterations `t ≤ 2⁻⁶` on most steps).
-fn creeps(stepped: bool, t: f64) -> bool {
-    !stepped || t <= AUTO_NEWTON_SHORT_STEP
 }
 
 /// `F(r)` into `f` and the cases into `cases`; returns `‖F‖²`.
@@ -584,7 +577,7 @@ impl NewtonScratch {
                             t *= 0.5;
                         }
                         steps_tried += 1;
-                        if self.probe && steps_tried > 1 && creeps(stepped, t) {
+                        if steps_tried > 1 && self.probe.counts_short(stepped, t) {
                             short_steps += 1;
                             if short_steps >= AUTO_NEWTON_SHORT_STEPS {
                                 // give up without a step (the iteration is not counted): the
@@ -629,7 +622,8 @@ impl NewtonScratch {
             run.residual =
                 relative_residual::<L, DT>(sweeps, laws, states, exact_rho, phi, denom_q, r, x);
             // the second way to stop: a long streak of residuals ≤ tol (`residual_stop`)
-            let on_residual = streak.met(run.iterations, run.residual, run.change, tol);
+            let on_residual = streak.met(run.iterations, run.residual, run.change, tol)
+                || self.probe.stops_on_residual(run.residual, tol);
             if (run.residual <= tol && run.change <= tol) || on_residual {
                 // x was updated incrementally: confirm on the exact x = W r + q.
                 problem.displacement_into(r, x);
@@ -647,6 +641,9 @@ impl NewtonScratch {
             }
             if stall.stalled(run.iterations, run.residual) {
                 run.stalled = true;
+                break;
+            }
+            if self.probe.gives_up(history) {
                 break;
             }
             polishing = run.residual <= tol;

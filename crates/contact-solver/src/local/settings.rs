@@ -142,6 +142,13 @@ pub(crate) const AUTO_NEWTON_SHORT_STEP: f64 = 1.0 / 32.0;
 /// iteration 8–10, none of the converging runs gives one).
 pub(crate) const AUTO_NEWTON_SHORT_STEPS: usize = 2;
 
+/// The iterations over which a Newton chosen by [`Algorithm::Auto`] on a sparse `W` kept
+/// non-symmetric must halve its residual, or give up (its progress probe, `newton/probe.rs`).
+/// Measured on Siconos' capsules (`docs/benchmarks.md`, "Auto on large multibody problems"):
+/// the converging runs halve it at least every 9 iterations (29–40 in all), the plateaus last
+/// hundreds (`Capsules-i101-404`, `-i122-1617`); 20, about twice the longest halving.
+pub(crate) const AUTO_NEWTON_PROGRESS_WINDOW: usize = 20;
+
 /// Sweeps of the accelerated Gauss–Seidel that [`Algorithm::Auto`] runs first on a dense `W`
 /// where it would pick Newton (issue 37, "sweep first"), to read the sweep's rate before
 /// choosing: 8, a third of what the random dense problems need in all (21–26) and an eighth

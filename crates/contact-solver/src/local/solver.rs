@@ -4,7 +4,7 @@
 use super::anderson::{AndersonScratch, BaseMap};
 use super::classic::ClassicScratch;
 use super::dense::KeptLu;
-use super::newton::NewtonScratch;
+use super::newton::{NewtonProbe, NewtonScratch};
 use super::plain;
 use super::problem::ReducedProblem;
 use super::residual::{
@@ -21,8 +21,8 @@ mod direct;
 mod skip_open;
 
 use auto::{
-    auto_newton_budget, last_newton, newton_pays, newton_probes, pressed_most,
-    sparse_twin_for_auto, sweep_probe, sweep_promises,
+    auto_newton_budget, last_newton, newton_pays, newton_probe, pressed_most, sparse_twin_for_auto,
+    sweep_after_newton, sweep_probe, sweep_promises,
 };
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
@@ -258,45 +258,48 @@ impl UzawaSolver {
         } else {
             st
         };
-        self.newton.probe = auto_newton && newton_probes(problem);
+        let probe = if auto_newton {
+            newton_probe(problem)
+        } else {
+            NewtonProbe::Off
+        };
+        self.newton.probe = probe;
         let first_run = self.attempt::<L, DT>(first, problem, laws, states, r.clone());
-        self.newton.probe = false;
+        self.newton.probe = NewtonProbe::Off;
         let mut sol = first_run?;
         let mut best_iterate = None;
         self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, &mut best_iterate);
         self.check::<L, DT>(problem, laws, states, &mut sol, mu);
         // the smallest residual of the last run, for the stalled error
         let mut best = best_of(&sol.report.history);
-        // What runs next while the answer is not converged: the accelerated sweep when Auto's
-        // Newton ran out of its budget; then the fallback — Newton's is first the accelerated
-        // sweep (it solves what Newton does, without a Jacobian), then the classical split,
-        // like every other algorithm's.
+        // What runs next while the answer is not converged: the sweep when Auto's Newton ran
+        // out of its budget (`sweep_after_newton`); then the fallback — Newton's is first the
+        // accelerated sweep (it solves what Newton does, without a Jacobian), then the
+        // classical split, like every other algorithm's.
         let switched = auto_newton && !sol.report.converged && !sol.report.stalled;
         let fallback = st.fallback
             && !st.accept_non_converged
             && st.algorithm != Algorithm::ClassicRccm
             && mu.is_some();
         let newton = st.algorithm == Algorithm::Newton;
+        let sweep = sweep_after_newton(probe);
         let chain: &[Algorithm] = match (switched || (fallback && newton), fallback) {
             // issue 37: after a probe's switch, Newton again, unprobed, `ρ` raised (`last_newton`)
-            (true, true) if switched => &[
-                Algorithm::AndersonGaussSeidel,
-                Algorithm::Newton,
-                Algorithm::ClassicRccm,
-            ],
-            (true, false) => &[Algorithm::AndersonGaussSeidel, Algorithm::Newton],
-            (true, true) => &[Algorithm::AndersonGaussSeidel, Algorithm::ClassicRccm],
+            (true, true) if switched => &[sweep, Algorithm::Newton, Algorithm::ClassicRccm],
+            (true, false) => &[sweep, Algorithm::Newton],
+            (true, true) => &[sweep, Algorithm::ClassicRccm],
             (false, true) => &[Algorithm::ClassicRccm],
             (false, false) => &[],
         };
-        // an unprobed Newton (a dense W kept non-symmetric) hands its iterate to the sweep
-        let mut from_newton = switched && !newton_probes(problem);
+        // an unprobed Newton (a dense W kept non-symmetric) and the progress probe's hand their
+        // iterate to the sweep
+        let mut from_newton = switched && probe != NewtonProbe::Steps;
         for &next in chain {
             if sol.report.converged {
                 break;
             }
             let again = next == Algorithm::Newton;
-            if again && !newton_probes(problem) {
+            if again && newton_probe(problem) == NewtonProbe::Off {
                 continue; // the unprobed Newton already ran
             }
             let start = if from_newton {

@@ -3,7 +3,7 @@
 //! The measurements behind each constant are in `docs/benchmarks.md` ("Which algorithm,
 //! measured" and "Auto on multibody problems").
 
-use super::super::newton::factor_fill;
+use super::super::newton::{NewtonProbe, factor_fill};
 use super::super::problem::ReducedProblem;
 use super::super::settings::Algorithm;
 use super::super::settings::{
@@ -37,15 +37,22 @@ pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
     }
 }
 
-/// Whether a Newton that [`Algorithm::Auto`] chose runs as a probe (it gives up on its second
-/// short Armijo step, `AUTO_NEWTON_SHORT_STEPS`): on a symmetric `W`, and on a sparse one kept
-/// non-symmetric; not on a dense `W` kept non-symmetric. Measured (issue 37, Siconos' rovers
-/// and `OneObject` problems, dense, asymmetry 1e-5 to 1e-3 of the scale): Newton's Armijo
-/// steps shrink to `t ≤ 2⁻⁵` early there and still converge within 7–18 iterations (95 on
+/// The probe of a Newton that [`Algorithm::Auto`] chose ([`NewtonProbe`]): on a symmetric
+/// `W` the step probe (it gives up on its second short Armijo step,
+/// `AUTO_NEWTON_SHORT_STEPS`); on a sparse one kept non-symmetric the progress probe (issue
+/// 37, seventh part: Siconos' capsules, whose Newton takes short steps while its proximal `η`
+/// rises and then converges in 29–40 iterations; `AUTO_NEWTON_PROGRESS_WINDOW`); on a dense
+/// `W` kept non-symmetric none. Measured (issue 37, Siconos' rovers and `OneObject`
+/// problems, dense, asymmetry 1e-5 to 1e-3 of the scale): Newton's Armijo steps shrink to
+/// `t ≤ 2⁻⁵` early there and still converge within 7–18 iterations (95 on
 /// `OneObject-i100000-499`), while the sweep that took over needed 4 023 sweeps (80× Newton's
 /// time) on `OneObject-i1028-138`; the budget `AUTO_NEWTON_UNPROBED_BUDGET` bounds the run.
-pub(super) fn newton_probes(problem: &ReducedProblem) -> bool {
-    problem.is_symmetric() || problem.w_dense().is_none()
+pub(super) fn newton_probe(problem: &ReducedProblem) -> NewtonProbe {
+    match (problem.is_symmetric(), problem.w_dense().is_none()) {
+        (true, _) => NewtonProbe::Steps,
+        (false, true) => NewtonProbe::Progress,
+        (false, false) => NewtonProbe::Off,
+    }
 }
 
 /// Whether at least `AUTO_MULTIBODY_ZERO_BLOCKS` of the off-diagonal `d × d` blocks of a dense
@@ -112,17 +119,16 @@ pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedPr
 /// start (whatever `fallback` says: the switch is part of `Auto`), so that a wrong first
 /// choice costs a bounded fraction of the solve (issue 37: Newton ground for thousands of
 /// iterations on multibody stacks that the sweep solves in hundreds). The run gives up
-/// sooner on its second short Armijo step after the first (`AUTO_NEWTON_SHORT_STEP`,
-/// `AUTO_NEWTON_SHORT_STEPS`; the solver sets the Newton's `probe` for this run where
-/// [`newton_probes`]): measured on symmetric `W`, the creeping runs give it at iteration
-/// 6–10, no converging run gives one, and a slow but converging Newton (a tower of 50
-/// spheres, 53 iterations, still 1.9× faster than the sweep) runs to the end.
+/// sooner as its probe says ([`newton_probe`]; the solver sets the Newton's `probe` for this
+/// run): measured on symmetric `W`, the creeping runs give their second short step at
+/// iteration 6–10, no converging run gives one, and a slow but converging Newton (a tower of
+/// 50 spheres, 53 iterations, still 1.9× faster than the sweep) runs to the end.
 ///
-/// A Newton that runs without the probe ([`newton_probes`]: a dense `W` kept non-symmetric)
-/// has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`, and the sweep goes on from its
-/// iterate (the solver's hand-over).
+/// A Newton that runs without the probe ([`NewtonProbe::Off`]: a dense `W` kept
+/// non-symmetric) has the shorter budget `AUTO_NEWTON_UNPROBED_BUDGET`; it and the progress
+/// probe's Newton hand their iterate to the sweep (the solver's hand-over).
 pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) -> UzawaSettings {
-    let budget = if newton_probes(problem) {
+    let budget = if newton_probe(problem) != NewtonProbe::Off {
         AUTO_NEWTON_BUDGET
     } else {
         AUTO_NEWTON_UNPROBED_BUDGET
@@ -151,6 +157,20 @@ pub(super) fn last_newton(st: UzawaSettings) -> UzawaSettings {
         algorithm: Algorithm::Newton,
         max_iterations: st.max_iterations.min(AUTO_LAST_NEWTON_BUDGET),
         ..st
+    }
+}
+
+/// The sweep that goes on after a Newton run under `probe` ended without converging: the
+/// accelerated sweep, except after the progress probe (a sparse `W` kept non-symmetric), where
+/// the plain Gauss–Seidel sweep goes on from Newton's iterate. Measured (issue 37, seventh
+/// part, `docs/benchmarks.md` "Auto on large multibody problems"): on Siconos'
+/// `Capsules-i101-404`, after Newton's plateau at 5e-7, the plain sweep converges in 1 457
+/// sweeps where the accelerated one takes 5 726; the plain sweep is our fastest algorithm on
+/// both capsule files where Newton plateaus.
+pub(super) fn sweep_after_newton(probe: NewtonProbe) -> Algorithm {
+    match probe {
+        NewtonProbe::Progress => Algorithm::GaussSeidel,
+        NewtonProbe::Steps | NewtonProbe::Off => Algorithm::AndersonGaussSeidel,
     }
 }
 
@@ -232,8 +252,10 @@ mod tests {
 
     /// Issue 37, sixth part: a dense `W` kept non-symmetric runs Newton without the probe and
     /// within `AUTO_NEWTON_UNPROBED_BUDGET`, whatever its zero blocks (`newton_pays`); the
-    /// same `W` symmetric, or kept non-symmetric but stored sparse, keeps the probe and
-    /// `AUTO_NEWTON_BUDGET`, and a symmetric block-diagonal one is left to the sparse twin.
+    /// same `W` symmetric keeps the step probe, kept non-symmetric but stored sparse it takes the
+    /// progress probe, both with
+    /// `AUTO_NEWTON_BUDGET` (the progress probe, seventh part), and a symmetric block-diagonal
+    /// one is left to the sparse twin.
     #[test]
     fn issue_37_dense_non_symmetric_w_runs_newton_unprobed() {
         // two uncoupled contacts (every off-diagonal block zero), one block non-symmetric
@@ -248,7 +270,7 @@ mod tests {
             ReducedProblem::with_asymmetry(2, w.clone(), q.clone(), mu.clone(), Asymmetry::Keep)
                 .unwrap();
         assert!(!kept.is_symmetric() && mostly_zero_blocks(&kept));
-        assert!(newton_pays(&kept) && !newton_probes(&kept));
+        assert!(newton_pays(&kept) && newton_probe(&kept) == NewtonProbe::Off);
         assert!(sparse_twin_for_auto(&kept).is_none());
         let st = UzawaSettings::default();
         let budget = auto_newton_budget(st, &kept).max_iterations;
@@ -257,7 +279,8 @@ mod tests {
         let sym =
             ReducedProblem::with_asymmetry(2, w, q, mu, Asymmetry::Symmetrise { tolerance: 1.0 })
                 .unwrap();
-        assert!(sym.is_symmetric() && newton_probes(&sym) && !newton_pays(&sym));
+        assert!(sym.is_symmetric() && !newton_pays(&sym));
+        assert_eq!(newton_probe(&sym), NewtonProbe::Steps);
         assert!(sparse_twin_for_auto(&sym).is_some());
         assert_eq!(
             auto_newton_budget(st, &sym).max_iterations,
@@ -274,7 +297,12 @@ mod tests {
             Asymmetry::Keep,
         )
         .unwrap();
-        assert!(!sparse.is_symmetric() && newton_probes(&sparse));
+        assert!(!sparse.is_symmetric());
+        assert_eq!(newton_probe(&sparse), NewtonProbe::Progress);
+        assert_eq!(
+            auto_newton_budget(st, &sparse).max_iterations,
+            AUTO_NEWTON_BUDGET
+        );
     }
 
     /// A sweep contracting by 0.5 a sweep from 1 reaches 1e-8 near sweep 27 (promised at 8
