@@ -162,6 +162,29 @@ pub(crate) const AUTO_SWEEP_MIN_PRESSED: f64 = 0.5;
 /// problems: 21–26) and loses where it needs 54–74 (FE problems).
 pub(crate) const AUTO_SWEEP_PREDICTED: f64 = 40.0;
 
+/// Contacts up to which [`Algorithm::Auto`] runs the classical solver first on a sparse
+/// symmetric `W` (issue 37, seventh part; `docs/benchmarks.md`, "Auto on small problems"):
+/// on Siconos' small sparse problems (3–107 contacts) the classical solver was the fastest of
+/// ours on 9 of 11 and Newton 1.4–4.4× slower; above (granular flows of 367–376 contacts) the
+/// sweeps win.
+pub(crate) const AUTO_CLASSIC_MAX_CONTACTS: usize = 128;
+
+/// Sweeps of that first classical run at most: 200, above what it needed on the problems it
+/// wins (6–187) but for one (`FrictionContactProblem00071`, 533, kept going by
+/// `AUTO_CLASSIC_PREDICTED`).
+pub(crate) const AUTO_CLASSIC_PROBE: usize = 200;
+
+/// Stored entries of `W` times sweeps that the first classical run may cost at most (one
+/// sweep reads `W` once): fewer sweeps than `AUTO_CLASSIC_PROBE` on a `W` of more than 20 000
+/// stored entries, so that a failed first run costs at most about a Newton step there.
+pub(crate) const AUTO_CLASSIC_PROBE_WORK: usize = 4_000_000;
+
+/// Outer iterations (first run included) within which the first classical run's rate must
+/// promise the tolerance for [`Algorithm::Auto`] to let it go on rather than run its own
+/// choice: 40, above the 22 of `FrictionContactProblem00071` and below the 48 of
+/// `Confeti-ex03-Fc3D-SBM` (where Newton and the sweep are 3× faster).
+pub(crate) const AUTO_CLASSIC_PREDICTED: f64 = 40.0;
+
 /// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
 /// long, what to do when it fails), with the tuning of the iteration beside them in
 /// [`tuning`](Self::tuning). Build them from `Default` and the `with_*` setters (the struct is

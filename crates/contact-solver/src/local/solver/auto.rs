@@ -162,6 +162,11 @@ pub(super) fn sweep_probe(st: UzawaSettings) -> UzawaSettings {
 /// A history already at `tol` promises it; one shorter than five sweeps, or not contracting
 /// (`ρ ≥ 1`, a NaN), does not.
 pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
+    promises_within(history, tol, AUTO_SWEEP_PREDICTED)
+}
+
+/// [`sweep_promises`] with `within` iterations in all in place of `AUTO_SWEEP_PREDICTED`.
+pub(super) fn promises_within(history: &[f64], tol: f64, within: f64) -> bool {
     let k = history.len();
     let Some(&last) = history.last() else {
         return false;
@@ -176,7 +181,7 @@ pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
     if rate.is_nan() || rate >= 1.0 || rate <= 0.0 {
         return false;
     }
-    k as f64 + (tol / last).ln() / rate.ln() <= AUTO_SWEEP_PREDICTED
+    k as f64 + (tol / last).ln() / rate.ln() <= within
 }
 
 #[cfg(test)]
