@@ -169,19 +169,34 @@ pub(crate) const AUTO_SWEEP_PREDICTED: f64 = 40.0;
 /// sweeps win.
 pub(crate) const AUTO_CLASSIC_MAX_CONTACTS: usize = 128;
 
-/// Sweeps of that first classical run at most: 200, above what it needed on the problems it
-/// wins (6–187) but for one (`FrictionContactProblem00071`, 533, kept going by
-/// `AUTO_CLASSIC_PREDICTED`).
+/// Sweeps of that first classical run: `AUTO_CLASSIC_SWEEPS_PER_ENTRY` per stored entry of an
+/// average row of `W`, at least `AUTO_CLASSIC_MIN_SWEEPS` and at most `AUTO_CLASSIC_PROBE`.
+/// Newton's factorisation costs more the more a row of `W` couples (its fill), a sweep only
+/// as much as `W` stores, so the budget grows with the entries per row: measured on Siconos'
+/// small sparse problems (`docs/benchmarks.md`, "Auto on small problems"), the classical
+/// solver wins where it needs 5–6 sweeps (1–10 entries a row) and on `Confeti-ex13-Fc3D-SBM`
+/// (172 sweeps, 56 entries a row, Newton 1.7× slower); Newton wins on `Confeti-ex03-Fc3D-SBM`
+/// (1 549 sweeps, 7.9 a row) and `NESpheres_10_1` (187 sweeps, 3.7 a row), where the first
+/// run stops after 32 and 16 sweeps.
 pub(crate) const AUTO_CLASSIC_PROBE: usize = 200;
 
-/// Stored entries of `W` times sweeps that the first classical run may cost at most (one
-/// sweep reads `W` once): fewer sweeps than `AUTO_CLASSIC_PROBE` on a `W` of more than 20 000
-/// stored entries, so that a failed first run costs at most about a Newton step there.
-pub(crate) const AUTO_CLASSIC_PROBE_WORK: usize = 4_000_000;
+/// See `AUTO_CLASSIC_PROBE`: 16, above the 6 sweeps (2 outer iterations) of the weakly
+/// coupled problems.
+pub(crate) const AUTO_CLASSIC_MIN_SWEEPS: usize = 16;
+
+/// See `AUTO_CLASSIC_PROBE`: 4 sweeps per stored entry of an average row (224 on
+/// `Confeti-ex13-Fc3D-SBM`, capped at 200; 32 on `Confeti-ex03-Fc3D-SBM`).
+pub(crate) const AUTO_CLASSIC_SWEEPS_PER_ENTRY: f64 = 4.0;
+
+/// Rows of a dense `W` up to which [`Algorithm::Auto`] runs its Newton without the sweep
+/// first (`AUTO_SWEEP_PROBE`): Newton's system then fits the in-crate LU, and its step costs
+/// a few sweeps (Siconos' rovers, 2–5 contacts: the 8 probing sweeps took 25–40 % of `Auto`'s
+/// time; the slider crank's 2 contacts: the sweep 1.4× Newton).
+pub(crate) const AUTO_SWEEP_MIN_ROWS: usize = 32;
 
 /// Outer iterations (first run included) within which the first classical run's rate must
 /// promise the tolerance for [`Algorithm::Auto`] to let it go on rather than run its own
-/// choice: 40, above the 22 of `FrictionContactProblem00071` and below the 48 of
+/// choice: 40, as for the sweep (`AUTO_SWEEP_PREDICTED`), below the 48 of
 /// `Confeti-ex03-Fc3D-SBM` (where Newton and the sweep are 3× faster).
 pub(crate) const AUTO_CLASSIC_PREDICTED: f64 = 40.0;
 

@@ -7,8 +7,9 @@ use super::super::newton::factor_fill;
 use super::super::problem::ReducedProblem;
 use super::super::settings::Algorithm;
 use super::super::settings::{
-    AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
-    AUTO_NEWTON_UNPROBED_BUDGET, AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED,
+    AUTO_CLASSIC_MAX_CONTACTS, AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET,
+    AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_NEWTON_UNPROBED_BUDGET,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_MIN_ROWS,
     AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
@@ -30,9 +31,12 @@ pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
             nc <= AUTO_NEWTON_MAX_CONTACTS
                 && (!problem.is_symmetric() || !mostly_zero_blocks(problem))
         }
+        // a small W (`AUTO_CLASSIC_MAX_CONTACTS`) is not measured: its fill costs little
         Some(a) => {
-            nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
-                && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
+            nc <= AUTO_CLASSIC_MAX_CONTACTS
+                || nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
+                    && factor_fill(a, problem.dimension())
+                        .is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
         }
     }
 }
@@ -133,14 +137,18 @@ pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) ->
     }
 }
 
-/// Whether `W` is dense and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
+/// Whether `W` is dense, of more than `AUTO_SWEEP_MIN_ROWS` rows, and at least
+/// `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
 /// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
 /// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
 /// Newton's steps are small beside a sweep over the whole `W`, and `Auto` keeps Newton.
 pub(super) fn pressed_most(problem: &ReducedProblem) -> bool {
     let (d, nc) = (problem.dimension(), problem.contact_count());
     let pressed = (0..nc).filter(|&i| problem.q()[d * i] < 0.0).count();
-    problem.w_dense().is_some() && nc > 0 && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
+    problem.w_dense().is_some()
+        && problem.size() > AUTO_SWEEP_MIN_ROWS
+        && nc > 0
+        && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
 }
 
 /// The settings of the sweep [`Algorithm::Auto`] runs first on a dense `W` where it would

@@ -10,7 +10,8 @@
 //! run stops within its budget and costs a fraction of what follows:
 //!
 //! ```text
-//! sweeps ≤ min(AUTO_CLASSIC_PROBE, AUTO_CLASSIC_PROBE_WORK / stored(W))
+//! sweeps ≤ clamp(AUTO_CLASSIC_SWEEPS_PER_ENTRY · stored(W) / m,
+//!                AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE)
 //! converged (and checked)                          → its answer
 //! its outer residuals promise tol within
 //!   AUTO_CLASSIC_PREDICTED outer iterations       → it goes on from its iterate
@@ -19,8 +20,8 @@
 
 use super::super::problem::ReducedProblem;
 use super::super::settings::{
-    AUTO_CLASSIC_MAX_CONTACTS, AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE,
-    AUTO_CLASSIC_PROBE_WORK, Algorithm, Solution, UzawaSettings,
+    AUTO_CLASSIC_MAX_CONTACTS, AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE,
+    AUTO_CLASSIC_SWEEPS_PER_ENTRY, Algorithm, Solution, UzawaSettings,
 };
 use super::UzawaSolver;
 use super::auto::promises_within;
@@ -29,7 +30,7 @@ use contact_laws::ContactLaw;
 
 /// The settings of the classical solver's first run where [`Algorithm::Auto`] tries it first
 /// (a sparse symmetric `W` of 2 to `AUTO_CLASSIC_MAX_CONTACTS` contacts), with its budget of
-/// sweeps; `None` elsewhere (a dense `W` keeps the measured rule of `auto`: Newton, or the
+/// sweeps (`AUTO_CLASSIC_PROBE`); `None` elsewhere (a dense `W` keeps the measured rule of `auto`: Newton, or the
 /// sweep first).
 pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Option<UzawaSettings> {
     let a = problem.w_sparse()?;
@@ -37,7 +38,9 @@ pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Opti
     if !problem.is_symmetric() || !(2..=AUTO_CLASSIC_MAX_CONTACTS).contains(&nc) {
         return None;
     }
-    let sweeps = (AUTO_CLASSIC_PROBE_WORK / a.stored().max(1)).min(AUTO_CLASSIC_PROBE);
+    let per_row = a.stored() as f64 / problem.size() as f64;
+    let sweeps = ((AUTO_CLASSIC_SWEEPS_PER_ENTRY * per_row) as usize)
+        .clamp(AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE);
     Some(UzawaSettings {
         algorithm: Algorithm::ClassicRccm,
         max_iterations: st.max_iterations.min(sweeps),
@@ -130,7 +133,7 @@ mod tests {
     use super::*;
     use crate::local::Asymmetry;
 
-    /// The rule's reach: a sparse symmetric `W` of 2 contacts is tried with the full budget,
+    /// The rule's reach: a sparse symmetric `W` of 2 contacts is tried,
     /// one of 1 contact (the direct solve's) and a dense or non-symmetric one are not.
     #[test]
     fn classic_probe_works() {
@@ -142,8 +145,16 @@ mod tests {
         let st = UzawaSettings::default();
         let probe = classic_probe(st, &sparse).unwrap();
         assert_eq!(probe.algorithm, Algorithm::ClassicRccm);
-        assert_eq!(probe.max_iterations, AUTO_CLASSIC_PROBE);
-        let one = ReducedProblem::from_triplets(2, &[0, 1], &[0, 1], &[2.0, 2.0], vec![-1.0, 0.0], vec![0.3]);
+        // one stored entry a row: the least budget
+        assert_eq!(probe.max_iterations, AUTO_CLASSIC_MIN_SWEEPS);
+        let one = ReducedProblem::from_triplets(
+            2,
+            &[0, 1],
+            &[0, 1],
+            &[2.0, 2.0],
+            vec![-1.0, 0.0],
+            vec![0.3],
+        );
         assert!(classic_probe(st, &one.unwrap()).is_none());
         let mut w = vec![0.0; 16];
         (0..4).for_each(|k| w[5 * k] = 2.0);
