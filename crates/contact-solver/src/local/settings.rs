@@ -169,29 +169,33 @@ pub(crate) const AUTO_SWEEP_PREDICTED: f64 = 40.0;
 /// sweeps win.
 pub(crate) const AUTO_CLASSIC_MAX_CONTACTS: usize = 128;
 
-/// Sweeps of that first classical run: `AUTO_CLASSIC_SWEEPS_PER_ENTRY` per stored entry of an
-/// average row of `W`, at least `AUTO_CLASSIC_MIN_SWEEPS` and at most `AUTO_CLASSIC_PROBE`.
-/// Newton's factorisation costs more the more a row of `W` couples (its fill), a sweep only
-/// as much as `W` stores, so the budget grows with the entries per row: measured on Siconos'
-/// small sparse problems (`docs/benchmarks.md`, "Auto on small problems"), the classical
-/// solver wins where it needs 5–6 sweeps (1–10 entries a row) and on `Confeti-ex13-Fc3D-SBM`
-/// (172 sweeps, 56 entries a row, Newton 1.7× slower); Newton wins on `Confeti-ex03-Fc3D-SBM`
-/// (1 549 sweeps, 7.9 a row) and `NESpheres_10_1` (187 sweeps, 3.7 a row), where the first
-/// run stops after 32 and 16 sweeps.
+/// Sweeps of that first classical run: `k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP` for `k`
+/// stored entries in an average row of `W`, at least `AUTO_CLASSIC_MIN_SWEEPS` and at most
+/// `AUTO_CLASSIC_PROBE`. A sweep costs `k` a row; Newton's elimination about `k²` a row (a
+/// front of `k` rows), so the sweeps that a Newton step buys grow with `k`, and its steps with
+/// the coupling. Fitted on Siconos' small sparse problems (`docs/benchmarks.md`, "Auto on
+/// small problems"): the classical solver wins where it needs 5–6 sweeps (1–10 entries a
+/// row) and on `Confeti-ex13-Fc3D-SBM` (172 sweeps, `k` = 56: 196 allowed); Newton wins on
+/// `Confeti-ex03-Fc3D-SBM` (1 549 sweeps, `k` = 7.9) and `NESpheres_10_1` (187, `k` = 3.7),
+/// where the first run stops after 16 sweeps; on the small semidefinite sphere piles of
+/// `tests/integration/issue_37_semidefinite.rs` (Newton creeps, the sweep wins) it must cost
+/// at most a few sweeps more than Newton's probe.
 pub(crate) const AUTO_CLASSIC_PROBE: usize = 200;
 
 /// See `AUTO_CLASSIC_PROBE`: 16, above the 6 sweeps (2 outer iterations) of the weakly
 /// coupled problems.
 pub(crate) const AUTO_CLASSIC_MIN_SWEEPS: usize = 16;
 
-/// See `AUTO_CLASSIC_PROBE`: 4 sweeps per stored entry of an average row (224 on
-/// `Confeti-ex13-Fc3D-SBM`, capped at 200; 32 on `Confeti-ex03-Fc3D-SBM`).
-pub(crate) const AUTO_CLASSIC_SWEEPS_PER_ENTRY: f64 = 4.0;
+/// See `AUTO_CLASSIC_PROBE`: 16 (`Confeti-ex13-Fc3D-SBM`: 56²/16 = 196 sweeps).
+pub(crate) const AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP: f64 = 16.0;
 
-/// Rows of a dense `W` up to which [`Algorithm::Auto`] runs its Newton without the sweep
-/// first (`AUTO_SWEEP_PROBE`): Newton's system then fits the in-crate LU, and its step costs
-/// a few sweeps (Siconos' rovers, 2–5 contacts: the 8 probing sweeps took 25–40 % of `Auto`'s
-/// time; the slider crank's 2 contacts: the sweep 1.4× Newton).
+/// Rows of a dense `W` kept non-symmetric up to which [`Algorithm::Auto`] runs its Newton
+/// without the sweep first (`AUTO_SWEEP_PROBE`): Newton's system then fits the in-crate LU,
+/// and its step costs a few sweeps (Siconos' rovers, 2–5 contacts, non-symmetric: the 8
+/// probing sweeps took 25–40 % of `Auto`'s time; the slider crank's 2 contacts: the sweep
+/// 1.4× Newton). A symmetric `W` keeps the sweep first at every size: on the small
+/// semidefinite sphere piles of `tests/integration/issue_37_semidefinite.rs` Newton creeps
+/// and the sweep first saves its probe (607 iterations against 536 without it).
 pub(crate) const AUTO_SWEEP_MIN_ROWS: usize = 32;
 
 /// Outer iterations (first run included) within which the first classical run's rate must

@@ -38,6 +38,7 @@ mod issue_37_fclib_wild;
 mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
 mod issue_37_siconos_dat;
+mod issue_37_small;
 mod issue_38_one_factor;
 mod issue_38_pad;
 mod issue_39_adhesion;

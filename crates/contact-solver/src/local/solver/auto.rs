@@ -137,8 +137,9 @@ pub(super) fn auto_newton_budget(st: UzawaSettings, problem: &ReducedProblem) ->
     }
 }
 
-/// Whether `W` is dense, of more than `AUTO_SWEEP_MIN_ROWS` rows, and at least
-/// `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
+/// Whether `W` is dense (symmetric, or kept non-symmetric with more than
+/// `AUTO_SWEEP_MIN_ROWS` rows) and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are
+/// pressed
 /// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
 /// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
 /// Newton's steps are small beside a sweep over the whole `W`, and `Auto` keeps Newton.
@@ -146,7 +147,7 @@ pub(super) fn pressed_most(problem: &ReducedProblem) -> bool {
     let (d, nc) = (problem.dimension(), problem.contact_count());
     let pressed = (0..nc).filter(|&i| problem.q()[d * i] < 0.0).count();
     problem.w_dense().is_some()
-        && problem.size() > AUTO_SWEEP_MIN_ROWS
+        && (problem.is_symmetric() || problem.size() > AUTO_SWEEP_MIN_ROWS)
         && nc > 0
         && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
 }

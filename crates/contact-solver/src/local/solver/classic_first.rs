@@ -10,7 +10,8 @@
 //! run stops within its budget and costs a fraction of what follows:
 //!
 //! ```text
-//! sweeps ≤ clamp(AUTO_CLASSIC_SWEEPS_PER_ENTRY · stored(W) / m,
+//! k = stored(W) / m (entries of an average row)
+//! sweeps ≤ clamp(k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP,
 //!                AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE)
 //! converged (and checked)                          → its answer
 //! its outer residuals promise tol within
@@ -20,8 +21,8 @@
 
 use super::super::problem::ReducedProblem;
 use super::super::settings::{
-    AUTO_CLASSIC_MAX_CONTACTS, AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE,
-    AUTO_CLASSIC_SWEEPS_PER_ENTRY, Algorithm, Solution, UzawaSettings,
+    AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP, AUTO_CLASSIC_MAX_CONTACTS, AUTO_CLASSIC_MIN_SWEEPS,
+    AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE, Algorithm, Solution, UzawaSettings,
 };
 use super::UzawaSolver;
 use super::auto::promises_within;
@@ -39,7 +40,7 @@ pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Opti
         return None;
     }
     let per_row = a.stored() as f64 / problem.size() as f64;
-    let sweeps = ((AUTO_CLASSIC_SWEEPS_PER_ENTRY * per_row) as usize)
+    let sweeps = ((per_row * per_row / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP) as usize)
         .clamp(AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE);
     Some(UzawaSettings {
         algorithm: Algorithm::ClassicRccm,
