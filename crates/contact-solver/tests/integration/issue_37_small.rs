@@ -38,15 +38,13 @@ fn uncoupled() -> (ReducedProblem, Vec<f64>) {
     let (mut rows, mut cols, mut vals, mut q, mut r_star) =
         (vec![], vec![], vec![], vec![], vec![]);
     for (i, (r, x)) in known.iter().enumerate() {
-        for k in 0..2 {
-            for l in 0..2 {
-                if block[k][l] != 0.0 {
-                    rows.push(2 * i + k);
-                    cols.push(2 * i + l);
-                    vals.push(block[k][l]);
-                }
+        for (k, row) in block.iter().enumerate() {
+            for (l, &v) in row.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                rows.push(2 * i + k);
+                cols.push(2 * i + l);
+                vals.push(v);
             }
-            q.push(x[k] - (0..2).map(|l| block[k][l] * r[l]).sum::<f64>());
+            q.push(x[k] - row.iter().zip(r).map(|(w, r)| w * r).sum::<f64>());
         }
         r_star.extend_from_slice(r);
     }
