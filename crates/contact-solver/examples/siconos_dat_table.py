@@ -6,7 +6,7 @@ Usage:
     cargo build --release -p contact-solver --example siconos_dat_table
     OPENBLAS_NUM_THREADS=1 /usr/bin/python3 crates/contact-solver/examples/siconos_dat_table.py \
         OUT FILE.dat|DIR ... [--ours target/release/examples/siconos_dat_table] [--tol 1e-8] [--repeat 3]
-        [--timeout 60]
+        [--timeout 60] [--before OTHER_BUILD]
 
 For each file (folders: every .dat in them; smallest first), first ours (the example, one
 process per algorithm and one for Auto, timed
@@ -21,7 +21,9 @@ The judge ("res"): on W, q read by Siconos (scipy, via NM_triplet; a global prob
 here, W = H^T M^-1 H, q = H^T M^-1 q_g + b, with scipy's sparse LU), u = W r + q and De Saxce's
 modified velocity w = u + mu ||u_T|| e_N; res = ||r - P_K(r - w)||_2 / max(||q||_2, 1e-300), the
 natural map of Siconos' fc3d_compute_error with rho = 1, the same number for every answer.
-Solved: res <= 1e-6. Prints a Markdown table and writes OUT/table.json.
+Solved: res <= 1e-6. Prints a Markdown table and writes OUT/table.json. With --before, a
+second build's Auto also runs on each file, right before or after ours (alternating), and a
+before/after table follows.
 Needs python3-siconos, python3-scipy; not part of CI.
 """
 import argparse
@@ -220,10 +222,11 @@ EXPECTED = {
 }
 
 
-def ours_run(a, path, alg):
+def ours_run(a, path, alg, binary=None, out=None):
     """One algorithm of ours in its own process, killed after --timeout seconds."""
     stem = os.path.splitext(os.path.basename(path))[0]
-    cmd = [a.ours, a.out, path, "--tol", str(a.tol), "--repeat", str(a.repeat), "--only", alg]
+    binary, out = binary or a.ours, out or a.out
+    cmd = [binary, out, path, "--tol", str(a.tol), "--repeat", str(a.repeat), "--only", alg]
     try:
         res = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
     except subprocess.TimeoutExpired:
@@ -231,7 +234,7 @@ def ours_run(a, path, alg):
     if res.returncode != 0:
         lines = (res.stderr.strip() or f"exit {res.returncode}").splitlines()
         return lines[-1], None
-    with open(os.path.join(a.out, f"{stem}.{alg}.ours.json")) as f:
+    with open(os.path.join(out, f"{stem}.{alg}.ours.json")) as f:
         data = json.load(f)
     return None, data
 
@@ -245,12 +248,18 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--timeout", type=float, default=60.0,
                     help="seconds for each run (one algorithm of ours, one Siconos solver)")
+    ap.add_argument("--before", default=None,
+                    help="a second build of the example: its Auto runs beside ours on each "
+                         "file (alternating which runs first), for a before/after table")
     ap.add_argument("--table", action="store_true",
                     help="only print the table of OUT/table.json (an earlier run)")
     a = ap.parse_args()
     if a.table:
         with open(os.path.join(a.out, "table.json")) as f:
-            print_table(json.load(f))
+            rows = json.load(f)
+        print_table(rows)
+        if any("auto_before" in row for row in rows):
+            print_before_after(rows)
         return
     os.makedirs(a.out, exist_ok=True)
     files = []
@@ -265,7 +274,12 @@ def main():
         if seen.get(stem) == content:  # the same file in two folders
             continue
         seen[stem] = content
+        before = None
+        if a.before and len(seen) % 2 == 0:
+            before = ours_run(a, path, "Auto", a.before, os.path.join(a.out, "before"))[1]
         refused, auto = ours_run(a, path, "Auto")
+        if a.before and before is None:
+            before = ours_run(a, path, "Auto", a.before, os.path.join(a.out, "before"))[1]
         if refused is not None:
             rows.append({"file": stem, "refused": refused})
             print(f"{stem}: refused: {refused}", flush=True)
@@ -297,6 +311,15 @@ def main():
             else:
                 rr["error"] = run["error"]
             row["ours"].append(rr)
+        if before is not None:
+            run = before["runs"][0] if "runs" in before else before
+            rb = {"algorithm": "Auto", "ms": run.get("ms")}
+            if "r" in run:
+                rb.update(res=judge(W, q, mu, dim, np.array(run["r"])), picked=run["picked"],
+                          iterations=run["iterations"])
+            else:
+                rb["error"] = run["error"]
+            row["auto_before"] = rb
         for run in theirs:
             sr = {k: v for k, v in run.items() if k != "r"}
             if "r" in run:
@@ -309,6 +332,33 @@ def main():
     with open(os.path.join(a.out, "table.json"), "w") as f:
         json.dump(rows, f, indent=1)
     print_table(rows)
+    if a.before:
+        print_before_after(rows)
+
+
+def print_before_after(rows):
+    """Auto of --before against ours, each over our best (the fastest of our six algorithms,
+    of this build, whose answer the judge accepts)."""
+    print("\n| problem | n_c | our best: ms | Auto before: picked ms | Auto after: picked ms "
+          "| before / best | after / best |")
+    print("|---|---|---|---|---|---|---|")
+
+    def txt(r):
+        if "error" in r:
+            return r["error"][:40], None
+        picked = SHORT.get(r["picked"].split(" (")[0], r["picked"][:30])
+        ok = r.get("res", np.inf) <= SOLVED
+        return f"{picked} {r['ms']:.3g}" + ("" if ok else f" (res {r['res']:.1e})"), ok
+    for row in rows:
+        if "refused" in row or "auto_before" not in row:
+            continue
+        best = best_of([r for r in row["ours"] if r["algorithm"] != "Auto"], "algorithm")
+        auto = next(r for r in row["ours"] if r["algorithm"] == "Auto")
+        (tb, okb), (ta, oka) = txt(row["auto_before"]), txt(auto)
+        rb = f"{row['auto_before']['ms'] / best['ms']:.2f}" if best and okb else "-"
+        ra = f"{auto['ms'] / best['ms']:.2f}" if best and oka else "-"
+        bt = f"{SHORT[best['algorithm']]} {best['ms']:.3g}" if best else "none"
+        print(f"| {row['file']} | {row['contacts']} | {bt} | {tb} | {ta} | {rb} | {ra} |")
 
 
 def cell(ms, res):

@@ -139,6 +139,11 @@ const MAX_HALVINGS: usize = 20;
 /// `docs/benchmarks.md`): faer's fixed cost dominates below about 40 unknowns
 /// (p = 8: 1.0 µs against 0.2 µs; p = 32: 4.9 against 3.9 µs; p = 64: 16 against 21 µs).
 const SMALL_SYSTEM: usize = 32;
+/// On a sparse `W` of at most this many rows a Newton system of at most `SMALL_SYSTEM`
+/// unknowns is assembled dense and solved by [`lu_solve_in_place`] (issue 37, seventh part):
+/// faer's sparse LU orders and factorises symbolically at every step, which was most of
+/// Newton's time on Siconos' small sparse problems (3–28 contacts, 3–4× the classical solver).
+const SMALL_SPARSE_ROWS: usize = 512;
 
 /// Case of the projection of contact `i` at the current iterate.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -483,9 +488,10 @@ impl NewtonScratch {
             self.b.extend(self.rows.iter().map(|&(i, l, _, rhs)| {
                 rhs - (0..d).map(|k| l[k] * self.wd[d * i + k]).sum::<f64>()
             }));
+            let small = p <= SMALL_SYSTEM && problem.size() <= SMALL_SPARSE_ROWS;
             let solved = match w {
-                Delassus::Sparse(a) => self.sparse_solve::<DT>(a),
-                Delassus::Dense { .. } => self.dense_solve::<DT>(w),
+                Delassus::Sparse(a) if !small => self.sparse_solve::<DT>(a),
+                _ => self.dense_solve::<DT>(w),
             };
             if !solved {
                 return false;

@@ -169,6 +169,48 @@ pub(crate) const AUTO_SWEEP_MIN_PRESSED: f64 = 0.5;
 /// problems: 21–26) and loses where it needs 54–74 (FE problems).
 pub(crate) const AUTO_SWEEP_PREDICTED: f64 = 40.0;
 
+/// Contacts up to which [`Algorithm::Auto`] runs the classical solver first on a sparse
+/// symmetric `W` (issue 37, seventh part; `docs/benchmarks.md`, "Auto on small problems"):
+/// on Siconos' small sparse problems (3–107 contacts) the classical solver was the fastest of
+/// ours on 9 of 11 and Newton 1.4–4.4× slower; above (granular flows of 367–376 contacts) the
+/// sweeps win.
+pub(crate) const AUTO_CLASSIC_MAX_CONTACTS: usize = 128;
+
+/// Sweeps of that first classical run: `k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP` for `k`
+/// stored entries in an average row of `W`, at least `AUTO_CLASSIC_MIN_SWEEPS` and at most
+/// `AUTO_CLASSIC_PROBE`. A sweep costs `k` a row; Newton's elimination about `k²` a row (a
+/// front of `k` rows), so the sweeps that a Newton step buys grow with `k`, and its steps with
+/// the coupling. Fitted on Siconos' small sparse problems (`docs/benchmarks.md`, "Auto on
+/// small problems"): the classical solver wins where it needs 5–6 sweeps (1–10 entries a
+/// row) and on `Confeti-ex13-Fc3D-SBM` (172 sweeps, `k` = 56: 196 allowed); Newton wins on
+/// `Confeti-ex03-Fc3D-SBM` (1 549 sweeps, `k` = 7.9) and `NESpheres_10_1` (187, `k` = 3.7),
+/// where the first run stops after 16 sweeps; on the small semidefinite sphere piles of
+/// `tests/integration/issue_37_semidefinite.rs` (Newton creeps, the sweep wins) it must cost
+/// at most a few sweeps more than Newton's probe.
+pub(crate) const AUTO_CLASSIC_PROBE: usize = 200;
+
+/// See `AUTO_CLASSIC_PROBE`: 16, above the 6 sweeps (2 outer iterations) of the weakly
+/// coupled problems.
+pub(crate) const AUTO_CLASSIC_MIN_SWEEPS: usize = 16;
+
+/// See `AUTO_CLASSIC_PROBE`: 16 (`Confeti-ex13-Fc3D-SBM`: 56²/16 = 196 sweeps).
+pub(crate) const AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP: f64 = 16.0;
+
+/// Rows of a dense `W` kept non-symmetric up to which [`Algorithm::Auto`] runs its Newton
+/// without the sweep first (`AUTO_SWEEP_PROBE`): Newton's system then fits the in-crate LU,
+/// and its step costs a few sweeps (Siconos' rovers, 2–5 contacts, non-symmetric: the 8
+/// probing sweeps took 25–40 % of `Auto`'s time; the slider crank's 2 contacts: the sweep
+/// 1.4× Newton). A symmetric `W` keeps the sweep first at every size: on the small
+/// semidefinite sphere piles of `tests/integration/issue_37_semidefinite.rs` Newton creeps
+/// and the sweep first saves its probe (607 iterations against 536 without it).
+pub(crate) const AUTO_SWEEP_MIN_ROWS: usize = 32;
+
+/// Outer iterations (first run included) within which the first classical run's rate must
+/// promise the tolerance for [`Algorithm::Auto`] to let it go on rather than run its own
+/// choice: 40, as for the sweep (`AUTO_SWEEP_PREDICTED`), below the 48 of
+/// `Confeti-ex03-Fc3D-SBM` (where Newton and the sweep are 3× faster).
+pub(crate) const AUTO_CLASSIC_PREDICTED: f64 = 40.0;
+
 /// Settings of the reduced solver: the knobs a user sets (which algorithm, how accurate, how
 /// long, what to do when it fails), with the tuning of the iteration beside them in
 /// [`tuning`](Self::tuning). Build them from `Default` and the `with_*` setters (the struct is

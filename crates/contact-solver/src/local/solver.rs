@@ -17,6 +17,7 @@ use crate::error::{BestIterate, SolverError};
 use contact_laws::ContactLaw;
 
 mod auto;
+mod classic_first;
 mod direct;
 mod skip_open;
 
@@ -234,6 +235,14 @@ impl UzawaSolver {
         {
             return Ok(sol);
         }
+        // a small sparse symmetric W: the classical solver first (issue 37, `classic_first`)
+        let mut spent = classic_first::Spent::default();
+        if auto && let Some(mu) = mu {
+            match self.solve_classic_first::<L, DT>(st, problem, laws, states, &r, mu)? {
+                Ok(sol) => return Ok(sol),
+                Err(work) => spent = work,
+            }
+        }
         let auto_newton = auto && st.algorithm == Algorithm::Newton && mu.is_some();
         // sweep first (issue 37): the sweep goes on from the probe when its rate promises the
         // tolerance soon; else Newton runs from `r` as without the probe
@@ -351,6 +360,7 @@ impl UzawaSolver {
             });
         }
         sol.report.asymmetry = problem.asymmetry();
+        spent.add_to(&mut sol);
         Ok(sol)
     }
 

@@ -39,6 +39,7 @@ mod issue_37_fclib_wild;
 mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
 mod issue_37_siconos_dat;
+mod issue_37_small;
 mod issue_37_spheres_box;
 mod issue_38_matrix_free_anderson;
 mod issue_38_one_factor;

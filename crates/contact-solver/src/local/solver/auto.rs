@@ -7,8 +7,9 @@ use super::super::newton::{NewtonProbe, factor_fill};
 use super::super::problem::ReducedProblem;
 use super::super::settings::Algorithm;
 use super::super::settings::{
-    AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET, AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL,
-    AUTO_NEWTON_UNPROBED_BUDGET, AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED,
+    AUTO_CLASSIC_MAX_CONTACTS, AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET,
+    AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_NEWTON_UNPROBED_BUDGET,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_MIN_ROWS,
     AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
@@ -30,9 +31,12 @@ pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
             nc <= AUTO_NEWTON_MAX_CONTACTS
                 && (!problem.is_symmetric() || !mostly_zero_blocks(problem))
         }
+        // a small W (`AUTO_CLASSIC_MAX_CONTACTS`) is not measured: its fill costs little
         Some(a) => {
-            nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
-                && factor_fill(a, problem.dimension()).is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
+            nc <= AUTO_CLASSIC_MAX_CONTACTS
+                || nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
+                    && factor_fill(a, problem.dimension())
+                        .is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
         }
     }
 }
@@ -174,14 +178,19 @@ pub(super) fn sweep_after_newton(probe: NewtonProbe) -> Algorithm {
     }
 }
 
-/// Whether `W` is dense and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are pressed
+/// Whether `W` is dense (symmetric, or kept non-symmetric with more than
+/// `AUTO_SWEEP_MIN_ROWS` rows) and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are
+/// pressed
 /// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
 /// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
 /// Newton's steps are small beside a sweep over the whole `W`, and `Auto` keeps Newton.
 pub(super) fn pressed_most(problem: &ReducedProblem) -> bool {
     let (d, nc) = (problem.dimension(), problem.contact_count());
     let pressed = (0..nc).filter(|&i| problem.q()[d * i] < 0.0).count();
-    problem.w_dense().is_some() && nc > 0 && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
+    problem.w_dense().is_some()
+        && (problem.is_symmetric() || problem.size() > AUTO_SWEEP_MIN_ROWS)
+        && nc > 0
+        && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
 }
 
 /// The settings of the sweep [`Algorithm::Auto`] runs first on a dense `W` where it would
@@ -203,6 +212,11 @@ pub(super) fn sweep_probe(st: UzawaSettings) -> UzawaSettings {
 /// A history already at `tol` promises it; one shorter than five sweeps, or not contracting
 /// (`ρ ≥ 1`, a NaN), does not.
 pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
+    promises_within(history, tol, AUTO_SWEEP_PREDICTED)
+}
+
+/// [`sweep_promises`] with `within` iterations in all in place of `AUTO_SWEEP_PREDICTED`.
+pub(super) fn promises_within(history: &[f64], tol: f64, within: f64) -> bool {
     let k = history.len();
     let Some(&last) = history.last() else {
         return false;
@@ -217,7 +231,7 @@ pub(super) fn sweep_promises(history: &[f64], tol: f64) -> bool {
     if rate.is_nan() || rate >= 1.0 || rate <= 0.0 {
         return false;
     }
-    k as f64 + (tol / last).ln() / rate.ln() <= AUTO_SWEEP_PREDICTED
+    k as f64 + (tol / last).ln() / rate.ln() <= within
 }
 
 #[cfg(test)]

@@ -1,0 +1,176 @@
+//! [`Algorithm::Auto`] on a small sparse symmetric `W` (issue 37, seventh part): the
+//! classical solver first, within a budget of sweeps, then `Auto`'s own choice.
+//!
+//! Measured on Siconos' small problems stored sparse (`docs/benchmarks.md`, "Auto on small
+//! problems"): the classical solver (contact, then friction at a fixed threshold) solves the
+//! weakly coupled ones in 2 outer iterations (6 sweeps) and was the fastest of ours on 9 of 11
+//! problems of 3–107 contacts, where `Auto`'s Newton took 1.6–4.4× as long (its warm-up
+//! sweeps, then a Jacobian and a factorisation). Where the classical solver is slow (the
+//! rovers, `OneObject`: non-symmetric, not tried here; `Confeti-ex03`: 1 549 sweeps) the first
+//! run stops within its budget and costs a fraction of what follows:
+//!
+//! ```text
+//! k = stored(W) / m (entries of an average row)
+//! sweeps ≤ clamp(k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP,
+//!                AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE)
+//! converged (and checked)                          → its answer
+//! its outer residuals promise tol within
+//!   AUTO_CLASSIC_PREDICTED outer iterations       → it goes on from its iterate
+//! otherwise                                        → Auto's choice from the start
+//! ```
+
+use super::super::problem::ReducedProblem;
+use super::super::settings::{
+    AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP, AUTO_CLASSIC_MAX_CONTACTS, AUTO_CLASSIC_MIN_SWEEPS,
+    AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE, Algorithm, Solution, UzawaSettings,
+};
+use super::UzawaSolver;
+use super::auto::promises_within;
+use crate::error::SolverError;
+use contact_laws::ContactLaw;
+
+/// The settings of the classical solver's first run where [`Algorithm::Auto`] tries it first
+/// (a sparse symmetric `W` of 2 to `AUTO_CLASSIC_MAX_CONTACTS` contacts), with its budget of
+/// sweeps (`AUTO_CLASSIC_PROBE`); `None` elsewhere (a dense `W` keeps the measured rule of `auto`: Newton, or the
+/// sweep first).
+pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Option<UzawaSettings> {
+    let a = problem.w_sparse()?;
+    let nc = problem.contact_count();
+    if !problem.is_symmetric() || !(2..=AUTO_CLASSIC_MAX_CONTACTS).contains(&nc) {
+        return None;
+    }
+    let per_row = a.stored() as f64 / problem.size() as f64;
+    let sweeps = ((per_row * per_row / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP) as usize)
+        .clamp(AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE);
+    Some(UzawaSettings {
+        algorithm: Algorithm::ClassicRccm,
+        max_iterations: st.max_iterations.min(sweeps),
+        ..st
+    })
+}
+
+/// What the classical solver's first run left when it did not solve the problem: its sweeps,
+/// outer iterations and residual history, added to the report of the run that follows.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Spent {
+    iterations: usize,
+    outer_iterations: usize,
+    history: Vec<f64>,
+}
+
+impl Spent {
+    /// Adds the spent work in front of `sol`'s report.
+    pub(super) fn add_to(self, sol: &mut Solution) {
+        let report = &mut sol.report;
+        report.iterations += self.iterations;
+        report.outer_iterations += self.outer_iterations;
+        let mut history = self.history;
+        history.append(&mut report.history);
+        report.history = history;
+    }
+
+    fn add(&mut self, sol: &mut Solution) {
+        self.iterations += sol.report.iterations;
+        self.outer_iterations += sol.report.outer_iterations;
+        self.history.append(&mut sol.report.history);
+    }
+}
+
+impl UzawaSolver {
+    /// The classical solver first ([module docs](self)): `Ok(Ok(answer))` when it solved the
+    /// problem (its answer checked like every other), `Ok(Err(spent))` when `Auto`'s own
+    /// choice must run from `r` (the work spent, for its report), `Ok(Err(Spent::default()))`
+    /// where the rule does not try it.
+    ///
+    /// # Errors
+    /// Those of the classical solver's run ([`SolverError::NoFrictionCoefficient`],
+    /// [`SolverError::InvalidLaw`]).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn solve_classic_first<L: ContactLaw, const DT: usize>(
+        &mut self,
+        st: UzawaSettings,
+        problem: &ReducedProblem,
+        laws: &[L],
+        states: &[L::State],
+        r: &[f64],
+        mu: &[f64],
+    ) -> Result<Result<Solution, Spent>, SolverError> {
+        let mut spent = Spent::default();
+        let Some(probe) = classic_probe(st, problem) else {
+            return Ok(Err(spent));
+        };
+        let mut sol = self.attempt::<L, DT>(probe, problem, laws, states, r.to_vec())?;
+        // a run that promises the tolerance goes on from its iterate, once
+        let mut left = st.max_iterations.saturating_sub(sol.report.iterations);
+        for round in 0..2 {
+            let mut best = None;
+            self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, &mut best);
+            self.check::<L, DT>(problem, laws, states, &mut sol, Some(mu));
+            if sol.report.converged {
+                spent.add_to(&mut sol);
+                sol.report.asymmetry = problem.asymmetry();
+                return Ok(Ok(sol));
+            }
+            let promising = !sol.report.stalled
+                && promises_within(&sol.report.history, st.tol, AUTO_CLASSIC_PREDICTED);
+            let start = std::mem::take(&mut sol.r);
+            spent.add(&mut sol);
+            if round == 1 || !promising || left == 0 {
+                break;
+            }
+            let rest = UzawaSettings {
+                max_iterations: left,
+                ..probe
+            };
+            sol = self.attempt::<L, DT>(rest, problem, laws, states, start)?;
+            left = left.saturating_sub(sol.report.iterations);
+        }
+        Ok(Err(spent))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::local::Asymmetry;
+
+    /// The rule's reach: a sparse symmetric `W` of 2 contacts is tried,
+    /// one of 1 contact (the direct solve's) and a dense or non-symmetric one are not.
+    #[test]
+    fn classic_probe_works() {
+        let (rows, cols) = (&[0, 1, 2, 3][..], &[0, 1, 2, 3][..]);
+        let vals = [2.0, 2.0, 2.0, 2.0];
+        let (q, mu) = (vec![-1.0, 0.5, -1.0, 0.5], vec![0.3; 2]);
+        let sparse =
+            ReducedProblem::from_triplets(2, rows, cols, &vals, q.clone(), mu.clone()).unwrap();
+        let st = UzawaSettings::default();
+        let probe = classic_probe(st, &sparse).unwrap();
+        assert_eq!(probe.algorithm, Algorithm::ClassicRccm);
+        // one stored entry a row: the least budget
+        assert_eq!(probe.max_iterations, AUTO_CLASSIC_MIN_SWEEPS);
+        let one = ReducedProblem::from_triplets(
+            2,
+            &[0, 1],
+            &[0, 1],
+            &[2.0, 2.0],
+            vec![-1.0, 0.0],
+            vec![0.3],
+        );
+        assert!(classic_probe(st, &one.unwrap()).is_none());
+        let mut w = vec![0.0; 16];
+        (0..4).for_each(|k| w[5 * k] = 2.0);
+        let dense = ReducedProblem::with_dimension(2, w, q.clone(), mu.clone()).unwrap();
+        assert!(classic_probe(st, &dense).is_none());
+        let kept = ReducedProblem::from_triplets_with_asymmetry(
+            2,
+            &[0, 0, 1, 2, 3],
+            &[0, 1, 1, 2, 3],
+            &[2.0, 0.5, 2.0, 2.0, 2.0],
+            q,
+            mu,
+            Asymmetry::Keep,
+        )
+        .unwrap();
+        assert!(classic_probe(st, &kept).is_none());
+    }
+}
