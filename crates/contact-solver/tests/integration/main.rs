@@ -39,6 +39,7 @@ mod issue_37_rank_deficient;
 mod issue_37_semidefinite;
 mod issue_37_siconos_dat;
 mod issue_38_matrix_free_anderson;
+mod issue_38_matrix_free_default;
 mod issue_38_one_factor;
 mod issue_38_pad;
 mod issue_39_adhesion;
