@@ -100,8 +100,8 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// The default depth of the Anderson memory of matrix-free steps
     /// ([`SimulationTuning::matrix_free_window`](super::simulation::SimulationTuning::matrix_free_window)):
     /// 20 in both dimensions, measured against the momentum iteration (0) and a depth of 10
-    /// (`docs/benchmarks.md`, "Matrix-free preconditioned (issue 38)": 5–12× fewer products
-    /// in 2D, 3–16× in 3D, and 20 never behind 10).
+    /// (`docs/benchmarks.md`, "Matrix-free preconditioned (issue 38)": 7–20× fewer products
+    /// in 2D, 1.6–16× in 3D; 20 ahead of 10 or within one product).
     const MATRIX_FREE_WINDOW: usize;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.

@@ -67,8 +67,8 @@ pub struct SimulationTuning {
     /// ([`solve_matrix_free_anderson`](crate::local::matrix_free_anderson::solve_matrix_free_anderson)),
     /// or `0`: Nesterov momentum ([`solve_matrix_free`](crate::local::matrix_free::solve_matrix_free),
     /// the iteration of earlier versions). Default: the dimension's
-    /// [`ContactSpace::MATRIX_FREE_WINDOW`], 20 in 2D and 3D (measured: 5–12× fewer products
-    /// than the momentum in 2D, 3–16× in 3D, `docs/benchmarks.md`).
+    /// [`ContactSpace::MATRIX_FREE_WINDOW`], 20 in 2D and 3D (measured: 7–20× fewer products
+    /// than the momentum in 2D, 1.6–16× in 3D, `docs/benchmarks.md`).
     pub matrix_free_window: usize,
     /// Floating structures: the cap on the Newton iterations on the rigid-body amplitudes
     /// (each one reduced solve, plus line-search trials). Default 50.
