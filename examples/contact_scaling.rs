@@ -23,7 +23,10 @@
 //!                                                      # --reactions FILE writes
 //!                                                      # `node r_n r_t` per contact;
 //!                                                      # --base block: on a deformable
-//!                                                      # block (node-to-segment)
+//!                                                      # block (node-to-segment);
+//!                                                      # --mf-window W: the Anderson
+//!                                                      # window of matrix-free steps
+//!                                                      # (0: momentum)
 //! $E probe --nx 5000 --ny 25 --block 64                # build, time of 1 and 64 solves
 //! $E sweep dof  --timeout 300    # n_c = 101, DOF 1e3 … 1e6  -> out/scale/dof.csv
 //! $E sweep nc   --timeout 300    # DOF ≈ 1e5, n_c 51 … 4001  -> out/scale/nc.csv
@@ -95,6 +98,8 @@ struct Config {
     /// What the block is pressed on: the tilted rigid `line` (default) or a deformable
     /// `block` below it (node-to-segment, non-matching meshes).
     base: String,
+    /// Matrix-free steps: the Anderson window (`None`: the settings' default; 0: momentum).
+    mf_window: Option<usize>,
 }
 
 impl Config {
@@ -135,6 +140,11 @@ impl Config {
             self.reactions
                 .iter()
                 .flat_map(|f| ["--reactions".to_string(), f.clone()]),
+        )
+        .chain(
+            self.mf_window
+                .into_iter()
+                .flat_map(|w| ["--mf-window".to_string(), w.to_string()]),
         )
         .collect()
     }
@@ -203,6 +213,7 @@ fn parse_config(args: &[String]) -> Result<Config, Box<dyn Error>> {
         tol: flag(args, "--tol").map(str::parse).transpose()?,
         reactions: flag(args, "--reactions").map(String::from),
         base: get("--base", "line"),
+        mf_window: flag(args, "--mf-window").map(str::parse).transpose()?,
     })
 }
 
@@ -281,6 +292,9 @@ fn run<L: ContactLaw + Clone + 'static>(cfg: &Config, law: L) -> Result<String, 
         other => return Err(format!("unknown mode `{other}` (dense | free | active)").into()),
     });
     settings.solver.tol = cfg.tol.unwrap_or(TOL);
+    if let Some(w) = cfg.mf_window {
+        settings = settings.with_matrix_free_window(w);
+    }
     settings.solver.algorithm = match cfg.algorithm.as_deref() {
         None => Algorithm::default(),
         Some("gs") => Algorithm::GaussSeidel,
@@ -444,6 +458,7 @@ fn sweep(
         tol: None,
         reactions: None,
         base: "line".into(),
+        mf_window: None,
     };
     // (series key, configurations in increasing cost)
     let mut plan: Vec<Config> = Vec::new();

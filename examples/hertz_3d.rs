@@ -8,7 +8,7 @@
 //! Run: `cargo run --release --example hertz_3d -- 0 1` (refinement levels: each halves every
 //! cell of the graded base grid); `--matrix-free`, `--active-set` or `--dense` chooses the
 //! reduced problem's path (default: the settings' `Auto`; with `--matrix-free`, `--mf-window d`
-//! accelerates it by Anderson mixing of depth `d`); `--svg DIR` draws each level's
+//! sets the depth of its Anderson mixing, default 20, 0 for the momentum iteration); `--svg DIR` draws each level's
 //! recovered pressure against the ellipse into `DIR/hertz_3d_pressure_<level>.svg`.
 //! `--fine N` grades the base grid with `N` fine cells across the contact (6 by default; 10
 //! gives ~1e5 DOF, the size of issue 38's check against GetFEM) and runs level 0 alone unless

@@ -4,7 +4,8 @@
 //! Run: `cargo run --release --example solid_contact_scaling -- 24 --dense` (`n`: cells per
 //! side, default 24, 6 with `BIPO_QUICK=1`; `--dense`, `--matrix-free`, `--active-set` or
 //! `--auto`; `--coulomb` for μ = 0.3; `--slab m` for the pad below, `m` layers of cells;
-//! `--mf-window d` accelerates the matrix-free iteration by Anderson mixing of depth `d`).
+//! `--mf-window d`: the depth of the Anderson mixing of the matrix-free iteration, default the
+//! settings' 20, 0 for the Nesterov momentum of earlier versions).
 //!
 //! The ball (default). Quarter model: block `[0, 1]² × [−0.5, 0]`, `n × n × n/2` cells of six
 //! P1 tetrahedra, symmetry on x = 0 and y = 0, bottom pushed up by 0.03; ball R = 1 centred at
@@ -105,7 +106,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     };
     let window: usize = match value("--mf-window") {
         Some(i) => args.get(i).ok_or("--mf-window needs a depth")?.parse()?,
-        None => 0,
+        None => {
+            SimulationSettings::for_dimension::<3>()
+                .tuning
+                .matrix_free_window
+        }
     };
     let settings = SimulationSettings::for_dimension::<3>()
         .with_flexibility(flexibility)

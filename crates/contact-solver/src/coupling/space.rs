@@ -97,6 +97,12 @@ pub trait ContactSpace<const D: usize>: Space + sealed::Sealed {
     /// 3D, where it was measured (issue 38); `false` in 2D, whose limit of 500 contacts
     /// already sits at the crossover.
     const DENSE_BY_DOFS: bool;
+    /// The default depth of the Anderson memory of matrix-free steps
+    /// ([`SimulationTuning::matrix_free_window`](super::simulation::SimulationTuning::matrix_free_window)):
+    /// 20 in both dimensions, measured against the momentum iteration (0) and a depth of 10
+    /// (`docs/benchmarks.md`, "Matrix-free preconditioned (issue 38)": 7–20× fewer products
+    /// in 2D, 1.6–16× in 3D; 20 ahead of 10 or within one product).
+    const MATRIX_FREE_WINDOW: usize;
 
     /// The typed local vector of `D` consecutive components `[n, t…]`.
     fn local_of(x: &[f64]) -> Self::Local;
@@ -204,6 +210,8 @@ impl ContactSpace<2> for Dim<2> {
     const MAX_DETECTION_PASSES: usize = 5;
     const ONE_FACTOR: bool = false;
     const DENSE_BY_DOFS: bool = false;
+    const MATRIX_FREE_WINDOW: usize =
+        crate::local::matrix_free_anderson::DEFAULT_MATRIX_FREE_WINDOW;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<1> {
@@ -281,6 +289,8 @@ impl ContactSpace<3> for Dim<3> {
     const MAX_DETECTION_PASSES: usize = 20;
     const ONE_FACTOR: bool = true;
     const DENSE_BY_DOFS: bool = true;
+    const MATRIX_FREE_WINDOW: usize =
+        crate::local::matrix_free_anderson::DEFAULT_MATRIX_FREE_WINDOW;
 
     #[inline]
     fn local_of(x: &[f64]) -> LocalVec<2> {

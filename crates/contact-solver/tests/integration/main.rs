@@ -42,6 +42,7 @@ mod issue_37_siconos_dat;
 mod issue_37_small;
 mod issue_37_spheres_box;
 mod issue_38_matrix_free_anderson;
+mod issue_38_matrix_free_default;
 mod issue_38_one_factor;
 mod issue_38_pad;
 mod issue_39_adhesion;

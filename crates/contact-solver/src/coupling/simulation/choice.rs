@@ -7,8 +7,9 @@
 //! active contacts ≤ dense_limit (500 in 2D, 3000 in 3D), and in 3D also
 //!   ≤ max(DOF_RULE_FLOOR, DOF_RULE_COEFFICIENT · DOF^(2/3)) (500, 0.5)  -> dense F*
 //! 3D, within dense_limit but above that, the active set applies  -> primal active set
+//! 3D, within dense_limit but above that, it does not            -> matrix-free
 //! above dense_limit, the laws are Coulomb cones and K is known -> primal active set
-//! otherwise                                            -> matrix-free (dense within the limit)
+//! otherwise (above dense_limit)                       -> matrix-free
 //! active set not converged: ≤ FALLBACK_DENSE_LIMIT contacts (8000 in 2D, 3000 in 3D)
 //!                                                      -> dense F*, else matrix-free
 //! ```
@@ -21,7 +22,11 @@
 //! 2e4–1.6e5 DOF, 2–3×), the active set at 0.77–2.0 (the P1 block and the thin pad, 625–2 401
 //! contacts, 1.8–37×); the crossover, interpolated, is at 0.5. Below `DOF_RULE_FLOOR`
 //! contacts the dense path stays (the measured gaps there are within 2×, and every scene
-//! captured before keeps its path).
+//! captured before keeps its path). Where the active set does not apply (a law without a
+//! Coulomb cone, a structure that does not expose `K`), the same line separates the dense path
+//! from the matrix-free one (Anderson window 20: 57–252 products on the 3D cases measured):
+//! matrix-free measured 2× faster at 0.77 (the P1 block, 1 089 contacts), 3–8× on the pad
+//! (1.3–1.7), dense 2–4× faster at 0.15–0.16 (the Hertz).
 
 use std::fmt;
 
@@ -131,6 +136,18 @@ pub enum PathReason {
         /// `max(500, 0.5 · DOF^(2/3))`, the most contacts solved dense at this size.
         limit: usize,
     },
+    /// `Auto` in 3D: the active contacts are within the dense limit but above
+    /// `max(500, 0.5 · DOF^(2/3))`, and the active set does not apply (a law without a Coulomb
+    /// cone, or a structure that does not expose its stiffness): matrix-free, whose products
+    /// cost less than the dense columns there (measured, issue 38).
+    AboveDofRuleMatrixFree {
+        /// Active contacts.
+        active: usize,
+        /// Free DOF of the structure.
+        dofs: usize,
+        /// `max(500, 0.5 · DOF^(2/3))`, the most contacts solved dense at this size.
+        limit: usize,
+    },
     /// `Auto`: the active-set iteration did not converge; the step was solved again on this
     /// path (dense up to the dimension's fallback limit, matrix-free beyond).
     ActiveSetFallback {
@@ -199,6 +216,14 @@ impl fmt::Display for PathReason {
             } => write!(
                 f,
                 "auto: {active} active contacts > {limit} = max(500, 0.5 DOF^(2/3)) at {dofs} DOF: the active set's factorisations cost less than F*'s columns"
+            ),
+            Self::AboveDofRuleMatrixFree {
+                active,
+                dofs,
+                limit,
+            } => write!(
+                f,
+                "auto: {active} active contacts > {limit} = max(500, 0.5 DOF^(2/3)) at {dofs} DOF, the active set does not apply: matrix-free products cost less than F*'s columns"
             ),
             Self::ActiveSetUnavailable { active, limit } => write!(
                 f,

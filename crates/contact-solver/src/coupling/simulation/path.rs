@@ -158,7 +158,8 @@ where
     }
 
     /// `Auto`'s path for `active` within its dense limit: dense, unless in 3D the contacts
-    /// are above `max(500, 0.5 DOF^(2/3))` and the active set applies ([`super::choice`]).
+    /// are above `max(500, 0.5 DOF^(2/3))`: then the active set where it applies, else
+    /// matrix-free ([`super::choice`]).
     fn within_dense_limit(&self, active: &[usize], limit: usize) -> (Path, PathReason) {
         let n = active.len();
         let within = (
@@ -187,8 +188,16 @@ where
                 };
                 (Path::ActiveSet(f), reason)
             }
-            // the active set does not apply: dense, as within the limit before the rule
-            Err(_) => within,
+            // the active set does not apply: matrix-free, whose products cost less than the
+            // dense columns on the same side of the rule (measured, issue 38)
+            Err(_) => {
+                let reason = PathReason::AboveDofRuleMatrixFree {
+                    active: n,
+                    dofs,
+                    limit: by_dofs,
+                };
+                (Path::MatrixFree, reason)
+            }
         }
     }
 
