@@ -1,0 +1,105 @@
+//! Redundant contacts (issue 37, eighth part): a multibody `W = H M⁻¹ Hᵀ` where every contact
+//! shares its pair of bodies with another (a face resting on a face at four corners: Siconos'
+//! `KaplasTower-i1061-4`, `BoxesStack1-i100000-32`). Two contacts between the same bodies
+//! couple to the same contacts, so their block rows of `W` have the same pattern; `W` is then
+//! rank-deficient by construction (at least `d` rows a face beyond the 6 freedoms a body
+//! pair leaves), Newton's plain steps fail on it and each is retried with the proximal `η`.
+//!
+//! Measured (`docs/benchmarks.md`, "Auto on redundant contacts"), Siconos' 3D `.dat` files:
+//! the share of contacts whose block-row pattern repeats is 1.00 on the kapla tower and the
+//! box stack, 0.90 on `Confeti-ex13-Fc3D-SBM`, 0.71–0.77 on the capsules (kept
+//! non-symmetric), 0.00–0.22 on the sphere piles (`NESpheres_*`, one contact a pair) and on
+//! Siconos' `pile_shaken` of 805 contacts, where Newton wins 4×. On the kapla tower Newton's
+//! sparse LU costs about 60 ms a factorisation against the whole sweep's 31 ms; on the box
+//! stack every sweep and Newton stall and only the classical solver converges.
+
+use crate::local::problem::ReducedProblem;
+use std::collections::HashMap;
+
+/// Whether `W` is stored sparse, is symmetric, and every contact's block-row pattern (the
+/// contacts it couples to) is also another contact's, the pattern not being the whole
+/// problem (on a fully coupled `W` every pattern repeats trivially).
+pub(in crate::local::solver) fn redundant_contacts(problem: &ReducedProblem) -> bool {
+    let Some(a) = problem.w_sparse() else {
+        return false;
+    };
+    let (nc, d) = (problem.contact_count(), problem.dimension());
+    if nc < 2 || !problem.is_symmetric() {
+        return false;
+    }
+    let mut count: HashMap<Vec<u32>, usize> = HashMap::new();
+    let mut patterns = Vec::with_capacity(nc);
+    for i in 0..nc {
+        let mut blocks: Vec<u32> = (0..d)
+            .flat_map(|k| a.row(d * i + k).0.iter().map(|&c| c / d as u32))
+            .collect();
+        blocks.sort_unstable();
+        blocks.dedup();
+        if blocks.len() >= nc {
+            return false;
+        }
+        *count.entry(blocks.clone()).or_default() += 1;
+        patterns.push(blocks);
+    }
+    patterns.iter().all(|p| count[p] > 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::local::Asymmetry;
+
+    /// Block pattern of `n` contacts in pairs (contacts `2k`, `2k+1` between the same two
+    /// bodies, pair `k` coupled to pair `k±1` through a shared body): a stack of blocks, each
+    /// face resting at two points.
+    fn stack(pairs: usize, d: usize, extra: Option<(usize, usize)>) -> ReducedProblem {
+        let nc = 2 * pairs;
+        let coupled = |i: usize, j: usize| {
+            (i / 2).abs_diff(j / 2) <= 1
+                || extra.is_some_and(|(a, b)| (i, j) == (a, b) || (j, i) == (a, b))
+        };
+        let (mut rows, mut cols, mut vals) = (vec![], vec![], vec![]);
+        for i in 0..nc {
+            for j in (0..nc).filter(|&j| coupled(i, j)) {
+                for a in 0..d {
+                    for b in 0..d {
+                        rows.push(d * i + a);
+                        cols.push(d * j + b);
+                        vals.push(if i == j && a == b {
+                            4.0
+                        } else if a == b {
+                            0.5
+                        } else {
+                            0.0
+                        });
+                    }
+                }
+            }
+        }
+        ReducedProblem::from_triplets(d, &rows, &cols, &vals, vec![-1.0; d * nc], vec![0.3; nc])
+            .unwrap()
+    }
+
+    /// Pairs of contacts that share their bodies are redundant; one extra coupling that makes a
+    /// contact's pattern unique is not; a fully coupled `W`, a dense one and one contact are
+    /// not.
+    #[test]
+    fn issue_37_redundant_contacts_works() {
+        assert!(redundant_contacts(&stack(10, 3, None)));
+        assert!(redundant_contacts(&stack(10, 2, None)));
+        assert!(!redundant_contacts(&stack(10, 3, Some((0, 9)))));
+        // two pairs, all coupled: every pattern is the whole problem
+        assert!(!redundant_contacts(&stack(2, 3, None)));
+        let w = vec![
+            2.0, 0.5, 0.0, 0.0, //
+            0.5, 2.0, 0.0, 0.0, //
+            0.0, 0.0, 2.0, 0.0, //
+            0.0, 0.0, 0.0, 2.0,
+        ];
+        let dense =
+            ReducedProblem::with_asymmetry(2, w, vec![-1.0; 4], vec![0.3; 2], Asymmetry::Keep);
+        assert!(!redundant_contacts(&dense.unwrap()));
+        let sparse = crate::local::generate::random_sparse_problem(3, 50, 0, 2);
+        assert!(!redundant_contacts(&sparse));
+    }
+}
