@@ -13,6 +13,7 @@
 //! k = stored(W) / m (entries of an average row)
 //! sweeps ≤ clamp(k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP,
 //!                AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE)
+//!   (redundant contacts, `auto/redundant.rs`: sweeps ≤ max_iterations)
 //! converged (and checked)                          → its answer
 //! its outer residuals promise tol within
 //!   AUTO_CLASSIC_PREDICTED outer iterations       → it goes on from its iterate
