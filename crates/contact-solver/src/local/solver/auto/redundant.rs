@@ -13,12 +13,14 @@
 //! sparse LU costs about 60 ms a factorisation against the whole sweep's 31 ms; on the box
 //! stack every sweep and Newton stall and only the classical solver converges.
 
+use crate::local::csr::CsrMatrix;
 use crate::local::problem::ReducedProblem;
-use std::collections::HashMap;
 
 /// Whether `W` is stored sparse, is symmetric, and every contact's block-row pattern (the
 /// contacts it couples to) is also another contact's, the pattern not being the whole
-/// problem (on a fully coupled `W` every pattern repeats trivially).
+/// problem (on a fully coupled `W` every pattern repeats trivially). Two contacts of the same
+/// pattern couple to each other, so a contact's twin is looked for among the contacts of its
+/// own pattern; the first contact without one ends the test (no allocation).
 pub(in crate::local::solver) fn redundant_contacts(problem: &ReducedProblem) -> bool {
     let Some(a) = problem.w_sparse() else {
         return false;
@@ -27,21 +29,27 @@ pub(in crate::local::solver) fn redundant_contacts(problem: &ReducedProblem) -> 
     if nc < 2 || !problem.is_symmetric() {
         return false;
     }
-    let mut count: HashMap<Vec<u32>, usize> = HashMap::new();
-    let mut patterns = Vec::with_capacity(nc);
-    for i in 0..nc {
-        let mut blocks: Vec<u32> = (0..d)
-            .flat_map(|k| a.row(d * i + k).0.iter().map(|&c| c / d as u32))
-            .collect();
-        blocks.sort_unstable();
-        blocks.dedup();
-        if blocks.len() >= nc {
-            return false;
-        }
-        *count.entry(blocks.clone()).or_default() += 1;
-        patterns.push(blocks);
-    }
-    patterns.iter().all(|p| count[p] > 1)
+    (0..nc).all(|i| {
+        let blocks = block_columns(a.row(d * i).0, d);
+        blocks.clone().count() < nc
+            && blocks
+                .filter(|&j| j != i)
+                .any(|j| (0..d).all(|k| same_blocks(a, d, d * i + k, d * j + k)))
+    })
+}
+
+/// The block columns (contacts) of a row's sorted column indices, each once.
+fn block_columns(cols: &[u32], d: usize) -> impl Iterator<Item = usize> + Clone + '_ {
+    let block = move |c: &u32| *c as usize / d;
+    cols.iter()
+        .enumerate()
+        .filter(move |&(k, c)| k == 0 || block(&cols[k - 1]) != block(c))
+        .map(move |(_, c)| block(c))
+}
+
+/// Whether rows `x` and `y` of `a` couple to the same contacts.
+fn same_blocks(a: &CsrMatrix, d: usize, x: usize, y: usize) -> bool {
+    block_columns(a.row(x).0, d).eq(block_columns(a.row(y).0, d))
 }
 
 #[cfg(test)]
