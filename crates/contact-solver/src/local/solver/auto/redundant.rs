@@ -8,8 +8,8 @@
 //! Measured (`docs/benchmarks.md`, "Auto on redundant contacts"), Siconos' 3D `.dat` files:
 //! the share of contacts whose block-row pattern repeats is 1.00 on the kapla tower and the
 //! box stack, 0.90 on `Confeti-ex13-Fc3D-SBM`, 0.71–0.77 on the capsules (kept
-//! non-symmetric), 0.00–0.22 on the sphere piles (`NESpheres_*`, one contact a pair) and on
-//! Siconos' `pile_shaken` of 805 contacts, where Newton wins 4×. On the kapla tower Newton's
+//! non-symmetric), 0.00–0.22 on the sphere piles (`NESpheres_*`; spheres touch once, as in
+//! the shaken pile of 805 contacts where Newton wins 4×). On the kapla tower Newton's
 //! sparse LU costs about 60 ms a factorisation against the whole sweep's 31 ms; on the box
 //! stack every sweep and Newton stall and only the classical solver converges.
 
