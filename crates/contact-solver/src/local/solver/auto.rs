@@ -13,6 +13,9 @@ use super::super::settings::{
     AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
+mod redundant;
+pub(super) use redundant::redundant_contacts;
+
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
 /// `AUTO_NEWTON_MAX_FILL` and `AUTO_MULTIBODY_ZERO_BLOCKS`): Newton on a dense `W` up to
 /// `AUTO_NEWTON_MAX_CONTACTS` contacts unless its blocks are mostly zero (a multibody
@@ -23,7 +26,10 @@ use super::super::settings::{
 /// (issue 37: Siconos' `OneObject` problems, a body with joints, 23–25 contacts and 70 % zero
 /// blocks, were left to the sweep, 4 023 sweeps where Newton takes 13 iterations). Newton
 /// chosen here runs within a budget ([`auto_newton_budget`]) and, on a symmetric or sparse
-/// `W`, as a probe that gives up on its second short step ([`newton_probes`]).
+/// `W`, as a probe that gives up on its second short step ([`newton_probes`]). Above
+/// `AUTO_CLASSIC_MAX_CONTACTS` contacts, a sparse `W` of redundant contacts
+/// ([`redundant_contacts`]: Siconos' kapla tower, where one factorisation costs twice the whole
+/// sweep) takes the sweep.
 pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
     let nc = problem.contact_count();
     match problem.w_sparse() {
@@ -35,6 +41,7 @@ pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
         Some(a) => {
             nc <= AUTO_CLASSIC_MAX_CONTACTS
                 || nc <= AUTO_SPARSE_NEWTON_MAX_CONTACTS
+                    && !redundant_contacts(problem)
                     && factor_fill(a, problem.dimension())
                         .is_some_and(|f| f <= AUTO_NEWTON_MAX_FILL)
         }

@@ -13,6 +13,7 @@
 //! k = stored(W) / m (entries of an average row)
 //! sweeps ≤ clamp(k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP,
 //!                AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE)
+//!   (redundant contacts, `auto/redundant.rs`: sweeps ≤ max_iterations)
 //! converged (and checked)                          → its answer
 //! its outer residuals promise tol within
 //!   AUTO_CLASSIC_PREDICTED outer iterations       → it goes on from its iterate
@@ -25,7 +26,7 @@ use super::super::settings::{
     AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE, Algorithm, Solution, UzawaSettings,
 };
 use super::UzawaSolver;
-use super::auto::promises_within;
+use super::auto::{promises_within, redundant_contacts};
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
 
@@ -42,6 +43,12 @@ pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Opti
     let per_row = a.stored() as f64 / problem.size() as f64;
     let sweeps = ((per_row * per_row / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP) as usize)
         .clamp(AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE);
+    // redundant contacts (`auto/redundant.rs`): the classical solver runs its whole budget
+    let sweeps = if redundant_contacts(problem) {
+        st.max_iterations
+    } else {
+        sweeps
+    };
     Some(UzawaSettings {
         algorithm: Algorithm::ClassicRccm,
         max_iterations: st.max_iterations.min(sweeps),
