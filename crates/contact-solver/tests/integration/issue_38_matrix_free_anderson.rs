@@ -17,15 +17,13 @@
 
 #![cfg(feature = "fe")]
 
+use crate::issue_38_pad::pad_simulation_with;
 use contact_laws::{ContactLaw, Coulomb, Signorini};
-use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
 use contact_solver::local::matrix_free_anderson::{
     DEFAULT_MATRIX_FREE_WINDOW, solve_matrix_free_anderson_3d,
 };
 use contact_solver::{FlexibilityMode, SimulationSettings, SolverError, UzawaSettings};
-use fem_core::solid::generate::{box_mesh, lines};
-use fem_core::solid::{SolidKind, SolidModel};
-use fem_core::{Component, Material, Supports};
+use fem_core::Component;
 
 /// Cells per side and layers of the small pad.
 const CELLS: usize = 8;
@@ -42,27 +40,10 @@ struct Run {
 
 /// One step of the pad with `law` on `mode`, the matrix-free window `window`.
 fn pad<L: ContactLaw + Clone>(law: L, mode: FlexibilityMode, window: usize) -> Run {
-    let h = LAYERS as f64 / CELLS as f64;
-    let mesh = box_mesh(
-        &lines(0.0, 1.0, CELLS),
-        &lines(0.0, 1.0, CELLS),
-        &lines(0.0, h, LAYERS),
-        SolidKind::Tet4,
-    )
-    .unwrap();
-    let mut s = Supports::new();
-    s.fix(mesh.node_set("x0").unwrap(), Component::X)
-        .fix(mesh.node_set("y0").unwrap(), Component::Y);
-    s.prescribe(mesh.node_set("z1").unwrap(), Component::Z, -h / 100.0)
-        .unwrap();
-    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
-    let model = SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())], s).unwrap();
-    let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
-    let zone = ContactZone3::rigid("base", nodes, floor, law, 0.1).with_areas(areas);
     let settings = SimulationSettings::for_dimension::<3>()
         .with_flexibility(mode)
         .with_matrix_free_window(window);
-    let mut sim = SolidContactSimulation::new(model, vec![zone], settings).unwrap();
+    let mut sim = pad_simulation_with(CELLS, LAYERS, law, settings);
     let res = sim.step(1.0, 1.0).unwrap();
     let supports = sim
         .structure()

@@ -12,13 +12,11 @@
 
 #![cfg(feature = "fe")]
 
+use crate::issue_38_pad::pad_simulation_with;
 use contact_laws::{ContactLaw, Coulomb, LocalVec};
-use contact_solver::coupling::solid::{ContactZone3, RigidPlane, SolidContactSimulation};
 use contact_solver::local::matrix_free_anderson::DEFAULT_MATRIX_FREE_WINDOW;
 use contact_solver::{PathReason, SimulationSettings, SimulationTuning, SolvePath, StepReport};
-use fem_core::solid::generate::{box_mesh, lines};
-use fem_core::solid::{SolidKind, SolidModel};
-use fem_core::{Component, Material, Supports};
+use fem_core::Component;
 
 /// Coulomb's law without its friction coefficient: the same answers, but the primal active set
 /// (which needs a Coulomb cone) does not apply to it.
@@ -52,25 +50,8 @@ fn pad<L: ContactLaw + Clone>(
     layers: usize,
     law: L,
 ) -> (StepReport, [f64; 2], [f64; 2]) {
-    let h = layers as f64 / cells as f64;
-    let mesh = box_mesh(
-        &lines(0.0, 1.0, cells),
-        &lines(0.0, 1.0, cells),
-        &lines(0.0, h, layers),
-        SolidKind::Tet4,
-    )
-    .unwrap();
-    let mut s = Supports::new();
-    s.fix(mesh.node_set("x0").unwrap(), Component::X)
-        .fix(mesh.node_set("y0").unwrap(), Component::Y);
-    s.prescribe(mesh.node_set("z1").unwrap(), Component::Z, -h / 100.0)
-        .unwrap();
-    let (nodes, areas) = mesh.nodal_areas("z0").unwrap();
-    let model = SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())], s).unwrap();
-    let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
-    let zone = ContactZone3::rigid("base", nodes, floor, law, 0.1).with_areas(areas);
     let settings = SimulationSettings::for_dimension::<3>();
-    let mut sim = SolidContactSimulation::new(model, vec![zone], settings).unwrap();
+    let mut sim = pad_simulation_with(cells, layers, law, settings);
     let res = sim.step(1.0, 1.0).unwrap();
     let supports = sim
         .structure()

@@ -64,6 +64,18 @@ fn pad_simulation<L: ContactLaw + Clone>(
     law: L,
     mode: FlexibilityMode,
 ) -> SolidContactSimulation<SolidModel, L> {
+    let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
+    pad_simulation_with(cells, layers, law, settings)
+}
+
+/// The pad of `cells × cells × layers` cells pressed on the rigid plane with `law`, under
+/// `settings`, before its step (shared by the issue-38 tests of the matrix-free path).
+pub(crate) fn pad_simulation_with<L: ContactLaw + Clone>(
+    cells: usize,
+    layers: usize,
+    law: L,
+    settings: SimulationSettings,
+) -> SolidContactSimulation<SolidModel, L> {
     let h = layers as f64 / cells as f64;
     let mesh = box_mesh(
         &lines(0.0, 1.0, cells),
@@ -81,7 +93,6 @@ fn pad_simulation<L: ContactLaw + Clone>(
     let model = SolidModel::new(mesh, &[(0, Material::new(1000.0, 0.3, 0.0).unwrap())], s).unwrap();
     let floor = RigidPlane::new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let zone = ContactZone3::rigid("base", nodes, floor, law, 0.1).with_areas(areas);
-    let settings = SimulationSettings::for_dimension::<3>().with_flexibility(mode);
     SolidContactSimulation::new(model, vec![zone], settings).unwrap()
 }
 
