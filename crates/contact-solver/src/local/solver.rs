@@ -1,24 +1,25 @@
 //! The dispatcher of the reduced-problem solvers: [`UzawaSolver`] validates the settings and
 //! the starting point, runs the chosen [`Algorithm`] (one file each, below it), and reports.
 
-use super::anderson::{AndersonScratch, BaseMap};
+use super::anderson::AndersonScratch;
 use super::classic::ClassicScratch;
 use super::dense::KeptLu;
 use super::newton::{NewtonProbe, NewtonScratch};
-use super::plain;
 use super::problem::ReducedProblem;
 use super::residual::{
-    contact_statuses, coulomb_residual, friction_coefficients, natural_residual, norm, penetration,
+    coulomb_residual, friction_coefficients, natural_residual, norm, penetration,
 };
-use super::settings::{Algorithm, Solution, UzawaReport, UzawaSettings};
+use super::settings::{Algorithm, Solution, UzawaSettings};
 use super::stall::MIN_STALL_WINDOW;
 use super::sweep::Sweeps;
 use crate::error::{BestIterate, SolverError};
 use contact_laws::ContactLaw;
 
+mod attempt;
 mod auto;
 mod classic_first;
 mod direct;
+mod rescale;
 mod skip_open;
 
 use auto::{
@@ -478,200 +479,6 @@ impl UzawaSolver {
             sol.report.converged = false;
             sol.report.stalled = true;
         }
-    }
-
-    /// Solves a problem whose `W` or `q` has magnitudes outside `[1e-100, 1e100]` on a copy
-    /// rescaled by powers of two (exact: `W' = s_w W`, `q' = s_q q`, then `r = r' s_w / s_q`,
-    /// `x = x' / s_q`), when every law is scale invariant; `None` when no rescaling is needed.
-    ///
-    /// # Errors
-    /// [`SolverError::InvalidSetting`] for magnitudes outside `[1e-150, 1e150]` (where the
-    /// squares in the norms overflow) with a law that is not scale invariant; errors of the
-    /// solve.
-    fn solve_rescaled<L: ContactLaw>(
-        &mut self,
-        problem: &ReducedProblem,
-        laws: &[L],
-        states: &[L::State],
-        r: &[f64],
-    ) -> Result<Option<Solution>, SolverError> {
-        let w_max = problem.delassus().max_abs();
-        let q_max = problem.q().iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        let outside = |v: f64, bound: f64| v != 0.0 && !(1.0 / bound..=bound).contains(&v);
-        // the reactions are of the order of q/W: W ~ 1e74 with q ~ 1e-83 has r ~ 1e-157,
-        // whose squares in the norms are subnormal (a residual of 0 and a "converged"
-        // answer wrong by 1e-6 relative, found by tests/integration/finiteness.rs)
-        let ratio = if w_max > 0.0 { q_max / w_max } else { 0.0 };
-        if !outside(w_max, RESCALE_ABOVE)
-            && !outside(q_max, RESCALE_ABOVE)
-            && !outside(ratio, RESCALE_ABOVE)
-        {
-            return Ok(None);
-        }
-        if !laws.iter().all(ContactLaw::is_scale_invariant) {
-            for (what, value) in [("W", w_max), ("q", q_max), ("q/W", ratio)] {
-                if outside(value, 1e150) {
-                    return Err(SolverError::InvalidSetting {
-                        what,
-                        value,
-                        expected: "magnitudes within [1e-150, 1e150], or laws that are scale \
-                                   invariant (ContactLaw::is_scale_invariant) so that W and q \
-                                   can be rescaled",
-                    });
-                }
-            }
-            return Ok(None);
-        }
-        // powers of two: the rescaled problem has the same bits up to the exponents
-        let power = |v: f64| {
-            if v == 0.0 {
-                1.0
-            } else {
-                2f64.powi(-(v.log2().round() as i32).clamp(-1020, 1020))
-            }
-        };
-        let (sw, sq) = (power(w_max), power(q_max));
-        // in the problem's own storage: a sparse W stays sparse
-        let scaled = problem.rescaled(sw, sq)?;
-        let r_scaled: Vec<f64> = r.iter().map(|v| v * sq / sw).collect();
-        let start = r.iter().any(|&v| v != 0.0).then_some(r_scaled.as_slice());
-        let mut sol = self.solve_with_states(&scaled, laws, states, start)?;
-        sol.r.iter_mut().for_each(|v| *v = *v * sw / sq);
-        sol.x.iter_mut().for_each(|v| *v /= sq);
-        let report = &mut sol.report;
-        report.rho_min *= sw;
-        report.rho_max *= sw;
-        report.rescaled = true;
-        report.asymmetry = problem.asymmetry();
-        Ok(Some(sol))
-    }
-
-    /// One run of `st.algorithm` from `r` (the sweeps' `ρ⁰` already set for `problem`), with
-    /// its report; `converged` is the algorithm's own stopping rule.
-    fn attempt<L: ContactLaw, const DT: usize>(
-        &mut self,
-        st: UzawaSettings,
-        problem: &ReducedProblem,
-        laws: &[L],
-        states: &[L::State],
-        mut r: Vec<f64>,
-    ) -> Result<Solution, SolverError> {
-        let m = problem.size();
-        self.sweeps.reset(problem, st.tuning.rho_scale);
-        let mut x = vec![0.0; m];
-        problem.displacement_into(&r, &mut x);
-        if st.algorithm == Algorithm::Uzawa {
-            self.sweeps.set_velocity::<L, DT>(laws, states, &x);
-        }
-        let mut history = Vec::with_capacity(st.max_iterations.min(100_000));
-        let denom_q = self.sweeps.rho0.iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(problem.q());
-        // Uzawa's global scale factor of ρ⁰ (Gauss–Seidel adapts `sweeps.rho` per contact).
-        let mut theta = st.tuning.rho_scale;
-        let (r_, x_, h_) = (&mut r, &mut x, &mut history);
-        // (iterations, outer iterations, tangential sweeps, converged, residual, change)
-        let stalled;
-        let (iterations, outer_iterations, tangential_sweeps, converged, residual, change) =
-            match st.algorithm {
-                Algorithm::Uzawa | Algorithm::GaussSeidel => {
-                    let run = plain::run::<L, DT>(
-                        &mut self.sweeps,
-                        problem,
-                        laws,
-                        states,
-                        &st,
-                        denom_q,
-                        &mut theta,
-                        r_,
-                        x_,
-                        h_,
-                    );
-                    let (n, c) = (run.iterations, run.converged);
-                    stalled = run.stalled;
-                    (n, n, 0, c, run.residual, run.change)
-                }
-                Algorithm::ClassicRccm => {
-                    let run = self.classic.solve::<L, DT>(
-                        problem,
-                        laws,
-                        states,
-                        &self.sweeps.rho0,
-                        &st,
-                        r_,
-                        x_,
-                        h_,
-                    )?;
-                    self.sweeps.rho.copy_from_slice(&self.sweeps.rho0);
-                    stalled = run.stalled;
-                    let (n, o, t) = (run.iterations, run.outer_iterations, run.tangential_sweeps);
-                    (n, o, t, run.converged, run.residual, run.change)
-                }
-                Algorithm::AndersonGaussSeidel | Algorithm::AndersonUzawa => {
-                    let base = if st.algorithm == Algorithm::AndersonUzawa {
-                        BaseMap::Uzawa
-                    } else {
-                        BaseMap::GaussSeidel
-                    };
-                    let run = self.anderson.solve::<L, DT>(
-                        &mut self.sweeps,
-                        base,
-                        problem,
-                        laws,
-                        states,
-                        &st,
-                        denom_q,
-                        &mut theta,
-                        r_,
-                        x_,
-                        h_,
-                    );
-                    let n = run.iterations;
-                    stalled = run.stalled;
-                    (n, n, 0, run.converged, run.residual, run.change)
-                }
-                // resolved in solve_with_states
-                Algorithm::Newton | Algorithm::Auto => {
-                    let run = self.newton.solve::<L, DT>(
-                        &mut self.sweeps,
-                        problem,
-                        laws,
-                        states,
-                        &st,
-                        denom_q,
-                        r_,
-                        x_,
-                        h_,
-                    )?;
-                    let (n, o) = (run.iterations, run.newton_steps);
-                    stalled = run.stalled;
-                    (n, o, 0, run.converged, run.residual, run.change)
-                }
-            };
-        problem.displacement_into(&r, &mut x);
-        if matches!(st.algorithm, Algorithm::Uzawa | Algorithm::AndersonUzawa) {
-            for (rho, rho0) in self.sweeps.rho.iter_mut().zip(&self.sweeps.rho0) {
-                *rho = theta * rho0;
-            }
-        }
-        let statuses = contact_statuses::<L, DT>(laws, states, &self.sweeps.rho0, &r, &x);
-        let report = UzawaReport {
-            algorithm: st.algorithm,
-            iterations,
-            outer_iterations,
-            tangential_sweeps,
-            converged,
-            stalled,
-            residual,
-            change,
-            history,
-            rho_min: self.sweeps.rho.iter().fold(f64::INFINITY, |a, &b| a.min(b)),
-            rho_max: self.sweeps.rho.iter().fold(0.0, |a, &b| a.max(b)),
-            statuses,
-            fallback_from: None,
-            asymmetry: 0.0,
-            rescaled: false,
-            solved_contacts: problem.contact_count(),
-        };
-        Ok(Solution { r, x, report })
     }
 }
 
