@@ -23,6 +23,16 @@ impl Sweeps {
         r: &mut [f64],
         x: &mut [f64],
     ) -> f64 {
+        // 2D contacts solved exactly (`exact_2d`, set per run for this problem)
+        if DT == 1
+            && let Some(exact) = self
+                .exact
+                .take_if(|e| e.blocks.len() == problem.contact_count())
+        {
+            let dr2 = self.exact_sweep_2d(&exact, problem, laws, states, r, x);
+            self.exact = Some(exact);
+            return dr2;
+        }
         // rows of `columns` are the columns of W (W itself unless a non-symmetric W is kept)
         let w = problem.columns();
         let mut dr2 = 0.0;

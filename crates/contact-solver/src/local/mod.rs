@@ -220,6 +220,7 @@ pub mod classic;
 mod csr;
 mod delassus;
 mod dense;
+mod exact_2d;
 #[cfg(feature = "fclib")]
 pub mod fclib;
 mod friction;
@@ -251,5 +252,5 @@ pub use problem::ReducedProblem;
 pub use residual::siconos_error;
 #[cfg(feature = "fe")]
 pub(crate) use residual::{contact_statuses, natural_residual, norm};
-pub use settings::{Algorithm, Solution, UzawaReport, UzawaSettings, UzawaTuning};
+pub use settings::{Algorithm, ContactSolve, Solution, UzawaReport, UzawaSettings, UzawaTuning};
 pub use solver::{UzawaSolver, solve_coulomb};

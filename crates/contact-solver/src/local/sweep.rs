@@ -3,6 +3,7 @@
 //! file ([`uzawa`](super::uzawa), [`gauss_seidel`](super::gauss_seidel)); the accelerated and
 //! Newton solvers drive them through this type.
 
+use super::exact_2d::ExactBlocks;
 use super::problem::ReducedProblem;
 use super::residual::{local, pick, rho_of_block, set_local};
 use contact_laws::ContactLaw;
@@ -19,6 +20,9 @@ pub(crate) struct Sweeps {
     pub(crate) v_trial: Vec<f64>,
     pub(crate) rho0: Vec<f64>,
     pub(crate) rho: Vec<f64>,
+    /// The contacts' blocks when the Gauss–Seidel sweep solves each 2D contact exactly
+    /// ([`ContactSolve::Exact`](super::ContactSolve::Exact), `exact_2d`).
+    pub(crate) exact: Option<ExactBlocks>,
 }
 
 impl Sweeps {
@@ -41,6 +45,8 @@ impl Sweeps {
         );
         self.rho.clear();
         self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
+        // the exact solve is set per run, after the reset (`exact_contacts`)
+        self.exact = None;
     }
 
     /// The base penalties `ρ⁰_i = 1/λ_max(W_ii)` of the current solve.
