@@ -60,4 +60,32 @@ mod tests {
         assert!(!exact_sweep_beats_newton(&dense_2d));
         assert!(!exact_sweep_beats_newton(&sparse_3d));
     }
+
+    /// Issue 37, ninth part: `Auto` on a generated 2D block-sparse problem runs the
+    /// accelerated sweep with exact contacts, no Newton first, in at most half the sweeps of
+    /// the projected accelerated sweep that main's rule ran there (measured: 12 against 45 at
+    /// 2 000 contacts), converged.
+    #[test]
+    fn issue_37_auto_runs_the_exact_sweep_on_a_sparse_2d_w() {
+        use crate::{Algorithm, UzawaSolver};
+        let p = random_sparse_problem(2, 400, 2, 11);
+        let laws = p.coulomb_laws();
+        let auto = UzawaSolver::new(st_auto()).solve(&p, &laws).unwrap();
+        let ags = UzawaSettings::default().with_algorithm(Algorithm::AndersonGaussSeidel);
+        let projected = UzawaSolver::new(ags).solve(&p, &laws).unwrap();
+        let rep = &auto.report;
+        assert_eq!(rep.algorithm, Algorithm::AndersonGaussSeidel);
+        assert_eq!(rep.fallback_from, None);
+        assert!(rep.converged);
+        let n_p = projected.report.iterations;
+        assert!(
+            2 * rep.iterations <= n_p,
+            "Auto {} sweeps, projected {n_p}",
+            rep.iterations
+        );
+    }
+
+    fn st_auto() -> UzawaSettings {
+        UzawaSettings::default().with_algorithm(crate::Algorithm::Auto)
+    }
 }
