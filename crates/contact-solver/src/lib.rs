@@ -51,8 +51,8 @@ pub use contact_laws;
 pub use error::NewtonFailure;
 pub use error::{BestIterate, SolverError};
 pub use local::{
-    Algorithm, Asymmetry, CsrMatrix, ReducedProblem, Solution, UzawaReport, UzawaSettings,
-    UzawaSolver, UzawaTuning, WView, solve_coulomb,
+    Algorithm, Asymmetry, ContactSolve, CsrMatrix, ReducedProblem, Solution, UzawaReport,
+    UzawaSettings, UzawaSolver, UzawaTuning, WView, solve_coulomb,
 };
 
 #[cfg(feature = "fe")]

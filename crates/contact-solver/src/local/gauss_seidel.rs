@@ -23,12 +23,28 @@ impl Sweeps {
         r: &mut [f64],
         x: &mut [f64],
     ) -> f64 {
+        // 2D contacts solved exactly (`exact_2d`, set per run for this problem)
+        if DT == 1
+            && let Some(exact) = self
+                .exact
+                .take_if(|e| e.blocks.len() == problem.contact_count())
+        {
+            let dr2 = self.exact_sweep_2d(&exact, problem, laws, states, r, x);
+            self.exact = Some(exact);
+            return dr2;
+        }
         // rows of `columns` are the columns of W (W itself unless a non-symmetric W is kept)
         let w = problem.columns();
+        // the blocks read at the reset, when it was for this problem (its size)
+        let cached = self.blocks.len() == problem.contact_count();
         let mut dr2 = 0.0;
         for i in 0..problem.contact_count() {
             let (law, s) = (pick(laws, i), pick(states, i));
-            let block = problem.diagonal_block(i);
+            let block = if cached {
+                self.blocks[i]
+            } else {
+                problem.diagonal_block(i)
+            };
             let ri = local::<DT>(r, i);
             let xi = local::<DT>(x, i);
             let v = law.modified_velocity(&xi, s);

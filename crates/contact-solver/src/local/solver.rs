@@ -23,8 +23,8 @@ mod rescale;
 mod skip_open;
 
 use auto::{
-    auto_newton_budget, last_newton, newton_pays, newton_probe, pressed_most, sparse_twin_for_auto,
-    sweep_after_newton, sweep_probe, sweep_promises,
+    auto_contact_solve, auto_newton_budget, last_newton, newton_pays, newton_probe, pressed_most,
+    sparse_twin_for_auto, sweep_after_newton, sweep_probe, sweep_promises,
 };
 
 /// A converged answer of a Coulomb-type problem must satisfy the Signorini–Coulomb conditions
@@ -182,6 +182,7 @@ impl UzawaSolver {
                 Algorithm::AndersonGaussSeidel
             };
             self.sweep_first = st.algorithm == Algorithm::Newton && pressed_most(problem);
+            st = auto_contact_solve(st, problem);
         }
         // the Uzawa step is a projected gradient of the energy ½ rᵀ W r + qᵀ r: it needs W
         // symmetric (the sweeps and Newton need only the diagonal blocks, see `asymmetry`)

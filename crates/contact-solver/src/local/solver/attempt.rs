@@ -22,6 +22,8 @@ impl UzawaSolver {
     ) -> Result<Solution, SolverError> {
         let m = problem.size();
         self.sweeps.reset(problem, st.tuning.rho_scale);
+        self.sweeps
+            .exact_contacts::<L, DT>(&st, problem, laws, states);
         let mut x = vec![0.0; m];
         problem.displacement_into(&r, &mut x);
         if st.algorithm == Algorithm::Uzawa {

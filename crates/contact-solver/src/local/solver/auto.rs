@@ -14,7 +14,9 @@ use super::super::settings::{
 };
 
 mod redundant;
+mod sweep_2d;
 pub(super) use redundant::redundant_contacts;
+pub(super) use sweep_2d::{auto_contact_solve, exact_sweep_beats_newton};
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
 /// `AUTO_NEWTON_MAX_FILL` and `AUTO_MULTIBODY_ZERO_BLOCKS`): Newton on a dense `W` up to
@@ -31,6 +33,9 @@ pub(super) use redundant::redundant_contacts;
 /// ([`redundant_contacts`]: Siconos' kapla tower, where one factorisation costs twice the whole
 /// sweep) takes the sweep.
 pub(super) fn newton_pays(problem: &ReducedProblem) -> bool {
+    if exact_sweep_beats_newton(problem) {
+        return false; // issue 37, ninth part: the exact 2D sweep (`sweep_2d`)
+    }
     let nc = problem.contact_count();
     match problem.w_sparse() {
         None => {
