@@ -13,6 +13,7 @@ use super::super::settings::{
     AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
+mod after_probe;
 mod redundant;
 pub(super) use redundant::redundant_contacts;
 
@@ -180,7 +181,7 @@ pub(super) fn last_newton(st: UzawaSettings) -> UzawaSettings {
 /// both capsule files where Newton plateaus.
 pub(super) fn sweep_after_newton(probe: NewtonProbe) -> Algorithm {
     match probe {
-        NewtonProbe::Progress => Algorithm::GaussSeidel,
+        NewtonProbe::Progress | NewtonProbe::Finish => Algorithm::GaussSeidel,
         NewtonProbe::Steps | NewtonProbe::Off => Algorithm::AndersonGaussSeidel,
     }
 }
