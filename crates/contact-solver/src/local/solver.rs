@@ -305,12 +305,13 @@ impl UzawaSolver {
         // iterate to the sweep
         let mut from_newton = switched && probe != NewtonProbe::Steps;
         // issue 37, ninth part: after the progress probe, the sweep's trial (`auto/after_probe.rs`)
-        let mut raised = false;
+        let (mut raised, mut resume) = (false, None);
         if switched && probe == NewtonProbe::Progress {
-            (sol, raised) = self.after_progress_probe::<L, DT>(
+            let after = self.after_progress_probe::<L, DT>(
                 st, sol, problem, laws, states, mu, &mut best_iterate,
             )?;
-            (best, from_newton) = (best_of(&sol.report.history), !raised);
+            (sol, raised, resume) = (after.sol, after.raised, Some(after.resume));
+            best = best_of(&sol.report.history);
         }
         for &next in chain {
             if sol.report.converged {
@@ -321,7 +322,7 @@ impl UzawaSolver {
                 continue; // the unprobed Newton already ran
             }
             let start = if from_newton {
-                sol.r.clone()
+                resume.take().unwrap_or_else(|| sol.r.clone())
             } else {
                 r.clone()
             };
