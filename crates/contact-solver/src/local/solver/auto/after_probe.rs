@@ -1,8 +1,9 @@
 //! What [`Algorithm::Auto`] runs after its Newton under the progress probe gave up (issue 37,
 //! ninth part: a sparse `W` kept non-symmetric, Siconos' capsules): a trial of the plain
-//! Gauss–Seidel sweep from Newton's iterate, read by its rate; then either the sweep goes on,
-//! or Newton again from the sweep's iterate with `ρ` raised (`newton/rho_raise.rs`), stopping
-//! at the first confirmed residual `≤ tol` ([`NewtonProbe::Finish`]).
+//! Gauss–Seidel sweep from Newton's iterate, then, where it neither converged nor promises the
+//! tolerance at its rate, Newton again from the sweep's iterate with `ρ` raised
+//! (`newton/rho_raise.rs`), stopping at the first confirmed residual `≤ tol`
+//! ([`NewtonProbe::Finish`]).
 //!
 //! ```text
 //! sweeps ≤ AFTER_PROBE_TRIAL from Newton's iterate
@@ -14,24 +15,22 @@
 //! not converged                                    → the sweep goes on from the trial's iterate
 //! ```
 //!
-//! Measured (`docs/benchmarks.md`, "The capsules' plateau (issue 37, ninth part)"): where
-//! Newton plateaus on the capsules (`Capsules-i122-1617` at 1.2e-6, `-i101-404` at 6e-7,
-//! given up at iteration 44–45) the plain sweep from its iterate plateaus too: on
-//! `-i122-1617` at 1.1e-6 for 450 sweeps, then at 1e-7 for 5 000 (the old chain ran it to
-//! its stall, then the last Newton: 5 972 iterations in all), on `-i101-404` at 3e-7 for 550
-//! sweeps before its active set settles (1 457 in all). Its rate over the last 50 of 200
-//! sweeps promises `tol` after 2 947 sweeps on `-i101-404` (the sweep goes on: 1 457 in all,
-//! where the raised Newton's 27 iterations cost more) and never on `-i122-1617`, where
-//! Newton with `ρ` raised from the trial's iterate reaches `tol` in 75 iterations (320 in
-//! all, 5 972 before). On a loose sphere pile with
-//! a one-way coupling (`tests/integration/issue_37_auto_multibody.rs`'s family), where Newton
-//! plateaus at 1.8e-5 and the raised Newton fails for 2 000 iterations, the sweep contracts
-//! steadily after 100 sweeps and the same rate promises `tol` at about 735 sweeps: it goes on.
-//! `AFTER_PROBE_PREDICTED` (the raised Newton's cost in sweeps) is 1.7× the first and 7× the
-//! second; a first setting of 1 500 sent `-i101-404` to Newton, 1.4× slower. Where the rate misleads
-//! (a pile of the same family with `δ = 5·10⁻²`, 134 contacts: the sweep plateaus at 3e-7
-//! for 1 500 sweeps and then converges, the raised Newton oscillates between 1e-6 and 5e-4)
-//! `AFTER_PROBE_NEWTON` bounds the detour, and the sweep resumes from its own iterate.
+//! Measured (`docs/benchmarks.md`, "The capsules' plateau (issue 37, ninth part)"): Newton
+//! plateaus on three capsule files (`Capsules-i122-1617` at 1.2e-6, `-i101-404` at 6e-7,
+//! FCLIB's `-i125-1213` at 2.5e-7; given up at iteration 40–45), and the plain sweep from its
+//! iterate plateaus too, then drops when its active set settles: after 1 413 sweeps on
+//! `-i101-404`, 2 214 on `-i125-1213`, never on `-i122-1617` (at 1e-7 for 5 000 sweeps, to
+//! its stall; the old chain then ran the last Newton from the start: 5 972 iterations in
+//! all). Nothing in the sweep's first hundreds of sweeps tells the three apart (flat on each),
+//! so the trial is long: `AFTER_PROBE_TRIAL` = 3 000 sweeps, 1.35× the slowest drop measured,
+//! about what the raised Newton costs where it converges (27–75 iterations there, a sparse LU
+//! each, about 50–70 sweeps an iteration). On `-i122-1617` Newton with `ρ` raised from the
+//! trial's iterate then reaches `tol` in about 75 iterations. A first version with a trial of
+//! 200 sweeps read by its rate sent `-i101-404` and `-i125-1213` to the raised Newton, 1.4–1.6×
+//! slower than the sweep. Where the raised Newton fails (a loose sphere pile with a one-way
+//! coupling of `δ = 5·10⁻²`, `tests/integration/issue_37_auto_multibody.rs`'s family: it
+//! oscillates between 1e-6 and 5e-4) `AFTER_PROBE_NEWTON` bounds the detour and the sweep
+//! resumes from its own iterate.
 
 use super::super::super::newton::NewtonProbe;
 use super::super::super::problem::ReducedProblem;
@@ -41,14 +40,14 @@ use super::last_newton;
 use crate::error::{BestIterate, SolverError};
 use contact_laws::ContactLaw;
 
-/// Sweeps of the plain Gauss–Seidel trial from Newton's iterate.
-const AFTER_PROBE_TRIAL: usize = 200;
+/// Sweeps of the plain Gauss–Seidel trial from Newton's iterate (module docs).
+const AFTER_PROBE_TRIAL: usize = 3000;
 /// Sweeps over which the trial's rate is read (the sweep's residual on a plateau wanders by
 /// a few per cent from sweep to sweep; four sweeps, as in `sweep_promises`, read noise).
 const AFTER_PROBE_SPAN: usize = 50;
 /// Sweeps in all (the trial's included) within which the trial's rate must promise `tol`
-/// for the sweep to go on: about what the raised Newton costs where it converges (27–75
-/// iterations on the capsules, a sparse LU each, about 50–70 sweeps an iteration there).
+/// for the sweep to go on rather than the raised Newton (whose cost is about 2 000–5 000
+/// sweeps where it converges, module docs).
 const AFTER_PROBE_PREDICTED: f64 = 5000.0;
 /// Iterations of the raised Newton (the converging runs measured took 3–75).
 const AFTER_PROBE_NEWTON: usize = 150;
@@ -158,10 +157,10 @@ impl UzawaSolver {
 mod tests {
     use super::*;
 
-    /// The measured shapes of the module docs: a sweep contracting by 0.9877 a sweep from
-    /// 7.5e-6 at sweep 200 promises 1e-8 near sweep 735, one by 0.99875 from 3.1e-7 near
-    /// 2 947 (both go on); one by 0.9995 (near 7 000) does not; a plateau, a rising or NaN
-    /// history, or one of at most `span` sweeps never; a history at `tol` always.
+    /// A sweep contracting by 0.9877 a sweep from 7.5e-6 at sweep 200 promises 1e-8 near
+    /// sweep 735, one by 0.99875 from 3.1e-7 near 2 947 (both within 5 000); one by 0.9995
+    /// (near 7 000) does not; a plateau, a rising or NaN history, or one of at most `span`
+    /// sweeps never; a history at `tol` always.
     #[test]
     fn promises_over_works() {
         let from = |h0: f64, rate: f64| {
