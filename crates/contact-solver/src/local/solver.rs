@@ -308,7 +308,13 @@ impl UzawaSolver {
         let (mut raised, mut resume) = (false, None);
         if switched && probe == NewtonProbe::Progress {
             let after = self.after_progress_probe::<L, DT>(
-                st, sol, problem, laws, states, mu, &mut best_iterate,
+                st,
+                sol,
+                problem,
+                laws,
+                states,
+                mu,
+                &mut best_iterate,
             )?;
             (sol, raised, resume) = (after.sol, after.raised, Some(after.resume));
             best = best_of(&sol.report.history);
