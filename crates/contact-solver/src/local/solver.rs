@@ -305,16 +305,31 @@ impl UzawaSolver {
         // an unprobed Newton (a dense W kept non-symmetric) and the progress probe's hand their
         // iterate to the sweep
         let mut from_newton = switched && probe != NewtonProbe::Steps;
+        // issue 37, ninth part: after the progress probe, the sweep's trial (`auto/after_probe.rs`)
+        let (mut raised, mut resume) = (false, None);
+        if switched && probe == NewtonProbe::Progress {
+            let after = self.after_progress_probe::<L, DT>(
+                st,
+                sol,
+                problem,
+                laws,
+                states,
+                mu,
+                &mut best_iterate,
+            )?;
+            (sol, raised, resume) = (after.sol, after.raised, Some(after.resume));
+            best = best_of(&sol.report.history);
+        }
         for &next in chain {
             if sol.report.converged {
                 break;
             }
             let again = next == Algorithm::Newton;
-            if again && newton_probe(problem) == NewtonProbe::Off {
+            if again && (raised || newton_probe(problem) == NewtonProbe::Off) {
                 continue; // the unprobed Newton already ran
             }
             let start = if from_newton {
-                sol.r.clone()
+                resume.take().unwrap_or_else(|| sol.r.clone())
             } else {
                 r.clone()
             };

@@ -18,6 +18,11 @@
 //!   it converges in 29–40 iterations (`Capsules-i100-1090`, `-i103-990`, `-i100-889`), which
 //!   the step rule abandoned at iteration 4–5; where it plateaus (`-i101-404` from iteration 24
 //!   at 6e-7, `-i122-1617` from 20 at 1.2e-6, for hundreds of iterations) the window ends it.
+//! - [`NewtonProbe::Finish`] (the Newton with `ρ` raised that `Auto` runs after the progress
+//!   probe gave up and the plain sweep's trial did not promise the tolerance,
+//!   `solver/auto/after_probe.rs`): no give-up, the progress probe's stop at the first
+//!   confirmed residual `≤ tol` (measured on Siconos' capsules: reached after 30–66
+//!   iterations, then 100 more of polishing without it).
 //! - [`NewtonProbe::Off`]: no probe (a dense `W` kept non-symmetric, bounded by
 //!   `AUTO_NEWTON_UNPROBED_BUDGET`; every Newton a user chose).
 
@@ -33,6 +38,8 @@ pub(crate) enum NewtonProbe {
     Steps,
     /// Give up when the residual stops halving; stop at the first confirmed residual `≤ tol`.
     Progress,
+    /// Never give up; stop at the first confirmed residual `≤ tol`.
+    Finish,
 }
 
 /// A residual at most this fraction of the best before the window counts as progress.
@@ -42,7 +49,7 @@ impl NewtonProbe {
     /// Whether the run stops on its residual alone at `residual ≤ tol` (confirmed by the
     /// caller on the exact `x`).
     pub(crate) fn stops_on_residual(self, residual: f64, tol: f64) -> bool {
-        self == Self::Progress && residual <= tol
+        matches!(self, Self::Progress | Self::Finish) && residual <= tol
     }
 
     /// Whether a run whose residuals are `history` (one an iteration) gives up for lack of
@@ -97,6 +104,7 @@ mod tests {
         assert!(NewtonProbe::Progress.gives_up(&plateau));
         assert!(!NewtonProbe::Steps.gives_up(&plateau));
         assert!(!NewtonProbe::Off.gives_up(&plateau));
+        assert!(!NewtonProbe::Finish.gives_up(&plateau));
         assert!(!NewtonProbe::Progress.gives_up(&plateau[..w + 5]));
         // a NaN residual is no progress
         let mut nan = plateau[..w + 5].to_vec();
@@ -116,5 +124,8 @@ mod tests {
         assert!(NewtonProbe::Progress.stops_on_residual(1e-9, 1e-8));
         assert!(!NewtonProbe::Progress.stops_on_residual(1e-7, 1e-8));
         assert!(!NewtonProbe::Steps.stops_on_residual(1e-9, 1e-8));
+        assert!(NewtonProbe::Finish.stops_on_residual(1e-9, 1e-8));
+        assert!(!NewtonProbe::Finish.stops_on_residual(1e-7, 1e-8));
+        assert!(!NewtonProbe::Finish.counts_short(false, 0.0));
     }
 }

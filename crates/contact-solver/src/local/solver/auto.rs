@@ -13,6 +13,7 @@ use super::super::settings::{
     AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
+mod after_probe;
 mod redundant;
 mod sweep_2d;
 pub(super) use redundant::redundant_contacts;
@@ -182,10 +183,11 @@ pub(super) fn last_newton(st: UzawaSettings) -> UzawaSettings {
 /// part, `docs/benchmarks.md` "Auto on large multibody problems"): on Siconos'
 /// `Capsules-i101-404`, after Newton's plateau at 5e-7, the plain sweep converges in 1 457
 /// sweeps where the accelerated one takes 5 726; the plain sweep is our fastest algorithm on
-/// both capsule files where Newton plateaus.
+/// both capsule files where Newton plateaus. After the progress probe it runs first as a
+/// trial read by its rate (`auto/after_probe.rs`, issue 37, ninth part).
 pub(super) fn sweep_after_newton(probe: NewtonProbe) -> Algorithm {
     match probe {
-        NewtonProbe::Progress => Algorithm::GaussSeidel,
+        NewtonProbe::Progress | NewtonProbe::Finish => Algorithm::GaussSeidel,
         NewtonProbe::Steps | NewtonProbe::Off => Algorithm::AndersonGaussSeidel,
     }
 }
