@@ -19,6 +19,9 @@ pub(crate) struct Sweeps {
     pub(crate) v_trial: Vec<f64>,
     pub(crate) rho0: Vec<f64>,
     pub(crate) rho: Vec<f64>,
+    /// How many times [`reset`](Self::reset) computed `ρ⁰` (one eigenvalue problem a
+    /// contact), a work count for the tests (issue 37: `Auto` computed it once per run).
+    pub(crate) rho0_computed: usize,
 }
 
 impl Sweeps {
@@ -34,11 +37,35 @@ impl Sweeps {
             buf.clear();
             buf.resize(m, 0.0);
         }
+        self.rho0_computed += 1;
         self.rho0.clear();
         let d = problem.dimension();
         self.rho0.extend(
             (0..problem.contact_count()).map(|i| rho_of_block(&problem.diagonal_block(i), d)),
         );
+        self.rho.clear();
+        self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
+    }
+
+    /// [`reset`](Self::reset) for a run on the problem the sweeps were last reset for: the
+    /// buffers zeroed and `ρ_i = rho_scale·ρ⁰_i`, the `ρ⁰` kept (it depends on `W`'s diagonal
+    /// blocks only). Issue 37, ninth part: each run of a solve computed `ρ⁰` again (`Auto`'s
+    /// classical first run, then Newton: three times), 5–10 % of `Auto`'s time on Siconos'
+    /// `NESpheres_10_1`. A problem of another size is reset in full.
+    pub(crate) fn restart(&mut self, problem: &ReducedProblem, rho_scale: f64) {
+        let m = problem.size();
+        if self.rho0.len() != problem.contact_count() || self.r_trial.len() != m {
+            self.reset(problem, rho_scale);
+            return;
+        }
+        for buf in [
+            &mut self.r_trial,
+            &mut self.x_trial,
+            &mut self.v,
+            &mut self.v_trial,
+        ] {
+            buf.fill(0.0);
+        }
         self.rho.clear();
         self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
     }
