@@ -196,15 +196,6 @@ pub(crate) const AUTO_CLASSIC_MIN_SWEEPS: usize = 16;
 /// See `AUTO_CLASSIC_PROBE`: 16 (`Confeti-ex13-Fc3D-SBM`: 56²/16 = 196 sweeps).
 pub(crate) const AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP: f64 = 16.0;
 
-/// Rows of a dense `W` kept non-symmetric up to which [`Algorithm::Auto`] runs its Newton
-/// without the sweep first (`AUTO_SWEEP_PROBE`): Newton's system then fits the in-crate LU,
-/// and its step costs a few sweeps (Siconos' rovers, 2–5 contacts, non-symmetric: the 8
-/// probing sweeps took 25–40 % of `Auto`'s time; the slider crank's 2 contacts: the sweep
-/// 1.4× Newton). A symmetric `W` keeps the sweep first at every size: on the small
-/// semidefinite sphere piles of `tests/integration/issue_37_semidefinite.rs` Newton creeps
-/// and the sweep first saves its probe (607 iterations against 536 without it).
-pub(crate) const AUTO_SWEEP_MIN_ROWS: usize = 32;
-
 /// Outer iterations (first run included) within which the first classical run's rate must
 /// promise the tolerance for [`Algorithm::Auto`] to let it go on rather than run its own
 /// choice: 40, as for the sweep (`AUTO_SWEEP_PREDICTED`), below the 48 of

@@ -27,6 +27,9 @@ pub(crate) struct Sweeps {
     /// The contacts' blocks when the Gauss–Seidel sweep solves each 2D contact exactly
     /// ([`ContactSolve::Exact`](super::ContactSolve::Exact), `exact_2d`).
     pub(crate) exact: Option<ExactBlocks>,
+    /// How many times [`reset`](Self::reset) computed `ρ⁰` (one eigenvalue problem a
+    /// contact), a work count for the tests (issue 37: `Auto` computed it once per run).
+    pub(crate) rho0_computed: usize,
 }
 
 impl Sweeps {
@@ -42,6 +45,7 @@ impl Sweeps {
             buf.clear();
             buf.resize(m, 0.0);
         }
+        self.rho0_computed += 1;
         self.rho0.clear();
         let d = problem.dimension();
         self.blocks.clear();
@@ -53,6 +57,29 @@ impl Sweeps {
         self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
         // the exact solve is set per run, after the reset (`exact_contacts`)
         self.exact = None;
+    }
+
+    /// [`reset`](Self::reset) for a run on the problem the sweeps were last reset for: the
+    /// buffers zeroed and `ρ_i = rho_scale·ρ⁰_i`, the `ρ⁰` kept (it depends on `W`'s diagonal
+    /// blocks only). Issue 37, ninth part: each run of a solve computed `ρ⁰` again (`Auto`'s
+    /// classical first run, then Newton: three times), 5–10 % of `Auto`'s time on Siconos'
+    /// `NESpheres_10_1`. A problem of another size is reset in full.
+    pub(crate) fn restart(&mut self, problem: &ReducedProblem, rho_scale: f64) {
+        let m = problem.size();
+        if self.rho0.len() != problem.contact_count() || self.r_trial.len() != m {
+            self.reset(problem, rho_scale);
+            return;
+        }
+        for buf in [
+            &mut self.r_trial,
+            &mut self.x_trial,
+            &mut self.v,
+            &mut self.v_trial,
+        ] {
+            buf.fill(0.0);
+        }
+        self.rho.clear();
+        self.rho.extend(self.rho0.iter().map(|a| a * rho_scale));
     }
 
     /// The base penalties `ρ⁰_i = 1/λ_max(W_ii)` of the current solve.

@@ -10,8 +10,9 @@ use crate::local::settings::{Algorithm, Solution, UzawaReport, UzawaSettings};
 use contact_laws::ContactLaw;
 
 impl UzawaSolver {
-    /// One run of `st.algorithm` from `r` (the sweeps' `ρ⁰` already set for `problem`), with
-    /// its report; `converged` is the algorithm's own stopping rule.
+    /// One run of `st.algorithm` from `r` (the sweeps' `ρ⁰` already set for `problem` by
+    /// `solve_checked`, and kept: [`Sweeps::restart`](crate::local::sweep::Sweeps::restart)),
+    /// with its report; `converged` is the algorithm's own stopping rule.
     pub(super) fn attempt<L: ContactLaw, const DT: usize>(
         &mut self,
         st: UzawaSettings,
@@ -21,7 +22,7 @@ impl UzawaSolver {
         mut r: Vec<f64>,
     ) -> Result<Solution, SolverError> {
         let m = problem.size();
-        self.sweeps.reset(problem, st.tuning.rho_scale);
+        self.sweeps.restart(problem, st.tuning.rho_scale);
         self.sweeps
             .exact_contacts::<L, DT>(&st, problem, laws, states);
         let mut x = vec![0.0; m];
@@ -138,5 +139,34 @@ impl UzawaSolver {
             solved_contacts: problem.contact_count(),
         };
         Ok(Solution { r, x, report })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::local::generate::random_sparse_problem;
+
+    /// Issue 37, ninth part: `ρ⁰` (one eigenvalue problem a contact) is computed once a solve,
+    /// by `solve_checked`, however many runs follow (`Auto`'s first runs and probes, Newton,
+    /// the sweep, the fallbacks); main computed it again in every run (at least twice a
+    /// solve, 3 times for `Auto`'s classical first run then Newton on Siconos'
+    /// `NESpheres_10_1`). A second solve on the same solver computes it again (a new problem
+    /// may have other diagonal blocks).
+    #[test]
+    fn issue_37_rho0_computed_once_a_solve() {
+        let p = random_sparse_problem(3, 40, 4, 5);
+        let laws = p.coulomb_laws();
+        for algorithm in [Algorithm::Auto, Algorithm::Newton, Algorithm::ClassicRccm] {
+            let st = UzawaSettings::default()
+                .with_algorithm(algorithm)
+                .with_tol(1e-10);
+            let mut solver = UzawaSolver::new(st);
+            let sol = solver.solve(&p, &laws).unwrap();
+            assert!(sol.report.converged);
+            assert_eq!(solver.sweeps.rho0_computed, 1, "{algorithm:?}");
+            solver.solve(&p, &laws).unwrap();
+            assert_eq!(solver.sweeps.rho0_computed, 2, "{algorithm:?}");
+        }
     }
 }

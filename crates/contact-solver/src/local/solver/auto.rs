@@ -9,8 +9,8 @@ use super::super::settings::Algorithm;
 use super::super::settings::{
     AUTO_CLASSIC_MAX_CONTACTS, AUTO_MULTIBODY_ZERO_BLOCKS, AUTO_NEWTON_BUDGET,
     AUTO_NEWTON_MAX_CONTACTS, AUTO_NEWTON_MAX_FILL, AUTO_NEWTON_UNPROBED_BUDGET,
-    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_MIN_ROWS,
-    AUTO_SWEEP_PREDICTED, AUTO_SWEEP_PROBE, UzawaSettings,
+    AUTO_SPARSE_NEWTON_MAX_CONTACTS, AUTO_SWEEP_MIN_PRESSED, AUTO_SWEEP_PREDICTED,
+    AUTO_SWEEP_PROBE, UzawaSettings,
 };
 
 mod after_probe;
@@ -192,17 +192,22 @@ pub(super) fn sweep_after_newton(probe: NewtonProbe) -> Algorithm {
     }
 }
 
-/// Whether `W` is dense (symmetric, or kept non-symmetric with more than
-/// `AUTO_SWEEP_MIN_ROWS` rows) and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts are
-/// pressed
-/// (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and `Auto`
-/// sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE surface)
-/// Newton's steps are small beside a sweep over the whole `W`, and `Auto` keeps Newton.
+/// Whether `W` is dense and symmetric and at least `AUTO_SWEEP_MIN_PRESSED` of the contacts
+/// are pressed (`q_n < 0`): there a Newton step factorises most of `W` (its closed set), and
+/// `Auto` sweeps first ([`sweep_probe`]); where few are pressed (an indenter on a large FE
+/// surface) Newton's steps are small beside a sweep over the whole `W`, and `Auto` keeps
+/// Newton. A `W` kept non-symmetric runs Newton at once (issue 37, ninth part): its Newton is
+/// unprobed, within `AUTO_NEWTON_UNPROBED_BUDGET`, and hands its iterate to the sweep, so the
+/// sweep is what follows a wrong choice anyway; measured on Siconos' dense non-symmetric
+/// problems (the rovers, 1–5 contacts; the slider crank, 2; `OneObject`, 23–25) the probe
+/// never promised (the accelerated sweep needs 193–1 133 sweeps on `OneObject`, Newton
+/// 11–14 iterations) and cost 25–40 % of `Auto`'s time on the rovers and 5–8 % on
+/// `OneObject` (27–38 µs of 0.34–0.52 ms), where main kept it above 32 rows.
 pub(super) fn pressed_most(problem: &ReducedProblem) -> bool {
     let (d, nc) = (problem.dimension(), problem.contact_count());
     let pressed = (0..nc).filter(|&i| problem.q()[d * i] < 0.0).count();
     problem.w_dense().is_some()
-        && (problem.is_symmetric() || problem.size() > AUTO_SWEEP_MIN_ROWS)
+        && problem.is_symmetric()
         && nc > 0
         && pressed as f64 >= AUTO_SWEEP_MIN_PRESSED * nc as f64
 }
@@ -331,6 +336,33 @@ mod tests {
             auto_newton_budget(st, &sparse).max_iterations,
             AUTO_NEWTON_BUDGET
         );
+    }
+
+    /// Issue 37, ninth part: a dense `W` kept non-symmetric runs Newton at once at every size
+    /// (main swept first above 32 rows: Siconos' `OneObject` problems, 69–75 rows, where the
+    /// probe never promised and cost 5–8 % of `Auto`'s time); the same `W` symmetrised keeps
+    /// the sweep first.
+    #[test]
+    fn issue_37_no_sweep_first_on_a_dense_non_symmetric_w() {
+        let random = crate::local::generate::random_problem_in(3, 20, 3);
+        let m = random.size();
+        let w = random.w_dense().unwrap().to_vec();
+        // every contact pressed
+        let q: Vec<f64> = (0..m)
+            .map(|k| if k % 3 == 0 { -1.0 } else { 0.2 })
+            .collect();
+        let mu = random.mu().to_vec();
+        let sym = ReducedProblem::with_dimension(3, w.clone(), q.clone(), mu.clone()).unwrap();
+        let mut w = w;
+        w[1] += 0.1 * w[0]; // one entry off its mirror: kept non-symmetric
+        let kept = ReducedProblem::with_asymmetry(3, w, q, mu, Asymmetry::Keep).unwrap();
+        assert!(!kept.is_symmetric() && m > 32);
+        assert!(
+            pressed_most(&sym),
+            "the symmetric problem is mostly pressed"
+        );
+        assert!(!pressed_most(&kept));
+        assert!(newton_pays(&kept));
     }
 
     /// A sweep contracting by 0.5 a sweep from 1 reaches 1e-8 near sweep 27 (promised at 8
