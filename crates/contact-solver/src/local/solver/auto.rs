@@ -14,7 +14,7 @@ use super::super::settings::{
 };
 
 mod redundant;
-pub(super) use redundant::redundant_contacts;
+pub(super) use redundant::{redundant_contacts, sweep_before_classic};
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
 /// `AUTO_NEWTON_MAX_FILL` and `AUTO_MULTIBODY_ZERO_BLOCKS`): Newton on a dense `W` up to
