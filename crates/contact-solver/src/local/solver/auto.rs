@@ -108,21 +108,11 @@ fn mostly_zero_blocks(problem: &ReducedProblem) -> bool {
 /// rule of [`newton_pays`] applies. `None` when the problem is not such a one (or the copy
 /// fails, which a valid problem does not).
 pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedProblem> {
-    let w = problem.w_dense()?;
+    problem.w_dense()?;
     if !problem.is_symmetric() || !mostly_zero_blocks(problem) {
         return None;
     }
-    let m = problem.size();
-    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
-    for (k, &v) in w.iter().enumerate() {
-        if v != 0.0 {
-            rows.push(k / m);
-            cols.push(k % m);
-            vals.push(v);
-        }
-    }
-    let (q, mu) = (problem.q().to_vec(), problem.mu().to_vec());
-    ReducedProblem::from_triplets(problem.dimension(), &rows, &cols, &vals, q, mu).ok()
+    problem.stored_sparse()?.ok()
 }
 
 /// The settings of the first run of a Newton that [`Algorithm::Auto`] chose: at most

@@ -21,7 +21,7 @@
 //! `Box_Stacks-i0122-82-5` and `LMGC_100_PR_PerioBox-i00361-60-03000`, where the classical
 //! solver's first Signorini sub-problem never ends (5 026 and 10 000 sweeps at residual
 //! 3e-2 and 7e-2); on `BoxesStack1-i100000-32` it plateaus at 2.7e-5 from sweep 75 and the
-//! detector ends it at sweep 149, before the classical solver's 3 781 sweeps.
+//! detector ends it at sweep 147, before the classical solver's 3 781 sweeps.
 
 use crate::local::csr::CsrMatrix;
 use crate::local::problem::ReducedProblem;
@@ -32,7 +32,7 @@ use crate::local::settings::{Algorithm, UzawaSettings};
 /// `local/stall.rs`: no halving over `max(window, k/2)` sweeps). 50, measured on the sweep's
 /// histories: `LMGC_100_PR_PerioBox` and `Box_Stacks` converge under any window from 10 up
 /// (the longest plateau, 18 sweeps, comes after sweep 60); on `BoxesStack1` the `k/2` term
-/// ends the sweep at sweep 149 under any window up to 74; over the generated stacks of the
+/// ends the sweep at sweep 147 under any window up to 74; over the generated stacks of the
 /// tests (5–40 blocks, lighter or heavier upwards, pushed sideways; 96 problems), every
 /// sweep that converges within 100 sweeps passes a window of 41, the slower ones need 52 to
 /// 3 076 (those `Auto` hands to the classical solver, as it did before this rule).
