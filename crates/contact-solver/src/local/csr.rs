@@ -166,7 +166,7 @@ impl CsrMatrix {
     /// invariants: a validated dense `W`).
     #[track_caller]
     pub(crate) fn from_dense(dim: usize, m: usize, w: &[f64]) -> Self {
-        assert!(w.len() == m * m && dim > 0 && m % dim == 0 && m <= u32::MAX as usize);
+        assert!(w.len() == m * m && dim > 0 && m.is_multiple_of(dim) && m <= u32::MAX as usize);
         let nb = m / dim;
         let block_zero = |bi: usize, bj: usize| {
             (0..dim).all(|a| {
