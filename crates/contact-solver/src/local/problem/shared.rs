@@ -11,6 +11,7 @@
 use super::{Delassus, ReducedProblem};
 use crate::error::SolverError;
 use crate::local::Asymmetry;
+use crate::local::csr::CsrMatrix;
 use std::sync::Arc;
 
 impl ReducedProblem {
@@ -40,6 +41,28 @@ impl ReducedProblem {
         Self::dense_validated(dim, w, q, mu, Asymmetry::default())
     }
 
+    /// The same problem with `W` stored sparse ([`CsrMatrix::from_dense`]): the problem
+    /// [`from_triplets`](Self::from_triplets) builds from the non-zero entries of `W`,
+    /// validated alike, without sorting them. `None` when `W` is stored sparse or kept
+    /// non-symmetric.
+    pub(crate) fn stored_sparse(&self) -> Option<Result<Self, SolverError>> {
+        let Delassus::Dense { m, w } = &self.w else {
+            return None;
+        };
+        if self.columns.is_some() {
+            return None;
+        }
+        let a = CsrMatrix::from_dense(self.dim, *m, w);
+        let (q, mu) = (self.q.clone(), self.mu.clone());
+        Some(Self::validated(
+            self.dim,
+            Delassus::Sparse(a),
+            q,
+            mu,
+            Asymmetry::default(),
+        ))
+    }
+
     /// The dense `W` as held (shared with whoever else holds it), or `None` when `W` is
     /// stored sparse.
     ///
@@ -63,6 +86,36 @@ impl ReducedProblem {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 37: the sparse copy is the problem built from `W`'s non-zero entries as
+    /// triplets, exactly (pattern, values, checks), on a `W` with zero and non-zero blocks.
+    #[test]
+    fn issue_37_stored_sparse_matches_triplets() {
+        let p = crate::local::generate::random_problem_in(3, 12, 4);
+        let m = p.size();
+        let mut w = p.w_dense().unwrap().to_vec();
+        for (k, v) in w.iter_mut().enumerate() {
+            let (bi, bj) = (k / m / 3, k % m / 3);
+            if bi != bj && (bi + bj) % 3 != 0 {
+                *v = 0.0;
+            }
+        }
+        // one zero entry inside a kept block
+        w[1] = 0.0;
+        w[m] = 0.0;
+        let dense = ReducedProblem::with_dimension(3, w.clone(), p.q().to_vec(), p.mu().to_vec());
+        let sparse = dense.unwrap().stored_sparse().unwrap().unwrap();
+        let (mut rows, mut cols, mut vals) = (vec![], vec![], vec![]);
+        for (k, &v) in w.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+            rows.push(k / m);
+            cols.push(k % m);
+            vals.push(v);
+        }
+        let (q, mu) = (p.q().to_vec(), p.mu().to_vec());
+        let triplets = ReducedProblem::from_triplets(3, &rows, &cols, &vals, q, mu).unwrap();
+        assert_eq!(sparse, triplets);
+        assert!(triplets.stored_sparse().is_none());
+    }
 
     #[test]
     fn issue_38_from_shared_keeps_the_allocation() {

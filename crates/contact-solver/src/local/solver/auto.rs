@@ -16,7 +16,7 @@ use super::super::settings::{
 mod after_probe;
 mod redundant;
 mod sweep_2d;
-pub(super) use redundant::redundant_contacts;
+pub(super) use redundant::{redundant_contacts, sweep_before_classic};
 pub(super) use sweep_2d::{auto_contact_solve, exact_sweep_beats_newton};
 
 /// [`Algorithm::Auto`]'s rule for a Coulomb-type problem (measured, see
@@ -114,21 +114,11 @@ fn mostly_zero_blocks(problem: &ReducedProblem) -> bool {
 /// rule of [`newton_pays`] applies. `None` when the problem is not such a one (or the copy
 /// fails, which a valid problem does not).
 pub(super) fn sparse_twin_for_auto(problem: &ReducedProblem) -> Option<ReducedProblem> {
-    let w = problem.w_dense()?;
+    problem.w_dense()?;
     if !problem.is_symmetric() || !mostly_zero_blocks(problem) {
         return None;
     }
-    let m = problem.size();
-    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
-    for (k, &v) in w.iter().enumerate() {
-        if v != 0.0 {
-            rows.push(k / m);
-            cols.push(k % m);
-            vals.push(v);
-        }
-    }
-    let (q, mu) = (problem.q().to_vec(), problem.mu().to_vec());
-    ReducedProblem::from_triplets(problem.dimension(), &rows, &cols, &vals, q, mu).ok()
+    problem.stored_sparse()?.ok()
 }
 
 /// The settings of the first run of a Newton that [`Algorithm::Auto`] chose: at most

@@ -13,7 +13,8 @@
 //! k = stored(W) / m (entries of an average row)
 //! sweeps ≤ clamp(k² / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP,
 //!                AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE)
-//!   (redundant contacts, `auto/redundant.rs`: sweeps ≤ max_iterations)
+//!   (redundant contacts, `auto/redundant.rs`: the accelerated sweep first, until it
+//!    converges or stalls; then sweeps ≤ max_iterations)
 //! converged (and checked)                          → its answer
 //! its outer residuals promise tol within
 //!   AUTO_CLASSIC_PREDICTED outer iterations       → it goes on from its iterate
@@ -26,15 +27,26 @@ use super::super::settings::{
     AUTO_CLASSIC_PREDICTED, AUTO_CLASSIC_PROBE, Algorithm, Solution, UzawaSettings,
 };
 use super::UzawaSolver;
-use super::auto::{promises_within, redundant_contacts};
+use super::auto::{promises_within, redundant_contacts, sweep_before_classic};
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
 
+/// What [`Algorithm::Auto`] runs first on a small sparse symmetric `W` ([module docs](self)).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ClassicProbe {
+    /// The classical solver's first run, with its budget of sweeps.
+    pub(super) classic: UzawaSettings,
+    /// The accelerated sweep run before it, on redundant contacts
+    /// ([`sweep_before_classic`]).
+    pub(super) sweep: Option<UzawaSettings>,
+}
+
 /// The settings of the classical solver's first run where [`Algorithm::Auto`] tries it first
 /// (a sparse symmetric `W` of 2 to `AUTO_CLASSIC_MAX_CONTACTS` contacts), with its budget of
-/// sweeps (`AUTO_CLASSIC_PROBE`); `None` elsewhere (a dense `W` keeps the measured rule of `auto`: Newton, or the
-/// sweep first).
-pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Option<UzawaSettings> {
+/// sweeps (`AUTO_CLASSIC_PROBE`), and on redundant contacts the accelerated sweep before it;
+/// `None` elsewhere (a dense `W` keeps the measured rule of `auto`: Newton, or the sweep
+/// first).
+pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Option<ClassicProbe> {
     let a = problem.w_sparse()?;
     let nc = problem.contact_count();
     if !problem.is_symmetric() || !(2..=AUTO_CLASSIC_MAX_CONTACTS).contains(&nc) {
@@ -43,16 +55,17 @@ pub(super) fn classic_probe(st: UzawaSettings, problem: &ReducedProblem) -> Opti
     let per_row = a.stored() as f64 / problem.size() as f64;
     let sweeps = ((per_row * per_row / AUTO_CLASSIC_ENTRIES_SQUARED_PER_SWEEP) as usize)
         .clamp(AUTO_CLASSIC_MIN_SWEEPS, AUTO_CLASSIC_PROBE);
-    // redundant contacts (`auto/redundant.rs`): the classical solver runs its whole budget
-    let sweeps = if redundant_contacts(problem) {
-        st.max_iterations
-    } else {
-        sweeps
-    };
-    Some(UzawaSettings {
-        algorithm: Algorithm::ClassicRccm,
-        max_iterations: st.max_iterations.min(sweeps),
-        ..st
+    // redundant contacts (`auto/redundant.rs`): the accelerated sweep first, then the
+    // classical solver with its whole budget
+    let redundant = redundant_contacts(problem);
+    let sweeps = if redundant { st.max_iterations } else { sweeps };
+    Some(ClassicProbe {
+        classic: UzawaSettings {
+            algorithm: Algorithm::ClassicRccm,
+            max_iterations: st.max_iterations.min(sweeps),
+            ..st
+        },
+        sweep: redundant.then(|| sweep_before_classic(st)),
     })
 }
 
@@ -103,9 +116,21 @@ impl UzawaSolver {
         mu: &[f64],
     ) -> Result<Result<Solution, Spent>, SolverError> {
         let mut spent = Spent::default();
-        let Some(probe) = classic_probe(st, problem) else {
+        let Some(first) = classic_probe(st, problem) else {
             return Ok(Err(spent));
         };
+        if let Some(sweep) = first.sweep {
+            let mut sol = self.attempt::<L, DT>(sweep, problem, laws, states, r.to_vec())?;
+            let mut best = None;
+            self.accept_on_residual::<L, DT>(problem, laws, states, &mut sol, &mut best);
+            self.check::<L, DT>(problem, laws, states, &mut sol, Some(mu));
+            if sol.report.converged {
+                sol.report.asymmetry = problem.asymmetry();
+                return Ok(Ok(sol));
+            }
+            spent.add(&mut sol);
+        }
+        let probe = first.classic;
         let mut sol = self.attempt::<L, DT>(probe, problem, laws, states, r.to_vec())?;
         // a run that promises the tolerance goes on from its iterate, once
         let mut left = st.max_iterations.saturating_sub(sol.report.iterations);
@@ -152,9 +177,10 @@ mod tests {
             ReducedProblem::from_triplets(2, rows, cols, &vals, q.clone(), mu.clone()).unwrap();
         let st = UzawaSettings::default();
         let probe = classic_probe(st, &sparse).unwrap();
-        assert_eq!(probe.algorithm, Algorithm::ClassicRccm);
-        // one stored entry a row: the least budget
-        assert_eq!(probe.max_iterations, AUTO_CLASSIC_MIN_SWEEPS);
+        assert_eq!(probe.classic.algorithm, Algorithm::ClassicRccm);
+        // one stored entry a row: the least budget; no redundant contacts, no sweep first
+        assert_eq!(probe.classic.max_iterations, AUTO_CLASSIC_MIN_SWEEPS);
+        assert!(probe.sweep.is_none());
         let one = ReducedProblem::from_triplets(
             2,
             &[0, 1],
