@@ -181,3 +181,80 @@ pub(crate) fn factor_fill(w: &CsrMatrix, d: usize) -> Option<f64> {
     .ok()?;
     Some(symbolic.len_val() as f64 / row_idx.len().max(1) as f64)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::NewtonScratch;
+    use crate::local::classic::friction_coefficients_into;
+    use crate::local::generate::multibody::SpherePile;
+    use crate::local::problem::ReducedProblem;
+    use crate::local::residual::norm;
+    use crate::local::settings::{Algorithm, UzawaSettings};
+    use crate::local::sweep::Sweeps;
+
+    /// A hyperstatic pile of spheres (`W = Hᵀ M⁻¹ H` rank-deficient, stored sparse): Newton's
+    /// system is singular on its sticking contacts, so steps fail and the proximal retries
+    /// refactorise with a larger `η` on the same pattern. The symbolic LU is computed once
+    /// per pattern: far fewer times than the numeric one (without the reuse the two counts
+    /// are equal, and this test fails).
+    #[test]
+    fn issue_37_sparse_newton_orders_once_per_pattern() {
+        let pile = SpherePile {
+            nx: 4,
+            ny: 4,
+            layers: 8,
+            jitter: 0.4,
+            threshold: 0.5,
+            initial_speed: 0.1,
+            ..SpherePile::default()
+        }
+        .generate(1)
+        .unwrap();
+        let dense = &pile.problem;
+        let (m, nc) = (dense.size(), dense.contact_count());
+        let w = dense.w_dense().unwrap();
+        let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..m {
+            for j in 0..m {
+                if w[i * m + j] != 0.0 {
+                    rows.push(i);
+                    cols.push(j);
+                    vals.push(w[i * m + j]);
+                }
+            }
+        }
+        let p = ReducedProblem::from_triplets(
+            3,
+            &rows,
+            &cols,
+            &vals,
+            dense.q().to_vec(),
+            dense.mu().to_vec(),
+        )
+        .unwrap();
+        assert!(p.is_sparse() && pile.rank_deficiency > 0);
+        let laws = p.coulomb_laws();
+        let states = vec![(); nc];
+        let settings = UzawaSettings {
+            algorithm: Algorithm::Newton,
+            max_iterations: 200,
+            ..UzawaSettings::default()
+        };
+        let mut sweeps = Sweeps::default();
+        sweeps.reset(&p, 1.0);
+        let denom_q = sweeps.rho0().iter().fold(0.0_f64, |a, &b| a.max(b)) * norm(p.q());
+        let mut nw = NewtonScratch::default();
+        friction_coefficients_into(&laws, &states, nc, &mut nw.mu_bar).unwrap();
+        let (mut r, mut x, mut history) = (vec![0.0; m], p.q().to_vec(), Vec::new());
+        let run = nw
+            .solve::<_, 2>(
+                &mut sweeps, &p, &laws, &states, &settings, denom_q, &mut r, &mut x, &mut history,
+            )
+            .unwrap();
+        let (symbolic, numeric) = nw.sparse_factorisations();
+        eprintln!("{run:?} symbolic {symbolic} numeric {numeric}");
+        // retries happened: more factorisations than Newton iterations that factorised
+        assert!(numeric > run.newton_steps, "{numeric} LUs, {run:?}");
+        assert!(symbolic >= 1 && 2 * symbolic <= numeric, "{symbolic} of {numeric}");
+    }
+}
