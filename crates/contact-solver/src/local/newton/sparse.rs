@@ -196,7 +196,8 @@ mod tests {
     /// system is singular on its sticking contacts, so steps fail and the proximal retries
     /// refactorise with a larger `η` on the same pattern. The symbolic LU is computed once
     /// per pattern: far fewer times than the numeric one (without the reuse the two counts
-    /// are equal, and this test fails).
+    /// are equal, and this test fails). Measured: 285 numeric LUs for 113 Newton steps in
+    /// 200 iterations, 15 symbolic.
     #[test]
     fn issue_37_sparse_newton_orders_once_per_pattern() {
         let pile = SpherePile {
@@ -248,13 +249,25 @@ mod tests {
         let (mut r, mut x, mut history) = (vec![0.0; m], p.q().to_vec(), Vec::new());
         let run = nw
             .solve::<_, 2>(
-                &mut sweeps, &p, &laws, &states, &settings, denom_q, &mut r, &mut x, &mut history,
+                &mut sweeps,
+                &p,
+                &laws,
+                &states,
+                &settings,
+                denom_q,
+                &mut r,
+                &mut x,
+                &mut history,
             )
             .unwrap();
         let (symbolic, numeric) = nw.sparse_factorisations();
-        eprintln!("{run:?} symbolic {symbolic} numeric {numeric}");
         // retries happened: more factorisations than Newton iterations that factorised
         assert!(numeric > run.newton_steps, "{numeric} LUs, {run:?}");
-        assert!(symbolic >= 1 && 2 * symbolic <= numeric, "{symbolic} of {numeric}");
+        // at most one symbolic LU per two numeric ones (measured: one per 19); without the
+        // reuse the two counts are equal
+        assert!(
+            symbolic >= 1 && 2 * symbolic <= numeric,
+            "{symbolic} of {numeric}"
+        );
     }
 }
