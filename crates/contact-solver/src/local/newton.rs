@@ -115,7 +115,6 @@ use super::sweep::Sweeps;
 use crate::error::SolverError;
 use contact_laws::ContactLaw;
 use faer::linalg::solvers::Solve;
-use faer::sparse::Triplet;
 use faer::{MatMut, MatRef};
 
 mod lu;
@@ -231,9 +230,8 @@ pub(crate) struct NewtonScratch {
     /// The Newton matrix, column-major `p × p` (dense `W`), and its right-hand side.
     a: Vec<f64>,
     b: Vec<f64>,
-    /// Sparse `W`: the first unknown of each contact (`n_c + 1`) and the matrix's entries.
-    first: Vec<usize>,
-    triplets: Vec<Triplet<usize, usize, f64>>,
+    /// Sparse `W`: the matrix in compressed columns and its kept symbolic LU.
+    sparse: sparse::SparseNewton,
     /// Set by [`Algorithm::Auto`](super::settings::Algorithm::Auto) for the run of a Newton it
     /// chose: when the run gives up (neither converged nor stalled), so that the accelerated
     /// sweep takes over ([`probe`]).
