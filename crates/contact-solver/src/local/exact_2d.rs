@@ -24,10 +24,9 @@
 
 use super::problem::ReducedProblem;
 use super::residual::{friction_coefficients, local, pick};
-use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE};
 use super::settings::{Algorithm, ContactSolve, UzawaSettings};
-use super::sweep::{MAX_SHRINKS, Sweeps};
-use contact_laws::{ContactLaw, LocalVec};
+use super::sweep::Sweeps;
+use contact_laws::ContactLaw;
 
 /// One 2D contact's data for the exact solve: the block `[a b; c e]`, its inverse when it is
 /// regular (`inv_ok`), and `μ`.
@@ -161,7 +160,10 @@ impl Sweeps {
             let (d_n, d_t) = match blk.solve(z_n, z_t) {
                 Some((n, t)) => (n - r_n, t - r_t),
                 None => {
-                    let d = self.projected_step_2d(blk, laws, states, i, r, x);
+                    let (law, s) = (pick(laws, i), pick(states, i));
+                    let block = [[blk.a, blk.b, 0.0], [blk.c, blk.e, 0.0], [0.0; 3]];
+                    let (ri, xi) = (local::<1>(r, i), local::<1>(x, i));
+                    let d = self.projected_step::<L, 1>(i, law, s, ri, xi, &block);
                     (d.n, d.t[0])
                 }
             };
@@ -174,46 +176,6 @@ impl Sweeps {
             w.axpy_rows2(b, [d_n, d_t], x);
         }
         dr2
-    }
-
-    /// The projected step of [`gauss_seidel_sweep`](Self::gauss_seidel_sweep) for contact `i`
-    /// alone (adapting its `ρ_i`), for a contact the exact solve cannot take.
-    fn projected_step_2d<L: ContactLaw>(
-        &mut self,
-        blk: &ExactBlock,
-        laws: &[L],
-        states: &[L::State],
-        i: usize,
-        r: &[f64],
-        x: &[f64],
-    ) -> LocalVec<1> {
-        let (law, s) = (pick(laws, i), pick(states, i));
-        let ri = local::<1>(r, i);
-        let xi = local::<1>(x, i);
-        let v = law.modified_velocity(&xi, s);
-        let mut shrinks = 0;
-        loop {
-            let rho = self.rho[i];
-            let d = law.project(&(ri + v * rho), s) - ri;
-            let dd = d.dot(&d);
-            if dd == 0.0 {
-                return d;
-            }
-            let mut xn = xi;
-            xn.n += blk.a * d.n + blk.b * d.t[0];
-            xn.t[0] += blk.c * d.n + blk.e * d.t[0];
-            let dv = law.modified_velocity(&xn, s) - v;
-            let ratio = rho * (dv.dot(&dv) / dd).sqrt();
-            if ratio > ADAPT_SHRINK_ABOVE && shrinks < MAX_SHRINKS {
-                self.rho[i] *= 0.5;
-                shrinks += 1;
-                continue;
-            }
-            if ratio < ADAPT_GROW_BELOW {
-                self.rho[i] *= ADAPT_GROWTH;
-            }
-            return d;
-        }
     }
 }
 

@@ -11,7 +11,7 @@ use super::problem::ReducedProblem;
 use super::residual::{local, pick, set_local};
 use super::settings::{ADAPT_GROW_BELOW, ADAPT_GROWTH, ADAPT_SHRINK_ABOVE};
 use super::sweep::{MAX_SHRINKS, Sweeps};
-use contact_laws::ContactLaw;
+use contact_laws::{ContactLaw, LocalVec};
 
 impl Sweeps {
     /// One projected Gauss–Seidel sweep with per-contact adapted `ρ_i`; returns `‖Δr‖²`.
@@ -47,37 +47,7 @@ impl Sweeps {
             };
             let ri = local::<DT>(r, i);
             let xi = local::<DT>(x, i);
-            let v = law.modified_velocity(&xi, s);
-            let mut shrinks = 0;
-            let d = loop {
-                let rho = self.rho[i];
-                let d = law.project(&(ri + v * rho), s) - ri;
-                let dd = d.dot(&d);
-                if dd == 0.0 {
-                    break d;
-                }
-                // x_i moves by W_ii Δr_i when only r_i changes.
-                let mut xn = xi;
-                xn.n += block[0][0] * d.n;
-                for k in 0..DT {
-                    xn.n += block[0][k + 1] * d.t[k];
-                    xn.t[k] += block[k + 1][0] * d.n;
-                    for l in 0..DT {
-                        xn.t[k] += block[k + 1][l + 1] * d.t[l];
-                    }
-                }
-                let dv = law.modified_velocity(&xn, s) - v;
-                let ratio = rho * (dv.dot(&dv) / dd).sqrt();
-                if ratio > ADAPT_SHRINK_ABOVE && shrinks < MAX_SHRINKS {
-                    self.rho[i] *= 0.5;
-                    shrinks += 1;
-                    continue;
-                }
-                if ratio < ADAPT_GROW_BELOW {
-                    self.rho[i] *= ADAPT_GROWTH;
-                }
-                break d;
-            };
+            let d = self.projected_step::<L, DT>(i, law, s, ri, xi, &block);
             if d.n == 0.0 && d.t.iter().all(|&t| t == 0.0) {
                 continue;
             }
@@ -92,5 +62,50 @@ impl Sweeps {
             }
         }
         dr2
+    }
+
+    /// The projected step of contact `i` with the others held, `Δr_i = P_K(r_i + ρ_i v_i) − r_i`,
+    /// adapting its `ρ_i` on its local step (`x_i` moves by `W_ii Δr_i`, `block`).
+    #[inline]
+    pub(crate) fn projected_step<L: ContactLaw, const DT: usize>(
+        &mut self,
+        i: usize,
+        law: &L,
+        s: &L::State,
+        ri: LocalVec<DT>,
+        xi: LocalVec<DT>,
+        block: &[[f64; 3]; 3],
+    ) -> LocalVec<DT> {
+        let v = law.modified_velocity(&xi, s);
+        let mut shrinks = 0;
+        loop {
+            let rho = self.rho[i];
+            let d = law.project(&(ri + v * rho), s) - ri;
+            let dd = d.dot(&d);
+            if dd == 0.0 {
+                return d;
+            }
+            // x_i moves by W_ii Δr_i when only r_i changes.
+            let mut xn = xi;
+            xn.n += block[0][0] * d.n;
+            for k in 0..DT {
+                xn.n += block[0][k + 1] * d.t[k];
+                xn.t[k] += block[k + 1][0] * d.n;
+                for l in 0..DT {
+                    xn.t[k] += block[k + 1][l + 1] * d.t[l];
+                }
+            }
+            let dv = law.modified_velocity(&xn, s) - v;
+            let ratio = rho * (dv.dot(&dv) / dd).sqrt();
+            if ratio > ADAPT_SHRINK_ABOVE && shrinks < MAX_SHRINKS {
+                self.rho[i] *= 0.5;
+                shrinks += 1;
+                continue;
+            }
+            if ratio < ADAPT_GROW_BELOW {
+                self.rho[i] *= ADAPT_GROWTH;
+            }
+            return d;
+        }
     }
 }
