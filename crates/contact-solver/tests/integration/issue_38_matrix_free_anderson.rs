@@ -17,13 +17,12 @@
 
 #![cfg(feature = "fe")]
 
-use crate::issue_38_pad::pad_simulation_with;
+use crate::issue_38_pad::{pad_simulation_with, supports_xz};
 use contact_laws::{ContactLaw, Coulomb, Signorini};
 use contact_solver::local::matrix_free_anderson::{
     DEFAULT_MATRIX_FREE_WINDOW, solve_matrix_free_anderson_3d,
 };
 use contact_solver::{FlexibilityMode, SimulationSettings, SolverError, UzawaSettings};
-use fem_core::Component;
 
 /// Cells per side and layers of the small pad.
 const CELLS: usize = 8;
@@ -45,14 +44,9 @@ fn pad<L: ContactLaw + Clone>(law: L, mode: FlexibilityMode, window: usize) -> R
         .with_matrix_free_window(window);
     let mut sim = pad_simulation_with(CELLS, LAYERS, law, settings);
     let res = sim.step(1.0, 1.0).unwrap();
-    let supports = sim
-        .structure()
-        .reactions(&sim.nodal_displacements(), 1.0)
-        .unwrap();
-    let total = |c: Component| -> f64 { supports.iter().filter(|r| r.0.1 == c).map(|r| r.1).sum() };
     Run {
         reactions: res.contacts.iter().map(|c| c.force()).collect(),
-        supports: [total(Component::X), total(Component::Z)],
+        supports: supports_xz(&sim),
         products: sim.counters().operator_applications,
         matrix_free: res.report.matrix_free,
     }

@@ -44,17 +44,21 @@ fn pad_of<L: ContactLaw + Clone>(
 ) -> (StepReport, Vec<[f64; 3]>, [f64; 2]) {
     let mut sim = pad_simulation(cells, layers, law, mode);
     let res = sim.step(1.0, 1.0).unwrap();
+    let reactions = res.contacts.iter().map(|c| c.force()).collect();
+    (res.report, reactions, supports_xz(&sim))
+}
+
+/// The supports' total reaction in (x, z) after the simulation's last step (shared by the
+/// issue-38 tests of the matrix-free path).
+pub(crate) fn supports_xz<L: ContactLaw + Clone>(
+    sim: &SolidContactSimulation<SolidModel, L>,
+) -> [f64; 2] {
     let supports = sim
         .structure()
         .reactions(&sim.nodal_displacements(), 1.0)
         .unwrap();
     let total = |c: Component| -> f64 { supports.iter().filter(|r| r.0.1 == c).map(|r| r.1).sum() };
-    let reactions = res.contacts.iter().map(|c| c.force()).collect();
-    (
-        res.report,
-        reactions,
-        [total(Component::X), total(Component::Z)],
-    )
+    [total(Component::X), total(Component::Z)]
 }
 
 /// The simulation of [`pad_of`], before its step.

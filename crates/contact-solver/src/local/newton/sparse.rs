@@ -187,7 +187,6 @@ mod tests {
     use super::super::NewtonScratch;
     use crate::local::classic::friction_coefficients_into;
     use crate::local::generate::multibody::SpherePile;
-    use crate::local::problem::ReducedProblem;
     use crate::local::residual::norm;
     use crate::local::settings::{Algorithm, UzawaSettings};
     use crate::local::sweep::Sweeps;
@@ -213,26 +212,8 @@ mod tests {
         .unwrap();
         let dense = &pile.problem;
         let (m, nc) = (dense.size(), dense.contact_count());
-        let w = dense.w_dense().unwrap();
-        let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
-        for i in 0..m {
-            for j in 0..m {
-                if w[i * m + j] != 0.0 {
-                    rows.push(i);
-                    cols.push(j);
-                    vals.push(w[i * m + j]);
-                }
-            }
-        }
-        let p = ReducedProblem::from_triplets(
-            3,
-            &rows,
-            &cols,
-            &vals,
-            dense.q().to_vec(),
-            dense.mu().to_vec(),
-        )
-        .unwrap();
+        // the same storage as `ReducedProblem::from_triplets` on W's non-zero entries
+        let p = dense.stored_sparse().unwrap().unwrap();
         assert!(p.is_sparse() && pile.rank_deficiency > 0);
         let laws = p.coulomb_laws();
         let states = vec![(); nc];
